@@ -1,0 +1,43 @@
+"""The Python API: build a manifest from a script or a notebook."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from mjcfbuild.engine.context import BuildContext, default_jobs
+from mjcfbuild.engine.progress import Progress
+from mjcfbuild.engine.runner import BuildResult, run_build
+from mjcfbuild.errors import BuildFailed, ManifestError
+from mjcfbuild.manifest.models import Manifest
+
+
+def build(
+    manifest: str | os.PathLike | Manifest,
+    jobs: int | None = None,
+    quiet: bool = True,
+    base_dir: str | os.PathLike | None = None,
+) -> BuildResult:
+    """Build the robot of ``manifest`` (a path to robot.yaml, or a :class:`Manifest`).
+
+    ``jobs`` is the number of tasks run at once (default: one per CPU). With a Manifest object,
+    its relative paths are resolved against ``base_dir`` (default: the current folder).
+    Returns the :class:`BuildResult`; raises :class:`BuildFailed` listing every error if a
+    task failed, and :class:`ManifestError` if the manifest is invalid.
+    """
+    jobs = jobs or default_jobs()
+    cwd = Path.cwd()
+    if isinstance(manifest, Manifest):
+        ctx = BuildContext(manifest, Path(base_dir or cwd), manifest_label="manifest", jobs=jobs)
+    else:
+        path = Path(manifest)
+        try:
+            ctx = BuildContext.from_manifest_file(path, jobs=jobs)
+        except ManifestError as exc:
+            raise exc.relocate(path.resolve().parent, cwd) from None
+    result = run_build(ctx, Progress(quiet=quiet))
+    if not quiet:
+        print(result.summary())
+    if result.errors:
+        raise BuildFailed([error.relocate(ctx.base_dir, cwd) for error in result.errors])
+    return result

@@ -1,0 +1,109 @@
+"""The ``mjcfbuild`` command line: subcommands, error reporting and exit codes."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+from mjcfbuild import __version__
+from mjcfbuild.errors import (
+    EXIT_CODES,
+    EXIT_INTERNAL,
+    EXIT_INTERRUPTED,
+    InternalError,
+    MjcfbuildError,
+)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser with every subcommand."""
+    from mjcfbuild.cli import build, convert, init, schema
+
+    parser = argparse.ArgumentParser(
+        prog="mjcfbuild",
+        description="Build MuJoCo models (MJCF) from URDF and xacro robot descriptions.",
+        epilog="exit codes: " + "; ".join(f"{code} {text}" for code, text in EXIT_CODES.items()),
+    )
+    parser.add_argument("--version", action="version", version=f"mjcfbuild {__version__}")
+    parser.add_argument(
+        "--debug", action="store_true", help="show tracebacks and build engine output on errors"
+    )
+    commands = parser.add_subparsers(title="commands", dest="command", metavar="COMMAND")
+    commands.required = True
+    for module in (build, convert, init, schema):
+        module.add_parser(commands)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> None:
+    """Run the command line and exit with its code."""
+    sys.exit(run(argv))
+
+
+def run(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; return the exit code instead of exiting."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.handler(args)
+    except MjcfbuildError as error:
+        report_error(error, debug=args.debug)
+        return error.exit_code
+    except KeyboardInterrupt:
+        print("mjcfbuild: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except Exception as exc:  # a bug: say so plainly, traceback only with --debug
+        import traceback
+
+        error = InternalError(
+            f"{type(exc).__name__}: {exc}", details="".join(traceback.format_exception(exc))
+        )
+        report_error(error, debug=args.debug)
+        return EXIT_INTERNAL
+
+
+def report_error(error: MjcfbuildError, debug: bool, base_dir: Path | None = None) -> None:
+    """Print one error as ``mjcfbuild: error: file:line: message (hint)``."""
+    if base_dir is not None:
+        error.relocate(base_dir, Path.cwd())
+    text = error.one_line()
+    if isinstance(error, InternalError) and not debug:
+        text += " (an internal error: run again with --debug and report the output)"
+    print(f"mjcfbuild: error: {text}", file=sys.stderr)
+    if debug and isinstance(error, InternalError) and error.details:
+        print(error.details, file=sys.stderr)
+
+
+def report_warning(text: str) -> None:
+    """Print one warning line."""
+    print(f"mjcfbuild: warning: {text}", file=sys.stderr)
+
+
+def jobs_argument(parser: argparse.ArgumentParser) -> None:
+    """Add ``-j/--jobs``."""
+    parser.add_argument(
+        "-j",
+        "--jobs",
+        type=_positive_int,
+        default=None,
+        help="tasks to run at once (default: one per CPU)",
+    )
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError("must be at least 1")
+    return value
+
+
+def environment_jobs() -> int | None:
+    """``MJCFBUILD_JOBS`` from the environment, if set."""
+    value = os.environ.get("MJCFBUILD_JOBS")
+    return int(value) if value and value.isdigit() and int(value) > 0 else None

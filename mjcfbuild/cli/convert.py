@@ -1,0 +1,147 @@
+"""``mjcfbuild convert``: a drop-in for mujoco_ros2_control's make_mjcf_from_robot_description.py.
+
+It takes the reference converter's flags, builds an implicit manifest from them and runs the
+same build graph as ``mjcfbuild build``, with its state in the output folder, so converting
+again into the same folder only redoes what changed.
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from mjcfbuild.cli import environment_jobs, jobs_argument
+from mjcfbuild.errors import UsageError
+
+REFERENCE_ROBOT_FILE = "mujoco_description_formatted.xml"
+
+
+def add_parser(commands) -> None:
+    """Register the subcommand."""
+    parser = commands.add_parser(
+        "convert",
+        help="convert a URDF like mujoco_ros2_control's converter (same flags), incrementally",
+        description=(
+            "Convert a URDF or robot description to MJCF, accepting the flags of "
+            "mujoco_ros2_control's make_mjcf_from_robot_description.py. Files are written to "
+            "OUTPUT (mujoco_description_formatted.xml, scene.xml, assets/); repeating a "
+            "conversion into the same folder only redoes what changed."
+        ),
+    )
+    source = parser.add_mutually_exclusive_group(required=True)
+    source.add_argument("-u", "--urdf", help="a URDF file")
+    source.add_argument(
+        "-r", "--robot_description", help="the robot description as a string ('-' reads stdin)"
+    )
+    parser.add_argument("-m", "--mujoco_inputs", help="an XML file with <mujoco_inputs>")
+    parser.add_argument(
+        "-o", "--output", default="mjcf_data", help="output folder (default: mjcf_data)"
+    )
+    parser.add_argument(
+        "-p", "--publish_topic", help="not available: publishing needs ROS (write files with -o)"
+    )
+    parser.add_argument(
+        "-c",
+        "--convert_stl_to_obj",
+        action="store_true",
+        help="accepted for compatibility: mjcfbuild always writes meshes as OBJ",
+    )
+    parser.add_argument(
+        "-s",
+        "--save_only",
+        action="store_true",
+        help="accepted for compatibility: mjcfbuild always saves to OUTPUT",
+    )
+    parser.add_argument(
+        "-f", "--add_free_joint", action="store_true", help="give the root body a free joint"
+    )
+    parser.add_argument(
+        "--fuse",
+        action=argparse.BooleanOptionalAction,
+        default=True,
+        help="merge links on fixed joints into their parents (default: on)",
+    )
+    parser.add_argument(
+        "--use_collision_tags",
+        action="store_true",
+        help="accepted for compatibility: authored <collision> geometry is always used",
+    )
+    parser.add_argument(
+        "-a",
+        "--asset_dir",
+        help="accepted for compatibility: converted meshes are reused automatically",
+    )
+    parser.add_argument("--scene", help="a scene file to use instead of the generated one")
+    parser.add_argument(
+        "--package",
+        action="append",
+        default=[],
+        metavar="NAME=DIR",
+        help="where a ROS package is, for package:// and $(find) (repeatable)",
+    )
+    jobs_argument(parser)
+    parser.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
+    parser.set_defaults(handler=run)
+
+
+def parse_packages(values: list[str]) -> dict[str, str]:
+    """``NAME=DIR`` arguments as a dict; :class:`UsageError` for malformed ones."""
+    packages = {}
+    for value in values:
+        name, sep, folder = value.partition("=")
+        if not sep or not name or not folder:
+            raise UsageError(f"--package '{value}' is not NAME=DIR")
+        packages[name] = str(Path(folder).resolve())
+    return packages
+
+
+def run(args: argparse.Namespace) -> int:
+    """Convert."""
+    from mjcfbuild.cli.build import execute
+    from mjcfbuild.engine.context import BuildContext, default_jobs
+    from mjcfbuild.manifest.models import Manifest
+
+    if args.publish_topic:
+        raise UsageError(
+            "-p/--publish_topic needs ROS, which mjcfbuild does not use",
+            hint="write the model with -o DIR and load DIR/scene.xml",
+        )
+    if args.mujoco_inputs:
+        raise UsageError("-m/--mujoco_inputs is not supported yet")
+    cwd = Path.cwd()
+    output = Path(args.output)
+    if args.urdf:
+        source = {"urdf": args.urdf}
+        name = Path(args.urdf).stem or "robot"
+    elif args.robot_description == "-":
+        source = {"description": "-"}
+        name = "robot"
+    else:
+        state = (cwd / output / ".mjcfbuild").resolve()
+        state.mkdir(parents=True, exist_ok=True)
+        description = state / "robot_description.urdf"
+        from mjcfbuild.fsutil import write_if_changed
+
+        write_if_changed(description, args.robot_description.encode("utf-8"))
+        source = {"description": str(description)}
+        name = "robot"
+    manifest = Manifest.model_validate(
+        {
+            "name": _safe_name(name),
+            "source": source,
+            "packages": parse_packages(args.package),
+            "options": {"free_joint": args.add_free_joint, "fuse_static": args.fuse},
+            "scene": {"file": args.scene} if args.scene else {},
+            "output": {"folder": str(output), "robot": REFERENCE_ROBOT_FILE},
+        }
+    )
+    jobs = args.jobs or environment_jobs() or default_jobs()
+    ctx = BuildContext(manifest, cwd, manifest_label="the command line", jobs=jobs)
+    return execute(ctx, quiet=args.quiet, debug=args.debug)
+
+
+def _safe_name(stem: str) -> str:
+    import re
+
+    cleaned = re.sub(r"[^A-Za-z0-9_.-]+", "_", stem).strip("_.-")
+    return cleaned or "robot"

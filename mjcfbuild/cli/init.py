@@ -1,0 +1,31 @@
+"""``mjcfbuild init``: write a commented starting manifest for a robot description."""
+
+from __future__ import annotations
+
+import argparse
+
+
+def add_parser(commands) -> None:
+    """Register the subcommand."""
+    parser = commands.add_parser(
+        "init",
+        help="write a commented starting robot.yaml for a URDF or xacro file",
+        description="Write a commented starting manifest for a URDF or xacro file.",
+    )
+    parser.add_argument("source", help="the URDF or xacro file")
+    parser.add_argument("--package", action="append", default=[], metavar="NAME=DIR")
+    parser.add_argument("-o", "--output", default="robot.yaml", help="manifest to write")
+    parser.add_argument("--force", action="store_true", help="overwrite an existing manifest")
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Write the manifest."""
+    from mjcfbuild.cli.convert import parse_packages
+    from mjcfbuild.manifest.starter import write_starter_manifest
+
+    path = write_starter_manifest(
+        args.source, parse_packages(args.package), args.output, force=args.force
+    )
+    print(f"mjcfbuild: wrote {path}; build it with: mjcfbuild build {path}")
+    return 0

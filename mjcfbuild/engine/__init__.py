@@ -1,0 +1,1 @@
+"""The build engine: mjcfbuild's tasks on doit, worker processes, hashing and progress."""

@@ -1,0 +1,23 @@
+"""The doit file checker: content hashes, read through the :class:`HashCache`."""
+
+from __future__ import annotations
+
+from doit.dependency import FileChangedChecker
+
+from mjcfbuild.engine.hashes import HashCache
+
+
+def checker_class(hashes: HashCache) -> type[FileChangedChecker]:
+    """A doit checker class bound to ``hashes`` (doit instantiates checkers itself)."""
+
+    class ContentChecker(FileChangedChecker):
+        """A dependency changed when its bytes did; mtime alone never counts."""
+
+        def check_modified(self, file_path, file_stat, state) -> bool:
+            return state != hashes.md5(file_path, file_stat)
+
+        def get_state(self, dep, current_state):
+            digest = hashes.md5(dep)
+            return None if digest == current_state else digest
+
+    return ContentChecker

@@ -1,0 +1,188 @@
+"""Everything one build of one manifest needs: paths, packages, workers, hashes, errors."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from mjcfbuild.errors import InternalError, MjcfbuildError
+from mjcfbuild.fsutil import normalise
+from mjcfbuild.manifest.models import Manifest
+
+STATE_DIR = ".mjcfbuild"
+DEFAULT_STEP_TIMEOUT = 3600.0
+
+
+def default_jobs() -> int:
+    """One job per CPU the process may use."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+@dataclass
+class BuildContext:
+    """A validated manifest with its folder, and the state one build of it keeps."""
+
+    manifest: Manifest
+    base_dir: Path
+    manifest_label: str = "robot.yaml"
+    jobs: int = field(default_factory=default_jobs)
+    environ: dict[str, str] = field(default_factory=lambda: dict(os.environ))
+    step_timeout: float | None = DEFAULT_STEP_TIMEOUT
+    failures: dict[str, MjcfbuildError] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        self.base_dir = normalise(self.base_dir)
+        self._hashes = None
+        self._pool = None
+        self._resolver = None
+
+    @classmethod
+    def from_manifest_file(cls, path: str | Path, **kwargs) -> BuildContext:
+        """Load and validate ``path`` and build a context for it."""
+        from mjcfbuild.manifest.loading import load_manifest
+
+        path = Path(path)
+        manifest = load_manifest(path)
+        return cls(manifest, normalise(path).parent, manifest_label=str(path), **kwargs)
+
+    # Paths ------------------------------------------------------------------------------
+
+    def resolve(self, relative: str) -> Path:
+        """A manifest path, made absolute against the manifest's folder."""
+        return normalise(self.base_dir / os.path.expanduser(relative))
+
+    def label(self, path: str | Path) -> str:
+        """How messages show ``path``: relative to the manifest's folder when inside it."""
+        path = Path(path)
+        try:
+            return str(path.relative_to(self.base_dir))
+        except ValueError:
+            return str(path)
+
+    @property
+    def out_dir(self) -> Path:
+        """The output folder."""
+        return self.resolve(self.manifest.output.folder)
+
+    @property
+    def state_dir(self) -> Path:
+        """Where the build keeps its database and intermediate files."""
+        return self.out_dir / STATE_DIR
+
+    @property
+    def robot_path(self) -> Path:
+        """The robot model file."""
+        return self.out_dir / self.manifest.robot_file
+
+    @property
+    def scene_path(self) -> Path:
+        """The scene file."""
+        return self.out_dir / self.manifest.output.scene
+
+    @property
+    def assets_dir(self) -> Path:
+        """Where mesh and texture files of the model go."""
+        return self.out_dir / "assets"
+
+    def state(self, name: str) -> Path:
+        """A file in the state folder."""
+        return self.state_dir / name
+
+    @property
+    def products_dir(self) -> Path:
+        """Converted meshes, one folder per mesh."""
+        return self.state_dir / "products"
+
+    @property
+    def logs_dir(self) -> Path:
+        """What build steps printed, one file per task."""
+        return self.state_dir / "logs"
+
+    # Sources ----------------------------------------------------------------------------
+
+    @property
+    def source_kind(self) -> str:
+        """``urdf``, ``xacro`` or ``description``."""
+        source = self.manifest.source
+        return "xacro" if source.xacro else "urdf" if source.urdf else "description"
+
+    @property
+    def source_path(self) -> Path:
+        """The file the robot description is read from (stdin is kept in the state folder)."""
+        source = self.manifest.source
+        if source.description == "-":
+            return self.state("stdin.urdf")
+        return self.resolve(source.xacro or source.urdf or source.description)
+
+    @property
+    def source_base_dir(self) -> Path:
+        """Relative mesh paths are relative to the URDF/xacro file's folder, or for a
+        description (which may come from a string or stdin) to the manifest's folder."""
+        if self.source_kind == "description":
+            return self.base_dir
+        return self.source_path.parent
+
+    @property
+    def resolver(self):
+        """The :class:`PackageResolver` of this build."""
+        if self._resolver is None:
+            from mjcfbuild.sources.packages import PackageResolver
+
+            packages = {
+                name: self.resolve(folder) for name, folder in self.manifest.packages.items()
+            }
+            self._resolver = PackageResolver(packages, self.environ)
+        return self._resolver
+
+    # Runtime ----------------------------------------------------------------------------
+
+    @property
+    def hashes(self):
+        """The :class:`HashCache` of this output folder."""
+        if self._hashes is None:
+            from mjcfbuild.engine.hashes import HashCache
+
+            self._hashes = HashCache(self.state("hashes.json") if self.state_dir.is_dir() else None)
+        return self._hashes
+
+    def run_step(self, step: str, payload: dict, *, task: str, in_worker: bool) -> dict:
+        """Run a build step, in a worker process or here, and return its result."""
+        if not in_worker:
+            import importlib
+
+            module_name, _, function_name = step.partition(":")
+            return getattr(importlib.import_module(module_name), function_name)(payload)
+        if self._pool is None:
+            from mjcfbuild.engine.workers import WorkerPool
+
+            self._pool = WorkerPool(self.jobs, self.base_dir, self.logs_dir)
+        self.logs_dir.mkdir(parents=True, exist_ok=True)
+        log = self.logs_dir / f"{task.replace(':', '-')}.log"
+        return self._pool.run(step, payload, task, log, self.step_timeout)
+
+    def record_failure(self, task: str, error: BaseException) -> MjcfbuildError:
+        """Remember why ``task`` failed, as a :class:`MjcfbuildError`."""
+        if not isinstance(error, MjcfbuildError):
+            import traceback
+
+            error = InternalError(
+                f"{task}: {type(error).__name__}: {error}",
+                details="".join(traceback.format_exception(error)),
+            )
+        self.failures[task] = error
+        return error
+
+    def close(self) -> None:
+        """Stop workers and save the hash cache."""
+        if self._pool is not None:
+            self._pool.close()
+            self._pool = None
+        if self._hashes is not None:
+            if self._hashes.path is None and self.state_dir.is_dir():
+                self._hashes.path = self.state("hashes.json")
+            self._hashes.save()

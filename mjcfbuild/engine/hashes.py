@@ -1,0 +1,60 @@
+"""Content hashes of files, remembered by (size, mtime, inode) so unchanged files are not re-read.
+
+doit's stock MD5 checker re-hashes every file whose mtime moved, on every run, until the task
+runs again. A fresh git checkout or a ``touch`` moves every mtime, so that would re-read every
+mesh on every no-op build. This cache records the hash of each file against its stat; a file
+whose stat is unchanged is not read again. Files modified in the last two seconds are hashed
+but not remembered, so a write within the file system's timestamp granularity is never missed.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import threading
+import time
+from pathlib import Path
+
+from mjcfbuild.fsutil import atomic_write, md5_file
+
+_RACY_SECONDS = 2.0
+
+
+class HashCache:
+    """MD5 of files by path, persisted as JSON in the build's state folder."""
+
+    def __init__(self, path: Path | None) -> None:
+        self.path = path
+        self._entries: dict[str, list] = {}
+        self._dirty = False
+        self._lock = threading.Lock()
+        if path is not None:
+            try:
+                self._entries = json.loads(path.read_text())
+            except (OSError, ValueError):
+                self._entries = {}
+
+    def md5(self, file: str | os.PathLike, stat: os.stat_result | None = None) -> str:
+        """The MD5 of ``file``; raises OSError if it cannot be read."""
+        key = os.fspath(file)
+        stat = stat or os.stat(key)
+        signature = [stat.st_size, stat.st_mtime_ns, stat.st_ino]
+        with self._lock:
+            entry = self._entries.get(key)
+            if entry is not None and entry[:3] == signature:
+                return entry[3]
+        digest = md5_file(key)
+        if time.time() - stat.st_mtime > _RACY_SECONDS:
+            with self._lock:
+                self._entries[key] = [*signature, digest]
+                self._dirty = True
+        return digest
+
+    def save(self) -> None:
+        """Write the cache back if it changed, dropping entries of files that are gone."""
+        if self.path is None or not self._dirty:
+            return
+        with self._lock:
+            entries = {k: v for k, v in sorted(self._entries.items()) if os.path.exists(k)}
+            self._dirty = False
+        atomic_write(self.path, json.dumps(entries, separators=(",", ":")).encode())

@@ -1,0 +1,144 @@
+"""What the user sees while a build runs, and the record of what each task did.
+
+On a terminal one status line is redrawn in place; elsewhere (CI logs, pre-commit) each task
+that runs prints one plain line when it finishes. doit calls a reporter object; the
+:class:`Progress` behind it lives across both stages of a build, so the summary counts each
+task once.
+"""
+
+from __future__ import annotations
+
+import sys
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import TextIO
+
+from doit.exceptions import UnmetDependency
+
+RAN, UP_TO_DATE, FAILED, BLOCKED = "ran", "up to date", "failed", "blocked"
+
+
+@dataclass
+class Progress:
+    """Outcomes and durations of tasks, and the live display."""
+
+    stream: TextIO = field(default_factory=lambda: sys.stdout)
+    quiet: bool = False
+    live: bool | None = None
+    status: dict[str, str] = field(default_factory=dict)
+    durations: dict[str, float] = field(default_factory=dict)
+    titles: dict[str, str] = field(default_factory=dict)
+    failure_messages: dict[str, str] = field(default_factory=dict)
+    total: int = 0
+
+    def __post_init__(self) -> None:
+        if self.live is None:
+            self.live = not self.quiet and getattr(self.stream, "isatty", lambda: False)()
+        self._running: dict[str, float] = {}
+        self._lock = threading.Lock()
+        self._line_shown = False
+
+    def known(self, names: list[str]) -> None:
+        """The tasks of the current stage (for the [done/total] counter)."""
+        with self._lock:
+            self.total = max(self.total, len({*self.status, *names}))
+
+    def started(self, name: str, title: str) -> None:
+        with self._lock:
+            self.titles[name] = title
+            self._running[name] = time.perf_counter()
+            self._redraw()
+
+    def finished(self, name: str, outcome: str) -> None:
+        with self._lock:
+            start = self._running.pop(name, None)
+            if start is not None:
+                self.durations[name] = time.perf_counter() - start
+            if self.status.get(name) == RAN and outcome == UP_TO_DATE:
+                return  # ran in the planning stage, checked again in the build stage
+            self.status[name] = outcome
+            if start is not None and not self.quiet and not self.live:
+                self._print_line(name, outcome)
+            self._redraw()
+
+    def _print_line(self, name: str, outcome: str) -> None:
+        done = sum(1 for s in self.status.values() if s != BLOCKED)
+        title = self.titles.get(name, name)
+        seconds = self.durations.get(name, 0.0)
+        mark = "" if outcome == RAN else f" {outcome.upper()}"
+        self.stream.write(f"[{done}/{self.total}] {title} ({seconds:.2f} s){mark}\n")
+        self.stream.flush()
+
+    def _redraw(self) -> None:
+        if not self.live:
+            return
+        done = sum(1 for s in self.status.values() if s != BLOCKED)
+        running = ", ".join(self.titles.get(n, n) for n in self._running)
+        text = f"[{done}/{self.total}] {running}"[:100]
+        self.stream.write("\r\x1b[2K" + text)
+        self.stream.flush()
+        self._line_shown = True
+
+    def clear(self) -> None:
+        """Remove the live line before the summary is printed."""
+        if self.live and self._line_shown:
+            self.stream.write("\r\x1b[2K")
+            self.stream.flush()
+            self._line_shown = False
+
+    def names(self, outcome: str) -> list[str]:
+        """Tasks with ``outcome``, in the order they finished."""
+        return [name for name, status in self.status.items() if status == outcome]
+
+    def slowest(self, count: int = 3) -> list[tuple[str, float]]:
+        """The tasks that took longest, with their seconds."""
+        ran = [
+            (self.titles.get(n, n), self.durations[n])
+            for n in self.names(RAN)
+            if n in self.durations
+        ]
+        return sorted(ran, key=lambda item: -item[1])[:count]
+
+
+class ProgressReporter:
+    """The doit reporter interface, forwarding to a :class:`Progress`."""
+
+    def __init__(self, progress: Progress) -> None:
+        self.progress = progress
+
+    def initialize(self, tasks, selected_tasks) -> None:
+        self.progress.known(list(tasks))
+
+    def get_status(self, task) -> None:
+        pass
+
+    def execute_task(self, task) -> None:
+        self.progress.started(task.name, task.title())
+
+    def add_failure(self, task, fail) -> None:
+        outcome = BLOCKED if isinstance(fail, UnmetDependency) else FAILED
+        self.progress.finished(task.name, outcome)
+        if outcome == FAILED:
+            self.progress.failure_messages[task.name] = fail.get_msg().strip()
+
+    def add_success(self, task) -> None:
+        self.progress.finished(task.name, RAN)
+
+    def skip_uptodate(self, task) -> None:
+        self.progress.finished(task.name, UP_TO_DATE)
+
+    def skip_ignore(self, task) -> None:
+        self.progress.finished(task.name, UP_TO_DATE)
+
+    def cleanup_error(self, exception) -> None:
+        pass
+
+    def runtime_error(self, msg: str) -> None:
+        self.progress.failure_messages["(doit)"] = msg
+
+    def teardown_task(self, task) -> None:
+        pass
+
+    def complete_run(self) -> None:
+        pass

@@ -1,0 +1,157 @@
+"""Running a build: lock the output folder, plan, build, clean up, summarise."""
+
+from __future__ import annotations
+
+import contextlib
+import fcntl
+import shutil
+import sys
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from mjcfbuild.engine.context import BuildContext
+from mjcfbuild.engine.loader import run_doit
+from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
+from mjcfbuild.engine.tasks import build_tasks, planning_tasks, product_summary, read_plan
+from mjcfbuild.errors import MjcfbuildError, OutputError
+from mjcfbuild.fsutil import remove_stale_temp_files, write_if_changed
+
+
+@dataclass
+class BuildResult:
+    """What a build did."""
+
+    robot: Path
+    scene: Path
+    ran: list[str] = field(default_factory=list)
+    up_to_date: list[str] = field(default_factory=list)
+    blocked: list[str] = field(default_factory=list)
+    errors: list[MjcfbuildError] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    slowest: list[tuple[str, float]] = field(default_factory=list)
+    seconds: float = 0.0
+    engine_log: str = ""
+
+    @property
+    def ok(self) -> bool:
+        """Whether every task succeeded."""
+        return not self.errors
+
+    def summary(self) -> str:
+        """The one line printed at the end of every build."""
+        parts = [f"{len(self.ran)} run", f"{len(self.up_to_date)} up to date"]
+        if self.errors:
+            parts.append(f"{len(self.errors)} failed")
+        if self.blocked:
+            parts.append(f"{len(self.blocked)} not run")
+        if self.warnings:
+            parts.append(f"{len(self.warnings)} warning{'s' if len(self.warnings) > 1 else ''}")
+        state = "failed" if self.errors else "built"
+        return f"mjcfbuild: {state} {self.robot.name}: {', '.join(parts)} in {self.seconds:.2f} s"
+
+
+@contextlib.contextmanager
+def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
+    """Hold the output folder's lock; a second build of it waits instead of interleaving."""
+    try:
+        ctx.state_dir.mkdir(parents=True, exist_ok=True)
+        handle = open(ctx.state("lock"), "w")  # noqa: SIM115 - held for the whole build
+    except OSError as exc:
+        raise OutputError(
+            f"cannot write to the output folder: {exc.strerror}",
+            file=ctx.label(ctx.out_dir),
+            hint="check its permissions, or set output.folder",
+        ) from None
+    with handle:
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            if not progress.quiet:
+                progress.stream.write(
+                    f"mjcfbuild: waiting for another build of {ctx.label(ctx.out_dir)}\n"
+                )
+                progress.stream.flush()
+            fcntl.flock(handle, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)
+
+
+def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResult:
+    """Build ``ctx``'s manifest; never raises for a failing task (see ``result.errors``)."""
+    progress = progress or Progress()
+    started = time.perf_counter()
+    result = BuildResult(robot=ctx.robot_path, scene=ctx.scene_path)
+    try:
+        with build_lock(ctx, progress):
+            _prepare_state(ctx)
+            doit_output = _run_stage(ctx, planning_tasks(ctx), progress, result)
+            if not result.errors:
+                doit_output += _run_stage(ctx, build_tasks(ctx), progress, result)
+            if not result.errors:
+                _remove_stale_products(ctx)
+    finally:
+        ctx.close()
+        progress.clear()
+    result.ran = progress.names(RAN)
+    result.up_to_date = progress.names(UP_TO_DATE)
+    result.blocked = progress.names(BLOCKED)
+    result.warnings = list(dict.fromkeys(ctx.warnings))
+    result.slowest = progress.slowest()
+    result.seconds = time.perf_counter() - started
+    result.engine_log = doit_output if result.errors else ""
+    return result
+
+
+def _run_stage(
+    ctx: BuildContext, tasks: list[dict], progress: Progress, result: BuildResult
+) -> str:
+    code, output = run_doit(ctx, tasks, progress, ["run"])
+    failed = progress.names(FAILED)
+    for name in failed:
+        error = ctx.failures.get(name)
+        if error is None:
+            message = progress.failure_messages.get(name, "failed")
+            error = MjcfbuildError(f"{name}: {_first_line(message)}")
+            ctx.failures[name] = error
+        if error not in result.errors:
+            result.errors.append(error)
+    if code != 0 and not result.errors:
+        message = (
+            progress.failure_messages.get("(doit)") or output.strip() or f"doit exited with {code}"
+        )
+        result.errors.append(MjcfbuildError(f"build engine error: {_first_line(message)}"))
+    return output
+
+
+def _first_line(text: str) -> str:
+    lines = [line for line in text.strip().splitlines() if line.strip()]
+    return lines[-1] if lines else text
+
+
+def _prepare_state(ctx: BuildContext) -> None:
+    """The state folder ignores itself in git; stdin input is stored; stale temp files go."""
+    write_if_changed(
+        ctx.state(".gitignore"), b"# mjcfbuild's build state; not for version control\n*\n"
+    )
+    remove_stale_temp_files(ctx.out_dir)
+    remove_stale_temp_files(ctx.state_dir)
+    if ctx.manifest.source.description == "-":
+        data = sys.stdin.buffer.read()
+        write_if_changed(ctx.source_path, data)
+
+
+def _remove_stale_products(ctx: BuildContext) -> None:
+    """Delete converted meshes the plan no longer uses."""
+    if not ctx.products_dir.is_dir():
+        return
+    keep = set()
+    for mesh in read_plan(ctx)["meshes"]:
+        keep.add(mesh["id"])
+        keep.add(product_summary(ctx, mesh["id"]).name)
+    for entry in ctx.products_dir.iterdir():
+        if entry.name not in keep:
+            shutil.rmtree(entry) if entry.is_dir() else entry.unlink()

@@ -1,0 +1,243 @@
+"""The build graph as doit task dictionaries.
+
+The graph is built in two stages, the way ninja regenerates its manifest before building:
+
+1. :func:`planning_tasks` - ``expand`` (xacro or URDF to URDF text) and ``plan`` (parse it,
+   resolve every file, list the meshes). Their result says which mesh tasks exist.
+2. :func:`build_tasks` - the planning tasks again (now up to date), one ``mesh:<id>`` task per
+   mesh file, ``assemble`` and ``scene``.
+
+The same generators serve the command line (through :mod:`mjcfbuild.engine.loader`) and a
+user's own ``dodo.py`` (see the project's ``dodo.py``), optionally with a name prefix.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from doit.exceptions import TaskFailed
+
+from mjcfbuild.engine.context import BuildContext
+from mjcfbuild.engine.depfile import Depfile
+from mjcfbuild.engine.uptodate import ParamsUnchanged, always_stale, outputs_intact
+from mjcfbuild.engine.versions import step_versions
+from mjcfbuild.errors import InputError
+from mjcfbuild.sources.packages import ENV_VARIABLES
+
+SOURCE_URDF = "source.urdf"
+SOURCE_DEPS = "source.deps.json"
+PLAN = "plan.json"
+ASSEMBLY_REPORT = "assembly.json"
+
+
+def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
+    """The tasks that decide what else gets built."""
+    return [_expand_task(ctx, prefix), _plan_task(ctx, prefix)]
+
+
+def build_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
+    """Every task of the build; reads the plan the planning tasks wrote."""
+    plan = read_plan(ctx)
+    tasks = planning_tasks(ctx, prefix)
+    tasks += [_mesh_task(ctx, mesh, prefix) for mesh in plan["meshes"]]
+    tasks.append(_assemble_task(ctx, plan, prefix))
+    tasks.append(_scene_task(ctx, prefix))
+    return tasks
+
+
+def read_plan(ctx: BuildContext) -> dict:
+    """The plan written by the ``plan`` task."""
+    return json.loads(ctx.state(PLAN).read_text())
+
+
+def _task(
+    ctx: BuildContext,
+    name: str,
+    title: str,
+    step: str,
+    payload: dict,
+    *,
+    in_worker: bool,
+    file_dep: list[Path],
+    targets: list[Path],
+    params: dict,
+    extra_uptodate: list | None = None,
+) -> dict:
+    params = {**params, "versions": step_versions(step)}
+    return {
+        "name": name,
+        "title": lambda _task, title=title: title,
+        "doc": title,
+        "actions": [(_run, [ctx, name, f"mjcfbuild.steps.{step}:run", payload, in_worker])],
+        "file_dep": sorted({str(p) for p in file_dep}),
+        "targets": [str(p) for p in targets],
+        "uptodate": [ParamsUnchanged(params), outputs_intact(ctx.hashes), *(extra_uptodate or [])],
+        "verbosity": 0,
+        "clean": True,
+    }
+
+
+def _run(ctx: BuildContext, name: str, step: str, payload: dict, in_worker: bool):
+    """The action of every task: run the step, keep its warnings, report its outputs."""
+    try:
+        result = ctx.run_step(step, payload, task=name, in_worker=in_worker)
+    except Exception as exc:
+        error = ctx.record_failure(name, exc)
+        return TaskFailed(error.one_line())
+    ctx.warnings.extend(result.get("warnings", []))
+    return {"outputs": result["outputs"]}
+
+
+def _expand_task(ctx: BuildContext, prefix: str) -> dict:
+    source = ctx.source_path
+    if not source.is_file():
+        raise InputError(
+            "source file not found" if not source.exists() else "source is not a file",
+            file=ctx.label(source),
+            hint=f"fix 'source' in {ctx.manifest_label}",
+        )
+    output, deps = ctx.state(SOURCE_URDF), ctx.state(SOURCE_DEPS)
+    depfile = Depfile.read(deps)
+    file_dep = [source]
+    extra = []
+    if depfile is not None:
+        stale = depfile.stale_reason(ctx.environ)
+        file_dep += [Path(f) for f in depfile.files if Path(f).exists()]
+        if stale:
+            extra.append(always_stale(stale))
+    resolver = ctx.resolver
+    payload = {
+        "kind": ctx.source_kind,
+        "source": str(source),
+        "args": ctx.manifest.source.xacro_mappings(),
+        "packages": {name: str(path) for name, path in resolver.explicit.items()},
+        "environment": {key: ctx.environ.get(key, "") for key in ENV_VARIABLES},
+        "output": str(output),
+        "depfile": str(deps),
+    }
+    return _task(
+        ctx,
+        f"{prefix}expand",
+        f"expand {ctx.label(source)}",
+        "expand",
+        payload,
+        in_worker=ctx.source_kind == "xacro",
+        file_dep=file_dep,
+        targets=[output, deps],
+        params={k: v for k, v in payload.items() if k not in ("output", "depfile")},
+        extra_uptodate=extra,
+    )
+
+
+def _plan_task(ctx: BuildContext, prefix: str) -> dict:
+    urdf = ctx.state(SOURCE_URDF)
+    expanded = ctx.source_kind == "xacro"
+    payload = {
+        "urdf": str(urdf),
+        "display": ctx.label(urdf if expanded else ctx.source_path),
+        "expanded_from": ctx.label(ctx.source_path) if expanded else None,
+        "base_dir": str(ctx.source_base_dir),
+        "packages": {name: str(path) for name, path in ctx.resolver.explicit.items()},
+        "environment": {key: ctx.environ.get(key, "") for key in ENV_VARIABLES},
+        "output": str(ctx.state(PLAN)),
+    }
+    return _task(
+        ctx,
+        f"{prefix}plan",
+        "plan",
+        "plan",
+        payload,
+        in_worker=False,
+        file_dep=[urdf],
+        targets=[ctx.state(PLAN)],
+        params={k: v for k, v in payload.items() if k not in ("urdf", "output")},
+    )
+
+
+def product_summary(ctx: BuildContext, mesh_id: str) -> Path:
+    """Where the summary of a mesh's product is written."""
+    return ctx.products_dir / f"{mesh_id}.json"
+
+
+def _mesh_task(ctx: BuildContext, mesh: dict, prefix: str) -> dict:
+    mesh_id = mesh["id"]
+    payload = {
+        "source": mesh["path"],
+        "product_dir": str(ctx.products_dir / mesh_id),
+        "summary": str(product_summary(ctx, mesh_id)),
+        "roles": mesh["roles"],
+    }
+    return _task(
+        ctx,
+        f"{prefix}mesh:{mesh_id}",
+        f"mesh {mesh_id}",
+        "mesh",
+        payload,
+        in_worker=True,
+        file_dep=[Path(mesh["path"])],
+        targets=[product_summary(ctx, mesh_id)],
+        params={"roles": mesh["roles"]},
+    )
+
+
+def _assemble_task(ctx: BuildContext, plan: dict, prefix: str) -> dict:
+    options = ctx.manifest.options
+    meshes = [mesh["id"] for mesh in plan["meshes"]]
+    source_label = Path(ctx.label(ctx.source_path)).as_posix()
+    payload = {
+        "plan": str(ctx.state(PLAN)),
+        "products": {mesh_id: str(product_summary(ctx, mesh_id)) for mesh_id in meshes},
+        "product_dirs": {mesh_id: str(ctx.products_dir / mesh_id) for mesh_id in meshes},
+        "fuse_static": options.fuse_static,
+        "free_joint": options.free_joint,
+        "link_sites": options.link_sites,
+        "inertia": {"mode": "repair", "min_mass": 1e-4, "min_inertia": 1e-8},
+        "header": f"Generated by mjcfbuild from {source_label}; edit the sources, not this file.",
+        "assets_dir": str(ctx.assets_dir),
+        "report": str(ctx.state(ASSEMBLY_REPORT)),
+        "output": str(ctx.robot_path),
+    }
+    params = {
+        k: payload[k] for k in ("fuse_static", "free_joint", "link_sites", "inertia", "header")
+    }
+    params["assets_dir"] = payload["assets_dir"]
+    return _task(
+        ctx,
+        f"{prefix}assemble",
+        f"assemble {ctx.manifest.robot_file}",
+        "assemble",
+        payload,
+        in_worker=True,
+        file_dep=[ctx.state(PLAN), *(product_summary(ctx, m) for m in meshes)],
+        targets=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT)],
+        params=params,
+    )
+
+
+def _scene_task(ctx: BuildContext, prefix: str) -> dict:
+    scene_file = ctx.manifest.scene.file
+    source = ctx.resolve(scene_file) if scene_file else None
+    if source is not None and not source.is_file():
+        raise InputError(
+            "scene file not found",
+            file=ctx.label(source),
+            hint=f"fix 'scene.file' in {ctx.manifest_label}",
+        )
+    payload = {
+        "scene_file": str(source) if source else None,
+        "model": ctx.manifest.name,
+        "robot_file": ctx.manifest.robot_file,
+        "output": str(ctx.scene_path),
+    }
+    return _task(
+        ctx,
+        f"{prefix}scene",
+        f"scene {ctx.manifest.output.scene}",
+        "scene",
+        payload,
+        in_worker=False,
+        file_dep=[source] if source else [],
+        targets=[ctx.scene_path],
+        params={k: v for k, v in payload.items() if k != "output"},
+    )

@@ -1,0 +1,76 @@
+"""The up-to-date checks every task carries besides its file dependencies.
+
+* :class:`ParamsUnchanged` - the task's parameters and the versions of the tools it uses are
+  the ones of its last successful run (stored in full, so ``explain`` can say which changed).
+* :func:`outputs_intact` - every file the task wrote still has the bytes it wrote; doit
+  itself only checks that targets exist, so a hand-edited model would otherwise survive.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable
+
+from mjcfbuild.engine.hashes import HashCache
+
+
+class ParamsUnchanged:
+    """True when ``params`` equal the ones saved by the last successful run."""
+
+    KEY = "_params"
+
+    def __init__(self, params: dict) -> None:
+        # Normalise through JSON so tuples and lists compare equal after a round trip.
+        self.params = json.loads(json.dumps(params, sort_keys=True))
+
+    def configure_task(self, task) -> None:
+        """Save the parameters with the task's values when it succeeds (doit hook)."""
+        task.value_savers.append(lambda: {self.KEY: self.params})
+
+    def __call__(self, task, values) -> bool:
+        return values.get(self.KEY) == self.params
+
+    def changes(self, values: dict) -> list[str]:
+        """Dotted names of the parameters that differ from the saved ones."""
+        return _differences(values.get(self.KEY), self.params, "")
+
+    def __repr__(self) -> str:
+        return "parameters"
+
+
+def _differences(old: object, new: object, prefix: str) -> list[str]:
+    if isinstance(old, dict) and isinstance(new, dict):
+        result = []
+        for key in sorted(set(old) | set(new)):
+            result += _differences(old.get(key), new.get(key), f"{prefix}.{key}" if prefix else key)
+        return result
+    return [] if old == new else [prefix or "(all)"]
+
+
+def outputs_intact(hashes: HashCache) -> Callable:
+    """An uptodate check: the outputs recorded by the last run still have their bytes."""
+
+    def check(task, values) -> bool | None:
+        outputs = values.get("outputs")
+        if outputs is None:
+            return False
+        for path, digest in outputs.items():
+            try:
+                if hashes.md5(path) != digest:
+                    return False
+            except OSError:
+                return False
+        return True
+
+    check.__repr__ = lambda: "outputs"  # type: ignore[method-assign]
+    return check
+
+
+def always_stale(reason: str) -> Callable:
+    """An uptodate check that is always false, carrying the reason for ``explain``."""
+
+    def check(task, values) -> bool:
+        return False
+
+    check.reason = reason  # type: ignore[attr-defined]
+    return check

@@ -1,0 +1,36 @@
+"""Versions of the tools each step uses, read without importing them."""
+
+from __future__ import annotations
+
+from functools import cache
+from importlib import metadata
+
+from mjcfbuild import __version__
+
+# Bump a step's number when its output for the same inputs changes.
+STEP_FORMATS = {"expand": 1, "plan": 1, "mesh": 1, "assemble": 1, "scene": 1}
+
+STEP_TOOLS = {
+    "expand": ("xacro",),
+    "plan": ("lxml",),
+    "mesh": ("trimesh", "numpy", "pycollada", "pillow"),
+    "assemble": ("mujoco", "numpy", "lxml"),
+    "scene": (),
+}
+
+
+@cache
+def tool_version(distribution: str) -> str:
+    """The installed version of a distribution, or 'missing'."""
+    try:
+        return metadata.version(distribution)
+    except metadata.PackageNotFoundError:
+        return "missing"
+
+
+def step_versions(step: str) -> dict[str, str]:
+    """What a step's output depends on besides its inputs: tool versions and its format."""
+    versions = {name: tool_version(name) for name in STEP_TOOLS[step]}
+    versions["mjcfbuild-step"] = f"{step}-{STEP_FORMATS[step]}"
+    versions["mjcfbuild"] = __version__
+    return versions

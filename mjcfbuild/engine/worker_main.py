@@ -1,0 +1,77 @@
+"""A worker process: runs build steps sent by the :class:`WorkerPool`, one at a time.
+
+Steps that run C++ code (mesh loading, CoACD, MuJoCo's compiler) run here so a crash kills
+this process, not the build. The protocol is one JSON line per request and per reply on a
+private copy of stdout; file descriptors 1 and 2 are pointed at the step's log file while it
+runs, so anything the C++ libraries print ends up there instead of corrupting the protocol.
+"""
+
+from __future__ import annotations
+
+import importlib
+import json
+import os
+import signal
+import sys
+import threading
+import time
+import traceback
+
+
+def _watch_parent(parent: int) -> None:
+    """Exit when the build process that started this worker is gone."""
+    while True:
+        time.sleep(1.0)
+        if os.getppid() != parent:
+            os._exit(3)
+
+
+def _run(request: dict) -> dict:
+    from mjcfbuild.errors import MjcfbuildError
+
+    module_name, _, function_name = request["step"].partition(":")
+    log = request.get("log")
+    saved = os.dup(1), os.dup(2)
+    if log:
+        fd = os.open(log, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+        os.dup2(fd, 1)
+        os.dup2(fd, 2)
+        os.close(fd)
+    try:
+        function = getattr(importlib.import_module(module_name), function_name)
+        return {"ok": True, "result": function(request["payload"])}
+    except MjcfbuildError as exc:
+        return {"ok": False, "error": exc.to_dict()}
+    except Exception as exc:
+        return {
+            "ok": False,
+            "error": {"type": "InternalError", "message": f"{type(exc).__name__}: {exc}"},
+            "traceback": traceback.format_exc(),
+        }
+    finally:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os.dup2(saved[0], 1)
+        os.dup2(saved[1], 2)
+        os.close(saved[0])
+        os.close(saved[1])
+
+
+def main() -> None:
+    """Serve requests from stdin until it closes."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the build process decides about Ctrl-C
+    threading.Thread(target=_watch_parent, args=(os.getppid(),), daemon=True).start()
+    protocol = os.fdopen(os.dup(1), "w", buffering=1)
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, 1)
+    os.close(devnull)
+    for line in sys.stdin:
+        if not line.strip():
+            continue
+        reply = _run(json.loads(line))
+        protocol.write(json.dumps(reply) + "\n")
+        protocol.flush()
+
+
+if __name__ == "__main__":
+    main()

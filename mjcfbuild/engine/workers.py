@@ -1,0 +1,185 @@
+"""A pool of worker processes that turns a crash or a hang into an ordinary step failure.
+
+doit runs tasks in threads; each thread hands its step to an idle worker process (started on
+demand, up to the job count) and waits for the reply. If the worker dies (a segfault in C++
+code) or exceeds its time limit, the step fails with :class:`TaskCrashed` naming the task and
+its log, the worker is replaced, and every other task carries on.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import select
+import signal
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+from mjcfbuild.errors import InternalError, MjcfbuildError, TaskCrashed
+
+
+class _Worker:
+    def __init__(self, cwd: Path, stderr_log: Path) -> None:
+        env = dict(os.environ)
+        env.setdefault("PYTHONHASHSEED", "0")
+        package_root = str(Path(__file__).resolve().parents[2])
+        env["PYTHONPATH"] = os.pathsep.join(filter(None, [package_root, env.get("PYTHONPATH")]))
+        with open(stderr_log, "ab") as stderr:
+            self.process = subprocess.Popen(
+                [sys.executable, "-m", "mjcfbuild.engine.worker_main"],
+                stdin=subprocess.PIPE,
+                stdout=subprocess.PIPE,
+                stderr=stderr,
+                cwd=cwd,
+                env=env,
+            )
+        self._buffer = b""
+
+    def call(self, request: dict, label: str, timeout: float | None) -> dict:
+        data = (json.dumps(request) + "\n").encode()
+        try:
+            self.process.stdin.write(data)
+            self.process.stdin.flush()
+        except (BrokenPipeError, OSError):
+            raise self._died(label, request) from None
+        deadline = None if timeout is None else time.monotonic() + timeout
+        while b"\n" not in self._buffer:
+            wait = None if deadline is None else max(0.0, deadline - time.monotonic())
+            ready, _, _ = select.select([self.process.stdout], [], [], wait)
+            if not ready:
+                self.kill()
+                raise TaskCrashed(
+                    f"{label} did not finish within {timeout:g} s and was stopped",
+                    hint=_log_hint(request),
+                )
+            chunk = os.read(self.process.stdout.fileno(), 1 << 16)
+            if not chunk:
+                raise self._died(label, request)
+            self._buffer += chunk
+        line, _, self._buffer = self._buffer.partition(b"\n")
+        return json.loads(line)
+
+    def _died(self, label: str, request: dict) -> TaskCrashed:
+        code = self.process.wait()
+        if code < 0:
+            try:
+                how = f"crashed ({signal.Signals(-code).name})"
+            except ValueError:
+                how = f"was killed by signal {-code}"
+        else:
+            how = f"exited with code {code}"
+        return TaskCrashed(f"{label}: the worker process {how}", hint=_log_hint(request))
+
+    def alive(self) -> bool:
+        return self.process.poll() is None
+
+    def kill(self) -> None:
+        if self.process.poll() is None:
+            self.process.kill()
+        self.process.wait()
+
+    def close(self) -> None:
+        if self.process.poll() is None:
+            try:
+                self.process.stdin.close()
+                self.process.wait(timeout=2)
+            except (OSError, subprocess.TimeoutExpired):
+                self.kill()
+
+
+def _log_hint(request: dict) -> str | None:
+    log = request.get("log")
+    if not log:
+        return None
+    tail = _tail(Path(log))
+    return f"log: {log}" + (f"; last output: {tail}" if tail else "")
+
+
+def _tail(path: Path, limit: int = 200) -> str:
+    try:
+        text = path.read_bytes()[-4096:].decode("utf-8", "replace")
+    except OSError:
+        return ""
+    lines = [line.strip() for line in text.splitlines() if line.strip()]
+    return lines[-1][:limit] if lines else ""
+
+
+class WorkerPool:
+    """Up to ``size`` worker processes, started when first needed."""
+
+    def __init__(self, size: int, cwd: Path, log_dir: Path) -> None:
+        self.size = max(1, size)
+        self.cwd = cwd
+        self.log_dir = log_dir
+        self._idle: list[_Worker] = []
+        self._started = 0
+        self._all: list[_Worker] = []
+        self._condition = threading.Condition()
+        self._closed = False
+
+    def run(
+        self, step: str, payload: dict, label: str, log: Path | None, timeout: float | None
+    ) -> dict:
+        """Run ``step`` ("module:function") with ``payload`` in a worker; its result dict.
+
+        Errors the step raises come back as the same :class:`MjcfbuildError` class.
+        """
+        worker = self._acquire()
+        healthy = False
+        try:
+            reply = worker.call(
+                {"step": step, "payload": payload, "log": str(log) if log else None}, label, timeout
+            )
+            healthy = True
+        finally:
+            self._release(worker, healthy)
+        if reply["ok"]:
+            return reply["result"]
+        error = MjcfbuildError.from_dict(reply["error"])
+        if isinstance(error, InternalError):
+            error.details = reply.get("traceback", "")
+        raise error
+
+    def _acquire(self) -> _Worker:
+        with self._condition:
+            while True:
+                if self._closed:
+                    raise MjcfbuildError("the build was stopped")
+                while self._idle:
+                    worker = self._idle.pop()
+                    if worker.alive():
+                        return worker
+                if self._started < self.size:
+                    self._started += 1
+                    break
+                self._condition.wait()
+        self.log_dir.mkdir(parents=True, exist_ok=True)
+        worker = _Worker(self.cwd, self.log_dir / "workers.log")
+        with self._condition:
+            self._all.append(worker)
+        return worker
+
+    def _release(self, worker: _Worker, healthy: bool) -> None:
+        with self._condition:
+            if healthy and worker.alive() and not self._closed:
+                self._idle.append(worker)
+            else:
+                worker.kill()
+                self._started -= 1
+            self._condition.notify()
+
+    def close(self) -> None:
+        """Stop every worker (idle ones politely, busy ones at once)."""
+        with self._condition:
+            self._closed = True
+            idle = list(self._idle)
+            busy = [worker for worker in self._all if worker not in idle]
+            self._all, self._idle = [], []
+            self._condition.notify_all()
+        for worker in busy:
+            worker.kill()
+        for worker in idle:
+            worker.close()

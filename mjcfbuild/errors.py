@@ -1,0 +1,194 @@
+"""The errors mjcfbuild reports to users, and the exit code each one maps to.
+
+Every error a user can cause is a :class:`MjcfbuildError`: it carries a one-line message, the
+file (and line, where there is one) it is about, and what to do about it. The command line
+prints it as ``file:line: message (hint)`` and exits with the error's code; only ``--debug``
+shows a traceback.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+EXIT_OK = 0
+EXIT_BUILD_FAILED = 1
+EXIT_USAGE = 2
+EXIT_MANIFEST = 3
+EXIT_INPUT = 4
+EXIT_MODEL = 5
+EXIT_CHECK = 6
+EXIT_OUTPUT = 7
+EXIT_INTERNAL = 70
+EXIT_INTERRUPTED = 130
+
+EXIT_CODES: dict[int, str] = {
+    EXIT_OK: "success",
+    EXIT_BUILD_FAILED: "a build step failed for a reason not listed below",
+    EXIT_USAGE: "bad command line",
+    EXIT_MANIFEST: "robot.yaml is invalid",
+    EXIT_INPUT: "an input (URDF, xacro, mesh, package, inputs file) is missing or invalid",
+    EXIT_MODEL: "MuJoCo rejected the assembled model",
+    EXIT_CHECK: "a check failed, or outputs are out of date",
+    EXIT_OUTPUT: "an output could not be written",
+    EXIT_INTERNAL: "internal error in mjcfbuild (please report it, with --debug output)",
+    EXIT_INTERRUPTED: "interrupted",
+}
+
+
+@dataclass
+class Location:
+    """Where an error points: a file and, when known, a line and column."""
+
+    file: str
+    line: int | None = None
+    column: int | None = None
+
+    def __str__(self) -> str:
+        text = self.file
+        if self.line is not None:
+            text += f":{self.line}"
+            if self.column is not None:
+                text += f":{self.column}"
+        return text
+
+
+class MjcfbuildError(Exception):
+    """Base class of every error mjcfbuild reports to a user."""
+
+    exit_code = EXIT_BUILD_FAILED
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        file: str | Path | None = None,
+        line: int | None = None,
+        column: int | None = None,
+        hint: str | None = None,
+    ) -> None:
+        super().__init__(message)
+        self.message = message
+        self.location = Location(str(file), line, column) if file is not None else None
+        self.hint = hint
+
+    def one_line(self) -> str:
+        """The error as the single line the command line prints."""
+        text = self.message
+        if self.location is not None:
+            text = f"{self.location}: {text}"
+        if self.hint:
+            text = f"{text} ({self.hint})"
+        return " ".join(text.split())
+
+    def relocate(self, base_dir: Path, cwd: Path) -> MjcfbuildError:
+        """Show a file given relative to ``base_dir`` relative to ``cwd`` instead."""
+        import os
+
+        if self.location is not None and not os.path.isabs(self.location.file):
+            absolute = os.path.normpath(os.path.join(base_dir, self.location.file))
+            relative = os.path.relpath(absolute, cwd)
+            self.location.file = absolute if relative.startswith("../../..") else relative
+        return self
+
+    def to_dict(self) -> dict:
+        """A JSON-friendly form, used to send errors from worker processes."""
+        loc = self.location
+        return {
+            "type": type(self).__name__,
+            "message": self.message,
+            "file": loc.file if loc else None,
+            "line": loc.line if loc else None,
+            "column": loc.column if loc else None,
+            "hint": self.hint,
+        }
+
+    @staticmethod
+    def from_dict(data: dict) -> MjcfbuildError:
+        """Rebuild an error sent by :meth:`to_dict`, keeping its class."""
+        cls = _ERROR_CLASSES.get(data.get("type", ""), MjcfbuildError)
+        return cls(
+            data["message"],
+            file=data.get("file"),
+            line=data.get("line"),
+            column=data.get("column"),
+            hint=data.get("hint"),
+        )
+
+
+class UsageError(MjcfbuildError):
+    """The command line is wrong."""
+
+    exit_code = EXIT_USAGE
+
+
+class ManifestError(MjcfbuildError):
+    """robot.yaml cannot be read or does not validate."""
+
+    exit_code = EXIT_MANIFEST
+
+
+class InputError(MjcfbuildError):
+    """A source file, package, mesh or inputs file is missing or malformed."""
+
+    exit_code = EXIT_INPUT
+
+
+class ModelError(MjcfbuildError):
+    """MuJoCo refused the model mjcfbuild assembled."""
+
+    exit_code = EXIT_MODEL
+
+
+class CheckError(MjcfbuildError):
+    """A check of the built model against its source failed."""
+
+    exit_code = EXIT_CHECK
+
+
+class OutputError(MjcfbuildError):
+    """An output cannot be written."""
+
+    exit_code = EXIT_OUTPUT
+
+
+class TaskCrashed(MjcfbuildError):
+    """A build step's worker process died (a crash in C++ code) or ran out of time."""
+
+    exit_code = EXIT_BUILD_FAILED
+
+
+class InternalError(MjcfbuildError):
+    """A bug in mjcfbuild; the message carries the original exception."""
+
+    exit_code = EXIT_INTERNAL
+
+    def __init__(self, message: str, *, details: str = "", **kwargs) -> None:
+        super().__init__(message, **kwargs)
+        self.details = details
+
+
+class BuildFailed(MjcfbuildError):
+    """Raised by :func:`mjcfbuild.build` when one or more build steps failed."""
+
+    def __init__(self, errors: list[MjcfbuildError]) -> None:
+        first = errors[0] if errors else MjcfbuildError("build failed")
+        super().__init__(first.one_line())
+        self.errors = errors
+        self.exit_code = first.exit_code
+
+
+_ERROR_CLASSES: dict[str, type[MjcfbuildError]] = {
+    cls.__name__: cls
+    for cls in (
+        MjcfbuildError,
+        UsageError,
+        ManifestError,
+        InputError,
+        ModelError,
+        CheckError,
+        OutputError,
+        TaskCrashed,
+        InternalError,
+    )
+}

@@ -1,0 +1,64 @@
+"""File-system helpers: one spelling per path, and writes that are never seen half-done."""
+
+from __future__ import annotations
+
+import hashlib
+import os
+from pathlib import Path
+
+TEMP_SUFFIX = ".mjcfbuild-tmp"
+
+
+def normalise(path: str | os.PathLike) -> Path:
+    """An absolute path without '.' or '..' parts (symlinks kept), so a file has one name."""
+    return Path(os.path.normpath(os.path.abspath(path)))
+
+
+def atomic_write(path: str | os.PathLike, data: bytes) -> None:
+    """Write ``data`` to ``path`` through a temporary file and a rename.
+
+    A reader (or a later build after a crash) sees either the old file or the new one, never a
+    partial write. The temporary file carries :data:`TEMP_SUFFIX` so leftovers of a killed
+    build can be recognised and removed.
+    """
+    path = Path(path)
+    temp = path.with_name(f".{path.name}.{os.getpid()}{TEMP_SUFFIX}")
+    try:
+        with open(temp, "wb") as handle:
+            handle.write(data)
+        os.replace(temp, path)
+    except BaseException:
+        temp.unlink(missing_ok=True)
+        raise
+
+
+def write_if_changed(path: str | os.PathLike, data: bytes) -> bool:
+    """Atomically write ``data`` unless ``path`` already holds exactly it; True if written."""
+    path = Path(path)
+    try:
+        if path.stat().st_size == len(data) and path.read_bytes() == data:
+            return False
+    except OSError:
+        pass
+    atomic_write(path, data)
+    return True
+
+
+def md5_file(path: str | os.PathLike) -> str:
+    """Hex MD5 of a file's bytes, read in blocks."""
+    digest = hashlib.md5(usedforsecurity=False)
+    with open(path, "rb") as handle:
+        for block in iter(lambda: handle.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def remove_stale_temp_files(folder: Path) -> None:
+    """Delete temporary files a killed build left in ``folder`` (not recursive)."""
+    try:
+        entries = list(folder.iterdir())
+    except OSError:
+        return
+    for entry in entries:
+        if entry.name.endswith(TEMP_SUFFIX):
+            entry.unlink(missing_ok=True)

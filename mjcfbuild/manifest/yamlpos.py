@@ -1,0 +1,99 @@
+"""YAML loading that remembers where every value came from.
+
+PyYAML's ``safe_load`` forgets positions; validation errors need them to say
+``robot.yaml:12:5``. This loader composes the node tree, builds plain Python values from it and
+records the (line, column) of every mapping key and value, keyed by its path of keys and list
+indices. It also refuses duplicate keys, which ``safe_load`` silently collapses.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import yaml
+
+Path_ = tuple[str | int, ...]
+
+
+@dataclass
+class Positions:
+    """Line and column (both 1-based) of every value, and of every key, by path."""
+
+    values: dict[Path_, tuple[int, int]] = field(default_factory=dict)
+    keys: dict[Path_, tuple[int, int]] = field(default_factory=dict)
+
+    def of(self, path: Path_) -> tuple[int, int] | None:
+        """The best position for ``path``: the key if known, else the value, else a parent."""
+        path = tuple(path)
+        while True:
+            if path in self.keys:
+                return self.keys[path]
+            if path in self.values:
+                return self.values[path]
+            if not path:
+                return None
+            path = path[:-1]
+
+
+class YamlSyntaxError(Exception):
+    """YAML that cannot be parsed, with the position of the problem."""
+
+    def __init__(self, message: str, line: int | None, column: int | None) -> None:
+        super().__init__(message)
+        self.message = message
+        self.line = line
+        self.column = column
+
+
+def _mark(node: yaml.Node) -> tuple[int, int]:
+    return node.start_mark.line + 1, node.start_mark.column + 1
+
+
+def load_with_positions(text: str) -> tuple[object, Positions]:
+    """Parse one YAML document into plain values and the positions of every value."""
+    try:
+        node = yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        line = mark.line + 1 if mark else None
+        column = mark.column + 1 if mark else None
+        problem = exc.problem or exc.context or "invalid YAML"
+        raise YamlSyntaxError(f"YAML syntax error: {problem}", line, column) from None
+    except yaml.YAMLError as exc:
+        raise YamlSyntaxError(f"YAML syntax error: {exc}", None, None) from None
+    positions = Positions()
+    if node is None:
+        return None, positions
+    constructor = yaml.SafeLoader("")
+    value = _build(node, (), positions, constructor)
+    return value, positions
+
+
+def _build(node: yaml.Node, path: Path_, positions: Positions, constructor: yaml.SafeLoader):
+    positions.values[path] = _mark(node)
+    if isinstance(node, yaml.MappingNode):
+        constructor.flatten_mapping(node)
+        result: dict = {}
+        for key_node, value_node in node.value:
+            key = constructor.construct_object(key_node, deep=True)
+            if isinstance(key, (list, dict)):
+                line, column = _mark(key_node)
+                raise YamlSyntaxError("a mapping key must be a plain value", line, column)
+            key = str(key) if not isinstance(key, str) else key
+            if key in result:
+                line, column = _mark(key_node)
+                raise YamlSyntaxError(f"duplicate key '{key}'", line, column)
+            child = (*path, key)
+            positions.keys[child] = _mark(key_node)
+            result[key] = _build(value_node, child, positions, constructor)
+        return result
+    if isinstance(node, yaml.SequenceNode):
+        return [
+            _build(item, (*path, index), positions, constructor)
+            for index, item in enumerate(node.value)
+        ]
+    try:
+        return constructor.construct_object(node, deep=True)
+    except yaml.constructor.ConstructorError as exc:
+        line, column = _mark(node)
+        raise YamlSyntaxError(f"YAML error: {exc.problem}", line, column) from None

@@ -1,0 +1,1 @@
+"""Mesh files: reading every supported format and converting them into OBJ products."""

@@ -1,0 +1,1 @@
+"""Building the MuJoCo model: bodies from links, inertia checks, assembly on MjSpec, scene."""

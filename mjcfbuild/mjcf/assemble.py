@@ -1,0 +1,271 @@
+"""Assembling the robot model on ``mujoco.MjSpec``.
+
+The prepared URDF (see :mod:`mjcfbuild.mjcf.prepared`) is loaded into an MjSpec, then edited
+through the API: Menagerie-style ``visual`` and ``collision`` classes, mesh and material
+assets with stable names, a site for every link, an optional free joint, and an ``info`` string
+on every element pointing at its line in the URDF so MuJoCo's compile errors do too. The model
+is written with :func:`precise_xml` and the compiler settings it needs to load again.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from lxml import etree
+
+from mjcfbuild.errors import ModelError
+from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies
+from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
+from mjcfbuild.mjcf.precise import precise_xml
+from mjcfbuild.mjcf.prepared import GeomRecord, Prepared, prepare
+from mjcfbuild.urdf.model import Robot
+
+VISUAL_CLASS = "visual"
+COLLISION_CLASS = "collision"
+LINK_SITE_CLASS = "link_site"
+OUTPUT_COMPILER = {
+    "angle": "radian",
+    "meshdir": "assets",
+    "texturedir": "assets",
+    "inertiafromgeom": "false",
+}
+# Attributes of a URDF's own <mujoco><compiler> that mjcfbuild decides itself.
+_OWNED_COMPILER = {*OUTPUT_COMPILER, "discardvisual", "fusestatic", "strippath"}
+
+
+@dataclass
+class AssemblyOptions:
+    """The manifest settings the assembly uses."""
+
+    fuse_static: bool = True
+    free_joint: bool = False
+    link_sites: str = "all"
+    inertia: InertiaPolicy = field(default_factory=InertiaPolicy)
+    header: str = ""
+
+
+@dataclass
+class Assembly:
+    """The assembled model and what must be published with it."""
+
+    xml: bytes
+    assets: dict[str, str]
+    repairs: list[Repair]
+    warnings: list[str]
+    bodies: int
+    geoms: int
+
+
+def assemble(
+    robot: Robot,
+    products: dict[str, dict],
+    product_dirs: dict[str, Path],
+    options: AssemblyOptions,
+) -> Assembly:
+    """Build the model of ``robot`` from its converted meshes."""
+    import mujoco
+
+    bodies = build_bodies(robot, options.fuse_static, float_from_world=options.free_joint)
+    lines = {
+        link.name: (link.inertial.line if link.inertial else link.line) for link in robot.links
+    }
+    repairs = validate_masses(bodies, options.inertia, robot.source, lines)
+    prepared = prepare(
+        robot.name, bodies, products, product_dirs, robot.mujoco_compiler, robot.source
+    )
+    try:
+        spec = mujoco.MjSpec.from_string(prepared.urdf)
+    except Exception as exc:
+        raise ModelError(f"MuJoCo could not import the prepared URDF: {_first_line(exc)}") from None
+    _finish(spec, prepared, bodies, robot, options)
+    try:
+        root = precise_xml(spec)
+    except Exception as exc:
+        raise _compile_error(exc) from None
+    _finish_xml(root, prepared, robot, options)
+    xml = etree.tostring(root, encoding="unicode")
+    header = f"<!-- {options.header} -->\n" if options.header else ""
+    return Assembly(
+        xml=(header + xml + "\n").encode("utf-8"),
+        assets={asset.file: asset.product_file for asset in prepared.meshes},
+        repairs=repairs,
+        warnings=[*robot.warnings, *prepared.warnings],
+        bodies=len(bodies),
+        geoms=len(prepared.geoms),
+    )
+
+
+def _first_line(exc: Exception) -> str:
+    text = str(exc).strip()
+    return text.splitlines()[0] if text else type(exc).__name__
+
+
+def _compile_error(exc: Exception) -> ModelError:
+    """A MuJoCo compile error as one line, pointing at the URDF line in the element's info."""
+    text = str(exc).strip().replace("Error: ", "", 1)
+    lines = text.splitlines()
+    message = lines[0] if lines else "compile failed"
+    for line in lines[1:]:
+        if "Element" in line and ", " in line:
+            origin = line.split(", ")[-1]
+            if ":" in origin and not origin.startswith("id "):
+                file, _, rest = origin.partition(":")
+                number, _, what = rest.partition(" ")
+                if number.isdigit():
+                    return ModelError(
+                        f"MuJoCo: {message} ({what.strip()})", file=file, line=int(number)
+                    )
+            message = f"{message} ({line.strip()})"
+    return ModelError(f"MuJoCo: {message}")
+
+
+def _finish(
+    spec, prepared: Prepared, bodies: list[Body], robot: Robot, options: AssemblyOptions
+) -> None:
+    import mujoco
+
+    spec.modelname = robot.name
+    visual = spec.add_default(VISUAL_CLASS, spec.default)
+    visual.geom.group = 2
+    visual.geom.contype = 0
+    visual.geom.conaffinity = 0
+    visual.geom.density = 0
+    collision = spec.add_default(COLLISION_CLASS, spec.default)
+    collision.geom.group = 3
+    link_site = spec.add_default(LINK_SITE_CLASS, spec.default)
+    link_site.site.group = 5
+    link_site.site.size = [0.005, 0.005, 0.005]
+
+    for name, rgba in sorted(prepared.materials.items()):
+        spec.add_material(name=name, rgba=list(rgba))
+
+    by_file = {(asset.product_file, tuple(asset.scale)): asset for asset in prepared.meshes}
+    for mesh in spec.meshes:
+        asset = by_file[(mesh.file, tuple(float(s) for s in mesh.scale))]
+        old, mesh.name = mesh.name, asset.name
+        for geom in spec.geoms:
+            if geom.meshname == old:
+                geom.meshname = asset.name
+
+    authored = _unique_authored_names(prepared.geoms.values())
+    for geom in spec.geoms:
+        record = prepared.geoms[geom.name]
+        _style_geom(geom, record, visual if record.role == "visual" else collision, mujoco)
+        geom.info = _origin(robot.source, record.line, f"link '{record.link}' {record.role}")
+        geom.name = record.authored_name if record.authored_name in authored else ""
+
+    links = {link.name: link for link in robot.links}
+    joints = {joint.name: joint for joint in robot.joints}
+    for body in bodies:
+        target = (
+            spec.worldbody if body.parent is None and body.name == WORLD else spec.body(body.name)
+        )
+        if body.mass is not None and target is not spec.worldbody and target.mass > 0:
+            _set_principal_inertia(target, body)
+        if body.name != WORLD or body.parent is not None:
+            target.info = _origin(robot.source, links[body.name].line, f"link '{body.name}'")
+        for frame in body.links:
+            if options.link_sites == "all" or frame.fused:
+                site = target.add_site(
+                    name=frame.link, pos=list(frame.pose.position), quat=list(frame.pose.quat)
+                )
+                site.classname = link_site
+                site.group = 5
+                site.size = [0.005, 0.005, 0.005]
+                site.info = _origin(robot.source, links[frame.link].line, f"link '{frame.link}'")
+        if body.joint is not None and body.joint.moves:
+            joint = spec.joint(body.joint.name)
+            if joint is not None:
+                joint.info = _origin(
+                    robot.source, joints[body.joint.name].line, f"joint '{body.joint.name}'"
+                )
+        if options.free_joint and _floats(body):
+            target.add_freejoint(name=f"{body.name}_freejoint")
+
+
+def _floats(body: Body) -> bool:
+    """Whether a free joint goes on ``body``: the root, or what a ``world`` root holds fixed."""
+    if body.parent is None:
+        return body.name != WORLD
+    return body.parent == WORLD and (body.joint is None or not body.joint.moves)
+
+
+def _set_principal_inertia(spec_body, body: Body) -> None:
+    """Write the body's inertia as principal moments and axes computed here, at full precision.
+
+    MuJoCo's import stores the URDF tensor and diagonalises it only when compiling, so the
+    written axes would be rounded values from the compiled model.
+    """
+    import numpy as np
+
+    from mjcfbuild.urdf.transforms import matrix_to_quat
+
+    tensor = np.array(body.mass.inertia, dtype=float)
+    moments, axes = np.linalg.eigh(0.5 * (tensor + tensor.T))
+    # Order and orient the principal axes like the body's own axes where they nearly are,
+    # so a diagonal URDF tensor stays diagonal with an identity orientation.
+    nearest = np.argmax(np.abs(axes), axis=0)
+    if sorted(nearest) == [0, 1, 2]:
+        order = np.argsort(nearest)
+        moments, axes = moments[order], axes[:, order]
+        axes = axes * np.sign(np.diag(axes))
+    if np.linalg.det(axes) < 0:
+        axes[:, 2] = -axes[:, 2]
+    rotation = tuple(tuple(float(v) for v in row) for row in axes)
+    spec_body.ipos = list(body.mass.com)
+    spec_body.iquat = list(matrix_to_quat(rotation))
+    spec_body.inertia = [max(float(m), 0.0) for m in moments]
+    spec_body.fullinertia = [float("nan")] * 6
+    spec_body.explicitinertial = True
+
+
+def _style_geom(geom, record: GeomRecord, default, mujoco) -> None:
+    """Put a geom in its class and give it only the attributes the class does not."""
+    geom.classname = default
+    geom.group = default.geom.group
+    geom.contype = default.geom.contype
+    geom.conaffinity = default.geom.conaffinity
+    geom.density = default.geom.density
+    geom.rgba = list(default.geom.rgba)
+    if record.kind == "capsule":
+        geom.type = mujoco.mjtGeom.mjGEOM_CAPSULE
+    if record.material is not None:
+        geom.material = record.material
+    elif record.rgba is not None:
+        geom.rgba = list(record.rgba)
+
+
+def _unique_authored_names(records) -> set[str]:
+    counts: dict[str, int] = {}
+    for record in records:
+        if record.authored_name:
+            counts[record.authored_name] = counts.get(record.authored_name, 0) + 1
+    return {name for name, count in counts.items() if count == 1}
+
+
+def _origin(source: str, line: int | None, what: str) -> str:
+    return f"{source}:{line} {what}" if line else f"{source} {what}"
+
+
+def _finish_xml(
+    root: etree._Element, prepared: Prepared, robot: Robot, options: AssemblyOptions
+) -> None:
+    """Compiler settings, relative mesh files, and Menagerie-style layout."""
+    for compiler in root.findall("compiler"):
+        root.remove(compiler)
+    settings = {k: v for k, v in robot.mujoco_compiler.items() if k not in _OWNED_COMPILER}
+    settings.update(OUTPUT_COMPILER)
+    compiler = etree.Element("compiler", {k: settings[k] for k in sorted(settings)})
+    root.insert(0, compiler)
+    files = {asset.name: asset.file for asset in prepared.meshes}
+    for mesh in root.iter("mesh"):
+        name = mesh.get("name")
+        if name in files:
+            mesh.set("file", files[name])
+        mesh.attrib.pop("content_type", None)
+    etree.indent(root, space="  ")
+    children = list(root)
+    root.text = "\n  "
+    for index, child in enumerate(children):
+        child.tail = "\n" if index == len(children) - 1 else "\n\n  "

@@ -1,0 +1,132 @@
+"""From URDF links to MuJoCo bodies: which links fuse, where everything sits, combined masses.
+
+With fusing on, a link attached by a fixed joint becomes part of its parent's body: its shapes
+and inertia move into the parent's frame and its name survives as a site. Everything here is
+computed in double precision from the URDF, so the assembled model's numbers are the URDF's,
+not a re-parse of rounded text.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from mjcfbuild.urdf.model import Joint, Robot, Shape
+from mjcfbuild.urdf.transforms import Matrix, Transform, matmul, transpose
+
+WORLD = "world"
+
+
+@dataclass
+class MassProperties:
+    """Mass, centre of mass and inertia tensor about it, all in the body frame."""
+
+    mass: float
+    com: tuple[float, float, float]
+    inertia: Matrix
+    links: list[str] = field(default_factory=list)
+
+
+@dataclass
+class PlacedShape:
+    """A URDF visual or collision, placed in the frame of the body it ends up in."""
+
+    link: str
+    shape: Shape
+    pose: Transform
+
+
+@dataclass
+class LinkFrame:
+    """Where a URDF link's frame is, in the frame of the body it ends up in."""
+
+    link: str
+    pose: Transform
+    fused: bool
+
+
+@dataclass
+class Body:
+    """One MuJoCo body: a URDF link and the fixed-joint links fused into it."""
+
+    name: str
+    parent: str | None
+    joint: Joint | None  # the URDF joint to the parent body (fixed when not fusing)
+    pose: Transform
+    mass: MassProperties | None
+    shapes: list[PlacedShape]
+    links: list[LinkFrame]
+
+    @property
+    def moves(self) -> bool:
+        """Whether the body has its own degrees of freedom."""
+        return self.joint is not None and self.joint.moves
+
+
+def build_bodies(robot: Robot, fuse_static: bool, float_from_world: bool = False) -> list[Body]:
+    """The bodies of the model, parents before children, in URDF order.
+
+    A root link called ``world`` stands for MuJoCo's world body; links fixed to it become
+    static parts of the world when fusing, unless ``float_from_world`` asks for them to stay
+    bodies of their own (they get a free joint).
+    """
+    children = robot.child_joints()
+    links = {link.name: link for link in robot.links}
+    bodies: list[Body] = []
+
+    def visit(link_name: str, body: Body, in_body: Transform) -> None:
+        link = links[link_name]
+        body.links.append(LinkFrame(link_name, in_body, fused=link_name != body.name))
+        for shape in link.shapes:
+            body.shapes.append(
+                PlacedShape(link_name, shape, in_body.compose(Transform.from_pose(shape.origin)))
+            )
+        for joint in children[link_name]:
+            joint_pose = in_body.compose(Transform.from_pose(joint.origin))
+            keep_body = float_from_world and body.name == WORLD and body.parent is None
+            if fuse_static and not joint.moves and not keep_body:
+                visit(joint.child, body, joint_pose)
+            else:
+                start(joint.child, body.name, joint, joint_pose)
+
+    def start(link_name: str, parent: str | None, joint: Joint | None, pose: Transform) -> None:
+        body = Body(link_name, parent, joint, pose, None, [], [])
+        bodies.append(body)
+        visit(link_name, body, Transform())
+        body.mass = combine_masses(robot, body)
+
+    start(robot.root, None, None, Transform())
+    return bodies
+
+
+def combine_masses(robot: Robot, body: Body) -> MassProperties | None:
+    """The combined mass properties of every link in ``body``, or None if none has mass data."""
+    parts = []
+    for frame in body.links:
+        inertial = robot.link(frame.link).inertial
+        if inertial is None:
+            continue
+        to_body = frame.pose.compose(Transform.from_pose(inertial.origin))
+        ixx, ixy, ixz, iyy, iyz, izz = inertial.inertia
+        local = ((ixx, ixy, ixz), (ixy, iyy, iyz), (ixz, iyz, izz))
+        rotated = matmul(matmul(to_body.rotation, local), transpose(to_body.rotation))
+        parts.append((frame.link, inertial.mass, to_body.position, rotated))
+    if not parts:
+        return None
+    total = sum(mass for _, mass, _, _ in parts)
+    if total > 0:
+        com = tuple(sum(mass * pos[i] for _, mass, pos, _ in parts) / total for i in range(3))
+    else:
+        com = parts[0][2]
+    inertia = [[0.0] * 3 for _ in range(3)]
+    for _, mass, pos, rotated in parts:
+        d = tuple(pos[i] - com[i] for i in range(3))
+        d2 = sum(v * v for v in d)
+        for i in range(3):
+            for j in range(3):
+                inertia[i][j] += rotated[i][j] + mass * ((d2 if i == j else 0.0) - d[i] * d[j])
+    return MassProperties(
+        mass=total,
+        com=com,
+        inertia=tuple(tuple(row) for row in inertia),
+        links=[name for name, _, _, _ in parts],
+    )

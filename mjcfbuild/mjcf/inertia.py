@@ -1,0 +1,121 @@
+"""Mass and inertia MuJoCo accepts: checked per body, repaired or refused by policy.
+
+MuJoCo refuses a moving body whose mass or principal inertia is below its minimum, and any
+body whose principal moments break the triangle inequality (A + B >= C). Real descriptions
+ship dummy links with zero or singular inertia. Under the ``repair`` policy every such body is
+fixed with the smallest change that makes it valid, and every change is reported (body,
+before, after); under ``fail`` the build stops and names the body and the numbers.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.mjcf.bodies import Body, MassProperties
+from mjcfbuild.numbers import output_list
+
+TOLERANCE = 1e-12
+
+
+@dataclass(frozen=True)
+class InertiaPolicy:
+    """What to do with masses and inertias MuJoCo would refuse."""
+
+    mode: str = "repair"
+    min_mass: float = 1e-4
+    min_inertia: float = 1e-8
+
+
+@dataclass
+class Repair:
+    """One change made to a body's mass properties."""
+
+    body: str
+    problem: str
+    before: str
+    after: str
+
+    def describe(self) -> str:
+        """One line for the build report."""
+        return f"body '{self.body}': {self.problem}; {self.before} -> {self.after}"
+
+
+def validate_masses(
+    bodies: list[Body], policy: InertiaPolicy, source: str, lines: dict[str, int | None]
+) -> list[Repair]:
+    """Check (and under ``repair``, fix in place) every body's mass properties."""
+    repairs: list[Repair] = []
+    for body in bodies:
+        if body.name == "world" and body.parent is None:
+            continue
+        if body.mass is not None and (not math.isfinite(body.mass.mass) or body.mass.mass < 0):
+            raise InputError(
+                f"link '{body.name}' has mass {body.mass.mass}; a mass must be a number >= 0",
+                file=source,
+                line=lines.get(body.name),
+            )
+        for problem, before, after, fixed in _problems(body, policy):
+            if policy.mode != "repair":
+                raise InputError(
+                    f"link '{body.name}': {problem} ({before})",
+                    file=source,
+                    line=lines.get(body.name),
+                    hint="fix the <inertial>, or set inertia.policy: repair in robot.yaml",
+                )
+            body.mass = fixed
+            repairs.append(Repair(body.name, problem, before, after))
+    return repairs
+
+
+def _problems(body: Body, policy: InertiaPolicy):
+    """Yield (problem, before, after, repaired properties) for each defect of ``body``."""
+    import numpy as np
+
+    mass = body.mass
+    if body.moves and (mass is None or mass.mass < policy.min_mass):
+        before = "no <inertial>" if mass is None else f"mass {mass.mass:g}"
+        fixed = MassProperties(
+            mass=policy.min_mass,
+            com=mass.com if mass is not None else (0.0, 0.0, 0.0),
+            inertia=mass.inertia if mass is not None else ((0.0,) * 3,) * 3,
+            links=mass.links if mass is not None else [],
+        )
+        yield "moving body with too small a mass", before, f"mass {policy.min_mass:g}", fixed
+        mass = fixed
+    if mass is None:
+        return
+    tensor = np.array(mass.inertia, dtype=float)
+    tensor = 0.5 * (tensor + tensor.T)
+    moments, axes = np.linalg.eigh(tensor)
+    floor = policy.min_inertia if body.moves else 0.0
+    repaired = np.maximum(moments, floor)
+    scale = max(1.0, float(np.max(np.abs(moments))))
+    order = np.argsort(repaired)
+    a, b, c = (repaired[i] for i in order)
+    if a + b < c - TOLERANCE * scale:
+        lift = (c - a - b) / 2.0 + TOLERANCE * scale
+        repaired[order[0]] += lift
+        repaired[order[1]] += lift
+    if np.allclose(repaired, moments, rtol=0.0, atol=TOLERANCE * scale):
+        return
+    if np.any(moments < -TOLERANCE * scale):
+        problem = "inertia is not positive definite"
+    elif body.moves and np.any(moments < floor):
+        problem = "principal inertia too small for a moving body"
+    else:
+        problem = "principal inertia breaks A + B >= C"
+    new_tensor = axes @ np.diag(repaired) @ axes.T
+    fixed = MassProperties(
+        mass=mass.mass,
+        com=mass.com,
+        inertia=tuple(tuple(float(v) for v in row) for row in new_tensor),
+        links=mass.links,
+    )
+    yield (
+        problem,
+        f"principal moments {output_list(sorted(moments))}",
+        f"{output_list(sorted(repaired))}",
+        fixed,
+    )

@@ -1,0 +1,35 @@
+"""The default scene: the robot on a floor under a light and a sky, Menagerie style."""
+
+from __future__ import annotations
+
+from xml.sax.saxutils import quoteattr
+
+_SCENE = """<mujoco model={model}>
+  <include file={robot}/>
+
+  <visual>
+    <headlight diffuse="0.6 0.6 0.6" ambient="0.3 0.3 0.3" specular="0 0 0"/>
+    <rgba haze="0.15 0.25 0.35 1"/>
+    <global azimuth="120" elevation="-20"/>
+  </visual>
+
+  <asset>
+    <texture type="skybox" builtin="gradient" rgb1="0.3 0.5 0.7" rgb2="0 0 0"
+      width="512" height="3072"/>
+    <texture type="2d" name="groundplane" builtin="checker" mark="edge"
+      rgb1="0.2 0.3 0.4" rgb2="0.1 0.2 0.3" markrgb="0.8 0.8 0.8" width="300" height="300"/>
+    <material name="groundplane" texture="groundplane" texuniform="true" texrepeat="5 5"
+      reflectance="0.2"/>
+  </asset>
+
+  <worldbody>
+    <light pos="0 0 1.5" dir="0 0 -1" directional="true"/>
+    <geom name="floor" size="0 0 0.05" type="plane" material="groundplane"/>
+  </worldbody>
+</mujoco>
+"""
+
+
+def default_scene(model: str, robot_file: str) -> str:
+    """The scene XML that includes ``robot_file``."""
+    return _SCENE.format(model=quoteattr(f"{model} scene"), robot=quoteattr(robot_file))

@@ -1,0 +1,1 @@
+"""Robot description sources: ROS packages without ROS, URIs, xacro expansion."""

@@ -1,0 +1,116 @@
+"""Finding ROS packages without ROS.
+
+``package://pkg/...`` URIs and xacro's ``$(find pkg)`` need the folder of a package. It comes
+from the manifest's ``packages`` map first, then from the environment the way ROS tools look:
+``ROS_PACKAGE_PATH`` (ROS 1: folders crawled for ``package.xml``) and ``AMENT_PREFIX_PATH``
+(ROS 2: ``<prefix>/share/<pkg>`` registered in the ament resource index).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Mapping
+from pathlib import Path
+
+from mjcfbuild.errors import InputError
+
+ENV_VARIABLES = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")
+_IGNORE_MARKERS = ("CATKIN_IGNORE", "COLCON_IGNORE", "AMENT_IGNORE")
+_NAME_TAG = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
+_MAX_CRAWL_DEPTH = 6
+
+
+class PackageResolver:
+    """Maps ROS package names to folders: the manifest first, then the ROS environment."""
+
+    def __init__(self, explicit: Mapping[str, Path], environ: Mapping[str, str]) -> None:
+        self.explicit = {name: Path(folder) for name, folder in explicit.items()}
+        self.environ = {key: environ.get(key, "") for key in ENV_VARIABLES}
+        self._crawled: dict[str, Path] | None = None
+
+    def fingerprint(self) -> dict[str, object]:
+        """Everything resolution depends on, for a task's up-to-date check."""
+        return {
+            "packages": {name: str(path) for name, path in sorted(self.explicit.items())},
+            "environment": dict(self.environ),
+        }
+
+    def find(self, name: str) -> Path:
+        """The folder of package ``name``; :class:`InputError` listing known packages if none."""
+        if name in self.explicit:
+            folder = self.explicit[name]
+            if not folder.is_dir():
+                raise InputError(
+                    f"package '{name}' points at '{folder}', which is not a folder",
+                    hint="fix its entry under 'packages' in robot.yaml",
+                )
+            return folder
+        found = self._find_in_ament(name) or self._find_in_ros_package_path(name)
+        if found is not None:
+            return found
+        known = sorted(set(self.explicit) | set(self._crawl()))
+        listing = ", ".join(known) if known else "none"
+        raise InputError(
+            f"unknown package '{name}' (known packages: {listing})",
+            hint=f"add '{name}: <folder>' under 'packages' in robot.yaml, "
+            "or set ROS_PACKAGE_PATH / AMENT_PREFIX_PATH",
+        )
+
+    def _find_in_ament(self, name: str) -> Path | None:
+        for prefix in _split(self.environ["AMENT_PREFIX_PATH"]):
+            share = Path(prefix) / "share"
+            marker = share / "ament_index" / "resource_index" / "packages" / name
+            folder = share / name
+            if (marker.exists() or (folder / "package.xml").is_file()) and folder.is_dir():
+                return folder
+        return None
+
+    def _find_in_ros_package_path(self, name: str) -> Path | None:
+        return self._crawl().get(name)
+
+    def _crawl(self) -> dict[str, Path]:
+        """Every package below ROS_PACKAGE_PATH, by name; the first one found wins."""
+        if self._crawled is None:
+            self._crawled = {}
+            for root in _split(self.environ["ROS_PACKAGE_PATH"]):
+                _crawl_folder(Path(root), 0, self._crawled)
+        return self._crawled
+
+
+def _split(value: str) -> list[str]:
+    return [part for part in value.split(os.pathsep) if part]
+
+
+def _crawl_folder(folder: Path, depth: int, found: dict[str, Path]) -> None:
+    manifest = folder / "package.xml"
+    if manifest.is_file():
+        found.setdefault(package_name(manifest) or folder.name, folder)
+        return
+    if depth >= _MAX_CRAWL_DEPTH or any((folder / m).exists() for m in _IGNORE_MARKERS):
+        return
+    try:
+        children = sorted(entry for entry in folder.iterdir() if not entry.name.startswith("."))
+    except OSError:
+        return
+    for child in children:
+        if child.is_dir() and not child.is_symlink():
+            _crawl_folder(child, depth + 1, found)
+
+
+def package_name(package_xml: Path) -> str | None:
+    """The ``<name>`` of a ``package.xml``, read without a full XML parse."""
+    try:
+        match = _NAME_TAG.search(package_xml.read_bytes()[:65536])
+    except OSError:
+        return None
+    return match.group(1).decode("utf-8", "replace") if match else None
+
+
+def find_enclosing_package(path: Path) -> tuple[str, Path] | None:
+    """The ROS package a file lives in (name and folder), found by walking up to package.xml."""
+    for folder in [path, *path.parents] if path.is_dir() else path.parents:
+        manifest = folder / "package.xml"
+        if manifest.is_file():
+            return package_name(manifest) or folder.name, folder
+    return None

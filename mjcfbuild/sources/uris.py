@@ -1,0 +1,43 @@
+"""Resolving the file references a URDF makes (meshes, textures) to real paths."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from urllib.parse import unquote
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.fsutil import normalise
+from mjcfbuild.sources.packages import PackageResolver
+
+_PACKAGE_SCHEMES = ("package://", "model://")
+_REMOTE_SCHEMES = ("http://", "https://", "ftp://")
+
+
+def resolve_uri(uri: str, base_dir: Path, packages: PackageResolver) -> Path:
+    """The absolute path ``uri`` names.
+
+    ``package://pkg/rest`` (and Gazebo's ``model://``) resolve through ``packages``;
+    ``file://`` URIs and plain paths are absolute or relative to ``base_dir``, the folder of
+    the URDF (or xacro) file that mentions them.
+    """
+    text = uri.strip()
+    if not text:
+        raise InputError("empty file name")
+    for scheme in _PACKAGE_SCHEMES:
+        if text.startswith(scheme):
+            rest = text[len(scheme) :]
+            package, _, inner = rest.partition("/")
+            if not package:
+                raise InputError(f"'{uri}' names no package")
+            return normalise(packages.find(package) / unquote(inner))
+    if text.startswith(_REMOTE_SCHEMES):
+        raise InputError(
+            f"'{uri}' is a remote file; mjcfbuild does not download files",
+            hint="download it into the description and refer to it by a relative path",
+        )
+    if text.startswith("file://"):
+        text = unquote(text[len("file://") :])
+    path = Path(text)
+    if not path.is_absolute():
+        path = base_dir / path
+    return normalise(path)

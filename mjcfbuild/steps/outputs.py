@@ -1,0 +1,20 @@
+"""Helpers shared by build steps for writing and reporting their outputs."""
+
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+
+from mjcfbuild.fsutil import md5_file, write_if_changed
+
+
+def write_output(path: Path, data: bytes, outputs: dict[str, str]) -> None:
+    """Write ``data`` to ``path`` (atomically, only if different) and record its hash."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    write_if_changed(path, data)
+    outputs[str(path)] = hashlib.md5(data, usedforsecurity=False).hexdigest()
+
+
+def record_output(path: Path, outputs: dict[str, str]) -> None:
+    """Record the hash of a file a step wrote by other means."""
+    outputs[str(path)] = md5_file(path)

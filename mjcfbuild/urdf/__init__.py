@@ -1,0 +1,1 @@
+"""URDF: the data model, parsing, file resolution, transforms and forward kinematics."""

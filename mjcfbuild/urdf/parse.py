@@ -1,0 +1,458 @@
+"""Parsing URDF bytes into a :class:`Robot`, with errors that name the file and line.
+
+The XML is parsed as bytes (real files declare their encoding), with entity expansion and
+network access off. Two defects seen in real descriptions are repaired with a warning instead
+of failing: undeclared namespace prefixes (``drake:...``; the prefixed elements are ignored)
+and numbers separated by commas (``rpy="1.57, 0, 0"``).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+from lxml import etree
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.urdf.model import (
+    JOINT_TYPES,
+    Geometry,
+    Inertial,
+    Joint,
+    Limit,
+    Link,
+    Material,
+    Mimic,
+    Pose,
+    Robot,
+    Shape,
+)
+
+_SEPARATORS = re.compile(r"[\s,]+")
+_EXTENSION_TAGS = ("mujoco_inputs", "ros2_control")
+
+
+def secure_parser(recover: bool = False) -> etree.XMLParser:
+    """An lxml parser that expands no entities, loads no DTD and touches no network."""
+    return etree.XMLParser(
+        resolve_entities=False,
+        no_network=True,
+        load_dtd=False,
+        huge_tree=False,
+        remove_comments=True,
+        remove_pis=True,
+        recover=recover,
+    )
+
+
+def parse_xml(data: bytes, display_file: str, warnings: list[str]) -> etree._Element:
+    """Parse XML bytes safely; undeclared namespace prefixes are a warning, the rest errors."""
+    if not data.strip():
+        raise InputError("the file is empty", file=display_file)
+    try:
+        return etree.fromstring(data, secure_parser())
+    except etree.XMLSyntaxError as exc:
+        if exc.code != 201:  # 201: namespace prefix not defined
+            raise InputError(
+                f"malformed XML: {_clean_xml_message(exc.msg)}",
+                file=display_file,
+                line=exc.lineno,
+                column=exc.position[1] if exc.position else None,
+            ) from None
+    parser = secure_parser(recover=True)
+    root = etree.fromstring(data, parser)
+    real_errors = [e for e in parser.error_log if e.domain_name != "NAMESPACE"]
+    if root is None or real_errors:
+        first = real_errors[0] if real_errors else None
+        raise InputError(
+            f"malformed XML: {first.message if first else 'unreadable'}",
+            file=display_file,
+            line=first.line if first else None,
+        )
+    prefixes = sorted(
+        {m.group(1) for e in parser.error_log for m in [_PREFIX.search(e.message)] if m}
+    )
+    warnings.append(
+        f"{display_file}: undeclared XML namespace prefix(es) {', '.join(prefixes) or '?'}; "
+        "elements using them are ignored"
+    )
+    return root
+
+
+_PREFIX = re.compile(r"Namespace prefix (\S+)")
+
+
+def _clean_xml_message(message: str) -> str:
+    return re.sub(r",? line \d+, column \d+.*$", "", message).strip()
+
+
+class _Reader:
+    """Reads typed values from elements, raising errors that point at the element's line."""
+
+    def __init__(self, display_file: str, warnings: list[str]) -> None:
+        self.file = display_file
+        self.warnings = warnings
+
+    def error(self, element: etree._Element | None, message: str, hint: str | None = None):
+        line = element.sourceline if element is not None else None
+        return InputError(message, file=self.file, line=line, hint=hint)
+
+    def required(self, element: etree._Element, attribute: str) -> str:
+        value = element.get(attribute)
+        if value is None or not value.strip():
+            raise self.error(element, f"<{element.tag}> needs a '{attribute}' attribute")
+        return value.strip()
+
+    def numbers(
+        self, element: etree._Element, attribute: str, count: int | None, default=None
+    ) -> tuple[float, ...] | None:
+        text = element.get(attribute)
+        if text is None:
+            return default
+        stripped = text.strip()
+        if "," in stripped:
+            self.warnings.append(
+                f'{self.file}:{element.sourceline}: <{element.tag} {attribute}="{text}"> '
+                "uses commas between numbers; read them as spaces"
+            )
+        parts = [p for p in _SEPARATORS.split(stripped) if p]
+        if count is not None and len(parts) != count:
+            raise self.error(
+                element,
+                f'<{element.tag}> {attribute}="{text}" needs {count} number'
+                f"{'s' if count > 1 else ''}, found {len(parts)}",
+            )
+        values = []
+        for part in parts:
+            try:
+                value = float(part)
+            except ValueError:
+                raise self.error(
+                    element, f"<{element.tag}> {attribute}=\"{text}\": '{part}' is not a number"
+                ) from None
+            if not math.isfinite(value):
+                raise self.error(
+                    element, f'<{element.tag}> {attribute}="{text}" is not a finite number'
+                )
+            values.append(value)
+        return tuple(values)
+
+    def number(self, element: etree._Element, attribute: str, default: float | None = None):
+        values = self.numbers(element, attribute, 1)
+        return default if values is None else values[0]
+
+    def pose(self, parent: etree._Element) -> Pose:
+        origin = parent.find("origin")
+        if origin is None:
+            return Pose()
+        return Pose(
+            self.numbers(origin, "xyz", 3, (0.0, 0.0, 0.0)),
+            self.numbers(origin, "rpy", 3, (0.0, 0.0, 0.0)),
+        )
+
+
+def parse_urdf(data: bytes, display_file: str = "robot.urdf") -> Robot:
+    """Parse URDF bytes; :class:`InputError` with file and line for anything malformed."""
+    warnings: list[str] = []
+    root = parse_xml(data, display_file, warnings)
+    reader = _Reader(display_file, warnings)
+    if root.tag != "robot":
+        raise reader.error(root, f"the root element is <{root.tag}>, a URDF's is <robot>")
+    materials = _global_materials(root, reader)
+    links = [_parse_link(element, reader, materials) for element in root.findall("link")]
+    joints = [_parse_joint(element, reader) for element in root.findall("joint")]
+    robot = Robot(
+        name=(root.get("name") or "robot").strip() or "robot",
+        links=links,
+        joints=joints,
+        source=display_file,
+        mujoco_compiler=_mujoco_compiler(root),
+        extensions=_extensions(root),
+        warnings=warnings,
+    )
+    validate_structure(robot, root, reader)
+    return robot
+
+
+def _global_materials(root: etree._Element, reader: _Reader) -> dict[str, Material]:
+    result = {}
+    for element in root.findall("material"):
+        name = reader.required(element, "name")
+        result[name] = _material(element, reader, {})
+    return result
+
+
+def _material(element: etree._Element, reader: _Reader, known: dict[str, Material]) -> Material:
+    name = element.get("name")
+    color = element.find("color")
+    texture = element.find("texture")
+    rgba = reader.numbers(color, "rgba", 4) if color is not None else None
+    texture_file = texture.get("filename") if texture is not None else None
+    if rgba is None and texture_file is None and name in known:
+        return known[name]
+    return Material(name=name, rgba=rgba, texture=texture_file)
+
+
+def _parse_link(element: etree._Element, reader: _Reader, materials: dict[str, Material]) -> Link:
+    name = reader.required(element, "name")
+    inertial = None
+    inertial_element = element.find("inertial")
+    if inertial_element is not None:
+        inertial = _parse_inertial(inertial_element, reader)
+    visuals = [
+        _parse_shape(e, "visual", i, reader, materials)
+        for i, e in enumerate(element.findall("visual"))
+    ]
+    collisions = [
+        _parse_shape(e, "collision", i, reader, materials)
+        for i, e in enumerate(element.findall("collision"))
+    ]
+    return Link(name, inertial, visuals, collisions, element.sourceline)
+
+
+def _parse_inertial(element: etree._Element, reader: _Reader) -> Inertial:
+    mass_element = element.find("mass")
+    mass = reader.number(mass_element, "value") if mass_element is not None else None
+    if mass is None:
+        raise reader.error(element, "<inertial> needs <mass value=...>")
+    inertia_element = element.find("inertia")
+    if inertia_element is None:
+        raise reader.error(element, "<inertial> needs <inertia ixx=... iyy=... izz=.../>")
+    inertia = tuple(
+        reader.number(inertia_element, key, 0.0)
+        for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+    )
+    return Inertial(reader.pose(element), mass, inertia, element.sourceline)
+
+
+def _parse_shape(
+    element: etree._Element,
+    role: str,
+    index: int,
+    reader: _Reader,
+    materials: dict[str, Material],
+) -> Shape:
+    geometry_element = element.find("geometry")
+    if geometry_element is None or len(geometry_element) == 0:
+        raise reader.error(element, f"<{role}> has no <geometry>")
+    geometry = _parse_geometry(geometry_element[0], reader)
+    material = None
+    material_element = element.find("material")
+    if role == "visual" and material_element is not None:
+        material = _material(material_element, reader, materials)
+    name = element.get("name")
+    return Shape(
+        role=role,
+        index=index,
+        origin=reader.pose(element),
+        geometry=geometry,
+        name=name.strip() if name and name.strip() else None,
+        material=material,
+        line=element.sourceline,
+    )
+
+
+def _parse_geometry(element: etree._Element, reader: _Reader) -> Geometry:
+    kind = element.tag
+    if kind == "box":
+        return Geometry(
+            "box", reader.numbers(element, "size", 3) or _missing(reader, element, "size")
+        )
+    if kind in ("cylinder", "capsule"):
+        radius = reader.number(element, "radius")
+        length = reader.number(element, "length")
+        if radius is None or length is None:
+            raise reader.error(element, f"<{kind}> needs 'radius' and 'length'")
+        return Geometry(kind, (radius, length))
+    if kind == "sphere":
+        radius = reader.number(element, "radius")
+        if radius is None:
+            raise reader.error(element, "<sphere> needs 'radius'")
+        return Geometry("sphere", (radius,))
+    if kind == "mesh":
+        uri = reader.required(element, "filename")
+        scale = reader.numbers(element, "scale", None, (1.0, 1.0, 1.0))
+        if len(scale) == 1:
+            scale = (scale[0],) * 3
+        if len(scale) != 3:
+            raise reader.error(element, "<mesh> scale needs 1 or 3 numbers")
+        return Geometry("mesh", uri=uri, scale=tuple(scale))
+    raise reader.error(
+        element,
+        f"unknown geometry <{kind}>",
+        hint="URDF geometry is one of box, cylinder, sphere, mesh (and capsule)",
+    )
+
+
+def _missing(reader: _Reader, element: etree._Element, attribute: str):
+    raise reader.error(element, f"<{element.tag}> needs a '{attribute}' attribute")
+
+
+def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
+    name = reader.required(element, "name")
+    kind = reader.required(element, "type")
+    if kind not in JOINT_TYPES:
+        raise reader.error(
+            element,
+            f"joint '{name}' has unknown type '{kind}'",
+            hint=f"use one of {', '.join(JOINT_TYPES)}",
+        )
+    parent = element.find("parent")
+    child = element.find("child")
+    if parent is None or child is None:
+        raise reader.error(element, f"joint '{name}' needs <parent link=...> and <child link=...>")
+    axis_element = element.find("axis")
+    axis = (1.0, 0.0, 0.0)
+    if axis_element is not None:
+        axis = reader.numbers(axis_element, "xyz", 3, axis)
+        if kind != "fixed" and all(abs(a) < 1e-12 for a in axis):
+            raise reader.error(axis_element, f"joint '{name}' has a zero axis")
+    limit = None
+    limit_element = element.find("limit")
+    if limit_element is not None:
+        limit = Limit(
+            reader.number(limit_element, "lower"),
+            reader.number(limit_element, "upper"),
+            reader.number(limit_element, "effort"),
+            reader.number(limit_element, "velocity"),
+        )
+    damping = friction = 0.0
+    dynamics = element.find("dynamics")
+    if dynamics is not None:
+        damping = reader.number(dynamics, "damping", 0.0)
+        friction = reader.number(dynamics, "friction", 0.0)
+    mimic = None
+    mimic_element = element.find("mimic")
+    if mimic_element is not None:
+        mimic = Mimic(
+            reader.required(mimic_element, "joint"),
+            reader.number(mimic_element, "multiplier", 1.0),
+            reader.number(mimic_element, "offset", 0.0),
+        )
+    return Joint(
+        name=name,
+        kind=kind,
+        parent=reader.required(parent, "link"),
+        child=reader.required(child, "link"),
+        origin=reader.pose(element),
+        axis=axis,
+        limit=limit,
+        damping=damping,
+        friction=friction,
+        mimic=mimic,
+        line=element.sourceline,
+    )
+
+
+def _mujoco_compiler(root: etree._Element) -> dict[str, str]:
+    """Attributes of ``<mujoco><compiler>`` already in the URDF, to be merged, not duplicated."""
+    result: dict[str, str] = {}
+    for mujoco in root.findall("mujoco"):
+        for compiler in mujoco.findall("compiler"):
+            result.update({str(k): str(v) for k, v in compiler.attrib.items()})
+    return result
+
+
+def _extensions(root: etree._Element) -> dict[str, str]:
+    """Raw XML of elements later build steps read (``mujoco_inputs``, ``ros2_control``)."""
+    result = {}
+    for tag in _EXTENSION_TAGS:
+        found = root.findall(tag)
+        if found:
+            result[tag] = "".join(etree.tostring(e, encoding="unicode") for e in found)
+    return result
+
+
+def validate_structure(robot: Robot, root: etree._Element, reader: _Reader) -> None:
+    """Unique names, existing parents and children, one root, no cycles."""
+    if not robot.links:
+        raise reader.error(root, "the robot has no links")
+    elements = {("link", e.get("name")): e for e in root.findall("link")}
+    elements.update({("joint", e.get("name")): e for e in root.findall("joint")})
+    seen: set[str] = set()
+    for link in robot.links:
+        if link.name in seen:
+            raise InputError(
+                f"link '{link.name}' is defined twice", file=reader.file, line=link.line
+            )
+        seen.add(link.name)
+    joint_names: set[str] = set()
+    parent_of: dict[str, Joint] = {}
+    for joint in robot.joints:
+        if joint.name in joint_names:
+            raise InputError(
+                f"joint '{joint.name}' is defined twice", file=reader.file, line=joint.line
+            )
+        joint_names.add(joint.name)
+        for end in (joint.parent, joint.child):
+            if end not in seen:
+                raise InputError(
+                    f"joint '{joint.name}' refers to link '{end}', which does not exist",
+                    file=reader.file,
+                    line=joint.line,
+                    hint=_closest(end, seen),
+                )
+        if joint.child in parent_of:
+            other = parent_of[joint.child]
+            raise InputError(
+                f"link '{joint.child}' is the child of two joints, "
+                f"'{other.name}' and '{joint.name}'",
+                file=reader.file,
+                line=joint.line,
+                hint="a URDF is a tree: every link has at most one parent joint",
+            )
+        if joint.parent == joint.child:
+            raise InputError(
+                f"joint '{joint.name}' connects link '{joint.parent}' to itself",
+                file=reader.file,
+                line=joint.line,
+            )
+        parent_of[joint.child] = joint
+    for joint in robot.joints:
+        if joint.mimic is not None and joint.mimic.joint not in joint_names:
+            raise InputError(
+                f"joint '{joint.name}' mimics joint '{joint.mimic.joint}', which does not exist",
+                file=reader.file,
+                line=joint.line,
+                hint=_closest(joint.mimic.joint, joint_names),
+            )
+    roots = [link.name for link in robot.links if link.name not in parent_of]
+    if not roots:
+        raise InputError(
+            "the links form a cycle: every link has a parent joint",
+            file=reader.file,
+            line=robot.joints[0].line if robot.joints else None,
+        )
+    if len(roots) > 1:
+        raise InputError(
+            f"the robot has {len(roots)} root links ({', '.join(roots[:6])}"
+            f"{', ...' if len(roots) > 6 else ''}); a URDF has exactly one",
+            file=reader.file,
+            line=robot.link(roots[1]).line,
+            hint="connect the extra roots with joints",
+        )
+    children = robot.child_joints()
+    reached = {roots[0]}
+    pending = [roots[0]]
+    while pending:
+        for joint in children[pending.pop()]:
+            if joint.child not in reached:
+                reached.add(joint.child)
+                pending.append(joint.child)
+    unreached = [link for link in robot.links if link.name not in reached]
+    if unreached:
+        raise InputError(
+            f"links {', '.join(link.name for link in unreached[:6])} form a cycle "
+            "detached from the root",
+            file=reader.file,
+            line=unreached[0].line,
+        )
+
+
+def _closest(name: str, candidates: set[str]) -> str | None:
+    import difflib
+
+    match = difflib.get_close_matches(name, sorted(candidates), n=1)
+    if match:
+        return f"did you mean '{match[0]}'?"
+    return None

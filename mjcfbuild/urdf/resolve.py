@@ -1,0 +1,69 @@
+"""Resolving every file a parsed URDF refers to, and naming its meshes."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.meshes.formats import MESH_FORMATS, mesh_format
+from mjcfbuild.meshes.naming import assign_mesh_ids
+from mjcfbuild.sources.packages import PackageResolver
+from mjcfbuild.sources.uris import resolve_uri
+from mjcfbuild.urdf.model import Robot, Shape
+
+
+def resolve_files(robot: Robot, base_dir: Path, packages: PackageResolver) -> None:
+    """Fill in the real path of every mesh and texture, and give each mesh file an id.
+
+    Relative references are relative to ``base_dir``, the folder of the URDF or xacro file.
+    A reference that cannot be resolved, a missing file or an unsupported format is an
+    :class:`InputError` at the line of the element that names it.
+    """
+    mesh_paths: list[str] = []
+    for link in robot.links:
+        for shape in link.shapes:
+            geometry = shape.geometry
+            if geometry.kind == "mesh":
+                geometry.path = _resolve_existing(
+                    robot, shape, geometry.uri or "", base_dir, packages
+                )
+                if mesh_format(geometry.path) is None:
+                    raise InputError(
+                        f"mesh '{geometry.uri}' has an unsupported format",
+                        file=robot.source,
+                        line=shape.line,
+                        hint=f"mjcfbuild reads {', '.join(sorted(MESH_FORMATS))}",
+                    )
+                mesh_paths.append(geometry.path)
+            if shape.material is not None and shape.material.texture:
+                shape.material.texture = _resolve_existing(
+                    robot, shape, shape.material.texture, base_dir, packages
+                )
+    ids = assign_mesh_ids(mesh_paths)
+    for link in robot.links:
+        for shape in link.shapes:
+            if shape.geometry.kind == "mesh":
+                shape.geometry.mesh_id = ids[shape.geometry.path]
+
+
+def _resolve_existing(
+    robot: Robot, shape: Shape, uri: str, base_dir: Path, packages: PackageResolver
+) -> str:
+    try:
+        path = resolve_uri(uri, base_dir, packages)
+    except InputError as exc:
+        raise InputError(exc.message, file=robot.source, line=shape.line, hint=exc.hint) from None
+    if not path.is_file():
+        what = "a folder" if path.is_dir() else "not found"
+        raise InputError(
+            f"file '{uri}' is {what} (looked at {path})",
+            file=robot.source,
+            line=shape.line,
+            hint="check the path and the 'packages' in robot.yaml",
+        )
+    if not os.access(path, os.R_OK):
+        raise InputError(
+            f"file '{uri}' is not readable ({path})", file=robot.source, line=shape.line
+        )
+    return str(path)
