@@ -82,10 +82,10 @@ class MjcfbuildError(Exception):
         return " ".join(text.split())
 
     def relocate(self, base_dir: Path, cwd: Path) -> MjcfbuildError:
-        """Show a file given relative to ``base_dir`` relative to ``cwd`` instead."""
+        """Show the file (relative to ``base_dir``, or absolute) relative to ``cwd`` if near."""
         import os
 
-        if self.location is not None and not os.path.isabs(self.location.file):
+        if self.location is not None:
             absolute = os.path.normpath(os.path.join(base_dir, self.location.file))
             relative = os.path.relpath(absolute, cwd)
             self.location.file = absolute if relative.startswith("../../..") else relative

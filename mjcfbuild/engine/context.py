@@ -3,12 +3,16 @@
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from mjcfbuild.errors import InternalError, MjcfbuildError
 from mjcfbuild.fsutil import normalise
-from mjcfbuild.manifest.models import Manifest
+
+if TYPE_CHECKING:
+    from mjcfbuild.manifest.models import Manifest
 
 STATE_DIR = ".mjcfbuild"
 DEFAULT_STEP_TIMEOUT = 3600.0
@@ -34,6 +38,7 @@ class BuildContext:
     step_timeout: float | None = DEFAULT_STEP_TIMEOUT
     failures: dict[str, MjcfbuildError] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
+    timings: dict[str, float] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         self.base_dir = normalise(self.base_dir)
@@ -47,7 +52,7 @@ class BuildContext:
         from mjcfbuild.manifest.loading import load_manifest
 
         path = Path(path)
-        manifest = load_manifest(path)
+        manifest = load_manifest(path, use_cache=True)
         return cls(manifest, normalise(path).parent, manifest_label=str(path), **kwargs)
 
     # Paths ------------------------------------------------------------------------------
@@ -162,7 +167,7 @@ class BuildContext:
 
             self._pool = WorkerPool(self.jobs, self.base_dir, self.logs_dir)
         self.logs_dir.mkdir(parents=True, exist_ok=True)
-        log = self.logs_dir / f"{task.replace(':', '-')}.log"
+        log = self.logs_dir / (re.sub(r"[^A-Za-z0-9_.-]+", "-", task) + ".log")
         return self._pool.run(step, payload, task, log, self.step_timeout)
 
     def record_failure(self, task: str, error: BaseException) -> MjcfbuildError:

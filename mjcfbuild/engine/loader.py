@@ -34,7 +34,7 @@ class BuildLoader(TaskLoader2):
             "dep_file": str(self.ctx.state(DATABASE)),
             "backend": "sqlite3",
             "check_file_uptodate": checker_class(self.ctx.hashes),
-            "reporter": ProgressReporter(self.progress),
+            "reporter": ProgressReporter(self.progress, self.ctx.timings),
             "verbosity": 0,
             "continue": True,
             "num_process": jobs if jobs > 1 else 0,

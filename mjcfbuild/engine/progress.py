@@ -50,11 +50,13 @@ class Progress:
             self._running[name] = time.perf_counter()
             self._redraw()
 
-    def finished(self, name: str, outcome: str) -> None:
+    def finished(self, name: str, outcome: str, seconds: float | None = None) -> None:
         with self._lock:
             start = self._running.pop(name, None)
             if start is not None:
-                self.durations[name] = time.perf_counter() - start
+                self.durations[name] = (
+                    seconds if seconds is not None else time.perf_counter() - start
+                )
             if self.status.get(name) == RAN and outcome == UP_TO_DATE:
                 return  # ran in the planning stage, checked again in the build stage
             self.status[name] = outcome
@@ -104,8 +106,9 @@ class Progress:
 class ProgressReporter:
     """The doit reporter interface, forwarding to a :class:`Progress`."""
 
-    def __init__(self, progress: Progress) -> None:
+    def __init__(self, progress: Progress, timings: dict[str, float]) -> None:
         self.progress = progress
+        self.timings = timings  # measured inside each task's action, exact in parallel too
 
     def initialize(self, tasks, selected_tasks) -> None:
         self.progress.known(list(tasks))
@@ -118,12 +121,12 @@ class ProgressReporter:
 
     def add_failure(self, task, fail) -> None:
         outcome = BLOCKED if isinstance(fail, UnmetDependency) else FAILED
-        self.progress.finished(task.name, outcome)
+        self.progress.finished(task.name, outcome, self.timings.get(task.name))
         if outcome == FAILED:
             self.progress.failure_messages[task.name] = fail.get_msg().strip()
 
     def add_success(self, task) -> None:
-        self.progress.finished(task.name, RAN)
+        self.progress.finished(task.name, RAN, self.timings.get(task.name))
 
     def skip_uptodate(self, task) -> None:
         self.progress.finished(task.name, UP_TO_DATE)

@@ -14,6 +14,7 @@ user's own ``dodo.py`` (see the project's ``dodo.py``), optionally with a name p
 from __future__ import annotations
 
 import json
+import time
 from pathlib import Path
 
 from doit.exceptions import TaskFailed
@@ -36,10 +37,10 @@ def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
     return [_expand_task(ctx, prefix), _plan_task(ctx, prefix)]
 
 
-def build_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
+def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True) -> list[dict]:
     """Every task of the build; reads the plan the planning tasks wrote."""
     plan = read_plan(ctx)
-    tasks = planning_tasks(ctx, prefix)
+    tasks = planning_tasks(ctx, prefix) if with_planning else []
     tasks += [_mesh_task(ctx, mesh, prefix) for mesh in plan["meshes"]]
     tasks.append(_assemble_task(ctx, plan, prefix))
     tasks.append(_scene_task(ctx, prefix))
@@ -78,14 +79,23 @@ def _task(
     }
 
 
-def _run(ctx: BuildContext, name: str, step: str, payload: dict, in_worker: bool):
-    """The action of every task: run the step, keep its warnings, report its outputs."""
+def _run(ctx: BuildContext, name: str, step: str, payload: dict, in_worker: bool, task):
+    """The action of every task: run the step, keep its warnings, report its outputs.
+
+    Files the step reports as ``discovered`` (what a xacro expansion included) join the
+    task's dependencies before doit records its success, so they are checked from the next
+    build on, like the dependencies a compiler writes into a ``.d`` file.
+    """
+    started = time.perf_counter()
     try:
         result = ctx.run_step(step, payload, task=name, in_worker=in_worker)
     except Exception as exc:
         error = ctx.record_failure(name, exc)
         return TaskFailed(error.one_line())
+    finally:
+        ctx.timings[name] = time.perf_counter() - started
     ctx.warnings.extend(result.get("warnings", []))
+    task.file_dep.update(result.get("discovered", []))
     return {"outputs": result["outputs"]}
 
 
@@ -110,7 +120,7 @@ def _expand_task(ctx: BuildContext, prefix: str) -> dict:
     payload = {
         "kind": ctx.source_kind,
         "source": str(source),
-        "args": ctx.manifest.source.xacro_mappings(),
+        "args": ctx.manifest.source.xacro_args,
         "packages": {name: str(path) for name, path in resolver.explicit.items()},
         "environment": {key: ctx.environ.get(key, "") for key in ENV_VARIABLES},
         "output": str(output),

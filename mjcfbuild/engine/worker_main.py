@@ -32,12 +32,12 @@ def _run(request: dict) -> dict:
     module_name, _, function_name = request["step"].partition(":")
     log = request.get("log")
     saved = os.dup(1), os.dup(2)
-    if log:
-        fd = os.open(log, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
-        os.dup2(fd, 1)
-        os.dup2(fd, 2)
-        os.close(fd)
     try:
+        if log:
+            fd = os.open(log, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+            os.dup2(fd, 1)
+            os.dup2(fd, 2)
+            os.close(fd)
         function = getattr(importlib.import_module(module_name), function_name)
         return {"ok": True, "result": function(request["payload"])}
     except MjcfbuildError as exc:

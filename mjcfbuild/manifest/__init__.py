@@ -1,6 +1,21 @@
-"""The ``robot.yaml`` manifest: models, loading with positioned errors, and its JSON Schema."""
+"""The ``robot.yaml`` manifest: models, loading with positioned errors, and its JSON Schema.
 
-from mjcfbuild.manifest.loading import load_manifest, parse_manifest
-from mjcfbuild.manifest.models import Manifest
+Imports are lazy: a no-op build reads an already validated manifest from the cache and never
+imports pydantic (see :mod:`mjcfbuild.manifest.cache`).
+"""
+
+from __future__ import annotations
 
 __all__ = ["Manifest", "load_manifest", "parse_manifest"]
+
+
+def __getattr__(name: str):
+    if name == "Manifest":
+        from mjcfbuild.manifest.models import Manifest
+
+        return Manifest
+    if name in ("load_manifest", "parse_manifest"):
+        from mjcfbuild.manifest import loading
+
+        return getattr(loading, name)
+    raise AttributeError(name)

@@ -4,23 +4,29 @@ from __future__ import annotations
 
 import difflib
 from pathlib import Path
-
-from pydantic import BaseModel, ValidationError
+from typing import TYPE_CHECKING
 
 from mjcfbuild.errors import ManifestError
-from mjcfbuild.manifest.models import Manifest
-from mjcfbuild.manifest.yamlpos import Positions, YamlSyntaxError, load_with_positions
+from mjcfbuild.manifest import cache
+
+if TYPE_CHECKING:
+    from pydantic import BaseModel, ValidationError
+
+    from mjcfbuild.manifest.models import Manifest
+    from mjcfbuild.manifest.yamlpos import Positions
 
 
-def load_manifest(path: str | Path) -> Manifest:
+def load_manifest(path: str | Path, use_cache: bool = False):
     """Read and validate a manifest file.
 
     Raises :class:`ManifestError` with ``file:line:column`` for unreadable files, YAML syntax
-    errors and every kind of validation error.
+    errors and every kind of validation error. With ``use_cache``, a manifest validated before
+    comes back as a :class:`~mjcfbuild.manifest.cache.FrozenManifest` without importing pydantic.
     """
     path = Path(path)
     try:
-        text = path.read_bytes().decode("utf-8")
+        data = path.read_bytes()
+        text = data.decode("utf-8")
     except FileNotFoundError:
         raise ManifestError(
             "manifest not found", file=path, hint="run 'mjcfbuild init SOURCE' to create one"
@@ -35,12 +41,24 @@ def load_manifest(path: str | Path) -> Manifest:
         ) from None
     except OSError as exc:
         raise ManifestError(f"cannot read: {exc.strerror}", file=path) from None
+    if use_cache:
+        cached = cache.read_cached(data)
+        if cached is not None:
+            return cached
     # Errors name the manifest relative to its own folder, like every other file of a build.
-    return parse_manifest(text, display_name=path.name)
+    manifest = parse_manifest(text, display_name=path.name)
+    if use_cache:
+        cache.remember(data, manifest)
+    return manifest
 
 
 def parse_manifest(text: str, display_name: str = "robot.yaml") -> Manifest:
     """Validate manifest text; ``display_name`` is the file name used in error messages."""
+    from pydantic import ValidationError
+
+    from mjcfbuild.manifest.models import Manifest
+    from mjcfbuild.manifest.yamlpos import YamlSyntaxError, load_with_positions
+
     try:
         data, positions = load_with_positions(text)
     except YamlSyntaxError as exc:
@@ -144,6 +162,8 @@ def _show(value: object) -> str:
 
 def _allowed_keys(loc: tuple) -> list[str]:
     """The keys the model at ``loc`` accepts, walking the manifest models."""
+    from mjcfbuild.manifest.models import Manifest
+
     model: type[BaseModel] | None = Manifest
     for part in loc:
         if model is None or isinstance(part, int):
@@ -158,6 +178,8 @@ def _allowed_keys(loc: tuple) -> list[str]:
 
 
 def _model_of(annotation: object) -> type[BaseModel] | None:
+    from pydantic import BaseModel
+
     if isinstance(annotation, type) and issubclass(annotation, BaseModel):
         return annotation
     for arg in getattr(annotation, "__args__", ()) or ():

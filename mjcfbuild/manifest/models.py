@@ -10,7 +10,7 @@ from __future__ import annotations
 import re
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Field, computed_field, field_validator, model_validator
 
 NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9_.-]*$"
 PACKAGE_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
@@ -57,7 +57,9 @@ class Source(StrictModel):
             raise ValueError("args are xacro arguments; they need a xacro source")
         return self
 
-    def xacro_mappings(self) -> dict[str, str]:
+    @computed_field
+    @property
+    def xacro_args(self) -> dict[str, str]:
         """The xacro args as the strings xacro expects (YAML true becomes 'true')."""
         result = {}
         for name, value in sorted(self.args.items()):
@@ -152,6 +154,7 @@ class Manifest(StrictModel):
             )
         return self
 
+    @computed_field
     @property
     def robot_file(self) -> str:
         """File name of the robot model inside the output folder."""

@@ -6,14 +6,11 @@ import json
 
 from mjcfbuild.manifest.models import Manifest
 
-SCHEMA_ID = "https://mjcfbuild.dev/schemas/robot.schema.json"
-
 
 def manifest_schema() -> dict:
     """The JSON Schema (draft 2020-12) of the manifest."""
     schema = Manifest.model_json_schema(mode="validation")
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
-    schema["$id"] = SCHEMA_ID
     schema["title"] = "mjcfbuild robot.yaml"
     return schema
 

@@ -49,8 +49,24 @@ def load_parts(path: Path) -> list[MeshPart]:
         vertices, faces = _concatenate(pieces)
         if not np.all(np.isfinite(vertices)):
             raise InputError("mesh has vertices that are not finite numbers", file=path)
-        parts.append(MeshPart(vertices, faces, colour))
+        parts.append(MeshPart(*merge_vertices(vertices, faces), colour))
     return parts
+
+
+def merge_vertices(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Share vertices with exactly equal positions, keeping first-appearance order.
+
+    Mesh files often repeat a vertex for every face corner (STL always does, DAE for its
+    normals); sharing them makes files several times smaller and faster for MuJoCo to load.
+    """
+    rows = np.ascontiguousarray(vertices + 0.0)  # + 0.0 so -0.0 and 0.0 are the same vertex
+    keys = rows.view(np.dtype((np.void, rows.dtype.itemsize * 3))).ravel()
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    # Renumber so vertices keep the order in which the file first used them.
+    order = np.argsort(first, kind="stable")
+    rank = np.empty_like(order)
+    rank[order] = np.arange(len(order))
+    return rows[first[order]], rank[inverse.ravel()][faces]
 
 
 def _first_line(exc: Exception) -> str:

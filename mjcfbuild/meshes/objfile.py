@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import io
-
 import numpy as np
 
 
@@ -12,18 +10,17 @@ def obj_bytes(vertices: np.ndarray, faces: np.ndarray, uv: np.ndarray | None = N
 
     Numbers are written with 9 significant digits, enough to round-trip the float32 values
     mesh files store, and in a fixed format so the same mesh always gives the same bytes.
+    One ``%`` format over the whole array is about ten times faster than ``numpy.savetxt``.
     """
-    buffer = io.BytesIO()
     # Adding 0.0 turns -0.0 into 0.0, so mirrored meshes do not print "-0".
-    np.savetxt(buffer, np.asarray(vertices, dtype=np.float64) + 0.0, fmt="v %.9g %.9g %.9g")
-    one_based = np.asarray(faces, dtype=np.int64) + 1
+    vertex_values = (np.asarray(vertices, dtype=np.float64) + 0.0).ravel().tolist()
+    parts = [("v %.9g %.9g %.9g\n" * len(vertices)) % tuple(vertex_values)]
+    one_based = (np.asarray(faces, dtype=np.int64) + 1).ravel().tolist()
     if uv is not None:
-        np.savetxt(buffer, np.asarray(uv, dtype=np.float64) + 0.0, fmt="vt %.9g %.9g")
-        np.savetxt(
-            buffer,
-            np.repeat(one_based, 2, axis=1),
-            fmt="f %d/%d %d/%d %d/%d",
-        )
+        uv_values = (np.asarray(uv, dtype=np.float64) + 0.0).ravel().tolist()
+        parts.append(("vt %.9g %.9g\n" * len(uv)) % tuple(uv_values))
+        doubled = [index for index in one_based for _ in (0, 1)]
+        parts.append(("f %d/%d %d/%d %d/%d\n" * len(faces)) % tuple(doubled))
     else:
-        np.savetxt(buffer, one_based, fmt="f %d %d %d")
-    return buffer.getvalue()
+        parts.append(("f %d %d %d\n" * len(faces)) % tuple(one_based))
+    return "".join(parts).encode("ascii")

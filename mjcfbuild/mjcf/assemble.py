@@ -144,6 +144,7 @@ def _finish(
     for mesh in spec.meshes:
         asset = by_file[(mesh.file, tuple(float(s) for s in mesh.scale))]
         old, mesh.name = mesh.name, asset.name
+        mesh.info = _origin(robot.source, asset.line, f"mesh '{asset.uri}'")
         for geom in spec.geoms:
             if geom.meshname == old:
                 geom.meshname = asset.name

@@ -50,6 +50,8 @@ class MeshAsset:
     file: str
     product_file: str
     scale: tuple[float, float, float]
+    line: int | None = None
+    uri: str = ""
 
 
 @dataclass
@@ -120,6 +122,7 @@ def _plan_mesh_assets(
 ) -> dict[tuple[str, str, tuple], MeshAsset]:
     """One mesh asset per (mesh id, product file, scale) the model uses, uniquely named."""
     uses: dict[tuple[str, str], set[tuple]] = {}
+    first_use: dict[tuple[str, str], tuple[int | None, str]] = {}
     for body in bodies:
         for placed in body.shapes:
             geometry = placed.shape.geometry
@@ -133,6 +136,7 @@ def _plan_mesh_assets(
             )
             for file in files:
                 uses.setdefault((geometry.mesh_id, file), set()).add(tuple(geometry.scale))
+                first_use.setdefault((geometry.mesh_id, file), (placed.shape.line, geometry.uri))
     file_names, mesh_names = _Names(), _Names()
     result = {}
     for mesh_id, file in sorted(uses):
@@ -145,6 +149,8 @@ def _plan_mesh_assets(
                 file=published,
                 product_file=str(product_dirs[mesh_id] / file),
                 scale=scale,
+                line=first_use[(mesh_id, file)][0],
+                uri=first_use[(mesh_id, file)][1] or "",
             )
             result[(mesh_id, file, scale)] = asset
     return result

@@ -25,4 +25,4 @@ def run(payload: dict) -> dict:
     write_output(Path(payload["output"]), expansion.urdf, outputs)
     depfile = Path(payload["depfile"])
     Depfile(expansion.files, expansion.missing, expansion.environment).write(depfile)
-    return {"outputs": outputs}
+    return {"outputs": outputs, "discovered": [f for f in expansion.files if f != str(source)]}

@@ -49,6 +49,14 @@ def parse_xml(data: bytes, display_file: str, warnings: list[str]) -> etree._Ele
     """Parse XML bytes safely; undeclared namespace prefixes are a warning, the rest errors."""
     if not data.strip():
         raise InputError("the file is empty", file=display_file)
+    entity = data.find(b"<!ENTITY")
+    if entity >= 0:
+        raise InputError(
+            "XML entity declarations are not allowed",
+            file=display_file,
+            line=data.count(b"\n", 0, entity) + 1,
+            hint="robot descriptions do not need them; remove the <!ENTITY> declaration",
+        )
     try:
         return etree.fromstring(data, secure_parser())
     except etree.XMLSyntaxError as exc:

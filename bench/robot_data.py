@@ -1,0 +1,129 @@
+"""Real robot descriptions from the ``example-robot-data`` wheel, downloaded into a cache.
+
+The wheel (about 130 MB, from PyPI) carries some 39 robot descriptions with their meshes; their
+licences are their own, so they are never copied into this repository. The wheel is fetched
+once with ``pip download`` into ``$XDG_CACHE_HOME/mjcfbuild-dev`` (or ``MJCFBUILD_ROBOT_CACHE``)
+and robots are unpacked from it on demand.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import zipfile
+from dataclasses import dataclass
+from pathlib import Path
+
+VERSION = "6.0.0"
+PACKAGE = "example-robot-data"
+_PREFIX = "cmeel.prefix/share/example-robot-data/"
+
+
+@dataclass(frozen=True)
+class Robot:
+    """One description in the wheel: its URDF, and whether it has a floating base."""
+
+    name: str
+    urdf: str
+    floating: bool
+
+
+ROBOTS = {
+    robot.name: robot
+    for robot in [
+        Robot("panda", "robots/panda_description/urdf/panda.urdf", False),
+        Robot("ur5", "robots/ur_description/urdf/ur5_robot.urdf", False),
+        Robot("go1", "robots/go1_description/urdf/go1.urdf", True),
+        Robot("go2", "robots/go2_description/urdf/go2.urdf", True),
+        Robot("g1", "robots/g1_description/urdf/g1_29dof_rev_1_0.urdf", True),
+        Robot("a1", "robots/a1_description/urdf/a1.urdf", True),
+        Robot("z1", "robots/z1_description/urdf/z1.urdf", False),
+        Robot("anymal_c", "robots/anymal_c_simple_description/urdf/anymal.urdf", True),
+        Robot("allegro", "robots/allegro_hand_description/urdf/allegro_right_hand.urdf", False),
+        Robot("so101", "robots/so_arm_description/urdf/so101.urdf", False),
+        Robot("xarm7", "robots/xarm_description/urdf/xarm7.urdf", False),
+        Robot("tiago", "robots/tiago_description/robots/tiago.urdf", True),
+        Robot("talos", "robots/talos_data/robots/talos_full_v2.urdf", True),
+        Robot("solo12", "robots/solo_description/robots/solo12.urdf", True),
+    ]
+}
+
+
+def cache_dir() -> Path:
+    """Where the wheel and unpacked robots are kept."""
+    explicit = os.environ.get("MJCFBUILD_ROBOT_CACHE")
+    if explicit:
+        return Path(explicit)
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.expanduser("~/.cache")
+    return Path(base) / "mjcfbuild-dev"
+
+
+def wheel() -> Path:
+    """The example-robot-data wheel, downloaded on first use."""
+    folder = cache_dir()
+    found = sorted(folder.glob(f"example_robot_data-{VERSION}-*.whl"))
+    if found:
+        return found[0]
+    folder.mkdir(parents=True, exist_ok=True)
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "download",
+            "--no-deps",
+            "--quiet",
+            f"{PACKAGE}=={VERSION}",
+            "-d",
+            str(folder),
+        ],
+        check=True,
+    )
+    return sorted(folder.glob(f"example_robot_data-{VERSION}-*.whl"))[0]
+
+
+def package_root() -> Path:
+    """The unpacked ``example-robot-data`` package folder (package:// root)."""
+    return cache_dir() / f"example-robot-data-{VERSION}"
+
+
+def unpack(robot: Robot) -> Path:
+    """Unpack the robot's description folder (once); the path of its URDF."""
+    root = package_root()
+    top = "/".join(robot.urdf.split("/")[:2]) + "/"
+    marker = root / top / ".unpacked"
+    if not marker.exists():
+        with zipfile.ZipFile(wheel()) as archive:
+            for member in archive.namelist():
+                if member.startswith(_PREFIX + top) and not member.endswith("/"):
+                    target = root / member[len(_PREFIX) :]
+                    target.parent.mkdir(parents=True, exist_ok=True)
+                    with archive.open(member) as source, open(target, "wb") as out:
+                        shutil.copyfileobj(source, out)
+        marker.write_text("")
+    return root / robot.urdf
+
+
+def copy_robot(robot: Robot, destination: Path) -> tuple[Path, Path]:
+    """A private copy of the robot's package folder (for edits); (URDF, package root)."""
+    unpack(robot)
+    top = "/".join(robot.urdf.split("/")[:2])
+    target_root = destination / "example-robot-data"
+    shutil.copytree(package_root() / top, target_root / top)
+    return target_root / robot.urdf, target_root
+
+
+def manifest(robot: Robot, folder: Path, urdf: Path, packages_root: Path, extra: str = "") -> Path:
+    """Write a manifest building ``urdf`` into ``folder/mjcf``; its path."""
+    path = folder / "robot.yaml"
+    folder.mkdir(parents=True, exist_ok=True)
+    path.write_text(
+        f"name: {robot.name}\n"
+        f"source:\n  urdf: {urdf}\n"
+        f"packages:\n  example-robot-data: {packages_root}\n"
+        f"options:\n  free_joint: {'true' if robot.floating else 'false'}\n"
+        f"{extra}"
+    )
+    return path

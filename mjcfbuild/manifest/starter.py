@@ -1,0 +1,111 @@
+"""``mjcfbuild init``: a commented starting manifest written from a look at the description."""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+
+from mjcfbuild.errors import InputError, OutputError, UsageError
+from mjcfbuild.manifest.models import NAME_PATTERN
+from mjcfbuild.sources.packages import find_enclosing_package
+
+_ARG = re.compile(rb"<xacro:arg\s+name=\"([^\"]+)\"(?:\s+default=\"([^\"]*)\")?")
+_PACKAGE_URI = re.compile(rb"package://([A-Za-z0-9_.-]+)/")
+_FIND = re.compile(rb"\$\(find\s+([A-Za-z0-9_.-]+)\)")
+_ROBOT_NAME = re.compile(rb"<robot[^>]*\sname=\"([^\"]+)\"")
+
+
+def write_starter_manifest(
+    source: str, packages: dict[str, str], output: str, force: bool = False
+) -> Path:
+    """Write a manifest for ``source`` to ``output``; return its path."""
+    source_path = Path(source).resolve()
+    if not source_path.is_file():
+        raise InputError("source file not found", file=source)
+    manifest_path = Path(output).resolve()
+    if manifest_path.exists() and not force:
+        raise UsageError(f"{output} already exists", hint="pass --force to overwrite it")
+    text = starter_manifest_text(source_path, packages, manifest_path.parent, Path(output).name)
+    try:
+        manifest_path.parent.mkdir(parents=True, exist_ok=True)
+        manifest_path.write_text(text)
+    except OSError as exc:
+        raise OutputError(f"cannot write the manifest: {exc.strerror}", file=output) from None
+    return Path(output)
+
+
+def starter_manifest_text(
+    source: Path, packages: dict[str, str], manifest_dir: Path, manifest_name: str = "robot.yaml"
+) -> str:
+    """The manifest text: source, packages it needs, xacro args with their defaults."""
+    data = source.read_bytes()
+    is_xacro = source.name.endswith(".xacro") or b"xmlns:xacro" in data[:4096]
+    relative = _relative(source, manifest_dir)
+    match = _ROBOT_NAME.search(data)
+    raw_name = match.group(1).decode() if match else source.name.split(".")[0]
+    name = _valid_name(raw_name if "$" not in raw_name else source.name.split(".")[0])
+
+    needed = sorted({m.decode() for m in _PACKAGE_URI.findall(data) + _FIND.findall(data)})
+    known = dict(packages)
+    enclosing = find_enclosing_package(source)
+    if enclosing is not None:
+        known.setdefault(enclosing[0], str(enclosing[1]))
+
+    lines = [
+        f"# mjcfbuild manifest for {relative}. Build it with: mjcfbuild build {manifest_name}",
+        "# Every path is relative to this file's folder.",
+        "# Editor completion: run 'mjcfbuild schema > robot.schema.json' and make this line",
+        "# the first one: # yaml-language-server: $schema=robot.schema.json",
+        f"name: {name}",
+        "",
+        "source:",
+        f"  {'xacro' if is_xacro else 'urdf'}: {relative}",
+    ]
+    if is_xacro:
+        arguments = [
+            (m.group(1).decode(), (m.group(2) or b"").decode()) for m in _ARG.finditer(data)
+        ]
+        if arguments:
+            lines.append("  # xacro arguments as name: value. The file declares these defaults:")
+            lines += [f"  #   {arg}: {_yaml_scalar(default)}" for arg, default in arguments]
+        lines.append("  args: {}")
+    lines += [
+        "",
+        "# ROS packages named by package:// URIs and $(find ...), as name: folder.",
+        "# Packages not listed are looked up in ROS_PACKAGE_PATH and AMENT_PREFIX_PATH.",
+    ]
+    unresolved = [package for package in needed if package not in known]
+    lines += [
+        f"#   {package}: path/to/{package}  # needed by the description" for package in unresolved
+    ]
+    lines.append("packages:" if known else "packages: {}")
+    for package in sorted(known):
+        lines.append(f"  {package}: {_relative(Path(known[package]), manifest_dir)}")
+    lines += [
+        "",
+        "options:",
+        "  free_joint: false   # true for a floating base (legged robots, humanoids)",
+        "  fuse_static: true   # merge links on fixed joints into their parent body",
+        "",
+        "output:",
+        "  folder: mjcf        # writes mjcf/<name>.xml, mjcf/scene.xml and mjcf/assets/",
+        "",
+    ]
+    return "\n".join(lines)
+
+
+def _relative(path: Path, start: Path) -> str:
+    relative = os.path.relpath(path, start)
+    return relative if not relative.startswith("../../..") else str(path)
+
+
+def _valid_name(text: str) -> str:
+    cleaned = re.sub(r"[^A-Za-z0-9_.-]+", "_", text).strip("_.-")
+    return cleaned if re.match(NAME_PATTERN, cleaned or "") else "robot"
+
+
+def _yaml_scalar(text: str) -> str:
+    if text in ("true", "false") or re.fullmatch(r"-?[0-9.]+", text or "x"):
+        return text
+    return '"' + text.replace('"', '\\"') + '"'

@@ -1,0 +1,81 @@
+"""``mjcfbuild build`` as a user runs it: output, summary line, exit codes, no tracebacks."""
+
+from __future__ import annotations
+
+from mjcfbuild.errors import EXIT_INPUT, EXIT_MANIFEST, EXIT_OK, EXIT_USAGE
+from tests.conftest import simple_manifest, two_link_urdf, write
+
+
+def test_build_prints_progress_then_summary(cli, arm):
+    result = cli("build", "-j", "2", cwd=arm)
+    assert result.code == EXIT_OK, result.stderr
+    assert "mesh base" in result.stdout
+    assert (
+        result.stdout.strip()
+        .splitlines()[-1]
+        .startswith("mjcfbuild: built example_arm.xml: 8 run, 0 up to date")
+    )
+    again = cli("build", cwd=arm)
+    assert "0 run, 8 up to date" in again.stdout
+    assert again.stdout.count("\n") == 1
+
+
+def test_manifest_path_from_another_folder(cli, arm, tmp_path):
+    result = cli("build", str(arm / "robot.yaml"), "-q", cwd=tmp_path)
+    assert result.code == EXIT_OK and result.stdout == ""
+    assert (arm / "mjcf" / "example_arm.xml").exists()
+
+
+def test_manifest_error_has_path_line_and_no_traceback(cli, tmp_path):
+    folder = tmp_path / "robot"
+    write(folder / "robot.yaml", "name: r\nsource:\n  urdf: r.urdf\n  bogus: 1\n")
+    result = cli("build", "robot/robot.yaml", cwd=tmp_path)
+    assert result.code == EXIT_MANIFEST
+    assert result.stderr.strip() == (
+        "mjcfbuild: error: robot/robot.yaml:4:3: source.bogus: unknown key 'bogus' "
+        "allowed keys: args, description, urdf, xacro"
+    )
+    assert "Traceback" not in result.stderr
+
+
+def test_missing_source_file(cli, tmp_path):
+    simple_manifest(tmp_path)
+    result = cli("build", cwd=tmp_path)
+    assert result.code == EXIT_INPUT
+    assert "robot.urdf: source file not found" in result.stderr
+
+
+def test_urdf_error_points_at_the_urdf_line(cli, tmp_path):
+    simple_manifest(tmp_path)
+    write(
+        tmp_path / "robot.urdf",
+        two_link_urdf().replace('<child link="arm"/>', '<child link="arn"/>'),
+    )
+    result = cli("build", cwd=tmp_path)
+    assert result.code == EXIT_INPUT
+    assert (
+        "robot.urdf:11: joint 'hinge' refers to link 'arn', which does not exist" in result.stderr
+    )
+    assert "did you mean 'arm'?" in result.stderr
+    assert "mjcfbuild: failed robot.xml" in result.stdout
+
+
+def test_build_failure_in_a_worker_is_reported_with_its_file(cli, arm):
+    (arm / "meshes" / "finger.stl").write_bytes(b"garbage")
+    result = cli("build", cwd=arm)
+    assert result.code == EXIT_INPUT
+    assert "mjcfbuild: error: meshes/finger.stl: " in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+def test_bad_jobs_argument_is_a_usage_error(cli, arm):
+    result = cli("build", "-j", "0", cwd=arm)
+    assert result.code == EXIT_USAGE
+
+
+def test_version_and_help(cli):
+    assert cli("--version").stdout.startswith("mjcfbuild ")
+    help_text = cli("--help").stdout
+    for command in ("build", "convert", "init", "schema"):
+        assert command in help_text
+    assert "exit codes:" in help_text

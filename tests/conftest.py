@@ -1,0 +1,109 @@
+"""Shared fixtures: copies of the examples, running the real command line, small URDFs."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "examples"
+
+
+def pytest_configure(config):
+    """Keep the tests' shared cache (validated manifests, mesh products) out of the user's."""
+    import tempfile
+
+    if "MJCFBUILD_CACHE_DIR" not in os.environ:
+        os.environ["MJCFBUILD_CACHE_DIR"] = tempfile.mkdtemp(prefix="mjcfbuild-test-cache-")
+
+
+@dataclass
+class CliResult:
+    """What a run of the mjcfbuild command printed and returned."""
+
+    code: int
+    stdout: str
+    stderr: str
+
+
+def run_cli(*args: str, cwd: Path | None = None, stdin: str | None = None, env=None) -> CliResult:
+    """Run ``python -m mjcfbuild`` as a user would, in a separate process."""
+    environment = dict(os.environ)
+    environment.update(env or {})
+    process = subprocess.run(
+        [sys.executable, "-m", "mjcfbuild", *args],
+        cwd=cwd,
+        input=stdin,
+        capture_output=True,
+        text=True,
+        env=environment,
+        timeout=600,
+    )
+    return CliResult(process.returncode, process.stdout, process.stderr)
+
+
+@pytest.fixture
+def cli():
+    """The :func:`run_cli` function."""
+    return run_cli
+
+
+def copy_example(name: str, destination: Path) -> Path:
+    """A private copy of ``examples/<name>`` without build outputs; its folder."""
+    target = destination / name
+    shutil.copytree(EXAMPLES / name, target, ignore=shutil.ignore_patterns("mjcf", "__pycache__"))
+    return target
+
+
+@pytest.fixture
+def arm(tmp_path: Path) -> Path:
+    """A copy of the example arm."""
+    return copy_example("arm", tmp_path)
+
+
+@pytest.fixture
+def demo(tmp_path: Path) -> Path:
+    """A copy of the reference converter's demo robot."""
+    return copy_example("reference_demo", tmp_path)
+
+
+def write(path: Path, text: str) -> Path:
+    """Write ``text`` to ``path`` (creating folders) and return the path."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+    return path
+
+
+INERTIA = '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
+
+
+def two_link_urdf(extra: str = "", joint_type: str = "revolute") -> str:
+    """A small valid URDF: base and one moving link, plus ``extra`` elements."""
+    return f"""<?xml version="1.0" encoding="utf-8"?>
+<robot name="two_link">
+  <link name="base">{INERTIA}
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+  </link>
+  <link name="arm">{INERTIA}
+    <visual><origin xyz="0 0 0.25"/><geometry><cylinder radius="0.03" length="0.5"/></geometry>
+      <material name="red"><color rgba="1 0 0 1"/></material></visual>
+    <collision><origin xyz="0 0 0.25"/><geometry><cylinder radius="0.03" length="0.5"/></geometry></collision>
+  </link>
+  <joint name="hinge" type="{joint_type}">
+    <parent link="base"/><child link="arm"/><origin xyz="0 0 0.1" rpy="0 0 0.3"/>
+    <axis xyz="0 1 0"/><limit lower="-1.5" upper="1.5" effort="10" velocity="1"/>
+  </joint>
+  {extra}
+</robot>
+"""
+
+
+def simple_manifest(folder: Path, source_line: str = "urdf: robot.urdf", extra: str = "") -> Path:
+    """A manifest in ``folder`` building ``robot.urdf`` into ``mjcf/``."""
+    return write(folder / "robot.yaml", f"name: robot\nsource:\n  {source_line}\n{extra}")

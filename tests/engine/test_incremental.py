@@ -1,0 +1,148 @@
+"""The acceptance of incremental builds: exactly the tasks whose inputs changed run."""
+
+from __future__ import annotations
+
+import os
+import time
+
+import mujoco
+import numpy as np
+import pytest
+
+import mjcfbuild
+from mjcfbuild.errors import BuildFailed
+from tests.conftest import write
+
+ALL_ARM_TASKS = {
+    "expand",
+    "plan",
+    "mesh:base",
+    "mesh:finger",
+    "mesh:forearm",
+    "mesh:upper_arm",
+    "assemble",
+    "scene",
+}
+
+
+def build(folder, jobs=2):
+    return mjcfbuild.build(folder / "robot.yaml", jobs=jobs)
+
+
+@pytest.fixture
+def built_arm(arm):
+    result = build(arm)
+    assert set(result.ran) == ALL_ARM_TASKS
+    return arm
+
+
+def test_cold_build_loads_and_simulates(built_arm):
+    model = mujoco.MjModel.from_xml_path(str(built_arm / "mjcf" / "scene.xml"))
+    data = mujoco.MjData(model)
+    for _ in range(2000):
+        mujoco.mj_step(model, data)
+    assert np.all(np.isfinite(data.qpos)) and np.all(np.isfinite(data.qvel))
+
+
+def test_second_build_runs_nothing_and_says_so(built_arm):
+    result = build(built_arm)
+    assert result.ran == []
+    assert "0 run, 8 up to date" in result.summary()
+
+
+def test_touching_every_input_runs_nothing(built_arm):
+    later = time.time() + 100
+    for path in built_arm.rglob("*"):
+        if path.is_file() and "mjcf" not in path.parts:
+            os.utime(path, (later, later))
+    assert build(built_arm).ran == []
+
+
+def test_editing_one_mesh_reruns_that_mesh_and_the_assembly(built_arm):
+    mesh = built_arm / "meshes" / "finger.stl"
+    data = bytearray(mesh.read_bytes())
+    data[84 + 12] ^= 0x01  # nudge one vertex of the first triangle
+    mesh.write_bytes(bytes(data))
+    assert sorted(build(built_arm).ran) == ["assemble", "mesh:finger"]
+
+
+def test_editing_an_included_xacro_reruns_expansion_and_what_depends_on_it(built_arm):
+    finger = built_arm / "urdf" / "finger.xacro"
+    finger.write_text(finger.read_text().replace('<mass value="0.02"/>', '<mass value="0.03"/>'))
+    assert sorted(build(built_arm).ran) == ["assemble", "expand", "plan"]
+
+
+def test_a_change_that_does_not_change_the_urdf_stops_after_expansion(built_arm):
+    finger = built_arm / "urdf" / "finger.xacro"
+    finger.write_text(finger.read_text() + "\n<!-- a comment outside the robot -->\n")
+    assert build(built_arm).ran == ["expand"]
+
+
+def test_editing_yaml_loaded_by_xacro_reruns_expansion(built_arm):
+    limits = built_arm / "config" / "joint_limits.yaml"
+    limits.write_text(limits.read_text().replace("upper: 2.5", "upper: 2.4"))
+    assert sorted(build(built_arm).ran) == ["assemble", "expand", "plan"]
+
+
+def test_changing_a_xacro_arg_reruns_expansion(built_arm):
+    manifest = built_arm / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace("with_camera: true", "with_camera: false"))
+    assert sorted(build(built_arm).ran) == ["assemble", "expand", "plan"]
+
+
+def test_changing_an_option_reruns_only_the_assembly(built_arm):
+    manifest = built_arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "options:\n  fuse_static: false\n")
+    assert build(built_arm).ran == ["assemble"]
+
+
+def test_hand_edited_or_deleted_outputs_are_rebuilt(built_arm):
+    robot = built_arm / "mjcf" / "example_arm.xml"
+    original = robot.read_bytes()
+    robot.write_bytes(original.replace(b'mass="2"', b'mass="3"'))
+    (built_arm / "mjcf" / "assets" / "finger.obj").unlink()
+    assert build(built_arm).ran == ["assemble"]
+    assert robot.read_bytes() == original
+    assert (built_arm / "mjcf" / "assets" / "finger.obj").exists()
+
+
+def test_removed_mesh_disappears_from_assets(built_arm):
+    xacro = built_arm / "urdf" / "arm.urdf.xacro"
+    text = xacro.read_text().replace(
+        '<geometry><mesh filename="package://arm_description/meshes/base.stl"/></geometry>',
+        '<geometry><cylinder radius="0.08" length="0.1"/></geometry>',
+    )
+    xacro.write_text(text)
+    build(built_arm)
+    assert not (built_arm / "mjcf" / "assets" / "base.obj").exists()
+    assert not (built_arm / "mjcf" / ".mjcfbuild" / "products" / "base").exists()
+
+
+def test_environment_variables_read_by_xacro_are_dependencies(tmp_path, monkeypatch):
+    write(
+        tmp_path / "r.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<link name="$(optenv LINK_NAME base)"/></robot>',
+    )
+    write(tmp_path / "robot.yaml", "name: r\nsource:\n  xacro: r.xacro\n")
+    monkeypatch.delenv("LINK_NAME", raising=False)
+    build(tmp_path)
+    assert build(tmp_path).ran == []
+    monkeypatch.setenv("LINK_NAME", "torso")
+    assert "expand" in build(tmp_path).ran
+    assert 'name="torso"' in (tmp_path / "mjcf" / "r.xml").read_text()
+
+
+def test_a_failed_build_leaves_no_output_that_looks_current(built_arm):
+    robot = built_arm / "mjcf" / "example_arm.xml"
+    before = robot.read_bytes()
+    finger = built_arm / "meshes" / "finger.stl"
+    good = finger.read_bytes()
+    finger.write_bytes(b"not a mesh at all")
+    with pytest.raises(BuildFailed) as info:
+        build(built_arm)
+    assert "finger.stl" in info.value.one_line()
+    assert robot.read_bytes() == before  # the old model stays, not a half-written one
+    finger.write_bytes(good)
+    result = build(built_arm)
+    assert "mesh:finger" in result.ran and robot.read_bytes() == before

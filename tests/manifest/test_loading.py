@@ -1,0 +1,120 @@
+"""robot.yaml validation: what is accepted, and errors that point at the line."""
+
+from __future__ import annotations
+
+import pytest
+
+from mjcfbuild.errors import ManifestError
+from mjcfbuild.manifest import load_manifest, parse_manifest
+
+
+def error_of(text: str) -> ManifestError:
+    with pytest.raises(ManifestError) as info:
+        parse_manifest(text, "robot.yaml")
+    return info.value
+
+
+def test_minimal_manifest_gets_defaults():
+    manifest = parse_manifest("name: arm\nsource:\n  urdf: arm.urdf\n")
+    assert manifest.robot_file == "arm.xml"
+    assert manifest.output.folder == "mjcf"
+    assert manifest.output.scene == "scene.xml"
+    assert manifest.options.fuse_static is True
+    assert manifest.options.free_joint is False
+
+
+def test_xacro_args_become_xacro_strings():
+    manifest = parse_manifest(
+        "name: arm\nsource:\n  xacro: arm.xacro\n  args: {use_pid: true, count: 3, prefix: l_}\n"
+    )
+    assert manifest.source.xacro_args == {"count": "3", "prefix": "l_", "use_pid": "true"}
+
+
+def test_unknown_key_names_line_column_and_allowed_keys():
+    error = error_of("name: arm\nsource:\n  urdf: a.urdf\n  xacor: b.xacro\n")
+    assert error.location.line == 4 and error.location.column == 3
+    text = error.one_line()
+    assert "source.xacor: unknown key 'xacor'" in text
+    assert "did you mean 'xacro'?" in text
+    assert "allowed keys: args, description, urdf, xacro" in text
+
+
+def test_unknown_top_level_key():
+    error = error_of("name: arm\nsource: {urdf: a.urdf}\noutputs: {folder: x}\n")
+    assert error.location.line == 3
+    assert "did you mean 'output'?" in error.message
+
+
+def test_wrong_type_names_the_value():
+    error = error_of("name: arm\nsource: {urdf: a.urdf}\noptions:\n  free_joint: maybe\n")
+    assert error.location.line == 4
+    assert "options.free_joint: expected true or false, got 'maybe'" in error.message
+
+
+def test_missing_required_key():
+    error = error_of("name: arm\n")
+    assert "source: this key is required" in error.message
+
+
+def test_two_sources_are_refused():
+    error = error_of("name: arm\nsource:\n  urdf: a.urdf\n  xacro: b.xacro\n")
+    assert error.location.line == 2
+    assert "exactly one of urdf, xacro, description" in error.message
+
+
+def test_args_without_xacro_are_refused():
+    error = error_of("name: arm\nsource:\n  urdf: a.urdf\n  args: {x: 1}\n")
+    assert "args are xacro arguments" in error.message
+
+
+def test_invalid_literal_lists_choices():
+    error = error_of("name: arm\nsource: {urdf: a.urdf}\noptions: {link_sites: some}\n")
+    assert "'some' is not allowed; use one of 'all' or 'fused'" in error.message
+
+
+def test_bad_name_is_explained():
+    error = error_of("name: my robot/2\nsource: {urdf: a.urdf}\n")
+    assert error.location.line == 1
+    assert "is not a valid name" in error.message
+
+
+def test_robot_and_scene_file_must_differ():
+    error = error_of("name: scene\nsource: {urdf: a.urdf}\n")
+    assert "both 'scene.xml'" in error.message
+
+
+def test_yaml_syntax_error_has_position():
+    error = error_of("name: arm\nsource:\n  urdf: [unclosed\n")
+    assert error.location.line is not None
+    assert error.message.startswith("YAML syntax error")
+
+
+def test_duplicate_keys_are_refused():
+    error = error_of("name: arm\nname: other\nsource: {urdf: a.urdf}\n")
+    assert error.location.line == 2
+    assert "duplicate key 'name'" in error.message
+
+
+def test_empty_and_non_mapping_manifests():
+    assert "empty" in error_of("").message
+    assert "mapping of keys" in error_of("- a\n- b\n").message
+
+
+def test_more_problems_are_counted_in_the_hint():
+    error = error_of("name: arm\nsource: {urdf: a.urdf}\nfoo: 1\nbar: 2\n")
+    assert error.hint == "1 more problem after this one"
+
+
+def test_load_manifest_reports_missing_file(tmp_path):
+    with pytest.raises(ManifestError) as info:
+        load_manifest(tmp_path / "nope.yaml")
+    assert "manifest not found" in info.value.one_line()
+    assert "mjcfbuild init" in info.value.one_line()
+
+
+def test_load_manifest_reports_non_utf8(tmp_path):
+    path = tmp_path / "robot.yaml"
+    path.write_bytes(b"name: \xff\xfe\n")
+    with pytest.raises(ManifestError) as info:
+        load_manifest(path)
+    assert "not UTF-8" in info.value.message

@@ -1,0 +1,30 @@
+"""``mjcfbuild init``'s starting manifest is valid and mentions what the description needs."""
+
+from __future__ import annotations
+
+from mjcfbuild.manifest import parse_manifest
+from mjcfbuild.manifest.starter import starter_manifest_text
+from tests.conftest import EXAMPLES, write
+
+
+def test_starter_for_xacro_lists_args_and_packages(tmp_path):
+    source = EXAMPLES / "arm" / "urdf" / "arm.urdf.xacro"
+    text = starter_manifest_text(source, {}, tmp_path)
+    manifest = parse_manifest(text)
+    assert manifest.name == "example_arm"
+    assert manifest.source.xacro.endswith("arm.urdf.xacro")
+    assert "#   with_camera: true" in text
+    # the enclosing ROS package is found through its package.xml
+    assert "arm_description" in manifest.packages
+
+
+def test_starter_for_urdf_mentions_unresolved_packages(tmp_path):
+    urdf = write(
+        tmp_path / "r.urdf",
+        '<robot name="dog"><link name="a"><visual><geometry>'
+        '<mesh filename="package://dog_meshes/a.stl"/></geometry></visual></link></robot>',
+    )
+    text = starter_manifest_text(urdf, {}, tmp_path)
+    manifest = parse_manifest(text)
+    assert manifest.source.urdf == "r.urdf"
+    assert "#   dog_meshes: path/to/dog_meshes" in text

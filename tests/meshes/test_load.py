@@ -1,0 +1,44 @@
+"""Reading mesh files into parts by colour."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.meshes.load import load_parts, merge_vertices
+from tests.conftest import EXAMPLES, write
+
+
+def test_stl_has_one_uncoloured_part_with_shared_vertices():
+    (part,) = load_parts(EXAMPLES / "arm" / "meshes" / "base.stl")
+    assert part.rgba is None
+    assert len(part.faces) == 128
+    assert len(part.vertices) == 66  # STL repeats corners; they are shared again
+
+
+def test_obj_materials_come_from_its_own_mtl_file_whatever_its_name():
+    parts = load_parts(EXAMPLES / "arm" / "meshes" / "forearm.obj")
+    colours = sorted(tuple(round(c, 2) for c in p.rgba) for p in parts)
+    assert colours == [(0.1, 0.3, 0.8, 1.0), (0.85, 0.85, 0.88, 1.0)]
+
+
+def test_dae_colour():
+    (part,) = load_parts(EXAMPLES / "arm" / "meshes" / "upper_arm.dae")
+    assert part.rgba == pytest.approx((0.9, 0.45, 0.1, 1.0), abs=0.01)
+
+
+def test_broken_and_empty_files_are_input_errors(tmp_path):
+    with pytest.raises(InputError) as info:
+        load_parts(write(tmp_path / "bad.dae", "<COLLADA><broken"))
+    assert info.value.location.file.endswith("bad.dae")
+    with pytest.raises(InputError):
+        load_parts(write(tmp_path / "empty.obj", "# nothing\n"))
+
+
+def test_merge_vertices_keeps_first_appearance_order():
+    vertices = np.array([[1, 0, 0], [0, 0, 0], [1, 0, 0], [-0.0, 0, 0], [0, 1, 0]], dtype=float)
+    faces = np.array([[0, 1, 4], [2, 3, 4]])
+    merged, new_faces = merge_vertices(vertices, faces)
+    assert merged.tolist() == [[1, 0, 0], [0, 0, 0], [0, 1, 0]]
+    assert new_faces.tolist() == [[0, 1, 2], [0, 1, 2]]

@@ -1,0 +1,89 @@
+"""The assembled model: classes, sites, meshes, free joint, compile errors with URDF lines."""
+
+from __future__ import annotations
+
+import pytest
+from lxml import etree
+
+from mjcfbuild.errors import ModelError
+from tests.conftest import EXAMPLES, INERTIA, two_link_urdf
+from tests.mjcf.helpers import build
+
+
+def test_geoms_live_in_visual_and_collision_classes(tmp_path):
+    assembly, model = build(two_link_urdf(), tmp_path)
+    root = etree.fromstring(assembly.xml)
+    classes = [g.get("class") for g in root.find("worldbody").iter("geom")]
+    assert sorted(set(classes)) == ["collision", "visual"]
+    visual = root.find(".//default[@class='visual']/geom")
+    assert (visual.get("group"), visual.get("contype"), visual.get("conaffinity")) == (
+        "2",
+        "0",
+        "0",
+    )
+    assert root.find(".//default[@class='collision']/geom").get("group") == "3"
+    # authored collision geometry is kept: the cylinder, not the visual
+    assert model.ngeom == 3
+
+
+def test_every_link_is_a_body_or_a_site(tmp_path):
+    urdf = two_link_urdf(
+        extra='<link name="tool"/><joint name="t" type="fixed"><parent link="arm"/><child link="tool"/>'
+        '<origin xyz="0 0 0.5"/></joint>'
+    )
+    _, model = build(urdf, tmp_path, link_sites="fused")
+    import mujoco
+
+    assert mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "arm") >= 0
+    assert mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, "tool") >= 0
+    assert mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, "arm") == -1
+    _, model = build(urdf, tmp_path, link_sites="all")
+    assert mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, "arm") >= 0
+
+
+def test_free_joint_on_the_root(tmp_path):
+    _, model = build(two_link_urdf(), tmp_path, free_joint=True)
+    assert model.jnt_type[0] == 0  # mjJNT_FREE
+    assert model.nq == 7 + 1
+
+
+def test_free_joint_when_the_root_is_world(tmp_path):
+    urdf = two_link_urdf(
+        extra='<link name="world"/><joint name="w" type="fixed"><parent link="world"/>'
+        '<child link="base"/></joint>'
+    )
+    _, model = build(urdf, tmp_path, free_joint=True)
+    assert model.nq == 8
+
+
+def test_mirrored_mesh_is_one_file_two_assets(tmp_path):
+    meshes = EXAMPLES / "arm" / "meshes"
+    urdf = f"""<robot name="r"><link name="a">{INERTIA}
+      <visual><geometry><mesh filename="{meshes}/finger.stl"/></geometry></visual>
+      <visual><geometry><mesh filename="{meshes}/finger.stl" scale="1 -1 1"/></geometry></visual>
+    </link></robot>"""
+    assembly, model = build(urdf, tmp_path)
+    assert list(assembly.assets) == ["finger.obj"]
+    assert model.nmesh == 2
+
+
+def test_zero_size_visual_is_dropped_with_a_warning_collision_is_an_error(tmp_path):
+    urdf = two_link_urdf().replace(
+        '<visual><origin xyz="0 0 0.25"/><geometry><cylinder radius="0.03"',
+        '<visual><origin xyz="0 0 0.25"/><geometry><cylinder radius="0"',
+    )
+    assembly, _ = build(urdf, tmp_path)
+    assert any("dropped" in w for w in assembly.warnings)
+    with pytest.raises(Exception, match="collision 0 has box size 0 0 0"):
+        build(two_link_urdf().replace('<box size="0.2 0.2 0.1"/>', '<box size="0 0 0"/>'), tmp_path)
+
+
+def test_compile_errors_point_at_the_urdf_line(tmp_path):
+    # A mesh with no volume makes MuJoCo's compiler fail; the error names the URDF line.
+    flat = tmp_path / "flat.obj"
+    flat.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n")
+    urdf = f'<robot name="r"><link name="a">{INERTIA}\n<collision><geometry><mesh filename="{flat}"/></geometry></collision></link></robot>'
+    with pytest.raises(ModelError) as info:
+        build(urdf, tmp_path)
+    assert info.value.location.file == "robot.urdf"
+    assert info.value.location.line == 2

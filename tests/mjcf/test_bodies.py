@@ -1,0 +1,45 @@
+"""Which links become bodies, where fused links and shapes end up, combined masses."""
+
+from __future__ import annotations
+
+import pytest
+
+from mjcfbuild.mjcf.bodies import build_bodies
+from mjcfbuild.urdf.parse import parse_urdf
+
+FUSED = """<robot name="r">
+  <link name="base"><inertial><origin xyz="0 0 0"/><mass value="2"/>
+    <inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="plate"><inertial><origin xyz="0 0 0"/><mass value="2"/>
+    <inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+    <visual><origin xyz="0 0 0.1"/><geometry><box size="1 1 1"/></geometry></visual></link>
+  <link name="tip"/>
+  <joint name="f" type="fixed"><parent link="base"/><child link="plate"/><origin xyz="1 0 0"/></joint>
+  <joint name="m" type="revolute"><parent link="plate"/><child link="tip"/><origin xyz="0 1 0"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+def test_fusing_moves_shapes_links_and_children_into_the_parent_body():
+    bodies = build_bodies(parse_urdf(FUSED.encode()), fuse_static=True)
+    assert [b.name for b in bodies] == ["base", "tip"]
+    base, tip = bodies
+    assert [(f.link, f.fused) for f in base.links] == [("base", False), ("plate", True)]
+    assert base.shapes[0].pose.position == (1.0, 0.0, 0.1)
+    assert tip.parent == "base" and tip.pose.position == (1.0, 1.0, 0.0)
+
+
+def test_fused_masses_combine_with_the_parallel_axis_theorem():
+    base = build_bodies(parse_urdf(FUSED.encode()), fuse_static=True)[0]
+    assert base.mass.mass == 4
+    assert base.mass.com == (0.5, 0.0, 0.0)
+    # each 2 kg part sits 0.5 m from the combined centre along x: +2*0.25 about y and z
+    assert base.mass.inertia[0][0] == pytest.approx(2.0)
+    assert base.mass.inertia[1][1] == pytest.approx(3.0)
+    assert base.mass.inertia[2][2] == pytest.approx(3.0)
+
+
+def test_without_fusing_every_link_is_a_body():
+    bodies = build_bodies(parse_urdf(FUSED.encode()), fuse_static=False)
+    assert [b.name for b in bodies] == ["base", "plate", "tip"]
+    assert bodies[1].joint.kind == "fixed" and not bodies[1].moves

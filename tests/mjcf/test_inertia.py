@@ -1,0 +1,69 @@
+"""Masses and inertias MuJoCo would refuse are repaired (and reported) or refused."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.mjcf.bodies import build_bodies
+from mjcfbuild.mjcf.inertia import InertiaPolicy, validate_masses
+from mjcfbuild.urdf.parse import parse_urdf
+
+
+def robot(inertial: str):
+    return parse_urdf(
+        f"""<robot name="r"><link name="base"/>
+        <link name="arm">{inertial}</link>
+        <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+          <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+        </robot>""".encode()
+    )
+
+
+def check(inertial: str, mode: str = "repair"):
+    bodies = build_bodies(robot(inertial), fuse_static=True)
+    repairs = validate_masses(bodies, InertiaPolicy(mode=mode), "r.urdf", {"arm": 3})
+    return bodies[1], repairs
+
+
+def test_valid_inertia_is_left_alone():
+    _, repairs = check(
+        '<inertial><mass value="1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>'
+    )
+    assert repairs == []
+
+
+def test_missing_inertial_on_a_moving_body_gets_the_minimum():
+    body, repairs = check("")
+    assert body.mass.mass == InertiaPolicy().min_mass
+    assert (
+        min(np.linalg.eigvalsh(np.array(body.mass.inertia))) >= InertiaPolicy().min_inertia * 0.999
+    )
+    assert [r.problem for r in repairs] == [
+        "moving body with too small a mass",
+        "principal inertia too small for a moving body",
+    ]
+    assert "no <inertial>" in repairs[0].describe()
+
+
+def test_triangle_inequality_is_restored_minimally():
+    body, repairs = check(
+        '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>'
+    )
+    a, b, c = sorted(np.linalg.eigvalsh(np.array(body.mass.inertia)))
+    assert a + b >= c
+    assert c == pytest.approx(0.1)
+    assert repairs[0].problem == "principal inertia breaks A + B >= C"
+
+
+def test_fail_policy_names_link_and_line():
+    with pytest.raises(InputError) as info:
+        check("", mode="fail")
+    assert info.value.location.line == 3
+    assert "link 'arm'" in info.value.message
+
+
+def test_negative_mass_is_always_an_error():
+    with pytest.raises(InputError, match="mass must be a number >= 0"):
+        check('<inertial><mass value="-1"/><inertia ixx="1" iyy="1" izz="1"/></inertial>')

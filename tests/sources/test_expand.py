@@ -1,0 +1,94 @@
+"""xacro expansion in-process: $(find) without ROS, and every file it read recorded."""
+
+from __future__ import annotations
+
+import pytest
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.sources.expand import expand_xacro, read_urdf_file
+from mjcfbuild.sources.packages import PackageResolver
+from tests.conftest import write
+
+MAIN = """<?xml version="1.0" encoding="utf-8"?>
+<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="size" default="0.1"/>
+  <xacro:property name="cfg" value="${xacro.load_yaml('$(find pkg)/config/c.yaml')}"/>
+  <xacro:include filename="$(find pkg)/urdf/part.xacro"/>
+  <xacro:include filename="$(find pkg)/urdf/optional.xacro" optional="true"/>
+  <link name="base"><visual><geometry><box size="$(arg size) ${cfg.width} 0.1"/></geometry></visual></link>
+  <xacro:part/>
+</robot>
+"""
+PART = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="part"><link name="part_$(optenv PART_SUFFIX x)"/></xacro:macro>
+</robot>
+"""
+
+
+@pytest.fixture
+def pkg(tmp_path):
+    root = tmp_path / "pkg"
+    write(root / "urdf" / "main.xacro", MAIN)
+    write(root / "urdf" / "part.xacro", PART)
+    write(root / "config" / "c.yaml", "width: 0.25\n")
+    return root
+
+
+def test_expansion_resolves_find_args_yaml_and_records_dependencies(pkg, monkeypatch):
+    monkeypatch.delenv("PART_SUFFIX", raising=False)
+    resolver = PackageResolver({"pkg": pkg}, {})
+    expansion = expand_xacro(pkg / "urdf" / "main.xacro", {"size": "0.5"}, resolver)
+    text = expansion.urdf.decode()
+    assert 'size="0.5 0.25 0.1"' in text
+    assert '<link name="part_x"/>' in text
+    assert expansion.files == sorted(
+        str(p)
+        for p in (
+            pkg / "urdf" / "main.xacro",
+            pkg / "urdf" / "part.xacro",
+            pkg / "config" / "c.yaml",
+        )
+    )
+    assert expansion.missing == [str(pkg / "urdf" / "optional.xacro")]
+    assert expansion.environment == {"PART_SUFFIX": None}
+
+
+def test_unknown_package_in_find_names_the_file(pkg):
+    with pytest.raises(InputError) as info:
+        expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({}, {}))
+    assert "unknown package 'pkg'" in info.value.message
+    assert info.value.location.file.endswith("main.xacro")
+
+
+def test_missing_include_is_an_error_naming_the_including_file(pkg):
+    write(
+        pkg / "urdf" / "part.xacro",
+        PART.replace("<xacro:macro", '<xacro:include filename="gone.xacro"/><xacro:macro'),
+    )
+    with pytest.raises(InputError) as info:
+        expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({"pkg": pkg}, {}))
+    assert "xacro failed" in info.value.message
+
+
+def test_xml_error_in_included_file_has_file_and_line(pkg):
+    write(pkg / "urdf" / "part.xacro", "<robot>\n<link name='a'>\n</robot>\n")
+    with pytest.raises(InputError) as info:
+        expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({"pkg": pkg}, {}))
+    assert info.value.location.file.endswith("part.xacro")
+    assert info.value.location.line == 3
+    assert info.value.message.startswith("XML error")
+
+
+def test_hooks_are_restored_after_expansion(pkg):
+    from xacro import substitution_args
+
+    before = substitution_args._eval_find
+    expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({"pkg": pkg}, {}))
+    assert substitution_args._eval_find is before
+
+
+def test_plain_urdf_is_read_as_bytes(tmp_path):
+    path = write(tmp_path / "a.urdf", '<?xml version="1.0" encoding="utf-8"?><robot name="a"/>')
+    assert read_urdf_file(path).urdf.startswith(b"<?xml")
+    with pytest.raises(InputError, match="not found"):
+        read_urdf_file(tmp_path / "missing.urdf")

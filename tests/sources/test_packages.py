@@ -1,0 +1,74 @@
+"""Finding ROS packages from the manifest and the ROS environment variables, without ROS."""
+
+from __future__ import annotations
+
+import pytest
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.sources.packages import PackageResolver, find_enclosing_package
+from tests.conftest import write
+
+
+def package(folder, name):
+    write(folder / "package.xml", f"<package><name>{name}</name></package>")
+    return folder
+
+
+def test_manifest_packages_come_first(tmp_path):
+    explicit = package(tmp_path / "mine", "robot_description")
+    other = package(tmp_path / "ws" / "robot_description", "robot_description")
+    resolver = PackageResolver(
+        {"robot_description": explicit}, {"ROS_PACKAGE_PATH": str(other.parent)}
+    )
+    assert resolver.find("robot_description") == explicit
+
+
+def test_ros_package_path_is_crawled_by_package_xml_name(tmp_path):
+    folder = package(tmp_path / "src" / "deep" / "folder_name", "real_name")
+    resolver = PackageResolver({}, {"ROS_PACKAGE_PATH": str(tmp_path / "src")})
+    assert resolver.find("real_name") == folder
+
+
+def test_ignore_markers_hide_packages(tmp_path):
+    package(tmp_path / "src" / "hidden" / "pkg", "pkg")
+    write(tmp_path / "src" / "hidden" / "COLCON_IGNORE", "")
+    resolver = PackageResolver({}, {"ROS_PACKAGE_PATH": str(tmp_path / "src")})
+    with pytest.raises(InputError):
+        resolver.find("pkg")
+
+
+def test_ament_prefix_path_uses_the_resource_index(tmp_path):
+    prefix = tmp_path / "install"
+    write(prefix / "share" / "ament_index" / "resource_index" / "packages" / "arm", "")
+    (prefix / "share" / "arm").mkdir(parents=True)
+    resolver = PackageResolver({}, {"AMENT_PREFIX_PATH": f"/nonexistent:{prefix}"})
+    assert resolver.find("arm") == prefix / "share" / "arm"
+
+
+def test_unknown_package_lists_known_ones_and_says_what_to_do(tmp_path):
+    package(tmp_path / "src" / "a", "alpha")
+    resolver = PackageResolver({"beta": tmp_path}, {"ROS_PACKAGE_PATH": str(tmp_path / "src")})
+    with pytest.raises(InputError) as info:
+        resolver.find("gamma")
+    text = info.value.one_line()
+    assert "unknown package 'gamma' (known packages: alpha, beta)" in text
+    assert "under 'packages' in robot.yaml" in text
+
+
+def test_manifest_package_that_is_not_a_folder(tmp_path):
+    resolver = PackageResolver({"arm": tmp_path / "missing"}, {})
+    with pytest.raises(InputError, match="not a folder"):
+        resolver.find("arm")
+
+
+def test_fingerprint_covers_map_and_environment(tmp_path):
+    a = PackageResolver({"x": tmp_path}, {"ROS_PACKAGE_PATH": "/a"}).fingerprint()
+    b = PackageResolver({"x": tmp_path}, {"ROS_PACKAGE_PATH": "/b"}).fingerprint()
+    assert a != b
+
+
+def test_enclosing_package(tmp_path):
+    root = package(tmp_path / "arm_pkg", "arm_description")
+    urdf = write(root / "urdf" / "arm.urdf", "<robot/>")
+    assert find_enclosing_package(urdf) == ("arm_description", root)
+    assert find_enclosing_package(write(tmp_path / "loose.urdf", "")) is None

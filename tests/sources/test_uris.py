@@ -1,0 +1,40 @@
+"""Resolving package://, file:// and relative file references."""
+
+from __future__ import annotations
+
+import pytest
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.sources.packages import PackageResolver
+from mjcfbuild.sources.uris import resolve_uri
+
+
+@pytest.fixture
+def resolver(tmp_path):
+    (tmp_path / "pkg").mkdir()
+    return PackageResolver({"pkg": tmp_path / "pkg"}, {})
+
+
+def test_package_uri(tmp_path, resolver):
+    assert resolve_uri("package://pkg/meshes/a%20b.stl", tmp_path, resolver) == (
+        tmp_path / "pkg" / "meshes" / "a b.stl"
+    )
+
+
+def test_relative_paths_are_relative_to_the_urdf_folder(tmp_path, resolver):
+    base = tmp_path / "pkg" / "urdf"
+    assert resolve_uri("../meshes/a.stl", base, resolver) == tmp_path / "pkg" / "meshes" / "a.stl"
+
+
+def test_file_uris_absolute_and_relative(tmp_path, resolver):
+    assert resolve_uri(f"file://{tmp_path}/x.stl", tmp_path / "pkg", resolver) == tmp_path / "x.stl"
+    assert resolve_uri("file://meshes/x.stl", tmp_path, resolver) == tmp_path / "meshes" / "x.stl"
+
+
+def test_remote_and_empty_references_are_errors(tmp_path, resolver):
+    with pytest.raises(InputError, match="does not download"):
+        resolve_uri("https://example.com/a.stl", tmp_path, resolver)
+    with pytest.raises(InputError, match="empty"):
+        resolve_uri("  ", tmp_path, resolver)
+    with pytest.raises(InputError, match="names no package"):
+        resolve_uri("package:///a.stl", tmp_path, resolver)

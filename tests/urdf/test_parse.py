@@ -1,0 +1,163 @@
+"""Parsing URDF bytes: the model, and errors with file and line for every defect."""
+
+from __future__ import annotations
+
+import pytest
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.urdf.model import robot_from_dict
+from mjcfbuild.urdf.parse import parse_urdf
+from tests.conftest import two_link_urdf
+
+
+def parse(text: str):
+    return parse_urdf(text.encode(), "r.urdf")
+
+
+def error_of(text: str) -> InputError:
+    with pytest.raises(InputError) as info:
+        parse(text)
+    return info.value
+
+
+def test_two_link_robot():
+    robot = parse(two_link_urdf())
+    assert robot.name == "two_link"
+    assert robot.root == "base"
+    joint = robot.joints[0]
+    assert (joint.kind, joint.parent, joint.child, joint.axis) == (
+        "revolute",
+        "base",
+        "arm",
+        (0, 1, 0),
+    )
+    assert joint.limit.lower == -1.5 and joint.limit.upper == 1.5
+    assert joint.origin.rpy == (0, 0, 0.3)
+    arm = robot.link("arm")
+    assert arm.visuals[0].material.rgba == (1, 0, 0, 1)
+    assert arm.collisions[0].geometry.size == (0.03, 0.5)
+    assert arm.visuals[0].line is not None
+
+
+def test_round_trip_through_json():
+    robot = parse(two_link_urdf())
+    assert robot_from_dict(robot.to_dict()) == robot
+
+
+def test_encoding_declaration_is_accepted():
+    assert parse('<?xml version="1.0" encoding="UTF-8"?>\n<robot name="a"><link name="l"/></robot>')
+
+
+def test_named_global_materials_are_resolved():
+    robot = parse(
+        '<robot name="a"><material name="blue"><color rgba="0 0 1 1"/></material>'
+        '<link name="l"><visual><geometry><sphere radius="1"/></geometry>'
+        '<material name="blue"/></visual></link></robot>'
+    )
+    assert robot.link("l").visuals[0].material.rgba == (0, 0, 1, 1)
+
+
+def test_commas_between_numbers_are_repaired_with_a_warning():
+    robot = parse(two_link_urdf().replace('rpy="0 0 0.3"', 'rpy="0, 0, 0.3"'))
+    assert robot.joints[0].origin.rpy == (0, 0, 0.3)
+    assert any("commas" in w for w in robot.warnings)
+
+
+def test_undeclared_namespace_prefix_is_a_warning():
+    robot = parse(two_link_urdf(extra='<drake:joint name="x" type="ball"/>'))
+    assert any("drake" in w for w in robot.warnings)
+    assert [j.name for j in robot.joints] == ["hinge"]
+
+
+@pytest.mark.parametrize(
+    ("text", "message", "line"),
+    [
+        ("<robot><link name='a'>\n</robot>", "malformed XML", 2),
+        ("<model name='x'/>", "root element is <model>", 1),
+        ("<robot name='a'/>", "no links", 1),
+        ("<robot>\n<link name='a'/>\n<link name='a'/>\n</robot>", "link 'a' is defined twice", 3),
+        (
+            "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='fixed'>"
+            "<parent link='a'/><child link='c'/></joint></robot>",
+            "refers to link 'c', which does not exist",
+            2,
+        ),
+        (
+            "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='spherical'>"
+            "<parent link='a'/><child link='b'/></joint></robot>",
+            "unknown type 'spherical'",
+            2,
+        ),
+        (
+            "<robot><link name='a'/><link name='b'/><link name='c'/>\n"
+            "<joint name='j' type='fixed'><parent link='a'/><child link='b'/></joint></robot>",
+            "2 root links",
+            1,
+        ),
+        (
+            "<robot><link name='a'/><link name='b'/>\n"
+            "<joint name='j1' type='fixed'><parent link='a'/><child link='b'/></joint>\n"
+            "<joint name='j2' type='fixed'><parent link='b'/><child link='a'/></joint></robot>",
+            "cycle",
+            2,
+        ),
+        (
+            "<robot><link name='a'>\n<visual><geometry><cone radius='1'/></geometry></visual>"
+            "</link></robot>",
+            "unknown geometry <cone>",
+            2,
+        ),
+        (
+            "<robot><link name='a'>\n<visual><geometry><box size='1 1'/></geometry></visual>"
+            "</link></robot>",
+            "needs 3 numbers, found 2",
+            2,
+        ),
+        (
+            "<robot><link name='a'>\n<visual><geometry><box size='1 nan 1'/></geometry></visual>"
+            "</link></robot>",
+            "not a finite number",
+            2,
+        ),
+        (
+            "<robot><link name='a'>\n<inertial><mass value='x'/></inertial></link></robot>",
+            "'x' is not a number",
+            2,
+        ),
+        (
+            "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='revolute'>"
+            "<parent link='a'/><child link='b'/><axis xyz='0 0 0'/></joint></robot>",
+            "zero axis",
+            2,
+        ),
+        (
+            "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='revolute'>"
+            "<parent link='a'/><child link='b'/><mimic joint='k'/></joint></robot>",
+            "mimics joint 'k', which does not exist",
+            2,
+        ),
+    ],
+)
+def test_defects_are_errors_with_lines(text, message, line):
+    error = error_of(text)
+    assert message in error.message
+    assert error.location.file == "r.urdf"
+    assert error.location.line == line
+
+
+def test_entity_declarations_are_refused():
+    text = (
+        '<?xml version="1.0"?>\n<!DOCTYPE r [<!ENTITY big "AAAA">]>'
+        '<robot name="&big;"><link name="a"/></robot>'
+    )
+    error = error_of(text)
+    assert "entity declarations are not allowed" in error.message
+    assert error.location.line == 2
+
+
+def test_existing_mujoco_compiler_is_kept_for_merging():
+    robot = parse(
+        '<robot name="a"><mujoco><compiler balanceinertia="true" meshdir="x"/></mujoco>'
+        '<link name="l"/></robot>'
+    )
+    assert robot.mujoco_compiler == {"balanceinertia": "true", "meshdir": "x"}
