@@ -82,13 +82,14 @@ class MjcfbuildError(Exception):
         return " ".join(text.split())
 
     def relocate(self, base_dir: Path, cwd: Path) -> MjcfbuildError:
-        """Show the file (relative to ``base_dir``, or absolute) relative to ``cwd`` if near."""
+        """Show the file (relative to ``base_dir``, or absolute) relative to ``cwd`` when it is
+        inside ``cwd``, and as an absolute path otherwise."""
         import os
 
         if self.location is not None:
             absolute = os.path.normpath(os.path.join(base_dir, self.location.file))
             relative = os.path.relpath(absolute, cwd)
-            self.location.file = absolute if relative.startswith("../../..") else relative
+            self.location.file = absolute if relative.startswith("..") else relative
         return self
 
     def to_dict(self) -> dict:

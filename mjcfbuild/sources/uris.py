@@ -25,7 +25,8 @@ def resolve_uri(uri: str, base_dir: Path, packages: PackageResolver) -> Path:
         raise InputError("empty file name")
     for scheme in _PACKAGE_SCHEMES:
         if text.startswith(scheme):
-            rest = text[len(scheme) :]
+            # "package:///pkg/..." (an extra slash, seen in real descriptions) means the same.
+            rest = text[len(scheme) :].lstrip("/")
             package, _, inner = rest.partition("/")
             if not package:
                 raise InputError(f"'{uri}' names no package")

@@ -37,4 +37,8 @@ def test_remote_and_empty_references_are_errors(tmp_path, resolver):
     with pytest.raises(InputError, match="empty"):
         resolve_uri("  ", tmp_path, resolver)
     with pytest.raises(InputError, match="names no package"):
-        resolve_uri("package:///a.stl", tmp_path, resolver)
+        resolve_uri("package://", tmp_path, resolver)
+
+
+def test_package_uri_with_an_extra_slash(tmp_path, resolver):
+    assert resolve_uri("package:///pkg/a.stl", tmp_path, resolver) == tmp_path / "pkg" / "a.stl"

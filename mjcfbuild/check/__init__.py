@@ -1,0 +1,1 @@
+"""Proving a built model against its source with code independent of MuJoCo's URDF import."""

@@ -1,0 +1,142 @@
+"""Forward kinematics of the built model against the URDF's, at random joint configurations.
+
+The reference poses come from :func:`mjcfbuild.urdf.kinematics.link_poses`, which reads only the
+URDF. The model's poses come from MuJoCo's ``mj_kinematics``. Every URDF link must be a body or
+a site of its name in the model, and sit where the URDF puts it.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from dataclasses import dataclass, field
+
+from mjcfbuild.urdf.kinematics import link_poses
+from mjcfbuild.urdf.model import Robot
+from mjcfbuild.urdf.transforms import rotation_angle_between
+
+MOVING = ("revolute", "continuous", "prismatic")
+
+
+@dataclass
+class LinkError:
+    """The largest disagreement found for one link."""
+
+    link: str
+    position: float
+    rotation: float
+    configuration: int
+
+
+@dataclass
+class KinematicsResult:
+    """How far the model's link poses are from the URDF's."""
+
+    configurations: int
+    max_position: float = 0.0
+    max_rotation: float = 0.0
+    worst: LinkError | None = None
+    missing_links: list[str] = field(default_factory=list)
+    missing_joints: list[str] = field(default_factory=list)
+
+    def passes(self, position_tolerance: float = 1e-6, rotation_tolerance: float = 1e-6) -> bool:
+        """Whether every link is present and within both tolerances."""
+        return (
+            not self.missing_links
+            and not self.missing_joints
+            and self.max_position <= position_tolerance
+            and self.max_rotation <= rotation_tolerance
+        )
+
+
+def random_configurations(robot: Robot, count: int, seed: int = 0) -> list[dict[str, float]]:
+    """``count`` joint configurations within the URDF limits; mimic joints follow their leader.
+
+    The first configuration is all zeros.
+    """
+    rng = random.Random(seed)
+    joints = {joint.name: joint for joint in robot.joints}
+    result = []
+    for index in range(count):
+        values: dict[str, float] = {}
+        for joint in robot.joints:
+            if joint.kind not in MOVING or joint.mimic is not None:
+                continue
+            if index == 0:
+                values[joint.name] = 0.0
+                continue
+            lower, upper = _limits(joint)
+            values[joint.name] = rng.uniform(lower, upper)
+        for joint in robot.joints:
+            if joint.mimic is not None and joint.kind in MOVING:
+                leader = values.get(joint.mimic.joint, 0.0)
+                if joints[joint.mimic.joint].mimic is not None:
+                    leader = 0.0  # chains of mimics are rare; keep them at rest
+                values[joint.name] = joint.mimic.multiplier * leader + joint.mimic.offset
+        result.append(values)
+    return result
+
+
+def _limits(joint) -> tuple[float, float]:
+    limit = joint.limit
+    if joint.kind == "continuous" or limit is None or limit.lower is None or limit.upper is None:
+        return (-math.pi, math.pi) if joint.kind != "prismatic" else (-0.5, 0.5)
+    if limit.upper <= limit.lower:
+        return limit.lower, limit.lower
+    return limit.lower, limit.upper
+
+
+def compare_kinematics(robot: Robot, model, count: int = 20, seed: int = 0) -> KinematicsResult:
+    """Compare every URDF link's pose in ``model`` (an MjModel) with the URDF's."""
+    import mujoco
+    import numpy as np
+
+    result = KinematicsResult(configurations=count)
+    addresses = {}
+    for joint in robot.joints:
+        if joint.kind not in MOVING:
+            continue
+        index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint.name)
+        if index < 0:
+            result.missing_joints.append(joint.name)
+        else:
+            addresses[joint.name] = model.jnt_qposadr[index]
+    frames = {}
+    for link in robot.links:
+        body = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, link.name)
+        site = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, link.name)
+        if body >= 0:
+            frames[link.name] = ("body", body)
+        elif site >= 0:
+            frames[link.name] = ("site", site)
+        elif link.name != "world":
+            result.missing_links.append(link.name)
+    data = mujoco.MjData(model)
+    for number, values in enumerate(random_configurations(robot, count, seed)):
+        qpos = model.qpos0.copy()
+        for joint in range(model.njnt):
+            if model.jnt_type[joint] == mujoco.mjtJoint.mjJNT_FREE:
+                address = model.jnt_qposadr[joint]
+                qpos[address : address + 7] = [0, 0, 0, 1, 0, 0, 0]
+        for name, address in addresses.items():
+            qpos[address] = values.get(name, 0.0)
+        data.qpos[:] = qpos
+        mujoco.mj_kinematics(model, data)
+        expected = link_poses(robot, values)
+        for link, (kind, index) in frames.items():
+            if kind == "body":
+                position, matrix = data.xpos[index], data.xmat[index]
+            else:
+                position, matrix = data.site_xpos[index], data.site_xmat[index]
+            reference = expected[link]
+            position_error = float(np.linalg.norm(np.array(reference.position) - position))
+            rotation = tuple(tuple(float(v) for v in row) for row in matrix.reshape(3, 3))
+            rotation_error = rotation_angle_between(reference.rotation, rotation)
+            worst = result.worst
+            if worst is None or max(position_error, rotation_error) > max(
+                worst.position, worst.rotation
+            ):
+                result.worst = LinkError(link, position_error, rotation_error, number)
+            result.max_position = max(result.max_position, position_error)
+            result.max_rotation = max(result.max_rotation, rotation_error)
+    return result

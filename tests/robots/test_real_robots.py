@@ -1,0 +1,39 @@
+"""The real robots of example-robot-data build with default settings, load, simulate, and
+put every URDF link where the URDF does (checked by code independent of MuJoCo's import).
+
+The wheel is downloaded once into a cache (see bench/robot_data.py). Run only these with
+``pytest -m robots``; skip them with ``-m "not robots"``.
+"""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+import pytest
+
+import mjcfbuild
+from bench import robot_data
+from mjcfbuild.check.kinematics import compare_kinematics
+from mjcfbuild.urdf.parse import parse_urdf
+
+pytestmark = [pytest.mark.robots, pytest.mark.slow]
+
+
+@pytest.mark.parametrize("name", sorted(robot_data.ROBOTS))
+def test_robot_builds_simulates_and_matches_urdf_kinematics(name, tmp_path):
+    robot = robot_data.ROBOTS[name]
+    urdf = robot_data.unpack(robot)
+    manifest = robot_data.manifest(robot, tmp_path, urdf, robot_data.package_root())
+    result = mjcfbuild.build(manifest, jobs=2)
+
+    model = mujoco.MjModel.from_xml_path(str(result.scene))
+    data = mujoco.MjData(model)
+    for _ in range(2000):
+        mujoco.mj_step(model, data)
+    assert np.all(np.isfinite(data.qpos)) and np.all(np.isfinite(data.qvel))
+
+    urdf_robot = parse_urdf(urdf.read_bytes(), str(urdf))
+    kinematics = compare_kinematics(urdf_robot, mujoco.MjModel.from_xml_path(str(result.robot)))
+    assert kinematics.missing_links == [] and kinematics.missing_joints == []
+    assert kinematics.max_position <= 1e-6, kinematics.worst
+    assert kinematics.max_rotation <= 1e-6, kinematics.worst
