@@ -39,6 +39,7 @@ class BuildContext:
     failures: dict[str, MjcfbuildError] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
+    cache_folder_override: Path | None = None
 
     def __post_init__(self) -> None:
         self.base_dir = normalise(self.base_dir)
@@ -154,6 +155,17 @@ class BuildContext:
 
             self._hashes = HashCache(self.state("hashes.json") if self.state_dir.is_dir() else None)
         return self._hashes
+
+    def cache_settings(self) -> dict:
+        """The shared product cache as build steps get it: on/off, folder, size cap."""
+        from mjcfbuild.engine.store import default_cache_folder, default_max_bytes, parse_size
+
+        settings = self.manifest.cache
+        folder = self.resolve(settings.folder) if settings.folder else default_cache_folder()
+        if self.cache_folder_override is not None:
+            folder = self.cache_folder_override
+        max_bytes = parse_size(settings.max_size) if settings.max_size else default_max_bytes()
+        return {"enabled": settings.enabled, "folder": str(folder), "max_bytes": max_bytes}
 
     def run_step(self, step: str, payload: dict, *, task: str, in_worker: bool) -> dict:
         """Run a build step, in a worker process or here, and return its result."""

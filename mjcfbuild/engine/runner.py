@@ -14,7 +14,7 @@ from pathlib import Path
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.loader import run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
-from mjcfbuild.engine.tasks import build_tasks, planning_tasks, product_summary, read_plan
+from mjcfbuild.engine.tasks import build_tasks, planning_tasks
 from mjcfbuild.errors import MjcfbuildError, OutputError
 from mjcfbuild.fsutil import remove_stale_temp_files, write_if_changed
 
@@ -90,9 +90,10 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
             _prepare_state(ctx)
             doit_output = _run_stage(ctx, planning_tasks(ctx), progress, result)
             if not result.errors:
-                doit_output += _run_stage(ctx, build_tasks(ctx), progress, result)
-            if not result.errors:
-                _remove_stale_products(ctx)
+                tasks = build_tasks(ctx)
+                doit_output += _run_stage(ctx, tasks, progress, result)
+                if not result.errors:
+                    _remove_stale_products(ctx, tasks)
     finally:
         ctx.close()
         progress.clear()
@@ -144,14 +145,13 @@ def _prepare_state(ctx: BuildContext) -> None:
         write_if_changed(ctx.source_path, data)
 
 
-def _remove_stale_products(ctx: BuildContext) -> None:
-    """Delete converted meshes the plan no longer uses."""
-    if not ctx.products_dir.is_dir():
-        return
-    keep = set()
-    for mesh in read_plan(ctx)["meshes"]:
-        keep.add(mesh["id"])
-        keep.add(product_summary(ctx, mesh["id"]).name)
-    for entry in ctx.products_dir.iterdir():
-        if entry.name not in keep:
-            shutil.rmtree(entry) if entry.is_dir() else entry.unlink()
+def _remove_stale_products(ctx: BuildContext, tasks: list[dict]) -> None:
+    """Delete converted meshes and decompositions no task of this build uses."""
+    used = {name.split(":", 1)[1] for name in (t["name"] for t in tasks) if ":" in name}
+    for folder in (ctx.products_dir, ctx.state_dir / "decompositions"):
+        if not folder.is_dir():
+            continue
+        for entry in folder.iterdir():
+            # <id>/, <id>.json and <id>.deps.json belong to the task of <id>
+            if entry.name.split(".", 1)[0] not in used:
+                shutil.rmtree(entry) if entry.is_dir() else entry.unlink()

@@ -19,12 +19,19 @@ from pathlib import Path
 
 from doit.exceptions import TaskFailed
 
+from mjcfbuild.collision.policy import (
+    choose_collisions,
+    decompositions,
+    mesh_roles,
+    rules_from_dicts,
+)
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.engine.uptodate import ParamsUnchanged, always_stale, outputs_intact
 from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
 from mjcfbuild.sources.packages import ENV_VARIABLES
+from mjcfbuild.urdf.model import robot_from_dict
 
 SOURCE_URDF = "source.urdf"
 SOURCE_DEPS = "source.deps.json"
@@ -40,11 +47,33 @@ def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
 def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True) -> list[dict]:
     """Every task of the build; reads the plan the planning tasks wrote."""
     plan = read_plan(ctx)
+    robot = robot_from_dict(plan["robot"])
+    collision = collision_settings(ctx)
+    choices = choose_collisions(
+        robot, collision["default"], rules_from_dicts(collision["rules"]), collision["decompose"]
+    )
+    roles = mesh_roles(robot, choices)
+    paths = {mesh["id"]: mesh["path"] for mesh in plan["meshes"]}
+    decomposed = decompositions(robot, choices)
     tasks = planning_tasks(ctx, prefix) if with_planning else []
-    tasks += [_mesh_task(ctx, mesh, prefix) for mesh in plan["meshes"]]
-    tasks.append(_assemble_task(ctx, plan, prefix))
+    tasks += [_mesh_task(ctx, mesh_id, paths[mesh_id], roles[mesh_id], prefix) for mesh_id in roles]
+    tasks += [
+        _decompose_task(ctx, name, mesh_id, params, prefix)
+        for name, (mesh_id, params) in decomposed.items()
+    ]
+    tasks.append(_assemble_task(ctx, sorted(roles), decomposed, collision, prefix))
     tasks.append(_scene_task(ctx, prefix))
     return tasks
+
+
+def collision_settings(ctx: BuildContext) -> dict:
+    """The manifest's collision settings in the plain form build steps take."""
+    settings = ctx.manifest.collision
+    return {
+        "default": settings.default,
+        "rules": list(settings.effective_rules),
+        "decompose": dict(settings.decompose_defaults),
+    }
 
 
 def read_plan(ctx: BuildContext) -> dict:
@@ -170,13 +199,28 @@ def product_summary(ctx: BuildContext, mesh_id: str) -> Path:
     return ctx.products_dir / f"{mesh_id}.json"
 
 
-def _mesh_task(ctx: BuildContext, mesh: dict, prefix: str) -> dict:
-    mesh_id = mesh["id"]
+def _mesh_task(ctx: BuildContext, mesh_id: str, path: str, roles: list[str], prefix: str) -> dict:
+    depfile = Depfile.read(_mesh_depfile(ctx, mesh_id))
+    file_dep = [Path(path)]
+    extra = []
+    if depfile is not None:
+        file_dep += [Path(f) for f in depfile.files if Path(f).exists()]
+        stale = depfile.stale_reason(ctx.environ)
+        if stale:
+            extra.append(always_stale(stale))
+    meshes = ctx.manifest.meshes
+    options = {
+        "roles": roles,
+        "max_faces": meshes.max_faces,
+        "collada_up_axis": meshes.collada_up_axis,
+    }
     payload = {
-        "source": mesh["path"],
+        "source": path,
         "product_dir": str(ctx.products_dir / mesh_id),
         "summary": str(product_summary(ctx, mesh_id)),
-        "roles": mesh["roles"],
+        "depfile": str(_mesh_depfile(ctx, mesh_id)),
+        "options": options,
+        "cache": ctx.cache_settings(),
     }
     return _task(
         ctx,
@@ -185,31 +229,82 @@ def _mesh_task(ctx: BuildContext, mesh: dict, prefix: str) -> dict:
         "mesh",
         payload,
         in_worker=True,
-        file_dep=[Path(mesh["path"])],
+        file_dep=file_dep,
         targets=[product_summary(ctx, mesh_id)],
-        params={"roles": mesh["roles"]},
+        params=options,
+        extra_uptodate=extra,
     )
 
 
-def _assemble_task(ctx: BuildContext, plan: dict, prefix: str) -> dict:
+def _mesh_depfile(ctx: BuildContext, mesh_id: str) -> Path:
+    return ctx.products_dir / f"{mesh_id}.deps.json"
+
+
+def decomposition_dir(ctx: BuildContext, name: str) -> Path:
+    """Where the parts of a decomposition are written."""
+    return ctx.state_dir / "decompositions" / name
+
+
+def _decompose_task(ctx: BuildContext, name: str, mesh_id: str, params: dict, prefix: str) -> dict:
+    folder = decomposition_dir(ctx, name)
+    payload = {
+        "product_summary": str(product_summary(ctx, mesh_id)),
+        "product_dir": str(ctx.products_dir / mesh_id),
+        "output_dir": str(folder),
+        "summary": str(folder.with_suffix(".json")),
+        "params": params,
+        "cache": ctx.cache_settings(),
+    }
+    return _task(
+        ctx,
+        f"{prefix}decompose:{name}",
+        f"decompose {name}",
+        "decompose",
+        payload,
+        in_worker=True,
+        file_dep=[product_summary(ctx, mesh_id)],
+        targets=[folder.with_suffix(".json")],
+        params={"params": params},
+    )
+
+
+def _assemble_task(
+    ctx: BuildContext, meshes: list[str], decomposed: dict, collision: dict, prefix: str
+) -> dict:
     options = ctx.manifest.options
-    meshes = [mesh["id"] for mesh in plan["meshes"]]
+    inertia = ctx.manifest.inertia
     source_label = Path(ctx.label(ctx.source_path)).as_posix()
+    decompositions = [
+        {
+            "mesh_id": mesh_id,
+            "params": params,
+            "folder": str(decomposition_dir(ctx, name)),
+            "summary": str(decomposition_dir(ctx, name).with_suffix(".json")),
+        }
+        for name, (mesh_id, params) in decomposed.items()
+    ]
     payload = {
         "plan": str(ctx.state(PLAN)),
         "products": {mesh_id: str(product_summary(ctx, mesh_id)) for mesh_id in meshes},
         "product_dirs": {mesh_id: str(ctx.products_dir / mesh_id) for mesh_id in meshes},
+        "decompositions": decompositions,
+        "collision": collision,
         "fuse_static": options.fuse_static,
         "free_joint": options.free_joint,
         "link_sites": options.link_sites,
-        "inertia": {"mode": "repair", "min_mass": 1e-4, "min_inertia": 1e-8},
+        "inertia": {
+            "mode": inertia.policy,
+            "min_mass": inertia.min_mass,
+            "min_inertia": inertia.min_inertia,
+        },
         "header": f"Generated by mjcfbuild from {source_label}; edit the sources, not this file.",
         "assets_dir": str(ctx.assets_dir),
         "report": str(ctx.state(ASSEMBLY_REPORT)),
         "output": str(ctx.robot_path),
     }
     params = {
-        k: payload[k] for k in ("fuse_static", "free_joint", "link_sites", "inertia", "header")
+        k: payload[k]
+        for k in ("collision", "fuse_static", "free_joint", "link_sites", "inertia", "header")
     }
     params["assets_dir"] = payload["assets_dir"]
     return _task(
@@ -219,7 +314,11 @@ def _assemble_task(ctx: BuildContext, plan: dict, prefix: str) -> dict:
         "assemble",
         payload,
         in_worker=True,
-        file_dep=[ctx.state(PLAN), *(product_summary(ctx, m) for m in meshes)],
+        file_dep=[
+            ctx.state(PLAN),
+            *(product_summary(ctx, m) for m in meshes),
+            *(Path(d["summary"]) for d in decompositions),
+        ],
         targets=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT)],
         params=params,
     )

@@ -8,12 +8,13 @@ from importlib import metadata
 from mjcfbuild import __version__
 
 # Bump a step's number when its output for the same inputs changes.
-STEP_FORMATS = {"expand": 1, "plan": 1, "mesh": 1, "assemble": 1, "scene": 1}
+STEP_FORMATS = {"expand": 1, "plan": 1, "mesh": 2, "decompose": 1, "assemble": 2, "scene": 1}
 
 STEP_TOOLS = {
     "expand": ("xacro",),
     "plan": ("lxml",),
-    "mesh": ("trimesh", "numpy", "pycollada", "pillow"),
+    "mesh": ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"),
+    "decompose": ("coacd", "trimesh", "numpy", "scipy"),
     "assemble": ("mujoco", "numpy", "lxml"),
     "scene": (),
 }

@@ -90,6 +90,156 @@ class Options(StrictModel):
     )
 
 
+class MeshSettings(StrictModel):
+    """How mesh files are converted."""
+
+    max_faces: int | None = Field(
+        None,
+        gt=3,
+        description=(
+            "Face budget per mesh file: meshes with more faces are simplified (quadric "
+            "decimation), with a warning. MuJoCo's own limit of 200000 always applies."
+        ),
+    )
+    collada_up_axis: Literal["ignore", "apply"] = Field(
+        "ignore",
+        description=(
+            "What to do with a DAE file's <up_axis>: 'ignore' uses its coordinates as they are, "
+            "as ROS tools draw them (real files are often tagged Y_UP with Z-up coordinates); "
+            "'apply' rotates them to Z up."
+        ),
+    )
+
+
+class CoacdParams(StrictModel):
+    """CoACD convex decomposition parameters (the names of ``coacd.run_coacd``)."""
+
+    threshold: float = Field(
+        0.05, gt=0, le=1, description="Concavity threshold: lower gives more, tighter parts."
+    )
+    max_convex_hull: int = Field(-1, description="Most parts to keep; -1 for no limit.")
+    preprocess_mode: Literal["auto", "on", "off"] = "auto"
+    preprocess_resolution: int = Field(50, gt=0)
+    resolution: int = Field(2000, gt=0)
+    mcts_nodes: int = Field(20, gt=0)
+    mcts_iterations: int = Field(150, gt=0)
+    mcts_max_depth: int = Field(3, gt=0)
+    pca: bool = False
+    merge: bool = True
+    decimate: bool = False
+    max_ch_vertex: int = Field(256, gt=3)
+    extrude: bool = False
+    extrude_margin: float = Field(0.01, ge=0)
+    approximate_mode: Literal["ch", "box"] = "ch"
+    seed: int = Field(0, ge=0, description="Random seed; fixed so results are reproducible.")
+
+
+Policy = Literal["authored", "visual", "hull", "decompose", "primitive", "none"]
+
+
+class CollisionRule(StrictModel):
+    """Use ``policy`` for the links and/or meshes whose names match the patterns."""
+
+    links: list[str] = Field(
+        default_factory=list, description="Link name patterns (* and ? wildcards)."
+    )
+    meshes: list[str] = Field(
+        default_factory=list,
+        description="Mesh patterns, matched against the file name, its stem, the URI and "
+        "mjcfbuild's mesh name.",
+    )
+    policy: Policy
+    decompose: dict[str, float | int | bool | str] = Field(
+        default_factory=dict,
+        description="CoACD parameters for this rule, over those of collision.decompose.",
+    )
+
+    @model_validator(mode="after")
+    def _has_patterns(self) -> CollisionRule:
+        if not self.links and not self.meshes:
+            raise ValueError("a rule needs 'links' or 'meshes' patterns")
+        if self.decompose and self.policy != "decompose":
+            raise ValueError("decompose parameters only apply to policy: decompose")
+        unknown = sorted(set(self.decompose) - set(CoacdParams.model_fields))
+        if unknown:
+            raise ValueError(
+                f"unknown CoACD parameter(s) {', '.join(unknown)}; "
+                f"allowed: {', '.join(sorted(CoacdParams.model_fields))}"
+            )
+        return self
+
+
+class CollisionSettings(StrictModel):
+    """Which geometry each link collides with."""
+
+    default: Policy = Field(
+        "authored",
+        description=(
+            "Policy for every link and mesh no rule matches: authored (the URDF's collision "
+            "elements), visual, hull, decompose, primitive or none."
+        ),
+    )
+    decompose: CoacdParams = Field(
+        default_factory=CoacdParams, description="Default CoACD parameters."
+    )
+    rules: list[CollisionRule] = Field(
+        default_factory=list, description="Rules in order; the first that matches wins."
+    )
+
+    @computed_field
+    @property
+    def decompose_defaults(self) -> dict:
+        """The default CoACD parameters as a plain mapping."""
+        return self.decompose.model_dump()
+
+    @computed_field
+    @property
+    def effective_rules(self) -> list[dict]:
+        """The rules with their complete, validated CoACD parameters."""
+        result = []
+        for rule in self.rules:
+            params = CoacdParams(**{**self.decompose.model_dump(), **rule.decompose})
+            result.append(
+                {
+                    "links": list(rule.links),
+                    "meshes": list(rule.meshes),
+                    "policy": rule.policy,
+                    "decompose": params.model_dump() if rule.policy == "decompose" else {},
+                }
+            )
+        return result
+
+
+class InertiaSettings(StrictModel):
+    """What to do with masses and inertias MuJoCo would refuse."""
+
+    policy: Literal["repair", "fail"] = Field(
+        "repair",
+        description="'repair' fixes them minimally and lists every change; 'fail' stops the build.",
+    )
+    min_mass: float = Field(1e-4, gt=0, description="Smallest mass of a moving body (kg).")
+    min_inertia: float = Field(
+        1e-8, gt=0, description="Smallest principal inertia of a moving body (kg m^2)."
+    )
+
+
+class CacheSettings(StrictModel):
+    """The cache of converted meshes and decompositions, shared by every build."""
+
+    enabled: bool = True
+    folder: RelPath | None = Field(
+        None,
+        description="Cache folder (relative to robot.yaml). Default: $MJCFBUILD_CACHE_DIR, "
+        "else $XDG_CACHE_HOME/mjcfbuild, else ~/.cache/mjcfbuild.",
+    )
+    max_size: str | None = Field(
+        None,
+        pattern=r"^\s*[0-9.]+\s*[KkMmGgTt]?[iI]?[bB]?\s*$",
+        description="Size cap, for example '2G'; least recently used entries go first. "
+        "Default: $MJCFBUILD_CACHE_MAX, else 5G.",
+    )
+
+
 class Scene(StrictModel):
     """The scene file written next to the robot: floor, light and sky around the robot."""
 
@@ -134,6 +284,10 @@ class Manifest(StrictModel):
         ),
     )
     options: Options = Field(default_factory=Options)
+    meshes: MeshSettings = Field(default_factory=MeshSettings)
+    collision: CollisionSettings = Field(default_factory=CollisionSettings)
+    inertia: InertiaSettings = Field(default_factory=InertiaSettings)
+    cache: CacheSettings = Field(default_factory=CacheSettings)
     scene: Scene = Field(default_factory=Scene)
     output: Output = Field(default_factory=Output)
 

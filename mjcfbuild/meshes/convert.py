@@ -1,8 +1,17 @@
-"""Converting one mesh file into the OBJ files a model uses (a mesh *product*).
+"""Converting one mesh file into the files a model uses (a mesh *product*).
 
-A product is a folder of OBJ files and a summary: one OBJ per material for drawing, and, when
-the mesh also serves as collision geometry, one OBJ of all its triangles (MuJoCo collides with
-its convex hull). A mesh with a single material uses the same file for both.
+A product is a folder of files and a summary:
+
+* ``mesh.obj`` - the whole mesh, when it has a single look: it serves every purpose;
+* ``part<k>.obj`` - one OBJ per look (colour and texture), for drawing, when there are several;
+* ``texture<j>.png`` - the textures those parts use, as PNG;
+* ``collision.obj`` - all triangles in one file, when a multi-look mesh is also collision
+  geometry (MuJoCo collides with its convex hull);
+* ``hull.obj`` - the convex hull, when a collision policy asks for it (hull, primitive).
+
+File names inside a product do not depend on what the mesh is called in a robot, so the same
+input gives the same product wherever it is used; the assembly names the published files.
+Meshes over the face budget are simplified, with a warning.
 """
 
 from __future__ import annotations
@@ -10,23 +19,35 @@ from __future__ import annotations
 import hashlib
 from pathlib import Path
 
+import numpy as np
+
 from mjcfbuild.fsutil import write_if_changed
-from mjcfbuild.meshes.load import load_parts
+from mjcfbuild.meshes.load import MeshPart, load_parts
 from mjcfbuild.meshes.objfile import obj_bytes
 
-PRODUCT_FORMAT = 1
+PRODUCT_FORMAT = 2
+# MuJoCo refuses meshes with more faces than this (its STL limit; we apply it to every format).
+MUJOCO_MAX_FACES = 200_000
 
 
-def convert_mesh(source: Path, product_dir: Path, roles: list[str]) -> dict:
-    """Write the product of ``source`` into ``product_dir`` and return its summary.
-
-    File names inside a product do not depend on what the mesh is called in a robot, so the
-    same input gives the same product wherever it is used; the assembly names the published
-    asset files.
-    """
-    import numpy as np
-
-    parts = load_parts(source)
+def convert_mesh(
+    source: Path,
+    product_dir: Path,
+    roles: list[str],
+    max_faces: int | None = None,
+    apply_up_axis: bool = False,
+) -> dict:
+    """Write the product of ``source`` into ``product_dir`` and return its summary."""
+    parts = load_parts(source, apply_up_axis=apply_up_axis)
+    warnings: list[str] = []
+    budget = min(max_faces or MUJOCO_MAX_FACES, MUJOCO_MAX_FACES)
+    total = sum(len(p.faces) for p in parts)
+    if total > budget:
+        parts = [_simplify(part, max(4, int(len(part.faces) * budget / total))) for part in parts]
+        warnings.append(
+            f"{source.name}: {total} faces over the budget of {budget}; "
+            f"simplified to {sum(len(p.faces) for p in parts)}"
+        )
     product_dir.mkdir(parents=True, exist_ok=True)
     files: dict[str, str] = {}
 
@@ -35,27 +56,34 @@ def convert_mesh(source: Path, product_dir: Path, roles: list[str]) -> dict:
         files[name] = hashlib.md5(data, usedforsecurity=False).hexdigest()
         return name
 
+    textures: dict[str, str] = {}
     summary_parts = []
-    if len(parts) == 1:
-        part = parts[0]
-        name = store("mesh.obj", obj_bytes(part.vertices, part.faces))
-        summary_parts.append(_part_summary(name, part))
-        collision = name if "collision" in roles else None
-    else:
-        for index, part in enumerate(parts):
-            name = store(f"part{index}.obj", obj_bytes(part.vertices, part.faces))
-            summary_parts.append(_part_summary(name, part))
-        collision = None
-        if "collision" in roles:
-            offset = 0
-            all_vertices, all_faces = [], []
-            for part in parts:
-                all_vertices.append(part.vertices)
-                all_faces.append(part.faces + offset)
-                offset += len(part.vertices)
-            collision = store(
-                "collision.obj", obj_bytes(np.concatenate(all_vertices), np.concatenate(all_faces))
-            )
+    single = len(parts) == 1
+    for index, part in enumerate(parts):
+        texture_file = None
+        if part.texture is not None:
+            texture_file = textures.get(part.texture.key)
+            if texture_file is None:
+                texture_file = store(f"texture{len(textures)}.png", part.texture.png)
+                textures[part.texture.key] = texture_file
+        name = store("mesh.obj" if single else f"part{index}.obj", _obj(part))
+        summary_parts.append(
+            {
+                "file": name,
+                "rgba": list(part.rgba) if part.rgba is not None else None,
+                "texture": texture_file,
+                "vertices": len(part.vertices),
+                "faces": len(part.faces),
+                "volume": _volume(part.vertices, part.faces),
+            }
+        )
+    vertices, faces = _whole(parts)
+    collision = None
+    if "collision" in roles:
+        collision = "mesh.obj" if single else store("collision.obj", obj_bytes(vertices, faces))
+    hull = None
+    if "hull" in roles:
+        hull = store("hull.obj", _hull_obj(vertices))
     for stale in product_dir.iterdir():
         if stale.name not in files:
             stale.unlink()
@@ -63,14 +91,52 @@ def convert_mesh(source: Path, product_dir: Path, roles: list[str]) -> dict:
         "format": PRODUCT_FORMAT,
         "parts": summary_parts,
         "collision": collision,
+        "collision_volume": _volume(vertices, faces),
+        "hull": hull,
+        "faces": int(sum(len(p.faces) for p in parts)),
         "files": dict(sorted(files.items())),
+        "warnings": warnings,
     }
 
 
-def _part_summary(name: str, part) -> dict:
-    return {
-        "file": name,
-        "rgba": list(part.rgba) if part.rgba is not None else None,
-        "vertices": len(part.vertices),
-        "faces": len(part.faces),
-    }
+def _obj(part: MeshPart) -> bytes:
+    return obj_bytes(part.vertices, part.faces, part.uv if part.texture is not None else None)
+
+
+def _whole(parts: list[MeshPart]) -> tuple[np.ndarray, np.ndarray]:
+    offsets = np.cumsum([0] + [len(p.vertices) for p in parts[:-1]])
+    vertices = np.concatenate([p.vertices for p in parts])
+    faces = np.concatenate([p.faces + o for p, o in zip(parts, offsets, strict=True)])
+    return vertices, faces
+
+
+def _volume(vertices: np.ndarray, faces: np.ndarray) -> float:
+    """Signed volume enclosed by the triangles (positive for outward-facing closed meshes)."""
+    a, b, c = (vertices[faces[:, i]] for i in range(3))
+    return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
+
+
+def _hull_obj(vertices: np.ndarray) -> bytes:
+    import trimesh
+
+    hull = trimesh.Trimesh(vertices=vertices, process=False).convex_hull
+    order = np.lexsort(np.round(hull.vertices, 12).T[::-1])  # a stable vertex order
+    rank = np.empty_like(order)
+    rank[order] = np.arange(len(order))
+    faces = rank[hull.faces]
+    faces = faces[np.lexsort(np.sort(faces, axis=1).T[::-1])]
+    return obj_bytes(hull.vertices[order], faces)
+
+
+def _simplify(part: MeshPart, target_faces: int) -> MeshPart:
+    """Quadric decimation of one part to about ``target_faces`` faces (textures dropped)."""
+    import fast_simplification
+
+    points, faces = fast_simplification.simplify(
+        part.vertices.astype(np.float32),
+        part.faces.astype(np.int32),
+        target_count=target_faces,
+    )
+    return MeshPart(
+        np.asarray(points, dtype=np.float64), np.asarray(faces, dtype=np.int64), part.rgba
+    )

@@ -1,7 +1,15 @@
-"""Reading a mesh file of any supported format into triangle parts, one per material."""
+"""Reading a mesh file of any supported format into parts, one per distinct look.
+
+A *look* is a colour and optionally a texture. DAE files go through mjcfbuild's own COLLADA
+reader (:mod:`mjcfbuild.meshes.collada`); STL, OBJ (with the ``.mtl`` its ``mtllib`` names),
+glTF/GLB and PLY go through trimesh. Coordinates are used as the file stores them, in metres
+(DAE units are applied), which is how ROS tools draw them.
+"""
 
 from __future__ import annotations
 
+import hashlib
+import io
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -10,21 +18,92 @@ import numpy as np
 from mjcfbuild.errors import InputError
 
 
+@dataclass(frozen=True)
+class Texture:
+    """A texture image as PNG bytes (MuJoCo reads PNG), identified by their hash."""
+
+    png: bytes
+
+    @property
+    def key(self) -> str:
+        """MD5 of the PNG bytes."""
+        return hashlib.md5(self.png, usedforsecurity=False).hexdigest()
+
+    @staticmethod
+    def from_file(path: Path) -> Texture:
+        """A texture file; PNG bytes are kept as they are, other formats are converted."""
+        data = path.read_bytes()
+        if data.startswith(b"\x89PNG\r\n\x1a\n"):
+            return Texture(data)
+        from PIL import Image
+
+        try:
+            image = Image.open(io.BytesIO(data))
+            image.load()
+        except Exception:
+            raise InputError("cannot read texture image", file=path) from None
+        return Texture.from_image(image)
+
+    @staticmethod
+    def from_image(image) -> Texture:
+        """A PIL image, encoded as PNG without metadata (so the bytes are reproducible)."""
+        buffer = io.BytesIO()
+        mode = "RGBA" if image.mode in ("RGBA", "LA", "P") else "RGB"
+        image.convert(mode).save(buffer, format="PNG")
+        return Texture(buffer.getvalue())
+
+
 @dataclass
 class MeshPart:
-    """Triangles that share one material, in the file's own frame and units (metres)."""
+    """Triangles that share one look, in the file's own frame, in metres."""
 
     vertices: np.ndarray
     faces: np.ndarray
     rgba: tuple[float, float, float, float] | None
+    uv: np.ndarray | None = None
+    texture: Texture | None = None
 
 
-def load_parts(path: Path) -> list[MeshPart]:
-    """The triangles of ``path`` grouped by colour, in a stable order.
+def load_parts(path: Path, apply_up_axis: bool = False) -> list[MeshPart]:
+    """The triangles of ``path`` grouped by look, in a stable order, vertices shared.
 
-    Node transforms inside the file (DAE, glTF scene graphs) are applied. Parts come in order
-    of first appearance in the file, so the same file always gives the same parts.
+    ``apply_up_axis`` rotates DAE files tagged Y_UP or X_UP to Z up.
     """
+    if path.suffix.lower() == ".dae":
+        pieces = _collada_pieces(path, apply_up_axis)
+    else:
+        pieces = _trimesh_pieces(path)
+    groups: dict[tuple, list[MeshPart]] = {}
+    for piece in pieces:
+        if len(piece.faces) == 0:
+            continue
+        key = (piece.rgba, piece.texture.key if piece.texture else None)
+        groups.setdefault(key, []).append(piece)
+    if not groups:
+        raise InputError("mesh has no triangles", file=path, hint="re-export it with its faces")
+    parts = []
+    for pieces_of_look in groups.values():
+        part = _concatenate(pieces_of_look)
+        if not np.all(np.isfinite(part.vertices)):
+            raise InputError("mesh has vertices that are not finite numbers", file=path)
+        parts.append(merge_vertices(part))
+    return parts
+
+
+def _collada_pieces(path: Path, apply_up_axis: bool) -> list[MeshPart]:
+    from mjcfbuild.meshes.collada import read_collada
+
+    pieces = []
+    for part in read_collada(path, apply_up_axis=apply_up_axis).parts:
+        texture = Texture.from_file(part.texture) if part.texture is not None else None
+        uv = part.uv if texture is not None else None
+        pieces.append(
+            MeshPart(part.vertices, part.faces, part.rgba, uv, texture if uv is not None else None)
+        )
+    return pieces
+
+
+def _trimesh_pieces(path: Path) -> list[MeshPart]:
     import trimesh
 
     try:
@@ -35,38 +114,12 @@ def load_parts(path: Path) -> list[MeshPart]:
             file=path,
             hint="open it in a mesh tool to check it; re-export it if it is damaged",
         ) from None
-    geometries = [g for g in scene.dump(concatenate=False) if isinstance(g, trimesh.Trimesh)]
-    groups: dict[tuple | None, list[trimesh.Trimesh]] = {}
-    for geometry in geometries:
-        if len(geometry.faces) == 0:
+    pieces = []
+    for geometry in scene.dump(concatenate=False):
+        if not isinstance(geometry, trimesh.Trimesh) or len(geometry.faces) == 0:
             continue
-        for colour, piece in _split_by_colour(geometry):
-            groups.setdefault(colour, []).append(piece)
-    if not groups:
-        raise InputError("mesh has no triangles", file=path, hint="re-export it with its faces")
-    parts = []
-    for colour, pieces in groups.items():
-        vertices, faces = _concatenate(pieces)
-        if not np.all(np.isfinite(vertices)):
-            raise InputError("mesh has vertices that are not finite numbers", file=path)
-        parts.append(MeshPart(*merge_vertices(vertices, faces), colour))
-    return parts
-
-
-def merge_vertices(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Share vertices with exactly equal positions, keeping first-appearance order.
-
-    Mesh files often repeat a vertex for every face corner (STL always does, DAE for its
-    normals); sharing them makes files several times smaller and faster for MuJoCo to load.
-    """
-    rows = np.ascontiguousarray(vertices + 0.0)  # + 0.0 so -0.0 and 0.0 are the same vertex
-    keys = rows.view(np.dtype((np.void, rows.dtype.itemsize * 3))).ravel()
-    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
-    # Renumber so vertices keep the order in which the file first used them.
-    order = np.argsort(first, kind="stable")
-    rank = np.empty_like(order)
-    rank[order] = np.arange(len(order))
-    return rows[first[order]], rank[inverse.ravel()][faces]
+        pieces.extend(_pieces_of(geometry))
+    return pieces
 
 
 def _first_line(exc: Exception) -> str:
@@ -74,38 +127,45 @@ def _first_line(exc: Exception) -> str:
     return text.splitlines()[0] if text else type(exc).__name__
 
 
-def _concatenate(pieces: list) -> tuple[np.ndarray, np.ndarray]:
-    vertices = []
-    faces = []
-    offset = 0
-    for piece in pieces:
-        vertices.append(np.asarray(piece.vertices, dtype=np.float64))
-        faces.append(np.asarray(piece.faces, dtype=np.int64) + offset)
-        offset += len(piece.vertices)
-    return np.concatenate(vertices), np.concatenate(faces)
-
-
-def _split_by_colour(geometry) -> list[tuple[tuple | None, object]]:
-    """The geometry as (colour, piece) pairs; colour None when the file gives none."""
+def _pieces_of(geometry) -> list[MeshPart]:
+    """A trimesh geometry as parts: one per face colour, or one with its material's look."""
+    vertices = np.asarray(geometry.vertices, dtype=np.float64)
+    faces = np.asarray(geometry.faces, dtype=np.int64)
     visual = geometry.visual
     kind = getattr(visual, "kind", None)
-    if kind == "texture" or hasattr(visual, "material"):
-        return [(_material_colour(getattr(visual, "material", None)), geometry)]
+    material = getattr(visual, "material", None)
+    if material is not None:
+        uv = getattr(visual, "uv", None)
+        image = _material_image(material)
+        if image is not None and uv is not None and len(uv) == len(vertices):
+            texture = Texture.from_image(image)
+            return [
+                MeshPart(
+                    vertices, faces, _material_colour(material), np.asarray(uv, float), texture
+                )
+            ]
+        return [MeshPart(vertices, faces, _material_colour(material))]
     if kind in ("face", "vertex") and getattr(visual, "defined", False):
         face_colours = np.asarray(visual.face_colors)
         distinct = np.unique(face_colours, axis=0)
         if len(distinct) == 1:
-            return [(_rgba255(distinct[0]), geometry)]
+            return [MeshPart(vertices, faces, _rgba255(distinct[0]))]
         if len(distinct) <= 16:
             pieces = []
             for colour in _in_order_of_appearance(face_colours):
                 mask = np.all(face_colours == colour, axis=1)
-                pieces.append(
-                    (_rgba255(colour), geometry.submesh([np.nonzero(mask)[0]], append=True))
-                )
+                pieces.append(MeshPart(vertices, faces[mask], _rgba255(colour)))
             return pieces
-        return [(_rgba255(face_colours.mean(axis=0)), geometry)]
-    return [(None, geometry)]
+        return [MeshPart(vertices, faces, _rgba255(face_colours.mean(axis=0)))]
+    return [MeshPart(vertices, faces, None)]
+
+
+def _material_image(material):
+    for attribute in ("baseColorTexture", "image"):
+        image = getattr(material, attribute, None)
+        if image is not None:
+            return image
+    return None
 
 
 def _in_order_of_appearance(colours: np.ndarray) -> list[np.ndarray]:
@@ -121,17 +181,57 @@ def _rgba255(values) -> tuple[float, float, float, float]:
 
 
 def _material_colour(material) -> tuple[float, float, float, float] | None:
-    if material is None:
-        return None
     base = getattr(material, "baseColorFactor", None)
     if base is not None:
-        return (
-            _rgba255(base)
-            if np.asarray(base).dtype == np.uint8
-            else tuple(round(float(v), 6) for v in base)
-        )
+        values = np.asarray(base)
+        if values.dtype == np.uint8:
+            return _rgba255(values)
+        return tuple(round(float(v), 6) for v in values)
     diffuse = getattr(material, "diffuse", None)
     if diffuse is not None:
         return _rgba255(diffuse)
     main = getattr(material, "main_color", None)
     return _rgba255(main) if main is not None else None
+
+
+def _concatenate(pieces: list[MeshPart]) -> MeshPart:
+    offsets = np.cumsum([0] + [len(p.vertices) for p in pieces[:-1]])
+    uv = None
+    if all(p.uv is not None for p in pieces):
+        uv = np.concatenate([p.uv for p in pieces])
+    return MeshPart(
+        vertices=np.concatenate([p.vertices for p in pieces]),
+        faces=np.concatenate([p.faces + o for p, o in zip(pieces, offsets, strict=True)]),
+        rgba=pieces[0].rgba,
+        uv=uv,
+        texture=pieces[0].texture if uv is not None else None,
+    )
+
+
+def merge_vertices(part: MeshPart) -> MeshPart:
+    """Share vertices with equal position (and texture coordinate), in first-use order.
+
+    Mesh files often repeat a vertex for every face corner (STL always does, DAE for its
+    normals); sharing them makes files several times smaller and faster for MuJoCo to load.
+    """
+    used = np.unique(part.faces)
+    columns = [part.vertices + 0.0]  # + 0.0 so -0.0 and 0.0 are the same vertex
+    if part.uv is not None:
+        columns.append(part.uv + 0.0)
+    rows = np.ascontiguousarray(np.hstack(columns))
+    keys = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).ravel()
+    # Only vertices some face uses survive; unused ones would only inflate the file.
+    _, first, inverse = np.unique(keys[used], return_index=True, return_inverse=True)
+    order = np.argsort(used[first], kind="stable")
+    rank = np.empty_like(order)
+    rank[order] = np.arange(len(order))
+    remap = np.full(len(part.vertices), -1, dtype=np.int64)
+    remap[used] = rank[inverse.ravel()]
+    kept = used[first[order]]
+    return MeshPart(
+        vertices=part.vertices[kept] + 0.0,
+        faces=remap[part.faces],
+        rgba=part.rgba,
+        uv=part.uv[kept] + 0.0 if part.uv is not None else None,
+        texture=part.texture,
+    )

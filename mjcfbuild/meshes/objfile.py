@@ -24,3 +24,10 @@ def obj_bytes(vertices: np.ndarray, faces: np.ndarray, uv: np.ndarray | None = N
     else:
         parts.append(("f %d %d %d\n" * len(faces)) % tuple(one_based))
     return "".join(parts).encode("ascii")
+
+
+def read_obj_vertices(path) -> np.ndarray:
+    """The ``v`` lines of an OBJ file as an (N, 3) array."""
+    with open(path, encoding="ascii") as handle:
+        rows = [line.split()[1:4] for line in handle if line.startswith("v ")]
+    return np.array(rows, dtype=np.float64).reshape(-1, 3)

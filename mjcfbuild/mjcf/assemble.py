@@ -14,11 +14,12 @@ from pathlib import Path
 
 from lxml import etree
 
+from mjcfbuild.collision.policy import CollisionChoice, choose_collisions
 from mjcfbuild.errors import ModelError
 from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies
 from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
 from mjcfbuild.mjcf.precise import precise_xml
-from mjcfbuild.mjcf.prepared import GeomRecord, Prepared, prepare
+from mjcfbuild.mjcf.prepared import Decomposition, GeomRecord, Prepared, prepare
 from mjcfbuild.urdf.model import Robot
 
 VISUAL_CLASS = "visual"
@@ -43,6 +44,8 @@ class AssemblyOptions:
     link_sites: str = "all"
     inertia: InertiaPolicy = field(default_factory=InertiaPolicy)
     header: str = ""
+    choices: list[CollisionChoice] | None = None  # default: the URDF's authored collisions
+    decompositions: list[Decomposition] = field(default_factory=list)
 
 
 @dataclass
@@ -71,29 +74,65 @@ def assemble(
         link.name: (link.inertial.line if link.inertial else link.line) for link in robot.links
     }
     repairs = validate_masses(bodies, options.inertia, robot.source, lines)
+    choices = options.choices
+    if choices is None:
+        choices = choose_collisions(robot, "authored", [], {})
     prepared = prepare(
-        robot.name, bodies, products, product_dirs, robot.mujoco_compiler, robot.source
+        robot.name,
+        bodies,
+        products,
+        product_dirs,
+        choices,
+        options.decompositions,
+        robot.mujoco_compiler,
+        robot.source,
     )
     try:
         spec = mujoco.MjSpec.from_string(prepared.urdf)
     except Exception as exc:
         raise ModelError(f"MuJoCo could not import the prepared URDF: {_first_line(exc)}") from None
     _finish(spec, prepared, bodies, robot, options)
-    try:
-        root = precise_xml(spec)
-    except Exception as exc:
-        raise _compile_error(exc) from None
+    root = _write_with_shell_retries(spec, prepared)
     _finish_xml(root, prepared, robot, options)
     xml = etree.tostring(root, encoding="unicode")
     header = f"<!-- {options.header} -->\n" if options.header else ""
     return Assembly(
         xml=(header + xml + "\n").encode("utf-8"),
-        assets={asset.file: asset.product_file for asset in prepared.meshes},
+        assets=dict(prepared.files),
         repairs=repairs,
         warnings=[*robot.warnings, *prepared.warnings],
         bodies=len(bodies),
         geoms=len(prepared.geoms),
     )
+
+
+def _write_with_shell_retries(spec, prepared: Prepared):
+    """Compile and write; a mesh MuJoCo finds too thin for volume inertia gets shell inertia.
+
+    The product summaries already flag meshes whose volume is near zero; MuJoCo's own test
+    differs slightly (it measures from the mesh centre), so its verdict is followed too.
+    """
+    import mujoco
+
+    for _ in range(len(prepared.meshes) + 1):
+        try:
+            return precise_xml(spec)
+        except Exception as exc:
+            text = str(exc)
+            name = _too_thin_mesh(text)
+            mesh = spec.mesh(name) if name else None
+            if mesh is None or mesh.inertia == mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL:
+                raise _compile_error(exc) from None
+            mesh.inertia = mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL
+            prepared.warnings.append(f"mesh '{name}' encloses no volume; it uses shell inertia")
+    raise ModelError("MuJoCo: too many meshes without volume")
+
+
+def _too_thin_mesh(text: str) -> str | None:
+    marker = "mesh volume is too small: "
+    if marker not in text:
+        return None
+    return text.split(marker, 1)[1].split(" ", 1)[0].split("\n", 1)[0].strip(" .")
 
 
 def _first_line(exc: Exception) -> str:
@@ -137,14 +176,23 @@ def _finish(
     link_site.site.group = 5
     link_site.site.size = [0.005, 0.005, 0.005]
 
-    for name, rgba in sorted(prepared.materials.items()):
-        spec.add_material(name=name, rgba=list(rgba))
+    for name, file in sorted(prepared.textures.items()):
+        # Compiled from the product file; _finish_xml writes the published name.
+        spec.add_texture(name=name, type=mujoco.mjtTexture.mjTEXTURE_2D, file=prepared.files[file])
+    for material in prepared.materials:
+        added = spec.add_material(name=material.name)
+        if material.rgba is not None:
+            added.rgba = list(material.rgba)
+        if material.texture is not None:
+            added.textures[mujoco.mjtTextureRole.mjTEXROLE_RGB] = material.texture
 
     by_file = {(asset.product_file, tuple(asset.scale)): asset for asset in prepared.meshes}
     for mesh in spec.meshes:
         asset = by_file[(mesh.file, tuple(float(s) for s in mesh.scale))]
         old, mesh.name = mesh.name, asset.name
         mesh.info = _origin(robot.source, asset.line, f"mesh '{asset.uri}'")
+        if asset.shell:
+            mesh.inertia = mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL
         for geom in spec.geoms:
             if geom.meshname == old:
                 geom.meshname = asset.name
@@ -265,6 +313,13 @@ def _finish_xml(
         if name in files:
             mesh.set("file", files[name])
         mesh.attrib.pop("content_type", None)
+    for texture in root.iter("texture"):
+        name = texture.get("name")
+        if name in prepared.textures:
+            texture.set("file", prepared.textures[name])
+            # Compiling resolved MuJoCo's default "auto" for this file; keep the default.
+            texture.attrib.pop("colorspace", None)
+        texture.attrib.pop("content_type", None)
     etree.indent(root, space="  ")
     children = list(root)
     root.text = "\n  "

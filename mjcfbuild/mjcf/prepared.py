@@ -1,9 +1,14 @@
 """The *prepared URDF*: the robot as MuJoCo's URDF import should see it.
 
 Static links are already fused (with their exact poses), inertias already valid, every mesh
-already converted and referenced by absolute path, every geom carries a unique temporary name
-so the assembly can find it again after import, and the ``<mujoco><compiler>`` element (merged
-with one the URDF may already have) tells MuJoCo not to fuse, discard or strip anything.
+already converted and referenced by absolute path, collision geometry already chosen by the
+collision policies, and every geom carries a unique temporary name so the assembly can find it
+again after import. The ``<mujoco><compiler>`` element (merged with one the URDF may already
+have) tells MuJoCo not to fuse, discard or strip anything.
+
+Building it takes two passes: the first decides every geom and which mesh files (at which
+scale) they use; the second names those files and assets - identical files once, names unique
+without regard to case - and writes the XML.
 """
 
 from __future__ import annotations
@@ -12,6 +17,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
+import numpy as np
+
+from mjcfbuild.collision.policy import CollisionChoice
 from mjcfbuild.errors import InputError
 from mjcfbuild.mjcf.bodies import Body, PlacedShape
 from mjcfbuild.numbers import exact_list
@@ -37,6 +45,7 @@ class GeomRecord:
     kind: str
     line: int | None
     authored_name: str | None
+    policy: str = ""
     rgba: tuple[float, ...] | None = None
     material: str | None = None
     mesh: str | None = None
@@ -52,6 +61,16 @@ class MeshAsset:
     scale: tuple[float, float, float]
     line: int | None = None
     uri: str = ""
+    shell: bool = False
+
+
+@dataclass
+class Material:
+    """A MuJoCo material: a colour, and maybe a texture (by published file name)."""
+
+    name: str
+    rgba: tuple[float, ...] | None
+    texture: str | None = None
 
 
 @dataclass
@@ -61,8 +80,44 @@ class Prepared:
     urdf: str
     geoms: dict[str, GeomRecord] = field(default_factory=dict)
     meshes: list[MeshAsset] = field(default_factory=list)
-    materials: dict[str, tuple[float, ...]] = field(default_factory=dict)
+    materials: list[Material] = field(default_factory=list)
+    textures: dict[str, str] = field(default_factory=dict)
+    files: dict[str, str] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
+
+
+@dataclass
+class Decomposition:
+    """A finished convex decomposition: its parts' files, by mesh id and parameters."""
+
+    mesh_id: str
+    params: dict
+    folder: Path
+    parts: list[str]
+    files: dict[str, str]
+
+
+@dataclass
+class _MeshUse:
+    """One mesh file (of a product or decomposition) used at one scale."""
+
+    product_file: str
+    md5: str
+    stem: str
+    scale: tuple
+    line: int | None
+    uri: str
+    shell: bool = False
+
+
+@dataclass
+class _Geom:
+    tag: str
+    pose: Transform
+    record: GeomRecord
+    primitive: str | None = None  # geometry XML of a primitive
+    mesh: _MeshUse | None = None
+    look: tuple | None = None  # (rgba, texture md5, texture file) of a textured/coloured part
 
 
 class _Names:
@@ -84,32 +139,61 @@ def prepare(
     bodies: list[Body],
     products: dict[str, dict],
     product_dirs: dict[str, Path],
+    choices: list[CollisionChoice],
+    decompositions: list[Decomposition],
     user_compiler: dict[str, str],
     source: str,
 ) -> Prepared:
     """Write the prepared URDF of ``bodies``; ``products`` are mesh summaries by mesh id."""
     prepared = Prepared(urdf="")
-    assets = _plan_mesh_assets(bodies, products, product_dirs)
-    prepared.meshes = sorted(assets.values(), key=lambda a: a.name)
+    builder = _Builder(products, product_dirs, decompositions, source, prepared)
+    by_link = {}
+    for choice in choices:
+        by_link.setdefault(choice.link, []).append(choice)
+    geoms_of = {}
+    for body in bodies:
+        placed = {(p.link, p.shape.role, p.shape.index): p for p in body.shapes}
+        geoms = []
+        for shape in body.shapes:
+            if shape.shape.role == "visual":
+                geoms += builder.visual(shape, body)
+        for frame in body.links:
+            for choice in by_link.get(frame.link, []):
+                geoms += builder.collision(
+                    placed[(choice.link, choice.role, choice.index)], body, choice
+                )
+        geoms_of[body.name] = geoms
+    names = _assign_names(builder.uses, builder.looks, prepared)
+
     lines = [f"<robot name={quoteattr(robot_name)}>"]
     counter = 0
     for body in bodies:
         lines.append(f"  <link name={quoteattr(body.name)}>")
         if body.mass is not None and (body.mass.mass > 0 or body.moves):
             lines.extend(_inertial(body))
-        for placed in body.shapes:
-            for element in _shape_elements(placed, body, products, assets, source, prepared):
-                counter += 1
-                temp = f"mjcfbuild_geom_{counter}"
-                prepared.geoms[temp] = element.record
-                lines.append(element.xml(temp))
+        for geom in geoms_of[body.name]:
+            counter += 1
+            temp = f"mjcfbuild_geom_{counter}"
+            record = geom.record
+            if geom.mesh is not None:
+                asset = names.mesh_asset(geom.mesh)
+                record.mesh = asset.name
+                record.material = names.material_of(geom.look) if geom.look else None
+                if record.material is not None:
+                    record.rgba = None
+                geometry = _mesh_xml(asset)
+            else:
+                geometry = geom.primitive
+            prepared.geoms[temp] = record
+            lines.append(
+                f"    <{geom.tag} name={quoteattr(temp)}>{_origin(geom.pose)}"
+                f"<geometry>{geometry}</geometry></{geom.tag}>"
+            )
         lines.append("  </link>")
         if body.joint is not None:
             lines.extend(_joint(body))
-    compiler = {
-        **{k: v for k, v in user_compiler.items() if k not in IMPORT_COMPILER},
-        **IMPORT_COMPILER,
-    }
+    compiler = {k: v for k, v in user_compiler.items() if k not in IMPORT_COMPILER}
+    compiler.update(IMPORT_COMPILER)
     attributes = " ".join(f"{k}={quoteattr(v)}" for k, v in sorted(compiler.items()))
     lines.append(f"  <mujoco><compiler {attributes}/></mujoco>")
     lines.append("</robot>")
@@ -117,52 +201,242 @@ def prepare(
     return prepared
 
 
-def _plan_mesh_assets(
-    bodies: list[Body], products: dict[str, dict], product_dirs: dict[str, Path]
-) -> dict[tuple[str, str, tuple], MeshAsset]:
-    """One mesh asset per (mesh id, product file, scale) the model uses, uniquely named."""
-    uses: dict[tuple[str, str], set[tuple]] = {}
-    first_use: dict[tuple[str, str], tuple[int | None, str]] = {}
-    for body in bodies:
-        for placed in body.shapes:
-            geometry = placed.shape.geometry
-            if geometry.kind != "mesh":
+class _Builder:
+    """First pass: the geoms of every shape and collision choice, and the files they use."""
+
+    def __init__(self, products, product_dirs, decompositions, source, prepared) -> None:
+        self.products = products
+        self.product_dirs = product_dirs
+        self.decompositions = decompositions
+        self.source = source
+        self.prepared = prepared
+        self.uses: dict[tuple, _MeshUse] = {}
+        self.looks: dict[tuple, tuple] = {}
+
+    def _record(self, placed: PlacedShape, body: Body, role: str, kind: str, policy: str = ""):
+        shape = placed.shape
+        return GeomRecord(
+            body=body.name,
+            link=placed.link,
+            role=role,
+            kind=kind,
+            line=shape.line,
+            authored_name=shape.name if shape.role == role else None,
+            policy=policy,
+        )
+
+    def _use(self, mesh_id: str, file: str, md5: str, stem: str, placed: PlacedShape, shell=False):
+        path = str(self.product_dirs[mesh_id] / file) if not Path(file).is_absolute() else file
+        scale = tuple(placed.shape.geometry.scale)
+        key = (path, scale)
+        if key not in self.uses:
+            self.uses[key] = _MeshUse(
+                path, md5, stem, scale, placed.shape.line, placed.shape.geometry.uri or "", shell
+            )
+        return self.uses[key]
+
+    def visual(self, placed: PlacedShape, body: Body) -> list[_Geom]:
+        geometry = placed.shape.geometry
+        colour = placed.shape.material.rgba if placed.shape.material is not None else None
+        if geometry.kind != "mesh":
+            primitive = self._primitive(placed, "visual")
+            if primitive is None:
+                return []
+            record = self._record(placed, body, "visual", geometry.kind)
+            record.rgba = colour
+            return [_Geom("visual", placed.pose, record, primitive=primitive)]
+        if any(s == 0 for s in geometry.scale):
+            return self._zero_size(placed, f"mesh scale {exact_list(geometry.scale)}")
+        product = self.products[geometry.mesh_id]
+        single = len(product["parts"]) == 1
+        geoms = []
+        for index, part in enumerate(product["parts"]):
+            stem = geometry.mesh_id if single else f"{geometry.mesh_id}_{index}"
+            shell = abs(part.get("volume", 1.0)) < 1e-9
+            use = self._use(
+                geometry.mesh_id, part["file"], product["files"][part["file"]], stem, placed, shell
+            )
+            record = self._record(placed, body, "visual", "mesh")
+            record.rgba = colour
+            look = None
+            if part["rgba"] is not None or part.get("texture"):
+                texture = part.get("texture")
+                texture_md5 = product["files"][texture] if texture else None
+                texture_path = (
+                    str(self.product_dirs[geometry.mesh_id] / texture) if texture else None
+                )
+                look = (tuple(part["rgba"]) if part["rgba"] else None, texture_md5, texture_path)
+                self.looks.setdefault(look, (stem, geometry.mesh_id))
+            geoms.append(_Geom("visual", placed.pose, record, mesh=use, look=look))
+        return geoms
+
+    def collision(self, placed: PlacedShape, body: Body, choice: CollisionChoice) -> list[_Geom]:
+        geometry = placed.shape.geometry
+        record = self._record(placed, body, "collision", geometry.kind, choice.policy)
+        if geometry.kind != "mesh":
+            primitive = self._primitive(placed, "collision")
+            return (
+                [_Geom("collision", placed.pose, record, primitive=primitive)] if primitive else []
+            )
+        if any(s == 0 for s in geometry.scale):
+            return self._zero_size(placed, f"mesh scale {exact_list(geometry.scale)}", "collision")
+        mesh_id = geometry.mesh_id
+        product = self.products[mesh_id]
+        if choice.policy in ("authored", "visual"):
+            file = product["collision"]
+            stem = mesh_id if file == "mesh.obj" else f"{mesh_id}_collision"
+            shell = abs(product.get("collision_volume", 1.0)) < 1e-9
+            use = self._use(mesh_id, file, product["files"][file], stem, placed, shell)
+            return [_Geom("collision", placed.pose, record, mesh=use)]
+        if choice.policy == "hull":
+            use = self._use(
+                mesh_id,
+                product["hull"],
+                product["files"][product["hull"]],
+                f"{mesh_id}_hull",
+                placed,
+            )
+            return [_Geom("collision", placed.pose, record, mesh=use)]
+        if choice.policy == "primitive":
+            return [self._fitted(placed, record, mesh_id, product)]
+        decomposition = self._decomposition(mesh_id, choice.decompose_params)
+        geoms = []
+        for index, part in enumerate(decomposition.parts):
+            part_record = self._record(placed, body, "collision", "mesh", "decompose")
+            use = self._use(
+                mesh_id,
+                str(decomposition.folder / part),
+                decomposition.files[part],
+                f"{mesh_id}_part{index}",
+                placed,
+            )
+            geoms.append(_Geom("collision", placed.pose, part_record, mesh=use))
+        return geoms
+
+    def _decomposition(self, mesh_id: str, params: dict) -> Decomposition:
+        for decomposition in self.decompositions:
+            if decomposition.mesh_id == mesh_id and decomposition.params == params:
+                return decomposition
+        raise KeyError(f"no decomposition of {mesh_id} with {params}")
+
+    def _fitted(
+        self, placed: PlacedShape, record: GeomRecord, mesh_id: str, product: dict
+    ) -> _Geom:
+        from mjcfbuild.collision.primitives import fit_primitive
+        from mjcfbuild.meshes.objfile import read_obj_vertices
+
+        points = read_obj_vertices(self.product_dirs[mesh_id] / product["hull"])
+        primitive = fit_primitive(points * np.asarray(placed.shape.geometry.scale))
+        offset = Transform(
+            tuple(tuple(float(v) for v in row) for row in primitive.transform[:3, :3]),
+            tuple(float(v) for v in primitive.transform[:3, 3]),
+        )
+        record.kind = primitive.kind
+        xml = _primitive_xml(primitive.kind, primitive.size)
+        return _Geom("collision", placed.pose.compose(offset), record, primitive=xml)
+
+    def _primitive(self, placed: PlacedShape, role: str) -> str | None:
+        geometry = placed.shape.geometry
+        size = tuple(geometry.size)
+        if any(s <= 0 for s in size):
+            self._zero_size(placed, f"{geometry.kind} size {exact_list(size)}", role)
+            return None
+        if geometry.kind == "box":
+            return f"<box size={quoteattr(exact_list(size))}/>"
+        if geometry.kind == "sphere":
+            return f"<sphere radius={quoteattr(exact_list(size))}/>"
+        # cylinder, and capsule (imported as a cylinder, turned into a capsule after import)
+        radius, length = quoteattr(exact_list(size[:1])), quoteattr(exact_list(size[1:]))
+        return f"<cylinder radius={radius} length={length}/>"
+
+    def _zero_size(self, placed: PlacedShape, what: str, role: str | None = None) -> list:
+        shape = placed.shape
+        role = role or shape.role
+        if role == "visual":
+            where = f"{self.source}:{shape.line}" if shape.line else self.source
+            self.prepared.warnings.append(
+                f"{where}: link '{placed.link}' visual {shape.index} has {what}; dropped it"
+            )
+            return []
+        raise InputError(
+            f"link '{placed.link}' {shape.role} {shape.index} has {what}",
+            file=self.source,
+            line=shape.line,
+            hint="give it a positive size, or remove it",
+        )
+
+
+def _primitive_xml(kind: str, size: tuple) -> str:
+    """URDF geometry XML for a fitted primitive given MuJoCo sizes (half extents)."""
+    if kind == "box":
+        return f"<box size={quoteattr(exact_list([2 * s for s in size]))}/>"
+    if kind == "sphere":
+        return f"<sphere radius={quoteattr(exact_list(size[:1]))}/>"
+    radius, length = quoteattr(exact_list(size[:1])), quoteattr(exact_list([2 * size[1]]))
+    return f"<cylinder radius={radius} length={length}/>"
+
+
+class _AssetNames:
+    """Second pass: names of published files, mesh assets, textures and materials."""
+
+    def __init__(self, prepared: Prepared) -> None:
+        self.prepared = prepared
+        self.files = _Names()
+        self.meshes = _Names()
+        self.materials = _Names()
+        self.file_by_md5: dict[str, str] = {}
+        self.asset_by_key: dict[tuple, MeshAsset] = {}
+        self.material_by_look: dict[tuple, str] = {}
+
+    def publish(self, md5: str, stem: str, suffix: str, source: str) -> str:
+        if md5 not in self.file_by_md5:
+            name = self.files.claim(stem) + suffix
+            self.file_by_md5[md5] = name
+            self.prepared.files[name] = source
+        return self.file_by_md5[md5]
+
+    def mesh_asset(self, use: _MeshUse) -> MeshAsset:
+        return self.asset_by_key[(use.md5, use.scale)]
+
+    def material_of(self, look: tuple) -> str | None:
+        return self.material_by_look.get(look)
+
+
+def _assign_names(uses: dict, looks: dict, prepared: Prepared) -> _AssetNames:
+    names = _AssetNames(prepared)
+    by_file: dict[str, list[_MeshUse]] = {}
+    for use in sorted(uses.values(), key=lambda u: (u.stem, u.scale)):
+        published = names.publish(use.md5, use.stem, ".obj", use.product_file)
+        by_file.setdefault(published, []).append(use)
+    for published, file_uses in sorted(by_file.items()):
+        scales = sorted({use.scale for use in file_uses})
+        for use in file_uses:
+            key = (use.md5, use.scale)
+            if key in names.asset_by_key:
+                names.asset_by_key[key].shell |= use.shell
                 continue
-            product = products[geometry.mesh_id]
-            files = (
-                [part["file"] for part in product["parts"]]
-                if placed.shape.role == "visual"
-                else [product["collision"]]
-            )
-            for file in files:
-                uses.setdefault((geometry.mesh_id, file), set()).add(tuple(geometry.scale))
-                first_use.setdefault((geometry.mesh_id, file), (placed.shape.line, geometry.uri))
-    file_names, mesh_names = _Names(), _Names()
-    result = {}
-    for mesh_id, file in sorted(uses):
-        published = file_names.claim(_published_stem(mesh_id, file)) + ".obj"
-        scales = sorted(uses[(mesh_id, file)])
-        for scale in scales:
-            suffix = "" if len(scales) == 1 else _scale_suffix(scale)
+            suffix = "" if len(scales) == 1 else _scale_suffix(use.scale)
             asset = MeshAsset(
-                name=mesh_names.claim(published[:-4] + suffix),
+                name=names.meshes.claim(published[:-4] + suffix),
                 file=published,
-                product_file=str(product_dirs[mesh_id] / file),
-                scale=scale,
-                line=first_use[(mesh_id, file)][0],
-                uri=first_use[(mesh_id, file)][1] or "",
+                product_file=use.product_file,
+                scale=use.scale,
+                line=use.line,
+                uri=use.uri,
+                shell=use.shell,
             )
-            result[(mesh_id, file, scale)] = asset
-    return result
-
-
-def _published_stem(mesh_id: str, product_file: str) -> str:
-    """``link3`` for a single-material mesh, ``link3_0``... for parts, ``link3_collision``."""
-    if product_file == "mesh.obj":
-        return mesh_id
-    if product_file == "collision.obj":
-        return f"{mesh_id}_collision"
-    return f"{mesh_id}_{product_file.removeprefix('part').removesuffix('.obj')}"
+            names.asset_by_key[key] = asset
+            prepared.meshes.append(asset)
+    for look, (stem, _) in sorted(looks.items(), key=lambda item: item[1][0]):
+        rgba, texture_md5, texture_path = look
+        texture = None
+        if texture_md5 is not None:
+            texture = names.publish(texture_md5, f"{stem}_texture", ".png", texture_path)
+            prepared.textures[texture[:-4]] = texture
+        name = names.materials.claim(stem)
+        names.material_by_look[look] = name
+        prepared.materials.append(Material(name, rgba, texture[:-4] if texture else None))
+    return names
 
 
 def _scale_suffix(scale: tuple) -> str:
@@ -170,99 +444,6 @@ def _scale_suffix(scale: tuple) -> str:
         flipped = "".join(axis for axis, s in zip("xyz", scale, strict=True) if s < 0)
         return f"_mirror_{flipped}" if flipped else ""
     return "_scale_" + "_".join(f"{s:g}".replace("-", "m").replace(".", "p") for s in scale)
-
-
-@dataclass
-class _Element:
-    tag: str
-    pose: Transform
-    geometry_xml: str
-    record: GeomRecord
-
-    def xml(self, name: str) -> str:
-        return (
-            f"    <{self.tag} name={quoteattr(name)}>{_origin(self.pose)}"
-            f"<geometry>{self.geometry_xml}</geometry></{self.tag}>"
-        )
-
-
-def _shape_elements(
-    placed: PlacedShape,
-    body: Body,
-    products: dict[str, dict],
-    assets: dict,
-    source: str,
-    prepared: Prepared,
-) -> list[_Element]:
-    shape = placed.shape
-    geometry = shape.geometry
-    role = shape.role
-    colour = shape.material.rgba if shape.material is not None else None
-
-    def record(**extra) -> GeomRecord:
-        return GeomRecord(
-            body=body.name,
-            link=placed.link,
-            role=role,
-            kind=geometry.kind,
-            line=shape.line,
-            authored_name=shape.name,
-            **extra,
-        )
-
-    if geometry.kind == "mesh":
-        product = products[geometry.mesh_id]
-        scale = tuple(geometry.scale)
-        if any(s == 0 for s in scale):
-            return _zero_size(placed, source, prepared, f"mesh scale {exact_list(scale)}")
-        if role == "collision":
-            asset = assets[(geometry.mesh_id, product["collision"], scale)]
-            return [_Element(role, placed.pose, _mesh_xml(asset), record(mesh=asset.name))]
-        elements = []
-        for part in product["parts"]:
-            asset = assets[(geometry.mesh_id, part["file"], scale)]
-            material = None
-            rgba = colour
-            if part["rgba"] is not None:
-                material = asset.file[:-4]
-                prepared.materials[material] = tuple(part["rgba"])
-                rgba = None
-            elements.append(
-                _Element(
-                    role,
-                    placed.pose,
-                    _mesh_xml(asset),
-                    record(rgba=rgba, material=material, mesh=asset.name),
-                )
-            )
-        return elements
-    size = tuple(geometry.size)
-    if any(s <= 0 for s in size):
-        return _zero_size(placed, source, prepared, f"{geometry.kind} size {exact_list(size)}")
-    if geometry.kind == "box":
-        xml = f"<box size={quoteattr(exact_list(size))}/>"
-    elif geometry.kind == "sphere":
-        xml = f"<sphere radius={quoteattr(exact_list(size))}/>"
-    else:  # cylinder, and capsule (imported as a cylinder, turned into a capsule after import)
-        radius, length = quoteattr(exact_list(size[:1])), quoteattr(exact_list(size[1:]))
-        xml = f"<cylinder radius={radius} length={length}/>"
-    return [_Element(role, placed.pose, xml, record(rgba=colour if role == "visual" else None))]
-
-
-def _zero_size(placed: PlacedShape, source: str, prepared: Prepared, what: str) -> list[_Element]:
-    shape = placed.shape
-    where = f"{source}:{shape.line}" if shape.line else source
-    if shape.role == "visual":
-        prepared.warnings.append(
-            f"{where}: link '{placed.link}' visual {shape.index} has {what}; dropped it"
-        )
-        return []
-    raise InputError(
-        f"link '{placed.link}' collision {shape.index} has {what}",
-        file=source,
-        line=shape.line,
-        hint="give it a positive size, or remove the <collision>",
-    )
 
 
 def _mesh_xml(asset: MeshAsset) -> str:

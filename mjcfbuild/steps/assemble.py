@@ -1,4 +1,4 @@
-"""Step ``assemble``: the robot model from the plan and the mesh products, and its assets."""
+"""Step ``assemble``: the robot model from the plan, mesh products and decompositions."""
 
 from __future__ import annotations
 
@@ -6,9 +6,11 @@ import json
 import os
 from pathlib import Path
 
+from mjcfbuild.collision.policy import choose_collisions, rules_from_dicts
 from mjcfbuild.fsutil import remove_stale_temp_files
 from mjcfbuild.mjcf.assemble import AssemblyOptions, assemble
 from mjcfbuild.mjcf.inertia import InertiaPolicy
+from mjcfbuild.mjcf.prepared import Decomposition
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.urdf.model import robot_from_dict
 
@@ -22,12 +24,29 @@ def run(payload: dict) -> dict:
         for mesh_id, summary in payload["products"].items()
     }
     product_dirs = {mesh_id: Path(folder) for mesh_id, folder in payload["product_dirs"].items()}
+    collision = payload["collision"]
+    rules = rules_from_dicts(collision["rules"])
+    choices = choose_collisions(robot, collision["default"], rules, collision["decompose"])
+    decompositions = []
+    for entry in payload["decompositions"]:
+        summary = json.loads(Path(entry["summary"]).read_text())
+        decompositions.append(
+            Decomposition(
+                entry["mesh_id"],
+                entry["params"],
+                Path(entry["folder"]),
+                summary["parts"],
+                summary["files"],
+            )
+        )
     options = AssemblyOptions(
         fuse_static=payload["fuse_static"],
         free_joint=payload["free_joint"],
         link_sites=payload["link_sites"],
         inertia=InertiaPolicy(**payload["inertia"]),
         header=payload["header"],
+        choices=choices,
+        decompositions=decompositions,
     )
     assembly = assemble(robot, products, product_dirs, options)
 
@@ -40,7 +59,8 @@ def run(payload: dict) -> dict:
     for name, source in sorted(assembly.assets.items()):
         write_output(assets_dir / name, Path(source).read_bytes(), outputs)
     for name in previous - set(assembly.assets):
-        (assets_dir / name).unlink(missing_ok=True)
+        if name == Path(name).name and not name.startswith("."):  # never outside assets/
+            (assets_dir / name).unlink(missing_ok=True)
     if not any(assets_dir.iterdir()):
         os.rmdir(assets_dir)
     report = {
@@ -53,7 +73,8 @@ def run(payload: dict) -> dict:
     write_output(
         report_path, (json.dumps(report, indent=1, sort_keys=True) + "\n").encode(), outputs
     )
-    # The model goes last: while it is older than its assets, the next build redoes this step.
+    # The model is written last. If the build stops before this, the step has not succeeded
+    # and the next build does it again, so an old model never passes for a current one.
     write_output(Path(payload["output"]), assembly.xml, outputs)
     return {
         "outputs": outputs,

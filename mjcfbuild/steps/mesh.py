@@ -1,21 +1,46 @@
-"""Step ``mesh``: convert one mesh file into its product (OBJ files and a summary)."""
+"""Step ``mesh``: convert one mesh file into its product, through the shared cache."""
 
 from __future__ import annotations
 
 import json
 from pathlib import Path
 
+from mjcfbuild.engine.depfile import Depfile
+from mjcfbuild.engine.store import open_store, product_key
+from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.meshes.convert import convert_mesh
+from mjcfbuild.meshes.references import referenced_files
 from mjcfbuild.steps.outputs import write_output
 
 
 def run(payload: dict) -> dict:
     """Convert ``payload['source']`` into ``payload['product_dir']``; write the summary."""
+    source = Path(payload["source"])
     product_dir = Path(payload["product_dir"])
-    summary = convert_mesh(Path(payload["source"]), product_dir, payload["roles"])
-    outputs: dict[str, str] = {
-        str(product_dir / name): digest for name, digest in summary["files"].items()
-    }
+    options = payload["options"]
+    references = referenced_files(source)
+    store = open_store(payload["cache"])
+    key = product_key("mesh", {**options, "versions": step_versions("mesh")}, [source, *references])
+    summary = store.fetch(key, product_dir) if store else None
+    cached = summary is not None
+    if summary is None:
+        summary = convert_mesh(
+            source,
+            product_dir,
+            options["roles"],
+            max_faces=options["max_faces"],
+            apply_up_axis=options["collada_up_axis"] == "apply",
+        )
+        if store:
+            store.store(key, product_dir, summary)
+    Depfile([str(p) for p in references], [], {}).write(Path(payload["depfile"]))
+    outputs = {str(product_dir / name): digest for name, digest in summary["files"].items()}
     text = json.dumps(summary, indent=1, sort_keys=True) + "\n"
     write_output(Path(payload["summary"]), text.encode(), outputs)
-    return {"outputs": outputs}
+    return {
+        "outputs": outputs,
+        "discovered": [str(p) for p in references],
+        "warnings": summary.get("warnings", []),
+        "cached": cached,
+        "stored": not cached and store is not None,
+    }

@@ -25,21 +25,15 @@ def run(payload: dict) -> dict:
         if payload.get("expanded_from") and exc.hint is None:
             exc.hint = f"the line is in the expansion of {payload['expanded_from']}"
         raise
-    meshes: dict[str, dict] = {}
-    for link in robot.links:
-        for shape in link.shapes:
-            geometry = shape.geometry
-            if geometry.kind == "mesh":
-                entry = meshes.setdefault(
-                    geometry.mesh_id, {"id": geometry.mesh_id, "path": geometry.path, "roles": []}
-                )
-                if shape.role not in entry["roles"]:
-                    entry["roles"].append(shape.role)
+    meshes = {
+        shape.geometry.mesh_id: shape.geometry.path
+        for link in robot.links
+        for shape in link.shapes
+        if shape.geometry.kind == "mesh"
+    }
     plan = {
         "robot": robot.to_dict(),
-        "meshes": [
-            {**entry, "roles": sorted(entry["roles"])} for _, entry in sorted(meshes.items())
-        ],
+        "meshes": [{"id": mesh_id, "path": path} for mesh_id, path in sorted(meshes.items())],
     }
     outputs: dict[str, str] = {}
     text = json.dumps(plan, indent=1, sort_keys=True) + "\n"

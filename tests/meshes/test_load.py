@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from mjcfbuild.errors import InputError
-from mjcfbuild.meshes.load import load_parts, merge_vertices
+from mjcfbuild.meshes.load import MeshPart, load_parts, merge_vertices
 from tests.conftest import EXAMPLES, write
 
 
@@ -39,6 +39,15 @@ def test_broken_and_empty_files_are_input_errors(tmp_path):
 def test_merge_vertices_keeps_first_appearance_order():
     vertices = np.array([[1, 0, 0], [0, 0, 0], [1, 0, 0], [-0.0, 0, 0], [0, 1, 0]], dtype=float)
     faces = np.array([[0, 1, 4], [2, 3, 4]])
-    merged, new_faces = merge_vertices(vertices, faces)
-    assert merged.tolist() == [[1, 0, 0], [0, 0, 0], [0, 1, 0]]
-    assert new_faces.tolist() == [[0, 1, 2], [0, 1, 2]]
+    merged = merge_vertices(MeshPart(vertices, faces, None))
+    assert merged.vertices.tolist() == [[1, 0, 0], [0, 0, 0], [0, 1, 0]]
+    assert merged.faces.tolist() == [[0, 1, 2], [0, 1, 2]]
+
+
+def test_merge_vertices_keeps_texture_seams_and_drops_unused_vertices():
+    vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 0], [5, 5, 5]], dtype=float)
+    uv = np.array([[0, 0], [1, 0], [0, 1], [0.5, 0.5], [0, 0]], dtype=float)
+    faces = np.array([[0, 1, 2], [3, 1, 2]])
+    merged = merge_vertices(MeshPart(vertices, faces, None, uv))
+    assert len(merged.vertices) == 4  # (0,0,0) twice: different texture coordinates
+    assert merged.uv.tolist()[3] == [0.5, 0.5]

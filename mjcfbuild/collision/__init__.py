@@ -1,0 +1,1 @@
+"""Collision geometry: which shapes collide (policies), convex decomposition, primitive fits."""

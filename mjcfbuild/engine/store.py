@@ -1,0 +1,180 @@
+"""The shared cache of mesh products: converted meshes and convex decompositions.
+
+A product is stored under a key made of everything it depends on: the bytes of its inputs,
+the step's parameters, the step's format and the versions of the tools it used. Any build of
+any manifest, in any output folder, that needs the same product finds it here instead of
+recomputing it; a fresh clone of a description repo does not decompose again.
+
+Layout: ``<cache>/products/<key[:2]>/<key>/`` holds the product's files and ``summary.json``.
+Entries are written to a temporary folder and renamed into place, so a killed build never
+leaves a half-written entry. Using an entry refreshes its modification time; pruning removes
+the least recently used entries until the cache fits its size cap.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import shutil
+import time
+import uuid
+from dataclasses import dataclass
+from pathlib import Path
+
+from mjcfbuild.cachedir import user_cache_dir
+from mjcfbuild.fsutil import md5_file
+
+DEFAULT_MAX_BYTES = 5 * 1024**3
+_SUMMARY = "summary.json"
+_UNITS = {"": 1, "K": 1024, "M": 1024**2, "G": 1024**3, "T": 1024**4}
+
+
+def parse_size(text: str) -> int:
+    """'500M', '2G', '1.5G' or a plain number of bytes."""
+    value = text.strip().upper().removesuffix("B").removesuffix("I")
+    unit = value[-1] if value and value[-1] in _UNITS else ""
+    number = value[: -len(unit)] if unit else value
+    try:
+        size = float(number) * _UNITS[unit]
+    except ValueError:
+        raise ValueError(f"'{text}' is not a size; use a number with K, M, G or T") from None
+    if size < 0:
+        raise ValueError(f"'{text}' is negative")
+    return int(size)
+
+
+def default_cache_folder() -> Path:
+    """The product cache inside the user cache folder."""
+    return user_cache_dir() / "products"
+
+
+def default_max_bytes() -> int:
+    """``$MJCFBUILD_CACHE_MAX`` (for example ``2G``), or 5 GiB."""
+    text = os.environ.get("MJCFBUILD_CACHE_MAX")
+    return parse_size(text) if text else DEFAULT_MAX_BYTES
+
+
+def open_store(settings: dict) -> ProductStore | None:
+    """The store a build step should use, from the payload's cache settings (None: off)."""
+    if not settings.get("enabled"):
+        return None
+    return ProductStore(Path(settings["folder"]), settings["max_bytes"])
+
+
+def product_key(step: str, params: dict, input_files: list[str | Path]) -> str:
+    """The cache key of a product: its step, parameters and the bytes of its inputs."""
+    digest = hashlib.sha256()
+    digest.update(json.dumps({"step": step, "params": params}, sort_keys=True).encode())
+    for path in input_files:
+        digest.update(md5_file(path).encode())
+    return digest.hexdigest()
+
+
+@dataclass
+class CacheUsage:
+    """How big the cache is."""
+
+    folder: Path
+    entries: int
+    bytes: int
+
+
+class ProductStore:
+    """Products by key in a folder shared by every build."""
+
+    def __init__(self, folder: Path | None = None, max_bytes: int | None = None) -> None:
+        self.folder = Path(folder) if folder is not None else default_cache_folder()
+        self.max_bytes = default_max_bytes() if max_bytes is None else max_bytes
+
+    def _entry(self, key: str) -> Path:
+        return self.folder / key[:2] / key
+
+    def fetch(self, key: str, destination: Path) -> dict | None:
+        """Copy the product ``key`` into ``destination`` (replacing its files); its summary."""
+        entry = self._entry(key)
+        try:
+            summary = json.loads((entry / _SUMMARY).read_text())
+        except (OSError, ValueError):
+            return None
+        destination.mkdir(parents=True, exist_ok=True)
+        wanted = set(summary.get("files", {}))
+        for stale in destination.iterdir():
+            if stale.name not in wanted:
+                stale.unlink()
+        try:
+            for name in wanted:
+                _link_or_copy(entry / name, destination / name)
+        except OSError:
+            return None
+        now = time.time()
+        os.utime(entry / _SUMMARY, (now, now))
+        return summary
+
+    def store(self, key: str, source: Path, summary: dict) -> None:
+        """Add a product (the files listed in ``summary['files']`` in ``source``)."""
+        entry = self._entry(key)
+        if (entry / _SUMMARY).exists():
+            return
+        temporary = entry.parent / f".{key}.{uuid.uuid4().hex}.tmp"
+        try:
+            temporary.mkdir(parents=True)
+            for name in summary.get("files", {}):
+                _link_or_copy(source / name, temporary / name)
+            (temporary / _SUMMARY).write_text(json.dumps(summary, sort_keys=True))
+            os.replace(temporary, entry)
+        except OSError:
+            pass  # a full or read-only cache must never fail a build
+        finally:
+            if temporary.exists():
+                shutil.rmtree(temporary, ignore_errors=True)
+
+    def usage(self) -> CacheUsage:
+        """Number of entries and bytes used."""
+        entries = self._entries()
+        return CacheUsage(self.folder, len(entries), sum(size for _, _, size in entries))
+
+    def prune(self, max_bytes: int | None = None) -> int:
+        """Remove least recently used entries until the cache fits; the number removed."""
+        limit = self.max_bytes if max_bytes is None else max_bytes
+        entries = sorted(self._entries(), key=lambda item: item[1])
+        total = sum(size for _, _, size in entries)
+        removed = 0
+        for path, _, size in entries:
+            if total <= limit:
+                break
+            shutil.rmtree(path, ignore_errors=True)
+            total -= size
+            removed += 1
+        return removed
+
+    def clear(self) -> int:
+        """Remove every entry; the number removed."""
+        entries = self._entries()
+        for path, _, _ in entries:
+            shutil.rmtree(path, ignore_errors=True)
+        return len(entries)
+
+    def _entries(self) -> list[tuple[Path, float, int]]:
+        result = []
+        if not self.folder.is_dir():
+            return result
+        for bucket in self.folder.iterdir():
+            if not bucket.is_dir():
+                continue
+            for entry in bucket.iterdir():
+                summary = entry / _SUMMARY
+                if entry.name.startswith(".") or not summary.exists():
+                    continue
+                size = sum(f.stat().st_size for f in entry.iterdir() if f.is_file())
+                result.append((entry, summary.stat().st_mtime, size))
+        return result
+
+
+def _link_or_copy(source: Path, target: Path) -> None:
+    """Hard-link ``source`` to ``target`` (same file system), else copy it."""
+    target.unlink(missing_ok=True)
+    try:
+        os.link(source, target)
+    except OSError:
+        shutil.copyfile(source, target)
