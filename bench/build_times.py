@@ -1,6 +1,6 @@
 """Build times of mjcfbuild: cold, no-op, and after one mesh changed, printed as a table.
 
-    python bench/build_times.py [--robots panda,g1,go1] [--jobs 2] [--repeat 5]
+    python bench/build_times.py [--robots panda,g1,go1] [--repeat 5]
 
 Each robot is copied into a temporary folder (so a mesh can be edited) and built with the
 ``mjcfbuild`` command line, timed from the outside as a user would see it. The reference
@@ -21,6 +21,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+import yaml
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
@@ -82,59 +84,84 @@ def case_robot(name: str, folder: Path) -> tuple[Path, Path, int]:
     return manifest, packages / files[0], len(files)
 
 
-def measure(label: str, manifest: Path, mesh: Path, meshes: int, jobs: int, repeat: int) -> dict:
-    """Cold, no-op and one-mesh-changed times of one robot."""
+def measure(label: str, manifest: Path, mesh: Path, meshes: int, repeat: int) -> dict:
+    """Cold (-j 1 and -j 2), no-op and one-mesh-changed times, then the same with every
+    collision mesh decomposed by CoACD, and a second output folder sharing the cache."""
     env = dict(os.environ)
+    row = {"robot": label, "meshes": meshes, "reference": REFERENCE_COLD.get(label)}
+    output = manifest.parent / "mjcf"
     with tempfile.TemporaryDirectory() as cache:
-        env["MJCFBUILD_CACHE_DIR"] = cache  # a cold build must not reuse cached meshes
-        shutil.rmtree(manifest.parent / "mjcf", ignore_errors=True)
-        cold = run_build(manifest, jobs, env)
+        env["MJCFBUILD_CACHE_DIR"] = cache  # cold builds must not reuse cached meshes
+        for jobs in (1, 2):
+            shutil.rmtree(output, ignore_errors=True)
+            shutil.rmtree(Path(cache), ignore_errors=True)
+            row[f"cold_j{jobs}"] = run_build(manifest, jobs, env)
         time.sleep(2.1)  # let the hash cache trust the fresh files' timestamps
-        run_build(manifest, jobs, env)
-        noop = statistics.median(run_build(manifest, jobs, env) for _ in range(repeat))
+        run_build(manifest, 2, env)
+        row["noop"] = statistics.median(run_build(manifest, 2, env) for _ in range(repeat))
         nudge_mesh(mesh)
-        changed = run_build(manifest, jobs, env)
-    return {
-        "robot": label,
-        "meshes": meshes,
-        "cold": cold,
-        "noop": noop,
-        "changed": changed,
-        "reference": REFERENCE_COLD.get(label),
-    }
+        row["changed"] = run_build(manifest, 2, env)
+
+    decomposing = variant(manifest, "decompose.yaml", "mjcf-decompose")
+    with tempfile.TemporaryDirectory() as cache:
+        env["MJCFBUILD_CACHE_DIR"] = cache
+        row["decompose_cold"] = run_build(decomposing, 2, env)
+        nudge_mesh(mesh)
+        row["decompose_changed"] = run_build(decomposing, 2, env)
+        second = variant(manifest, "decompose-second.yaml", "mjcf-decompose-second")
+        row["decompose_shared"] = run_build(second, 2, env)
+    return row
 
 
-def print_table(rows: list[dict], jobs: int) -> None:
-    """The results as a Markdown table."""
-    print(f"\nmjcfbuild build times, -j {jobs}, wall clock in seconds\n")
+def variant(manifest: Path, name: str, output: str) -> Path:
+    """A copy of ``manifest`` decomposing every collision mesh into its own output folder."""
+    data = yaml.safe_load(manifest.read_text())
+    data["collision"] = {"default": "decompose"}
+    data.setdefault("output", {})["folder"] = output
+    path = manifest.with_name(name)
+    path.write_text(yaml.safe_dump(data, sort_keys=False))
+    return path
+
+
+def print_table(rows: list[dict]) -> None:
+    """The results as Markdown tables."""
+    print("\nmjcfbuild build times, wall clock in seconds (-j 2 unless marked)\n")
     print(
-        "| robot | mesh files | cold | no-op | one mesh changed | reference converter (every run) |"
+        "| robot | mesh files | cold -j 1 | cold -j 2 | no-op | one mesh changed "
+        "| reference converter (every run) |"
     )
-    print("|---|---:|---:|---:|---:|---:|")
+    print("|---|---:|---:|---:|---:|---:|---:|")
     for row in rows:
         reference = f"~{row['reference']:.0f}" if row["reference"] else "n/a"
         print(
-            f"| {row['robot']} | {row['meshes']} | {row['cold']:.2f} | {row['noop']:.3f} | "
-            f"{row['changed']:.2f} | {reference} |"
+            f"| {row['robot']} | {row['meshes']} | {row['cold_j1']:.2f} | {row['cold_j2']:.2f} "
+            f"| {row['noop']:.3f} | {row['changed']:.2f} | {reference} |"
+        )
+    print("\nWith `collision: {default: decompose}` (CoACD on every collision mesh)\n")
+    print("| robot | cold | one mesh changed | second output folder, shared cache |")
+    print("|---|---:|---:|---:|")
+    for row in rows:
+        print(
+            f"| {row['robot']} | {row['decompose_cold']:.2f} | {row['decompose_changed']:.2f} "
+            f"| {row['decompose_shared']:.2f} |"
         )
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--robots", default="panda,g1,go1", help="example-robot-data robots")
-    parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--repeat", type=int, default=5, help="no-op runs (median)")
     args = parser.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as scratch:
         scratch = Path(scratch)
         manifest, mesh, count = case_example(scratch / "example")
-        rows.append(measure("example arm", manifest, mesh, count, args.jobs, args.repeat))
+        rows.append(measure("example arm", manifest, mesh, count, args.repeat))
         for name in [n for n in args.robots.split(",") if n]:
             manifest, mesh, count = case_robot(name, scratch / name)
-            rows.append(measure(name, manifest, mesh, count, args.jobs, args.repeat))
+            rows.append(measure(name, manifest, mesh, count, args.repeat))
             print(f"measured {name}", file=sys.stderr)
-    print_table(rows, args.jobs)
+    print_table(rows)
 
 
 if __name__ == "__main__":

@@ -69,7 +69,8 @@ def add_parser(commands) -> None:
     parser.add_argument(
         "-a",
         "--asset_dir",
-        help="accepted for compatibility: converted meshes are reused automatically",
+        help="reuse meshes converted by earlier runs: the folder is used as mjcfbuild's cache "
+        "of converted meshes and decompositions (by default one cache serves every run)",
     )
     parser.add_argument("--scene", help="a scene file to use instead of the generated one")
     parser.add_argument(
@@ -132,6 +133,7 @@ def run(args: argparse.Namespace) -> int:
             "packages": parse_packages(args.package),
             "options": {"free_joint": args.add_free_joint, "fuse_static": args.fuse},
             "scene": {"file": args.scene} if args.scene else {},
+            "cache": {"folder": str(Path(args.asset_dir).resolve())} if args.asset_dir else {},
             "output": {"folder": str(output), "robot": REFERENCE_ROBOT_FILE},
         }
     )

@@ -39,6 +39,8 @@ class BuildContext:
     failures: dict[str, MjcfbuildError] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
     timings: dict[str, float] = field(default_factory=dict)
+    notes: dict[str, str] = field(default_factory=dict)
+    cache_grew: bool = False
     cache_folder_override: Path | None = None
 
     def __post_init__(self) -> None:

@@ -8,6 +8,7 @@ task once.
 
 from __future__ import annotations
 
+import shutil
 import sys
 import threading
 import time
@@ -30,6 +31,7 @@ class Progress:
     durations: dict[str, float] = field(default_factory=dict)
     titles: dict[str, str] = field(default_factory=dict)
     failure_messages: dict[str, str] = field(default_factory=dict)
+    notes: dict[str, str] = field(default_factory=dict)
     total: int = 0
 
     def __post_init__(self) -> None:
@@ -67,18 +69,24 @@ class Progress:
     def _print_line(self, name: str, outcome: str) -> None:
         done = sum(1 for s in self.status.values() if s != BLOCKED)
         title = self.titles.get(name, name)
-        seconds = self.durations.get(name, 0.0)
+        details = [f"{self.durations.get(name, 0.0):.2f} s"]
+        if name in self.notes:
+            details.append(self.notes[name])
         mark = "" if outcome == RAN else f" {outcome.upper()}"
-        self.stream.write(f"[{done}/{self.total}] {title} ({seconds:.2f} s){mark}\n")
+        self.stream.write(f"[{done}/{self.total}] {title} ({', '.join(details)}){mark}\n")
         self.stream.flush()
 
     def _redraw(self) -> None:
         if not self.live:
             return
         done = sum(1 for s in self.status.values() if s != BLOCKED)
+        total = max(self.total, 1)
+        filled = int(20 * min(done, total) / total)
+        bar = "#" * filled + "-" * (20 - filled)
         running = ", ".join(self.titles.get(n, n) for n in self._running)
-        text = f"[{done}/{self.total}] {running}"[:100]
-        self.stream.write("\r\x1b[2K" + text)
+        text = f"[{bar}] {done}/{self.total} {running}"
+        width = shutil.get_terminal_size((100, 20)).columns - 1
+        self.stream.write("\r\x1b[2K" + text[:width])
         self.stream.flush()
         self._line_shown = True
 

@@ -83,6 +83,7 @@ def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
 def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResult:
     """Build ``ctx``'s manifest; never raises for a failing task (see ``result.errors``)."""
     progress = progress or Progress()
+    progress.notes = ctx.notes
     started = time.perf_counter()
     result = BuildResult(robot=ctx.robot_path, scene=ctx.scene_path)
     try:
@@ -94,6 +95,8 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
                 doit_output += _run_stage(ctx, tasks, progress, result)
                 if not result.errors:
                     _remove_stale_products(ctx, tasks)
+            if ctx.cache_grew:
+                _prune_cache(ctx)
     finally:
         ctx.close()
         progress.clear()
@@ -143,6 +146,14 @@ def _prepare_state(ctx: BuildContext) -> None:
     if ctx.manifest.source.description == "-":
         data = sys.stdin.buffer.read()
         write_if_changed(ctx.source_path, data)
+
+
+def _prune_cache(ctx: BuildContext) -> None:
+    """Keep the shared cache under its size cap after a build added to it."""
+    from mjcfbuild.engine.store import ProductStore
+
+    settings = ctx.cache_settings()
+    ProductStore(Path(settings["folder"]), settings["max_bytes"]).prune()
 
 
 def _remove_stale_products(ctx: BuildContext, tasks: list[dict]) -> None:

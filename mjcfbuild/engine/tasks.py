@@ -124,6 +124,10 @@ def _run(ctx: BuildContext, name: str, step: str, payload: dict, in_worker: bool
     finally:
         ctx.timings[name] = time.perf_counter() - started
     ctx.warnings.extend(result.get("warnings", []))
+    if result.get("cached"):
+        ctx.notes[name] = "from cache"
+    if result.get("stored"):
+        ctx.cache_grew = True
     task.file_dep.update(result.get("discovered", []))
     return {"outputs": result["outputs"]}
 

@@ -98,7 +98,8 @@ class MeshSettings(StrictModel):
         gt=3,
         description=(
             "Face budget per mesh file: meshes with more faces are simplified (quadric "
-            "decimation), with a warning. MuJoCo's own limit of 200000 always applies."
+            "decimation), with a warning. Default: no budget (meshes are written as OBJ, "
+            "which MuJoCo reads at any size)."
         ),
     )
     collada_up_axis: Literal["ignore", "apply"] = Field(

@@ -11,7 +11,8 @@ A product is a folder of files and a summary:
 
 File names inside a product do not depend on what the mesh is called in a robot, so the same
 input gives the same product wherever it is used; the assembly names the published files.
-Meshes over the face budget are simplified, with a warning.
+Meshes over the manifest's face budget are simplified, with a warning. (MuJoCo's limit of
+200,000 faces applies to STL files only; products are OBJ, which it reads at any size.)
 """
 
 from __future__ import annotations
@@ -26,8 +27,6 @@ from mjcfbuild.meshes.load import MeshPart, load_parts
 from mjcfbuild.meshes.objfile import obj_bytes
 
 PRODUCT_FORMAT = 2
-# MuJoCo refuses meshes with more faces than this (its STL limit; we apply it to every format).
-MUJOCO_MAX_FACES = 200_000
 
 
 def convert_mesh(
@@ -40,9 +39,9 @@ def convert_mesh(
     """Write the product of ``source`` into ``product_dir`` and return its summary."""
     parts = load_parts(source, apply_up_axis=apply_up_axis)
     warnings: list[str] = []
-    budget = min(max_faces or MUJOCO_MAX_FACES, MUJOCO_MAX_FACES)
+    budget = max_faces
     total = sum(len(p.faces) for p in parts)
-    if total > budget:
+    if budget is not None and total > budget:
         parts = [_simplify(part, max(4, int(len(part.faces) * budget / total))) for part in parts]
         warnings.append(
             f"{source.name}: {total} faces over the budget of {budget}; "

@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from mjcfbuild.collision.decompose import decompose
 from mjcfbuild.engine.store import open_store, product_key
 from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.steps.outputs import write_output
@@ -22,6 +21,8 @@ def run(payload: dict) -> dict:
     summary = store.fetch(key, output_dir) if store else None
     cached = summary is not None
     if summary is None:
+        from mjcfbuild.collision.decompose import decompose  # coacd: only when needed
+
         summary = decompose(mesh_file, params, output_dir)
         if store:
             store.store(key, output_dir, summary)

@@ -8,7 +8,6 @@ from pathlib import Path
 from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.engine.store import open_store, product_key
 from mjcfbuild.engine.versions import step_versions
-from mjcfbuild.meshes.convert import convert_mesh
 from mjcfbuild.meshes.references import referenced_files
 from mjcfbuild.steps.outputs import write_output
 
@@ -24,6 +23,8 @@ def run(payload: dict) -> dict:
     summary = store.fetch(key, product_dir) if store else None
     cached = summary is not None
     if summary is None:
+        from mjcfbuild.meshes.convert import convert_mesh  # numpy, trimesh: only when needed
+
         summary = convert_mesh(
             source,
             product_dir,

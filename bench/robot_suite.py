@@ -1,0 +1,83 @@
+"""The real-robot suite as a table: every robot of example-robot-data the project promises.
+
+    python bench/robot_suite.py [--robots panda,go1,...]
+
+For each robot: build with default settings (a fresh cache), load the scene, simulate 2,000
+steps with zero control, and compare every URDF link's pose with forward kinematics computed
+from the URDF alone at 20 random configurations. The same checks run as tests
+(``pytest -m robots``); this prints the numbers for docs/robots.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+import mujoco  # noqa: E402
+import numpy as np  # noqa: E402
+
+import mjcfbuild  # noqa: E402
+from bench import robot_data  # noqa: E402
+from mjcfbuild.check.kinematics import compare_kinematics  # noqa: E402
+from mjcfbuild.urdf.parse import parse_urdf  # noqa: E402
+
+
+def check(name: str, folder: Path) -> dict:
+    """Build and check one robot."""
+    robot = robot_data.ROBOTS[name]
+    urdf = robot_data.unpack(robot)
+    manifest = robot_data.manifest(robot, folder, urdf, robot_data.package_root())
+    started = time.perf_counter()
+    result = mjcfbuild.build(manifest, jobs=2)
+    seconds = time.perf_counter() - started
+    model = mujoco.MjModel.from_xml_path(str(result.scene))
+    data = mujoco.MjData(model)
+    for _ in range(2000):
+        mujoco.mj_step(model, data)
+    finite = bool(np.all(np.isfinite(data.qpos)) and np.all(np.isfinite(data.qvel)))
+    source = parse_urdf(urdf.read_bytes(), str(urdf))
+    kinematics = compare_kinematics(source, mujoco.MjModel.from_xml_path(str(result.robot)))
+    repairs = sum(1 for w in result.warnings if w.startswith("body '"))
+    return {
+        "robot": name,
+        "links": len(source.links),
+        "joints": sum(1 for j in source.joints if j.kind != "fixed"),
+        "seconds": seconds,
+        "finite": finite,
+        "position": kinematics.max_position,
+        "rotation": kinematics.max_rotation,
+        "missing": len(kinematics.missing_links) + len(kinematics.missing_joints),
+        "repairs": repairs,
+        "passes": finite and kinematics.passes(),
+    }
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--robots", default=",".join(sorted(robot_data.ROBOTS)))
+    args = parser.parse_args()
+    rows = []
+    with tempfile.TemporaryDirectory() as scratch:
+        os.environ["MJCFBUILD_CACHE_DIR"] = str(Path(scratch) / "cache")
+        for name in args.robots.split(","):
+            rows.append(check(name, Path(scratch) / name))
+            print(f"checked {name}", file=sys.stderr)
+    print("| robot | links | moving joints | cold build (s) | 2,000 steps finite "
+          "| max link position error (m) | max link rotation error (rad) | inertia repairs | passes |")
+    print("|---|---:|---:|---:|---|---:|---:|---:|---|")
+    for r in rows:
+        print(
+            f"| {r['robot']} | {r['links']} | {r['joints']} | {r['seconds']:.1f} "
+            f"| {'yes' if r['finite'] else 'NO'} | {r['position']:.1e} | {r['rotation']:.1e} "
+            f"| {r['repairs']} | {'yes' if r['passes'] else 'NO'} |"
+        )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,62 @@
+"""``mjcfbuild cache``: show, prune or clear the shared cache of meshes and decompositions."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from mjcfbuild.errors import UsageError
+
+
+def add_parser(commands) -> None:
+    """Register the subcommand."""
+    parser = commands.add_parser(
+        "cache",
+        help="show, prune or clear the shared cache of converted meshes and decompositions",
+        description=(
+            "The cache holds converted meshes and convex decompositions by content, for every "
+            "build on this machine. Default folder: $MJCFBUILD_CACHE_DIR, else "
+            "$XDG_CACHE_HOME/mjcfbuild, else ~/.cache/mjcfbuild; default cap: "
+            "$MJCFBUILD_CACHE_MAX, else 5G."
+        ),
+    )
+    parser.add_argument(
+        "action", nargs="?", default="show", choices=("show", "prune", "clear"),
+        help="show (default): location and size; prune: remove least recently used entries "
+        "down to the cap; clear: remove everything",
+    )
+    parser.add_argument("--folder", help="the cache folder (default: see above)")
+    parser.add_argument("--max-size", help="the cap for prune, for example 500M or 2G")
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Show, prune or clear."""
+    from mjcfbuild.engine.store import ProductStore, parse_size
+
+    try:
+        max_bytes = parse_size(args.max_size) if args.max_size else None
+    except ValueError as exc:
+        raise UsageError(f"--max-size: {exc}") from None
+    store = ProductStore(Path(args.folder) if args.folder else None, max_bytes)
+    if args.action == "prune":
+        removed = store.prune()
+        print(f"mjcfbuild: removed {removed} cache entr{'y' if removed == 1 else 'ies'}")
+    elif args.action == "clear":
+        removed = store.clear()
+        print(f"mjcfbuild: removed {removed} cache entr{'y' if removed == 1 else 'ies'}")
+    usage = store.usage()
+    print(
+        f"cache: {usage.folder}\n"
+        f"entries: {usage.entries}\n"
+        f"size: {_human(usage.bytes)} of {_human(store.max_bytes)}"
+    )
+    return 0
+
+
+def _human(size: float) -> str:
+    for unit in ("B", "KiB", "MiB", "GiB"):
+        if size < 1024 or unit == "GiB":
+            return f"{size:.0f} {unit}" if unit == "B" else f"{size:.1f} {unit}"
+        size /= 1024
+    return f"{size:.1f} TiB"

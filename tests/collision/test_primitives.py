@@ -1,0 +1,36 @@
+"""Primitive fits: the right kind, enclosing every point, in the right place."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import trimesh
+
+from mjcfbuild.collision.primitives import fit_primitive
+
+SHAPES = {
+    "box": lambda: trimesh.creation.box([0.1, 0.2, 0.4]),
+    "cylinder": lambda: trimesh.creation.cylinder(0.05, 0.3, sections=64),
+    "capsule": lambda: trimesh.creation.capsule(0.3, 0.05),
+    "sphere": lambda: trimesh.creation.icosphere(3, 0.1),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(SHAPES))
+def test_fits_the_shape_it_is_given_wherever_it_is(kind):
+    mesh = SHAPES[kind]()
+    pose = trimesh.transformations.random_rotation_matrix(np.random.default_rng(3).random(3))
+    pose[:3, 3] = [0.2, -0.1, 0.5]
+    mesh.apply_transform(pose)
+    points = mesh.convex_hull.vertices
+    fit = fit_primitive(points)
+    assert fit.kind == kind
+    assert fit.volume == pytest.approx(mesh.volume, rel=0.05)
+    local = (np.c_[points, np.ones(len(points))] @ np.linalg.inv(fit.transform).T)[:, :3]
+    if kind == "box":
+        assert np.all(np.abs(local) <= np.array(fit.size) + 1e-9)
+    elif kind == "sphere":
+        assert np.all(np.linalg.norm(local, axis=1) <= fit.size[0] + 1e-9)
+    else:
+        radial = np.hypot(local[:, 0], local[:, 1])
+        assert np.all(radial <= fit.size[0] + 1e-9)

@@ -1,0 +1,61 @@
+"""The shared product cache: keys, fetch, store, prune by recent use, sizes."""
+
+from __future__ import annotations
+
+import os
+import time
+
+import pytest
+
+from mjcfbuild.engine.store import ProductStore, parse_size, product_key
+
+
+def product(folder, text):
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "mesh.obj").write_text(text)
+    return {"files": {"mesh.obj": "x"}, "parts": []}
+
+
+def test_keys_depend_on_bytes_and_parameters(tmp_path):
+    source = tmp_path / "a.stl"
+    source.write_bytes(b"one")
+    first = product_key("mesh", {"roles": ["visual"]}, [source])
+    assert first == product_key("mesh", {"roles": ["visual"]}, [source])
+    assert first != product_key("mesh", {"roles": ["collision"]}, [source])
+    source.write_bytes(b"two")
+    assert first != product_key("mesh", {"roles": ["visual"]}, [source])
+
+
+def test_store_then_fetch_into_another_folder(tmp_path):
+    store = ProductStore(tmp_path / "cache")
+    summary = product(tmp_path / "made", "v 0 0 0\n")
+    store.store("ab" * 32, tmp_path / "made", summary)
+    target = tmp_path / "elsewhere"
+    target.mkdir()
+    (target / "stale.obj").write_text("old")
+    assert store.fetch("ab" * 32, target) == summary
+    assert sorted(p.name for p in target.iterdir()) == ["mesh.obj"]
+    assert store.fetch("cd" * 32, target) is None
+
+
+def test_prune_removes_least_recently_used_first(tmp_path):
+    store = ProductStore(tmp_path / "cache")
+    for index, key in enumerate(["aa" * 32, "bb" * 32, "cc" * 32]):
+        store.store(key, tmp_path / key[:2], product(tmp_path / key[:2], "x" * 1000))
+        summary = store.folder / key[:2] / key / "summary.json"
+        os.utime(summary, (time.time() - 100 + index, time.time() - 100 + index))
+    store.fetch("aa" * 32, tmp_path / "use")  # now the most recently used
+    assert store.prune(max_bytes=2100) == 1
+    assert store.fetch("bb" * 32, tmp_path / "x") is None
+    assert store.fetch("aa" * 32, tmp_path / "x") is not None
+    assert store.usage().entries == 2
+    assert store.clear() == 2 and store.usage().entries == 0
+
+
+def test_parse_size():
+    assert parse_size("512") == 512
+    assert parse_size("2K") == 2048
+    assert parse_size("1.5G") == int(1.5 * 1024**3)
+    assert parse_size("3MiB") == 3 * 1024**2
+    with pytest.raises(ValueError):
+        parse_size("lots")

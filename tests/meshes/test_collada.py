@@ -1,0 +1,115 @@
+"""The COLLADA reader: units, up axis, polygons, node transforms, materials, textures."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.meshes.collada import read_collada
+from tests.conftest import write
+from tests.meshes.samples import checker_png
+
+
+def dae(body: str, unit: str = '<unit meter="1"/>', up: str = "Z_UP", scene: str = "") -> str:
+    return f"""<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset>{unit}<up_axis>{up}</up_axis></asset>
+  {body}
+  {scene}
+</COLLADA>"""
+
+
+QUAD = """
+<library_geometries><geometry id="g"><mesh>
+  <source id="p"><float_array id="pa" count="12">0 0 0 1 0 0 1 1 0 0 1 0</float_array>
+    <technique_common><accessor source="#pa" count="4" stride="3"/></technique_common></source>
+  <source id="t"><float_array id="ta" count="8">0 0 1 0 1 1 0 1</float_array>
+    <technique_common><accessor source="#ta" count="4" stride="2"/></technique_common></source>
+  <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+  <polylist material="m" count="1">
+    <input semantic="VERTEX" source="#v" offset="0"/><input semantic="TEXCOORD" source="#t" offset="1"/>
+    <vcount>4</vcount><p>0 0 1 1 2 2 3 3</p>
+  </polylist>
+</mesh></geometry></library_geometries>"""
+
+MATERIAL = """
+<library_images><image id="img"><init_from>skin.png</init_from></image></library_images>
+<library_effects><effect id="fx"><profile_COMMON>
+  <newparam sid="surf"><surface type="2D"><init_from>img</init_from></surface></newparam>
+  <newparam sid="samp"><sampler2D><source>surf</source></sampler2D></newparam>
+  <technique sid="c"><lambert><diffuse>{diffuse}</diffuse></lambert></technique>
+</profile_COMMON></effect></library_effects>
+<library_materials><material id="mat"><instance_effect url="#fx"/></material></library_materials>"""
+
+
+def scene(node_content: str) -> str:
+    return f"""<library_visual_scenes><visual_scene id="s">{node_content}</visual_scene></library_visual_scenes>
+<scene><instance_visual_scene url="#s"/></scene>"""
+
+
+INSTANCE = (
+    '<instance_geometry url="#g"><bind_material><technique_common>'
+    '<instance_material symbol="m" target="#mat"/></technique_common></bind_material></instance_geometry>'
+)
+
+
+def test_polylist_quad_is_fanned_and_colour_comes_from_the_bound_material(tmp_path):
+    path = write(
+        tmp_path / "q.dae",
+        dae(QUAD + MATERIAL.format(diffuse='<color>0.1 0.2 0.3 1</color>'), scene=scene(f"<node>{INSTANCE}</node>")),
+    )
+    (part,) = read_collada(path).parts
+    assert part.faces.tolist() == [[0, 1, 2], [0, 2, 3]]
+    assert part.rgba == (0.1, 0.2, 0.3, 1.0)
+    assert part.texture is None
+
+
+def test_units_and_node_transforms_are_applied(tmp_path):
+    node = f'<node><translate>10 0 0</translate><rotate>0 0 1 90</rotate><scale>2 2 2</scale>{INSTANCE}</node>'
+    path = write(
+        tmp_path / "q.dae",
+        dae(QUAD + MATERIAL.format(diffuse="<color>1 1 1 1</color>"), unit='<unit meter="0.001"/>', scene=scene(node)),
+    )
+    mesh = read_collada(path)
+    assert mesh.unit == 0.001
+    # (1, 0, 0) scaled by 2, turned a quarter about z, moved by 10 along x, in millimetres
+    assert np.allclose(mesh.parts[0].vertices[1], [0.010, 0.002, 0.0])
+
+
+def test_instance_node_is_followed(tmp_path):
+    library = f'<library_nodes><node id="shared">{INSTANCE}</node></library_nodes>'
+    body = QUAD + MATERIAL.format(diffuse="<color>1 0 0 1</color>") + library
+    node = '<node><instance_node url="#shared"/></node><node><translate>0 0 1</translate><instance_node url="#shared"/></node>'
+    (part,) = read_collada(write(tmp_path / "q.dae", dae(body, scene=scene(node)))).parts
+    assert len(part.faces) == 4
+    assert part.vertices[:, 2].max() == 1.0
+
+
+def test_up_axis_is_ignored_unless_asked(tmp_path):
+    path = write(
+        tmp_path / "q.dae",
+        dae(QUAD + MATERIAL.format(diffuse="<color>1 1 1 1</color>"), up="Y_UP", scene=scene(f"<node>{INSTANCE}</node>")),
+    )
+    assert np.allclose(read_collada(path).parts[0].vertices[2], [1, 1, 0])
+    rotated = read_collada(path, apply_up_axis=True)
+    assert rotated.up_axis == "Y_UP"
+    assert np.allclose(rotated.parts[0].vertices[2], [1, 0, 1])
+
+
+def test_texture_is_followed_through_sampler_and_surface(tmp_path):
+    checker_png(tmp_path / "skin.png")
+    body = QUAD + MATERIAL.format(diffuse='<texture texture="samp" texcoord="UV"/>')
+    (part,) = read_collada(write(tmp_path / "q.dae", dae(body, scene=scene(f"<node>{INSTANCE}</node>")))).parts
+    assert part.texture == tmp_path / "skin.png"
+    assert part.uv is not None and part.uv.tolist()[2] == [1.0, 1.0]
+
+
+def test_broken_files_are_input_errors(tmp_path):
+    with pytest.raises(InputError, match="cannot read COLLADA"):
+        read_collada(write(tmp_path / "a.dae", "<COLLADA><unclosed"))
+    with pytest.raises(InputError, match="not a COLLADA file"):
+        read_collada(write(tmp_path / "b.dae", "<model/>"))
+    bad_index = QUAD.replace("<p>0 0 1 1 2 2 3 3</p>", "<p>0 0 1 1 2 2 9 3</p>")
+    with pytest.raises(InputError, match="out of range"):
+        read_collada(write(tmp_path / "c.dae", dae(bad_index, scene=scene(f"<node>{INSTANCE}</node>"))))

@@ -1,0 +1,112 @@
+"""Collision policies end to end: what the built model collides with."""
+
+from __future__ import annotations
+
+import mujoco
+import pytest
+
+import mjcfbuild
+from tests.conftest import write
+
+
+def collision_geoms(model, body_name):
+    body = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, body_name)
+    result = []
+    for geom in range(model.ngeom):
+        if model.geom_bodyid[geom] == body and model.geom_group[geom] == 3:
+            kind = mujoco.mjtGeom(model.geom_type[geom]).name.removeprefix("mjGEOM_").lower()
+            mesh = model.geom_dataid[geom]
+            name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_MESH, mesh) if mesh >= 0 else None
+            result.append((kind, name))
+    return result
+
+
+def build_arm(arm, rules: str):
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + rules)
+    result = mjcfbuild.build(manifest, jobs=2)
+    return result, mujoco.MjModel.from_xml_path(str(result.robot))
+
+
+@pytest.mark.parametrize(
+    ("policy", "expected"),
+    [
+        ("authored", [("mesh", "upper_arm")]),
+        ("hull", [("mesh", "upper_arm_hull")]),
+        ("primitive", [("capsule", None)]),
+        ("none", []),
+    ],
+)
+def test_policies_on_a_link_with_an_authored_mesh(arm, policy, expected):
+    _, model = build_arm(arm, f"collision:\n  rules:\n    - links: [upper_arm_link]\n      policy: {policy}\n")
+    assert collision_geoms(model, "upper_arm_link") == expected
+
+
+def test_visual_policy_collides_with_every_visual_part(arm):
+    _, model = build_arm(arm, "collision:\n  default: visual\n")
+    # the forearm's OBJ has two materials: one merged collision mesh
+    assert collision_geoms(model, "forearm_link") == [("mesh", "forearm_collision")]
+    assert collision_geoms(model, "shoulder_link") == [("cylinder", None)]
+
+
+def test_mesh_pattern_rules(arm):
+    _, model = build_arm(arm, "collision:\n  rules:\n    - meshes: ['upper_arm.*']\n      policy: hull\n")
+    assert collision_geoms(model, "upper_arm_link") == [("mesh", "upper_arm_hull")]
+    assert collision_geoms(model, "base_link") == [("cylinder", None)]
+
+
+def test_switching_policy_reruns_only_the_affected_mesh_and_assembly(arm):
+    build_arm(arm, "")
+    result, _ = build_arm(arm, "collision:\n  rules:\n    - links: [upper_arm_link]\n      policy: hull\n")
+    assert sorted(result.ran) == ["assemble", "mesh:upper_arm"]
+
+
+def test_identical_files_are_stored_once(tmp_path):
+    from tests.conftest import EXAMPLES, INERTIA
+
+    data = (EXAMPLES / "arm" / "meshes" / "finger.stl").read_bytes()
+    write(tmp_path / "left" / "finger.stl", "").write_bytes(data)
+    write(tmp_path / "right" / "finger.stl", "").write_bytes(data)
+    write(
+        tmp_path / "robot.urdf",
+        f"""<robot name="r"><link name="a">{INERTIA}
+          <visual><geometry><mesh filename="left/finger.stl"/></geometry></visual>
+          <visual><geometry><mesh filename="right/finger.stl"/></geometry></visual></link></robot>""",
+    )
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\n")
+    result = mjcfbuild.build(tmp_path / "robot.yaml")
+    assert [p.name for p in (tmp_path / "mjcf" / "assets").iterdir()] == ["left_finger.obj"]
+    model = mujoco.MjModel.from_xml_path(str(result.robot))
+    assert model.nmesh == 1 and model.ngeom == 2
+
+
+def test_a_visual_mesh_without_volume_gets_shell_inertia(tmp_path):
+    from tests.conftest import INERTIA
+
+    write(tmp_path / "sticker.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n")
+    write(
+        tmp_path / "robot.urdf",
+        f'<robot name="r"><link name="a">{INERTIA}<visual><geometry>'
+        '<mesh filename="sticker.obj"/></geometry></visual></link></robot>',
+    )
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\n")
+    result = mjcfbuild.build(tmp_path / "robot.yaml")
+    assert 'inertia="shell"' in result.robot.read_text()
+    mujoco.MjModel.from_xml_path(str(result.robot))
+
+
+def test_inertia_policy_fail_names_the_link(cli, tmp_path):
+    from tests.conftest import two_link_urdf
+
+    urdf = two_link_urdf().replace(
+        '<link name="arm"><inertial><mass value="1"/>', '<link name="arm"><inertial><mass value="0"/>'
+    )
+    write(tmp_path / "robot.urdf", urdf)
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\ninertia: {policy: fail}\n")
+    result = cli("build", cwd=tmp_path)
+    assert result.code == 4
+    assert "robot.urdf:" in result.stderr and "link 'arm': moving body with too small a mass" in result.stderr
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\n")
+    repaired = cli("build", cwd=tmp_path)
+    assert repaired.code == 0
+    assert "body 'arm': moving body with too small a mass; mass 0 -> mass 0.0001" in repaired.stderr
