@@ -19,13 +19,13 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-import mujoco  # noqa: E402
-import numpy as np  # noqa: E402
+import mujoco
+import numpy as np
 
-import mjcfbuild  # noqa: E402
-from bench import robot_data  # noqa: E402
-from mjcfbuild.check.kinematics import compare_kinematics  # noqa: E402
-from mjcfbuild.urdf.parse import parse_urdf  # noqa: E402
+import mjcfbuild
+from bench import robot_data
+from mjcfbuild.check.kinematics import compare_kinematics
+from mjcfbuild.urdf.parse import parse_urdf
 
 
 def check(name: str, folder: Path) -> dict:
@@ -68,8 +68,10 @@ def main() -> None:
         for name in args.robots.split(","):
             rows.append(check(name, Path(scratch) / name))
             print(f"checked {name}", file=sys.stderr)
-    print("| robot | links | moving joints | cold build (s) | 2,000 steps finite "
-          "| max link position error (m) | max link rotation error (rad) | inertia repairs | passes |")
+    print(
+        "| robot | links | moving joints | cold build (s) | 2,000 steps finite "
+        "| max link position error (m) | max link rotation error (rad) | inertia repairs | passes |"
+    )
     print("|---|---:|---:|---:|---|---:|---:|---:|---|")
     for r in rows:
         print(

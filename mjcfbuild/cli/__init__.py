@@ -93,6 +93,31 @@ def jobs_argument(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def timeout_argument(parser: argparse.ArgumentParser) -> None:
+    """Add ``--timeout``."""
+    parser.add_argument(
+        "--timeout",
+        type=float,
+        default=None,
+        metavar="SECONDS",
+        help="stop a build step (mesh conversion, decomposition, assembly) that runs longer "
+        "(default: $MJCFBUILD_TIMEOUT, else 1800)",
+    )
+
+
+def step_timeout(args: argparse.Namespace) -> float:
+    """The step time limit from ``--timeout``, ``MJCFBUILD_TIMEOUT`` or the default."""
+    from mjcfbuild.engine.context import DEFAULT_STEP_TIMEOUT
+
+    if args.timeout is not None:
+        return args.timeout
+    value = os.environ.get("MJCFBUILD_TIMEOUT")
+    try:
+        return float(value) if value else DEFAULT_STEP_TIMEOUT
+    except ValueError:
+        return DEFAULT_STEP_TIMEOUT
+
+
 def _positive_int(text: str) -> int:
     try:
         value = int(text)

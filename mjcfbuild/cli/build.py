@@ -6,7 +6,14 @@ import argparse
 import sys
 from pathlib import Path
 
-from mjcfbuild.cli import environment_jobs, jobs_argument, report_error, report_warning
+from mjcfbuild.cli import (
+    environment_jobs,
+    jobs_argument,
+    report_error,
+    report_warning,
+    step_timeout,
+    timeout_argument,
+)
 from mjcfbuild.errors import EXIT_OK, ManifestError
 
 
@@ -21,6 +28,7 @@ def add_parser(commands) -> None:
         "manifest", nargs="?", default="robot.yaml", help="the manifest (default: robot.yaml)"
     )
     jobs_argument(parser)
+    timeout_argument(parser)
     parser.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
     parser.set_defaults(handler=run)
 
@@ -32,7 +40,7 @@ def run(args: argparse.Namespace) -> int:
     path = Path(args.manifest)
     jobs = args.jobs or environment_jobs() or default_jobs()
     try:
-        ctx = BuildContext.from_manifest_file(path, jobs=jobs)
+        ctx = BuildContext.from_manifest_file(path, jobs=jobs, step_timeout=step_timeout(args))
     except ManifestError as error:
         report_error(error, args.debug, base_dir=path.resolve().parent)
         return error.exit_code

@@ -21,7 +21,10 @@ def add_parser(commands) -> None:
         ),
     )
     parser.add_argument(
-        "action", nargs="?", default="show", choices=("show", "prune", "clear"),
+        "action",
+        nargs="?",
+        default="show",
+        choices=("show", "prune", "clear"),
         help="show (default): location and size; prune: remove least recently used entries "
         "down to the cap; clear: remove everything",
     )

@@ -10,7 +10,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from mjcfbuild.cli import environment_jobs, jobs_argument
+from mjcfbuild.cli import environment_jobs, jobs_argument, step_timeout, timeout_argument
 from mjcfbuild.errors import UsageError
 
 REFERENCE_ROBOT_FILE = "mujoco_description_formatted.xml"
@@ -81,6 +81,7 @@ def add_parser(commands) -> None:
         help="where a ROS package is, for package:// and $(find) (repeatable)",
     )
     jobs_argument(parser)
+    timeout_argument(parser)
     parser.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
     parser.set_defaults(handler=run)
 
@@ -138,7 +139,9 @@ def run(args: argparse.Namespace) -> int:
         }
     )
     jobs = args.jobs or environment_jobs() or default_jobs()
-    ctx = BuildContext(manifest, cwd, manifest_label="the command line", jobs=jobs)
+    ctx = BuildContext(
+        manifest, cwd, manifest_label="the command line", jobs=jobs, step_timeout=step_timeout(args)
+    )
     return execute(ctx, quiet=args.quiet, debug=args.debug)
 
 

@@ -15,7 +15,7 @@ if TYPE_CHECKING:
     from mjcfbuild.manifest.models import Manifest
 
 STATE_DIR = ".mjcfbuild"
-DEFAULT_STEP_TIMEOUT = 3600.0
+DEFAULT_STEP_TIMEOUT = 1800.0
 
 
 def default_jobs() -> int:

@@ -14,7 +14,9 @@ DEFAULTS = {"threshold": 0.05, "seed": 0}
 
 
 def mesh_shape(role, index, mesh_id):
-    geometry = Geometry("mesh", uri=f"package://p/{mesh_id}.stl", path=f"/p/{mesh_id}.stl", mesh_id=mesh_id)
+    geometry = Geometry(
+        "mesh", uri=f"package://p/{mesh_id}.stl", path=f"/p/{mesh_id}.stl", mesh_id=mesh_id
+    )
     return Shape(role, index, Pose(), geometry)
 
 
@@ -26,8 +28,16 @@ def robot():
     return Robot(
         "r",
         [
-            Link("base", visuals=[mesh_shape("visual", 0, "base")], collisions=[box_shape("collision", 0)]),
-            Link("arm", visuals=[mesh_shape("visual", 0, "arm")], collisions=[mesh_shape("collision", 0, "arm_c")]),
+            Link(
+                "base",
+                visuals=[mesh_shape("visual", 0, "base")],
+                collisions=[box_shape("collision", 0)],
+            ),
+            Link(
+                "arm",
+                visuals=[mesh_shape("visual", 0, "arm")],
+                collisions=[mesh_shape("collision", 0, "arm_c")],
+            ),
             Link("hand", visuals=[mesh_shape("visual", 0, "hand"), box_shape("visual", 1)]),
         ],
         [],
@@ -40,7 +50,10 @@ def summary(choices):
 
 def test_default_authored_keeps_only_urdf_collisions():
     choices = choose_collisions(robot(), "authored", [], DEFAULTS)
-    assert summary(choices) == [("base", "collision", 0, "authored"), ("arm", "collision", 0, "authored")]
+    assert summary(choices) == [
+        ("base", "collision", 0, "authored"),
+        ("arm", "collision", 0, "authored"),
+    ]
 
 
 def test_visual_policy_uses_visual_shapes():

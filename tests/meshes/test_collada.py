@@ -57,7 +57,10 @@ INSTANCE = (
 def test_polylist_quad_is_fanned_and_colour_comes_from_the_bound_material(tmp_path):
     path = write(
         tmp_path / "q.dae",
-        dae(QUAD + MATERIAL.format(diffuse='<color>0.1 0.2 0.3 1</color>'), scene=scene(f"<node>{INSTANCE}</node>")),
+        dae(
+            QUAD + MATERIAL.format(diffuse="<color>0.1 0.2 0.3 1</color>"),
+            scene=scene(f"<node>{INSTANCE}</node>"),
+        ),
     )
     (part,) = read_collada(path).parts
     assert part.faces.tolist() == [[0, 1, 2], [0, 2, 3]]
@@ -66,10 +69,14 @@ def test_polylist_quad_is_fanned_and_colour_comes_from_the_bound_material(tmp_pa
 
 
 def test_units_and_node_transforms_are_applied(tmp_path):
-    node = f'<node><translate>10 0 0</translate><rotate>0 0 1 90</rotate><scale>2 2 2</scale>{INSTANCE}</node>'
+    node = f"<node><translate>10 0 0</translate><rotate>0 0 1 90</rotate><scale>2 2 2</scale>{INSTANCE}</node>"
     path = write(
         tmp_path / "q.dae",
-        dae(QUAD + MATERIAL.format(diffuse="<color>1 1 1 1</color>"), unit='<unit meter="0.001"/>', scene=scene(node)),
+        dae(
+            QUAD + MATERIAL.format(diffuse="<color>1 1 1 1</color>"),
+            unit='<unit meter="0.001"/>',
+            scene=scene(node),
+        ),
     )
     mesh = read_collada(path)
     assert mesh.unit == 0.001
@@ -89,7 +96,11 @@ def test_instance_node_is_followed(tmp_path):
 def test_up_axis_is_ignored_unless_asked(tmp_path):
     path = write(
         tmp_path / "q.dae",
-        dae(QUAD + MATERIAL.format(diffuse="<color>1 1 1 1</color>"), up="Y_UP", scene=scene(f"<node>{INSTANCE}</node>")),
+        dae(
+            QUAD + MATERIAL.format(diffuse="<color>1 1 1 1</color>"),
+            up="Y_UP",
+            scene=scene(f"<node>{INSTANCE}</node>"),
+        ),
     )
     assert np.allclose(read_collada(path).parts[0].vertices[2], [1, 1, 0])
     rotated = read_collada(path, apply_up_axis=True)
@@ -100,7 +111,9 @@ def test_up_axis_is_ignored_unless_asked(tmp_path):
 def test_texture_is_followed_through_sampler_and_surface(tmp_path):
     checker_png(tmp_path / "skin.png")
     body = QUAD + MATERIAL.format(diffuse='<texture texture="samp" texcoord="UV"/>')
-    (part,) = read_collada(write(tmp_path / "q.dae", dae(body, scene=scene(f"<node>{INSTANCE}</node>")))).parts
+    (part,) = read_collada(
+        write(tmp_path / "q.dae", dae(body, scene=scene(f"<node>{INSTANCE}</node>")))
+    ).parts
     assert part.texture == tmp_path / "skin.png"
     assert part.uv is not None and part.uv.tolist()[2] == [1.0, 1.0]
 
@@ -112,4 +125,6 @@ def test_broken_files_are_input_errors(tmp_path):
         read_collada(write(tmp_path / "b.dae", "<model/>"))
     bad_index = QUAD.replace("<p>0 0 1 1 2 2 3 3</p>", "<p>0 0 1 1 2 2 9 3</p>")
     with pytest.raises(InputError, match="out of range"):
-        read_collada(write(tmp_path / "c.dae", dae(bad_index, scene=scene(f"<node>{INSTANCE}</node>"))))
+        read_collada(
+            write(tmp_path / "c.dae", dae(bad_index, scene=scene(f"<node>{INSTANCE}</node>")))
+        )

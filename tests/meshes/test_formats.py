@@ -64,5 +64,7 @@ def test_faces_over_the_budget_are_simplified_with_a_warning(tmp_path):
 
 
 def test_hull_file_when_asked(tmp_path):
-    summary = convert_mesh(EXAMPLES / "arm" / "meshes" / "forearm.obj", tmp_path, ["hull", "visual"])
+    summary = convert_mesh(
+        EXAMPLES / "arm" / "meshes" / "forearm.obj", tmp_path, ["hull", "visual"]
+    )
     assert summary["hull"] == "hull.obj" and summary["collision"] is None

@@ -38,7 +38,9 @@ def build_arm(arm, rules: str):
     ],
 )
 def test_policies_on_a_link_with_an_authored_mesh(arm, policy, expected):
-    _, model = build_arm(arm, f"collision:\n  rules:\n    - links: [upper_arm_link]\n      policy: {policy}\n")
+    _, model = build_arm(
+        arm, f"collision:\n  rules:\n    - links: [upper_arm_link]\n      policy: {policy}\n"
+    )
     assert collision_geoms(model, "upper_arm_link") == expected
 
 
@@ -50,14 +52,18 @@ def test_visual_policy_collides_with_every_visual_part(arm):
 
 
 def test_mesh_pattern_rules(arm):
-    _, model = build_arm(arm, "collision:\n  rules:\n    - meshes: ['upper_arm.*']\n      policy: hull\n")
+    _, model = build_arm(
+        arm, "collision:\n  rules:\n    - meshes: ['upper_arm.*']\n      policy: hull\n"
+    )
     assert collision_geoms(model, "upper_arm_link") == [("mesh", "upper_arm_hull")]
     assert collision_geoms(model, "base_link") == [("cylinder", None)]
 
 
 def test_switching_policy_reruns_only_the_affected_mesh_and_assembly(arm):
     build_arm(arm, "")
-    result, _ = build_arm(arm, "collision:\n  rules:\n    - links: [upper_arm_link]\n      policy: hull\n")
+    result, _ = build_arm(
+        arm, "collision:\n  rules:\n    - links: [upper_arm_link]\n      policy: hull\n"
+    )
     assert sorted(result.ran) == ["assemble", "mesh:upper_arm"]
 
 
@@ -99,13 +105,17 @@ def test_inertia_policy_fail_names_the_link(cli, tmp_path):
     from tests.conftest import two_link_urdf
 
     urdf = two_link_urdf().replace(
-        '<link name="arm"><inertial><mass value="1"/>', '<link name="arm"><inertial><mass value="0"/>'
+        '<link name="arm"><inertial><mass value="1"/>',
+        '<link name="arm"><inertial><mass value="0"/>',
     )
     write(tmp_path / "robot.urdf", urdf)
     write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\ninertia: {policy: fail}\n")
     result = cli("build", cwd=tmp_path)
     assert result.code == 4
-    assert "robot.urdf:" in result.stderr and "link 'arm': moving body with too small a mass" in result.stderr
+    assert (
+        "robot.urdf:" in result.stderr
+        and "link 'arm': moving body with too small a mass" in result.stderr
+    )
     write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\n")
     repaired = cli("build", cwd=tmp_path)
     assert repaired.code == 0
