@@ -55,10 +55,11 @@ def cli():
 
 
 def copy_example(name: str, destination: Path) -> Path:
-    """A private copy of ``examples/<name>`` without build outputs; its folder."""
-    target = destination / name
-    shutil.copytree(EXAMPLES / name, target, ignore=shutil.ignore_patterns("mjcf", "__pycache__"))
-    return target
+    """A private copy of ``examples/<name>`` (with its sibling examples, which some refer to),
+    without build outputs; the example's folder."""
+    target = destination / "examples"
+    shutil.copytree(EXAMPLES, target, ignore=shutil.ignore_patterns("mjcf", "__pycache__"))
+    return target / name
 
 
 @pytest.fixture

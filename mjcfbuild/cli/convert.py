@@ -29,11 +29,17 @@ def add_parser(commands) -> None:
         ),
     )
     source = parser.add_mutually_exclusive_group(required=True)
-    source.add_argument("-u", "--urdf", help="a URDF file")
+    source.add_argument(
+        "-u", "--urdf", help="a URDF file (a xacro file is expanded, with NAME:=VALUE arguments)"
+    )
     source.add_argument(
         "-r", "--robot_description", help="the robot description as a string ('-' reads stdin)"
     )
-    parser.add_argument("-m", "--mujoco_inputs", help="an XML file with <mujoco_inputs>")
+    parser.add_argument(
+        "-m",
+        "--mujoco_inputs",
+        help="an XML file with <mujoco_inputs> (combined with any in the URDF; the file wins)",
+    )
     parser.add_argument(
         "-o", "--output", default="mjcf_data", help="output folder (default: mjcf_data)"
     )
@@ -83,6 +89,9 @@ def add_parser(commands) -> None:
     jobs_argument(parser)
     timeout_argument(parser)
     parser.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
+    parser.add_argument(
+        "xacro_args", nargs="*", metavar="NAME:=VALUE", help="xacro arguments, when -u is xacro"
+    )
     parser.set_defaults(handler=run)
 
 
@@ -108,13 +117,15 @@ def run(args: argparse.Namespace) -> int:
             "-p/--publish_topic needs ROS, which mjcfbuild does not use",
             hint="write the model with -o DIR and load DIR/scene.xml",
         )
-    if args.mujoco_inputs:
-        raise UsageError("-m/--mujoco_inputs is not supported yet")
     cwd = Path.cwd()
     output = Path(args.output)
+    xacro_args = parse_xacro_args(args.xacro_args)
     if args.urdf:
-        source = {"urdf": args.urdf}
-        name = Path(args.urdf).stem or "robot"
+        kind = "xacro" if is_xacro(Path(args.urdf)) else "urdf"
+        if xacro_args and kind != "xacro":
+            raise UsageError(f"{args.urdf} is not a xacro file; NAME:=VALUE arguments need one")
+        source = {kind: args.urdf, **({"args": xacro_args} if xacro_args else {})}
+        name = Path(args.urdf).name.split(".")[0] or "robot"
     elif args.robot_description == "-":
         source = {"description": "-"}
         name = "robot"
@@ -135,6 +146,7 @@ def run(args: argparse.Namespace) -> int:
             "options": {"free_joint": args.add_free_joint, "fuse_static": args.fuse},
             "scene": {"file": args.scene} if args.scene else {},
             "cache": {"folder": str(Path(args.asset_dir).resolve())} if args.asset_dir else {},
+            "mujoco_inputs": {"file": args.mujoco_inputs} if args.mujoco_inputs else {},
             "output": {"folder": str(output), "robot": REFERENCE_ROBOT_FILE},
         }
     )
@@ -143,6 +155,28 @@ def run(args: argparse.Namespace) -> int:
         manifest, cwd, manifest_label="the command line", jobs=jobs, step_timeout=step_timeout(args)
     )
     return execute(ctx, quiet=args.quiet, debug=args.debug)
+
+
+def parse_xacro_args(values: list[str]) -> dict[str, str]:
+    """``NAME:=VALUE`` words as a dict; :class:`UsageError` for anything else."""
+    result = {}
+    for value in values:
+        name, sep, text = value.partition(":=")
+        if not sep or not name:
+            raise UsageError(f"'{value}' is not NAME:=VALUE")
+        result[name] = text
+    return result
+
+
+def is_xacro(path: Path) -> bool:
+    """Whether a description file uses xacro (by name, or by declaring its namespace)."""
+    if path.name.endswith(".xacro"):
+        return True
+    try:
+        with open(path, "rb") as handle:
+            return b"xmlns:xacro" in handle.read(65536)
+    except OSError:
+        return False
 
 
 def _safe_name(stem: str) -> str:

@@ -30,6 +30,7 @@ from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.engine.uptodate import ParamsUnchanged, always_stale, outputs_intact
 from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
+from mjcfbuild.manifest.cache import plain
 from mjcfbuild.sources.packages import ENV_VARIABLES
 from mjcfbuild.urdf.model import robot_from_dict
 
@@ -48,7 +49,7 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
     """Every task of the build; reads the plan the planning tasks wrote."""
     plan = read_plan(ctx)
     robot = robot_from_dict(plan["robot"])
-    collision = collision_settings(ctx)
+    collision = collision_settings(ctx, plan)
     choices = choose_collisions(
         robot, collision["default"], rules_from_dicts(collision["rules"]), collision["decompose"]
     )
@@ -61,19 +62,35 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
         _decompose_task(ctx, name, mesh_id, params, prefix)
         for name, (mesh_id, params) in decomposed.items()
     ]
-    tasks.append(_assemble_task(ctx, sorted(roles), decomposed, collision, prefix))
-    tasks.append(_scene_task(ctx, prefix))
+    tasks.append(_assemble_task(ctx, plan, sorted(roles), decomposed, collision, prefix))
+    tasks.append(_scene_task(ctx, plan, prefix))
     return tasks
 
 
-def collision_settings(ctx: BuildContext) -> dict:
-    """The manifest's collision settings in the plain form build steps take."""
+def collision_settings(ctx: BuildContext, plan: dict) -> dict:
+    """The collision settings in the plain form build steps take.
+
+    ``decompose_mesh`` inputs (in the URDF, the inputs file or robot.yaml) become rules after
+    the manifest's own: decompose that mesh with its threshold and the default parameters.
+    """
     settings = ctx.manifest.collision
-    return {
-        "default": settings.default,
-        "rules": list(settings.effective_rules),
-        "decompose": dict(settings.decompose_defaults),
-    }
+    defaults = dict(settings.decompose_defaults)
+    thresholds: dict[str, float] = {}
+    for source in ("urdf", "file"):
+        for item in (plan["inputs"].get(source) or {}).get("decompositions", []):
+            thresholds[item["mesh"]] = item["threshold"]
+    for item in ctx.manifest.mujoco_inputs.decompose:
+        thresholds[item.mesh] = item.threshold
+    rules = list(settings.effective_rules) + [
+        {
+            "links": [],
+            "meshes": [mesh],
+            "policy": "decompose",
+            "decompose": {**defaults, "threshold": threshold},
+        }
+        for mesh, threshold in sorted(thresholds.items())
+    ]
+    return {"default": settings.default, "rules": rules, "decompose": defaults}
 
 
 def read_plan(ctx: BuildContext) -> dict:
@@ -175,6 +192,15 @@ def _expand_task(ctx: BuildContext, prefix: str) -> dict:
 
 def _plan_task(ctx: BuildContext, prefix: str) -> dict:
     urdf = ctx.state(SOURCE_URDF)
+    inputs_file = None
+    if ctx.manifest.mujoco_inputs.file:
+        inputs_file = ctx.resolve(ctx.manifest.mujoco_inputs.file)
+        if not inputs_file.is_file():
+            raise InputError(
+                "inputs file not found",
+                file=ctx.label(inputs_file),
+                hint=f"fix 'mujoco_inputs.file' in {ctx.manifest_label}",
+            )
     expanded = ctx.source_kind == "xacro"
     payload = {
         "urdf": str(urdf),
@@ -183,6 +209,8 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
         "base_dir": str(ctx.source_base_dir),
         "packages": {name: str(path) for name, path in ctx.resolver.explicit.items()},
         "environment": {key: ctx.environ.get(key, "") for key in ENV_VARIABLES},
+        "inputs_file": str(inputs_file) if inputs_file else None,
+        "inputs_file_label": ctx.label(inputs_file) if inputs_file else None,
         "output": str(ctx.state(PLAN)),
     }
     return _task(
@@ -192,7 +220,7 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
         "plan",
         payload,
         in_worker=False,
-        file_dep=[urdf],
+        file_dep=[urdf, *([inputs_file] if inputs_file else [])],
         targets=[ctx.state(PLAN)],
         params={k: v for k, v in payload.items() if k not in ("urdf", "output")},
     )
@@ -273,7 +301,12 @@ def _decompose_task(ctx: BuildContext, name: str, mesh_id: str, params: dict, pr
 
 
 def _assemble_task(
-    ctx: BuildContext, meshes: list[str], decomposed: dict, collision: dict, prefix: str
+    ctx: BuildContext,
+    plan: dict,
+    meshes: list[str],
+    decomposed: dict,
+    collision: dict,
+    prefix: str,
 ) -> dict:
     options = ctx.manifest.options
     inertia = ctx.manifest.inertia
@@ -293,6 +326,13 @@ def _assemble_task(
         "product_dirs": {mesh_id: str(ctx.products_dir / mesh_id) for mesh_id in meshes},
         "decompositions": decompositions,
         "collision": collision,
+        "inputs": {
+            "urdf": plan["inputs"]["urdf"],
+            "file": plan["inputs"]["file"],
+            "native": plain(ctx.manifest.mujoco_inputs),
+        },
+        "manifest_label": ctx.manifest_label,
+        "ros2_control": plain(ctx.manifest.ros2_control),
         "fuse_static": options.fuse_static,
         "free_joint": options.free_joint,
         "link_sites": options.link_sites,
@@ -308,7 +348,16 @@ def _assemble_task(
     }
     params = {
         k: payload[k]
-        for k in ("collision", "fuse_static", "free_joint", "link_sites", "inertia", "header")
+        for k in (
+            "collision",
+            "inputs",
+            "ros2_control",
+            "fuse_static",
+            "free_joint",
+            "link_sites",
+            "inertia",
+            "header",
+        )
     }
     params["assets_dir"] = payload["assets_dir"]
     return _task(
@@ -328,17 +377,27 @@ def _assemble_task(
     )
 
 
-def _scene_task(ctx: BuildContext, prefix: str) -> dict:
-    scene_file = ctx.manifest.scene.file
-    source = ctx.resolve(scene_file) if scene_file else None
+def _scene_task(ctx: BuildContext, plan: dict, prefix: str) -> dict:
+    scene = ctx.manifest.scene
+    source = ctx.resolve(scene.file) if scene.file else None
     if source is not None and not source.is_file():
         raise InputError(
             "scene file not found",
             file=ctx.label(source),
             hint=f"fix 'scene.file' in {ctx.manifest_label}",
         )
+    block = None
+    if scene.mjcf:
+        block = {"xml": scene.mjcf, "origin": f"{ctx.manifest_label} scene.mjcf"}
+    elif source is None:
+        for where in ("file", "urdf"):
+            found = (plan["inputs"].get(where) or {}).get("scene")
+            if found:
+                block = found
+                break
     payload = {
         "scene_file": str(source) if source else None,
+        "scene_block": block,
         "model": ctx.manifest.name,
         "robot_file": ctx.manifest.robot_file,
         "output": str(ctx.scene_path),

@@ -93,3 +93,16 @@ def remember(text: bytes, manifest) -> None:
         atomic_write(path, json.dumps(_freeze(manifest), sort_keys=True).encode())
     except OSError:
         pass
+
+
+def plain(value):
+    """A manifest part (validated model or cached view) as plain JSON data."""
+    if hasattr(value, "model_dump"):
+        return value.model_dump(mode="json")
+    if isinstance(value, FrozenManifest):
+        value = value._data
+    if isinstance(value, dict):
+        return {k: plain(v) for k, v in value.items() if k != _MODEL_TAG}
+    if isinstance(value, list):
+        return [plain(v) for v in value]
+    return value

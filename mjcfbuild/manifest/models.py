@@ -241,8 +241,120 @@ class CacheSettings(StrictModel):
     )
 
 
+Attribute = str | float | int | bool
+
+
+class CameraInput(StrictModel):
+    """A camera at a link, which is a ROS optical frame (+z forward, +y down)."""
+
+    name: str = Field(min_length=1)
+    link: str = Field(min_length=1, description="The link (or site) the camera sits at.")
+    fovy: float | None = Field(None, gt=0, lt=180, description="Vertical field of view (degrees).")
+    mode: str | None = Field(None, description="MuJoCo camera mode, for example 'fixed'.")
+    resolution: tuple[int, int] | None = Field(None, description="Width and height in pixels.")
+    attributes: dict[str, Attribute] = Field(
+        default_factory=dict, description="Any other MuJoCo camera attribute."
+    )
+
+
+class LidarInput(StrictModel):
+    """A planar lidar: rangefinders from min_angle to max_angle about the link's +z axis."""
+
+    sensor_name: str = Field(
+        min_length=1, description="Name of the rangefinder sites (<name>-00, <name>-01, ...)."
+    )
+    link: str = Field(min_length=1, description="The lidar frame: +z up, first ray along +x.")
+    min_angle: float
+    max_angle: float
+    angle_increment: float = Field(gt=0)
+
+    @model_validator(mode="after")
+    def _ordered(self) -> LidarInput:
+        if self.max_angle < self.min_angle:
+            raise ValueError("max_angle is below min_angle")
+        return self
+
+
+class ModifyInput(StrictModel):
+    """Attributes to set on a generated element: by type and name, or a geom by mesh and class."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
+
+    type: str = Field(pattern=r"^[a-z_]+$", description="MJCF element: joint, body, geom, ...")
+    name: str | None = None
+    mesh: str | None = Field(None, description="For geoms: the mesh (name or file stem).")
+    geom_class: str | None = Field(None, alias="class", description="For geoms: the class.")
+    attributes: dict[str, Attribute] = Field(min_length=1)
+
+    @model_validator(mode="after")
+    def _target(self) -> ModifyInput:
+        if self.type == "geom" and not (self.mesh and self.geom_class):
+            raise ValueError("a geom is found by 'mesh' and 'class'")
+        if self.type != "geom" and not self.name:
+            raise ValueError(f"a {self.type} is found by 'name'")
+        return self
+
+
+class DecomposeInput(StrictModel):
+    """Decompose a mesh with CoACD (the reference converter's decompose_mesh)."""
+
+    mesh: str = Field(min_length=1, description="Mesh file name, stem or mjcfbuild mesh name.")
+    threshold: float = Field(0.05, gt=0, le=1)
+
+
+class MujocoInputs(StrictModel):
+    """What the model gets beyond the URDF, as the reference converter's inputs can say it.
+
+    The same can come from <mujoco_inputs> in the URDF and from a separate inputs file; when
+    two places say the same thing, robot.yaml wins over the inputs file, which wins over the
+    URDF, and the build warns.
+    """
+
+    file: RelPath | None = Field(
+        None, description="An inputs file in the reference converter's <mujoco_inputs> format."
+    )
+    raw: str | None = Field(
+        None,
+        description="Raw MJCF copied into the model: option, size, default, asset, actuator, "
+        "tendon, equality, sensor, contact, keyframe, custom, visual, statistic sections.",
+    )
+    cameras: list[CameraInput] = Field(default_factory=list)
+    lidars: list[LidarInput] = Field(default_factory=list)
+    modify: list[ModifyInput] = Field(default_factory=list)
+    decompose: list[DecomposeInput] = Field(default_factory=list)
+
+
+class Gains(StrictModel):
+    """Actuator gains for one kind of ros2_control command interface."""
+
+    kp: float | None = Field(None, gt=0, description="Position gain (position interfaces).")
+    kv: float | None = Field(None, gt=0, description="Velocity gain (velocity interfaces).")
+    dampratio: float | None = Field(None, ge=0, description="Damping ratio (position).")
+
+
+class Ros2ControlSettings(StrictModel):
+    """What to generate from the URDF's <ros2_control>."""
+
+    actuators: bool = Field(
+        False,
+        description="Generate an actuator per command interface (position, velocity, effort), "
+        "ranged by the URDF limits, unless raw inputs already drive the joint.",
+    )
+    position: Gains = Field(default_factory=lambda: Gains(kp=100.0, dampratio=1.0))
+    velocity: Gains = Field(default_factory=lambda: Gains(kv=10.0))
+    joints: dict[str, Gains] = Field(
+        default_factory=dict, description="Gains of single joints, by name."
+    )
+    home_keyframe: bool = Field(
+        False, description="Add a 'home' keyframe from the initial_value parameters."
+    )
+
+
 class Scene(StrictModel):
-    """The scene file written next to the robot: floor, light and sky around the robot."""
+    """The scene file written next to the robot: floor, light and sky around the robot.
+
+    Without ``file`` or ``mjcf`` (and without a <scene> in the inputs), a default scene.
+    """
 
     file: RelPath | None = Field(
         None,
@@ -251,6 +363,17 @@ class Scene(StrictModel):
             "robot file by name."
         ),
     )
+    mjcf: str | None = Field(
+        None,
+        description="MJCF the scene holds besides the robot (statistic, visual, asset, "
+        "worldbody, option), like the inputs' <scene> block.",
+    )
+
+    @model_validator(mode="after")
+    def _one(self) -> Scene:
+        if self.file and self.mjcf:
+            raise ValueError("give scene.file or scene.mjcf, not both")
+        return self
 
 
 class Output(StrictModel):
@@ -289,6 +412,8 @@ class Manifest(StrictModel):
     collision: CollisionSettings = Field(default_factory=CollisionSettings)
     inertia: InertiaSettings = Field(default_factory=InertiaSettings)
     cache: CacheSettings = Field(default_factory=CacheSettings)
+    mujoco_inputs: MujocoInputs = Field(default_factory=MujocoInputs)
+    ros2_control: Ros2ControlSettings = Field(default_factory=Ros2ControlSettings)
     scene: Scene = Field(default_factory=Scene)
     output: Output = Field(default_factory=Output)
 

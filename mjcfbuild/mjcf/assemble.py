@@ -16,6 +16,8 @@ from lxml import etree
 
 from mjcfbuild.collision.policy import CollisionChoice, choose_collisions
 from mjcfbuild.errors import ModelError
+from mjcfbuild.inputs.model import Inputs
+from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies
 from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
 from mjcfbuild.mjcf.precise import precise_xml
@@ -46,6 +48,9 @@ class AssemblyOptions:
     header: str = ""
     choices: list[CollisionChoice] | None = None  # default: the URDF's authored collisions
     decompositions: list[Decomposition] = field(default_factory=list)
+    inputs: Inputs | None = None
+    control: Ros2Control | None = None
+    control_settings: dict = field(default_factory=dict)
 
 
 @dataclass
@@ -94,16 +99,95 @@ def assemble(
     _finish(spec, prepared, bodies, robot, options)
     root = _write_with_shell_retries(spec, prepared)
     _finish_xml(root, prepared, robot, options)
+    warnings: list[str] = []
+    if _has_additions(options):
+        warnings += _apply_additions(root, prepared, bodies, robot, options)
+    _layout(root)
     xml = etree.tostring(root, encoding="unicode")
     header = f"<!-- {options.header} -->\n" if options.header else ""
     return Assembly(
         xml=(header + xml + "\n").encode("utf-8"),
         assets=dict(prepared.files),
         repairs=repairs,
-        warnings=[*robot.warnings, *prepared.warnings],
+        warnings=[*robot.warnings, *prepared.warnings, *warnings],
         bodies=len(bodies),
         geoms=len(prepared.geoms),
     )
+
+
+def _has_additions(options: AssemblyOptions) -> bool:
+    settings = options.control_settings
+    return (options.inputs is not None and not options.inputs.is_empty()) or bool(
+        options.control is not None
+        and (settings.get("actuators") or settings.get("home_keyframe") or options.control.sensors)
+    )
+
+
+def _apply_additions(
+    root, prepared: Prepared, bodies: list[Body], robot: Robot, options
+) -> list[str]:
+    """MuJoCo inputs and ros2_control additions, then a compile of the finished model."""
+    import mujoco
+
+    from mjcfbuild.inputs.apply import LinkPlace, apply_inputs
+    from mjcfbuild.inputs.ros2_control import generate_actuators, sensor_warnings
+
+    links = {
+        frame.link: LinkPlace(
+            None if body.parent is None and body.name == WORLD else body.name, frame.pose
+        )
+        for body in bodies
+        for frame in body.links
+    }
+    inputs = options.inputs or Inputs()
+    result = apply_inputs(root, inputs, links, _mesh_aliases(prepared))
+    warnings = list(result.warnings)
+    control, settings = options.control, options.control_settings
+    if control is not None:
+        warnings += sensor_warnings(control, [c.name for c in inputs.cameras], result.lidar_sensors)
+        if settings.get("actuators"):
+            limits = {joint.name: joint.limit for joint in robot.joints}
+            warnings += generate_actuators(root, control, settings, limits)
+    xml = etree.tostring(root, encoding="unicode")
+    assets = {name: Path(path).read_bytes() for name, path in prepared.files.items()}
+    try:
+        model = mujoco.MjModel.from_xml_string(xml, assets)
+    except Exception as exc:
+        raise ModelError(
+            f"MuJoCo rejected the model with its inputs: {_first_line(exc).replace('Error: ', '')}",
+            hint="check the mujoco_inputs and raw MJCF",
+        ) from None
+    if control is not None and settings.get("home_keyframe"):
+        _add_home_keyframe(root, model, control)
+    return warnings
+
+
+def _mesh_aliases(prepared: Prepared) -> dict[str, set[str]]:
+    """Names a modify_element may use for each mesh asset: its own, the file's, the id's."""
+    aliases = {}
+    for asset in prepared.meshes:
+        names = {asset.name, asset.mesh_id, asset.file[:-4]}
+        if asset.uri:
+            names |= {Path(asset.uri).stem, Path(asset.uri).name}
+        aliases[asset.name] = {n for n in names if n}
+    return aliases
+
+
+def _add_home_keyframe(root, model, control: Ros2Control) -> None:
+    import mujoco
+
+    from mjcfbuild.numbers import output_list
+
+    qpos = model.qpos0.copy()
+    for joint in control.joints:
+        index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint.name)
+        if index >= 0 and joint.initial is not None:
+            qpos[model.jnt_qposadr[index]] = joint.initial
+    section = root.find("keyframe")
+    if section is None:
+        section = etree.SubElement(root, "keyframe")
+    if not any(key.get("name") == "home" for key in section):
+        etree.SubElement(section, "key", {"name": "home", "qpos": output_list(qpos)})
 
 
 def _write_with_shell_retries(spec, prepared: Prepared):
@@ -300,7 +384,7 @@ def _origin(source: str, line: int | None, what: str) -> str:
 def _finish_xml(
     root: etree._Element, prepared: Prepared, robot: Robot, options: AssemblyOptions
 ) -> None:
-    """Compiler settings, relative mesh files, and Menagerie-style layout."""
+    """Compiler settings, relative mesh and texture files, explicit geom types."""
     for compiler in root.findall("compiler"):
         root.remove(compiler)
     settings = {k: v for k, v in robot.mujoco_compiler.items() if k not in _OWNED_COMPILER}
@@ -320,6 +404,14 @@ def _finish_xml(
             # Compiling resolved MuJoCo's default "auto" for this file; keep the default.
             texture.attrib.pop("colorspace", None)
         texture.attrib.pop("content_type", None)
+    # MuJoCo omits type="sphere" (its default); written out, no input default can change it.
+    for geom in root.find("worldbody").iter("geom"):
+        if geom.get("type") is None:
+            geom.set("type", "sphere")
+
+
+def _layout(root: etree._Element) -> None:
+    """Menagerie-style layout: two-space indent, a blank line between top-level sections."""
     etree.indent(root, space="  ")
     children = list(root)
     root.text = "\n  "

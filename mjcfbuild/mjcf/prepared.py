@@ -62,6 +62,7 @@ class MeshAsset:
     line: int | None = None
     uri: str = ""
     shell: bool = False
+    mesh_id: str = ""
 
 
 @dataclass
@@ -108,6 +109,7 @@ class _MeshUse:
     line: int | None
     uri: str
     shell: bool = False
+    mesh_id: str = ""
 
 
 @dataclass
@@ -231,7 +233,14 @@ class _Builder:
         key = (path, scale)
         if key not in self.uses:
             self.uses[key] = _MeshUse(
-                path, md5, stem, scale, placed.shape.line, placed.shape.geometry.uri or "", shell
+                path,
+                md5,
+                stem,
+                scale,
+                placed.shape.line,
+                placed.shape.geometry.uri or "",
+                shell,
+                mesh_id,
             )
         return self.uses[key]
 
@@ -424,6 +433,7 @@ def _assign_names(uses: dict, looks: dict, prepared: Prepared) -> _AssetNames:
                 line=use.line,
                 uri=use.uri,
                 shell=use.shell,
+                mesh_id=use.mesh_id,
             )
             names.asset_by_key[key] = asset
             prepared.meshes.append(asset)

@@ -1,4 +1,5 @@
-"""The default scene: the robot on a floor under a light and a sky, Menagerie style."""
+"""The scene file: the robot on a floor under a light and a sky (Menagerie style), or the
+robot with a user's ``<scene>`` block."""
 
 from __future__ import annotations
 
@@ -33,3 +34,24 @@ _SCENE = """<mujoco model={model}>
 def default_scene(model: str, robot_file: str) -> str:
     """The scene XML that includes ``robot_file``."""
     return _SCENE.format(model=quoteattr(f"{model} scene"), robot=quoteattr(robot_file))
+
+
+def scene_with(model: str, robot_file: str, block: str, origin: str) -> bytes:
+    """A scene that includes ``robot_file`` and holds the MJCF of a ``<scene>`` block."""
+    from lxml import etree
+
+    from mjcfbuild.errors import InputError
+    from mjcfbuild.inputs.model import origin_location
+
+    try:
+        content = etree.fromstring(f"<scene>{block}</scene>")
+    except etree.XMLSyntaxError as exc:
+        file, line = origin_location(origin)
+        raise InputError(f"malformed scene XML: {exc.msg}", file=file, line=line) from None
+    root = etree.Element("mujoco", {"model": f"{model} scene"})
+    etree.SubElement(root, "include", {"file": robot_file})
+    for child in content:
+        if isinstance(child.tag, str):
+            root.append(child)
+    etree.indent(root, space="  ")
+    return etree.tostring(root, encoding="unicode").encode() + b"\n"

@@ -8,6 +8,10 @@ from pathlib import Path
 
 from mjcfbuild.collision.policy import choose_collisions, rules_from_dicts
 from mjcfbuild.fsutil import remove_stale_temp_files
+from mjcfbuild.inputs.combine import combine
+from mjcfbuild.inputs.model import inputs_from_dict
+from mjcfbuild.inputs.native import native_inputs
+from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.mjcf.assemble import AssemblyOptions, assemble
 from mjcfbuild.mjcf.inertia import InertiaPolicy
 from mjcfbuild.mjcf.prepared import Decomposition
@@ -39,7 +43,12 @@ def run(payload: dict) -> dict:
                 summary["files"],
             )
         )
+    inputs, input_warnings = _inputs(payload)
+    control = Ros2Control.from_dict(plan.get("ros2_control", {}))
     options = AssemblyOptions(
+        inputs=inputs,
+        control=control,
+        control_settings=payload["ros2_control"],
         fuse_static=payload["fuse_static"],
         free_joint=payload["free_joint"],
         link_sites=payload["link_sites"],
@@ -78,8 +87,19 @@ def run(payload: dict) -> dict:
     write_output(Path(payload["output"]), assembly.xml, outputs)
     return {
         "outputs": outputs,
-        "warnings": assembly.warnings + [repair.describe() for repair in assembly.repairs],
+        "warnings": input_warnings
+        + assembly.warnings
+        + [repair.describe() for repair in assembly.repairs],
     }
+
+
+def _inputs(payload: dict):
+    """The MuJoCo inputs of the URDF, the inputs file and robot.yaml, combined."""
+    sources = [inputs_from_dict(payload["inputs"]["urdf"])]
+    if payload["inputs"]["file"]:
+        sources.append(inputs_from_dict(payload["inputs"]["file"]))
+    sources.append(native_inputs(payload["inputs"]["native"], payload["manifest_label"]))
+    return combine(sources)
 
 
 def _previous_assets(report_path: Path) -> set[str]:

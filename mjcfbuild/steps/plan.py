@@ -1,4 +1,5 @@
-"""Step ``plan``: parse the URDF, resolve every file it names, and list the meshes to convert."""
+"""Step ``plan``: parse the URDF, resolve every file it names, list the meshes to convert, and
+read the MuJoCo inputs and ros2_control it holds (and the inputs file, if any)."""
 
 from __future__ import annotations
 
@@ -6,25 +7,35 @@ import json
 from pathlib import Path
 
 from mjcfbuild.errors import InputError
+from mjcfbuild.inputs.ros2_control import read_ros2_control
+from mjcfbuild.inputs.xml_inputs import inputs_in_urdf, read_inputs_file
 from mjcfbuild.sources.packages import PackageResolver
 from mjcfbuild.steps.outputs import write_output
-from mjcfbuild.urdf.parse import parse_urdf
+from mjcfbuild.urdf.parse import parse_urdf, parse_xml
 from mjcfbuild.urdf.resolve import resolve_files
 
 
 def run(payload: dict) -> dict:
-    """Write the build plan (robot model and mesh list) to ``payload['output']``."""
+    """Write the build plan (robot, meshes, inputs, ros2_control) to ``payload['output']``."""
     packages = PackageResolver(
         {name: Path(folder) for name, folder in payload["packages"].items()},
         payload["environment"],
     )
+    data = Path(payload["urdf"]).read_bytes()
+    display = payload["display"]
     try:
-        robot = parse_urdf(Path(payload["urdf"]).read_bytes(), payload["display"])
+        robot = parse_urdf(data, display)
         resolve_files(robot, Path(payload["base_dir"]), packages)
+        root = parse_xml(data, display, [])
+        urdf_inputs = inputs_in_urdf(root, display)
+        control = read_ros2_control(root, display)
     except InputError as exc:
         if payload.get("expanded_from") and exc.hint is None:
             exc.hint = f"the line is in the expansion of {payload['expanded_from']}"
         raise
+    file_inputs = None
+    if payload.get("inputs_file"):
+        file_inputs = read_inputs_file(Path(payload["inputs_file"]), payload["inputs_file_label"])
     meshes = {
         shape.geometry.mesh_id: shape.geometry.path
         for link in robot.links
@@ -34,6 +45,11 @@ def run(payload: dict) -> dict:
     plan = {
         "robot": robot.to_dict(),
         "meshes": [{"id": mesh_id, "path": path} for mesh_id, path in sorted(meshes.items())],
+        "inputs": {
+            "urdf": urdf_inputs.to_dict(),
+            "file": file_inputs.to_dict() if file_inputs is not None else None,
+        },
+        "ros2_control": control.to_dict(),
     }
     outputs: dict[str, str] = {}
     text = json.dumps(plan, indent=1, sort_keys=True) + "\n"

@@ -139,7 +139,6 @@ class Robot:
     joints: list[Joint]
     source: str = "robot.urdf"
     mujoco_compiler: dict[str, str] = field(default_factory=dict)
-    extensions: dict[str, str] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
 
     def link(self, name: str) -> Link:
@@ -240,6 +239,5 @@ def robot_from_dict(data: dict) -> Robot:
         joints=joints,
         source=data.get("source", "robot.urdf"),
         mujoco_compiler=dict(data.get("mujoco_compiler", {})),
-        extensions=dict(data.get("extensions", {})),
         warnings=list(data.get("warnings", [])),
     )

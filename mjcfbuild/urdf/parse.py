@@ -29,7 +29,6 @@ from mjcfbuild.urdf.model import (
 )
 
 _SEPARATORS = re.compile(r"[\s,]+")
-_EXTENSION_TAGS = ("mujoco_inputs", "ros2_control")
 
 
 def secure_parser(recover: bool = False) -> etree.XMLParser:
@@ -175,7 +174,6 @@ def parse_urdf(data: bytes, display_file: str = "robot.urdf") -> Robot:
         joints=joints,
         source=display_file,
         mujoco_compiler=_mujoco_compiler(root),
-        extensions=_extensions(root),
         warnings=warnings,
     )
     validate_structure(robot, root, reader)
@@ -358,16 +356,6 @@ def _mujoco_compiler(root: etree._Element) -> dict[str, str]:
     for mujoco in root.findall("mujoco"):
         for compiler in mujoco.findall("compiler"):
             result.update({str(k): str(v) for k, v in compiler.attrib.items()})
-    return result
-
-
-def _extensions(root: etree._Element) -> dict[str, str]:
-    """Raw XML of elements later build steps read (``mujoco_inputs``, ``ros2_control``)."""
-    result = {}
-    for tag in _EXTENSION_TAGS:
-        found = root.findall(tag)
-        if found:
-            result[tag] = "".join(etree.tostring(e, encoding="unicode") for e in found)
     return result
 
 

@@ -87,3 +87,14 @@ def test_compile_errors_point_at_the_urdf_line(tmp_path):
         build(urdf, tmp_path)
     assert info.value.location.file == "robot.urdf"
     assert info.value.location.line == 2
+
+
+def test_free_joint_with_and_without_fusing(tmp_path):
+    urdf = two_link_urdf(
+        extra='<link name="tool"/><joint name="t" type="fixed"><parent link="arm"/><child link="tool"/>'
+        '<origin xyz="0 0 0.5"/></joint>'
+    )
+    for fuse in (True, False):
+        _, model = build(urdf, tmp_path / str(fuse), free_joint=True, fuse_static=fuse)
+        assert model.jnt_type[0] == 0 and model.nq == 8
+        assert model.nbody == (3 if fuse else 4)

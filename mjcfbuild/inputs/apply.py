@@ -1,0 +1,412 @@
+"""Applying combined MuJoCo inputs to the assembled model (an lxml tree of its MJCF).
+
+Raw sections are merged into the model's own sections: mjcfbuild's default classes take the
+attributes the inputs give them (with a warning where they differ), other sections gain the
+input elements. Cameras and lidars are placed at their links with poses computed here.
+Modifications set attributes on generated elements. Every name an input refers to is checked
+before MuJoCo sees the model, so a typo is reported at the input's line with the names that do
+exist.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+from lxml import etree
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.inputs.frames import camera_pose, lidar_body_pose, ray_count
+from mjcfbuild.inputs.model import SINGLE_SECTIONS, Inputs, RawElement, origin_location
+from mjcfbuild.numbers import output, output_list
+from mjcfbuild.urdf.transforms import Transform
+
+# Where sections go in the model, in the order MJCF files conventionally list them.
+SECTION_ORDER = (
+    "compiler",
+    "option",
+    "size",
+    "visual",
+    "statistic",
+    "default",
+    "extension",
+    "custom",
+    "asset",
+    "worldbody",
+    "contact",
+    "equality",
+    "tendon",
+    "actuator",
+    "sensor",
+    "keyframe",
+)
+
+
+@dataclass
+class LinkPlace:
+    """Where a URDF link is: the body holding it (None for the world) and its pose there."""
+
+    body: str | None
+    pose: Transform
+
+
+@dataclass
+class ApplyResult:
+    """What applying inputs found worth telling the user."""
+
+    warnings: list[str] = field(default_factory=list)
+    lidar_sensors: list[str] = field(default_factory=list)
+
+
+def input_error(origin: str, message: str, hint: str | None = None) -> InputError:
+    """An :class:`InputError` pointing at an input's origin."""
+    file, line = origin_location(origin)
+    return InputError(message, file=file, line=line, hint=hint)
+
+
+def apply_inputs(
+    root: etree._Element,
+    inputs: Inputs,
+    links: dict[str, LinkPlace],
+    mesh_aliases: dict[str, set[str]],
+) -> ApplyResult:
+    """Apply ``inputs`` to the model tree ``root`` in place."""
+    result = ApplyResult()
+    tracked: list[tuple[etree._Element, str]] = []
+    for item in inputs.raw:
+        tracked += [(element, item.origin) for element in _merge_raw(root, item, result.warnings)]
+    for camera in inputs.cameras:
+        place = _link(links, camera.link, camera.origin, "camera")
+        pose = camera_pose(place.pose)
+        element = etree.Element("camera", {"name": camera.name})
+        _set_pose(element, pose)
+        for key, value in camera.attributes.items():
+            element.set(key, value)
+        _insert_in_body(_body_element(root, place.body), element)
+    for lidar in inputs.lidars:
+        place = _link(links, lidar.link, lidar.origin, "lidar")
+        count = ray_count(lidar.min_angle, lidar.max_angle, lidar.angle_increment)
+        body = etree.Element("body", {"name": f"{lidar.link}_lidar_body"})
+        _set_pose(body, lidar_body_pose(place.pose, lidar.min_angle))
+        replicate = etree.SubElement(
+            body,
+            "replicate",
+            {
+                "count": str(count),
+                "sep": "-",
+                "offset": "0 0 0",
+                "euler": f"0 {output(lidar.angle_increment)} 0",
+            },
+        )
+        etree.SubElement(replicate, "site", {"name": lidar.sensor_name})
+        _insert_in_body(_body_element(root, place.body), body, last=True)
+        for sensor in root.iter("rangefinder"):
+            if sensor.get("site") == lidar.sensor_name and sensor.get("name"):
+                result.lidar_sensors.append(sensor.get("name"))
+    result.warnings += _drop_mimics_the_inputs_couple(root, tracked)
+    for modify in inputs.modifications:
+        targets = _modify_targets(root, modify, mesh_aliases)
+        for element in targets:
+            for key, value in modify.attributes.items():
+                element.set(key, value)
+    check_references(root, tracked)
+    return result
+
+
+def _drop_mimics_the_inputs_couple(root, tracked) -> list[str]:
+    """A joint equality from the inputs replaces the one mjcfbuild made of a URDF <mimic>
+    for the same two joints, so the pair is not constrained twice."""
+    from_inputs = {id(element) for element, _ in tracked}
+    section = root.find("equality")
+    if section is None:
+        return []
+    coupled = {
+        frozenset((e.get("joint1"), e.get("joint2"))): origin
+        for e, origin in tracked
+        if e.tag == "joint" and e.getparent() is section
+    }
+    notes = []
+    for element in list(section):
+        pair = frozenset((element.get("joint1"), element.get("joint2")))
+        if element.tag == "joint" and id(element) not in from_inputs and pair in coupled:
+            section.remove(element)
+            notes.append(
+                f"{coupled[pair]}: the joint equality of the inputs replaces the URDF <mimic> "
+                f"of {element.get('joint1')}"
+            )
+    return notes
+
+
+def _link(links: dict[str, LinkPlace], name: str, origin: str, what: str) -> LinkPlace:
+    if name not in links:
+        raise input_error(
+            origin,
+            f"{what} refers to link '{name}', which does not exist",
+            hint=f"links: {_listing(links)}",
+        )
+    return links[name]
+
+
+def _listing(names: Iterable[str], limit: int = 12) -> str:
+    ordered = sorted(set(names))
+    text = ", ".join(ordered[:limit])
+    return (
+        text + (f", ... ({len(ordered)} in all)" if len(ordered) > limit else "")
+        if ordered
+        else "none"
+    )
+
+
+def _set_pose(element: etree._Element, pose: Transform) -> None:
+    position = tuple(0.0 if abs(v) < 1e-14 else v for v in pose.position)
+    quat = tuple(0.0 if abs(v) < 1e-14 else v for v in pose.quat)
+    if any(position):
+        element.set("pos", output_list(position))
+    if quat != (1.0, 0.0, 0.0, 0.0):
+        element.set("quat", output_list(quat))
+
+
+def _body_element(root: etree._Element, body: str | None) -> etree._Element:
+    worldbody = root.find("worldbody")
+    if body is None:
+        return worldbody
+    for element in worldbody.iter("body"):
+        if element.get("name") == body:
+            return element
+    raise KeyError(body)
+
+
+def _insert_in_body(body: etree._Element, element: etree._Element, last: bool = False) -> None:
+    """Add ``element`` to ``body`` before its child bodies (or after everything if ``last``)."""
+    if not last:
+        for index, child in enumerate(body):
+            if child.tag == "body":
+                body.insert(index, element)
+                return
+    body.append(element)
+
+
+def _section(root: etree._Element, name: str) -> etree._Element:
+    existing = root.find(name)
+    if existing is not None:
+        return existing
+    element = etree.Element(name)
+    position = SECTION_ORDER.index(name)
+    for index, child in enumerate(root):
+        if (
+            isinstance(child.tag, str)
+            and child.tag in SECTION_ORDER
+            and SECTION_ORDER.index(child.tag) > position
+        ):
+            root.insert(index, element)
+            return element
+    root.append(element)
+    return element
+
+
+def _merge_raw(root: etree._Element, item: RawElement, warnings: list[str]) -> list[etree._Element]:
+    element = etree.fromstring(item.xml)
+    if item.section in SINGLE_SECTIONS:
+        existing = root.find(item.section)
+        if existing is None:
+            _section(root, item.section)
+            existing = root.find(item.section)
+        for key, value in element.attrib.items():
+            existing.set(key, value)
+        for child in element:
+            existing.append(child)
+        return [existing, *existing.iter()]
+    section = _section(root, item.section)
+    if item.section == "default":
+        return _merge_default(section, element, item.origin, warnings)
+    section.append(element)
+    return list(element.iter())
+
+
+def _merge_default(
+    section: etree._Element, element: etree._Element, origin: str, warnings: list[str]
+):
+    """Merge an input default (a class, or an element of the main class) into the model's."""
+    if element.tag != "default":
+        target = section.find(element.tag)
+        if target is None:
+            section.insert(0, element)
+            return [element]
+        _merge_attributes(target, element, "the main default class", origin, warnings)
+        return [target]
+    name = element.get("class")
+    existing = next((d for d in section.findall("default") if d.get("class") == name), None)
+    if existing is None:
+        section.append(element)
+        return list(element.iter())
+    for child in element:
+        if child.tag == "default":
+            existing.append(child)
+            continue
+        target = existing.find(child.tag)
+        if target is None:
+            existing.append(child)
+        else:
+            _merge_attributes(target, child, f"default class '{name}'", origin, warnings)
+    return [existing]
+
+
+def _merge_attributes(target, source, where: str, origin: str, warnings: list[str]) -> None:
+    for key, value in source.attrib.items():
+        current = target.get(key)
+        if current is not None and current != value:
+            warnings.append(
+                f"{origin}: {where} sets {source.tag} {key}={value!r} "
+                f"(mjcfbuild's is {current!r}); using {value!r}"
+            )
+        target.set(key, value)
+
+
+def _modify_targets(root, modify, mesh_aliases: dict[str, set[str]]) -> list[etree._Element]:
+    if modify.type == "geom":
+        meshes = {name for name, aliases in mesh_aliases.items() if modify.mesh in aliases}
+        found = [
+            geom
+            for geom in root.find("worldbody").iter("geom")
+            if geom.get("mesh") in meshes and geom.get("class") == modify.geom_class
+        ]
+        if not found:
+            raise input_error(
+                modify.origin,
+                f"modify_element: no {modify.target()}",
+                hint=f"meshes: {_listing(mesh_aliases)}; classes: visual, collision",
+            )
+        return found
+    candidates = [
+        element
+        for element in root.iter(modify.type)
+        if element.getparent() is not None and element.getparent().tag != "default"
+    ]
+    found = [element for element in candidates if element.get("name") == modify.name]
+    if not found:
+        existing = [e.get("name") for e in candidates if e.get("name")]
+        raise input_error(
+            modify.origin,
+            f"modify_element: no {modify.type} named '{modify.name}'",
+            hint=f"{modify.type} names: {_listing(existing)}",
+        )
+    return found
+
+
+# Attributes that name other elements, and the kind of element they name.
+REFERENCES = {
+    "joint": "joint",
+    "joint1": "joint",
+    "joint2": "joint",
+    "jointinparent": "joint",
+    "body": "body",
+    "body1": "body",
+    "body2": "body",
+    "bodyname": "body",
+    "site": "site",
+    "site1": "site",
+    "site2": "site",
+    "cranksite": "site",
+    "slidersite": "site",
+    "tendon": "tendon",
+    "tendon1": "tendon",
+    "tendon2": "tendon",
+    "geom": "geom",
+    "geom1": "geom",
+    "geom2": "geom",
+    "actuator": "actuator",
+    "camera": "camera",
+    "mesh": "mesh",
+    "material": "material",
+    "texture": "texture",
+    "class": "class",
+    "childclass": "class",
+}
+OBJECT_TYPES = {
+    "body": "body",
+    "xbody": "body",
+    "geom": "geom",
+    "site": "site",
+    "camera": "camera",
+    "joint": "joint",
+    "tendon": "tendon",
+    "actuator": "actuator",
+}
+ACTUATOR_TAGS = (
+    "general",
+    "motor",
+    "position",
+    "velocity",
+    "intvelocity",
+    "damper",
+    "cylinder",
+    "muscle",
+    "adhesion",
+    "plugin",
+)
+TENDON_TAGS = ("fixed", "spatial")
+
+
+def model_names(root: etree._Element) -> dict[str, set[str]]:
+    """Names of every kind of element in the model tree."""
+    names: dict[str, set[str]] = {kind: set() for kind in set(REFERENCES.values())}
+    names["body"].add("world")
+    worldbody = root.find("worldbody")
+    for kind in ("body", "joint", "site", "geom", "camera"):
+        for element in worldbody.iter(kind):
+            if element.get("name"):
+                names[kind].add(element.get("name"))
+    for element in worldbody.iter("freejoint"):
+        if element.get("name"):
+            names["joint"].add(element.get("name"))
+    for asset in root.findall("asset"):
+        for kind in ("mesh", "material", "texture"):
+            for element in asset.findall(kind):
+                if element.get("name"):
+                    names[kind].add(element.get("name"))
+    for tendon in root.findall("tendon"):
+        names["tendon"] |= {e.get("name") for e in tendon if e.tag in TENDON_TAGS and e.get("name")}
+    for actuator in root.findall("actuator"):
+        names["actuator"] |= {
+            e.get("name") for e in actuator if e.tag in ACTUATOR_TAGS and e.get("name")
+        }
+    names["class"] = {"main"} | {d.get("class") for d in root.iter("default") if d.get("class")}
+    return names
+
+
+def check_references(root: etree._Element, tracked: list[tuple[etree._Element, str]]) -> None:
+    """Every name the tracked input elements refer to exists in the model."""
+    names = model_names(root)
+    for element, origin in tracked:
+        if not isinstance(element.tag, str):
+            continue
+        for attribute, kind in REFERENCES.items():
+            value = element.get(attribute)
+            if value is None or _declares(element, attribute):
+                continue
+            if value not in names[kind]:
+                raise _missing(element, attribute, value, kind, names, origin)
+        objtype, objname = element.get("objtype"), element.get("objname")
+        if objtype in OBJECT_TYPES and objname is not None:
+            kind = OBJECT_TYPES[objtype]
+            if objname not in names[kind]:
+                raise _missing(element, "objname", objname, kind, names, origin)
+
+
+def _declares(element: etree._Element, attribute: str) -> bool:
+    """Whether the attribute declares a name rather than referring to one."""
+    parent = element.getparent()
+    if attribute == "class" and element.tag == "default":
+        return True
+    # <joint joint="..."> inside a fixed tendon refers; <geom mesh> refers; nothing else here
+    # declares a name through these attributes, except asset elements naming their files.
+    return parent is not None and parent.tag == "default"
+
+
+def _missing(element, attribute, value, kind, names, origin) -> InputError:
+    what = f"<{element.tag}{' ' + repr(element.get('name')) if element.get('name') else ''}>"
+    return input_error(
+        origin,
+        f'{what} {attribute}="{value}" names a {kind} that does not exist',
+        hint=f"{kind} names: {_listing(names[kind])}",
+    )
