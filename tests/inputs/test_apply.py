@@ -69,3 +69,39 @@ def test_input_defaults_merge_into_mjcfbuilds_classes_and_new_classes_are_added(
     assert text.count('<default class="visual">') == 1
     assert '<default class="heavy">' in text
     assert any("default class 'visual' sets geom group='1'" in w for w in result.warnings)
+
+
+def test_decompose_mesh_input_becomes_a_decomposition_task(tmp_path):
+    from tests.conftest import copy_example
+
+    arm = copy_example("arm", tmp_path)
+    (arm / "inputs.xml").write_text(
+        "<mujoco_inputs><processed_inputs>"
+        '<decompose_mesh mesh_name="upper_arm" threshold="0.08"/>'
+        "</processed_inputs></mujoco_inputs>"
+    )
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "mujoco_inputs: {file: inputs.xml}\n")
+    result = mjcfbuild.build(manifest, jobs=2)
+    assert "decompose:upper_arm" in result.ran
+    assert list((arm / "mjcf" / "assets").glob("upper_arm_part*.obj"))
+
+
+def test_modify_geom_by_mesh_file_stem_and_class(tmp_path):
+    from tests.conftest import copy_example
+
+    arm = copy_example("arm", tmp_path)
+    manifest = arm / "robot.yaml"
+    manifest.write_text(
+        manifest.read_text()
+        + "mujoco_inputs:\n  modify:\n"
+        + "    - {type: geom, mesh: upper_arm.dae, class: collision, attributes: {friction: '0.5 0.01 0.001'}}\n"
+    )
+    text = mjcfbuild.build(manifest).robot.read_text()
+    assert 'mesh="upper_arm" friction="0.5 0.01 0.001"' in text
+
+
+def test_scene_block_from_the_inputs(tmp_path):
+    result = build(tmp_path, '<scene><option gravity="0 0 -1"/></scene>')
+    scene = result.scene.read_text()
+    assert '<include file="r.xml"/>' in scene and 'gravity="0 0 -1"' in scene
