@@ -19,8 +19,8 @@ def load_manifest(path):
     return _load(path)
 
 
-def build(manifest, jobs: int | None = None, quiet: bool = True, base_dir=None):
+def build(manifest, jobs: int | None = None, quiet: bool = True, base_dir=None, check: bool = True):
     """Build a robot; see :func:`mjcfbuild.api.build`."""
     from mjcfbuild.api import build as _build
 
-    return _build(manifest, jobs=jobs, quiet=quiet, base_dir=base_dir)
+    return _build(manifest, jobs=jobs, quiet=quiet, base_dir=base_dir, check=check)

@@ -17,11 +17,13 @@ def build(
     jobs: int | None = None,
     quiet: bool = True,
     base_dir: str | os.PathLike | None = None,
+    check: bool = True,
 ) -> BuildResult:
     """Build the robot of ``manifest`` (a path to robot.yaml, or a :class:`Manifest`).
 
     ``jobs`` is the number of tasks run at once (default: one per CPU). With a Manifest object,
     its relative paths are resolved against ``base_dir`` (default: the current folder).
+    ``check=False`` skips the check against the URDF (as ``build --no-check`` does).
     Returns the :class:`BuildResult`; raises :class:`BuildFailed` listing every error if a
     task failed, and :class:`ManifestError` if the manifest is invalid.
     """
@@ -35,6 +37,7 @@ def build(
             ctx = BuildContext.from_manifest_file(path, jobs=jobs)
         except ManifestError as exc:
             raise exc.relocate(path.resolve().parent, cwd) from None
+    ctx.run_check = check
     result = run_build(ctx, Progress(quiet=quiet))
     if not quiet:
         print(result.summary())

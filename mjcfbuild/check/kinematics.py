@@ -38,6 +38,26 @@ class KinematicsResult:
     worst: LinkError | None = None
     missing_links: list[str] = field(default_factory=list)
     missing_joints: list[str] = field(default_factory=list)
+    per_link: dict[str, LinkError] = field(default_factory=dict)
+    order: list[str] = field(default_factory=list)
+
+    def first_wrong(self, position_tolerance: float, rotation_tolerance: float) -> LinkError | None:
+        """The wrong link nearest the root: where an error starts (its descendants follow)."""
+        for link in self.order:
+            error = self.per_link.get(link)
+            if error and (
+                error.position > position_tolerance or error.rotation > rotation_tolerance
+            ):
+                return error
+        return None
+
+    def wrong_count(self, position_tolerance: float, rotation_tolerance: float) -> int:
+        """How many links are off."""
+        return sum(
+            1
+            for e in self.per_link.values()
+            if e.position > position_tolerance or e.rotation > rotation_tolerance
+        )
 
     def passes(self, position_tolerance: float = 1e-6, rotation_tolerance: float = 1e-6) -> bool:
         """Whether every link is present and within both tolerances."""
@@ -111,6 +131,7 @@ def compare_kinematics(robot: Robot, model, count: int = 20, seed: int = 0) -> K
             frames[link.name] = ("site", site)
         elif link.name != "world":
             result.missing_links.append(link.name)
+    result.order = _root_first(robot)
     data = mujoco.MjData(model)
     for number, values in enumerate(random_configurations(robot, count, seed)):
         qpos = model.qpos0.copy()
@@ -132,11 +153,26 @@ def compare_kinematics(robot: Robot, model, count: int = 20, seed: int = 0) -> K
             position_error = float(np.linalg.norm(np.array(reference.position) - position))
             rotation = tuple(tuple(float(v) for v in row) for row in matrix.reshape(3, 3))
             rotation_error = rotation_angle_between(reference.rotation, rotation)
+            error = LinkError(link, position_error, rotation_error, number)
             worst = result.worst
             if worst is None or max(position_error, rotation_error) > max(
                 worst.position, worst.rotation
             ):
-                result.worst = LinkError(link, position_error, rotation_error, number)
+                result.worst = error
+            known = result.per_link.get(link)
+            if known is None or max(position_error, rotation_error) > max(
+                known.position, known.rotation
+            ):
+                result.per_link[link] = error
             result.max_position = max(result.max_position, position_error)
             result.max_rotation = max(result.max_rotation, rotation_error)
     return result
+
+
+def _root_first(robot: Robot) -> list[str]:
+    """Link names, breadth first from the root."""
+    children = robot.child_joints()
+    order = [robot.root]
+    for name in order:
+        order += [joint.child for joint in children[name]]
+    return order

@@ -20,7 +20,7 @@ from mjcfbuild.errors import (
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser with every subcommand."""
-    from mjcfbuild.cli import build, cache, convert, init, schema
+    from mjcfbuild.cli import build, cache, check, convert, init, schema
 
     parser = argparse.ArgumentParser(
         prog="mjcfbuild",
@@ -33,7 +33,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     commands = parser.add_subparsers(title="commands", dest="command", metavar="COMMAND")
     commands.required = True
-    for module in (build, convert, init, schema, cache):
+    for module in (build, check, convert, init, schema, cache):
         module.add_parser(commands)
     return parser
 

@@ -30,6 +30,9 @@ def add_parser(commands) -> None:
     jobs_argument(parser)
     timeout_argument(parser)
     parser.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
+    parser.add_argument(
+        "--no-check", action="store_true", help="skip the check against the URDF (and previews)"
+    )
     parser.set_defaults(handler=run)
 
 
@@ -41,6 +44,7 @@ def run(args: argparse.Namespace) -> int:
     jobs = args.jobs or environment_jobs() or default_jobs()
     try:
         ctx = BuildContext.from_manifest_file(path, jobs=jobs, step_timeout=step_timeout(args))
+        ctx.run_check = not args.no_check
     except ManifestError as error:
         report_error(error, args.debug, base_dir=path.resolve().parent)
         return error.exit_code

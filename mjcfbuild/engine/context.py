@@ -42,6 +42,8 @@ class BuildContext:
     notes: dict[str, str] = field(default_factory=dict)
     cache_grew: bool = False
     cache_folder_override: Path | None = None
+    output_override: Path | None = None
+    run_check: bool = True
 
     def __post_init__(self) -> None:
         self.base_dir = normalise(self.base_dir)
@@ -75,6 +77,8 @@ class BuildContext:
     @property
     def out_dir(self) -> Path:
         """The output folder."""
+        if self.output_override is not None:
+            return self.output_override
         return self.resolve(self.manifest.output.folder)
 
     @property

@@ -14,6 +14,7 @@ from pathlib import Path
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.loader import run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
+from mjcfbuild.engine.report import write_report
 from mjcfbuild.engine.tasks import build_tasks, planning_tasks
 from mjcfbuild.errors import MjcfbuildError, OutputError
 from mjcfbuild.fsutil import remove_stale_temp_files, write_if_changed
@@ -95,6 +96,8 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
                 doit_output += _run_stage(ctx, tasks, progress, result)
                 if not result.errors:
                     _remove_stale_products(ctx, tasks)
+                if ctx.robot_path.exists():
+                    write_report(ctx, list(dict.fromkeys(ctx.warnings)))
             if ctx.cache_grew:
                 _prune_cache(ctx)
     finally:

@@ -64,6 +64,10 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
     ]
     tasks.append(_assemble_task(ctx, plan, sorted(roles), decomposed, collision, prefix))
     tasks.append(_scene_task(ctx, plan, prefix))
+    if ctx.manifest.check.enabled and ctx.run_check:
+        tasks.append(_check_task(ctx, prefix))
+        if ctx.manifest.check.previews:
+            tasks.append(_previews_task(ctx, prefix))
     return tasks
 
 
@@ -374,6 +378,61 @@ def _assemble_task(
         ],
         targets=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT)],
         params=params,
+    )
+
+
+CHECK_RESULTS = "check.json"
+
+
+def report_dir(ctx: BuildContext) -> Path:
+    """Where the human report, report.json and the previews go."""
+    return ctx.out_dir / "report"
+
+
+def _check_task(ctx: BuildContext, prefix: str) -> dict:
+    settings = ctx.manifest.check
+    options = {
+        "configurations": settings.configurations,
+        "position_tolerance": settings.position_tolerance,
+        "rotation_tolerance": settings.rotation_tolerance,
+        "steps": settings.steps,
+        "seed": 0,
+    }
+    payload = {
+        "plan": str(ctx.state(PLAN)),
+        "assembly_report": str(ctx.state(ASSEMBLY_REPORT)),
+        "model": str(ctx.robot_path),
+        "model_label": ctx.label(ctx.robot_path),
+        "scene": str(ctx.scene_path),
+        "options": options,
+        "output": str(ctx.state(CHECK_RESULTS)),
+    }
+    return _task(
+        ctx,
+        f"{prefix}check",
+        f"check {ctx.manifest.robot_file}",
+        "check",
+        payload,
+        in_worker=True,
+        file_dep=[ctx.robot_path, ctx.scene_path, ctx.state(PLAN), ctx.state(ASSEMBLY_REPORT)],
+        targets=[ctx.state(CHECK_RESULTS)],
+        params={"options": options},
+    )
+
+
+def _previews_task(ctx: BuildContext, prefix: str) -> dict:
+    folder = report_dir(ctx) / "previews"
+    payload = {"model": str(ctx.robot_path), "folder": str(folder)}
+    return _task(
+        ctx,
+        f"{prefix}previews",
+        "previews",
+        "previews",
+        payload,
+        in_worker=True,
+        file_dep=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT)],
+        targets=[],
+        params={"folder": str(folder)},
     )
 
 

@@ -53,16 +53,19 @@ def outputs_intact(hashes: HashCache) -> Callable:
     def check(task, values) -> bool | None:
         outputs = values.get("outputs")
         if outputs is None:
+            check.reason = "it has not run in this output folder yet"
             return False
         for path, digest in outputs.items():
             try:
                 if hashes.md5(path) != digest:
+                    check.reason = f"output edited since it was built: {path}"
                     return False
             except OSError:
+                check.reason = f"output deleted since it was built: {path}"
                 return False
         return True
 
-    check.__repr__ = lambda: "outputs"  # type: ignore[method-assign]
+    check.reason = ""  # type: ignore[attr-defined]
     return check
 
 

@@ -8,7 +8,16 @@ from importlib import metadata
 from mjcfbuild import __version__
 
 # Bump a step's number when its output for the same inputs changes.
-STEP_FORMATS = {"expand": 1, "plan": 1, "mesh": 2, "decompose": 1, "assemble": 2, "scene": 1}
+STEP_FORMATS = {
+    "expand": 1,
+    "plan": 2,
+    "mesh": 2,
+    "decompose": 1,
+    "assemble": 3,
+    "scene": 2,
+    "check": 1,
+    "previews": 1,
+}
 
 STEP_TOOLS = {
     "expand": ("xacro",),
@@ -16,7 +25,9 @@ STEP_TOOLS = {
     "mesh": ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"),
     "decompose": ("coacd", "trimesh", "numpy", "scipy"),
     "assemble": ("mujoco", "numpy", "lxml"),
-    "scene": (),
+    "scene": ("lxml",),
+    "check": ("mujoco", "numpy"),
+    "previews": ("mujoco", "numpy", "pillow"),
 }
 
 

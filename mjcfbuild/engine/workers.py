@@ -25,6 +25,9 @@ class _Worker:
     def __init__(self, cwd: Path, stderr_log: Path) -> None:
         env = dict(os.environ)
         env.setdefault("PYTHONHASHSEED", "0")
+        if sys.platform.startswith("linux"):
+            # Offscreen rendering (previews) without a display; must be set before import mujoco.
+            env.setdefault("MUJOCO_GL", "egl")
         package_root = str(Path(__file__).resolve().parents[2])
         env["PYTHONPATH"] = os.pathsep.join(filter(None, [package_root, env.get("PYTHONPATH")]))
         with open(stderr_log, "ab") as stderr:

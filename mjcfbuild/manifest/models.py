@@ -350,6 +350,19 @@ class Ros2ControlSettings(StrictModel):
     )
 
 
+class CheckSettings(StrictModel):
+    """The check that ends every build (also ``mjcfbuild check``)."""
+
+    enabled: bool = Field(True, description="Check the model against the URDF after building.")
+    previews: bool = Field(True, description="Render preview pictures for the report.")
+    configurations: int = Field(
+        20, ge=1, description="Random joint configurations for the kinematics check."
+    )
+    position_tolerance: float = Field(1e-6, gt=0, description="Largest link position error (m).")
+    rotation_tolerance: float = Field(1e-6, gt=0, description="Largest link rotation error (rad).")
+    steps: int = Field(2000, ge=1, description="Zero-control simulation steps.")
+
+
 class Scene(StrictModel):
     """The scene file written next to the robot: floor, light and sky around the robot.
 
@@ -414,6 +427,7 @@ class Manifest(StrictModel):
     cache: CacheSettings = Field(default_factory=CacheSettings)
     mujoco_inputs: MujocoInputs = Field(default_factory=MujocoInputs)
     ros2_control: Ros2ControlSettings = Field(default_factory=Ros2ControlSettings)
+    check: CheckSettings = Field(default_factory=CheckSettings)
     scene: Scene = Field(default_factory=Scene)
     output: Output = Field(default_factory=Output)
 

@@ -74,6 +74,7 @@ def run(payload: dict) -> dict:
         os.rmdir(assets_dir)
     report = {
         "assets": sorted(assembly.assets),
+        "asset_md5": {name: outputs[str(assets_dir / name)] for name in sorted(assembly.assets)},
         "repairs": [repair.__dict__ for repair in assembly.repairs],
         "warnings": assembly.warnings,
         "bodies": assembly.bodies,

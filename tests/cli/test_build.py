@@ -9,14 +9,14 @@ from tests.conftest import simple_manifest, two_link_urdf, write
 def test_build_prints_progress_then_summary(cli, arm):
     result = cli("build", "-j", "2", cwd=arm)
     assert result.code == EXIT_OK, result.stderr
-    assert "mesh base" in result.stdout
+    assert "mesh base" in result.stdout and "check example_arm.xml" in result.stdout
     assert (
         result.stdout.strip()
         .splitlines()[-1]
-        .startswith("mjcfbuild: built example_arm.xml: 8 run, 0 up to date")
+        .startswith("mjcfbuild: built example_arm.xml: 10 run, 0 up to date")
     )
     again = cli("build", cwd=arm)
-    assert "0 run, 8 up to date" in again.stdout
+    assert "0 run, 10 up to date" in again.stdout
     assert again.stdout.count("\n") == 1
 
 

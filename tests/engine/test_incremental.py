@@ -26,7 +26,8 @@ ALL_ARM_TASKS = {
 
 
 def build(folder, jobs=2):
-    return mjcfbuild.build(folder / "robot.yaml", jobs=jobs)
+    # The check and previews are left out here; test_check_follows_the_model covers them.
+    return mjcfbuild.build(folder / "robot.yaml", jobs=jobs, check=False)
 
 
 @pytest.fixture
@@ -146,3 +147,19 @@ def test_a_failed_build_leaves_no_output_that_looks_current(built_arm):
     finger.write_bytes(good)
     result = build(built_arm)
     assert "mesh:finger" in result.ran and robot.read_bytes() == before
+
+
+def test_check_follows_the_model(arm):
+    ran = mjcfbuild.build(arm / "robot.yaml", jobs=2).ran
+    assert {"check", "previews"} <= set(ran)
+    assert mjcfbuild.build(arm / "robot.yaml", jobs=2).ran == []
+    mesh = arm / "meshes" / "finger.stl"
+    data = bytearray(mesh.read_bytes())
+    data[84 + 12] ^= 0x01
+    mesh.write_bytes(bytes(data))
+    assert sorted(mjcfbuild.build(arm / "robot.yaml", jobs=2).ran) == [
+        "assemble",
+        "check",
+        "mesh:finger",
+        "previews",
+    ]

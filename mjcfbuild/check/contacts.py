@@ -1,0 +1,57 @@
+"""Geoms already touching at rest: listed, with the contact excludes that would silence them."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass
+class RestingContact:
+    """Two bodies whose collision geoms touch at the zero (or home) configuration."""
+
+    body1: str
+    body2: str
+    depth: float
+    pose: str
+
+
+def resting_contacts(model) -> list[RestingContact]:
+    """Body pairs in contact at qpos0 and, if the model has one, at the 'home' keyframe."""
+    import mujoco
+
+    found: dict[tuple[str, str], RestingContact] = {}
+    data = mujoco.MjData(model)
+    poses = [("zero", None)]
+    home = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home")
+    if home >= 0:
+        poses.append(("home", home))
+    for label, key in poses:
+        mujoco.mj_resetData(model, data)
+        if key is not None:
+            mujoco.mj_resetDataKeyframe(model, data, key)
+        mujoco.mj_forward(model, data)
+        for contact in data.contact[: data.ncon]:
+            if mujoco.mjtGeom.mjGEOM_PLANE in (
+                model.geom_type[contact.geom1],
+                model.geom_type[contact.geom2],
+            ):
+                continue  # the scene's floor, not the robot
+            bodies = sorted(
+                mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, model.geom_bodyid[g]) or "world"
+                for g in (contact.geom1, contact.geom2)
+            )
+            pair = (bodies[0], bodies[1])
+            if pair[0] == pair[1] or pair in found:
+                continue
+            found[pair] = RestingContact(pair[0], pair[1], float(-contact.dist), label)
+    return sorted(found.values(), key=lambda c: (c.body1, c.body2))
+
+
+def exclude_suggestion(contacts: list[RestingContact]) -> str:
+    """A ``<contact>`` block excluding the pairs, ready for raw inputs."""
+    if not contacts:
+        return ""
+    lines = ["<contact>"]
+    lines += [f'  <exclude body1="{c.body1}" body2="{c.body2}"/>' for c in contacts]
+    lines.append("</contact>")
+    return "\n".join(lines)

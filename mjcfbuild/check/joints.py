@@ -1,0 +1,75 @@
+"""Joint types, axes and ranges of the model against the URDF's."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mjcfbuild.urdf.kinematics import link_poses
+from mjcfbuild.urdf.model import Robot
+from mjcfbuild.urdf.transforms import apply
+
+EXPECTED_TYPES = {
+    "revolute": "hinge",
+    "continuous": "hinge",
+    "prismatic": "slide",
+    "floating": "free",
+}
+
+
+def compare_joints(robot: Robot, model, tolerance: float = 1e-6) -> list[str]:
+    """Problems with the model's joints, each naming the joint and the numbers."""
+    import mujoco
+
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    poses = link_poses(robot)
+    problems = []
+    for joint in robot.joints:
+        expected = EXPECTED_TYPES.get(joint.kind)
+        if expected is None:
+            continue
+        index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint.name)
+        if index < 0:
+            problems.append(f"joint '{joint.name}' ({joint.kind}) is missing from the model")
+            continue
+        kind = mujoco.mjtJoint(model.jnt_type[index]).name.removeprefix("mjJNT_").lower()
+        if kind != expected:
+            problems.append(f"joint '{joint.name}': {joint.kind} in the URDF, {kind} in the model")
+            continue
+        if kind == "free":
+            continue
+        # Axes in world coordinates at the zero configuration, so any body frame convention works.
+        norm = math.sqrt(sum(a * a for a in joint.axis))
+        urdf_axis = np.array(
+            apply(poses[joint.child].rotation, tuple(a / norm for a in joint.axis))
+        )
+        model_axis = data.xaxis[index]
+        if np.linalg.norm(urdf_axis - model_axis) > tolerance:
+            problems.append(
+                f"joint '{joint.name}': axis {_vector(urdf_axis)} in the URDF, "
+                f"{_vector(model_axis)} in the model (world frame, zero configuration)"
+            )
+        limited = bool(model.jnt_limited[index])
+        limit = joint.limit
+        if joint.kind == "continuous" or limit is None or limit.lower is None:
+            if limited:
+                problems.append(
+                    f"joint '{joint.name}' is unlimited in the URDF but has range "
+                    f"{_vector(model.jnt_range[index])} in the model"
+                )
+            continue
+        if limit.upper is not None and limit.upper > limit.lower:
+            expected_range = np.array([limit.lower, limit.upper])
+            if not limited or np.max(np.abs(model.jnt_range[index] - expected_range)) > tolerance:
+                shown = _vector(model.jnt_range[index]) if limited else "no range"
+                problems.append(
+                    f"joint '{joint.name}': range {_vector(expected_range)} in the URDF, "
+                    f"{shown} in the model"
+                )
+    return problems
+
+
+def _vector(values) -> str:
+    return "(" + ", ".join(f"{float(v):.6g}" for v in values) + ")"

@@ -1,0 +1,165 @@
+"""``mjcfbuild check``: prove a built model against its URDF, or say whether outputs are stale."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from mjcfbuild.cli import report_error
+from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, CheckError, ManifestError, UsageError
+
+
+def add_parser(commands) -> None:
+    """Register the subcommand."""
+    parser = commands.add_parser(
+        "check",
+        help="check a built model against its URDF, or whether outputs are up to date",
+        description=(
+            "Check the model a manifest builds (or any MJCF against any URDF) with code "
+            "independent of MuJoCo's URDF import: it loads and simulates, every link is where "
+            "the URDF puts it, joints, masses and inertias match. With --up-to-date, say "
+            "whether the outputs still match their inputs, without building."
+        ),
+    )
+    parser.add_argument("manifest", nargs="?", default="robot.yaml")
+    parser.add_argument("--urdf", help="check this URDF against --mjcf, without a manifest")
+    parser.add_argument("--mjcf", help="the MuJoCo model to check against --urdf")
+    parser.add_argument(
+        "--up-to-date",
+        action="store_true",
+        help="exit with 6, naming what is stale, when the outputs no longer match their inputs",
+    )
+    parser.add_argument("--configurations", type=int, default=None, help="default: 20")
+    parser.add_argument("--tolerance", type=float, default=None, help="metres and radians; 1e-6")
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Dispatch to one of the three modes."""
+    if args.urdf or args.mjcf:
+        if not (args.urdf and args.mjcf):
+            raise UsageError("--urdf and --mjcf go together")
+        return _pair(args)
+    from mjcfbuild.engine.context import BuildContext
+
+    path = Path(args.manifest)
+    try:
+        ctx = BuildContext.from_manifest_file(path)
+    except ManifestError as error:
+        report_error(error, args.debug, base_dir=path.resolve().parent)
+        return error.exit_code
+    if args.up_to_date:
+        return _up_to_date(ctx)
+    return _manifest(ctx, args)
+
+
+def _options(args, settings=None):
+    from mjcfbuild.check.model_check import CheckOptions
+
+    configurations = args.configurations or (settings.configurations if settings else 20)
+    tolerance_p = args.tolerance or (settings.position_tolerance if settings else 1e-6)
+    tolerance_r = args.tolerance or (settings.rotation_tolerance if settings else 1e-6)
+    steps = settings.steps if settings else 2000
+    return CheckOptions(configurations, 0, tolerance_p, tolerance_r, steps)
+
+
+def _print(report, label: str) -> int:
+    results = report.results
+    print(f"mjcfbuild check: {label}")
+    if results.get("loads"):
+        simulation = results["simulation"]
+        kinematics = results["kinematics"]
+        masses = results["masses"]
+        contacts = results["resting_contacts"]["pairs"]
+        print("  loads                 yes")
+        print(
+            f"  {simulation['steps']} steps            "
+            f"{'finite' if simulation['finite'] else 'NOT FINITE'}, "
+            f"{len(simulation['warnings'])} MuJoCo warnings"
+        )
+        print(
+            f"  link poses            max {kinematics['max_position_error']:.2g} m, "
+            f"{kinematics['max_rotation_error']:.2g} rad at {kinematics['configurations']} "
+            f"configurations"
+        )
+        print(f"  joints                {len(results['joints']['problems'])} problems")
+        print(
+            f"  masses                {masses['model_total']:.6g} kg "
+            f"(URDF {masses['urdf_total']:.6g} kg), {len(masses['problems'])} problems"
+        )
+        print(f"  resting contacts      {len(contacts) or 'none'}")
+        if contacts:
+            print(results["resting_contacts"]["exclude"])
+    for failure in report.failures:
+        print(f"mjcfbuild: check failed: {failure}", file=sys.stderr)
+    print(
+        "mjcfbuild: check passed"
+        if report.passes
+        else f"mjcfbuild: {len(report.failures)} check(s) failed"
+    )
+    return EXIT_OK if report.passes else EXIT_CHECK
+
+
+def _pair(args) -> int:
+    from mjcfbuild.check.model_check import check_model
+    from mjcfbuild.errors import InputError
+    from mjcfbuild.urdf.parse import parse_urdf
+
+    urdf, mjcf = Path(args.urdf), Path(args.mjcf)
+    for path in (urdf, mjcf):
+        if not path.is_file():
+            raise InputError("file not found", file=path)
+    robot = parse_urdf(urdf.read_bytes(), str(urdf))
+    return _print(check_model(robot, mjcf, mjcf, set(), _options(args)), f"{mjcf} against {urdf}")
+
+
+def _manifest(ctx, args) -> int:
+    import json
+
+    from mjcfbuild.check.model_check import check_model
+    from mjcfbuild.engine.report import write_report
+    from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN
+    from mjcfbuild.urdf.model import robot_from_dict
+
+    if not ctx.robot_path.exists() or not ctx.state(PLAN).exists():
+        raise CheckError(
+            "nothing to check: the model has not been built in this output folder",
+            file=ctx.label(ctx.robot_path),
+            hint=f"run mjcfbuild build {ctx.manifest_label}",
+        )
+    robot = robot_from_dict(json.loads(ctx.state(PLAN).read_text())["robot"])
+    try:
+        repairs = json.loads(ctx.state(ASSEMBLY_REPORT).read_text()).get("repairs", [])
+    except (OSError, ValueError):
+        repairs = []
+    report = check_model(
+        robot,
+        ctx.robot_path,
+        ctx.scene_path if ctx.scene_path.exists() else None,
+        {r["body"] for r in repairs},
+        _options(args, ctx.manifest.check),
+    )
+    data = {"passes": report.passes, "failures": report.failures, **report.results}
+    ctx.state(CHECK_RESULTS).write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
+    folder = write_report(ctx, [])
+    code = _print(report, ctx.label(ctx.robot_path))
+    print(f"  report: {ctx.label(folder / 'report.md')}")
+    return code
+
+
+def _up_to_date(ctx) -> int:
+    from mjcfbuild.engine.freshness import stale_outputs
+
+    stale = stale_outputs(ctx)
+    if not stale:
+        print(f"mjcfbuild: {ctx.label(ctx.out_dir)} is up to date")
+        return EXIT_OK
+    for line in stale:
+        print(f"mjcfbuild: stale: {line}", file=sys.stderr)
+    print(
+        f"mjcfbuild: {ctx.label(ctx.out_dir)} is out of date; run mjcfbuild build "
+        f"{ctx.manifest_label}",
+        file=sys.stderr,
+    )
+    return EXIT_CHECK

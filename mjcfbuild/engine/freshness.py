@@ -1,0 +1,88 @@
+"""Are the outputs in an output folder still what their inputs build? Answered without
+touching them.
+
+Where the folder has its build database (a working copy someone built in), doit's own
+up-to-date test answers it, task by task, with the reason. In a fresh clone (outputs committed,
+no database), the build runs into a temporary folder - fast, through the shared cache - and its
+files are compared byte for byte with the committed ones.
+"""
+
+from __future__ import annotations
+
+import tempfile
+from dataclasses import replace
+from pathlib import Path
+
+from mjcfbuild.engine.context import BuildContext
+from mjcfbuild.engine.loader import DATABASE
+from mjcfbuild.engine.tasks import PLAN, build_tasks, planning_tasks
+
+REPORT_TASKS = ("check", "previews")
+
+
+def stale_outputs(ctx: BuildContext) -> list[str]:
+    """What is stale, one line each; empty when everything is up to date."""
+    if ctx.state(DATABASE).exists() and ctx.state(PLAN).exists():
+        return _from_database(ctx)
+    return _by_rebuilding(ctx)
+
+
+def _from_database(ctx: BuildContext) -> list[str]:
+    from mjcfbuild.engine.status import task_statuses
+
+    ctx.run_check = False
+    planning = task_statuses(ctx, planning_tasks(ctx))
+    statuses = planning
+    if all(status.up_to_date for status in planning):
+        statuses = task_statuses(ctx, build_tasks(ctx))
+    return [
+        f"{status.title}: {'; '.join(status.reasons)}"
+        for status in statuses
+        if not status.up_to_date and status.name.split(":")[0] not in REPORT_TASKS
+    ]
+
+
+def _by_rebuilding(ctx: BuildContext) -> list[str]:
+    from mjcfbuild.engine.progress import Progress
+    from mjcfbuild.engine.runner import run_build
+
+    with tempfile.TemporaryDirectory(prefix="mjcfbuild-fresh-") as scratch:
+        shadow = replace(
+            ctx,
+            output_override=Path(scratch) / "out",
+            run_check=False,
+            failures={},
+            warnings=[],
+            timings={},
+            notes={},
+        )
+        result = run_build(shadow, Progress(quiet=True))
+        if result.errors:
+            return [f"the inputs do not build: {result.errors[0].one_line()}"]
+        return _compare(ctx.out_dir, shadow.out_dir, ctx)
+
+
+def _files(folder: Path) -> dict[str, Path]:
+    if not folder.is_dir():
+        return {}
+    return {
+        str(path.relative_to(folder)): path
+        for path in folder.rglob("*")
+        if path.is_file()
+        and not {".mjcfbuild", "report"} & set(path.relative_to(folder).parts)
+        and not path.name.startswith(".")
+    }
+
+
+def _compare(actual: Path, expected: Path, ctx: BuildContext) -> list[str]:
+    have, want = _files(actual), _files(expected)
+    stale = []
+    for name in sorted(want):
+        label = ctx.label(actual / name)
+        if name not in have:
+            stale.append(f"{label} is missing")
+        elif have[name].read_bytes() != want[name].read_bytes():
+            stale.append(f"{label} differs from what its inputs build")
+    for name in sorted(set(have) - set(want)):
+        stale.append(f"{ctx.label(actual / name)} is no longer built")
+    return stale

@@ -1,0 +1,183 @@
+"""The build report: ``report/report.json`` and ``report/report.md`` in the output folder.
+
+It gathers what the build steps recorded - the check results, inertia repairs, warnings, mesh
+statistics, the time each task took when it last ran, and the preview pictures - into one
+machine-readable file and one page people can read. The report describes the last build on
+this machine (its times differ from run to run), so its folder ignores itself in git.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from mjcfbuild.engine.context import BuildContext
+from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, report_dir
+from mjcfbuild.fsutil import write_if_changed
+
+TIMINGS = "timings.json"
+PREVIEW_ORDER = ("front_visual", "side_visual", "front_collision", "side_collision")
+
+
+def record_timings(ctx: BuildContext) -> dict[str, float]:
+    """Merge this build's task times into the stored ones; all of them."""
+    path = ctx.state(TIMINGS)
+    try:
+        timings = json.loads(path.read_text())
+    except (OSError, ValueError):
+        timings = {}
+    timings.update({name: round(seconds, 3) for name, seconds in ctx.timings.items()})
+    write_if_changed(path, (json.dumps(dict(sorted(timings.items())), indent=1) + "\n").encode())
+    return timings
+
+
+def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
+    """Write report.json and report.md; the folder they are in."""
+    folder = report_dir(ctx)
+    folder.mkdir(parents=True, exist_ok=True)
+    write_if_changed(folder / ".gitignore", b"# the report of the last build on this machine\n*\n")
+    check = _read(ctx.state(CHECK_RESULTS))
+    assembly = _read(ctx.state(ASSEMBLY_REPORT))
+    previews = sorted(
+        (p.name for p in (folder / "previews").glob("*.png")),
+        key=lambda n: PREVIEW_ORDER.index(n[:-4]) if n[:-4] in PREVIEW_ORDER else 99,
+    )
+    report = {
+        "robot": ctx.manifest.name,
+        "model": ctx.manifest.robot_file,
+        "scene": ctx.manifest.output.scene,
+        "check": check,
+        "repairs": assembly.get("repairs", []),
+        "warnings": warnings,
+        "bodies": assembly.get("bodies"),
+        "geoms": assembly.get("geoms"),
+        "assets": assembly.get("assets", []),
+        "times": record_timings(ctx),
+        "previews": [f"previews/{name}" for name in previews],
+    }
+    write_if_changed(
+        folder / "report.json", (json.dumps(report, indent=1, sort_keys=True) + "\n").encode()
+    )
+    write_if_changed(folder / "report.md", markdown(report).encode())
+    return folder
+
+
+def _read(path: Path) -> dict:
+    try:
+        return json.loads(path.read_text())
+    except (OSError, ValueError):
+        return {}
+
+
+def markdown(report: dict) -> str:
+    """The human report."""
+    lines = [f"# {report['robot']}: build report", ""]
+    lines.append(
+        f"Model `{report['model']}` ({report.get('bodies') or '?'} bodies, "
+        f"{report.get('geoms') or '?'} geoms, {len(report['assets'])} asset files), "
+        f"scene `{report['scene']}`."
+    )
+    lines.append("")
+    lines += _checks(report.get("check") or {})
+    if report["repairs"]:
+        lines += [
+            "## Inertia repairs",
+            "",
+            "| body | problem | before | after |",
+            "|---|---|---|---|",
+        ]
+        lines += [
+            f"| {r['body']} | {r['problem']} | {r['before']} | {r['after']} |"
+            for r in report["repairs"]
+        ]
+        lines.append("")
+    if report["warnings"]:
+        lines += ["## Warnings", ""] + [f"- {w}" for w in report["warnings"]] + [""]
+    meshes = (report.get("check") or {}).get("meshes") or []
+    if meshes:
+        lines += [
+            "## Meshes",
+            "",
+            "| body | visual vertices | visual faces | collision vertices | collision faces "
+            "| convex parts |",
+            "|---|---:|---:|---:|---:|---:|",
+        ]
+        lines += [
+            f"| {m['body']} | {m['visual_vertices']} | {m['visual_faces']} | "
+            f"{m['collision_vertices']} | {m['collision_faces']} | {m['convex_parts']} |"
+            for m in meshes
+        ]
+        lines.append("")
+    if report["times"]:
+        lines += [
+            "## Build times (when each task last ran)",
+            "",
+            "| task | seconds |",
+            "|---|---:|",
+        ]
+        lines += [f"| {task} | {seconds:.2f} |" for task, seconds in report["times"].items()]
+        lines.append("")
+    if report["previews"]:
+        lines += ["## Previews", ""]
+        lines += [f"![{Path(p).stem.replace('_', ' ')}]({p})" for p in report["previews"]]
+        lines.append("")
+    return "\n".join(lines)
+
+
+def _checks(check: dict) -> list[str]:
+    if not check:
+        return [
+            "## Checks",
+            "",
+            "Not run (check.enabled is false, or the build stopped before).",
+            "",
+        ]
+    verdict = "all checks pass" if check.get("passes") else "**checks failed**"
+    lines = ["## Checks", "", f"Result: {verdict}.", ""]
+    for failure in check.get("failures", []):
+        lines.append(f"- {failure}")
+    if check.get("failures"):
+        lines.append("")
+    kinematics = check.get("kinematics", {})
+    simulation = check.get("simulation", {})
+    masses = check.get("masses", {})
+    lines += ["| check | result |", "|---|---|"]
+    lines.append(f"| loads | {'yes' if check.get('loads') else 'no'} |")
+    if simulation:
+        lines.append(
+            f"| {simulation['steps']} zero-control steps of {simulation['model']} | "
+            f"{'finite' if simulation['finite'] else 'NOT finite'}, "
+            f"{len(simulation['warnings'])} MuJoCo warnings |"
+        )
+    if kinematics:
+        lines.append(
+            f"| link poses at {kinematics['configurations']} configurations | max error "
+            f"{kinematics['max_position_error']:.2g} m, "
+            f"{kinematics['max_rotation_error']:.2g} rad; "
+            f"{len(kinematics['missing_links'])} links missing |"
+        )
+    joint_problems = len(check.get("joints", {}).get("problems", []))
+    lines.append(f"| joint types, axes, ranges | {joint_problems} problems |")
+    if masses:
+        lines.append(
+            f"| masses and inertias | total {masses['urdf_total']:.6g} kg in the URDF, "
+            f"{masses['model_total']:.6g} kg in the model; {len(masses['problems'])} problems |"
+        )
+    lines.append("")
+    contacts = check.get("resting_contacts", {})
+    if contacts.get("pairs"):
+        lines += ["### Bodies in contact at rest", ""]
+        lines += [
+            f"- {p['body1']} and {p['body2']} ({p['pose']} pose, {p['depth']:.3g} m deep)"
+            for p in contacts["pairs"]
+        ]
+        lines += [
+            "",
+            "To let them be, add to the raw inputs:",
+            "",
+            "```xml",
+            contacts["exclude"],
+            "```",
+            "",
+        ]
+    return lines

@@ -1,0 +1,82 @@
+"""Which tasks of a build would run, and why, without running anything.
+
+This is doit's own up-to-date test (the one ``doit info`` uses), read against the build's
+database and put in words: which input changed, which parameter, which output was edited or
+deleted. ``mjcfbuild check --up-to-date`` and ``mjcfbuild explain`` are built on it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from mjcfbuild.engine.context import BuildContext
+from mjcfbuild.engine.uptodate import ParamsUnchanged
+
+
+@dataclass
+class TaskStatus:
+    """Whether one task is up to date, and the reasons if it is not."""
+
+    name: str
+    title: str
+    up_to_date: bool
+    reasons: list[str] = field(default_factory=list)
+
+
+def task_statuses(ctx: BuildContext, tasks: list[dict]) -> list[TaskStatus]:
+    """The status of every task in ``tasks`` against the database of ``ctx``'s output folder."""
+    from doit.dependency import Dependency, SqliteDB
+    from doit.task import dict_to_task
+
+    from mjcfbuild.engine.checker import checker_class
+    from mjcfbuild.engine.loader import DATABASE
+
+    objects = [dict_to_task(dict(task)) for task in tasks]
+    by_name = {task.name: task for task in objects}
+    manager = Dependency(SqliteDB, str(ctx.state(DATABASE)), checker_cls=checker_class(ctx.hashes))
+    try:
+        result = []
+        for task in objects:
+            status = manager.get_status(task, by_name, get_log=True)
+            values = manager.get_values(task.name)
+            reasons = _reasons(status, task, values, ctx)
+            result.append(
+                TaskStatus(task.name, task.title(), status.status == "up-to-date", reasons)
+            )
+        return result
+    finally:
+        manager.close()
+
+
+def _reasons(status, task, values: dict, ctx: BuildContext) -> list[str]:
+    if status.status == "up-to-date":
+        return []
+    if not values:
+        return ["it has not run in this output folder yet"]
+    reasons = []
+    log = status.reasons
+    for path in log.get("changed_file_dep", []):
+        reasons.append(f"input changed: {ctx.label(path)}")
+    for path in log.get("added_file_dep", []):
+        reasons.append(f"new input: {ctx.label(path)}")
+    for path in log.get("removed_file_dep", []):
+        reasons.append(f"input no longer used: {ctx.label(path)}")
+    for path in log.get("missing_target", []):
+        reasons.append(f"output missing: {ctx.label(path)}")
+    for check, _, _ in log.get("uptodate_false", []):
+        if isinstance(check, ParamsUnchanged):
+            changed = check.changes(values)
+            reasons.append("parameters changed: " + ", ".join(changed[:8]))
+        elif getattr(check, "reason", None):
+            reasons.append(_relabel(check.reason, ctx))
+        else:
+            reasons.append("asked to run every time")
+    if status.error_reason and not reasons:
+        reasons.append(status.error_reason)
+    return reasons or ["doit reports it out of date"]
+
+
+def _relabel(reason: str, ctx: BuildContext) -> str:
+    """Show an absolute path at the end of a reason relative to the manifest's folder."""
+    head, sep, path = reason.rpartition(": ")
+    return f"{head}{sep}{ctx.label(path)}" if sep and path.startswith("/") else reason

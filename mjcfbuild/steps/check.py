@@ -1,0 +1,52 @@
+"""Step ``check``: prove the built model against its URDF (see mjcfbuild.check)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from mjcfbuild.check.model_check import CheckOptions, check_model
+from mjcfbuild.errors import CheckError
+from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.urdf.model import robot_from_dict
+
+
+def run(payload: dict) -> dict:
+    """Check the model; write the results (also when a check fails, for the report)."""
+    plan = json.loads(Path(payload["plan"]).read_text())
+    robot = robot_from_dict(plan["robot"])
+    try:
+        assembly = json.loads(Path(payload["assembly_report"]).read_text())
+    except (OSError, ValueError):
+        assembly = {}
+    repaired = {repair["body"] for repair in assembly.get("repairs", [])}
+    report = check_model(
+        robot,
+        Path(payload["model"]),
+        Path(payload["scene"]),
+        repaired,
+        CheckOptions(**payload["options"]),
+    )
+    outputs: dict[str, str] = {}
+    data = {"passes": report.passes, "failures": report.failures, **report.results}
+    write_output(
+        Path(payload["output"]),
+        (json.dumps(data, indent=1, sort_keys=True) + "\n").encode(),
+        outputs,
+    )
+    if report.failures:
+        more = len(report.failures) - 1
+        raise CheckError(
+            f"check: {report.failures[0]}",
+            file=payload["model_label"],
+            hint=f"{more} more failure{'s' if more > 1 else ''} in the report" if more else None,
+        )
+    notes = []
+    pairs = report.results.get("resting_contacts", {}).get("pairs", [])
+    if pairs:
+        listed = ", ".join(f"{p['body1']}/{p['body2']}" for p in pairs[:5])
+        notes.append(
+            f"{len(pairs)} body pair{'s' if len(pairs) > 1 else ''} in contact at rest ({listed}"
+            f"{', ...' if len(pairs) > 5 else ''}); report.md has a ready contact exclude"
+        )
+    return {"outputs": outputs, "warnings": notes}

@@ -1,0 +1,86 @@
+"""``mjcfbuild check``: any URDF/MJCF pair, the build's check task, --up-to-date, the report."""
+
+from __future__ import annotations
+
+import shutil
+
+import numpy as np
+from PIL import Image
+
+import mjcfbuild
+from mjcfbuild.errors import EXIT_CHECK, EXIT_OK
+from tests.conftest import copy_example, run_cli, write
+
+URDF = """<robot name="pendulum">
+  <link name="base"/>
+  <link name="arm"><inertial><origin xyz="0 0 -0.5"/><mass value="1"/>
+    <inertia ixx="0.02" iyy="0.02" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="swing" type="revolute"><parent link="base"/><child link="arm"/>
+    <origin xyz="0 0 1"/><axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"""
+
+# Written by hand: the body frame sits at the centre of mass, not at the joint.
+MJCF = """<mujoco><compiler angle="radian"/><worldbody>
+  <site name="base"/>
+  <body name="arm" pos="0 0 1">
+    <joint name="swing" axis="0 1 0" range="-1 1"/>
+    <inertial pos="0 0 -0.5" mass="1" diaginertia="0.02 0.02 0.001"/>
+    <geom type="capsule" fromto="0 0 0 0 0 -1" size="0.02" contype="0" conaffinity="0"/>
+  </body>
+</worldbody></mujoco>"""
+
+
+def test_any_urdf_against_a_hand_written_mjcf(tmp_path):
+    write(tmp_path / "p.urdf", URDF)
+    write(tmp_path / "p.xml", MJCF)
+    result = run_cli("check", "--urdf", "p.urdf", "--mjcf", "p.xml", cwd=tmp_path)
+    assert result.code == EXIT_OK, result.stdout + result.stderr
+    write(tmp_path / "bad.xml", MJCF.replace('mass="1"', 'mass="2"'))
+    result = run_cli("check", "--urdf", "p.urdf", "--mjcf", "bad.xml", cwd=tmp_path)
+    assert result.code == EXIT_CHECK
+    assert "body 'arm': mass 1 in the URDF (links arm), 2 in the model" in result.stderr
+
+
+def test_build_ends_with_the_check_and_a_report_with_pictures(tmp_path):
+    arm = copy_example("arm", tmp_path)
+    result = mjcfbuild.build(arm / "robot.yaml", jobs=2)
+    assert "check" in result.ran and "previews" in result.ran
+    report = arm / "mjcf" / "report"
+    text = (report / "report.md").read_text()
+    assert (
+        "Result: all checks pass." in text and "![front visual](previews/front_visual.png)" in text
+    )
+    images = {p.stem: np.asarray(Image.open(p)) for p in (report / "previews").glob("*.png")}
+    assert sorted(images) == ["front_collision", "front_visual", "side_collision", "side_visual"]
+    for name, pixels in images.items():
+        background = np.all(pixels == [235, 235, 235], axis=-1)
+        assert 0.02 < 1 - background.mean() < 0.9, name  # the robot is there, not everywhere
+    assert not np.array_equal(images["front_visual"], images["side_visual"])
+    assert not np.array_equal(images["front_visual"], images["front_collision"])
+    assert (report / ".gitignore").read_text().endswith("*\n")
+
+
+def test_no_check_skips_it(tmp_path):
+    arm = copy_example("arm", tmp_path)
+    result = run_cli("build", "--no-check", "-q", cwd=arm)
+    assert result.code == EXIT_OK
+    assert not (arm / "mjcf" / "report" / "previews").exists()
+
+
+def test_up_to_date_with_and_without_the_build_database(tmp_path):
+    arm = copy_example("arm", tmp_path)
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == EXIT_OK
+    assert run_cli("check", "--up-to-date", cwd=arm).code == EXIT_OK
+    limits = arm / "config" / "joint_limits.yaml"
+    limits.write_text(limits.read_text().replace("upper: 2.5", "upper: 2.4"))
+    stale = run_cli("check", "--up-to-date", cwd=arm)
+    assert stale.code == EXIT_CHECK
+    assert "input changed: config/joint_limits.yaml" in stale.stderr
+    # A fresh clone: committed outputs, no database. Rebuilt aside and compared.
+    shutil.rmtree(arm / "mjcf" / ".mjcfbuild")
+    stale = run_cli("check", "--up-to-date", cwd=arm)
+    assert stale.code == EXIT_CHECK
+    assert "mjcf/example_arm.xml differs from what its inputs build" in stale.stderr
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == EXIT_OK
+    shutil.rmtree(arm / "mjcf" / ".mjcfbuild")
+    assert run_cli("check", "--up-to-date", cwd=arm).code == EXIT_OK
