@@ -12,7 +12,8 @@ def output_files(folder):
     return sorted(
         p.relative_to(folder)
         for p in folder.rglob("*")
-        if p.is_file() and ".mjcfbuild" not in p.parts
+        # The report (build times, pictures) describes a build; the model files are the output.
+        if p.is_file() and not {".mjcfbuild", "report"} & set(p.relative_to(folder).parts)
     )
 
 
