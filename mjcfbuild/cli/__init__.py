@@ -20,7 +20,7 @@ from mjcfbuild.errors import (
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser with every subcommand."""
-    from mjcfbuild.cli import build, cache, check, convert, init, schema
+    from mjcfbuild.cli import build, cache, check, clean, convert, explain, graph, init, schema
 
     parser = argparse.ArgumentParser(
         prog="mjcfbuild",
@@ -33,7 +33,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     commands = parser.add_subparsers(title="commands", dest="command", metavar="COMMAND")
     commands.required = True
-    for module in (build, check, convert, init, schema, cache):
+    for module in (build, check, explain, graph, clean, convert, init, schema, cache):
         module.add_parser(commands)
     return parser
 
@@ -109,7 +109,7 @@ def step_timeout(args: argparse.Namespace) -> float:
     """The step time limit from ``--timeout``, ``MJCFBUILD_TIMEOUT`` or the default."""
     from mjcfbuild.engine.context import DEFAULT_STEP_TIMEOUT
 
-    if args.timeout is not None:
+    if getattr(args, "timeout", None) is not None:
         return args.timeout
     value = os.environ.get("MJCFBUILD_TIMEOUT")
     try:
@@ -126,6 +126,31 @@ def _positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError("must be at least 1")
     return value
+
+
+def load_context(path: str | Path, args: argparse.Namespace):
+    """The :class:`BuildContext` of a manifest from command-line options.
+
+    A :class:`ManifestError` comes back with its file shown relative to the current folder.
+    """
+    from mjcfbuild.engine.context import BuildContext, default_jobs
+    from mjcfbuild.errors import ManifestError
+
+    path = Path(path)
+    jobs = getattr(args, "jobs", None) or environment_jobs() or default_jobs()
+    try:
+        ctx = BuildContext.from_manifest_file(path, jobs=jobs, step_timeout=step_timeout(args))
+    except ManifestError as error:
+        raise error.relocate(path.resolve().parent, Path.cwd()) from None
+    ctx.run_check = not getattr(args, "no_check", False)
+    return ctx
+
+
+def manifest_option(parser: argparse.ArgumentParser) -> None:
+    """Add ``-m/--manifest``."""
+    parser.add_argument(
+        "-m", "--manifest", default="robot.yaml", help="the manifest (default: robot.yaml)"
+    )
 
 
 def environment_jobs() -> int | None:

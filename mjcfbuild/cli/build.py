@@ -1,31 +1,33 @@
-"""``mjcfbuild build``: build the model of a manifest, doing only what changed."""
+"""``mjcfbuild build``: build the models of manifests, doing only what changed."""
 
 from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
 from mjcfbuild.cli import (
-    environment_jobs,
     jobs_argument,
+    load_context,
     report_error,
     report_warning,
-    step_timeout,
     timeout_argument,
 )
-from mjcfbuild.errors import EXIT_OK, ManifestError
+from mjcfbuild.errors import EXIT_OK, MjcfbuildError
 
 
 def add_parser(commands) -> None:
     """Register the subcommand."""
     parser = commands.add_parser(
         "build",
-        help="build the model described by a manifest (robot.yaml)",
-        description="Build the model described by a manifest. Only tasks whose inputs changed run.",
+        help="build the models described by manifests (robot.yaml)",
+        description="Build the model of each manifest. Only tasks whose inputs changed run.",
     )
     parser.add_argument(
-        "manifest", nargs="?", default="robot.yaml", help="the manifest (default: robot.yaml)"
+        "manifests",
+        nargs="*",
+        default=["robot.yaml"],
+        metavar="MANIFEST",
+        help="manifests to build (default: robot.yaml)",
     )
     jobs_argument(parser)
     timeout_argument(parser)
@@ -33,22 +35,24 @@ def add_parser(commands) -> None:
     parser.add_argument(
         "--no-check", action="store_true", help="skip the check against the URDF (and previews)"
     )
+    parser.add_argument(
+        "-n", "--dry-run", action="store_true", help="say what would run, and why; run nothing"
+    )
     parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    """Build and report."""
-    from mjcfbuild.engine.context import BuildContext, default_jobs
-
-    path = Path(args.manifest)
-    jobs = args.jobs or environment_jobs() or default_jobs()
-    try:
-        ctx = BuildContext.from_manifest_file(path, jobs=jobs, step_timeout=step_timeout(args))
-        ctx.run_check = not args.no_check
-    except ManifestError as error:
-        report_error(error, args.debug, base_dir=path.resolve().parent)
-        return error.exit_code
-    return execute(ctx, quiet=args.quiet, debug=args.debug)
+    """Build every manifest; the exit code of the first that failed."""
+    code = EXIT_OK
+    for manifest in args.manifests:
+        try:
+            ctx = load_context(manifest, args)
+            result = dry_run(ctx) if args.dry_run else execute(ctx, args.quiet, args.debug)
+        except MjcfbuildError as error:
+            report_error(error, args.debug)
+            result = error.exit_code
+        code = code or result
+    return code
 
 
 def execute(ctx, quiet: bool, debug: bool) -> int:
@@ -58,13 +62,9 @@ def execute(ctx, quiet: bool, debug: bool) -> int:
 
     try:
         result = run_build(ctx, Progress(quiet=quiet))
-    except Exception as error:  # errors found while making the graph (missing source, ...)
-        from mjcfbuild.errors import MjcfbuildError
-
-        if isinstance(error, MjcfbuildError):
-            report_error(error, debug, base_dir=ctx.base_dir)
-            return error.exit_code
-        raise
+    except MjcfbuildError as error:  # found while making the graph (missing source, ...)
+        report_error(error, debug, base_dir=ctx.base_dir)
+        return error.exit_code
     for warning in result.warnings:
         report_warning(warning)
     for error in result.errors:
@@ -77,3 +77,20 @@ def execute(ctx, quiet: bool, debug: bool) -> int:
             slowest = ", ".join(f"{title} {seconds:.2f} s" for title, seconds in result.slowest)
             print(f"  slowest: {slowest}")
     return result.errors[0].exit_code if result.errors else EXIT_OK
+
+
+def dry_run(ctx) -> int:
+    """Print what a build would run and why."""
+    from mjcfbuild.engine.status import build_statuses
+
+    statuses, complete = build_statuses(ctx)
+    running = [s for s in statuses if not s.up_to_date]
+    for status in running:
+        print(f"would run: {status.title}: {'; '.join(status.reasons)}")
+    if not complete:
+        print("  (the plan would be made again first; the tasks after it follow from it)")
+    print(
+        f"mjcfbuild: {ctx.manifest.robot_file}: {len(running)} would run, "
+        f"{len(statuses) - len(running)} up to date (dry run)"
+    )
+    return EXIT_OK

@@ -6,8 +6,8 @@ import argparse
 import sys
 from pathlib import Path
 
-from mjcfbuild.cli import report_error
-from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, CheckError, ManifestError, UsageError
+from mjcfbuild.cli import load_context, report_error
+from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, CheckError, MjcfbuildError, UsageError
 
 
 def add_parser(commands) -> None:
@@ -22,7 +22,13 @@ def add_parser(commands) -> None:
             "whether the outputs still match their inputs, without building."
         ),
     )
-    parser.add_argument("manifest", nargs="?", default="robot.yaml")
+    parser.add_argument(
+        "manifests",
+        nargs="*",
+        default=["robot.yaml"],
+        metavar="MANIFEST",
+        help="manifests whose models to check (default: robot.yaml)",
+    )
     parser.add_argument("--urdf", help="check this URDF against --mjcf, without a manifest")
     parser.add_argument("--mjcf", help="the MuJoCo model to check against --urdf")
     parser.add_argument(
@@ -41,17 +47,16 @@ def run(args: argparse.Namespace) -> int:
         if not (args.urdf and args.mjcf):
             raise UsageError("--urdf and --mjcf go together")
         return _pair(args)
-    from mjcfbuild.engine.context import BuildContext
-
-    path = Path(args.manifest)
-    try:
-        ctx = BuildContext.from_manifest_file(path)
-    except ManifestError as error:
-        report_error(error, args.debug, base_dir=path.resolve().parent)
-        return error.exit_code
-    if args.up_to_date:
-        return _up_to_date(ctx)
-    return _manifest(ctx, args)
+    code = EXIT_OK
+    for manifest in args.manifests:
+        try:
+            ctx = load_context(manifest, args)
+            result = _up_to_date(ctx) if args.up_to_date else _manifest(ctx, args)
+        except MjcfbuildError as error:
+            report_error(error, args.debug)
+            result = error.exit_code
+        code = code or result
+    return code
 
 
 def _options(args, settings=None):

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.loader import DATABASE
-from mjcfbuild.engine.tasks import PLAN, build_tasks, planning_tasks
+from mjcfbuild.engine.tasks import PLAN
 
 REPORT_TASKS = ("check", "previews")
 
@@ -28,13 +28,10 @@ def stale_outputs(ctx: BuildContext) -> list[str]:
 
 
 def _from_database(ctx: BuildContext) -> list[str]:
-    from mjcfbuild.engine.status import task_statuses
+    from mjcfbuild.engine.status import build_statuses
 
     ctx.run_check = False
-    planning = task_statuses(ctx, planning_tasks(ctx))
-    statuses = planning
-    if all(status.up_to_date for status in planning):
-        statuses = task_statuses(ctx, build_tasks(ctx))
+    statuses, _ = build_statuses(ctx)
     return [
         f"{status.title}: {'; '.join(status.reasons)}"
         for status in statuses

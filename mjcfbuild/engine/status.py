@@ -80,3 +80,17 @@ def _relabel(reason: str, ctx: BuildContext) -> str:
     """Show an absolute path at the end of a reason relative to the manifest's folder."""
     head, sep, path = reason.rpartition(": ")
     return f"{head}{sep}{ctx.label(path)}" if sep and path.startswith("/") else reason
+
+
+def build_statuses(ctx: BuildContext) -> tuple[list[TaskStatus], bool]:
+    """Statuses of every task of a build, and whether that is every task.
+
+    When the planning tasks are stale (or never ran), the later tasks depend on a plan that
+    does not exist yet, so only the planning tasks are reported (and ``False``).
+    """
+    from mjcfbuild.engine.tasks import PLAN, build_tasks, planning_tasks
+
+    planning = task_statuses(ctx, planning_tasks(ctx))
+    if not ctx.state(PLAN).exists() or not all(s.up_to_date for s in planning):
+        return planning, False
+    return task_statuses(ctx, build_tasks(ctx)), True
