@@ -6,6 +6,8 @@ import hashlib
 import os
 from pathlib import Path
 
+from mjcfbuild.failpoints import failpoint
+
 TEMP_SUFFIX = ".mjcfbuild-tmp"
 
 
@@ -25,7 +27,9 @@ def atomic_write(path: str | os.PathLike, data: bytes) -> None:
     temp = path.with_name(f".{path.name}.{os.getpid()}{TEMP_SUFFIX}")
     try:
         with open(temp, "wb") as handle:
-            handle.write(data)
+            handle.write(data[: len(data) // 2])
+            failpoint(f"write:{path.name}")  # half a file on disk: what a crash here leaves
+            handle.write(data[len(data) // 2 :])
         os.replace(temp, path)
     except BaseException:
         temp.unlink(missing_ok=True)

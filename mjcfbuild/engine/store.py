@@ -159,12 +159,18 @@ class ProductStore:
         result = []
         if not self.folder.is_dir():
             return result
+        stale_before = time.time() - 3600
         for bucket in self.folder.iterdir():
             if not bucket.is_dir():
                 continue
             for entry in bucket.iterdir():
                 summary = entry / _SUMMARY
-                if entry.name.startswith(".") or not summary.exists():
+                if entry.name.startswith("."):
+                    # A half-written entry of a build that was killed an hour or more ago.
+                    if entry.name.endswith(".tmp") and entry.stat().st_mtime < stale_before:
+                        shutil.rmtree(entry, ignore_errors=True)
+                    continue
+                if not summary.exists():
                     continue
                 size = sum(f.stat().st_size for f in entry.iterdir() if f.is_file())
                 result.append((entry, summary.stat().st_mtime, size))

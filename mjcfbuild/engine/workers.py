@@ -19,12 +19,14 @@ import time
 from pathlib import Path
 
 from mjcfbuild.errors import InternalError, MjcfbuildError, TaskCrashed
+from mjcfbuild.failpoints import BUILD_PID
 
 
 class _Worker:
     def __init__(self, cwd: Path, stderr_log: Path) -> None:
         env = dict(os.environ)
         env.setdefault("PYTHONHASHSEED", "0")
+        env[BUILD_PID] = str(os.getpid())
         if sys.platform.startswith("linux"):
             # Offscreen rendering (previews) without a display; must be set before import mujoco.
             env.setdefault("MUJOCO_GL", "egl")

@@ -7,6 +7,7 @@ import os
 from pathlib import Path
 
 from mjcfbuild.collision.policy import choose_collisions, rules_from_dicts
+from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import remove_stale_temp_files
 from mjcfbuild.inputs.combine import combine
 from mjcfbuild.inputs.model import inputs_from_dict
@@ -83,6 +84,7 @@ def run(payload: dict) -> dict:
     write_output(
         report_path, (json.dumps(report, indent=1, sort_keys=True) + "\n").encode(), outputs
     )
+    failpoint("assemble")
     # The model is written last. If the build stops before this, the step has not succeeded
     # and the next build does it again, so an old model never passes for a current one.
     write_output(Path(payload["output"]), assembly.xml, outputs)

@@ -7,6 +7,7 @@ from pathlib import Path
 
 from mjcfbuild.engine.store import open_store, product_key
 from mjcfbuild.engine.versions import step_versions
+from mjcfbuild.failpoints import failpoint
 from mjcfbuild.steps.outputs import write_output
 
 
@@ -23,6 +24,7 @@ def run(payload: dict) -> dict:
     if summary is None:
         from mjcfbuild.collision.decompose import decompose  # coacd: only when needed
 
+        failpoint("decompose")
         summary = decompose(mesh_file, params, output_dir)
         if store:
             store.store(key, output_dir, summary)

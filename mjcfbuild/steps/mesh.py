@@ -8,6 +8,7 @@ from pathlib import Path
 from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.engine.store import open_store, product_key
 from mjcfbuild.engine.versions import step_versions
+from mjcfbuild.failpoints import failpoint
 from mjcfbuild.meshes.references import referenced_files
 from mjcfbuild.steps.outputs import write_output
 
@@ -34,6 +35,7 @@ def run(payload: dict) -> dict:
         )
         if store:
             store.store(key, product_dir, summary)
+    failpoint("mesh")
     Depfile([str(p) for p in references], [], {}).write(Path(payload["depfile"]))
     outputs = {str(product_dir / name): digest for name, digest in summary["files"].items()}
     text = json.dumps(summary, indent=1, sort_keys=True) + "\n"

@@ -27,7 +27,9 @@ def git(*args: str, cwd: Path, check: bool = True) -> subprocess.CompletedProces
         "GIT_COMMITTER_NAME": "t",
         "GIT_COMMITTER_EMAIL": "t@example.com",
     }
-    return subprocess.run(["git", *args], cwd=cwd, env=env, check=check, capture_output=True, text=True)
+    return subprocess.run(
+        ["git", *args], cwd=cwd, env=env, check=check, capture_output=True, text=True
+    )
 
 
 def pre_commit_executable() -> str:
@@ -58,13 +60,19 @@ def test_hook_fails_regenerates_then_passes(tmp_path, project_commit, monkeypatc
     )
     # The description and its built model go in first, before the hooks are installed.
     build = subprocess.run(
-        [sys.executable, "-m", "mjcfbuild", "build", "-q", "--no-check"], cwd=repo, capture_output=True, text=True
+        [sys.executable, "-m", "mjcfbuild", "build", "-q", "--no-check"],
+        cwd=repo,
+        capture_output=True,
+        text=True,
     )
     assert build.returncode == 0, build.stderr
     git("add", "-A", cwd=repo)
     git("commit", "-q", "-m", "arm with its model", cwd=repo)
     install = subprocess.run(
-        [pre_commit_executable(), "install", "--install-hooks"], cwd=repo, capture_output=True, text=True
+        [pre_commit_executable(), "install", "--install-hooks"],
+        cwd=repo,
+        capture_output=True,
+        text=True,
     )
     assert install.returncode == 0, install.stdout + install.stderr
 
