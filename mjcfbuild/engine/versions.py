@@ -13,7 +13,7 @@ STEP_FORMATS = {
     "plan": 2,
     "mesh": 2,
     "decompose": 1,
-    "assemble": 3,
+    "assemble": 4,
     "scene": 2,
     "check": 1,
     "previews": 1,

@@ -17,6 +17,12 @@ from mjcfbuild.mjcf.bodies import Body, MassProperties
 from mjcfbuild.numbers import output_list
 
 TOLERANCE = 1e-12
+# Repairs smaller than this (relative to the largest moment) are rounding, not defects: they are
+# made silently, under either policy.
+NOTICEABLE = 1e-6
+# A + B is kept this much (relative to C) above C, so that writing the moments with 12
+# significant digits cannot tip an exact equality (a flat plate) into MuJoCo's refusal.
+TRIANGLE_MARGIN = 1e-9
 
 
 @dataclass(frozen=True)
@@ -56,7 +62,10 @@ def validate_masses(
                 file=source,
                 line=lines.get(body.name),
             )
-        for problem, before, after, fixed in _problems(body, policy):
+        for problem, before, after, fixed, noticeable in _problems(body, policy):
+            if not noticeable:
+                body.mass = fixed
+                continue
             if policy.mode != "repair":
                 raise InputError(
                     f"link '{body.name}': {problem} ({before})",
@@ -70,7 +79,8 @@ def validate_masses(
 
 
 def _problems(body: Body, policy: InertiaPolicy):
-    """Yield (problem, before, after, repaired properties) for each defect of ``body``."""
+    """Yield (problem, before, after, repaired properties, noticeable) for each defect of
+    ``body``."""
     import numpy as np
 
     mass = body.mass
@@ -82,7 +92,7 @@ def _problems(body: Body, policy: InertiaPolicy):
             inertia=mass.inertia if mass is not None else ((0.0,) * 3,) * 3,
             links=mass.links if mass is not None else [],
         )
-        yield "moving body with too small a mass", before, f"mass {policy.min_mass:g}", fixed
+        yield "moving body with too small a mass", before, f"mass {policy.min_mass:g}", fixed, True
         mass = fixed
     if mass is None:
         return
@@ -94,12 +104,14 @@ def _problems(body: Body, policy: InertiaPolicy):
     scale = max(1.0, float(np.max(np.abs(moments))))
     order = np.argsort(repaired)
     a, b, c = (repaired[i] for i in order)
-    if a + b < c - TOLERANCE * scale:
-        lift = (c - a - b) / 2.0 + TOLERANCE * scale
-        repaired[order[0]] += lift
-        repaired[order[1]] += lift
-    if np.allclose(repaired, moments, rtol=0.0, atol=TOLERANCE * scale):
+    deficit = c - a - b + TRIANGLE_MARGIN * c
+    if c > 0 and deficit > 0:
+        repaired[order[0]] += deficit / 2.0
+        repaired[order[1]] += deficit / 2.0
+    if np.array_equal(repaired, moments):
         return
+    magnitude = max(float(np.max(np.abs(moments))), floor)
+    noticeable = not np.allclose(repaired, moments, rtol=0.0, atol=NOTICEABLE * magnitude)
     if np.any(moments < -TOLERANCE * scale):
         problem = "inertia is not positive definite"
     elif body.moves and np.any(moments < floor):
@@ -118,4 +130,5 @@ def _problems(body: Body, policy: InertiaPolicy):
         f"principal moments {output_list(sorted(moments))}",
         f"{output_list(sorted(repaired))}",
         fixed,
+        noticeable,
     )

@@ -193,7 +193,7 @@ def prepare(
             )
         lines.append("  </link>")
         if body.joint is not None:
-            lines.extend(_joint(body))
+            lines.extend(_joint(body, prepared.warnings, source))
     compiler = {k: v for k, v in user_compiler.items() if k not in IMPORT_COMPILER}
     compiler.update(IMPORT_COMPILER)
     attributes = " ".join(f"{k}={quoteattr(v)}" for k, v in sorted(compiler.items()))
@@ -489,7 +489,12 @@ def _inertial(body: Body) -> list[str]:
     ]
 
 
-def _joint(body: Body) -> list[str]:
+# MuJoCo wants range[0] < range[1] and ignores a URDF limit with lower == upper, which would turn
+# a locked joint into a free one. Such a joint gets this tiny range around its position instead.
+LOCKED_JOINT_HALF_RANGE = 1e-6
+
+
+def _joint(body: Body, warnings: list[str], source: str) -> list[str]:
     joint = body.joint
     kind = joint.kind
     lines = [
@@ -506,8 +511,17 @@ def _joint(body: Body) -> list[str]:
     if limit is not None and kind in ("revolute", "prismatic", "continuous"):
         attributes = []
         if kind != "continuous":
-            attributes.append(f"lower={quoteattr(exact_list([limit.lower or 0.0]))}")
-            attributes.append(f"upper={quoteattr(exact_list([limit.upper or 0.0]))}")
+            lower, upper = limit.lower or 0.0, limit.upper or 0.0
+            if lower == upper:
+                where = f"{source}:{joint.line}" if joint.line else source
+                warnings.append(
+                    f"{where}: joint '{joint.name}' has lower = upper = {lower:g}; locked it with "
+                    f"the range {lower:g} +/- {LOCKED_JOINT_HALF_RANGE:g}, since MuJoCo would "
+                    "ignore an empty range and leave the joint free"
+                )
+                lower, upper = lower - LOCKED_JOINT_HALF_RANGE, upper + LOCKED_JOINT_HALF_RANGE
+            attributes.append(f"lower={quoteattr(exact_list([lower]))}")
+            attributes.append(f"upper={quoteattr(exact_list([upper]))}")
         if limit.effort is not None:
             attributes.append(f"effort={quoteattr(exact_list([limit.effort]))}")
         if limit.velocity is not None:

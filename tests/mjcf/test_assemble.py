@@ -98,3 +98,20 @@ def test_free_joint_with_and_without_fusing(tmp_path):
         _, model = build(urdf, tmp_path / str(fuse), free_joint=True, fuse_static=fuse)
         assert model.jnt_type[0] == 0 and model.nq == 8
         assert model.nbody == (3 if fuse else 4)
+
+
+def test_a_joint_with_lower_equal_upper_stays_locked(tmp_path):
+    """MuJoCo ignores an empty range (the joint would turn freely); it gets a tiny one."""
+    import mujoco
+
+    urdf = two_link_urdf().replace('lower="-1.5" upper="1.5"', 'lower="0.2" upper="0.2"')
+    assembly, model = build(urdf, tmp_path)
+    hinge = model.joint("hinge")
+    assert hinge.limited[0] == 1
+    assert hinge.range == pytest.approx([0.2, 0.2], abs=2e-6)
+    assert any("lower = upper = 0.2" in warning for warning in assembly.warnings)
+    data = mujoco.MjData(model)
+    data.qfrc_applied[0] = 5.0
+    for _ in range(500):
+        mujoco.mj_step(model, data)
+    assert abs(data.qpos[0] - 0.2) < 0.05  # held like any joint at its limit (soft limits)

@@ -67,3 +67,21 @@ def test_fail_policy_names_link_and_line():
 def test_negative_mass_is_always_an_error():
     with pytest.raises(InputError, match="mass must be a number >= 0"):
         check('<inertial><mass value="-1"/><inertia ixx="1" iyy="1" izz="1"/></inertial>')
+
+
+@pytest.mark.parametrize("mode", ["repair", "fail"])
+def test_a_flat_plate_survives_rounding_without_a_reported_repair(tmp_path, mode):
+    """A + B = C exactly (a thin plate), turned so the tensor is full: the written model loads
+    under either policy, and the rounding-sized nudge is not reported as a repair."""
+    from tests.mjcf.helpers import build
+
+    urdf = """<robot name="r"><link name="base"/>
+      <link name="plate"><inertial><origin rpy="2.635 -0.713 -1.700"/><mass value="2"/>
+        <inertia ixx="0.0035191402" iyy="0.0545998348" izz="0.0581189750"
+                 ixy="0" ixz="0" iyz="0"/></inertial></link>
+      <joint name="j" type="continuous"><parent link="base"/><child link="plate"/></joint>
+    </robot>"""
+    assembly, model = build(urdf, tmp_path, inertia=InertiaPolicy(mode=mode))
+    assert assembly.repairs == []
+    a, b, c = sorted(model.body_inertia[1])
+    assert a + b >= c
