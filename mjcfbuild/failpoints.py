@@ -3,8 +3,9 @@
 The interruption tests kill real builds at chosen moments (during mesh conversion, during a
 decomposition, between publishing assets and writing the model, in the middle of writing a
 file) to prove the next build recovers. ``action`` is ``kill`` (SIGKILL to the build and the
-worker, as ``kill -9`` would) or ``interrupt`` (SIGINT to the build, as Ctrl-C would). Without
-the variable, a failpoint does nothing.
+worker, as ``kill -9`` would), ``interrupt`` (SIGINT to the build, as Ctrl-C would) or ``raise``
+(an unexpected exception, as a bug in mjcfbuild would raise). Without the variable, a failpoint
+does nothing.
 """
 
 from __future__ import annotations
@@ -26,6 +27,8 @@ def failpoint(name: str) -> None:
         point, _, action = item.rpartition(":")
         if point != name:
             continue
+        if action == "raise":
+            raise RuntimeError(f"failpoint {name}")
         build = int(os.environ.get(BUILD_PID, os.getpid()))
         if action == "interrupt":
             os.kill(build, signal.SIGINT)

@@ -16,6 +16,29 @@ def normalise(path: str | os.PathLike) -> Path:
     return Path(os.path.normpath(os.path.abspath(path)))
 
 
+def unreadable_file(path: str | os.PathLike) -> str | None:
+    """Why ``path`` is not a readable file, as words that follow its name ("not found", "is a
+    folder, not a file", ...); None when it is one."""
+    import errno
+    import stat
+
+    try:
+        mode = os.stat(path).st_mode
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:
+            return "is a symbolic link loop"
+        if exc.errno in (errno.ENOENT, errno.ENOTDIR):
+            return "not found" if not os.path.islink(path) else "is a broken symbolic link"
+        return f"is not readable ({exc.strerror})"
+    if stat.S_ISDIR(mode):
+        return "is a folder, not a file"
+    if not stat.S_ISREG(mode):
+        return "is not a regular file"
+    if not os.access(path, os.R_OK):
+        return "is not readable (permission denied)"
+    return None
+
+
 def atomic_write(path: str | os.PathLike, data: bytes) -> None:
     """Write ``data`` to ``path`` through a temporary file and a rename.
 

@@ -56,6 +56,9 @@ def check_model(
     scene, with its floor) or the model itself."""
     import mujoco
 
+    from mjcfbuild.mjwarnings import capture_mujoco_warnings
+
+    capture_mujoco_warnings()  # simulation warnings are read from MjData instead
     options = options or CheckOptions()
     report = CheckReport()
     # The scene includes the model, so one load serves every check (meshes load once).

@@ -11,6 +11,8 @@ import math
 import os
 from pathlib import Path
 
+from mjcfbuild.errors import ModelError
+
 VIEWS = {"front": 180.0, "side": -90.0}
 KINDS = ("visual", "collision")
 BACKGROUND = (235, 235, 235)
@@ -21,12 +23,24 @@ def render_previews(
     model_path: Path, folder: Path, width: int = 480, height: int = 360
 ) -> list[str]:
     """Write ``<view>_<kind>.png`` files into ``folder``; their names."""
+    from mjcfbuild.cachedir import user_cache_dir
+
     os.environ.setdefault("MUJOCO_GL", "egl")
+    # Mesa keeps compiled shaders in ~/.cache unless told otherwise; mjcfbuild writes only in
+    # its output folder and its own cache.
+    os.environ.setdefault("MESA_SHADER_CACHE_DIR", str(user_cache_dir() / "mesa_shader_cache"))
     import mujoco
     import numpy as np
     from PIL import Image
 
-    model = mujoco.MjModel.from_xml_path(str(model_path))
+    from mjcfbuild.mjwarnings import capture_mujoco_warnings
+
+    capture_mujoco_warnings()
+
+    try:
+        model = mujoco.MjModel.from_xml_path(str(model_path))
+    except ValueError as exc:  # the check reports why; there is nothing to draw
+        raise ModelError(f"the model does not load: {str(exc).splitlines()[0]}") from None
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
     collides = (model.geom_contype != 0) | (model.geom_conaffinity != 0)

@@ -109,12 +109,14 @@ def _print(report, label: str) -> int:
 def _pair(args) -> int:
     from mjcfbuild.check.model_check import check_model
     from mjcfbuild.errors import InputError
+    from mjcfbuild.fsutil import unreadable_file
     from mjcfbuild.urdf.parse import parse_urdf
 
     urdf, mjcf = Path(args.urdf), Path(args.mjcf)
     for path in (urdf, mjcf):
-        if not path.is_file():
-            raise InputError("file not found", file=path)
+        problem = unreadable_file(path)
+        if problem:
+            raise InputError(f"file {problem}", file=path)
     robot = parse_urdf(urdf.read_bytes(), str(urdf))
     return _print(check_model(robot, mjcf, mjcf, set(), _options(args)), f"{mjcf} against {urdf}")
 

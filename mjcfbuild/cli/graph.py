@@ -36,6 +36,7 @@ def run(args: argparse.Namespace) -> int:
                 edges.append((producer[dep], task["name"]))
             else:
                 inputs.append((ctx.label(dep), task["name"]))
+        edges += [(before, task["name"]) for before in task.get("task_dep", [])]
     edges = sorted(set(edges))
     print(_dot(tasks, edges, inputs) if args.dot else _text(tasks, edges, inputs))
     if not ctx.state(PLAN).exists():

@@ -33,6 +33,7 @@ class BuildContext:
     manifest: Manifest
     base_dir: Path
     manifest_label: str = "robot.yaml"
+    manifest_file: Path | None = None
     jobs: int = field(default_factory=default_jobs)
     environ: dict[str, str] = field(default_factory=lambda: dict(os.environ))
     step_timeout: float | None = DEFAULT_STEP_TIMEOUT
@@ -58,7 +59,33 @@ class BuildContext:
 
         path = Path(path)
         manifest = load_manifest(path, use_cache=True)
-        return cls(manifest, normalise(path).parent, manifest_label=str(path), **kwargs)
+        ctx = cls(
+            manifest,
+            normalise(path).parent,
+            manifest_label=str(path),
+            manifest_file=normalise(path),
+            **kwargs,
+        )
+        ctx.check_package_folders()
+        return ctx
+
+    def check_package_folders(self) -> None:
+        """Refuse a ``packages`` entry whose folder does not exist: it is always a typo, and
+        would otherwise surface later as a confusing missing mesh."""
+        from mjcfbuild.errors import ManifestError
+        from mjcfbuild.manifest.pinpoint import pinpoint
+
+        for name, folder in sorted(self.manifest.packages.items()):
+            if self.resolve(folder).is_dir():
+                continue
+            error = ManifestError(
+                f"package '{name}' points at '{folder}', which is not a folder",
+                file=f"{self.manifest_label} packages.{name}",
+                hint="fix the folder (relative to robot.yaml) or remove the entry",
+            )
+            if self.manifest_file is not None:
+                pinpoint(error, self.manifest_label, self.manifest_file)
+            raise error
 
     # Paths ------------------------------------------------------------------------------
 

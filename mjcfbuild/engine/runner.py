@@ -16,8 +16,9 @@ from mjcfbuild.engine.loader import run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.report import write_report
 from mjcfbuild.engine.tasks import build_tasks, planning_tasks
-from mjcfbuild.errors import MjcfbuildError, OutputError
+from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError
 from mjcfbuild.fsutil import remove_stale_temp_files, write_if_changed
+from mjcfbuild.manifest.pinpoint import pinpoint
 
 
 @dataclass
@@ -96,7 +97,10 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
                 doit_output += _run_stage(ctx, tasks, progress, result)
                 if not result.errors:
                     _remove_stale_products(ctx, tasks)
-                if ctx.robot_path.exists():
+                # A failed check is what the report is for; any other failure means the model
+                # on disk is an earlier one, which the report must not claim to describe.
+                model_built = all(isinstance(e, CheckError) for e in result.errors)
+                if model_built and ctx.robot_path.exists():
                     write_report(ctx, list(dict.fromkeys(ctx.warnings)))
             if ctx.cache_grew:
                 _prune_cache(ctx)
@@ -124,6 +128,8 @@ def _run_stage(
             message = progress.failure_messages.get(name, "failed")
             error = MjcfbuildError(f"{name}: {_first_line(message)}")
             ctx.failures[name] = error
+        if ctx.manifest_file is not None:
+            error = pinpoint(error, ctx.manifest_label, ctx.manifest_file)
         if error not in result.errors:
             result.errors.append(error)
     if code != 0 and not result.errors:

@@ -32,8 +32,14 @@ def task_statuses(ctx: BuildContext, tasks: list[dict]) -> list[TaskStatus]:
     from mjcfbuild.engine.loader import DATABASE
 
     objects = [dict_to_task(dict(task)) for task in tasks]
+    database = ctx.state(DATABASE)
+    if not database.exists():  # never built here; opening the database would create it
+        return [
+            TaskStatus(task.name, task.title(), False, ["it has not run in this output folder yet"])
+            for task in objects
+        ]
     by_name = {task.name: task for task in objects}
-    manager = Dependency(SqliteDB, str(ctx.state(DATABASE)), checker_cls=checker_class(ctx.hashes))
+    manager = Dependency(SqliteDB, str(database), checker_cls=checker_class(ctx.hashes))
     try:
         result = []
         for task in objects:

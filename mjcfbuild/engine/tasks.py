@@ -30,6 +30,7 @@ from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.engine.uptodate import ParamsUnchanged, always_stale, outputs_intact
 from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
+from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.manifest.cache import plain
 from mjcfbuild.sources.packages import ENV_VARIABLES
 from mjcfbuild.urdf.model import robot_from_dict
@@ -114,9 +115,11 @@ def _task(
     targets: list[Path],
     params: dict,
     extra_uptodate: list | None = None,
+    after: list[str] | None = None,
 ) -> dict:
     params = {**params, "versions": step_versions(step)}
     return {
+        "task_dep": after or [],
         "name": name,
         "title": lambda _task, title=title: title,
         "doc": title,
@@ -155,9 +158,10 @@ def _run(ctx: BuildContext, name: str, step: str, payload: dict, in_worker: bool
 
 def _expand_task(ctx: BuildContext, prefix: str) -> dict:
     source = ctx.source_path
-    if not source.is_file():
+    problem = unreadable_file(source)
+    if problem:
         raise InputError(
-            "source file not found" if not source.exists() else "source is not a file",
+            f"source file {problem}",
             file=ctx.label(source),
             hint=f"fix 'source' in {ctx.manifest_label}",
         )
@@ -199,9 +203,10 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
     inputs_file = None
     if ctx.manifest.mujoco_inputs.file:
         inputs_file = ctx.resolve(ctx.manifest.mujoco_inputs.file)
-        if not inputs_file.is_file():
+        problem = unreadable_file(inputs_file)
+        if problem:
             raise InputError(
-                "inputs file not found",
+                f"inputs file {problem}",
                 file=ctx.label(inputs_file),
                 hint=f"fix 'mujoco_inputs.file' in {ctx.manifest_label}",
             )
@@ -256,6 +261,7 @@ def _mesh_task(ctx: BuildContext, mesh_id: str, path: str, roles: list[str], pre
         "summary": str(product_summary(ctx, mesh_id)),
         "depfile": str(_mesh_depfile(ctx, mesh_id)),
         "options": options,
+        "max_file_bytes": int(meshes.max_file_mb * 1e6),
         "cache": ctx.cache_settings(),
     }
     return _task(
@@ -439,9 +445,10 @@ def _previews_task(ctx: BuildContext, prefix: str) -> dict:
 def _scene_task(ctx: BuildContext, plan: dict, prefix: str) -> dict:
     scene = ctx.manifest.scene
     source = ctx.resolve(scene.file) if scene.file else None
-    if source is not None and not source.is_file():
+    problem = unreadable_file(source) if source is not None else None
+    if problem:
         raise InputError(
-            "scene file not found",
+            f"scene file {problem}",
             file=ctx.label(source),
             hint=f"fix 'scene.file' in {ctx.manifest_label}",
         )
@@ -471,4 +478,6 @@ def _scene_task(ctx: BuildContext, plan: dict, prefix: str) -> dict:
         file_dep=[source] if source else [],
         targets=[ctx.scene_path],
         params={k: v for k, v in payload.items() if k != "output"},
+        # Outputs change together: a build whose model fails leaves the scene alone too.
+        after=[f"{prefix}assemble"],
     )

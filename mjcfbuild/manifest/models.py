@@ -102,6 +102,14 @@ class MeshSettings(StrictModel):
             "which MuJoCo reads at any size)."
         ),
     )
+    max_file_mb: float = Field(
+        500,
+        gt=0,
+        description=(
+            "Largest mesh file to read, in megabytes (10^6 bytes). Bigger files are refused "
+            "before they are loaded, since loading one can exhaust the memory of a CI machine."
+        ),
+    )
     collada_up_axis: Literal["ignore", "apply"] = Field(
         "ignore",
         description=(

@@ -22,6 +22,7 @@ from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies
 from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
 from mjcfbuild.mjcf.precise import precise_xml
 from mjcfbuild.mjcf.prepared import Decomposition, GeomRecord, Prepared, prepare
+from mjcfbuild.mjwarnings import capture_mujoco_warnings, take_mujoco_warnings
 from mjcfbuild.urdf.model import Robot
 
 VISUAL_CLASS = "visual"
@@ -74,6 +75,9 @@ def assemble(
     """Build the model of ``robot`` from its converted meshes."""
     import mujoco
 
+    capture_mujoco_warnings()
+    take_mujoco_warnings()
+
     bodies = build_bodies(robot, options.fuse_static, float_from_world=options.free_joint)
     lines = {
         link.name: (link.inertial.line if link.inertial else link.line) for link in robot.links
@@ -95,9 +99,11 @@ def assemble(
     try:
         spec = mujoco.MjSpec.from_string(prepared.urdf)
     except Exception as exc:
-        raise ModelError(f"MuJoCo could not import the prepared URDF: {_first_line(exc)}") from None
+        raise ModelError(
+            f"MuJoCo could not import the prepared URDF: {_first_line(exc)}", file=robot.source
+        ) from None
     _finish(spec, prepared, bodies, robot, options)
-    root = _write_with_shell_retries(spec, prepared)
+    root = _write_with_shell_retries(spec, prepared, robot.source)
     _finish_xml(root, prepared, robot, options)
     warnings: list[str] = []
     if _has_additions(options):
@@ -109,7 +115,12 @@ def assemble(
         xml=(header + xml + "\n").encode("utf-8"),
         assets=dict(prepared.files),
         repairs=repairs,
-        warnings=[*robot.warnings, *prepared.warnings, *warnings],
+        warnings=[
+            *robot.warnings,
+            *prepared.warnings,
+            *warnings,
+            *(f"MuJoCo: {text}" for text in take_mujoco_warnings()),
+        ],
         bodies=len(bodies),
         geoms=len(prepared.geoms),
     )
@@ -190,7 +201,7 @@ def _add_home_keyframe(root, model, control: Ros2Control) -> None:
         etree.SubElement(section, "key", {"name": "home", "qpos": output_list(qpos)})
 
 
-def _write_with_shell_retries(spec, prepared: Prepared):
+def _write_with_shell_retries(spec, prepared: Prepared, source: str):
     """Compile and write; a mesh MuJoCo finds too thin for volume inertia gets shell inertia.
 
     The product summaries already flag meshes whose volume is near zero; MuJoCo's own test
@@ -206,7 +217,7 @@ def _write_with_shell_retries(spec, prepared: Prepared):
             name = _too_thin_mesh(text)
             mesh = spec.mesh(name) if name else None
             if mesh is None or mesh.inertia == mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL:
-                raise _compile_error(exc) from None
+                raise _compile_error(exc, source) from None
             mesh.inertia = mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL
             prepared.warnings.append(f"mesh '{name}' encloses no volume; it uses shell inertia")
     raise ModelError("MuJoCo: too many meshes without volume")
@@ -224,11 +235,23 @@ def _first_line(exc: Exception) -> str:
     return text.splitlines()[0] if text else type(exc).__name__
 
 
-def _compile_error(exc: Exception) -> ModelError:
-    """A MuJoCo compile error as one line, pointing at the URDF line in the element's info."""
+# What to do about the MuJoCo compile errors a URDF can cause, by a phrase of their message.
+_COMPILE_HINTS = {
+    "free joint can only be used on top level": (
+        "MuJoCo allows a floating joint only on a link attached to a root link named 'world'; "
+        "use a fixed joint there, or set options.free_joint to let the whole robot float"
+    ),
+    "repeated in equality constraint": "a joint cannot <mimic> itself",
+}
+
+
+def _compile_error(exc: Exception, source: str) -> ModelError:
+    """A MuJoCo compile error as one line, pointing at the URDF line in the element's info
+    (or at the URDF itself when MuJoCo names no element)."""
     text = str(exc).strip().replace("Error: ", "", 1)
     lines = text.splitlines()
     message = lines[0] if lines else "compile failed"
+    hint = next((h for phrase, h in _COMPILE_HINTS.items() if phrase in message), None)
     for line in lines[1:]:
         if "Element" in line and ", " in line:
             origin = line.split(", ")[-1]
@@ -237,10 +260,13 @@ def _compile_error(exc: Exception) -> ModelError:
                 number, _, what = rest.partition(" ")
                 if number.isdigit():
                     return ModelError(
-                        f"MuJoCo: {message} ({what.strip()})", file=file, line=int(number)
+                        f"MuJoCo: {message} ({what.strip()})",
+                        file=file,
+                        line=int(number),
+                        hint=hint,
                     )
             message = f"{message} ({line.strip()})"
-    return ModelError(f"MuJoCo: {message}")
+    return ModelError(f"MuJoCo: {message}", file=source, hint=hint)
 
 
 def _finish(

@@ -8,6 +8,7 @@ read are recorded, so the build reruns the expansion exactly when one of them ch
 
 from __future__ import annotations
 
+import io
 import os
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
@@ -15,8 +16,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from mjcfbuild.errors import InputError
-from mjcfbuild.fsutil import normalise
+from mjcfbuild.fsutil import normalise, unreadable_file
 from mjcfbuild.sources.packages import PackageResolver
+from mjcfbuild.xmlguard import refuse_entities
 
 
 @dataclass
@@ -46,9 +48,10 @@ def read_urdf_file(path: Path) -> Expansion:
 
 def expand_xacro(path: Path, mappings: Mapping[str, str], packages: PackageResolver) -> Expansion:
     """Expand a xacro file in-process; :class:`InputError` names the failing file."""
-    if not path.is_file():
+    problem = unreadable_file(path)
+    if problem:
         raise InputError(
-            "xacro source not found", file=path, hint="fix 'source.xacro' in robot.yaml"
+            f"xacro source {problem}", file=path, hint="fix 'source.xacro' in robot.yaml"
         )
     import xml.parsers.expat
 
@@ -70,12 +73,19 @@ def expand_xacro(path: Path, mappings: Mapping[str, str], packages: PackageResol
             if raised:  # our own $(find)/$(env) error, which xacro wraps in its own
                 first = raised[0]
                 raise InputError(
-                    first.message, file=_current_file(xacro, path), hint=first.hint
+                    first.message,
+                    file=_current_file(xacro, path),
+                    line=first.location.line if first.location else None,
+                    hint=first.hint,
                 ) from None
+            message = _xacro_message(exc)
+            hint = "the same error appears with the 'xacro' command; fix the file or its args"
+            if "substitution argument" in message:
+                hint = (
+                    "pass it under 'source.args' in robot.yaml, or give its <xacro:arg> a default"
+                )
             raise InputError(
-                f"xacro failed: {_xacro_message(exc)}",
-                file=_current_file(xacro, path),
-                hint="the same error appears with the 'xacro' command; fix the file or its args",
+                f"xacro failed: {message}", file=_current_file(xacro, path), hint=hint
             ) from None
         included = list(xacro.all_includes)
     text = document.toprettyxml(indent="  ", encoding="utf-8")
@@ -95,7 +105,7 @@ def expand_xacro(path: Path, mappings: Mapping[str, str], packages: PackageResol
 def _xacro_message(exc: Exception) -> str:
     text = str(exc).strip() or type(exc).__name__
     if type(exc).__name__ == "ArgException":
-        return f"undefined substitution argument {text}; pass it under source.args"
+        return f"undefined substitution argument {text}"
     return text.splitlines()[0] if text else type(exc).__name__
 
 
@@ -145,6 +155,24 @@ def _xacro_hooks(
         reads[name] = value
         return default if value is None else value
 
+    original_parse = xacro_module.parse
+
+    def parse(inp, filename=None):
+        """xacro's parse, refusing entity declarations in every file it reads."""
+        if inp is None and filename is not None:
+            try:
+                with open(os.path.join(xacro_module.root_dir, filename), "rb") as handle:
+                    data = handle.read()
+            except OSError:
+                return original_parse(inp, filename)  # xacro reports it in its own words
+            try:
+                refuse_entities(data, filename)
+            except InputError as exc:
+                raised.append(exc)
+                raise
+            return original_parse(io.BytesIO(data), filename)
+        return original_parse(inp, filename)
+
     replacements: dict[str, Callable] = {
         "_eval_find": find,
         "_eval_env": env,
@@ -153,12 +181,14 @@ def _xacro_hooks(
     saved_functions = {name: getattr(subst, name) for name in replacements}
     saved_eval = {key: subst._eval_dict[key] for key in ("find", "env", "optenv")}
     xacro_module.all_includes.clear()
+    xacro_module.parse = parse
     try:
         for name, function in replacements.items():
             setattr(subst, name, function)
         subst._eval_dict.update(find=find, env=env, optenv=optenv)
         yield
     finally:
+        xacro_module.parse = original_parse
         for name, function in saved_functions.items():
             setattr(subst, name, function)
         subst._eval_dict.update(saved_eval)

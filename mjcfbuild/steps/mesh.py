@@ -8,6 +8,7 @@ from pathlib import Path
 from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.engine.store import open_store, product_key
 from mjcfbuild.engine.versions import step_versions
+from mjcfbuild.errors import InputError
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.meshes.references import referenced_files
 from mjcfbuild.steps.outputs import write_output
@@ -18,6 +19,7 @@ def run(payload: dict) -> dict:
     source = Path(payload["source"])
     product_dir = Path(payload["product_dir"])
     options = payload["options"]
+    check_size(source, payload["max_file_bytes"])
     references = referenced_files(source)
     store = open_store(payload["cache"])
     key = product_key("mesh", {**options, "versions": step_versions("mesh")}, [source, *references])
@@ -47,3 +49,17 @@ def run(payload: dict) -> dict:
         "cached": cached,
         "stored": not cached and store is not None,
     }
+
+
+def check_size(source: Path, max_bytes: int) -> None:
+    """Refuse an empty mesh file, or one larger than ``meshes.max_file_mb``, before loading it."""
+    size = source.stat().st_size
+    if size == 0:
+        raise InputError("the mesh file is empty", file=source, hint="export the mesh again")
+    if size > max_bytes:
+        raise InputError(
+            f"the mesh file is {size / 1e6:.3g} MB, more than meshes.max_file_mb "
+            f"({max_bytes / 1e6:g} MB)",
+            file=source,
+            hint="simplify the mesh, or raise meshes.max_file_mb in robot.yaml",
+        )

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from mjcfbuild.check.previews import render_previews
-from mjcfbuild.errors import MjcfbuildError
+from mjcfbuild.errors import MjcfbuildError, ModelError
 from mjcfbuild.steps.outputs import record_output
 
 
@@ -14,6 +14,8 @@ def run(payload: dict) -> dict:
     folder = Path(payload["folder"])
     try:
         names = render_previews(Path(payload["model"]), folder)
+    except ModelError:  # a model that does not load: the check task says why
+        return {"outputs": {}}
     except MjcfbuildError:
         raise
     except Exception as exc:  # no EGL, no GPU driver...: the build itself is fine

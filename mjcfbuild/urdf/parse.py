@@ -27,6 +27,7 @@ from mjcfbuild.urdf.model import (
     Robot,
     Shape,
 )
+from mjcfbuild.xmlguard import refuse_entities
 
 _SEPARATORS = re.compile(r"[\s,]+")
 
@@ -48,14 +49,7 @@ def parse_xml(data: bytes, display_file: str, warnings: list[str]) -> etree._Ele
     """Parse XML bytes safely; undeclared namespace prefixes are a warning, the rest errors."""
     if not data.strip():
         raise InputError("the file is empty", file=display_file)
-    entity = data.find(b"<!ENTITY")
-    if entity >= 0:
-        raise InputError(
-            "XML entity declarations are not allowed",
-            file=display_file,
-            line=data.count(b"\n", 0, entity) + 1,
-            hint="robot descriptions do not need them; remove the <!ENTITY> declaration",
-        )
+    refuse_entities(data, display_file)
     try:
         return etree.fromstring(data, secure_parser())
     except etree.XMLSyntaxError as exc:
@@ -322,6 +316,18 @@ def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
             reader.number(limit_element, "effort"),
             reader.number(limit_element, "velocity"),
         )
+        if (
+            kind in ("revolute", "prismatic")
+            and limit.lower is not None
+            and limit.upper is not None
+            and limit.lower > limit.upper
+        ):
+            raise reader.error(
+                limit_element,
+                f"joint '{name}' has lower limit {limit.lower:g} above its upper limit "
+                f"{limit.upper:g}",
+                hint="swap them",
+            )
     damping = friction = 0.0
     dynamics = element.find("dynamics")
     if dynamics is not None:
@@ -405,6 +411,13 @@ def validate_structure(robot: Robot, root: etree._Element, reader: _Reader) -> N
             )
         parent_of[joint.child] = joint
     for joint in robot.joints:
+        if joint.mimic is not None and joint.mimic.joint == joint.name:
+            raise InputError(
+                f"joint '{joint.name}' mimics itself",
+                file=reader.file,
+                line=joint.line,
+                hint="name the joint it follows in <mimic joint=...>",
+            )
         if joint.mimic is not None and joint.mimic.joint not in joint_names:
             raise InputError(
                 f"joint '{joint.name}' mimics joint '{joint.mimic.joint}', which does not exist",

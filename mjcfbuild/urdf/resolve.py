@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 from mjcfbuild.errors import InputError
+from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.meshes.formats import MESH_FORMATS, mesh_format
 from mjcfbuild.meshes.naming import assign_mesh_ids
 from mjcfbuild.sources.packages import PackageResolver
@@ -54,16 +54,12 @@ def _resolve_existing(
         path = resolve_uri(uri, base_dir, packages)
     except InputError as exc:
         raise InputError(exc.message, file=robot.source, line=shape.line, hint=exc.hint) from None
-    if not path.is_file():
-        what = "a folder" if path.is_dir() else "not found"
+    problem = unreadable_file(path)
+    if problem:
         raise InputError(
-            f"file '{uri}' is {what} (looked at {path})",
+            f"file '{uri}' {problem} (looked at {path})",
             file=robot.source,
             line=shape.line,
             hint="check the path and the 'packages' in robot.yaml",
-        )
-    if not os.access(path, os.R_OK):
-        raise InputError(
-            f"file '{uri}' is not readable ({path})", file=robot.source, line=shape.line
         )
     return str(path)

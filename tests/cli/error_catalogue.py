@@ -1,0 +1,663 @@
+"""The catalogue of bad inputs: each case is a small robot folder with one thing wrong.
+
+A case lists the files to write (text, bytes, or a callable that creates the file), the command
+line, the exit code it must end with and what the one-line message must say: the file, the line
+where there is one, and words that tell the user what to do.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from mjcfbuild.errors import (
+    EXIT_INPUT,
+    EXIT_MANIFEST,
+    EXIT_OUTPUT,
+    EXIT_USAGE,
+)
+from tests.conftest import two_link_urdf
+
+FileContent = str | bytes | Callable[[Path], None]
+
+MANIFEST = "name: robot\nsource:\n  urdf: robot.urdf\n"
+XACRO_MANIFEST = "name: robot\nsource:\n  xacro: robot.urdf.xacro\n"
+TETRAHEDRON_STL = """solid t
+facet normal 0 0 -1
+ outer loop
+  vertex 0 0 0
+  vertex 0 0.1 0
+  vertex 0.1 0 0
+ endloop
+endfacet
+facet normal 0 -1 0
+ outer loop
+  vertex 0 0 0
+  vertex 0.1 0 0
+  vertex 0 0 0.1
+ endloop
+endfacet
+facet normal -1 0 0
+ outer loop
+  vertex 0 0 0
+  vertex 0 0 0.1
+  vertex 0 0.1 0
+ endloop
+endfacet
+facet normal 1 1 1
+ outer loop
+  vertex 0.1 0 0
+  vertex 0 0.1 0
+  vertex 0 0 0.1
+ endloop
+endfacet
+endsolid t
+"""
+
+
+@dataclass
+class Case:
+    """One bad input and what mjcfbuild must say about it."""
+
+    name: str
+    files: dict[str, FileContent]
+    code: int
+    says: list[str]
+    args: list[str] = field(default_factory=lambda: ["build", "robot.yaml"])
+    needs_unprivileged: bool = False
+
+    def write(self, folder: Path) -> None:
+        """Create the case's files under ``folder``."""
+        for relative, content in self.files.items():
+            path = folder / relative
+            path.parent.mkdir(parents=True, exist_ok=True)
+            if callable(content):
+                content(path)
+            elif isinstance(content, bytes):
+                path.write_bytes(content)
+            else:
+                path.write_text(content)
+
+
+def urdf(replace: tuple[str, str] | None = None, extra: str = "") -> str:
+    """The two-link URDF with one substitution (which must apply) and extra elements."""
+    text = two_link_urdf(extra)
+    if replace is not None:
+        old, new = replace
+        assert old in text, old
+        text = text.replace(old, new, 1)
+    return text
+
+
+def mesh_urdf(filename: str) -> str:
+    """The two-link URDF whose arm is drawn by the mesh ``filename``."""
+    visual = f'<visual><geometry><mesh filename="{filename}"/></geometry></visual>'
+    return urdf(('<link name="arm">', f'<link name="arm">{visual}'))
+
+
+def symlink_loop(path: Path) -> None:
+    """``path`` -> ``path.loop`` -> ``path``."""
+    other = path.with_name(path.name + ".loop")
+    os.symlink(other.name, path)
+    os.symlink(path.name, other)
+
+
+def a_plain_file(path: Path) -> None:
+    """A regular file where a folder is wanted."""
+    path.write_text("not a folder\n")
+
+
+def read_only_folder(path: Path) -> None:
+    """A folder nobody may write in."""
+    path.mkdir()
+    path.chmod(0o555)
+
+
+LAUGHS = """<?xml version="1.0"?>
+<!DOCTYPE robot [
+  <!ENTITY a "hahahahahahahahahahahahahahahahahaha">
+  <!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;">
+  <!ENTITY c "&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;">
+]>
+<robot name="r"><link name="base"><visual><geometry><box size="1 1 1"/></geometry></visual>
+<material name="&c;"/></link></robot>
+"""
+
+EXTERNAL_ENTITY = """<?xml version="1.0"?>
+<!DOCTYPE robot [<!ENTITY secret SYSTEM "file:///etc/passwd">]>
+<robot name="&secret;"><link name="base"/></robot>
+"""
+
+CASES: list[Case] = [
+    # ---- the manifest -------------------------------------------------------------------------
+    Case(
+        "yaml syntax",
+        {"robot.yaml": "name: robot\nsource: [urdf: robot.urdf\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:3:", "YAML"],
+    ),
+    Case(
+        "yaml tab indentation",
+        {"robot.yaml": "name: robot\nsource:\n\turdf: robot.urdf\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:3:"],
+    ),
+    Case(
+        "unknown top-level key",
+        {"robot.yaml": MANIFEST + "outptu:\n  folder: out\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:4:1", "unknown key 'outptu'", "output"],
+    ),
+    Case(
+        "unknown nested key",
+        {"robot.yaml": MANIFEST + "options:\n  free_joints: true\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:5:3", "free_joint"],
+    ),
+    Case(
+        "wrong type",
+        {"robot.yaml": MANIFEST + "options:\n  free_joint: maybe\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:5:3", "free_joint", "true or false", "'maybe'"],
+    ),
+    Case(
+        "missing source", {"robot.yaml": "name: robot\n"}, EXIT_MANIFEST, ["robot.yaml", "source"]
+    ),
+    Case(
+        "two sources",
+        {"robot.yaml": MANIFEST + "  xacro: robot.urdf.xacro\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:2:", "one of"],
+    ),
+    Case("empty manifest", {"robot.yaml": ""}, EXIT_MANIFEST, ["robot.yaml", "empty"]),
+    Case(
+        "manifest is a list",
+        {"robot.yaml": "- name: robot\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:1:", "mapping"],
+    ),
+    Case("manifest not found", {}, EXIT_MANIFEST, ["robot.yaml", "not found", "init"]),
+    Case("manifest is a folder", {"robot.yaml/keep": ""}, EXIT_MANIFEST, ["robot.yaml", "folder"]),
+    Case(
+        "manifest not UTF-8",
+        {"robot.yaml": b"name: r\xe9bot\nsource:\n  urdf: robot.urdf\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml", "UTF-8"],
+    ),
+    Case(
+        "duplicate key",
+        {"robot.yaml": MANIFEST + "name: other\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:4:1", "duplicate key 'name'"],
+    ),
+    Case(
+        "negative number",
+        {"robot.yaml": MANIFEST + "meshes:\n  max_faces: -5\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:5:3", "max_faces", "-5 should be greater than 3"],
+    ),
+    Case(
+        "threshold out of range",
+        {"robot.yaml": MANIFEST + "collision:\n  decompose:\n    threshold: 5\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:6:5", "threshold", "less than or equal to 1"],
+    ),
+    Case(
+        "not a number",
+        {"robot.yaml": MANIFEST + "inertia:\n  min_mass: .nan\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:5:3", "min_mass", "nan"],
+    ),
+    Case(
+        "robot name with a slash",
+        {"robot.yaml": MANIFEST.replace("robot\n", "../evil\n", 1)},
+        EXIT_MANIFEST,
+        ["robot.yaml:1:1", "'../evil' is not a valid name"],
+    ),
+    Case(
+        "output file escapes the folder",
+        {"robot.yaml": MANIFEST + "output:\n  robot: ../../escaped.xml\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:5:3", "output.robot", "not a valid name"],
+    ),
+    Case(
+        "xacro args not a mapping",
+        {"robot.yaml": XACRO_MANIFEST + "  args: [a, b]\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:4:3", "source.args", "mapping"],
+    ),
+    Case(
+        "package folder missing",
+        {"robot.yaml": MANIFEST + "packages:\n  my_robot: ./nowhere\n", "robot.urdf": urdf()},
+        EXIT_MANIFEST,
+        ["robot.yaml:5:3", "packages.my_robot", "nowhere", "not a folder"],
+    ),
+    # ---- sources ------------------------------------------------------------------------------
+    Case("urdf not found", {"robot.yaml": MANIFEST}, EXIT_INPUT, ["robot.urdf", "not found"]),
+    Case(
+        "xacro not found",
+        {"robot.yaml": XACRO_MANIFEST},
+        EXIT_INPUT,
+        ["robot.urdf.xacro", "not found"],
+    ),
+    Case(
+        "xacro XML syntax",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
+            '<link name="base">\n</robot>\n',
+        },
+        EXIT_INPUT,
+        ["robot.urdf.xacro:3", "XML"],
+    ),
+    Case(
+        "xacro undefined property",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
+            '<link name="${base_name}"/>\n</robot>\n',
+        },
+        EXIT_INPUT,
+        ["robot.urdf.xacro", "base_name"],
+    ),
+    Case(
+        "xacro unknown package",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
+            '<xacro:include filename="$(find ghost_description)/a.xacro"/>\n'
+            "</robot>\n",
+        },
+        EXIT_INPUT,
+        ["robot.urdf.xacro", "ghost_description", "packages"],
+    ),
+    Case(
+        "xacro include missing",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
+            '<xacro:include filename="parts/missing.xacro"/>\n</robot>\n',
+        },
+        EXIT_INPUT,
+        ["robot.urdf.xacro", "missing.xacro"],
+    ),
+    Case(
+        "xacro argument without value",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
+            '<link name="$(arg prefix)base"/>\n</robot>\n',
+        },
+        EXIT_INPUT,
+        ["robot.urdf.xacro", "substitution argument prefix", "source.args"],
+    ),
+    Case(
+        "xacro entity expansion",
+        {"robot.yaml": XACRO_MANIFEST, "robot.urdf.xacro": LAUGHS},
+        EXIT_INPUT,
+        ["robot.urdf.xacro", "entit"],
+    ),
+    Case(
+        "xacro included file with entities",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
+            '<xacro:include filename="evil.xacro"/>\n</robot>\n',
+            "evil.xacro": LAUGHS,
+        },
+        EXIT_INPUT,
+        ["evil.xacro:3", "entity declarations"],
+    ),
+    Case(
+        "urdf malformed XML",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf(("</robot>", "</robt>"))},
+        EXIT_INPUT,
+        ["robot.urdf:", "XML"],
+    ),
+    Case(
+        "urdf root is not robot",
+        {"robot.yaml": MANIFEST, "robot.urdf": "<?xml version='1.0'?>\n<sdf version='1.6'/>\n"},
+        EXIT_INPUT,
+        ["robot.urdf:2", "<robot>"],
+    ),
+    Case(
+        "urdf entity expansion",
+        {"robot.yaml": MANIFEST, "robot.urdf": LAUGHS},
+        EXIT_INPUT,
+        ["robot.urdf", "entit"],
+    ),
+    Case(
+        "urdf external entity",
+        {"robot.yaml": MANIFEST, "robot.urdf": EXTERNAL_ENTITY},
+        EXIT_INPUT,
+        ["robot.urdf", "entit"],
+    ),
+    Case(
+        "urdf empty",
+        {"robot.yaml": MANIFEST, "robot.urdf": ""},
+        EXIT_INPUT,
+        ["robot.urdf", "empty"],
+    ),
+    Case(
+        "urdf symlink loop",
+        {"robot.yaml": MANIFEST, "robot.urdf": symlink_loop},
+        EXIT_INPUT,
+        ["robot.urdf", "symbolic link loop"],
+    ),
+    Case(
+        "unknown link",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": urdf(('<child link="arm"/>', '<child link="arn"/>')),
+        },
+        EXIT_INPUT,
+        ["robot.urdf:11:", "'arn'", "did you mean 'arm'"],
+    ),
+    Case(
+        "duplicate link",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf(extra='<link name="arm"/>')},
+        EXIT_INPUT,
+        ["robot.urdf:15:", "link 'arm' is defined twice"],
+    ),
+    Case(
+        "duplicate joint",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": urdf(
+                extra='<link name="tip"/>\n<joint name="hinge" type="fixed">'
+                '<parent link="arm"/><child link="tip"/></joint>'
+            ),
+        },
+        EXIT_INPUT,
+        ["robot.urdf:16:", "joint 'hinge' is defined twice"],
+    ),
+    Case(
+        "kinematic cycle",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": urdf(
+                extra='<joint name="back" type="fixed"><parent link="arm"/>'
+                '<child link="base"/></joint>'
+            ),
+        },
+        EXIT_INPUT,
+        ["robot.urdf:", "cycle"],
+    ),
+    Case(
+        "two roots",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf(extra='<link name="loose"/>')},
+        EXIT_INPUT,
+        ["robot.urdf", "root", "loose"],
+    ),
+    Case(
+        "link with two parents",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": urdf(
+                extra='<link name="tip"/>\n<joint name="j2" type="fixed">'
+                '<parent link="base"/><child link="arm"/></joint>'
+            ),
+        },
+        EXIT_INPUT,
+        ["robot.urdf:16:", "'arm' is the child of two joints"],
+    ),
+    Case(
+        "unknown joint type",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf(('type="revolute"', 'type="hinge"'))},
+        EXIT_INPUT,
+        ["robot.urdf:11:", "unknown type 'hinge'", "revolute"],
+    ),
+    Case(
+        "bad number",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf(('xyz="0 0 0.1"', 'xyz="0 0 O.1"'))},
+        EXIT_INPUT,
+        ["robot.urdf:12:", "xyz", "'O.1' is not a number"],
+    ),
+    Case(
+        "too few numbers",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf(('xyz="0 0 0.1"', 'xyz="0 0.1"'))},
+        EXIT_INPUT,
+        ["robot.urdf:12:", "needs 3 numbers, found 2"],
+    ),
+    Case(
+        "infinite number",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf(('rpy="0 0 0.3"', 'rpy="0 0 inf"'))},
+        EXIT_INPUT,
+        ["robot.urdf:12:", "rpy", "not a finite number"],
+    ),
+    Case(
+        "zero-size box",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf(('size="0.2 0.2 0.1"', 'size="0.2 0 0.1"'))},
+        EXIT_INPUT,
+        ["robot.urdf:4:", "box size 0.2 0 0.1", "positive size"],
+    ),
+    Case(
+        "negative radius",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": urdf(
+                (
+                    '<geometry><cylinder radius="0.03" length="0.5"/></geometry></collision>',
+                    '<geometry><cylinder radius="-0.03" length="0.5"/></geometry></collision>',
+                )
+            ),
+        },
+        EXIT_INPUT,
+        ["robot.urdf:9:", "cylinder"],
+    ),
+    Case(
+        "zero axis",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": urdf(('<axis xyz="0 1 0"/>', '<axis xyz="0 0 0"/>')),
+        },
+        EXIT_INPUT,
+        ["robot.urdf:13:", "zero axis"],
+    ),
+    Case(
+        "lower limit above upper",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf(('lower="-1.5"', 'lower="2"'))},
+        EXIT_INPUT,
+        ["robot.urdf:13:", "lower limit 2 above its upper limit 1.5"],
+    ),
+    Case(
+        "negative mass",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": urdf(
+                (
+                    '<link name="arm"><inertial><mass value="1"/>',
+                    '<link name="arm"><inertial><mass value="-1"/>',
+                )
+            ),
+        },
+        EXIT_INPUT,
+        ["robot.urdf:6:", "mass -1"],
+    ),
+    # ---- meshes -------------------------------------------------------------------------------
+    Case(
+        "mesh not found",
+        {"robot.yaml": MANIFEST, "robot.urdf": mesh_urdf("meshes/arm.stl")},
+        EXIT_INPUT,
+        ["robot.urdf:6:", "meshes/arm.stl", "not found"],
+    ),
+    Case(
+        "mesh file empty",
+        {"robot.yaml": MANIFEST, "robot.urdf": mesh_urdf("meshes/arm.stl"), "meshes/arm.stl": b""},
+        EXIT_INPUT,
+        ["meshes/arm.stl", "the mesh file is empty"],
+    ),
+    Case(
+        "mesh file corrupt",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": mesh_urdf("meshes/arm.stl"),
+            "meshes/arm.stl": b"\x00\x01garbage" * 20,
+        },
+        EXIT_INPUT,
+        ["arm.stl"],
+    ),
+    Case(
+        "mesh COLLADA corrupt",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": mesh_urdf("meshes/arm.dae"),
+            "meshes/arm.dae": "<COLLADA><library_geometries><geometry>",
+        },
+        EXIT_INPUT,
+        ["arm.dae"],
+    ),
+    Case(
+        "mesh format unknown",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": mesh_urdf("meshes/arm.fbx"),
+            "meshes/arm.fbx": b"Kaydara FBX Binary",
+        },
+        EXIT_INPUT,
+        ["arm.fbx", "format"],
+    ),
+    Case(
+        "mesh without faces",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": mesh_urdf("meshes/arm.obj"),
+            "meshes/arm.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\n",
+        },
+        EXIT_INPUT,
+        ["arm.obj", "faces"],
+    ),
+    Case(
+        "mesh too large",
+        {
+            "robot.yaml": MANIFEST + "meshes:\n  max_file_mb: 0.0001\n",
+            "robot.urdf": mesh_urdf("meshes/arm.stl"),
+            "meshes/arm.stl": TETRAHEDRON_STL * 3,
+        },
+        EXIT_INPUT,
+        ["meshes/arm.stl", "more than meshes.max_file_mb"],
+    ),
+    Case(
+        "mesh symlink loop",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": mesh_urdf("meshes/arm.stl"),
+            "meshes/arm.stl": symlink_loop,
+        },
+        EXIT_INPUT,
+        ["robot.urdf:6:", "meshes/arm.stl", "symbolic link loop"],
+    ),
+    Case(
+        "mesh in unknown package",
+        {"robot.yaml": MANIFEST, "robot.urdf": mesh_urdf("package://ghost/meshes/arm.stl")},
+        EXIT_INPUT,
+        ["robot.urdf:6:", "unknown package 'ghost'", "packages"],
+    ),
+    Case(
+        "mesh package name escapes",
+        {"robot.yaml": MANIFEST, "robot.urdf": mesh_urdf("package://../../etc/arm.stl")},
+        EXIT_INPUT,
+        ["robot.urdf:6:", "unknown package '..'"],
+    ),
+    Case(
+        "mesh remote URL",
+        {"robot.yaml": MANIFEST, "robot.urdf": mesh_urdf("https://example.com/arm.stl")},
+        EXIT_INPUT,
+        ["robot.urdf:6:", "remote file", "download"],
+    ),
+    # ---- MuJoCo inputs ------------------------------------------------------------------------
+    Case(
+        "raw MJCF malformed",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  raw: |\n    <actuator><motor joint='hinge'>\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["robot.yaml:7:", "mujoco_inputs.raw", "malformed XML"],
+    ),
+    Case(
+        "modify unknown element",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  modify:\n    - type: joint\n      name: elbow\n"
+            "      attributes: {damping: 1}\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["robot.yaml:6:", "elbow", "hinge"],
+    ),
+    Case(
+        "inputs file missing",
+        {"robot.yaml": MANIFEST + "mujoco_inputs:\n  file: inputs.xml\n", "robot.urdf": urdf()},
+        EXIT_INPUT,
+        ["inputs.xml", "not found"],
+    ),
+    Case(
+        "camera on unknown link",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  cameras:\n    - name: eye\n      link: head\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["robot.yaml:6:7", "cameras[0]", "link 'head', which does not exist"],
+    ),
+    Case(
+        "raw actuator on unknown joint",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  raw: |\n    <actuator><motor joint='elbow'/></actuator>\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["robot.yaml:6:", 'joint="elbow" names a joint that does not exist'],
+    ),
+    # ---- outputs ------------------------------------------------------------------------------
+    Case(
+        "output folder inside a file",
+        {
+            "robot.yaml": MANIFEST + "output:\n  folder: taken/mjcf\n",
+            "robot.urdf": urdf(),
+            "taken": a_plain_file,
+        },
+        EXIT_OUTPUT,
+        ["taken", "folder"],
+    ),
+    Case(
+        "output folder read-only",
+        {
+            "robot.yaml": MANIFEST + "output:\n  folder: locked\n",
+            "robot.urdf": urdf(),
+            "locked": read_only_folder,
+        },
+        EXIT_OUTPUT,
+        ["locked", "permission"],
+        needs_unprivileged=True,
+    ),
+    # ---- the command line ---------------------------------------------------------------------
+    Case(
+        "unknown option",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+        EXIT_USAGE,
+        ["--fast"],
+        args=["build", "--fast"],
+    ),
+    Case(
+        "zero jobs",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+        EXIT_USAGE,
+        ["at least 1"],
+        args=["build", "-j", "0"],
+    ),
+    Case(
+        "explain unknown task",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+        EXIT_USAGE,
+        ["mesh:nothing"],
+        args=["explain", "mesh:nothing"],
+    ),
+    Case("convert without input", {}, EXIT_USAGE, ["-u", "-r"], args=["convert", "-o", "out"]),
+]
