@@ -115,7 +115,14 @@ def copy_robot(robot: Robot, destination: Path) -> tuple[Path, Path]:
     return target_root / robot.urdf, target_root
 
 
-def manifest(robot: Robot, folder: Path, urdf: Path, packages_root: Path, extra: str = "") -> Path:
+def manifest(
+    robot: Robot,
+    folder: Path,
+    urdf: Path,
+    packages_root: Path,
+    extra: str = "",
+    fuse_static: bool = True,
+) -> Path:
     """Write a manifest building ``urdf`` into ``folder/mjcf``; its path."""
     path = folder / "robot.yaml"
     folder.mkdir(parents=True, exist_ok=True)
@@ -124,6 +131,7 @@ def manifest(robot: Robot, folder: Path, urdf: Path, packages_root: Path, extra:
         f"source:\n  urdf: {urdf}\n"
         f"packages:\n  example-robot-data: {packages_root}\n"
         f"options:\n  free_joint: {'true' if robot.floating else 'false'}\n"
+        f"  fuse_static: {'true' if fuse_static else 'false'}\n"
         f"{extra}"
     )
     return path

@@ -20,7 +20,18 @@ from mjcfbuild.errors import (
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser with every subcommand."""
-    from mjcfbuild.cli import build, cache, check, clean, convert, explain, graph, init, schema
+    from mjcfbuild.cli import (
+        build,
+        cache,
+        check,
+        clean,
+        convert,
+        explain,
+        export_urdf,
+        graph,
+        init,
+        schema,
+    )
 
     parser = argparse.ArgumentParser(
         prog="mjcfbuild",
@@ -33,7 +44,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     commands = parser.add_subparsers(title="commands", dest="command", metavar="COMMAND")
     commands.required = True
-    for module in (build, check, explain, graph, clean, convert, init, schema, cache):
+    for module in (build, check, explain, graph, clean, convert, export_urdf, init, schema, cache):
         module.add_parser(commands)
     return parser
 

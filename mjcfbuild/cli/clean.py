@@ -34,12 +34,12 @@ def run(args: argparse.Namespace) -> int:
     removed = []
     if ctx.out_dir.is_dir():
         with build_lock(ctx, Progress(quiet=True)):
-            for path in (ctx.robot_path, ctx.scene_path):
-                if path.exists():
+            for path in (ctx.robot_path, ctx.scene_path, ctx.urdf_path):
+                if path is not None and path.exists():
                     path.unlink()
                     removed.append(ctx.label(path))
-            for folder in (ctx.assets_dir, report_dir(ctx)):
-                if folder.is_dir():
+            for folder in (ctx.assets_dir, report_dir(ctx), ctx.urdf_mesh_dir):
+                if folder is not None and folder.is_dir():
                     shutil.rmtree(folder)
                     removed.append(ctx.label(folder) + "/")
         shutil.rmtree(ctx.state_dir, ignore_errors=True)

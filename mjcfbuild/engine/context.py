@@ -124,6 +124,18 @@ class BuildContext:
         return self.out_dir / self.manifest.output.scene
 
     @property
+    def urdf_path(self) -> Path | None:
+        """The exported URDF, if the manifest asks for one."""
+        export = self.manifest.output.urdf
+        return self.out_dir / export.file if export else None
+
+    @property
+    def urdf_mesh_dir(self) -> Path | None:
+        """The folder of the exported URDF's meshes, if the manifest asks for a URDF."""
+        export = self.manifest.output.urdf
+        return self.out_dir / export.mesh_folder if export else None
+
+    @property
     def assets_dir(self) -> Path:
         """Where mesh and texture files of the model go."""
         return self.out_dir / "assets"

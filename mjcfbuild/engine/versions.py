@@ -17,6 +17,7 @@ STEP_FORMATS = {
     "scene": 2,
     "check": 1,
     "previews": 1,
+    "export_urdf": 1,
 }
 
 STEP_TOOLS = {
@@ -28,6 +29,7 @@ STEP_TOOLS = {
     "scene": ("lxml",),
     "check": ("mujoco", "numpy"),
     "previews": ("mujoco", "numpy", "pillow"),
+    "export_urdf": ("mujoco", "numpy"),
 }
 
 

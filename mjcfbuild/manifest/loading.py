@@ -89,19 +89,46 @@ def manifest_error_from_validation(
 ) -> ManifestError:
     """Turn the first pydantic error into a one-line, positioned :class:`ManifestError`."""
     errors = exc.errors(include_url=False)
+    for item in errors:
+        item["loc"] = _real_keys(tuple(item["loc"]), positions)
     error = _most_relevant(errors)
     loc = tuple(error["loc"])
     where = positions.of(loc)
     line, column = where if where else (None, None)
     message = f"{_dotted(loc)}: {describe(error)}" if loc else describe(error)
-    more = len(errors) - 1
+    more = sum(1 for other in errors if not _related(tuple(other["loc"]), loc))
     hint = f"{more} more problem{'s' if more > 1 else ''} after this one" if more else None
     return ManifestError(message, file=display_name, line=line, column=column, hint=hint)
 
 
+def _related(a: tuple, b: tuple) -> bool:
+    """Whether one location contains the other (errors of one union, or of one key)."""
+    shorter = min(len(a), len(b))
+    return a[:shorter] == b[:shorter]
+
+
+def _real_keys(loc: tuple, positions: Positions) -> tuple:
+    """``loc`` without the names pydantic gives the members of a union (``constrained-str``,
+    ``function-after[...]``): only keys and list positions that are in the manifest."""
+    kept: tuple = ()
+    for part in loc:
+        if isinstance(part, int) or (*kept, part) in positions.keys:
+            kept = (*kept, part)
+        elif part not in _UNION_TAG_HINTS and "[" not in part and "-" not in part:
+            kept = (*kept, part)  # a key the manifest lacks (a missing required key)
+    return kept
+
+
+_UNION_TAG_HINTS = {"str", "int", "float", "bool", "list", "dict", "none", "lax-or-strict"}
+
+
 def _most_relevant(errors: list[dict]) -> dict:
-    """Prefer errors about a specific key over errors about a whole mapping."""
-    return sorted(errors, key=lambda e: (e["type"] == "model_type", -len(e["loc"])))[0]
+    """Prefer errors about a specific key, then errors that are not just "wrong type" (of one
+    member of a union, when another member's error says more), over errors about a mapping."""
+    return sorted(
+        errors,
+        key=lambda e: (e["type"] == "model_type", e["type"].endswith("_type"), -len(e["loc"])),
+    )[0]
 
 
 def _dotted(loc: tuple) -> str:

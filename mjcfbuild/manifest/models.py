@@ -397,6 +397,42 @@ class Scene(StrictModel):
         return self
 
 
+RESERVED_OUTPUT_NAMES = {"assets", "report", ".mjcfbuild"}
+
+
+class UrdfExport(StrictModel):
+    """A URDF of the built model, for RViz, MoveIt and other ROS tools."""
+
+    file: FileName = Field(description="File name of the URDF, in the output folder.")
+    meshes: FileName | None = Field(
+        None,
+        description=(
+            "Folder (in the output folder) for the URDF's OBJ and MTL files. "
+            "Default: '<file stem>_meshes'."
+        ),
+    )
+    asset_prefix: str | None = Field(
+        None,
+        description=(
+            "How the URDF names its mesh files, e.g. 'package://my_robot_description/mjcf/"
+            "robot_meshes/'. Default: the mesh folder relative to the URDF."
+        ),
+    )
+    sites: bool = Field(True, description="Export sites (link frames, sensors) as frame links.")
+
+    @model_validator(mode="after")
+    def _names(self) -> UrdfExport:
+        if self.mesh_folder in RESERVED_OUTPUT_NAMES:
+            raise ValueError(f"'{self.mesh_folder}' is used by the build; choose another 'meshes'")
+        return self
+
+    @computed_field
+    @property
+    def mesh_folder(self) -> str:
+        """The mesh folder's name."""
+        return self.meshes or f"{self.file.rsplit('.', 1)[0]}_meshes"
+
+
 class Output(StrictModel):
     """Where the model is written."""
 
@@ -405,11 +441,25 @@ class Output(StrictModel):
         None, description="File name of the robot model. Default: '<name>.xml'."
     )
     scene: FileName = Field("scene.xml", description="File name of the scene.")
+    urdf: UrdfExport | FileName | None = Field(
+        None,
+        description=(
+            "Also write a URDF of the built model: a file name, or a mapping with file, "
+            "meshes, asset_prefix and sites."
+        ),
+    )
+
+    @field_validator("urdf")
+    @classmethod
+    def _urdf_file_alone(cls, value: UrdfExport | str | None) -> UrdfExport | None:
+        return UrdfExport(file=value) if isinstance(value, str) else value
 
     @model_validator(mode="after")
     def _distinct_files(self) -> Output:
         if self.robot is not None and self.robot == self.scene:
             raise ValueError("robot and scene must be different files")
+        if self.urdf is not None and self.urdf.file in (self.robot, self.scene):
+            raise ValueError("the URDF must be a file of its own")
         return self
 
 

@@ -32,14 +32,17 @@ def rpy_to_matrix(rpy: Vec3) -> Matrix:
 
 
 def matrix_to_rpy(m: Matrix) -> Vec3:
-    """Roll-pitch-yaw of a rotation matrix (any of the equivalent ones at gimbal lock)."""
+    """Roll-pitch-yaw of a rotation matrix (any of the equivalent ones at gimbal lock).
+
+    Near gimbal lock (pitch close to +/-90 degrees) roll and yaw are each ill-conditioned, but
+    their combination is not: yaw is computed from the matrix *given* the roll found, so the
+    three angles rebuild the matrix to rounding error, however close to the lock it is.
+    """
     pitch = math.atan2(-m[2][0], math.hypot(m[0][0], m[1][0]))
-    if math.hypot(m[0][0], m[1][0]) < 1e-12:
-        roll = 0.0
-        yaw = math.atan2(-m[0][1], m[1][1])
-    else:
-        roll = math.atan2(m[2][1], m[2][2])
-        yaw = math.atan2(m[1][0], m[0][0])
+    roll = math.atan2(m[2][1], m[2][2]) if math.hypot(m[2][1], m[2][2]) > 1e-300 else 0.0
+    cr, sr = math.cos(roll), math.sin(roll)
+    # R * Rx(roll)^T * e_y = Rz(yaw) * e_y = (-sin(yaw), cos(yaw), 0)
+    yaw = math.atan2(-(m[0][1] * cr - m[0][2] * sr), m[1][1] * cr - m[1][2] * sr)
     return (roll, pitch, yaw)
 
 

@@ -1,0 +1,44 @@
+"""Writing an export to disk: the URDF and its mesh files, atomically, nothing outside them."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from mjcfbuild.errors import OutputError
+from mjcfbuild.export.urdf_writer import ExportResult
+from mjcfbuild.fsutil import write_if_changed
+
+
+def default_asset_prefix(urdf_path: Path, mesh_dir: Path) -> str:
+    """How the URDF refers to ``mesh_dir``: a relative path from the URDF's folder."""
+    relative = os.path.relpath(mesh_dir, urdf_path.parent)
+    return "" if relative == "." else relative.replace(os.sep, "/") + "/"
+
+
+def publish(result: ExportResult, urdf_path: Path, mesh_dir: Path) -> dict[str, bytes]:
+    """Write the mesh files, then the URDF (last, so a URDF never names missing files).
+
+    Returns every written file's bytes by path. Mesh file names come from
+    :func:`~mjcfbuild.export.meshfiles.safe_stem`, so they never leave ``mesh_dir``.
+    """
+    written: dict[str, bytes] = {}
+    try:
+        if result.meshes:
+            mesh_dir.mkdir(parents=True, exist_ok=True)
+        for name, data in sorted(result.meshes.items()):
+            path = mesh_dir / name
+            if path.parent != mesh_dir:  # names are made safe; this guards against a bug
+                raise OutputError(f"mesh file name '{name}' leaves the mesh folder")
+            write_if_changed(path, data)
+            written[str(path)] = data
+        urdf_path.parent.mkdir(parents=True, exist_ok=True)
+        write_if_changed(urdf_path, result.urdf)
+    except (NotADirectoryError, FileExistsError, PermissionError, IsADirectoryError) as exc:
+        raise OutputError(
+            f"cannot write the URDF export: {exc.strerror}",
+            file=exc.filename or urdf_path,
+            hint="choose another -o or mesh folder",
+        ) from None
+    written[str(urdf_path)] = result.urdf
+    return written

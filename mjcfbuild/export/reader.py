@@ -1,0 +1,222 @@
+"""Reading any MJCF into :class:`ModelOut` through MuJoCo: compiled numbers, spec class names.
+
+The compiled model gives every number after defaults, ``fromto``, mesh centring and scaling
+are resolved, so hand-written models read like generated ones. Class names, which the compiled
+model drops, come from the spec the model was compiled from.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from mjcfbuild.errors import InputError, ModelError
+from mjcfbuild.export.model import BodyOut, GeomOut, JointOut, MeshOut, MimicOut, ModelOut
+from mjcfbuild.urdf.transforms import Transform, matmul, quat_to_matrix, transpose
+
+WORLD = "world"
+DEFAULT_GEOM_RGBA = (0.5, 0.5, 0.5, 1.0)
+JOINT_KINDS = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
+GEOM_KINDS = {0: "plane", 1: "hfield", 2: "sphere", 3: "capsule", 4: "ellipsoid", 5: "cylinder"}
+GEOM_KINDS.update({6: "box", 7: "mesh", 8: "sdf"})
+
+
+def read_mjcf(path: Path) -> ModelOut:
+    """Load and compile the MJCF at ``path``; :class:`ModelError` if MuJoCo refuses it."""
+    import mujoco
+
+    from mjcfbuild.mjwarnings import capture_mujoco_warnings
+
+    capture_mujoco_warnings()
+    if not path.is_file():
+        raise InputError("model file not found", file=path)
+    try:
+        spec = mujoco.MjSpec.from_file(str(path))
+        model = spec.compile()
+    except Exception as exc:
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise ModelError(f"MuJoCo cannot load the model: {first}", file=path) from None
+    classes = {geom.id: (geom.classname.name if geom.classname else "") for geom in spec.geoms}
+    names = _body_names(model)
+    bodies = [_body(model, index, names) for index in range(model.nbody)]
+    for geom in range(model.ngeom):
+        if GEOM_KINDS[int(model.geom_type[geom])] not in ("plane", "hfield", "sdf"):
+            bodies[model.geom_bodyid[geom]].geoms.append(_geom(model, geom, classes.get(geom, "")))
+    for site in range(model.nsite):
+        body = model.site_bodyid[site]
+        name = model.site(site).name or f"{names[body]}_site{site}"
+        pose = Transform.from_quat(_vec(model.site_pos[site]), _quat(model.site_quat[site]))
+        bodies[body].sites.append((name, pose))
+    meshes = {index: _mesh(model, index) for index in sorted(_meshes_used(bodies))}
+    warnings = _skipped_geoms(model, names)
+    return ModelOut(
+        name=spec.modelname or path.stem,
+        bodies=bodies,
+        meshes=meshes,
+        mimics=_mimics(model),
+        warnings=warnings,
+    )
+
+
+def _body_names(model) -> list[str]:
+    names = []
+    for index in range(model.nbody):
+        name = model.body(index).name
+        names.append(WORLD if index == 0 else (name or f"body{index}"))
+    return names
+
+
+def _body(model, index: int, names: list[str]) -> BodyOut:
+    parent = None if index == 0 else names[model.body_parentid[index]]
+    body = BodyOut(
+        name=names[index],
+        parent=parent,
+        pose=Transform.from_quat(_vec(model.body_pos[index]), _quat(model.body_quat[index])),
+    )
+    if index > 0:
+        body.mass = float(model.body_mass[index])
+        body.com = _vec(model.body_ipos[index])
+        axes = quat_to_matrix(_quat(model.body_iquat[index]))
+        moments = _vec(model.body_inertia[index])
+        diagonal = tuple(tuple(moments[i] if i == j else 0.0 for j in range(3)) for i in range(3))
+        body.inertia = matmul(matmul(axes, diagonal), transpose(axes))
+    first = model.body_jntadr[index]
+    for joint in range(first, first + model.body_jntnum[index]) if first >= 0 else ():
+        body.joints.append(_joint(model, joint))
+    return body
+
+
+def joint_name(model, index: int) -> str:
+    """The joint's name, or a stable one for an unnamed joint."""
+    return model.joint(index).name or f"joint{index}"
+
+
+def _joint(model, index: int) -> JointOut:
+    kind = JOINT_KINDS[int(model.jnt_type[index])]
+    reference = 0.0
+    if kind in ("hinge", "slide"):
+        reference = float(model.qpos0[model.jnt_qposadr[index]])
+    limited = bool(model.jnt_limited[index])
+    lower, upper = (float(v) for v in model.jnt_range[index])
+    dof = model.jnt_dofadr[index]
+    return JointOut(
+        name=joint_name(model, index),
+        kind=kind,
+        position=_vec(model.jnt_pos[index]),
+        axis=_vec(model.jnt_axis[index]),
+        limited=limited,
+        lower=lower - reference,
+        upper=upper - reference,
+        effort=_effort(model, index),
+        damping=float(model.dof_damping[dof]),
+        friction=float(model.dof_frictionloss[dof]),
+    )
+
+
+def _effort(model, joint: int) -> float:
+    """The joint's force limit: its actuatorfrcrange, else what an actuator on it can apply."""
+    if model.jnt_actfrclimited[joint]:
+        return max(abs(float(v)) for v in model.jnt_actfrcrange[joint])
+    for actuator in range(model.nu):
+        if model.actuator_trntype[actuator] != 0 or model.actuator_trnid[actuator][0] != joint:
+            continue
+        if model.actuator_forcelimited[actuator]:
+            return max(abs(float(v)) for v in model.actuator_forcerange[actuator])
+        if model.actuator_ctrllimited[actuator] and model.actuator_biastype[actuator] == 0:
+            gear = float(model.actuator_gear[actuator][0])
+            gain = abs(float(model.actuator_gainprm[actuator][0]) * gear)
+            return gain * max(abs(float(v)) for v in model.actuator_ctrlrange[actuator])
+    return 0.0
+
+
+def _geom(model, index: int, class_name: str) -> GeomOut:
+    kind = GEOM_KINDS[int(model.geom_type[index])]
+    rgba = tuple(float(v) for v in model.geom_rgba[index])
+    material = model.geom_matid[index]
+    # MuJoCo draws a geom in its material's colour unless the geom's own rgba was changed.
+    if material >= 0 and _close(rgba, DEFAULT_GEOM_RGBA):
+        rgba = tuple(float(v) for v in model.mat_rgba[material])
+    return GeomOut(
+        kind=kind,
+        size=tuple(float(v) for v in model.geom_size[index]),
+        pose=Transform.from_quat(_vec(model.geom_pos[index]), _quat(model.geom_quat[index])),
+        rgba=rgba,  # type: ignore[arg-type]
+        roles=_roles(model, index, class_name),
+        mesh=int(model.geom_dataid[index]) if kind == "mesh" else None,
+    )
+
+
+def _roles(model, index: int, class_name: str) -> tuple[str, ...]:
+    """Visual, collision or both: by class name first, then contype/conaffinity and group."""
+    name = class_name.lower()
+    if "collision" in name and "visual" not in name:
+        return ("collision",)
+    if "visual" in name and "collision" not in name:
+        return ("visual",)
+    if not (model.geom_contype[index] or model.geom_conaffinity[index]):
+        return ("visual",)
+    if model.geom_group[index] >= 3:  # groups 0-2 are drawn by default; 3 and up are not
+        return ("collision",)
+    return ("visual", "collision")
+
+
+def _meshes_used(bodies: list[BodyOut]) -> set[int]:
+    return {geom.mesh for body in bodies for geom in body.geoms if geom.mesh is not None}
+
+
+def _mesh(model, index: int) -> MeshOut:
+    start, count = model.mesh_vertadr[index], model.mesh_vertnum[index]
+    first, faces = model.mesh_faceadr[index], model.mesh_facenum[index]
+    return MeshOut(
+        name=model.mesh(index).name or f"mesh{index}",
+        vertices=model.mesh_vert[start : start + count].astype(float),
+        faces=model.mesh_face[first : first + faces].astype(int),
+    )
+
+
+def _skipped_geoms(model, names: list[str]) -> list[str]:
+    warnings = []
+    for geom in range(model.ngeom):
+        kind = GEOM_KINDS[int(model.geom_type[geom])]
+        if kind in ("plane", "hfield", "sdf"):
+            label = model.geom(geom).name or f"geom {geom}"
+            body = names[model.geom_bodyid[geom]]
+            warnings.append(f"{label} in body '{body}' is a {kind}, which URDF cannot describe")
+    return warnings
+
+
+def _mimics(model) -> list[MimicOut]:
+    """Active joint couplings ``q1 = c0 + c1 q2`` (higher terms zero) between hinge and slide
+    joints, in URDF coordinates (measured from each joint's reference position)."""
+    result = []
+    for index in range(model.neq):
+        if model.eq_type[index] != 2 or not model.eq_active0[index]:  # 2: mjEQ_JOINT
+            continue
+        follower, leader = int(model.eq_obj1id[index]), int(model.eq_obj2id[index])
+        if leader < 0 or any(abs(float(c)) > 0 for c in model.eq_data[index][2:5]):
+            continue
+        if any(model.jnt_type[j] not in (2, 3) for j in (follower, leader)):
+            continue
+        c0, c1 = float(model.eq_data[index][0]), float(model.eq_data[index][1])
+        ref_follower = float(model.qpos0[model.jnt_qposadr[follower]])
+        ref_leader = float(model.qpos0[model.jnt_qposadr[leader]])
+        result.append(
+            MimicOut(
+                follower=joint_name(model, follower),
+                leader=joint_name(model, leader),
+                multiplier=c1,
+                offset=c0 + c1 * ref_leader - ref_follower,
+            )
+        )
+    return result
+
+
+def _vec(values) -> tuple[float, float, float]:
+    return (float(values[0]), float(values[1]), float(values[2]))
+
+
+def _quat(values) -> tuple[float, float, float, float]:
+    return (float(values[0]), float(values[1]), float(values[2]), float(values[3]))
+
+
+def _close(a, b) -> bool:
+    return all(abs(x - y) < 1e-6 for x, y in zip(a, b, strict=True))

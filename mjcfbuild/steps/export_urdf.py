@@ -1,0 +1,42 @@
+"""Step ``export_urdf``: a URDF of the built model, with its mesh files."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from mjcfbuild.export import ExportOptions, export_urdf
+from mjcfbuild.export.publish import default_asset_prefix
+from mjcfbuild.steps.outputs import write_output
+
+
+def run(payload: dict) -> dict:
+    """Export, write the meshes and then the URDF, and remove meshes an earlier export left."""
+    options = payload["options"]
+    urdf, mesh_dir = Path(payload["urdf"]), Path(payload["mesh_dir"])
+    prefix = options["asset_prefix"]
+    if prefix is None:
+        prefix = default_asset_prefix(urdf, mesh_dir)
+    result = export_urdf(
+        Path(payload["model"]),
+        ExportOptions(asset_prefix=prefix, sites=options["sites"], header=options["header"]),
+    )
+    outputs: dict[str, str] = {}
+    for name, data in sorted(result.meshes.items()):
+        write_output(mesh_dir / name, data, outputs)
+    record = Path(payload["record"])
+    for name in _previous_meshes(record) - set(result.meshes):
+        if name == Path(name).name and not name.startswith("."):  # never outside the folder
+            (mesh_dir / name).unlink(missing_ok=True)
+    if mesh_dir.is_dir() and not any(mesh_dir.iterdir()):
+        mesh_dir.rmdir()
+    write_output(record, (json.dumps({"meshes": sorted(result.meshes)}) + "\n").encode(), {})
+    write_output(urdf, result.urdf, outputs)
+    return {"outputs": outputs, "warnings": [f"URDF export: {w}" for w in result.warnings]}
+
+
+def _previous_meshes(record: Path) -> set[str]:
+    try:
+        return set(json.loads(record.read_text())["meshes"])
+    except (OSError, ValueError, KeyError):
+        return set()
