@@ -11,6 +11,7 @@ from pathlib import Path
 
 from mjcfbuild.errors import InputError, ModelError
 from mjcfbuild.export.model import BodyOut, GeomOut, JointOut, MeshOut, MimicOut, ModelOut
+from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.urdf.transforms import Transform, matmul, quat_to_matrix, transpose
 
 WORLD = "world"
@@ -27,8 +28,9 @@ def read_mjcf(path: Path) -> ModelOut:
     from mjcfbuild.mjwarnings import capture_mujoco_warnings
 
     capture_mujoco_warnings()
-    if not path.is_file():
-        raise InputError("model file not found", file=path)
+    problem = unreadable_file(path)
+    if problem:
+        raise InputError(f"model file {problem}", file=path)
     try:
         spec = mujoco.MjSpec.from_file(str(path))
         model = spec.compile()

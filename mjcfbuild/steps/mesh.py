@@ -53,7 +53,10 @@ def run(payload: dict) -> dict:
 
 def check_size(source: Path, max_bytes: int) -> None:
     """Refuse an empty mesh file, or one larger than ``meshes.max_file_mb``, before loading it."""
-    size = source.stat().st_size
+    try:
+        size = source.stat().st_size
+    except OSError as exc:  # removed or replaced since the plan was made
+        raise InputError(f"cannot read the mesh file: {exc.strerror}", file=source) from None
     if size == 0:
         raise InputError("the mesh file is empty", file=source, hint="export the mesh again")
     if size > max_bytes:
