@@ -159,15 +159,18 @@ def _run(ctx: BuildContext, name: str, step: str, payload: dict, in_worker: bool
     return {"outputs": result["outputs"]}
 
 
-def _expand_task(ctx: BuildContext, prefix: str) -> dict:
-    source = ctx.source_path
-    problem = unreadable_file(source)
+def _require_file(ctx: BuildContext, path: Path, what: str, key: str) -> None:
+    """:class:`InputError` unless ``path``, named by manifest key ``key``, is a readable file."""
+    problem = unreadable_file(path)
     if problem:
         raise InputError(
-            f"source file {problem}",
-            file=ctx.label(source),
-            hint=f"fix 'source' in {ctx.manifest_label}",
+            f"{what} {problem}", file=ctx.label(path), hint=f"fix '{key}' in {ctx.manifest_label}"
         )
+
+
+def _expand_task(ctx: BuildContext, prefix: str) -> dict:
+    source = ctx.source_path
+    _require_file(ctx, source, "source file", "source")
     output, deps = ctx.state(SOURCE_URDF), ctx.state(SOURCE_DEPS)
     depfile = Depfile.read(deps)
     file_dep = [source]
@@ -206,13 +209,7 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
     inputs_file = None
     if ctx.manifest.mujoco_inputs.file:
         inputs_file = ctx.resolve(ctx.manifest.mujoco_inputs.file)
-        problem = unreadable_file(inputs_file)
-        if problem:
-            raise InputError(
-                f"inputs file {problem}",
-                file=ctx.label(inputs_file),
-                hint=f"fix 'mujoco_inputs.file' in {ctx.manifest_label}",
-            )
+        _require_file(ctx, inputs_file, "inputs file", "mujoco_inputs.file")
     expanded = ctx.source_kind == "xacro"
     payload = {
         "urdf": str(urdf),
@@ -478,13 +475,8 @@ def _export_urdf_task(ctx: BuildContext, prefix: str) -> dict:
 def _scene_task(ctx: BuildContext, plan: dict, prefix: str) -> dict:
     scene = ctx.manifest.scene
     source = ctx.resolve(scene.file) if scene.file else None
-    problem = unreadable_file(source) if source is not None else None
-    if problem:
-        raise InputError(
-            f"scene file {problem}",
-            file=ctx.label(source),
-            hint=f"fix 'scene.file' in {ctx.manifest_label}",
-        )
+    if source is not None:
+        _require_file(ctx, source, "scene file", "scene.file")
     block = None
     if scene.mjcf:
         block = {"xml": scene.mjcf, "origin": f"{ctx.manifest_label} scene.mjcf"}

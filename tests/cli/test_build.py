@@ -10,11 +10,10 @@ def test_build_prints_progress_then_summary(cli, arm):
     result = cli("build", "-j", "2", cwd=arm)
     assert result.code == EXIT_OK, result.stderr
     assert "mesh base" in result.stdout and "check example_arm.xml" in result.stdout
-    assert (
-        result.stdout.strip()
-        .splitlines()[-1]
-        .startswith("mjcfbuild: built example_arm.xml: 10 run, 0 up to date")
-    )
+    lines = result.stdout.strip().splitlines()
+    if lines[-1].startswith("  slowest: "):  # only builds longer than two seconds say it
+        lines.pop()
+    assert lines[-1].startswith("mjcfbuild: built example_arm.xml: 10 run, 0 up to date")
     again = cli("build", cwd=arm)
     assert "0 run, 10 up to date" in again.stdout
     assert again.stdout.count("\n") == 1
