@@ -1,0 +1,22 @@
+"""``mjcfbuild clean``: everything a build wrote goes, and nothing else."""
+
+from __future__ import annotations
+
+from tests.conftest import run_cli
+
+
+def test_clean_removes_outputs_and_state_and_keeps_other_files(arm):
+    assert run_cli("build", "-q", cwd=arm).code == 0
+    keep = arm / "mjcf" / "NOTES.md"
+    keep.write_text("my notes\n")
+    result = run_cli("clean", cwd=arm)
+    assert result.code == 0
+    assert result.stdout.startswith("mjcfbuild: removed mjcf/example_arm.xml, mjcf/scene.xml")
+    assert sorted(p.name for p in (arm / "mjcf").iterdir()) == ["NOTES.md"]
+    again = run_cli("build", "-q", cwd=arm)
+    assert again.code == 0 and (arm / "mjcf" / "example_arm.xml").exists()
+
+
+def test_clean_with_nothing_built(arm):
+    result = run_cli("clean", cwd=arm)
+    assert result.code == 0 and result.stdout.strip() == "mjcfbuild: removed nothing"

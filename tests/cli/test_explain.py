@@ -1,0 +1,54 @@
+"""``mjcfbuild explain`` and ``build --dry-run``: why tasks would run, without running them."""
+
+from __future__ import annotations
+
+from tests.conftest import run_cli
+
+
+def test_explain_names_the_changed_input_and_nothing_else(arm):
+    assert run_cli("build", "-q", cwd=arm).code == 0
+    (arm / "meshes" / "forearm_colours.mtl").write_text(
+        (arm / "meshes" / "forearm_colours.mtl").read_text() + "# edited\n"
+    )
+    result = run_cli("explain", cwd=arm)
+    assert result.code == 0
+    lines = result.stdout.splitlines()
+    assert "mesh:forearm: would run" in lines
+    assert "  - input changed: meshes/forearm_colours.mtl" in lines
+    assert "mesh:base: up to date" in lines and "assemble: up to date" in lines
+    one = run_cli("explain", "mesh:forearm", cwd=arm)
+    assert one.stdout.splitlines() == [
+        "mesh:forearm: would run",
+        "  - input changed: meshes/forearm_colours.mtl",
+    ]
+
+
+def test_explain_names_a_changed_parameter(arm):
+    assert run_cli("build", "-q", cwd=arm).code == 0
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "meshes:\n  max_faces: 500\n")
+    result = run_cli("explain", "mesh:upper_arm", cwd=arm)
+    assert "mesh:upper_arm: would run" in result.stdout
+    assert "  - parameters changed: max_faces" in result.stdout
+
+
+def test_explain_before_the_first_build_writes_nothing(arm):
+    result = run_cli("explain", cwd=arm)
+    assert result.code == 0
+    assert "expand: would run\n  - it has not run in this output folder yet" in result.stdout
+    assert not (arm / "mjcf").exists()
+
+
+def test_dry_run_lists_what_would_run_and_runs_nothing(arm):
+    assert run_cli("build", "-q", cwd=arm).code == 0
+    limits = arm / "config" / "joint_limits.yaml"
+    limits.write_text(limits.read_text().replace("upper: 2.5", "upper: 2.4"))
+    model = (arm / "mjcf" / "example_arm.xml").read_bytes()
+    result = run_cli("build", "--dry-run", cwd=arm)
+    assert result.code == 0
+    assert "would run: expand urdf/arm.urdf.xacro: input changed: config/joint_limits.yaml" in (
+        result.stdout
+    )
+    assert result.stdout.strip().endswith("(dry run)")
+    assert (arm / "mjcf" / "example_arm.xml").read_bytes() == model
+    assert "expand: would run" in run_cli("explain", "expand", cwd=arm).stdout
