@@ -11,6 +11,7 @@ from the URDF alone at 20 random configurations. The same checks run as tests
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import sys
 import tempfile
@@ -25,6 +26,7 @@ import numpy as np
 import mjcfbuild
 from bench import robot_data
 from mjcfbuild.check.kinematics import compare_kinematics
+from mjcfbuild.errors import BuildFailed
 from mjcfbuild.urdf.parse import parse_urdf
 
 
@@ -34,8 +36,14 @@ def check(name: str, folder: Path) -> dict:
     urdf = robot_data.unpack(robot)
     manifest = robot_data.manifest(robot, folder, urdf, robot_data.package_root())
     started = time.perf_counter()
-    result = mjcfbuild.build(manifest, jobs=2)
+    try:
+        result = mjcfbuild.build(manifest, jobs=2)
+    except BuildFailed:  # a failed check: the table says which
+        result = None
     seconds = time.perf_counter() - started
+    checked = json.loads((folder / "mjcf/.mjcfbuild/check.json").read_text())
+    if result is None:
+        result = mjcfbuild.build(manifest, jobs=2, check=False)
     model = mujoco.MjModel.from_xml_path(str(result.scene))
     data = mujoco.MjData(model)
     for _ in range(2000):
@@ -54,7 +62,14 @@ def check(name: str, folder: Path) -> dict:
         "rotation": kinematics.max_rotation,
         "missing": len(kinematics.missing_links) + len(kinematics.missing_joints),
         "repairs": repairs,
-        "passes": finite and kinematics.passes(),
+        "actuators": checked.get("actuation", {}).get("actuators", 0),
+        "home": bool(checked.get("home")),
+        "floor_gap": checked.get("floor_gap"),
+        "hold": checked.get("hold", {}),
+        "menagerie": checked.get("menagerie_test", {}),
+        "touching": len(checked.get("resting_contacts", {}).get("pairs", [])),
+        "failures": checked.get("failures", []),
+        "passes": finite and kinematics.passes() and bool(checked.get("passes")),
     }
 
 
@@ -70,15 +85,26 @@ def main() -> None:
             print(f"checked {name}", file=sys.stderr)
     print(
         "| robot | links | moving joints | cold build (s) | 2,000 steps finite "
-        "| max link position error (m) | max link rotation error (rad) | inertia repairs | passes |"
+        "| max link position error (m) | max link rotation error (rad) | inertia repairs "
+        "| actuators | home | bodies touching at home | floor contact at home (mm) "
+        "| hold error (rad/m) | Menagerie test | passes |"
     )
-    print("|---|---:|---:|---:|---|---:|---:|---:|---|")
+    print("|---|---:|---:|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---|---|")
     for r in rows:
+        gap = f"{r['floor_gap'] * 1000:.2f}" if r["floor_gap"] is not None else "fixed base"
+        hold = r["hold"].get("max_deviation")
+        hold_text = f"{hold:.3f}" + (" (floating)" if r["hold"].get("floating") else "")
+        menagerie = r["menagerie"]
+        test = "pass" if menagerie.get("finite") and not menagerie.get("warnings") else "FAIL"
         print(
             f"| {r['robot']} | {r['links']} | {r['joints']} | {r['seconds']:.1f} "
             f"| {'yes' if r['finite'] else 'NO'} | {r['position']:.1e} | {r['rotation']:.1e} "
-            f"| {r['repairs']} | {'yes' if r['passes'] else 'NO'} |"
+            f"| {r['repairs']} | {r['actuators']} | {'yes' if r['home'] else 'no'} "
+            f"| {r['touching']} | {gap} | {hold_text} | {test} | {'yes' if r['passes'] else 'NO'} |"
         )
+    for r in rows:
+        for failure in r["failures"]:
+            print(f"{r['robot']}: {failure}", file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 @dataclass
 class RestingContact:
-    """Two bodies whose collision geoms touch at the zero (or home) configuration."""
+    """Two bodies whose collision geoms touch at the home (or zero) configuration."""
 
     body1: str
     body2: str
@@ -16,21 +16,21 @@ class RestingContact:
 
 
 def resting_contacts(model) -> list[RestingContact]:
-    """Body pairs in contact at qpos0 and, if the model has one, at the 'home' keyframe."""
+    """Robot body pairs in contact at the 'home' keyframe (at qpos0 if there is none)."""
     import mujoco
 
     found: dict[tuple[str, str], RestingContact] = {}
     data = mujoco.MjData(model)
-    poses = [("zero", None)]
     home = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home")
-    if home >= 0:
-        poses.append(("home", home))
+    poses = [("home", home)] if home >= 0 else [("zero", None)]
     for label, key in poses:
         mujoco.mj_resetData(model, data)
         if key is not None:
             mujoco.mj_resetDataKeyframe(model, data, key)
         mujoco.mj_forward(model, data)
         for contact in data.contact[: data.ncon]:
+            if contact.dist > 0:
+                continue  # within a margin, not touching
             if mujoco.mjtGeom.mjGEOM_PLANE in (
                 model.geom_type[contact.geom1],
                 model.geom_type[contact.geom2],

@@ -4,7 +4,8 @@ Checks, each independent of MuJoCo's own URDF import: the model loads; 2,000 zer
 steps stay finite and raise no MuJoCo warning; every URDF link (body or site of its name) sits
 where the URDF's forward kinematics puts it at random joint configurations; joint types, axes
 and ranges match; masses, centres of mass and inertias match, except for bodies whose inertia
-the build reported repairing. Geoms touching at rest are listed with a ready contact exclude.
+the build reported repairing; no two robot bodies touch at home (the pairs are listed with a
+ready contact exclude); and the model is ready to control (see mjcfbuild.check.control).
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from mjcfbuild.check.contacts import exclude_suggestion, resting_contacts
+from mjcfbuild.check.control import check_control
 from mjcfbuild.check.joints import compare_joints
 from mjcfbuild.check.kinematics import compare_kinematics
 from mjcfbuild.check.masses import compare_masses
@@ -30,6 +32,7 @@ class CheckOptions:
     position_tolerance: float = 1e-6
     rotation_tolerance: float = 1e-6
     steps: int = 2000
+    hold_tolerance: float = 0.05
 
 
 @dataclass
@@ -51,9 +54,12 @@ def check_model(
     simulate_path: Path | None = None,
     repaired: set[str] | None = None,
     options: CheckOptions | None = None,
+    readiness: dict | None = None,
 ) -> CheckReport:
     """Check the model at ``model_path`` against ``robot``; simulate ``simulate_path`` (the
-    scene, with its floor) or the model itself."""
+    scene, with its floor) or the model itself. ``readiness`` is what the build recorded about
+    actuators and home (None for a model mjcfbuild did not build: undriven joints are then
+    reported, not failures)."""
     import mujoco
 
     from mjcfbuild.mjwarnings import capture_mujoco_warnings
@@ -122,5 +128,18 @@ def check_model(
         "pairs": [c.__dict__ for c in contacts],
         "exclude": exclude_suggestion(contacts),
     }
+    if contacts:
+        listed = ", ".join(f"{c.body1}/{c.body2}" for c in contacts[:5])
+        more = f" and {len(contacts) - 5} more" if len(contacts) > 5 else ""
+        report.failures.append(
+            f"{len(contacts)} robot body pair{'s' if len(contacts) > 1 else ''} touch at "
+            f"{contacts[0].pose} ({listed}{more}); exclude them (report.md has the block) or "
+            "fix the collision geometry"
+        )
+
+    passive = set((readiness or {}).get("passive", []))
+    control = check_control(model, passive, options.hold_tolerance, strict=readiness is not None)
+    report.results.update(control.results)
+    report.failures += control.failures
     report.results["meshes"] = mesh_statistics(model)
     return report

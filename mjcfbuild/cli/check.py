@@ -36,6 +36,12 @@ def add_parser(commands) -> None:
         action="store_true",
         help="exit with 6, naming what is stale, when the outputs no longer match their inputs",
     )
+    parser.add_argument(
+        "--warp",
+        action="store_true",
+        help="also load the model in MuJoCo Warp (on the CPU) and step several worlds "
+        "(pip install 'mjcfbuild[warp]'; the first run compiles kernels for about a minute)",
+    )
     parser.add_argument("--configurations", type=int, default=None, help="default: 20")
     parser.add_argument("--tolerance", type=float, default=None, help="metres and radians; 1e-6")
     parser.set_defaults(handler=run)
@@ -66,7 +72,8 @@ def _options(args, settings=None):
     tolerance_p = args.tolerance or (settings.position_tolerance if settings else 1e-6)
     tolerance_r = args.tolerance or (settings.rotation_tolerance if settings else 1e-6)
     steps = settings.steps if settings else 2000
-    return CheckOptions(configurations, 0, tolerance_p, tolerance_r, steps)
+    hold = settings.hold_tolerance if settings else 0.05
+    return CheckOptions(configurations, 0, tolerance_p, tolerance_r, steps, hold)
 
 
 def _print(report, label: str) -> int:
@@ -137,21 +144,28 @@ def _manifest(ctx, args) -> int:
         )
     robot = robot_from_dict(json.loads(ctx.state(PLAN).read_text())["robot"])
     try:
-        repairs = json.loads(ctx.state(ASSEMBLY_REPORT).read_text()).get("repairs", [])
+        assembly = json.loads(ctx.state(ASSEMBLY_REPORT).read_text())
     except (OSError, ValueError):
-        repairs = []
+        assembly = {}
     report = check_model(
         robot,
         ctx.robot_path,
         ctx.scene_path if ctx.scene_path.exists() else None,
-        {r["body"] for r in repairs},
+        {r["body"] for r in assembly.get("repairs", [])},
         _options(args, ctx.manifest.check),
+        assembly.get("readiness") or {},
     )
     data = {"passes": report.passes, "failures": report.failures, **report.results}
     ctx.state(CHECK_RESULTS).write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
     folder = write_report(ctx, [])
     code = _print(report, ctx.label(ctx.robot_path))
     print(f"  report: {ctx.label(folder / 'report.md')}")
+    if args.warp:
+        from mjcfbuild.check.warp import check_in_warp
+
+        scene = ctx.scene_path if ctx.scene_path.exists() else ctx.robot_path
+        warp = check_in_warp(str(scene))
+        print(f"  MuJoCo Warp: {warp.worlds} worlds, {warp.steps} steps, finite")
     return code
 
 

@@ -52,6 +52,8 @@ def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
         "bodies": assembly.get("bodies"),
         "geoms": assembly.get("geoms"),
         "assets": assembly.get("assets", []),
+        "readiness": assembly.get("readiness") or {},
+        "self_collision": assembly.get("self_collision"),
         "times": record_timings(ctx),
         "previews": [f"previews/{name}" for name in previews],
     }
@@ -79,6 +81,8 @@ def markdown(report: dict) -> str:
     )
     lines.append("")
     lines += _checks(report.get("check") or {})
+    lines += _control(report.get("readiness") or {})
+    lines += _self_collision(report.get("self_collision"))
     if report["repairs"]:
         lines += [
             "## Inertia repairs",
@@ -156,6 +160,27 @@ def _checks(check: dict) -> list[str]:
             f"{kinematics['max_rotation_error']:.2g} rad; "
             f"{len(kinematics['missing_links'])} links missing |"
         )
+    actuation = check.get("actuation")
+    if actuation is not None:
+        lines.append(
+            f"| every moving joint driven once | {check['actuation']['actuators']} actuators, "
+            f"{len(actuation['problems'])} problems |"
+        )
+    if check.get("floor_gap") is not None:
+        lines.append(f"| floating base on the floor at home | gap {check['floor_gap']:.2g} m |")
+    hold = check.get("hold")
+    if hold:
+        where = f" ({hold['joint']})" if hold.get("joint") else ""
+        lines.append(
+            f"| hold home's ctrl for 1 s | largest deviation {hold['max_deviation']:.3g}{where} |"
+        )
+    menagerie = check.get("menagerie_test")
+    if menagerie:
+        lines.append(
+            "| 1 s of pseudorandom control (Menagerie's model test) | "
+            f"{'finite' if menagerie['finite'] else 'NOT finite'}, "
+            f"{len(menagerie['warnings'])} MuJoCo warnings |"
+        )
     joint_problems = len(check.get("joints", {}).get("problems", []))
     lines.append(f"| joint types, axes, ranges | {joint_problems} problems |")
     if masses:
@@ -166,7 +191,7 @@ def _checks(check: dict) -> list[str]:
     lines.append("")
     contacts = check.get("resting_contacts", {})
     if contacts.get("pairs"):
-        lines += ["### Bodies in contact at rest", ""]
+        lines += ["### Robot bodies touching at home", ""]
         lines += [
             f"- {p['body1']} and {p['body2']} ({p['pose']} pose, {p['depth']:.3g} m deep)"
             for p in contacts["pairs"]
@@ -181,3 +206,70 @@ def _checks(check: dict) -> list[str]:
             "",
         ]
     return lines
+
+
+def _control(readiness: dict) -> list[str]:
+    """The actuators (with where each came from), the home pose and the floating base."""
+    if not readiness:
+        return []
+    lines = ["## Actuators", ""]
+    if readiness.get("actuators"):
+        lines += ["| actuator | joint | type | from | kp | kv | ctrlrange | forcerange |"]
+        lines += ["|---|---|---|---|---:|---:|---|---|"]
+        for a in readiness["actuators"]:
+            lines.append(
+                f"| {a['name']} | {a['joint']} | {a['type']} | {a['source']} | "
+                f"{_number(a.get('kp'))} | {_number(a.get('kv'))} | {_range(a.get('ctrlrange'))} "
+                f"| {_range(a.get('forcerange'))} |"
+            )
+    else:
+        lines.append("None.")
+    if readiness.get("passive"):
+        lines += ["", "Passive joints (actuator type none): " + ", ".join(readiness["passive"])]
+    lines += ["", "## Home pose", ""]
+    if readiness.get("home"):
+        lines += ["| joint | position | from |", "|---|---:|---|"]
+        lines += [f"| {h['joint']} | {h['value']:.6g} | {h['source']} |" for h in readiness["home"]]
+    if readiness.get("base_height") is not None:
+        lines += [
+            "",
+            f"The floating base was raised {readiness['base_height']:.4g} m to stand on the floor.",
+        ]
+    lines.append("")
+    return lines
+
+
+def _self_collision(matrix: dict | None) -> list[str]:
+    """The collision matrix: every body pair that is excluded, with its reason."""
+    if not matrix:
+        return []
+    pairs = matrix.get("pairs", [])
+    excluded = [p for p in pairs if p["exclude"]]
+    counts: dict[str, int] = {}
+    for pair in pairs:
+        counts[pair["reason"]] = counts.get(pair["reason"], 0) + 1
+    summary = ", ".join(f"{count} {reason}" for reason, count in sorted(counts.items()))
+    lines = [
+        "## Self-collision",
+        "",
+        f"{len(pairs)} body pairs ({summary}) over {matrix.get('samples')} sampled "
+        f"configurations; {len(excluded)} excluded, {len(matrix.get('excludes', []))} of them "
+        "by a contact exclude (MuJoCo already skips parent and child).",
+        "",
+    ]
+    if excluded:
+        lines += ["| body 1 | body 2 | reason | in collision |", "|---|---|---|---:|"]
+        lines += [
+            f"| {p['body1']} | {p['body2']} | {p['reason']} | {p['fraction']:.0%} |"
+            for p in excluded
+        ]
+        lines.append("")
+    return lines
+
+
+def _number(value) -> str:
+    return f"{value:.4g}" if value is not None else ""
+
+
+def _range(values) -> str:
+    return f"[{values[0]:.4g}, {values[1]:.4g}]" if values else ""

@@ -64,6 +64,16 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
         _decompose_task(ctx, name, mesh_id, params, prefix)
         for name, (mesh_id, params) in decomposed.items()
     ]
+    _check_simulation_settings(ctx, robot, plan)
+    srdf = _srdf_task(ctx, prefix) if _srdf_source(ctx) else None
+    if srdf is not None:
+        tasks.append(srdf)
+    matrix = None
+    if ctx.manifest.self_collision != "none":
+        matrix = _selfcollision_task(
+            ctx, plan, robot, choices, roles, decomposed, collision, prefix
+        )
+        tasks.append(matrix)
     tasks.append(_assemble_task(ctx, plan, sorted(roles), decomposed, collision, prefix))
     tasks.append(_scene_task(ctx, plan, prefix))
     if ctx.manifest.output.urdf is not None:
@@ -73,6 +83,130 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
         if ctx.manifest.check.previews:
             tasks.append(_previews_task(ctx, prefix))
     return tasks
+
+
+def _check_simulation_settings(ctx: BuildContext, robot, plan: dict) -> None:
+    """Refuse actuator rules and home values that name no joint, before anything is built."""
+    from mjcfbuild.control.choose import check_rules
+    from mjcfbuild.control.home import home_values
+    from mjcfbuild.errors import MjcfbuildError
+    from mjcfbuild.inputs.ros2_control import Ros2Control
+    from mjcfbuild.manifest.pinpoint import pinpoint
+
+    try:
+        check_rules(robot, ctx.manifest.actuators, ctx.manifest_label)
+        control = Ros2Control.from_dict(plan.get("ros2_control", {}))
+        home_values(robot, control, ctx.manifest.home, None, ctx.manifest_label)
+    except MjcfbuildError as error:
+        if ctx.manifest_file is not None:
+            pinpoint(error, ctx.manifest_label, ctx.manifest_file)
+        raise
+
+
+SRDF_SUMMARY = "srdf.json"
+SELF_COLLISION = "self_collision.json"
+
+
+def _srdf_source(ctx: BuildContext) -> Path | None:
+    settings = ctx.manifest.self_collision
+    if settings == "none" or settings.srdf is None:
+        return None
+    return ctx.resolve(settings.srdf)
+
+
+def _srdf_task(ctx: BuildContext, prefix: str) -> dict:
+    source = _srdf_source(ctx)
+    _require_file(ctx, source, "SRDF", "self_collision.srdf")
+    payload = {
+        "source": str(source),
+        "label": ctx.label(source),
+        "args": ctx.manifest.source.xacro_args,
+        "packages": {name: str(path) for name, path in ctx.resolver.explicit.items()},
+        "environment": {key: ctx.environ.get(key, "") for key in ENV_VARIABLES},
+        "output": str(ctx.state(SRDF_SUMMARY)),
+    }
+    return _task(
+        ctx,
+        f"{prefix}srdf",
+        f"srdf {ctx.label(source)}",
+        "srdf",
+        payload,
+        in_worker=source.name.endswith(".xacro"),
+        file_dep=[source],
+        targets=[ctx.state(SRDF_SUMMARY)],
+        params={k: v for k, v in payload.items() if k != "output"},
+    )
+
+
+def _selfcollision_task(
+    ctx: BuildContext, plan: dict, robot, choices, roles, decomposed, collision, prefix: str
+) -> dict:
+    from dataclasses import asdict
+
+    from mjcfbuild.selfcollision.robot import collision_robot
+
+    settings = ctx.manifest.self_collision
+    meshes = sorted(m for m, r in roles.items() if set(r) - {"visual"})
+    decompositions = _decomposition_entries(ctx, decomposed)
+    srdf = ctx.state(SRDF_SUMMARY) if _srdf_source(ctx) else None
+    initial = {
+        joint["name"]: joint["initial"]
+        for joint in plan.get("ros2_control", {}).get("joints", [])
+        if joint.get("initial") is not None
+    }
+    payload = {
+        "robot": collision_robot(robot, choices).to_dict(),
+        "choices": [asdict(choice) for choice in choices],
+        "fuse_static": ctx.manifest.options.fuse_static,
+        "free_joint": ctx.manifest.options.free_joint,
+        "products": {m: str(product_summary(ctx, m)) for m in meshes},
+        "product_dirs": {m: str(ctx.products_dir / m) for m in meshes},
+        "decompositions": decompositions,
+        "srdf": str(srdf) if srdf else None,
+        "initial": initial,
+        "home": dict(ctx.manifest.home),
+        "keep": [list(pair) for pair in settings.keep],
+        "settings": {
+            "samples": settings.samples,
+            "seed": settings.seed,
+            "exclude_never": settings.exclude_never,
+        },
+        "manifest_label": ctx.manifest_label,
+        "output": str(ctx.state(SELF_COLLISION)),
+    }
+    params = {
+        k: payload[k]
+        for k in ("robot", "choices", "fuse_static", "free_joint", "initial", "home", "keep")
+    }
+    params["settings"] = payload["settings"]
+    params["srdf"] = payload["srdf"] is not None
+    return _task(
+        ctx,
+        f"{prefix}selfcollision",
+        "self-collision matrix",
+        "selfcollision",
+        payload,
+        in_worker=True,
+        file_dep=[
+            *(product_summary(ctx, m) for m in meshes),
+            *(Path(d["summary"]) for d in decompositions),
+            *([srdf] if srdf else []),
+        ],
+        targets=[ctx.state(SELF_COLLISION)],
+        params=params,
+    )
+
+
+def _decomposition_entries(ctx: BuildContext, decomposed: dict) -> list[dict]:
+    return [
+        {
+            "mesh_id": mesh_id,
+            "params": params,
+            "folder": str(decomposition_dir(ctx, name)),
+            "summary": str(decomposition_dir(ctx, name).with_suffix(".json")),
+        }
+        for name, (mesh_id, params) in decomposed.items()
+    ]
 
 
 def collision_settings(ctx: BuildContext, plan: dict) -> dict:
@@ -321,15 +455,9 @@ def _assemble_task(
     options = ctx.manifest.options
     inertia = ctx.manifest.inertia
     source_label = Path(ctx.label(ctx.source_path)).as_posix()
-    decompositions = [
-        {
-            "mesh_id": mesh_id,
-            "params": params,
-            "folder": str(decomposition_dir(ctx, name)),
-            "summary": str(decomposition_dir(ctx, name).with_suffix(".json")),
-        }
-        for name, (mesh_id, params) in decomposed.items()
-    ]
+    decompositions = _decomposition_entries(ctx, decomposed)
+    matrix = ctx.state(SELF_COLLISION) if ctx.manifest.self_collision != "none" else None
+    srdf = ctx.state(SRDF_SUMMARY) if _srdf_source(ctx) else None
     payload = {
         "plan": str(ctx.state(PLAN)),
         "products": {mesh_id: str(product_summary(ctx, mesh_id)) for mesh_id in meshes},
@@ -342,7 +470,11 @@ def _assemble_task(
             "native": plain(ctx.manifest.mujoco_inputs),
         },
         "manifest_label": ctx.manifest_label,
-        "ros2_control": plain(ctx.manifest.ros2_control),
+        "actuators": plain(ctx.manifest.actuators),
+        "home": dict(ctx.manifest.home),
+        "self_collision": str(matrix) if matrix else None,
+        "floor": ctx.manifest.placement.floor,
+        "srdf": str(srdf) if srdf else None,
         "fuse_static": options.fuse_static,
         "free_joint": options.free_joint,
         "link_sites": options.link_sites,
@@ -361,7 +493,9 @@ def _assemble_task(
         for k in (
             "collision",
             "inputs",
-            "ros2_control",
+            "actuators",
+            "home",
+            "floor",
             "fuse_static",
             "free_joint",
             "link_sites",
@@ -370,6 +504,8 @@ def _assemble_task(
         )
     }
     params["assets_dir"] = payload["assets_dir"]
+    params["self_collision"] = matrix is not None
+    params["srdf"] = srdf is not None
     return _task(
         ctx,
         f"{prefix}assemble",
@@ -381,6 +517,8 @@ def _assemble_task(
             ctx.state(PLAN),
             *(product_summary(ctx, m) for m in meshes),
             *(Path(d["summary"]) for d in decompositions),
+            *([matrix] if matrix else []),
+            *([srdf] if srdf else []),
         ],
         targets=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT)],
         params=params,
@@ -402,6 +540,7 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
         "position_tolerance": settings.position_tolerance,
         "rotation_tolerance": settings.rotation_tolerance,
         "steps": settings.steps,
+        "hold_tolerance": settings.hold_tolerance,
         "seed": 0,
     }
     payload = {
@@ -491,8 +630,11 @@ def _scene_task(ctx: BuildContext, plan: dict, prefix: str) -> dict:
         "scene_block": block,
         "model": ctx.manifest.name,
         "robot_file": ctx.manifest.robot_file,
+        "floor": ctx.manifest.placement.floor,
+        "assembly_report": str(ctx.state(ASSEMBLY_REPORT)),
         "output": str(ctx.scene_path),
     }
+    auto_floor = ctx.manifest.placement.floor == "auto"
     return _task(
         ctx,
         f"{prefix}scene",
@@ -500,9 +642,10 @@ def _scene_task(ctx: BuildContext, plan: dict, prefix: str) -> dict:
         "scene",
         payload,
         in_worker=False,
-        file_dep=[source] if source else [],
+        file_dep=([source] if source else [])
+        + ([ctx.state(ASSEMBLY_REPORT)] if auto_floor else []),
         targets=[ctx.scene_path],
-        params={k: v for k, v in payload.items() if k != "output"},
+        params={k: v for k, v in payload.items() if k not in ("output", "assembly_report")},
         # Outputs change together: a build whose model fails leaves the scene alone too.
         after=[f"{prefix}assemble"],
     )

@@ -10,13 +10,15 @@ from mjcfbuild import __version__
 # Bump a step's number when its output for the same inputs changes.
 STEP_FORMATS = {
     "expand": 1,
-    "plan": 2,
+    "plan": 3,
     "mesh": 2,
     "decompose": 1,
-    "assemble": 4,
-    "scene": 2,
-    "check": 1,
-    "previews": 1,
+    "assemble": 5,
+    "scene": 3,
+    "check": 2,
+    "previews": 2,
+    "srdf": 1,
+    "selfcollision": 1,
     "export_urdf": 1,
 }
 
@@ -27,6 +29,8 @@ STEP_TOOLS = {
     "decompose": ("coacd", "trimesh", "numpy", "scipy"),
     "assemble": ("mujoco", "numpy", "lxml"),
     "scene": ("lxml",),
+    "srdf": ("xacro", "lxml"),
+    "selfcollision": ("mujoco", "numpy"),
     "check": ("mujoco", "numpy"),
     "previews": ("mujoco", "numpy", "pillow"),
     "export_urdf": ("mujoco", "numpy"),

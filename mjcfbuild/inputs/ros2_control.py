@@ -2,8 +2,8 @@
 
 mujoco_ros2_control finds MuJoCo cameras and rangefinders by the names of ros2_control
 sensors. A camera or lidar without a sensor of its name (or the reverse) is almost always a
-typo, so the build warns, listing both sides. On request, actuators are generated from the
-command interfaces and a ``home`` keyframe from the ``initial_value`` parameters.
+typo, so the build warns, listing both sides. The command interfaces, ``initial_value``
+parameters and ROS 1 transmissions feed the actuators and home pose (see mjcfbuild.control).
 """
 
 from __future__ import annotations
@@ -47,11 +47,30 @@ class ControlSensor:
 
 
 @dataclass
+class Transmission:
+    """A ROS 1 ``<transmission>``'s joint and the hardware interface that drives it."""
+
+    joint: str
+    interfaces: list[str]
+    origin: str
+
+    @property
+    def command(self) -> str | None:
+        """'position', 'velocity' or 'effort', from the interface names (first one that says)."""
+        for interface in self.interfaces:
+            for command in ("Position", "Velocity", "Effort"):
+                if command in interface:
+                    return command.lower()
+        return None
+
+
+@dataclass
 class Ros2Control:
-    """Every ``<ros2_control>`` of a URDF, combined."""
+    """Every ``<ros2_control>`` of a URDF, combined, and its ROS 1 ``<transmission>`` elements."""
 
     joints: list[ControlJoint] = field(default_factory=list)
     sensors: list[ControlSensor] = field(default_factory=list)
+    transmissions: list[Transmission] = field(default_factory=list)
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""
@@ -63,6 +82,7 @@ class Ros2Control:
         return Ros2Control(
             [ControlJoint(**j) for j in data.get("joints", [])],
             [ControlSensor(**s) for s in data.get("sensors", [])],
+            [Transmission(**t) for t in data.get("transmissions", [])],
         )
 
 
@@ -93,6 +113,27 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
             params = {p.get("name", ""): (p.text or "").strip() for p in sensor.findall("param")}
             result.sensors.append(
                 ControlSensor(sensor.get("name", ""), params, f"{label}:{sensor.sourceline}")
+            )
+    for transmission in root.findall("transmission"):
+        for joint in transmission.findall("joint"):
+            # hardwareInterface sits under <joint> (ROS 1 since Indigo) or under <actuator>.
+            interfaces = [
+                (element.text or "").strip()
+                for element in [
+                    *joint.findall("hardwareInterface"),
+                    *(
+                        a
+                        for act in transmission.findall("actuator")
+                        for a in act.findall("hardwareInterface")
+                    ),
+                ]
+            ]
+            result.transmissions.append(
+                Transmission(
+                    joint.get("name", ""),
+                    [i for i in interfaces if i],
+                    f"{label}:{joint.sourceline}",
+                )
             )
     return result
 
@@ -131,77 +172,3 @@ def sensor_warnings(
                 f"{', '.join(sorted(lidar_sensors)) or 'none'})"
             )
     return warnings
-
-
-def generate_actuators(root, control: Ros2Control, settings: dict, limits: dict) -> list[str]:
-    """Add an actuator per command interface to the model tree; notes on what was skipped.
-
-    ``limits`` maps joint names to their URDF ``Limit``. Joints that inputs already drive
-    (an actuator naming the joint) are left alone. Names are the joint's name, or
-    ``<joint>_<interface>`` when a joint has several command interfaces.
-    """
-    from lxml import etree
-
-    from mjcfbuild.numbers import output_list
-
-    section = root.find("actuator")
-    if section is None:
-        section = etree.SubElement(root, "actuator")
-    driven = {element.get("joint") for element in section if element.get("joint")}
-    taken = {element.get("name") for element in section if element.get("name")}
-    notes = []
-    for joint in control.joints:
-        if not joint.commands:
-            continue
-        if joint.name in driven:
-            notes.append(
-                f"joint '{joint.name}' already has an actuator in the inputs; none generated"
-            )
-            continue
-        gains = settings.get("joints", {}).get(joint.name, {})
-        limit = limits.get(joint.name)
-        for interface in joint.commands:
-            name = joint.name if len(joint.commands) == 1 else f"{joint.name}_{interface}"
-            if name in taken:
-                notes.append(f"an actuator named '{name}' exists already; none generated")
-                continue
-            attributes = {"name": name, "joint": joint.name}
-            if interface == "position":
-                tag = "position"
-                base = settings.get("position", {})
-                kp = gains.get("kp") or base.get("kp")
-                dampratio = (
-                    gains.get("dampratio")
-                    if gains.get("dampratio") is not None
-                    else base.get("dampratio")
-                )
-                if kp:
-                    attributes["kp"] = output_list([kp])
-                if dampratio is not None:
-                    attributes["dampratio"] = output_list([dampratio])
-                if (
-                    limit is not None
-                    and limit.lower is not None
-                    and limit.upper is not None
-                    and limit.upper > limit.lower
-                ):
-                    attributes["ctrlrange"] = output_list([limit.lower, limit.upper])
-            elif interface == "velocity":
-                tag = "velocity"
-                kv = gains.get("kv") or settings.get("velocity", {}).get("kv")
-                if kv:
-                    attributes["kv"] = output_list([kv])
-                if limit is not None and limit.velocity:
-                    attributes["ctrlrange"] = output_list([-limit.velocity, limit.velocity])
-            elif interface == "effort":
-                tag = "motor"
-                if limit is not None and limit.effort:
-                    attributes["ctrlrange"] = output_list([-limit.effort, limit.effort])
-            else:
-                notes.append(
-                    f"joint '{joint.name}': no actuator for command interface '{interface}'"
-                )
-                continue
-            etree.SubElement(section, tag, attributes)
-            taken.add(name)
-    return notes

@@ -16,7 +16,8 @@ from mjcfbuild import __version__
 from mjcfbuild.cachedir import user_cache_dir
 from mjcfbuild.fsutil import atomic_write
 
-_MODELS = Path(__file__).with_name("models.py")
+# Every module that defines manifest models: a change to any of them changes the cache key.
+_MODELS = tuple(Path(__file__).with_name(name) for name in ("models.py", "simulation.py"))
 _MODEL_TAG = "__model__"
 
 
@@ -68,7 +69,8 @@ def cache_key(text: bytes) -> str:
     """The key of a manifest text: its bytes, mjcfbuild's version and the models' source."""
     digest = hashlib.sha256(text)
     digest.update(__version__.encode())
-    digest.update(_MODELS.read_bytes())
+    for models in _MODELS:
+        digest.update(models.read_bytes())
     return digest.hexdigest()
 
 

@@ -12,6 +12,12 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, computed_field, field_validator, model_validator
 
+from mjcfbuild.manifest.simulation import (
+    ActuatorSettings,
+    Placement,
+    SelfCollisionSettings,
+)
+
 NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9_.-]*$"
 PACKAGE_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
 
@@ -332,32 +338,6 @@ class MujocoInputs(StrictModel):
     decompose: list[DecomposeInput] = Field(default_factory=list)
 
 
-class Gains(StrictModel):
-    """Actuator gains for one kind of ros2_control command interface."""
-
-    kp: float | None = Field(None, gt=0, description="Position gain (position interfaces).")
-    kv: float | None = Field(None, gt=0, description="Velocity gain (velocity interfaces).")
-    dampratio: float | None = Field(None, ge=0, description="Damping ratio (position).")
-
-
-class Ros2ControlSettings(StrictModel):
-    """What to generate from the URDF's <ros2_control>."""
-
-    actuators: bool = Field(
-        False,
-        description="Generate an actuator per command interface (position, velocity, effort), "
-        "ranged by the URDF limits, unless raw inputs already drive the joint.",
-    )
-    position: Gains = Field(default_factory=lambda: Gains(kp=100.0, dampratio=1.0))
-    velocity: Gains = Field(default_factory=lambda: Gains(kv=10.0))
-    joints: dict[str, Gains] = Field(
-        default_factory=dict, description="Gains of single joints, by name."
-    )
-    home_keyframe: bool = Field(
-        False, description="Add a 'home' keyframe from the initial_value parameters."
-    )
-
-
 class CheckSettings(StrictModel):
     """The check that ends every build (also ``mjcfbuild check``)."""
 
@@ -369,6 +349,12 @@ class CheckSettings(StrictModel):
     position_tolerance: float = Field(1e-6, gt=0, description="Largest link position error (m).")
     rotation_tolerance: float = Field(1e-6, gt=0, description="Largest link rotation error (rad).")
     steps: int = Field(2000, ge=1, description="Zero-control simulation steps.")
+    hold_tolerance: float = Field(
+        0.05,
+        gt=0,
+        description="Largest joint deviation (rad or m) of a fixed-base robot holding its home "
+        "pose for 1 s.",
+    )
 
 
 class Scene(StrictModel):
@@ -484,7 +470,20 @@ class Manifest(StrictModel):
     inertia: InertiaSettings = Field(default_factory=InertiaSettings)
     cache: CacheSettings = Field(default_factory=CacheSettings)
     mujoco_inputs: MujocoInputs = Field(default_factory=MujocoInputs)
-    ros2_control: Ros2ControlSettings = Field(default_factory=Ros2ControlSettings)
+    actuators: ActuatorSettings = Field(default_factory=ActuatorSettings)
+    home: dict[str, float] = Field(
+        default_factory=dict,
+        description=(
+            "The home pose: joint name pattern -> position (rad or m); the first matching "
+            "pattern wins. Joints not named take their ros2_control initial_value, else 0 "
+            "(clipped into their range)."
+        ),
+    )
+    self_collision: SelfCollisionSettings | Literal["none"] = Field(
+        default_factory=SelfCollisionSettings,
+        description="Which robot body pairs may collide; 'none' writes no contact excludes.",
+    )
+    placement: Placement = Field(default_factory=Placement)
     check: CheckSettings = Field(default_factory=CheckSettings)
     scene: Scene = Field(default_factory=Scene)
     output: Output = Field(default_factory=Output)

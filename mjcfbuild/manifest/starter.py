@@ -82,17 +82,58 @@ def starter_manifest_text(
     lines.append("packages:" if known else "packages: {}")
     for package in sorted(known):
         lines.append(f"  {package}: {_relative(Path(known[package]), manifest_dir)}")
+    legs = _leg_words(data)
+    if legs:
+        free_joint = [
+            f"  # Names like {', '.join(legs)} say this robot walks: its base floats, and the",
+            "  # build stands it on the floor at home.",
+            "  free_joint: true",
+        ]
+    else:
+        free_joint = ["  free_joint: false   # true for a floating base (legged robots, humanoids)"]
     lines += [
         "",
         "options:",
-        "  free_joint: false   # true for a floating base (legged robots, humanoids)",
+        *free_joint,
         "  fuse_static: true   # merge links on fixed joints into their parent body",
+        "",
+        "# Every moving joint gets a position servo (continuous joints a velocity servo) tuned",
+        "# from its inertia at home to ring at 10 Hz, critically damped; <ros2_control> command",
+        "# interfaces and <transmission>s pick the type where the description has them.",
+        "actuators:",
+        "  default: position   # or velocity, motor, none (a passive model)",
+        "  # rules:            # first match wins",
+        '  #   - {joints: ["*finger*"], frequency: 5, armature: 0.01}',
+        '  #   - {joints: ["*wheel*"], type: velocity}',
+        "",
+        "# The home pose, joint pattern: position. Joints not named take their ros2_control",
+        "# initial_value, else 0 clipped into their range.",
+        "home: {}",
+        '#   "*elbow*": 1.57',
+        "",
+        "# Robot body pairs that are adjacent, touch at home or always touch are excluded from",
+        "# contact. A MoveIt SRDF adds its <disable_collisions> pairs:",
+        "# self_collision: {srdf: config/robot.srdf}",
         "",
         "output:",
         "  folder: mjcf        # writes mjcf/<name>.xml, mjcf/scene.xml and mjcf/assets/",
         "",
     ]
     return "\n".join(lines)
+
+
+_LEG_WORDS = ("hip", "thigh", "knee", "calf", "shank", "ankle", "foot", "HFE", "KFE", "HAA")
+
+
+def _leg_words(data: bytes) -> list[str]:
+    """The leg words the description's joint and link names use, if it has two legs or more."""
+    names = re.findall(rb"<(?:joint|link)\s[^>]*name=\"([^\"]+)\"", data)
+    found = []
+    for word in _LEG_WORDS:
+        count = sum(1 for name in names if word.lower().encode() in name.lower())
+        if count >= 2:
+            found.append(word)
+    return found[:3]
 
 
 def _relative(path: Path, start: Path) -> str:

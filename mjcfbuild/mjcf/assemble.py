@@ -15,9 +15,11 @@ from pathlib import Path
 from lxml import etree
 
 from mjcfbuild.collision.policy import CollisionChoice, choose_collisions
+from mjcfbuild.control.apply import Readiness
 from mjcfbuild.errors import ModelError
 from mjcfbuild.inputs.model import Inputs
 from mjcfbuild.inputs.ros2_control import Ros2Control
+from mjcfbuild.manifest.simulation import ActuatorSettings
 from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies
 from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
 from mjcfbuild.mjcf.precise import precise_xml
@@ -51,7 +53,11 @@ class AssemblyOptions:
     decompositions: list[Decomposition] = field(default_factory=list)
     inputs: Inputs | None = None
     control: Ros2Control | None = None
-    control_settings: dict = field(default_factory=dict)
+    actuators: ActuatorSettings = field(default_factory=ActuatorSettings)
+    home: dict[str, float] = field(default_factory=dict)
+    home_state: dict[str, float] | None = None  # an SRDF's group_state named 'home'
+    excludes: list[tuple[str, str]] = field(default_factory=list)
+    manifest_label: str = "robot.yaml"
 
 
 @dataclass
@@ -64,6 +70,7 @@ class Assembly:
     warnings: list[str]
     bodies: int
     geoms: int
+    readiness: Readiness | None = None
 
 
 def assemble(
@@ -79,6 +86,10 @@ def assemble(
     take_mujoco_warnings()
 
     bodies = build_bodies(robot, options.fuse_static, float_from_world=options.free_joint)
+    if options.free_joint:
+        for body in bodies:
+            # A floating root moves too: a massless one gets the smallest repair, reported.
+            body.floating = floats(body)
     lines = {
         link.name: (link.inertial.line if link.inertial else link.line) for link in robot.links
     }
@@ -105,9 +116,7 @@ def assemble(
     _finish(spec, prepared, bodies, robot, options)
     root = _write_with_shell_retries(spec, prepared, robot.source)
     _finish_xml(root, prepared, robot, options)
-    warnings: list[str] = []
-    if _has_additions(options):
-        warnings += _apply_additions(root, prepared, bodies, robot, options)
+    warnings, readiness = _apply_additions(root, prepared, bodies, robot, options)
     _layout(root)
     xml = etree.tostring(root, encoding="unicode")
     header = f"<!-- {options.header} -->\n" if options.header else ""
@@ -123,25 +132,23 @@ def assemble(
         ],
         bodies=len(bodies),
         geoms=len(prepared.geoms),
-    )
-
-
-def _has_additions(options: AssemblyOptions) -> bool:
-    settings = options.control_settings
-    return (options.inputs is not None and not options.inputs.is_empty()) or bool(
-        options.control is not None
-        and (settings.get("actuators") or settings.get("home_keyframe") or options.control.sensors)
+        readiness=readiness,
     )
 
 
 def _apply_additions(
-    root, prepared: Prepared, bodies: list[Body], robot: Robot, options
-) -> list[str]:
-    """MuJoCo inputs and ros2_control additions, then a compile of the finished model."""
+    root, prepared: Prepared, bodies: list[Body], robot: Robot, options: AssemblyOptions
+) -> tuple[list[str], Readiness]:
+    """MuJoCo inputs, self-collision excludes, actuators and the home keyframe, then a compile
+    of the finished model."""
     import mujoco
 
+    from mjcfbuild.control.apply import make_ready, user_driven_joints
+    from mjcfbuild.control.choose import choose_actuators
+    from mjcfbuild.control.home import home_values
     from mjcfbuild.inputs.apply import LinkPlace, apply_inputs
-    from mjcfbuild.inputs.ros2_control import generate_actuators, sensor_warnings
+    from mjcfbuild.inputs.ros2_control import sensor_warnings
+    from mjcfbuild.selfcollision.excludes import write_excludes
 
     links = {
         frame.link: LinkPlace(
@@ -153,24 +160,29 @@ def _apply_additions(
     inputs = options.inputs or Inputs()
     result = apply_inputs(root, inputs, links, _mesh_aliases(prepared))
     warnings = list(result.warnings)
-    control, settings = options.control, options.control_settings
-    if control is not None:
-        warnings += sensor_warnings(control, [c.name for c in inputs.cameras], result.lidar_sensors)
-        if settings.get("actuators"):
-            limits = {joint.name: joint.limit for joint in robot.joints}
-            warnings += generate_actuators(root, control, settings, limits)
-    xml = etree.tostring(root, encoding="unicode")
+    control = options.control or Ros2Control()
+    warnings += sensor_warnings(control, [c.name for c in inputs.cameras], result.lidar_sensors)
+    write_excludes(root, options.excludes)
     assets = {name: Path(path).read_bytes() for name, path in prepared.files.items()}
-    try:
-        model = mujoco.MjModel.from_xml_string(xml, assets)
-    except Exception as exc:
-        raise ModelError(
-            f"MuJoCo rejected the model with its inputs: {_first_line(exc).replace('Error: ', '')}",
-            hint="check the mujoco_inputs and raw MJCF",
-        ) from None
-    if control is not None and settings.get("home_keyframe"):
-        _add_home_keyframe(root, model, control)
-    return warnings
+
+    def compile_tree(tree) -> object:
+        xml = etree.tostring(tree, encoding="unicode")
+        try:
+            return mujoco.MjModel.from_xml_string(xml, assets)
+        except Exception as exc:
+            message = _first_line(exc).replace("Error: ", "")
+            raise ModelError(
+                f"MuJoCo rejected the model with its inputs: {message}",
+                hint="check the mujoco_inputs and raw MJCF",
+            ) from None
+
+    compile_tree(root)  # the user's inputs are at fault, not what follows
+    choices = choose_actuators(robot, control, options.actuators, user_driven_joints(root))
+    home = home_values(robot, control, options.home, options.home_state, options.manifest_label)
+    readiness = make_ready(root, robot, choices, home, options.free_joint, compile_tree)
+    warnings += readiness.notes
+    compile_tree(root)
+    return warnings, readiness
 
 
 def _mesh_aliases(prepared: Prepared) -> dict[str, set[str]]:
@@ -182,23 +194,6 @@ def _mesh_aliases(prepared: Prepared) -> dict[str, set[str]]:
             names |= {Path(asset.uri).stem, Path(asset.uri).name}
         aliases[asset.name] = {n for n in names if n}
     return aliases
-
-
-def _add_home_keyframe(root, model, control: Ros2Control) -> None:
-    import mujoco
-
-    from mjcfbuild.numbers import output_list
-
-    qpos = model.qpos0.copy()
-    for joint in control.joints:
-        index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint.name)
-        if index >= 0 and joint.initial is not None:
-            qpos[model.jnt_qposadr[index]] = joint.initial
-    section = root.find("keyframe")
-    if section is None:
-        section = etree.SubElement(root, "keyframe")
-    if not any(key.get("name") == "home" for key in section):
-        etree.SubElement(section, "key", {"name": "home", "qpos": output_list(qpos)})
 
 
 def _write_with_shell_retries(spec, prepared: Prepared, source: str):
@@ -214,16 +209,17 @@ def _write_with_shell_retries(spec, prepared: Prepared, source: str):
             return precise_xml(spec)
         except Exception as exc:
             text = str(exc)
-            name = _too_thin_mesh(text)
+            name = too_thin_mesh(text)
             mesh = spec.mesh(name) if name else None
             if mesh is None or mesh.inertia == mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL:
-                raise _compile_error(exc, source) from None
+                raise compile_error(exc, source) from None
             mesh.inertia = mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL
             prepared.warnings.append(f"mesh '{name}' encloses no volume; it uses shell inertia")
     raise ModelError("MuJoCo: too many meshes without volume")
 
 
-def _too_thin_mesh(text: str) -> str | None:
+def too_thin_mesh(text: str) -> str | None:
+    """The mesh a MuJoCo 'mesh volume is too small' error names, if it is one."""
     marker = "mesh volume is too small: "
     if marker not in text:
         return None
@@ -245,7 +241,7 @@ _COMPILE_HINTS = {
 }
 
 
-def _compile_error(exc: Exception, source: str) -> ModelError:
+def compile_error(exc: Exception, source: str) -> ModelError:
     """A MuJoCo compile error as one line, pointing at the URDF line in the element's info
     (or at the URDF itself when MuJoCo names no element)."""
     text = str(exc).strip().replace("Error: ", "", 1)
@@ -339,11 +335,11 @@ def _finish(
                 joint.info = _origin(
                     robot.source, joints[body.joint.name].line, f"joint '{body.joint.name}'"
                 )
-        if options.free_joint and _floats(body):
+        if options.free_joint and floats(body):
             target.add_freejoint(name=f"{body.name}_freejoint")
 
 
-def _floats(body: Body) -> bool:
+def floats(body: Body) -> bool:
     """Whether a free joint goes on ``body``: the root, or what a ``world`` root holds fixed."""
     if body.parent is None:
         return body.name != WORLD

@@ -55,11 +55,12 @@ class Body:
     mass: MassProperties | None
     shapes: list[PlacedShape]
     links: list[LinkFrame]
+    floating: bool = False  # gets a free joint
 
     @property
     def moves(self) -> bool:
         """Whether the body has its own degrees of freedom."""
-        return self.joint is not None and self.joint.moves
+        return self.floating or (self.joint is not None and self.joint.moves)
 
 
 def build_bodies(robot: Robot, fuse_static: bool, float_from_world: bool = False) -> list[Body]:

@@ -53,9 +53,12 @@ def validate_masses(
 ) -> list[Repair]:
     """Check (and under ``repair``, fix in place) every body's mass properties."""
     repairs: list[Repair] = []
+    total = sum(b.mass.mass for b in bodies if b.mass is not None and math.isfinite(b.mass.mass))
     for body in bodies:
         if body.name == "world" and body.parent is None:
             continue
+        if body.floating and (body.mass is None or body.mass.mass < policy.min_mass):
+            repairs += _floating_root(body, policy, total, source, lines)
         if body.mass is not None and (not math.isfinite(body.mass.mass) or body.mass.mass < 0):
             raise InputError(
                 f"link '{body.name}' has mass {body.mass.mass}; a mass must be a number >= 0",
@@ -76,6 +79,36 @@ def validate_masses(
             body.mass = fixed
             repairs.append(Repair(body.name, problem, before, after))
     return repairs
+
+
+# A massless floating root gets this share of the robot's mass, as a solid sphere of
+# FLOATING_RADIUS: the smallest mass keeps its own inertia so far below the limbs it carries
+# that random control makes the simulation unstable.
+FLOATING_SHARE = 0.01
+FLOATING_RADIUS = 0.05
+
+
+def _floating_root(
+    body: Body, policy: InertiaPolicy, total: float, source: str, lines: dict
+) -> list[Repair]:
+    before = "no <inertial>" if body.mass is None else f"mass {body.mass.mass:g}"
+    if policy.mode != "repair":
+        raise InputError(
+            f"link '{body.name}' floats (options.free_joint) but has {before}",
+            file=source,
+            line=lines.get(body.name),
+            hint="give it an <inertial>, or set inertia.policy: repair in robot.yaml",
+        )
+    mass = max(policy.min_mass, FLOATING_SHARE * total)
+    moment = 0.4 * mass * FLOATING_RADIUS**2
+    body.mass = MassProperties(
+        mass=mass,
+        com=body.mass.com if body.mass is not None else (0.0, 0.0, 0.0),
+        inertia=((moment, 0.0, 0.0), (0.0, moment, 0.0), (0.0, 0.0, moment)),
+        links=body.mass.links if body.mass is not None else [],
+    )
+    after = f"mass {mass:.4g} (1% of the robot), inertia {moment:.3g}"
+    return [Repair(body.name, "floating root without mass", before, after)]
 
 
 def _problems(body: Body, policy: InertiaPolicy):

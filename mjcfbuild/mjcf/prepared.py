@@ -145,8 +145,12 @@ def prepare(
     decompositions: list[Decomposition],
     user_compiler: dict[str, str],
     source: str,
+    visuals: bool = True,
 ) -> Prepared:
-    """Write the prepared URDF of ``bodies``; ``products`` are mesh summaries by mesh id."""
+    """Write the prepared URDF of ``bodies``; ``products`` are mesh summaries by mesh id.
+
+    Without ``visuals`` only collision geometry is written (for the collision matrix, which
+    must not depend on visual meshes)."""
     prepared = Prepared(urdf="")
     builder = _Builder(products, product_dirs, decompositions, source, prepared)
     by_link = {}
@@ -157,7 +161,7 @@ def prepare(
         placed = {(p.link, p.shape.role, p.shape.index): p for p in body.shapes}
         geoms = []
         for shape in body.shapes:
-            if shape.shape.role == "visual":
+            if visuals and shape.shape.role == "visual":
                 geoms += builder.visual(shape, body)
         for frame in body.links:
             for choice in by_link.get(frame.link, []):

@@ -25,19 +25,25 @@ _SCENE = """<mujoco model={model}>
 
   <worldbody>
     <light pos="0 0 1.5" dir="0 0 -1" directional="true"/>
-    <geom name="floor" size="0 0 0.05" type="plane" material="groundplane"/>
+    <geom name="floor"{floor} size="0 0 0.05" type="plane" material="groundplane"/>
   </worldbody>
 </mujoco>
 """
 
 
-def default_scene(model: str, robot_file: str) -> str:
-    """The scene XML that includes ``robot_file``."""
-    return _SCENE.format(model=quoteattr(f"{model} scene"), robot=quoteattr(robot_file))
+def default_scene(model: str, robot_file: str, floor: float = 0.0) -> str:
+    """The scene XML that includes ``robot_file``, with its floor at height ``floor``."""
+    from mjcfbuild.numbers import output_list
+
+    where = f' pos="0 0 {output_list([floor])}"' if floor else ""
+    return _SCENE.format(
+        model=quoteattr(f"{model} scene"), robot=quoteattr(robot_file), floor=where
+    )
 
 
-def scene_with(model: str, robot_file: str, block: str, origin: str) -> bytes:
-    """A scene that includes ``robot_file`` and holds the MJCF of a ``<scene>`` block."""
+def scene_with(model: str, robot_file: str, block: str, origin: str, floor: float = 0.0) -> bytes:
+    """A scene that includes ``robot_file`` and holds the MJCF of a ``<scene>`` block; its
+    first plane geom (the floor) is moved to height ``floor``."""
     from lxml import etree
 
     from mjcfbuild.errors import InputError
@@ -53,5 +59,12 @@ def scene_with(model: str, robot_file: str, block: str, origin: str) -> bytes:
     for child in content:
         if isinstance(child.tag, str):
             root.append(child)
+    if floor:
+        from mjcfbuild.numbers import output_list
+
+        plane = next((g for g in root.iter("geom") if g.get("type") == "plane"), None)
+        if plane is not None:
+            position = [float(v) for v in (plane.get("pos") or "0 0 0").split()]
+            plane.set("pos", output_list([*position[:2], position[2] + floor]))
     etree.indent(root, space="  ")
     return etree.tostring(root, encoding="unicode").encode() + b"\n"

@@ -13,6 +13,7 @@ from mjcfbuild.inputs.combine import combine
 from mjcfbuild.inputs.model import inputs_from_dict
 from mjcfbuild.inputs.native import native_inputs
 from mjcfbuild.inputs.ros2_control import Ros2Control
+from mjcfbuild.manifest.simulation import ActuatorSettings
 from mjcfbuild.mjcf.assemble import AssemblyOptions, assemble
 from mjcfbuild.mjcf.inertia import InertiaPolicy
 from mjcfbuild.mjcf.prepared import Decomposition
@@ -46,10 +47,16 @@ def run(payload: dict) -> dict:
         )
     inputs, input_warnings = _inputs(payload)
     control = Ros2Control.from_dict(plan.get("ros2_control", {}))
+    matrix = _read(payload["self_collision"])
+    srdf = _read(payload["srdf"])
     options = AssemblyOptions(
         inputs=inputs,
         control=control,
-        control_settings=payload["ros2_control"],
+        actuators=ActuatorSettings(**payload["actuators"]),
+        home=payload["home"],
+        home_state=(srdf or {}).get("states", {}).get("home"),
+        excludes=[tuple(pair) for pair in (matrix or {}).get("excludes", [])],
+        manifest_label=payload["manifest_label"],
         fuse_static=payload["fuse_static"],
         free_joint=payload["free_joint"],
         link_sites=payload["link_sites"],
@@ -59,6 +66,7 @@ def run(payload: dict) -> dict:
         decompositions=decompositions,
     )
     assembly = assemble(robot, products, product_dirs, options)
+    assembly.warnings += _placement_warnings(assembly, payload)
 
     outputs: dict[str, str] = {}
     assets_dir = Path(payload["assets_dir"])
@@ -80,6 +88,8 @@ def run(payload: dict) -> dict:
         "warnings": assembly.warnings,
         "bodies": assembly.bodies,
         "geoms": assembly.geoms,
+        "readiness": assembly.readiness.to_dict() if assembly.readiness else None,
+        "self_collision": matrix,
     }
     write_output(
         report_path, (json.dumps(report, indent=1, sort_keys=True) + "\n").encode(), outputs
@@ -103,6 +113,23 @@ def _inputs(payload: dict):
         sources.append(inputs_from_dict(payload["inputs"]["file"]))
     sources.append(native_inputs(payload["inputs"]["native"], payload["manifest_label"]))
     return combine(sources)
+
+
+def _placement_warnings(assembly, payload: dict) -> list[str]:
+    """A fixed-base robot reaching below the scene's floor at home, and how to fix it."""
+    lowest = assembly.readiness.lowest_point if assembly.readiness else None
+    floor = payload["floor"]
+    if lowest is None or floor == "auto" or lowest["height"] >= float(floor) - 1e-3:
+        return []
+    return [
+        f"at home, body '{lowest['body']}' reaches {float(floor) - lowest['height']:.3g} m below "
+        f"the scene's floor; set placement: {{floor: auto}} to put the floor under the robot, or "
+        "options.free_joint: true for a robot that stands on its own"
+    ]
+
+
+def _read(path: str | None) -> dict | None:
+    return json.loads(Path(path).read_text()) if path else None
 
 
 def _previous_assets(report_path: Path) -> set[str]:

@@ -26,6 +26,7 @@ def run(payload: dict) -> dict:
         Path(payload["scene"]),
         repaired,
         CheckOptions(**payload["options"]),
+        assembly.get("readiness") or {},
     )
     outputs: dict[str, str] = {}
     data = {"passes": report.passes, "failures": report.failures, **report.results}
@@ -41,12 +42,4 @@ def run(payload: dict) -> dict:
             file=payload["model_label"],
             hint=f"{more} more failure{'s' if more > 1 else ''} in the report" if more else None,
         )
-    notes = []
-    pairs = report.results.get("resting_contacts", {}).get("pairs", [])
-    if pairs:
-        listed = ", ".join(f"{p['body1']}/{p['body2']}" for p in pairs[:5])
-        notes.append(
-            f"{len(pairs)} body pair{'s' if len(pairs) > 1 else ''} in contact at rest ({listed}"
-            f"{', ...' if len(pairs) > 5 else ''}); report.md has a ready contact exclude"
-        )
-    return {"outputs": outputs, "warnings": notes}
+    return {"outputs": outputs, "warnings": []}

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 from mjcfbuild.mjcf.scene import default_scene, scene_with
@@ -14,9 +15,20 @@ def run(payload: dict) -> dict:
         data = Path(payload["scene_file"]).read_bytes()
     elif payload.get("scene_block"):
         block = payload["scene_block"]
-        data = scene_with(payload["model"], payload["robot_file"], block["xml"], block["origin"])
+        data = scene_with(
+            payload["model"], payload["robot_file"], block["xml"], block["origin"], _floor(payload)
+        )
     else:
-        data = default_scene(payload["model"], payload["robot_file"]).encode()
+        data = default_scene(payload["model"], payload["robot_file"], _floor(payload)).encode()
     outputs: dict[str, str] = {}
     write_output(Path(payload["output"]), data, outputs)
     return {"outputs": outputs}
+
+
+def _floor(payload: dict) -> float:
+    """The floor height: as set, or 0 lowered under the lowest collision point at home."""
+    if payload.get("floor") != "auto":
+        return float(payload.get("floor") or 0.0)
+    report = json.loads(Path(payload["assembly_report"]).read_text())
+    lowest = (report.get("readiness") or {}).get("lowest_point")
+    return min(float(lowest["height"]), 0.0) if lowest else 0.0

@@ -57,4 +57,5 @@ def test_decomposition_is_reproducible_incremental_and_shared(tmp_path, monkeypa
     assert sorted(mjcfbuild.build(first / "robot.yaml", jobs=2).ran) == [
         "assemble",
         "decompose:upper_arm",
+        "selfcollision",
     ]

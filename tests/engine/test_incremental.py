@@ -20,6 +20,7 @@ ALL_ARM_TASKS = {
     "mesh:finger",
     "mesh:forearm",
     "mesh:upper_arm",
+    "selfcollision",
     "assemble",
     "scene",
 }
@@ -48,7 +49,7 @@ def test_cold_build_loads_and_simulates(built_arm):
 def test_second_build_runs_nothing_and_says_so(built_arm):
     result = build(built_arm)
     assert result.ran == []
-    assert "0 run, 8 up to date" in result.summary()
+    assert "0 run, 9 up to date" in result.summary()
 
 
 def test_touching_every_input_runs_nothing(built_arm):
@@ -64,12 +65,14 @@ def test_editing_one_mesh_reruns_that_mesh_and_the_assembly(built_arm):
     data = bytearray(mesh.read_bytes())
     data[84 + 12] ^= 0x01  # nudge one vertex of the first triangle
     mesh.write_bytes(bytes(data))
+    # The finger collides with authored primitives: the collision matrix stays up to date.
     assert sorted(build(built_arm).ran) == ["assemble", "mesh:finger"]
 
 
 def test_editing_an_included_xacro_reruns_expansion_and_what_depends_on_it(built_arm):
     finger = built_arm / "urdf" / "finger.xacro"
     finger.write_text(finger.read_text().replace('<mass value="0.02"/>', '<mass value="0.03"/>'))
+    # A mass does not decide contacts: the collision matrix stays up to date.
     assert sorted(build(built_arm).ran) == ["assemble", "expand", "plan"]
 
 
@@ -82,19 +85,19 @@ def test_a_change_that_does_not_change_the_urdf_stops_after_expansion(built_arm)
 def test_editing_yaml_loaded_by_xacro_reruns_expansion(built_arm):
     limits = built_arm / "config" / "joint_limits.yaml"
     limits.write_text(limits.read_text().replace("upper: 2.5", "upper: 2.4"))
-    assert sorted(build(built_arm).ran) == ["assemble", "expand", "plan"]
+    assert sorted(build(built_arm).ran) == ["assemble", "expand", "plan", "selfcollision"]
 
 
 def test_changing_a_xacro_arg_reruns_expansion(built_arm):
     manifest = built_arm / "robot.yaml"
     manifest.write_text(manifest.read_text().replace("with_camera: true", "with_camera: false"))
-    assert sorted(build(built_arm).ran) == ["assemble", "expand", "plan"]
+    assert sorted(build(built_arm).ran) == ["assemble", "expand", "plan", "selfcollision"]
 
 
 def test_changing_an_option_reruns_only_the_assembly(built_arm):
     manifest = built_arm / "robot.yaml"
     manifest.write_text(manifest.read_text() + "options:\n  fuse_static: false\n")
-    assert build(built_arm).ran == ["assemble"]
+    assert sorted(build(built_arm).ran) == ["assemble", "selfcollision"]
 
 
 def test_hand_edited_or_deleted_outputs_are_rebuilt(built_arm):

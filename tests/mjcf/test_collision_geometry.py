@@ -64,7 +64,7 @@ def test_switching_policy_reruns_only_the_affected_mesh_and_assembly(arm):
     result, _ = build_arm(
         arm, "collision:\n  rules:\n    - links: [upper_arm_link]\n      policy: hull\n"
     )
-    assert sorted(result.ran) == ["assemble", "mesh:upper_arm"]
+    assert sorted(result.ran) == ["assemble", "mesh:upper_arm", "selfcollision"]
 
 
 def test_identical_files_are_stored_once(tmp_path):

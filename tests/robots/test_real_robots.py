@@ -7,6 +7,8 @@ The wheel is downloaded once into a cache (see bench/robot_data.py). Run only th
 
 from __future__ import annotations
 
+import json
+
 import mujoco
 import numpy as np
 import pytest
@@ -24,7 +26,15 @@ def test_robot_builds_simulates_and_matches_urdf_kinematics(name, tmp_path):
     robot = robot_data.ROBOTS[name]
     urdf = robot_data.unpack(robot)
     manifest = robot_data.manifest(robot, tmp_path, urdf, robot_data.package_root())
+    # The build's own check must pass: actuators on every joint, no robot bodies touching at
+    # home, a floating base on the floor, the hold and the Menagerie test (it raises if not).
     result = mjcfbuild.build(manifest, jobs=2)
+    check = json.loads((tmp_path / "mjcf/.mjcfbuild/check.json").read_text())
+    assert check["passes"] and check["actuation"]["problems"] == []
+    assert check["resting_contacts"]["pairs"] == []
+    assert check["home"] and check["menagerie_test"]["warnings"] == []
+    if robot.floating:
+        assert abs(check["floor_gap"]) <= 1e-3
 
     model = mujoco.MjModel.from_xml_path(str(result.scene))
     data = mujoco.MjData(model)

@@ -1,0 +1,206 @@
+"""Checks that a model is ready to simulate and control.
+
+- every moving joint is driven by exactly one actuator (mimic followers and joints asked to be
+  passive excepted);
+- a floating robot's lowest collision geometry rests on the floor at home (within 1 mm);
+- a fixed-base robot holding its home ``ctrl`` for 1 s stays near home;
+- MuJoCo Menagerie's model test: 1 s of pseudorandom control over each actuator's ctrlrange
+  (a Halton sequence), no MuJoCo warning, finite state.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+FLOOR_TOLERANCE = 1e-3  # m
+TEST_SECONDS = 1.0
+
+
+@dataclass
+class ControlReport:
+    """Results of the control checks and the failures among them."""
+
+    failures: list[str] = field(default_factory=list)
+    results: dict = field(default_factory=dict)
+
+
+def check_control(model, passive: set[str], hold_tolerance: float, strict: bool) -> ControlReport:
+    """Run every control check on ``model`` (the scene). Without ``strict`` (a model mjcfbuild
+    did not build), undriven joints are reported but do not fail."""
+    import mujoco
+
+    report = ControlReport()
+    problems = actuation_problems(model, passive)
+    report.results["actuation"] = {"actuators": model.nu, "problems": problems}
+    if strict:
+        report.failures += problems
+    home = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home")
+    report.results["home"] = home >= 0
+    floating = _floating(model)
+    if floating and home >= 0:
+        gap = floor_gap(model, home)
+        report.results["floor_gap"] = gap
+        if gap is not None and abs(gap) > FLOOR_TOLERANCE:
+            report.failures.append(
+                f"at home the robot's lowest collision geometry is {gap * 1000:.1f} mm "
+                f"{'above' if gap > 0 else 'below'} the floor (tolerance 1 mm)"
+            )
+    if home >= 0:
+        deviation, joint = hold_deviation(model, home, passive)
+        report.results["hold"] = {"max_deviation": deviation, "joint": joint, "floating": floating}
+        if not floating and deviation > hold_tolerance:
+            report.failures.append(
+                f"holding home's ctrl for 1 s, joint '{joint}' moved {deviation:.3g} from home "
+                f"(check.hold_tolerance {hold_tolerance:g}); stiffen its actuator "
+                "(actuators.frequency, or kp in a rule)"
+            )
+    warnings, finite = menagerie_test(model)
+    report.results["menagerie_test"] = {"warnings": warnings, "finite": finite}
+    if not finite:
+        report.failures.append("the state is not finite under 1 s of pseudorandom control")
+    for warning in warnings:
+        report.failures.append(f"MuJoCo warned under pseudorandom control: {warning}")
+    return report
+
+
+def actuation_problems(model, passive: set[str]) -> list[str]:
+    """Moving joints with no actuator, or with more than one."""
+    import mujoco
+
+    drivers: dict[int, list[str]] = {}
+    for actuator in range(model.nu):
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_ACTUATOR, actuator) or f"#{actuator}"
+        target = model.actuator_trnid[actuator, 0]
+        kind = mujoco.mjtTrn(model.actuator_trntype[actuator])
+        if kind in (mujoco.mjtTrn.mjTRN_JOINT, mujoco.mjtTrn.mjTRN_JOINTINPARENT):
+            drivers.setdefault(int(target), []).append(name)
+        elif kind == mujoco.mjtTrn.mjTRN_TENDON:
+            for joint in _tendon_joints(model, target):
+                drivers.setdefault(joint, []).append(name)
+    followers = {
+        int(model.eq_obj1id[e])
+        for e in range(model.neq)
+        if model.eq_type[e] == mujoco.mjtEq.mjEQ_JOINT
+    }
+    problems = []
+    for joint in range(model.njnt):
+        if model.jnt_type[joint] == mujoco.mjtJoint.mjJNT_FREE or joint in followers:
+            continue
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, joint) or f"#{joint}"
+        found = drivers.get(joint, [])
+        if not found and name not in passive:
+            problems.append(f"joint '{name}' has no actuator")
+        elif len(found) > 1:
+            problems.append(
+                f"joint '{name}' is driven by {len(found)} actuators ({', '.join(found)})"
+            )
+    return problems
+
+
+def floor_gap(model, key: int) -> float | None:
+    """Height of the lowest robot collision point above the scene's floor, at keyframe ``key``."""
+    import mujoco
+
+    from mjcfbuild.control.floor import lowest_collision_point
+
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, key)
+    mujoco.mj_kinematics(model, data)
+    lowest = lowest_collision_point(model, data)
+    if lowest is None:
+        return None
+    return lowest.height - _floor_height(model)
+
+
+def hold_deviation(model, key: int, passive: set[str]) -> tuple[float, str | None]:
+    """Largest distance of an actuated hinge or slide joint from home over 1 s of home ctrl."""
+    import mujoco
+    import numpy as np
+
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, key)
+    home = data.qpos.copy()
+    watched = [
+        j
+        for j in range(model.njnt)
+        if mujoco.mjtJoint(model.jnt_type[j])
+        in (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE)
+        and (mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or "") not in passive
+    ]
+    addresses = np.array([model.jnt_qposadr[j] for j in watched], dtype=int)
+    worst, worst_joint = 0.0, None
+    steps = round(TEST_SECONDS / model.opt.timestep)
+    for _ in range(steps):
+        mujoco.mj_step(model, data)
+        if not len(addresses):
+            continue
+        deviation = np.abs(data.qpos[addresses] - home[addresses])
+        index = int(np.argmax(deviation))
+        if deviation[index] > worst:
+            worst = float(deviation[index])
+            worst_joint = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, watched[index])
+    return worst, worst_joint
+
+
+def menagerie_test(model) -> tuple[list[str], bool]:
+    """1 s of Halton-sequence control over each ctrlrange from the default state: MuJoCo's
+    warnings (as 'name (xN)') and whether the state stayed finite."""
+    import mujoco
+    import numpy as np
+
+    data = mujoco.MjData(model)
+    mujoco.mj_resetData(model, data)
+    centre = np.zeros(model.nu)
+    radius = np.ones(model.nu)
+    limited = model.actuator_ctrllimited.astype(bool)
+    ranges = model.actuator_ctrlrange
+    centre[limited] = ranges[limited].mean(axis=1)
+    radius[limited] = (ranges[limited, 1] - ranges[limited, 0]) / 2
+    step = 0
+    finite = True
+    # MuJoCo resets an unstable simulation to time 0 (with a warning): count steps instead.
+    steps = math.ceil(TEST_SECONDS / model.opt.timestep)
+    while step < steps:
+        for actuator in range(model.nu):
+            halton = mujoco.mju_Halton(step, actuator + 2)
+            data.ctrl[actuator] = centre[actuator] + radius[actuator] * (2 * halton - 1)
+        mujoco.mj_step(model, data)
+        step += 1
+        if not (np.all(np.isfinite(data.qpos)) and np.all(np.isfinite(data.qvel))):
+            finite = False
+            break
+        if any(stat.number for stat in data.warning):
+            break
+    warnings = [
+        f"{mujoco.mjtWarning(index).name.removeprefix('mjWARN_').lower()} (x{int(stat.number)})"
+        for index, stat in enumerate(data.warning)
+        if stat.number
+    ]
+    return warnings, finite
+
+
+def _floating(model) -> bool:
+    import mujoco
+
+    return any(model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE for j in range(model.njnt))
+
+
+def _floor_height(model) -> float:
+    import mujoco
+
+    for geom in range(model.ngeom):
+        if model.geom_type[geom] == mujoco.mjtGeom.mjGEOM_PLANE and model.geom_bodyid[geom] == 0:
+            return float(model.geom_pos[geom][2])
+    return 0.0
+
+
+def _tendon_joints(model, tendon: int) -> list[int]:
+    import mujoco
+
+    start, count = model.tendon_adr[tendon], model.tendon_num[tendon]
+    return [
+        int(model.wrap_objid[w])
+        for w in range(start, start + count)
+        if model.wrap_type[w] == mujoco.mjtWrap.mjWRAP_JOINT
+    ]

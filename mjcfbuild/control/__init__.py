@@ -1,0 +1,1 @@
+"""Actuators, the home pose and placement: what makes a model simulation-ready."""

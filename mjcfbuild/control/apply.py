@@ -1,0 +1,295 @@
+"""Writing actuators, joint dynamics, the home keyframe and the floating base's height into the
+model tree.
+
+Gains given as a natural frequency need the joint's effective inertia, which only the compiled
+model knows: the diagonal of the joint-space inertia matrix at home, armature included. So the
+tree is compiled once with the joint dynamics in place, gains and heights are computed from that
+model, and the caller compiles the finished tree again.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import asdict, dataclass, field
+
+from lxml import etree
+
+from mjcfbuild.control.choose import ActuatorChoice
+from mjcfbuild.control.floor import lowest_collision_point
+from mjcfbuild.control.home import HomeValue, joint_range
+from mjcfbuild.numbers import output_list
+from mjcfbuild.urdf.model import Robot
+
+ACTUATOR_TAGS = (
+    "general",
+    "motor",
+    "position",
+    "velocity",
+    "intvelocity",
+    "damper",
+    "cylinder",
+    "muscle",
+    "adhesion",
+)
+HOME = "home"
+
+
+@dataclass
+class ActuatorRecord:
+    """An actuator of the finished model, for the report."""
+
+    name: str
+    joint: str
+    type: str
+    source: str
+    kp: float | None = None
+    kv: float | None = None
+    ctrlrange: list[float] | None = None
+    forcerange: list[float] | None = None
+
+
+@dataclass
+class Readiness:
+    """What :func:`make_ready` did, for the report and the check."""
+
+    actuators: list[ActuatorRecord] = field(default_factory=list)
+    passive: list[str] = field(default_factory=list)  # joints with actuator type none
+    home: list[dict] = field(default_factory=list)
+    home_written: bool = False
+    base_height: float | None = None  # how far a floating base was raised to stand
+    lowest_point: dict | None = None  # the lowest collision point at home (fixed base)
+    notes: list[str] = field(default_factory=list)
+
+    def to_dict(self) -> dict:
+        """A JSON-friendly form."""
+        return asdict(self)
+
+
+def user_driven_joints(root: etree._Element) -> set[str]:
+    """Joints an actuator already in the tree drives (written by the user), directly or
+    through a fixed tendon."""
+    section = root.find("actuator")
+    if section is None:
+        return set()
+    tendons = {
+        tendon.get("name"): {j.get("joint") for j in tendon.findall("joint")}
+        for tendon in root.iter("fixed")
+    }
+    driven: set[str] = set()
+    for element in section:
+        if element.tag not in ACTUATOR_TAGS:
+            continue
+        joint = element.get("joint") or element.get("jointinparent")
+        if joint:
+            driven.add(joint)
+        driven |= tendons.get(element.get("tendon"), set())
+    return driven
+
+
+def make_ready(
+    root: etree._Element,
+    robot: Robot,
+    choices: list[ActuatorChoice],
+    home: list[HomeValue],
+    floating: bool,
+    compile_tree: Callable[[etree._Element], object],
+) -> Readiness:
+    """Add actuators, joint dynamics and the home keyframe to ``root``; stand a floating base on
+    the floor. ``compile_tree`` turns the tree into an ``MjModel``."""
+    import mujoco
+    import numpy as np
+
+    readiness = Readiness(home=[asdict(value) for value in home])
+    joints = {element.get("name"): element for element in root.iter("joint")}
+    bodies = {element.get("name"): element for element in root.iter("body")}
+    urdf_joints = {joint.name: joint for joint in robot.joints}
+    for choice in choices:
+        _set_dynamics(joints.get(choice.joint), choice)
+        if choice.gravcomp and urdf_joints[choice.joint].child in bodies:
+            bodies[urdf_joints[choice.joint].child].set("gravcomp", "1")
+    generated = [c for c in choices if c.type not in ("none", "user")]
+    readiness.passive = [c.joint for c in choices if c.type == "none"]
+    if generated and not _has_integrator(root):
+        # Stiff servos on light links need the implicit treatment of actuator damping that
+        # MuJoCo Menagerie's models use; the default Euler integrator treats it explicitly.
+        option = root.find("option")
+        if option is None:
+            option = etree.Element("option")
+            root.insert(1, option)
+        option.set("integrator", "implicitfast")
+
+    model = compile_tree(root)
+    data = mujoco.MjData(model)
+    qpos = _home_qpos(model, home)
+    if floating:
+        readiness.base_height = _stand_on_floor(root, model, data, qpos)
+        model = compile_tree(root)
+        data = mujoco.MjData(model)
+        qpos = _home_qpos(model, home)
+    data.qpos[:] = qpos
+    mujoco.mj_forward(model, data)
+    if not floating:
+        lowest = lowest_collision_point(model, data)
+        if lowest is not None:
+            readiness.lowest_point = {"height": lowest.height, "body": lowest.body}
+    inertia = np.zeros((model.nv, model.nv))
+    mujoco.mj_fullM(model, data, inertia)
+
+    section = root.find("actuator")
+    if section is None and generated:
+        section = etree.SubElement(root, "actuator")
+    taken = {e.get("name") for e in section} if section is not None else set()
+    for choice in choices:
+        if choice.type == "user":
+            readiness.actuators.append(ActuatorRecord("", choice.joint, "user", "user"))
+            continue
+        if choice.type == "none":
+            continue
+        index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, choice.joint)
+        dof = model.jnt_dofadr[index]
+        record = _actuator(choice, urdf_joints[choice.joint], float(inertia[dof, dof]), taken)
+        taken.add(record.name)
+        readiness.actuators.append(record)
+        etree.SubElement(section, record.type, _attributes(record))
+    _fill_user_records(readiness, root)
+
+    if _has_key(root, HOME):
+        readiness.notes.append("the inputs define a 'home' keyframe; it is kept as written")
+        return readiness
+    final = compile_tree(root)
+    final_data = mujoco.MjData(final)
+    final_data.qpos[:] = _home_qpos(final, home)
+    mujoco.mj_forward(final, final_data)
+    ctrl = _home_ctrl(final, final_data)
+    keyframe = root.find("keyframe")
+    if keyframe is None:
+        keyframe = etree.SubElement(root, "keyframe")
+    attributes = {"name": HOME, "qpos": output_list(final_data.qpos)}
+    if final.nu:
+        attributes["ctrl"] = output_list(ctrl)
+    keyframe.insert(0, etree.Element("key", attributes))
+    readiness.home_written = True
+    return readiness
+
+
+def _set_dynamics(element, choice: ActuatorChoice) -> None:
+    if element is None:
+        return
+    for attribute in ("armature", "damping", "frictionloss"):
+        value = getattr(choice, attribute)
+        if value is not None:
+            element.set(attribute, output_list([value]))
+
+
+def _has_integrator(root) -> bool:
+    return any(option.get("integrator") for option in root.findall("option"))
+
+
+def _has_key(root, name: str) -> bool:
+    return any(key.get("name") == name for key in root.iter("key"))
+
+
+def _home_qpos(model, home: list[HomeValue]):
+    import mujoco
+
+    qpos = model.qpos0.copy()
+    for value in home:
+        index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, value.joint)
+        if index >= 0:
+            qpos[model.jnt_qposadr[index]] = value.value
+    return qpos
+
+
+def _stand_on_floor(root, model, data, qpos) -> float | None:
+    """Raise every free body so the lowest collision point at home touches z = 0; the raise."""
+    import mujoco
+
+    data.qpos[:] = qpos
+    mujoco.mj_kinematics(model, data)
+    lowest = lowest_collision_point(model, data)
+    if lowest is None:
+        return None
+    lift = -lowest.height
+    for body in root.iter("body"):
+        if body.find("freejoint") is not None or any(
+            j.get("type") == "free" for j in body.findall("joint")
+        ):
+            position = [float(v) for v in (body.get("pos") or "0 0 0").split()]
+            position[2] += lift
+            body.set("pos", output_list(position))
+    return lift
+
+
+def _actuator(choice: ActuatorChoice, joint, inertia: float, taken: set[str]) -> ActuatorRecord:
+    """The actuator of a choice, its gains worked out from the joint's effective inertia."""
+    omega = 2 * math.pi * choice.frequency
+    name = choice.joint if choice.joint not in taken else f"{choice.joint}_actuator"
+    forcerange = list(choice.forcerange) if choice.forcerange else None
+    record = ActuatorRecord(name, choice.joint, choice.type, choice.source, forcerange=forcerange)
+    if choice.type == "position":
+        record.kp = choice.kp or inertia * omega**2
+        record.kv = choice.kv or 2 * choice.damping_ratio * inertia * omega
+        bounds = joint_range(joint)
+        record.ctrlrange = list(bounds) if bounds else None
+    elif choice.type == "velocity":
+        record.kv = choice.kv or inertia * omega  # a first-order servo with bandwidth omega
+        velocity = joint.limit.velocity if joint.limit is not None else None
+        record.ctrlrange = [-velocity, velocity] if velocity else None
+    else:  # motor
+        record.forcerange = None
+        record.ctrlrange = forcerange
+    return record
+
+
+def _attributes(record: ActuatorRecord) -> dict[str, str]:
+    attributes = {"name": record.name, "joint": record.joint}
+    if record.kp is not None:
+        attributes["kp"] = output_list([record.kp])
+    if record.kv is not None:
+        attributes["kv"] = output_list([record.kv])
+    if record.ctrlrange is not None:
+        attributes["ctrlrange"] = output_list(record.ctrlrange)
+    if record.forcerange is not None:
+        attributes["forcerange"] = output_list(record.forcerange)
+    return attributes
+
+
+def _fill_user_records(readiness: Readiness, root) -> None:
+    """Name the user's own actuators in their records."""
+    section = root.find("actuator")
+    if section is None:
+        return
+    by_joint = {
+        (e.get("joint") or e.get("jointinparent")): e for e in section if e.tag in ACTUATOR_TAGS
+    }
+    for record in readiness.actuators:
+        if record.source == "user" and record.joint in by_joint:
+            element = by_joint[record.joint]
+            record.name = element.get("name") or ""
+            record.type = element.tag
+
+
+def _home_ctrl(model, data):
+    """Controls that hold the home pose: position servos aim at it, velocity servos rest, and
+    motors push against gravity (the bias force at home), all within their ctrlrange."""
+    import mujoco
+    import numpy as np
+
+    ctrl = np.zeros(model.nu)
+    for actuator in range(model.nu):
+        if model.actuator_trntype[actuator] != mujoco.mjtTrn.mjTRN_JOINT:
+            continue
+        joint = model.actuator_trnid[actuator, 0]
+        gear = model.actuator_gear[actuator, 0] or 1.0
+        address, dof = model.jnt_qposadr[joint], model.jnt_dofadr[joint]
+        bias = model.actuator_biasprm[actuator]
+        affine = model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_AFFINE
+        if affine and bias[1] != 0:  # a position servo: force = kp (ctrl - length) ...
+            ctrl[actuator] = gear * data.qpos[address]
+        elif not affine and model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_FIXED:
+            ctrl[actuator] = data.qfrc_bias[dof] / (gear * model.actuator_gainprm[actuator, 0])
+        if model.actuator_ctrllimited[actuator]:
+            low, high = model.actuator_ctrlrange[actuator]
+            ctrl[actuator] = min(max(ctrl[actuator], low), high)
+    return ctrl

@@ -1,0 +1,189 @@
+"""Step ``selfcollision``: the collision matrix of the robot's collision geometry.
+
+Its inputs are only what decides contacts: the links' collision geometry (with visuals and
+inertias stripped by the task), the joints, the home pose and the settings. A visual mesh edit
+leaves it up to date.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from mjcfbuild.collision.policy import CollisionChoice
+from mjcfbuild.control.home import home_values
+from mjcfbuild.errors import InputError, ManifestError
+from mjcfbuild.inputs.ros2_control import ControlJoint, Ros2Control
+from mjcfbuild.mjcf.assemble import compile_error, floats
+from mjcfbuild.mjcf.bodies import build_bodies
+from mjcfbuild.mjcf.prepared import Decomposition, prepare
+from mjcfbuild.selfcollision.matrix import MatrixSettings, collision_matrix, needs_exclude
+from mjcfbuild.selfcollision.srdf import Srdf
+from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.urdf.model import robot_from_dict
+
+
+def run(payload: dict) -> dict:
+    """Write the matrix (every pair with its reason) and the excludes the model needs."""
+    import mujoco
+
+    robot = robot_from_dict(payload["robot"])
+    bodies = build_bodies(robot, payload["fuse_static"], float_from_world=payload["free_joint"])
+    body_of = {frame.link: body.name for body in bodies for frame in body.links}
+    choices = [
+        CollisionChoice(
+            c["link"], c["role"], c["index"], c["policy"], tuple(map(tuple, c["decompose"]))
+        )
+        for c in payload["choices"]
+    ]
+    products = {m: json.loads(Path(s).read_text()) for m, s in payload["products"].items()}
+    decompositions = [_decomposition(entry) for entry in payload["decompositions"]]
+    prepared = prepare(
+        robot.name,
+        bodies,
+        products,
+        {m: Path(folder) for m, folder in payload["product_dirs"].items()},
+        choices,
+        decompositions,
+        robot.mujoco_compiler,
+        robot.source,
+        visuals=False,
+    )
+    try:
+        spec = mujoco.MjSpec.from_string(prepared.urdf)
+    except Exception as exc:
+        raise compile_error(exc, robot.source) from None
+    if payload["free_joint"]:
+        for body in bodies:
+            if floats(body):
+                body.floating = True
+                spec.body(body.name).add_freejoint()
+    try:
+        model = _compile(spec)
+    except Exception as exc:
+        raise compile_error(exc, robot.source) from None
+
+    srdf = (
+        Srdf.from_dict(json.loads(Path(payload["srdf"]).read_text())) if payload["srdf"] else None
+    )
+    control = Ros2Control(
+        joints=[ControlJoint(name, [], value, "") for name, value in payload["initial"].items()]
+    )
+    home_state = _srdf_home(srdf, robot) if srdf else None
+    home = home_values(robot, control, payload["home"], home_state, payload["manifest_label"])
+    qpos = model.qpos0.copy()
+    for value in home:
+        index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, value.joint)
+        if index >= 0:
+            qpos[model.jnt_qposadr[index]] = value.value
+    settings = MatrixSettings(**payload["settings"])
+    verdicts = [v.to_dict() for v in collision_matrix(model, qpos, settings)]
+
+    by_pair = {frozenset((v["body1"], v["body2"])): v for v in verdicts}
+    if srdf is not None:
+        for pair in srdf.pairs:
+            bodies_of_pair = [
+                _body(link, body_of, srdf, pair.line) for link in (pair.link1, pair.link2)
+            ]
+            key = frozenset(bodies_of_pair)
+            if len(key) == 1:
+                continue  # fused into one body: MuJoCo never collides a body with itself
+            verdict = by_pair.get(key)
+            if verdict is not None:
+                verdict["reason"] = f"srdf: {pair.reason}"
+                verdict["exclude"] = True
+    for index, (link1, link2) in enumerate(payload["keep"]):
+        key = frozenset(
+            _kept_body(link, body_of, payload["manifest_label"], index) for link in (link1, link2)
+        )
+        if key in by_pair:
+            by_pair[key]["exclude"] = False
+            by_pair[key]["reason"] += ", kept"
+
+    parents = {body.name: body.parent or "" for body in bodies}
+    excludes = [
+        [v["body1"], v["body2"]]
+        for v in verdicts
+        if v["exclude"] and needs_exclude(parents, _verdict(v))
+    ]
+    result = {"pairs": verdicts, "excludes": excludes, "samples": settings.samples}
+    outputs: dict[str, str] = {}
+    write_output(
+        Path(payload["output"]),
+        (json.dumps(result, indent=1, sort_keys=True) + "\n").encode(),
+        outputs,
+    )
+    return {"outputs": outputs}
+
+
+def _compile(spec):
+    """Compile, giving meshes MuJoCo finds too thin for volume inertia shell inertia."""
+    import mujoco
+
+    from mjcfbuild.mjcf.assemble import too_thin_mesh
+
+    for _ in range(len(spec.meshes) + 1):
+        try:
+            return spec.compile()
+        except ValueError as exc:
+            name = too_thin_mesh(str(exc))
+            mesh = spec.mesh(name) if name else None
+            if mesh is None or mesh.inertia == mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL:
+                raise
+            mesh.inertia = mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL
+    return spec.compile()
+
+
+def _decomposition(entry: dict) -> Decomposition:
+    summary = json.loads(Path(entry["summary"]).read_text())
+    return Decomposition(
+        entry["mesh_id"], entry["params"], Path(entry["folder"]), summary["parts"], summary["files"]
+    )
+
+
+def _verdict(data: dict):
+    from mjcfbuild.selfcollision.matrix import PairVerdict
+
+    return PairVerdict(**data)
+
+
+def _body(link: str, body_of: dict[str, str], srdf: Srdf, line: int | None) -> str:
+    if link not in body_of:
+        raise InputError(
+            f"link '{link}' is not a link of the robot",
+            file=srdf.label,
+            line=line,
+            hint=f"links: {_listing(sorted(body_of))}",
+        )
+    return body_of[link]
+
+
+def _kept_body(link: str, body_of: dict[str, str], label: str, index: int) -> str:
+    if link not in body_of:
+        raise ManifestError(
+            f"link '{link}' is not a link of the robot",
+            file=f"{label} self_collision.keep[{index}]",
+            hint=f"links: {_listing(sorted(body_of))}",
+        )
+    return body_of[link]
+
+
+def _srdf_home(srdf: Srdf, robot) -> dict[str, float] | None:
+    state = srdf.states.get("home")
+    if state is None:
+        return None
+    names = {joint.name for joint in robot.joints}
+    unknown = sorted(set(state) - names)
+    if unknown:
+        raise InputError(
+            f"group_state 'home' names joint '{unknown[0]}', which the robot does not have",
+            file=srdf.label,
+            hint=f"joints: {_listing(sorted(names))}",
+        )
+    return state
+
+
+def _listing(names: list[str]) -> str:
+    from mjcfbuild.control.choose import listing
+
+    return listing(names)

@@ -1,0 +1,29 @@
+"""Step ``srdf``: read the SRDF named by ``self_collision.srdf`` (expanding it if it is xacro)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from mjcfbuild.selfcollision.srdf import parse_srdf
+from mjcfbuild.sources.expand import expand_xacro, read_urdf_file
+from mjcfbuild.sources.packages import PackageResolver
+from mjcfbuild.steps.outputs import write_output
+
+
+def run(payload: dict) -> dict:
+    """Write the SRDF's disabled pairs and group states to ``payload['output']``."""
+    source = Path(payload["source"])
+    if source.name.endswith(".xacro"):
+        packages = PackageResolver(
+            {name: Path(folder) for name, folder in payload["packages"].items()},
+            payload["environment"],
+        )
+        expansion = expand_xacro(source, payload["args"], packages)
+    else:
+        expansion = read_urdf_file(source)
+    srdf = parse_srdf(expansion.urdf, payload["label"])
+    outputs: dict[str, str] = {}
+    text = json.dumps(srdf.to_dict(), indent=1, sort_keys=True) + "\n"
+    write_output(Path(payload["output"]), text.encode(), outputs)
+    return {"outputs": outputs, "discovered": [f for f in expansion.files if f != str(source)]}

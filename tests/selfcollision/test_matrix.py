@@ -1,0 +1,131 @@
+"""The collision matrix task: reasons, excludes, SRDF import, keep, and incrementality."""
+
+from __future__ import annotations
+
+import json
+
+import mujoco
+
+import mjcfbuild
+from tests.conftest import INERTIA, run_cli, write
+
+# A chain whose first and third links overlap at the zero pose, with a visual-only mesh.
+CHAIN = f"""<robot name="chain">
+  <link name="a">{INERTIA}<collision><geometry><box size="0.4 0.4 0.1"/></geometry></collision>
+    <visual><geometry><mesh filename="look.obj"/></geometry></visual></link>
+  <link name="b">{INERTIA}<collision><origin xyz="0 0 0.2"/><geometry><box size="0.05 0.05 0.2"/></geometry></collision></link>
+  <link name="c">{INERTIA}<collision><origin xyz="0.1 0 -0.25"/><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="d">{INERTIA}<collision><origin xyz="0 0 1.5"/><geometry><sphere radius="0.05"/></geometry></collision></link>
+  <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><origin xyz="0 0 0.05"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="5" velocity="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="b"/><child link="c"/><origin xyz="0 0 0.3"/>
+    <axis xyz="0 1 0"/><limit lower="-0.2" upper="0.2" effort="5" velocity="1"/></joint>
+  <joint name="j3" type="revolute"><parent link="c"/><child link="d"/>
+    <axis xyz="0 1 0"/><limit lower="-0.2" upper="0.2" effort="5" velocity="1"/></joint>
+</robot>"""
+LOOK = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
+
+
+def _robot(folder, extra: str = ""):
+    write(folder / "robot.urdf", CHAIN)
+    write(folder / "look.obj", LOOK)
+    return write(folder / "robot.yaml", "name: chain\nsource: {urdf: robot.urdf}\n" + extra)
+
+
+def _matrix(folder) -> dict:
+    return json.loads((folder / "mjcf/.mjcfbuild/self_collision.json").read_text())
+
+
+def _reasons(folder) -> dict:
+    return {(p["body1"], p["body2"]): (p["reason"], p["exclude"]) for p in _matrix(folder)["pairs"]}
+
+
+def test_pairs_touching_at_home_are_excluded_and_the_check_passes(tmp_path):
+    result = mjcfbuild.build(_robot(tmp_path))
+    reasons = _reasons(tmp_path)
+    assert reasons[("a", "b")] == ("adjacent", True)
+    assert reasons[("a", "c")] == ("home", True)
+    assert reasons[("a", "d")] == ("never", False)
+    assert _matrix(tmp_path)["excludes"] == [["a", "c"]]  # MuJoCo skips parent and child
+    model = mujoco.MjModel.from_xml_path(str(result.robot))
+    assert model.nexclude == 1
+    report = (tmp_path / "mjcf/report/report.md").read_text()
+    assert "| a | c | home |" in report
+
+
+def test_exclude_never_and_keep(tmp_path):
+    mjcfbuild.build(
+        _robot(tmp_path, "self_collision: {exclude_never: true, keep: [[b, d]], samples: 50}\n")
+    )
+    reasons = _reasons(tmp_path)
+    assert reasons[("a", "d")] == ("never", True)
+    assert reasons[("b", "d")] == ("never, kept", False)
+
+
+def test_none_writes_no_excludes_and_the_check_names_the_touching_pair(tmp_path):
+    code = run_cli("build", str(_robot(tmp_path, "self_collision: none\n")))
+    assert code.code == 6
+    assert "touch at home (a/c)" in code.stderr
+
+
+def test_srdf_pairs_are_excluded_through_fused_links_with_their_reason(tmp_path):
+    write(
+        tmp_path / "robot.srdf",
+        '<robot name="chain"><disable_collisions link1="a" link2="d" reason="Never"/>'
+        '<group_state name="home" group="arm"><joint name="j1" value="0.3"/></group_state>'
+        "</robot>",
+    )
+    result = mjcfbuild.build(_robot(tmp_path, "self_collision: {srdf: robot.srdf}\n"))
+    assert _reasons(tmp_path)[("a", "d")] == ("srdf: Never", True)
+    model = mujoco.MjModel.from_xml_path(str(result.robot))
+    assert model.key_qpos[0][0] == 0.3  # the SRDF's home group_state
+
+
+def test_an_srdf_link_that_does_not_exist_is_an_error_at_its_line(tmp_path):
+    write(
+        tmp_path / "robot.srdf",
+        '<robot name="x">\n<disable_collisions link1="a" link2="zz"/>\n</robot>',
+    )
+    result = run_cli("build", str(_robot(tmp_path, "self_collision: {srdf: robot.srdf}\n")))
+    assert result.code == 4
+    assert "robot.srdf:2: link 'zz' is not a link of the robot" in result.stderr
+    assert not (tmp_path / "mjcf/chain.xml").exists()
+
+
+def test_a_malformed_srdf_is_an_error(tmp_path):
+    write(tmp_path / "robot.srdf", "<robot>\n<disable_collisions")
+    result = run_cli("build", str(_robot(tmp_path, "self_collision: {srdf: robot.srdf}\n")))
+    assert result.code == 4
+    assert "robot.srdf:2" in result.stderr and "not valid XML" in result.stderr
+
+
+def test_a_keep_pair_naming_a_missing_link_is_a_manifest_error(tmp_path):
+    result = run_cli("build", str(_robot(tmp_path, "self_collision:\n  keep: [[a, nope]]\n")))
+    assert result.code == 3
+    assert "robot.yaml:3" in result.stderr and "link 'nope'" in result.stderr
+
+
+def test_samples_must_be_positive(tmp_path):
+    result = run_cli("build", str(_robot(tmp_path, "self_collision: {samples: 0}\n")))
+    assert result.code == 3
+    assert "robot.yaml:3" in result.stderr and "samples" in result.stderr
+
+
+def test_a_visual_mesh_edit_does_not_rerun_the_matrix(tmp_path):
+    manifest = _robot(tmp_path)
+    mjcfbuild.build(manifest)
+    write(tmp_path / "look.obj", LOOK.replace("v 0 0 0.1", "v 0 0 0.2"))
+    result = mjcfbuild.build(manifest)
+    assert "assemble" in result.ran
+    assert "selfcollision" not in result.ran
+    write(
+        tmp_path / "robot.urdf",
+        CHAIN.replace('lower="-0.2" upper="0.2"', 'lower="-0.3" upper="0.3"'),
+    )
+    assert "selfcollision" in mjcfbuild.build(manifest).ran
+
+
+def test_the_matrix_is_the_same_in_another_folder(tmp_path):
+    mjcfbuild.build(_robot(tmp_path / "one"))
+    mjcfbuild.build(_robot(tmp_path / "two"))
+    assert _matrix(tmp_path / "one") == _matrix(tmp_path / "two")
