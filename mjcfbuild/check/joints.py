@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from mjcfbuild.urdf.kinematics import link_poses
+from mjcfbuild.urdf.limits import joint_range
 from mjcfbuild.urdf.model import Robot
 from mjcfbuild.urdf.transforms import apply
 
@@ -52,16 +53,16 @@ def compare_joints(robot: Robot, model, tolerance: float = 1e-6) -> list[str]:
                 f"{_vector(model_axis)} in the model (world frame, zero configuration)"
             )
         limited = bool(model.jnt_limited[index])
-        limit = joint.limit
-        if joint.kind == "continuous" or limit is None or limit.lower is None:
+        bounds = joint_range(joint)
+        if bounds is None:
             if limited:
                 problems.append(
                     f"joint '{joint.name}' is unlimited in the URDF but has range "
                     f"{_vector(model.jnt_range[index])} in the model"
                 )
             continue
-        if limit.upper is not None and limit.upper > limit.lower:
-            expected_range = np.array([limit.lower, limit.upper])
+        if bounds[1] > bounds[0]:  # a locked joint's tiny range is the build's own choice
+            expected_range = np.array(bounds)
             if not limited or np.max(np.abs(model.jnt_range[index] - expected_range)) > tolerance:
                 shown = _vector(model.jnt_range[index]) if limited else "no range"
                 problems.append(

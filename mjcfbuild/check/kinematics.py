@@ -12,6 +12,7 @@ import random
 from dataclasses import dataclass, field
 
 from mjcfbuild.urdf.kinematics import link_poses
+from mjcfbuild.urdf.limits import joint_range
 from mjcfbuild.urdf.model import Robot
 from mjcfbuild.urdf.transforms import rotation_angle_between
 
@@ -98,12 +99,12 @@ def random_configurations(robot: Robot, count: int, seed: int = 0) -> list[dict[
 
 
 def _limits(joint) -> tuple[float, float]:
-    limit = joint.limit
-    if joint.kind == "continuous" or limit is None or limit.lower is None or limit.upper is None:
+    bounds = joint_range(joint)
+    if bounds is None:
         return (-math.pi, math.pi) if joint.kind != "prismatic" else (-0.5, 0.5)
-    if limit.upper <= limit.lower:
-        return limit.lower, limit.lower
-    return limit.lower, limit.upper
+    if bounds[1] <= bounds[0]:
+        return bounds[0], bounds[0]
+    return bounds
 
 
 def compare_kinematics(robot: Robot, model, count: int = 20, seed: int = 0) -> KinematicsResult:
