@@ -101,6 +101,11 @@ class BuildContext:
         except ValueError:
             return str(path)
 
+    def portable_label(self, path: str | Path) -> str:
+        """``path`` relative to the manifest's folder even when outside it (``../x.urdf``), with
+        forward slashes: the same text whichever folder the build runs in, for outputs."""
+        return Path(os.path.relpath(Path(path), self.base_dir)).as_posix()
+
     @property
     def out_dir(self) -> Path:
         """The output folder."""

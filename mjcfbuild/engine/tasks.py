@@ -320,7 +320,7 @@ def _assemble_task(
 ) -> dict:
     options = ctx.manifest.options
     inertia = ctx.manifest.inertia
-    source_label = Path(ctx.label(ctx.source_path)).as_posix()
+    source_label = ctx.portable_label(ctx.source_path)
     decompositions = [
         {
             "mesh_id": mesh_id,

@@ -18,6 +18,8 @@ from mjcfbuild.fsutil import atomic_write
 
 _MODELS = Path(__file__).with_name("models.py")
 _MODEL_TAG = "__model__"
+# Entries written before keys kept the manifest's order were sorted; they are not read.
+_FORMAT = b"ordered-keys"
 
 
 class FrozenManifest:
@@ -67,6 +69,7 @@ def _freeze(value):
 def cache_key(text: bytes) -> str:
     """The key of a manifest text: its bytes, mjcfbuild's version and the models' source."""
     digest = hashlib.sha256(text)
+    digest.update(_FORMAT)
     digest.update(__version__.encode())
     digest.update(_MODELS.read_bytes())
     return digest.hexdigest()
@@ -90,7 +93,9 @@ def remember(text: bytes, manifest) -> None:
     path = _entry(cache_key(text))
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        atomic_write(path, json.dumps(_freeze(manifest), sort_keys=True).encode())
+        # Keys keep the manifest's order: a cached manifest must read exactly like a fresh one
+        # (sorted keys reordered the attributes a `modify` sets, between cold and warm builds).
+        atomic_write(path, json.dumps(_freeze(manifest)).encode())
     except OSError:
         pass
 
