@@ -27,7 +27,12 @@ from mjcfbuild.collision.policy import (
 )
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.depfile import Depfile
-from mjcfbuild.engine.uptodate import ParamsUnchanged, always_stale, outputs_intact
+from mjcfbuild.engine.uptodate import (
+    ParamsUnchanged,
+    always_stale,
+    outputs_intact,
+    planned_meshes_exist,
+)
 from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
 from mjcfbuild.fsutil import unreadable_file
@@ -232,6 +237,7 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
         file_dep=[urdf, *([inputs_file] if inputs_file else [])],
         targets=[ctx.state(PLAN)],
         params={k: v for k, v in payload.items() if k not in ("urdf", "output")},
+        extra_uptodate=[planned_meshes_exist(ctx.state(PLAN))],
     )
 
 

@@ -11,7 +11,7 @@ import pytest
 
 import mjcfbuild
 from mjcfbuild.errors import BuildFailed
-from tests.conftest import write
+from tests.conftest import run_cli, write
 
 ALL_ARM_TASKS = {
     "expand",
@@ -163,3 +163,18 @@ def test_check_follows_the_model(arm):
         "mesh:finger",
         "previews",
     ]
+
+
+def test_a_mesh_deleted_after_a_build_gives_the_clean_build_message(arm):
+    from mjcfbuild.errors import EXIT_INPUT
+
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    (arm / "meshes" / "base.stl").unlink()
+    after_build = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert run_cli("clean", cwd=arm).code == 0
+    after_clean = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert after_clean.code == EXIT_INPUT
+    error = [line for line in after_clean.stderr.splitlines() if "error" in line]
+    assert error and "base.stl" in error[0] and "source.urdf:18" in error[0], after_clean.stderr
+    assert after_build.code == EXIT_INPUT, after_build.stderr
+    assert [line for line in after_build.stderr.splitlines() if "error" in line] == error
