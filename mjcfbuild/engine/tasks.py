@@ -160,7 +160,12 @@ def _run(ctx: BuildContext, name: str, step: str, payload: dict, in_worker: bool
         ctx.notes[name] = "from cache"
     if result.get("stored"):
         ctx.cache_grew = True
-    task.file_dep.update(result.get("discovered", []))
+    if "discovered" in result:
+        # What this run read replaces what the last run's depfile listed: a file no longer
+        # read would otherwise stay in the list doit saves, and the build stage would find
+        # the list changed and run the task a second time.
+        task.file_dep.intersection_update({payload["source"]})
+        task.file_dep.update(result["discovered"])
     return {"outputs": result["outputs"]}
 
 
