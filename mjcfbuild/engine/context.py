@@ -44,6 +44,7 @@ class BuildContext:
     cache_grew: bool = False
     cache_folder_override: Path | None = None
     output_override: Path | None = None
+    prebuilt_mesh_dir: Path | None = None  # convert -a: a folder of meshes converted before
     run_check: bool = True
 
     def __post_init__(self) -> None:

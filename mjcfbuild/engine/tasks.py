@@ -232,6 +232,8 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
         "inputs_file_label": ctx.label(inputs_file) if inputs_file else None,
         "output": str(ctx.state(PLAN)),
     }
+    if ctx.prebuilt_mesh_dir is not None:  # convert -a
+        payload["prebuilt_meshes"] = str(ctx.prebuilt_mesh_dir)
     return _task(
         ctx,
         f"{prefix}plan",
