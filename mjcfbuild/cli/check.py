@@ -117,8 +117,22 @@ def _pair(args) -> int:
         problem = unreadable_file(path)
         if problem:
             raise InputError(f"file {problem}", file=path)
-    robot = parse_urdf(urdf.read_bytes(), str(urdf))
+    robot = parse_urdf(_urdf_bytes(urdf), str(urdf))
     return _print(check_model(robot, mjcf, mjcf, set(), _options(args)), f"{mjcf} against {urdf}")
+
+
+def _urdf_bytes(path: Path) -> bytes:
+    """The URDF text of ``path``; a xacro file is expanded first (default arguments, packages
+    from ROS_PACKAGE_PATH / AMENT_PREFIX_PATH), as ``convert -u`` does."""
+    import os
+
+    from mjcfbuild.cli.convert import is_xacro
+    from mjcfbuild.sources.expand import expand_xacro
+    from mjcfbuild.sources.packages import PackageResolver
+
+    if not is_xacro(path):
+        return path.read_bytes()
+    return expand_xacro(path, {}, PackageResolver({}, os.environ)).urdf
 
 
 def _manifest(ctx, args) -> int:
@@ -160,13 +174,13 @@ def _up_to_date(ctx) -> int:
 
     stale = stale_outputs(ctx)
     if not stale:
-        print(f"mjcfbuild: {ctx.label(ctx.out_dir)} is up to date")
+        print(f"mjcfbuild: {ctx.manifest_label}: {ctx.label(ctx.out_dir)} is up to date")
         return EXIT_OK
     for line in stale:
         print(f"mjcfbuild: stale: {line}", file=sys.stderr)
     print(
-        f"mjcfbuild: {ctx.label(ctx.out_dir)} is out of date; run mjcfbuild build "
-        f"{ctx.manifest_label}",
+        f"mjcfbuild: {ctx.manifest_label}: {ctx.label(ctx.out_dir)} is out of date; "
+        f"run mjcfbuild build {ctx.manifest_label}",
         file=sys.stderr,
     )
     return EXIT_CHECK

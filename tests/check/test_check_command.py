@@ -84,3 +84,31 @@ def test_up_to_date_with_and_without_the_build_database(tmp_path):
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == EXIT_OK
     shutil.rmtree(arm / "mjcf" / ".mjcfbuild")
     assert run_cli("check", "--up-to-date", cwd=arm).code == EXIT_OK
+
+
+def test_up_to_date_names_each_manifest(tmp_path):
+    examples = copy_example("arm", tmp_path).parent
+    for name in ("arm", "reference_demo"):
+        assert run_cli("build", "-q", "--no-check", cwd=examples / name).code == EXIT_OK
+    result = run_cli(
+        "check", "--up-to-date", "arm/robot.yaml", "reference_demo/robot.yaml", cwd=examples
+    )
+    assert result.code == EXIT_OK, result.stderr
+    assert "arm/robot.yaml: mjcf is up to date" in result.stdout
+    assert "reference_demo/robot.yaml: mjcf is up to date" in result.stdout
+
+
+def test_a_xacro_urdf_is_expanded(tmp_path):
+    """As `convert -u` does: `check --urdf robot.urdf.xacro` is not "4 root links"."""
+    arm = copy_example("arm", tmp_path)
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == EXIT_OK
+    result = run_cli(
+        "check",
+        "--urdf",
+        "urdf/arm.urdf.xacro",
+        "--mjcf",
+        "mjcf/example_arm.xml",
+        cwd=arm,
+        env={"ROS_PACKAGE_PATH": str(arm)},
+    )
+    assert result.code == EXIT_OK, result.stdout + result.stderr
