@@ -89,7 +89,7 @@ def test_asset_dir_reads_pre_generated_obj_meshes(cli, tmp_path):
 
 
 def test_help_says_what_each_reference_flag_does(cli):
-    text = " ".join(cli("convert", "--help").stdout.split())
+    text = " ".join(cli("convert", "--help").stdout.split()).split("options:", 1)[1]
     for flag in ("--convert_stl_to_obj", "--save_only", "--use_collision_tags"):
         after = text.split(flag, 1)[1][:200]
         assert "no effect" in after and "always" in after, flag
