@@ -37,7 +37,14 @@ def add_parser(commands) -> None:
         help="exit with 6, naming what is stale, when the outputs no longer match their inputs",
     )
     parser.add_argument("--configurations", type=int, default=None, help="default: 20")
-    parser.add_argument("--tolerance", type=float, default=None, help="metres and radians; 1e-6")
+    parser.add_argument(
+        "--tolerance",
+        type=float,
+        default=None,
+        help="for every quantity: link poses in metres and radians, axes, ranges, masses and "
+        "inertias relative to their size (default 1e-6; axes to inertias no finer than the "
+        "model file's digits allow, 1e-5 for MuJoCo's 6)",
+    )
     parser.set_defaults(handler=run)
 
 
@@ -66,7 +73,11 @@ def _options(args, settings=None):
     tolerance_p = args.tolerance or (settings.position_tolerance if settings else 1e-6)
     tolerance_r = args.tolerance or (settings.rotation_tolerance if settings else 1e-6)
     steps = settings.steps if settings else 2000
-    return CheckOptions(configurations, 0, tolerance_p, tolerance_r, steps)
+    # --tolerance governs every quantity; without it, axes, ranges, masses and inertias are
+    # compared as precisely as the model file writes its numbers.
+    return CheckOptions(
+        configurations, 0, tolerance_p, tolerance_r, steps, relative_tolerance=args.tolerance
+    )
 
 
 def _print(report, label: str) -> int:
@@ -117,8 +128,10 @@ def _pair(args) -> int:
         problem = unreadable_file(path)
         if problem:
             raise InputError(f"file {problem}", file=path)
-    robot = parse_urdf(_urdf_bytes(urdf), str(urdf))
-    return _print(check_model(robot, mjcf, mjcf, set(), _options(args)), f"{mjcf} against {urdf}")
+    text = _urdf_bytes(urdf)
+    robot = parse_urdf(text, str(urdf))
+    report = check_model(robot, mjcf, mjcf, set(), _options(args), urdf=text)
+    return _print(report, f"{mjcf} against {urdf}")
 
 
 def _urdf_bytes(path: Path) -> bytes:
@@ -140,7 +153,7 @@ def _manifest(ctx, args) -> int:
 
     from mjcfbuild.check.model_check import check_model
     from mjcfbuild.engine.report import write_report
-    from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN
+    from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN, SOURCE_URDF
     from mjcfbuild.urdf.model import robot_from_dict
 
     if not ctx.robot_path.exists() or not ctx.state(PLAN).exists():
@@ -160,6 +173,7 @@ def _manifest(ctx, args) -> int:
         ctx.scene_path if ctx.scene_path.exists() else None,
         {r["body"] for r in repairs},
         _options(args, ctx.manifest.check),
+        urdf=_read_if_present(ctx.state(SOURCE_URDF)),
     )
     data = {"passes": report.passes, "failures": report.failures, **report.results}
     ctx.state(CHECK_RESULTS).write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
@@ -167,6 +181,13 @@ def _manifest(ctx, args) -> int:
     code = _print(report, ctx.label(ctx.robot_path))
     print(f"  report: {ctx.label(folder / 'report.md')}")
     return code
+
+
+def _read_if_present(path: Path) -> bytes | None:
+    try:
+        return path.read_bytes()
+    except OSError:
+        return None
 
 
 def _up_to_date(ctx) -> int:

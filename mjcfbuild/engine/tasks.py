@@ -423,6 +423,7 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
         "model": str(ctx.robot_path),
         "model_label": ctx.label(ctx.robot_path),
         "scene": str(ctx.scene_path),
+        "urdf": str(ctx.state(SOURCE_URDF)),  # for the check's own reader of the URDF
         "options": options,
         "output": str(ctx.state(CHECK_RESULTS)),
     }
@@ -433,7 +434,13 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
         "check",
         payload,
         in_worker=True,
-        file_dep=[ctx.robot_path, ctx.scene_path, ctx.state(PLAN), ctx.state(ASSEMBLY_REPORT)],
+        file_dep=[
+            ctx.robot_path,
+            ctx.scene_path,
+            ctx.state(PLAN),
+            ctx.state(ASSEMBLY_REPORT),
+            ctx.state(SOURCE_URDF),
+        ],
         targets=[ctx.state(CHECK_RESULTS)],
         params={"options": options},
     )

@@ -13,9 +13,9 @@ STEP_FORMATS = {
     "plan": 2,
     "mesh": 2,
     "decompose": 1,
-    "assemble": 4,
+    "assemble": 5,
     "scene": 2,
-    "check": 1,
+    "check": 2,
     "previews": 1,
     "export_urdf": 1,
 }
@@ -27,7 +27,7 @@ STEP_TOOLS = {
     "decompose": ("coacd", "trimesh", "numpy", "scipy"),
     "assemble": ("mujoco", "numpy", "lxml"),
     "scene": ("lxml",),
-    "check": ("mujoco", "numpy"),
+    "check": ("mujoco", "numpy", "yourdfpy"),
     "previews": ("mujoco", "numpy", "pillow"),
     "export_urdf": ("mujoco", "numpy"),
 }

@@ -26,6 +26,7 @@ def run(payload: dict) -> dict:
         Path(payload["scene"]),
         repaired,
         CheckOptions(**payload["options"]),
+        urdf=Path(payload["urdf"]).read_bytes() if payload.get("urdf") else None,
     )
     outputs: dict[str, str] = {}
     data = {"passes": report.passes, "failures": report.failures, **report.results}
