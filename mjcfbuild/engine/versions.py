@@ -11,7 +11,7 @@ from mjcfbuild import __version__
 STEP_FORMATS = {
     "expand": 1,
     "plan": 2,
-    "mesh": 2,
+    "mesh": 3,
     "decompose": 1,
     "assemble": 5,
     "scene": 2,
