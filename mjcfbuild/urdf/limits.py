@@ -31,6 +31,6 @@ def unbounded_warning(joint: Joint, where: str) -> str | None:
         return None  # no <limit> at all is a malformed URDF joint, but not ambiguous
     return (
         f"{where}: {joint.kind} joint '{joint.name}' has a <limit> without lower or upper; "
-        "left it unlimited, as MuJoCo's URDF import does (say type=\"continuous\" for a wheel, "
+        'left it unlimited, as MuJoCo\'s URDF import does (say type="continuous" for a wheel, '
         "or give lower and upper to limit it)"
     )

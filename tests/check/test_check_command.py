@@ -158,9 +158,11 @@ def test_rounding_of_a_hand_written_model_is_not_a_failure(tmp_path):
 
 def test_structural_findings_come_first(tmp_path):
     write(tmp_path / "arm.urdf", ROUNDED_URDF)
-    wrong = ROUNDED_MJCF.replace("TOOL", "").replace(
-        'pos="0 0 -0.1" mass="0.255"', 'pos="0 0 -0.1" mass="0.085"'
-    ).replace('axis="0 1 0" range="-2.35619', 'axis="0 0.9 0.1" range="-2.35619')
+    wrong = (
+        ROUNDED_MJCF.replace("TOOL", "")
+        .replace('pos="0 0 -0.1" mass="0.255"', 'pos="0 0 -0.1" mass="0.085"')
+        .replace('axis="0 1 0" range="-2.35619', 'axis="0 0.9 0.1" range="-2.35619')
+    )
     write(tmp_path / "arm.xml", wrong)
     result = run_cli("check", "--urdf", "arm.urdf", "--mjcf", "arm.xml", cwd=tmp_path)
     assert result.code == EXIT_CHECK

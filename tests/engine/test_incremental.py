@@ -186,9 +186,9 @@ def test_a_xacro_argument_that_swaps_an_include_runs_expansion_once(built_arm):
     xacro = built_arm / "urdf" / "arm.urdf.xacro"
     write(built_arm / "urdf" / "finger2.xacro", (built_arm / "urdf" / "finger.xacro").read_text())
     xacro.write_text(
-        xacro.read_text().replace(
-            "/urdf/finger.xacro", "/urdf/$(arg finger).xacro"
-        ).replace("<xacro:include", '<xacro:arg name="finger" default="finger"/><xacro:include', 1)
+        xacro.read_text()
+        .replace("/urdf/finger.xacro", "/urdf/$(arg finger).xacro")
+        .replace("<xacro:include", '<xacro:arg name="finger" default="finger"/><xacro:include', 1)
     )
     assert run_cli("build", "-q", "--no-check", cwd=built_arm).code == 0
     manifest = built_arm / "robot.yaml"

@@ -11,7 +11,9 @@ from mjcfbuild.manifest.loading import parse_manifest
 from tests.fuzzing import examples
 from tests.strategies import manifest_data
 
-FUZZ = settings(max_examples=examples(300), deadline=None, suppress_health_check=[HealthCheck.too_slow])
+FUZZ = settings(
+    max_examples=examples(300), deadline=None, suppress_health_check=[HealthCheck.too_slow]
+)
 
 
 def validates_or_explains(text: str) -> None:

@@ -50,7 +50,10 @@ def test_strips_and_fans_are_read_like_trimesh_reads_them(tmp_path):
         f'<tristrips count="1">{VERTEX}<p>1 3 4 5</p></tristrips>'
         f'<trifans count="1">{VERTEX}<p>0 1 3 2</p></trifans>'
     )
-    path = write(tmp_path / "strips.dae", dae(body, scene=scene('<node><instance_geometry url="#g"/></node>')))
+    path = write(
+        tmp_path / "strips.dae",
+        dae(body, scene=scene('<node><instance_geometry url="#g"/></node>')),
+    )
     faces, vector = ours(path)
     assert faces == 5
     reference_faces, reference_vector = trimesh_reading(path)
@@ -89,11 +92,16 @@ def test_an_unreadable_primitive_is_named(tmp_path):
         f'<triangles count="1">{VERTEX}<p>0 1 2</p></triangles>'
         f'<polygons count="1">{VERTEX}<ph><p>0 1 3 2</p><h>0 1 2</h></ph></polygons>'
     )
-    path = write(tmp_path / "holes.dae", dae(body, scene=scene('<node><instance_geometry url="#g"/></node>')))
+    path = write(
+        tmp_path / "holes.dae", dae(body, scene=scene('<node><instance_geometry url="#g"/></node>'))
+    )
     with pytest.raises(InputError, match=r"polygons with holes \(<ph>\)"):
         read_collada(path)
     body = geometry(f'<splines count="1">{VERTEX}<p>0 1 2</p></splines>')
-    path = write(tmp_path / "spline.dae", dae(body, scene=scene('<node><instance_geometry url="#g"/></node>')))
+    path = write(
+        tmp_path / "spline.dae",
+        dae(body, scene=scene('<node><instance_geometry url="#g"/></node>')),
+    )
     with pytest.raises(InputError, match="<splines>"):
         read_collada(path)
 

@@ -36,7 +36,10 @@ def test_a_wheel_without_bounds_builds_unlimited_and_passes_the_check(tmp_path):
     simple_manifest(tmp_path)
     result = run_cli("build", cwd=tmp_path)
     assert result.code == EXIT_OK, result.stdout + result.stderr
-    assert "joint 'left_wheel_joint' has a <limit> without lower or upper" in result.stdout + result.stderr
+    assert (
+        "joint 'left_wheel_joint' has a <limit> without lower or upper"
+        in result.stdout + result.stderr
+    )
     model = etree.parse(str(tmp_path / "mjcf" / "robot.xml"))
     for joint in model.iter("joint"):
         assert joint.get("range") is None, etree.tostring(joint)
@@ -47,7 +50,9 @@ def test_one_bound_given_means_the_other_is_zero():
     from mjcfbuild.urdf.limits import joint_range
     from mjcfbuild.urdf.parse import parse_urdf
 
-    urdf = wheeled_urdf().replace('<limit effort="5" velocity="20"/>', '<limit upper="0.5" effort="5" velocity="20"/>', 1)
+    urdf = wheeled_urdf().replace(
+        '<limit effort="5" velocity="20"/>', '<limit upper="0.5" effort="5" velocity="20"/>', 1
+    )
     robot = parse_urdf(urdf.encode(), "robot.urdf")
     ranges = {j.name: joint_range(j) for j in robot.joints}
     assert ranges == {"left_wheel_joint": (0.0, 0.5), "right_wheel_joint": None}
