@@ -45,7 +45,8 @@ class ReferenceKinematics:
             rotation: Matrix = tuple(  # type: ignore[assignment]
                 tuple(float(v) for v in matrix[row, :3]) for row in range(3)
             )
-            result[link] = Transform(rotation, tuple(float(v) for v in matrix[:3, 3]))
+            x, y, z = (float(v) for v in matrix[:3, 3])
+            result[link] = Transform(rotation, (x, y, z))
         return result
 
 
