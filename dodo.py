@@ -33,13 +33,13 @@ def _examples() -> RobotTasks:
 
 def task_plan_examples():
     """Expand and plan every example robot."""
-    yield from _examples().planning()
+    yield from _examples().planning("plan_examples")
 
 
 @create_after(executed="plan_examples")
 def task_examples():
     """Build every example robot."""
-    yield from _examples().building()
+    yield from _examples().building("examples")
 
 
 def _write_schema(targets):

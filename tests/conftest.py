@@ -21,6 +21,9 @@ def pytest_configure(config):
 
     if "MJCFBUILD_CACHE_DIR" not in os.environ:
         os.environ["MJCFBUILD_CACHE_DIR"] = tempfile.mkdtemp(prefix="mjcfbuild-test-cache-")
+    from tests.fuzzing import load_profile
+
+    load_profile()  # property tests: deterministic unless MJCFBUILD_FUZZ asks for a long run
 
 
 @dataclass

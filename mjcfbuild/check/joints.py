@@ -6,7 +6,9 @@ import math
 
 import numpy as np
 
+from mjcfbuild.check.findings import Problem
 from mjcfbuild.urdf.kinematics import link_poses
+from mjcfbuild.urdf.limits import joint_range
 from mjcfbuild.urdf.model import Robot
 from mjcfbuild.urdf.transforms import apply
 
@@ -18,8 +20,12 @@ EXPECTED_TYPES = {
 }
 
 
-def compare_joints(robot: Robot, model, tolerance: float = 1e-6) -> list[str]:
-    """Problems with the model's joints, each naming the joint and the numbers."""
+def compare_joints(robot: Robot, model, tolerance: float = 1e-6) -> list[Problem]:
+    """Problems with the model's joints, each naming the joint and the numbers.
+
+    A missing joint or one of another type is structural. Axes (unit vectors) and ranges are
+    compared relative to their size: ``tolerance`` times the larger of 1 and the value.
+    """
     import mujoco
 
     data = mujoco.MjData(model)
@@ -32,11 +38,17 @@ def compare_joints(robot: Robot, model, tolerance: float = 1e-6) -> list[str]:
             continue
         index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint.name)
         if index < 0:
-            problems.append(f"joint '{joint.name}' ({joint.kind}) is missing from the model")
+            problems.append(
+                Problem(f"joint '{joint.name}' ({joint.kind}) is missing from the model", True)
+            )
             continue
         kind = mujoco.mjtJoint(model.jnt_type[index]).name.removeprefix("mjJNT_").lower()
         if kind != expected:
-            problems.append(f"joint '{joint.name}': {joint.kind} in the URDF, {kind} in the model")
+            problems.append(
+                Problem(
+                    f"joint '{joint.name}': {joint.kind} in the URDF, {kind} in the model", True
+                )
+            )
             continue
         if kind == "free":
             continue
@@ -48,25 +60,32 @@ def compare_joints(robot: Robot, model, tolerance: float = 1e-6) -> list[str]:
         model_axis = data.xaxis[index]
         if np.linalg.norm(urdf_axis - model_axis) > tolerance:
             problems.append(
-                f"joint '{joint.name}': axis {_vector(urdf_axis)} in the URDF, "
-                f"{_vector(model_axis)} in the model (world frame, zero configuration)"
+                Problem(
+                    f"joint '{joint.name}': axis {_vector(urdf_axis)} in the URDF, "
+                    f"{_vector(model_axis)} in the model (world frame, zero configuration)"
+                )
             )
         limited = bool(model.jnt_limited[index])
-        limit = joint.limit
-        if joint.kind == "continuous" or limit is None or limit.lower is None:
+        bounds = joint_range(joint)
+        if bounds is None:
             if limited:
                 problems.append(
-                    f"joint '{joint.name}' is unlimited in the URDF but has range "
-                    f"{_vector(model.jnt_range[index])} in the model"
+                    Problem(
+                        f"joint '{joint.name}' is unlimited in the URDF but has range "
+                        f"{_vector(model.jnt_range[index])} in the model"
+                    )
                 )
             continue
-        if limit.upper is not None and limit.upper > limit.lower:
-            expected_range = np.array([limit.lower, limit.upper])
-            if not limited or np.max(np.abs(model.jnt_range[index] - expected_range)) > tolerance:
+        if bounds[1] > bounds[0]:  # a locked joint's tiny range is the build's own choice
+            expected_range = np.array(bounds)
+            allowed = tolerance * np.maximum(1.0, np.abs(expected_range))
+            if not limited or np.any(np.abs(model.jnt_range[index] - expected_range) > allowed):
                 shown = _vector(model.jnt_range[index]) if limited else "no range"
                 problems.append(
-                    f"joint '{joint.name}': range {_vector(expected_range)} in the URDF, "
-                    f"{shown} in the model"
+                    Problem(
+                        f"joint '{joint.name}': range {_vector(expected_range)} in the URDF, "
+                        f"{shown} in the model"
+                    )
                 )
     return problems
 

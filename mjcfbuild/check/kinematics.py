@@ -1,8 +1,10 @@
 """Forward kinematics of the built model against the URDF's, at random joint configurations.
 
-The reference poses come from :func:`mjcfbuild.urdf.kinematics.link_poses`, which reads only the
-URDF. The model's poses come from MuJoCo's ``mj_kinematics``. Every URDF link must be a body or
-a site of its name in the model, and sit where the URDF puts it.
+The reference poses come from an independent reader of the URDF text
+(:mod:`mjcfbuild.check.reference`, yourdfpy), or, where it cannot read the URDF, from
+:func:`mjcfbuild.urdf.kinematics.link_poses` on mjcfbuild's own parse. The model's poses come
+from MuJoCo's ``mj_kinematics``. Every URDF link must be a body or a site of its name in the
+model, and sit where the URDF puts it.
 """
 
 from __future__ import annotations
@@ -11,7 +13,9 @@ import math
 import random
 from dataclasses import dataclass, field
 
+from mjcfbuild.check.reference import ReferenceKinematics
 from mjcfbuild.urdf.kinematics import link_poses
+from mjcfbuild.urdf.limits import joint_range
 from mjcfbuild.urdf.model import Robot
 from mjcfbuild.urdf.transforms import rotation_angle_between
 
@@ -98,16 +102,26 @@ def random_configurations(robot: Robot, count: int, seed: int = 0) -> list[dict[
 
 
 def _limits(joint) -> tuple[float, float]:
-    limit = joint.limit
-    if joint.kind == "continuous" or limit is None or limit.lower is None or limit.upper is None:
+    bounds = joint_range(joint)
+    if bounds is None:
         return (-math.pi, math.pi) if joint.kind != "prismatic" else (-0.5, 0.5)
-    if limit.upper <= limit.lower:
-        return limit.lower, limit.lower
-    return limit.lower, limit.upper
+    if bounds[1] <= bounds[0]:
+        return bounds[0], bounds[0]
+    return bounds
 
 
-def compare_kinematics(robot: Robot, model, count: int = 20, seed: int = 0) -> KinematicsResult:
-    """Compare every URDF link's pose in ``model`` (an MjModel) with the URDF's."""
+def compare_kinematics(
+    robot: Robot,
+    model,
+    count: int = 20,
+    seed: int = 0,
+    reference: ReferenceKinematics | None = None,
+) -> KinematicsResult:
+    """Compare every URDF link's pose in ``model`` (an MjModel) with the URDF's.
+
+    The URDF's poses come from ``reference`` (an independent reader of the URDF text) when
+    given, else from mjcfbuild's own parse of it (``robot``, which also names the links).
+    """
     import mujoco
     import numpy as np
 
@@ -143,16 +157,18 @@ def compare_kinematics(robot: Robot, model, count: int = 20, seed: int = 0) -> K
             qpos[address] = values.get(name, 0.0)
         data.qpos[:] = qpos
         mujoco.mj_kinematics(model, data)
-        expected = link_poses(robot, values)
+        expected = reference.poses(values) if reference else link_poses(robot, values)
         for link, (kind, index) in frames.items():
+            if link not in expected:
+                continue
             if kind == "body":
                 position, matrix = data.xpos[index], data.xmat[index]
             else:
                 position, matrix = data.site_xpos[index], data.site_xmat[index]
-            reference = expected[link]
-            position_error = float(np.linalg.norm(np.array(reference.position) - position))
+            urdf_pose = expected[link]
+            position_error = float(np.linalg.norm(np.array(urdf_pose.position) - position))
             rotation = tuple(tuple(float(v) for v in row) for row in matrix.reshape(3, 3))
-            rotation_error = rotation_angle_between(reference.rotation, rotation)
+            rotation_error = rotation_angle_between(urdf_pose.rotation, rotation)
             error = LinkError(link, position_error, rotation_error, number)
             worst = result.worst
             if worst is None or max(position_error, rotation_error) > max(

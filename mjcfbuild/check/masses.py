@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from mjcfbuild.check.findings import Problem
 from mjcfbuild.urdf.kinematics import link_poses
 from mjcfbuild.urdf.model import Robot
 from mjcfbuild.urdf.transforms import Transform
@@ -17,8 +18,13 @@ from mjcfbuild.urdf.transforms import Transform
 
 def compare_masses(
     robot: Robot, model, repaired: set[str], tolerance: float = 1e-6
-) -> tuple[list[str], float, float]:
-    """(problems, URDF total mass, model total mass); ``repaired`` bodies are not compared."""
+) -> tuple[list[Problem], float, float]:
+    """(problems, URDF total mass, model total mass); ``repaired`` bodies are not compared.
+
+    Numbers are compared relative to their size (``tolerance`` times the value; centres of
+    mass times the larger of 1 m and their distance). A wrong mass is structural: it is
+    another part, not a rounding of this one.
+    """
     import mujoco
 
     poses = link_poses(robot)
@@ -33,26 +39,33 @@ def compare_masses(
             continue
         mass, com, inertia = _combined(robot, links, poses, _body_pose(model, body, poses, links))
         model_mass = float(model.body_mass[body])
-        if abs(mass - model_mass) > tolerance * max(1.0, mass):
+        if abs(mass - model_mass) > tolerance * max(abs(mass), 1e-12):
             problems.append(
-                f"body '{name}': mass {mass:.9g} in the URDF (links {', '.join(sorted(links))}), "
-                f"{model_mass:.9g} in the model"
+                Problem(
+                    f"body '{name}': mass {mass:.9g} in the URDF "
+                    f"(links {', '.join(sorted(links))}), {model_mass:.9g} in the model",
+                    structural=True,
+                )
             )
             continue
         if mass <= 0:
             continue
         model_com = model.body_ipos[body]
-        if np.linalg.norm(model_com - com) > tolerance:
+        if np.linalg.norm(model_com - com) > tolerance * max(1.0, float(np.linalg.norm(com))):
             problems.append(
-                f"body '{name}': centre of mass {_vector(com)} in the URDF, "
-                f"{_vector(model_com)} in the model (body frame)"
+                Problem(
+                    f"body '{name}': centre of mass {_vector(com)} in the URDF, "
+                    f"{_vector(model_com)} in the model (body frame)"
+                )
             )
             continue
         model_tensor = _model_tensor(model, body)
         if np.max(np.abs(model_tensor - inertia)) > tolerance * max(1e-9, np.max(np.abs(inertia))):
             problems.append(
-                f"body '{name}': inertia {_matrix(inertia)} in the URDF, "
-                f"{_matrix(model_tensor)} in the model (about the centre of mass, body frame)"
+                Problem(
+                    f"body '{name}': inertia {_matrix(inertia)} in the URDF, "
+                    f"{_matrix(model_tensor)} in the model (about the centre of mass, body frame)"
+                )
             )
     urdf_total = sum(link.inertial.mass for link in robot.links if link.inertial is not None)
     model_total = float(np.sum(model.body_mass))

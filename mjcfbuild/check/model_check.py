@@ -15,10 +15,13 @@ from pathlib import Path
 
 from mjcfbuild.check.contacts import exclude_suggestion, resting_contacts
 from mjcfbuild.check.control import check_control
+from mjcfbuild.check.findings import Problem, structural_first
 from mjcfbuild.check.joints import compare_joints
 from mjcfbuild.check.kinematics import compare_kinematics
 from mjcfbuild.check.masses import compare_masses
 from mjcfbuild.check.meshstats import mesh_statistics
+from mjcfbuild.check.precision import relative_tolerance
+from mjcfbuild.check.reference import reference_kinematics
 from mjcfbuild.check.simulation import simulate
 from mjcfbuild.urdf.model import Robot
 
@@ -33,6 +36,8 @@ class CheckOptions:
     rotation_tolerance: float = 1e-6
     steps: int = 2000
     hold_tolerance: float = 0.05
+    # Axes, ranges, masses, inertias; None: 1e-6, or coarser as the model's digits require.
+    relative_tolerance: float | None = None
 
 
 @dataclass
@@ -55,11 +60,13 @@ def check_model(
     repaired: set[str] | None = None,
     options: CheckOptions | None = None,
     readiness: dict | None = None,
+    urdf: bytes | None = None,
 ) -> CheckReport:
     """Check the model at ``model_path`` against ``robot``; simulate ``simulate_path`` (the
     scene, with its floor) or the model itself. ``readiness`` is what the build recorded about
     actuators and home (None for a model mjcfbuild did not build: undriven joints are then
-    reported, not failures)."""
+    reported, not failures). ``urdf``, the URDF's text, gives the reference kinematics through
+    an independent reader; ``robot`` names links and lines in messages."""
     import mujoco
 
     from mjcfbuild.mjwarnings import capture_mujoco_warnings
@@ -83,12 +90,16 @@ def check_model(
         "finite": simulation.finite,
         "warnings": simulation.warnings,
     }
+    problems: list[Problem] = []
     if not simulation.finite:
-        report.failures.append(f"the state is not finite within {options.steps} zero-control steps")
+        problems.append(
+            Problem(f"the state is not finite within {options.steps} zero-control steps")
+        )
     for warning in simulation.warnings:
-        report.failures.append(f"MuJoCo warned while simulating: {warning}")
+        problems.append(Problem(f"MuJoCo warned while simulating: {warning}"))
 
-    kinematics = compare_kinematics(robot, model, options.configurations, options.seed)
+    reference, fallback = reference_kinematics(urdf)
+    kinematics = compare_kinematics(robot, model, options.configurations, options.seed, reference)
     report.results["kinematics"] = {
         "configurations": options.configurations,
         "max_position_error": kinematics.max_position,
@@ -96,32 +107,42 @@ def check_model(
         "worst_link": kinematics.worst.link if kinematics.worst else None,
         "missing_links": kinematics.missing_links,
         "missing_joints": kinematics.missing_joints,
+        "reference": reference.name if reference else f"mjcfbuild's URDF parser: {fallback}",
     }
     for link in kinematics.missing_links:
-        report.failures.append(f"link '{link}' has no body or site of its name in the model")
+        problems.append(
+            Problem(f"link '{link}' has no body or site of its name in the model", True)
+        )
     tolerances = (options.position_tolerance, options.rotation_tolerance)
     first = kinematics.first_wrong(*tolerances)
     if first is not None:
         others = kinematics.wrong_count(*tolerances) - 1
-        report.failures.append(
-            f"link '{first.link}' is {first.position:.3g} m and {first.rotation:.3g} rad from "
-            f"its URDF pose at configuration {first.configuration} (tolerances "
-            f"{options.position_tolerance:g} m, {options.rotation_tolerance:g} rad)"
-            + (f"; {others} links below it follow" if others > 0 else "")
+        problems.append(
+            Problem(
+                f"link '{first.link}' is {first.position:.3g} m and {first.rotation:.3g} rad "
+                f"from its URDF pose at configuration {first.configuration} (tolerances "
+                f"{options.position_tolerance:g} m, {options.rotation_tolerance:g} rad)"
+                + (f"; {others} links below it follow" if others > 0 else "")
+            )
         )
 
-    joint_problems = compare_joints(robot, model)
-    report.results["joints"] = {"problems": joint_problems}
-    report.failures += joint_problems
+    relative = relative_tolerance(model_path, options.relative_tolerance)
+    joint_problems = compare_joints(robot, model, relative)
+    report.results["joints"] = {
+        "problems": [p.text for p in joint_problems],
+        "relative_tolerance": relative,
+    }
+    problems += joint_problems
 
-    mass_problems, urdf_mass, model_mass = compare_masses(robot, model, repaired or set())
+    mass_problems, urdf_mass, model_mass = compare_masses(robot, model, repaired or set(), relative)
     report.results["masses"] = {
         "urdf_total": urdf_mass,
         "model_total": model_mass,
-        "problems": mass_problems,
+        "problems": [p.text for p in mass_problems],
         "repaired_bodies": sorted(repaired or ()),
     }
-    report.failures += mass_problems
+    problems += mass_problems
+    report.failures = structural_first(problems)
 
     contacts = resting_contacts(model)
     report.results["resting_contacts"] = {

@@ -13,6 +13,7 @@ from mjcfbuild.errors import (
     EXIT_CODES,
     EXIT_INTERNAL,
     EXIT_INTERRUPTED,
+    EXIT_OK,
     InternalError,
     MjcfbuildError,
 )
@@ -66,6 +67,12 @@ def run(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("mjcfbuild: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except BrokenPipeError:
+        # The reader went away (`mjcfbuild graph --dot | head`): nothing left to say to it.
+        # Point stdout at /dev/null so Python's final flush does not fail a second time.
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return EXIT_OK
     except Exception as exc:  # a bug: say so plainly, traceback only with --debug
         import traceback
 

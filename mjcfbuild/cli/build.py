@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Callable
 
 from mjcfbuild.cli import (
     jobs_argument,
@@ -55,20 +56,28 @@ def run(args: argparse.Namespace) -> int:
     return code
 
 
-def execute(ctx, quiet: bool, debug: bool) -> int:
-    """Run a build of ``ctx`` and print its warnings, errors and summary; the exit code."""
+def execute(ctx, quiet: bool, debug: bool, hints: Callable[[str], str] | None = None) -> int:
+    """Run a build of ``ctx`` and print its warnings, errors and summary; the exit code.
+
+    ``hints`` rewrites the advice errors give (``convert`` has flags where robot.yaml has keys).
+    """
     from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.runner import run_build
+
+    def report(error: MjcfbuildError) -> None:
+        if hints is not None and error.hint:
+            error.hint = hints(error.hint)
+        report_error(error, debug, base_dir=ctx.base_dir)
 
     try:
         result = run_build(ctx, Progress(quiet=quiet))
     except MjcfbuildError as error:  # found while making the graph (missing source, ...)
-        report_error(error, debug, base_dir=ctx.base_dir)
+        report(error)
         return error.exit_code
     for warning in result.warnings:
         report_warning(warning)
     for error in result.errors:
-        report_error(error, debug, base_dir=ctx.base_dir)
+        report(error)
     if debug and result.engine_log.strip():
         print(result.engine_log, file=sys.stderr)
     if not quiet or result.errors:

@@ -41,10 +41,16 @@ def run(args: argparse.Namespace) -> int:
         max_bytes = parse_size(args.max_size) if args.max_size else None
     except ValueError as exc:
         raise UsageError(f"--max-size: {exc}") from None
-    store = ProductStore(Path(args.folder) if args.folder else None, max_bytes)
+    folder = Path(args.folder) if args.folder else None
+    store = ProductStore(folder)  # its cap: the one every build prunes to
     if args.action == "prune":
-        removed = store.prune()
-        print(f"mjcfbuild: removed {removed} cache entr{'y' if removed == 1 else 'ies'}")
+        # --max-size is this prune's target, not the cache's cap.
+        removed = ProductStore(folder, max_bytes).prune()
+        target = f" to {_human(max_bytes)}" if max_bytes is not None else ""
+        print(
+            f"mjcfbuild: pruned{target}: removed {removed} cache "
+            f"entr{'y' if removed == 1 else 'ies'}"
+        )
     elif args.action == "clear":
         removed = store.clear()
         print(f"mjcfbuild: removed {removed} cache entr{'y' if removed == 1 else 'ies'}")
@@ -52,7 +58,7 @@ def run(args: argparse.Namespace) -> int:
     print(
         f"cache: {usage.folder}\n"
         f"entries: {usage.entries}\n"
-        f"size: {_human(usage.bytes)} of {_human(store.max_bytes)}"
+        f"size: {_human(usage.bytes)} of {_human(store.max_bytes)} (the cap builds prune to)"
     )
     return 0
 

@@ -43,7 +43,14 @@ def add_parser(commands) -> None:
         "(pip install 'mjcfbuild[warp]'; the first run compiles kernels for about a minute)",
     )
     parser.add_argument("--configurations", type=int, default=None, help="default: 20")
-    parser.add_argument("--tolerance", type=float, default=None, help="metres and radians; 1e-6")
+    parser.add_argument(
+        "--tolerance",
+        type=float,
+        default=None,
+        help="for every quantity: link poses in metres and radians, axes, ranges, masses and "
+        "inertias relative to their size (default 1e-6; axes to inertias no finer than the "
+        "model file's digits allow, 1e-5 for MuJoCo's 6)",
+    )
     parser.set_defaults(handler=run)
 
 
@@ -73,7 +80,17 @@ def _options(args, settings=None):
     tolerance_r = args.tolerance or (settings.rotation_tolerance if settings else 1e-6)
     steps = settings.steps if settings else 2000
     hold = settings.hold_tolerance if settings else 0.05
-    return CheckOptions(configurations, 0, tolerance_p, tolerance_r, steps, hold)
+    # --tolerance governs every quantity; without it, axes, ranges, masses and inertias are
+    # compared as precisely as the model file writes its numbers.
+    return CheckOptions(
+        configurations,
+        0,
+        tolerance_p,
+        tolerance_r,
+        steps,
+        hold_tolerance=hold,
+        relative_tolerance=args.tolerance,
+    )
 
 
 def _print(report, label: str) -> int:
@@ -124,8 +141,24 @@ def _pair(args) -> int:
         problem = unreadable_file(path)
         if problem:
             raise InputError(f"file {problem}", file=path)
-    robot = parse_urdf(urdf.read_bytes(), str(urdf))
-    return _print(check_model(robot, mjcf, mjcf, set(), _options(args)), f"{mjcf} against {urdf}")
+    text = _urdf_bytes(urdf)
+    robot = parse_urdf(text, str(urdf))
+    report = check_model(robot, mjcf, mjcf, set(), _options(args), urdf=text)
+    return _print(report, f"{mjcf} against {urdf}")
+
+
+def _urdf_bytes(path: Path) -> bytes:
+    """The URDF text of ``path``; a xacro file is expanded first (default arguments, packages
+    from ROS_PACKAGE_PATH / AMENT_PREFIX_PATH), as ``convert -u`` does."""
+    import os
+
+    from mjcfbuild.cli.convert import is_xacro
+    from mjcfbuild.sources.expand import expand_xacro
+    from mjcfbuild.sources.packages import PackageResolver
+
+    if not is_xacro(path):
+        return path.read_bytes()
+    return expand_xacro(path, {}, PackageResolver({}, os.environ)).urdf
 
 
 def _manifest(ctx, args) -> int:
@@ -133,7 +166,7 @@ def _manifest(ctx, args) -> int:
 
     from mjcfbuild.check.model_check import check_model
     from mjcfbuild.engine.report import write_report
-    from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN
+    from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN, SOURCE_URDF
     from mjcfbuild.urdf.model import robot_from_dict
 
     if not ctx.robot_path.exists() or not ctx.state(PLAN).exists():
@@ -153,7 +186,8 @@ def _manifest(ctx, args) -> int:
         ctx.scene_path if ctx.scene_path.exists() else None,
         {r["body"] for r in assembly.get("repairs", [])},
         _options(args, ctx.manifest.check),
-        assembly.get("readiness") or {},
+        readiness=assembly.get("readiness") or {},
+        urdf=_read_if_present(ctx.state(SOURCE_URDF)),
     )
     data = {"passes": report.passes, "failures": report.failures, **report.results}
     ctx.state(CHECK_RESULTS).write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
@@ -169,18 +203,25 @@ def _manifest(ctx, args) -> int:
     return code
 
 
+def _read_if_present(path: Path) -> bytes | None:
+    try:
+        return path.read_bytes()
+    except OSError:
+        return None
+
+
 def _up_to_date(ctx) -> int:
     from mjcfbuild.engine.freshness import stale_outputs
 
     stale = stale_outputs(ctx)
     if not stale:
-        print(f"mjcfbuild: {ctx.label(ctx.out_dir)} is up to date")
+        print(f"mjcfbuild: {ctx.manifest_label}: {ctx.label(ctx.out_dir)} is up to date")
         return EXIT_OK
     for line in stale:
         print(f"mjcfbuild: stale: {line}", file=sys.stderr)
     print(
-        f"mjcfbuild: {ctx.label(ctx.out_dir)} is out of date; run mjcfbuild build "
-        f"{ctx.manifest_label}",
+        f"mjcfbuild: {ctx.manifest_label}: {ctx.label(ctx.out_dir)} is out of date; "
+        f"run mjcfbuild build {ctx.manifest_label}",
         file=sys.stderr,
     )
     return EXIT_CHECK

@@ -50,13 +50,15 @@ def add_parser(commands) -> None:
         "-c",
         "--convert_stl_to_obj",
         action="store_true",
-        help="accepted for compatibility: mjcfbuild always writes meshes as OBJ",
+        help="no effect: every mesh (STL included) is always written as OBJ, which is what -c "
+        "asks of the reference converter",
     )
     parser.add_argument(
         "-s",
         "--save_only",
         action="store_true",
-        help="accepted for compatibility: mjcfbuild always saves to OUTPUT",
+        help="no effect: files are always saved to OUTPUT, which is what -s asks of the "
+        "reference converter (without it, it writes to a temporary folder)",
     )
     parser.add_argument(
         "-f", "--add_free_joint", action="store_true", help="give the root body a free joint"
@@ -70,13 +72,16 @@ def add_parser(commands) -> None:
     parser.add_argument(
         "--use_collision_tags",
         action="store_true",
-        help="accepted for compatibility: authored <collision> geometry is always used",
+        help="no effect: the URDF's authored <collision> geometry is always the collision "
+        "geometry (links without any collide with their visual meshes), which is what "
+        "--use_collision_tags asks of the reference converter",
     )
     parser.add_argument(
         "-a",
         "--asset_dir",
-        help="reuse meshes converted by earlier runs: the folder is used as mjcfbuild's cache "
-        "of converted meshes and decompositions (by default one cache serves every run)",
+        help="a folder with pre-generated OBJ meshes (the reference converter's assets/ "
+        "from an earlier run, or <stem>.obj files): a URDF mesh whose file stem has an OBJ "
+        "there is read from that OBJ instead of being converted again",
     )
     parser.add_argument("--scene", help="a scene file to use instead of the generated one")
     parser.add_argument(
@@ -145,7 +150,6 @@ def run(args: argparse.Namespace) -> int:
             "packages": parse_packages(args.package),
             "options": {"free_joint": args.add_free_joint, "fuse_static": args.fuse},
             "scene": {"file": args.scene} if args.scene else {},
-            "cache": {"folder": str(Path(args.asset_dir).resolve())} if args.asset_dir else {},
             "mujoco_inputs": {"file": args.mujoco_inputs} if args.mujoco_inputs else {},
             "output": {"folder": str(output), "robot": REFERENCE_ROBOT_FILE},
         }
@@ -154,7 +158,36 @@ def run(args: argparse.Namespace) -> int:
     ctx = BuildContext(
         manifest, cwd, manifest_label="the command line", jobs=jobs, step_timeout=step_timeout(args)
     )
-    return execute(ctx, quiet=args.quiet, debug=args.debug)
+    if args.asset_dir:
+        if not Path(args.asset_dir).is_dir():
+            raise UsageError(
+                f"-a {args.asset_dir}: not a folder",
+                hint="give the folder of pre-generated OBJ meshes (an earlier run's assets/)",
+            )
+        ctx.prebuilt_mesh_dir = Path(args.asset_dir).resolve()
+    return execute(ctx, quiet=args.quiet, debug=args.debug, hints=command_line_hint)
+
+
+# Errors advise changes to robot.yaml; convert has no robot.yaml, only these flags.
+_IN = r"in (?:robot\.yaml|the command line)"
+_FLAG_HINTS = (
+    (rf"add '([^']+): <folder>' under 'packages' {_IN}", r"pass --package \1=<folder>"),
+    (rf"fix its entry under 'packages' {_IN}", "fix its --package NAME=DIR"),
+    (rf"the 'packages' {_IN}", "the --package NAME=DIR options"),
+    (rf"under 'source\.args' {_IN}", "as NAME:=VALUE after the other arguments"),
+    (rf"fix 'source(?:\.xacro|\.urdf)?' {_IN}", "fix -u"),
+    (rf"fix 'mujoco_inputs\.file' {_IN}", "fix -m"),
+    (rf"fix 'scene\.file' {_IN}", "fix --scene"),
+)
+
+
+def command_line_hint(hint: str) -> str:
+    """``hint`` with robot.yaml keys replaced by the convert flags that set them."""
+    import re
+
+    for pattern, replacement in _FLAG_HINTS:
+        hint = re.sub(pattern, replacement, hint)
+    return hint
 
 
 def parse_xacro_args(values: list[str]) -> dict[str, str]:

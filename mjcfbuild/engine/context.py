@@ -44,6 +44,7 @@ class BuildContext:
     cache_grew: bool = False
     cache_folder_override: Path | None = None
     output_override: Path | None = None
+    prebuilt_mesh_dir: Path | None = None  # convert -a: a folder of meshes converted before
     run_check: bool = True
 
     def __post_init__(self) -> None:
@@ -100,6 +101,11 @@ class BuildContext:
             return str(path.relative_to(self.base_dir))
         except ValueError:
             return str(path)
+
+    def portable_label(self, path: str | Path) -> str:
+        """``path`` relative to the manifest's folder even when outside it (``../x.urdf``), with
+        forward slashes: the same text whichever folder the build runs in, for outputs."""
+        return Path(os.path.relpath(Path(path), self.base_dir)).as_posix()
 
     @property
     def out_dir(self) -> Path:

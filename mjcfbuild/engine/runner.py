@@ -90,13 +90,13 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
     result = BuildResult(robot=ctx.robot_path, scene=ctx.scene_path)
     try:
         with build_lock(ctx, progress):
-            _prepare_state(ctx)
+            prepare_state(ctx)
             doit_output = _run_stage(ctx, planning_tasks(ctx), progress, result)
             if not result.errors:
                 tasks = build_tasks(ctx)
                 doit_output += _run_stage(ctx, tasks, progress, result)
                 if not result.errors:
-                    _remove_stale_products(ctx, tasks)
+                    remove_stale_products(ctx, tasks)
                 # A failed check is what the report is for; any other failure means the model
                 # on disk is an earlier one, which the report must not claim to describe.
                 model_built = all(isinstance(e, CheckError) for e in result.errors)
@@ -145,7 +145,7 @@ def _first_line(text: str) -> str:
     return lines[-1] if lines else text
 
 
-def _prepare_state(ctx: BuildContext) -> None:
+def prepare_state(ctx: BuildContext) -> None:
     """The state folder ignores itself in git; stdin input is stored; stale temp files go."""
     write_if_changed(
         ctx.state(".gitignore"), b"# mjcfbuild's build state; not for version control\n*\n"
@@ -165,13 +165,19 @@ def _prune_cache(ctx: BuildContext) -> None:
     ProductStore(Path(settings["folder"]), settings["max_bytes"]).prune()
 
 
-def _remove_stale_products(ctx: BuildContext, tasks: list[dict]) -> None:
-    """Delete converted meshes and decompositions no task of this build uses."""
+def stale_products(ctx: BuildContext, tasks: list[dict]) -> list[Path]:
+    """Converted meshes and decompositions no task of this build uses."""
     used = {name.split(":", 1)[1] for name in (t["name"] for t in tasks) if ":" in name}
+    stale = []
     for folder in (ctx.products_dir, ctx.state_dir / "decompositions"):
         if not folder.is_dir():
             continue
-        for entry in folder.iterdir():
-            # <id>/, <id>.json and <id>.deps.json belong to the task of <id>
-            if entry.name.split(".", 1)[0] not in used:
-                shutil.rmtree(entry) if entry.is_dir() else entry.unlink()
+        # <id>/, <id>.json and <id>.deps.json belong to the task of <id>
+        stale += [e for e in sorted(folder.iterdir()) if e.name.split(".", 1)[0] not in used]
+    return stale
+
+
+def remove_stale_products(ctx: BuildContext, tasks: list[dict]) -> None:
+    """Delete converted meshes and decompositions no task of this build uses."""
+    for entry in stale_products(ctx, tasks):
+        shutil.rmtree(entry) if entry.is_dir() else entry.unlink()

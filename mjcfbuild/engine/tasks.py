@@ -27,7 +27,12 @@ from mjcfbuild.collision.policy import (
 )
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.depfile import Depfile
-from mjcfbuild.engine.uptodate import ParamsUnchanged, always_stale, outputs_intact
+from mjcfbuild.engine.uptodate import (
+    ParamsUnchanged,
+    always_stale,
+    outputs_intact,
+    planned_meshes_exist,
+)
 from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
 from mjcfbuild.fsutil import unreadable_file
@@ -289,7 +294,12 @@ def _run(ctx: BuildContext, name: str, step: str, payload: dict, in_worker: bool
         ctx.notes[name] = "from cache"
     if result.get("stored"):
         ctx.cache_grew = True
-    task.file_dep.update(result.get("discovered", []))
+    if "discovered" in result:
+        # What this run read replaces what the last run's depfile listed: a file no longer
+        # read would otherwise stay in the list doit saves, and the build stage would find
+        # the list changed and run the task a second time.
+        task.file_dep.intersection_update({payload["source"]})
+        task.file_dep.update(result["discovered"])
     return {"outputs": result["outputs"]}
 
 
@@ -356,6 +366,8 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
         "inputs_file_label": ctx.label(inputs_file) if inputs_file else None,
         "output": str(ctx.state(PLAN)),
     }
+    if ctx.prebuilt_mesh_dir is not None:  # convert -a
+        payload["prebuilt_meshes"] = str(ctx.prebuilt_mesh_dir)
     return _task(
         ctx,
         f"{prefix}plan",
@@ -366,6 +378,7 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
         file_dep=[urdf, *([inputs_file] if inputs_file else [])],
         targets=[ctx.state(PLAN)],
         params={k: v for k, v in payload.items() if k not in ("urdf", "output")},
+        extra_uptodate=[planned_meshes_exist(ctx.state(PLAN))],
     )
 
 
@@ -454,7 +467,7 @@ def _assemble_task(
 ) -> dict:
     options = ctx.manifest.options
     inertia = ctx.manifest.inertia
-    source_label = Path(ctx.label(ctx.source_path)).as_posix()
+    source_label = ctx.portable_label(ctx.source_path)
     decompositions = _decomposition_entries(ctx, decomposed)
     matrix = ctx.state(SELF_COLLISION) if ctx.manifest.self_collision != "none" else None
     srdf = ctx.state(SRDF_SUMMARY) if _srdf_source(ctx) else None
@@ -549,6 +562,7 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
         "model": str(ctx.robot_path),
         "model_label": ctx.label(ctx.robot_path),
         "scene": str(ctx.scene_path),
+        "urdf": str(ctx.state(SOURCE_URDF)),  # for the check's own reader of the URDF
         "options": options,
         "output": str(ctx.state(CHECK_RESULTS)),
     }
@@ -559,7 +573,13 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
         "check",
         payload,
         in_worker=True,
-        file_dep=[ctx.robot_path, ctx.scene_path, ctx.state(PLAN), ctx.state(ASSEMBLY_REPORT)],
+        file_dep=[
+            ctx.robot_path,
+            ctx.scene_path,
+            ctx.state(PLAN),
+            ctx.state(ASSEMBLY_REPORT),
+            ctx.state(SOURCE_URDF),
+        ],
         targets=[ctx.state(CHECK_RESULTS)],
         params={"options": options},
     )

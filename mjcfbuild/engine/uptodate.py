@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable
+from pathlib import Path
 
 from mjcfbuild.engine.hashes import HashCache
 
@@ -76,4 +77,27 @@ def always_stale(reason: str) -> Callable:
         return False
 
     check.reason = reason  # type: ignore[attr-defined]
+    return check
+
+
+def planned_meshes_exist(plan: Path) -> Callable:
+    """An uptodate check of the plan task: every mesh file the last plan found still exists.
+
+    A mesh deleted after a build makes the plan run again, which names the URDF line that
+    refers to it, the same error a clean build gives (doit alone would fail the mesh task with
+    its own "Dependent file ... does not exist").
+    """
+
+    def check(task, values) -> bool:
+        try:
+            meshes = json.loads(plan.read_text())["meshes"]
+        except (OSError, ValueError, KeyError, TypeError):
+            return True  # no plan yet: the task runs anyway for its missing target
+        for mesh in meshes:
+            if not Path(mesh["path"]).is_file():
+                check.reason = f"mesh file gone since the last plan: {mesh['path']}"
+                return False
+        return True
+
+    check.reason = ""  # type: ignore[attr-defined]
     return check

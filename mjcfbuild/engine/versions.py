@@ -11,11 +11,11 @@ from mjcfbuild import __version__
 STEP_FORMATS = {
     "expand": 1,
     "plan": 3,
-    "mesh": 2,
+    "mesh": 3,
     "decompose": 1,
-    "assemble": 5,
+    "assemble": 6,
     "scene": 3,
-    "check": 2,
+    "check": 3,
     "previews": 2,
     "srdf": 1,
     "selfcollision": 1,
@@ -31,7 +31,7 @@ STEP_TOOLS = {
     "scene": ("lxml",),
     "srdf": ("xacro", "lxml"),
     "selfcollision": ("mujoco", "numpy"),
-    "check": ("mujoco", "numpy"),
+    "check": ("mujoco", "numpy", "yourdfpy"),
     "previews": ("mujoco", "numpy", "pillow"),
     "export_urdf": ("mujoco", "numpy"),
 }

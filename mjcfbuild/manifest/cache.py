@@ -19,6 +19,8 @@ from mjcfbuild.fsutil import atomic_write
 # Every module that defines manifest models: a change to any of them changes the cache key.
 _MODELS = tuple(Path(__file__).with_name(name) for name in ("models.py", "simulation.py"))
 _MODEL_TAG = "__model__"
+# Entries written before keys kept the manifest's order were sorted; they are not read.
+_FORMAT = b"ordered-keys"
 
 
 class FrozenManifest:
@@ -68,6 +70,7 @@ def _freeze(value):
 def cache_key(text: bytes) -> str:
     """The key of a manifest text: its bytes, mjcfbuild's version and the models' source."""
     digest = hashlib.sha256(text)
+    digest.update(_FORMAT)
     digest.update(__version__.encode())
     for models in _MODELS:
         digest.update(models.read_bytes())
@@ -92,7 +95,9 @@ def remember(text: bytes, manifest) -> None:
     path = _entry(cache_key(text))
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        atomic_write(path, json.dumps(_freeze(manifest), sort_keys=True).encode())
+        # Keys keep the manifest's order: a cached manifest must read exactly like a fresh one
+        # (sorted keys reordered the attributes a `modify` sets, between cold and warm builds).
+        atomic_write(path, json.dumps(_freeze(manifest)).encode())
     except OSError:
         pass
 

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from mjcfbuild.errors import InputError, OutputError, UsageError
 from mjcfbuild.manifest.models import NAME_PATTERN
+from mjcfbuild.sources.infer import infer_package, package_references
 from mjcfbuild.sources.packages import find_enclosing_package
 
 _ARG = re.compile(rb"<xacro:arg\s+name=\"([^\"]+)\"(?:\s+default=\"([^\"]*)\")?")
@@ -51,6 +52,13 @@ def starter_manifest_text(
     enclosing = find_enclosing_package(source)
     if enclosing is not None:
         known.setdefault(enclosing[0], str(enclosing[1]))
+    inferred = {}
+    for package, paths in package_references(data).items():
+        if package not in known:
+            found = infer_package(package, paths, source)
+            if found is not None:
+                inferred[package] = found
+                known[package] = str(found.folder)
 
     lines = [
         f"# mjcfbuild manifest for {relative}. Build it with: mjcfbuild build {manifest_name}",
@@ -81,6 +89,11 @@ def starter_manifest_text(
     ]
     lines.append("packages:" if known else "packages: {}")
     for package in sorted(known):
+        if package in inferred:
+            lines.append(
+                f"  # {package}: inferred (no package.xml) from the description's "
+                f"{inferred[package].evidence}, found in this folder"
+            )
         lines.append(f"  {package}: {_relative(Path(known[package]), manifest_dir)}")
     legs = _leg_words(data)
     if legs:

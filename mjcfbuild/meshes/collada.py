@@ -1,10 +1,13 @@
 """A COLLADA (.dae) reader for robot meshes: triangles by material, colours, textures.
 
 Written for the DAE files robot descriptions ship (exported from CAD tools and Blender):
-``triangles``, ``polylist`` and ``polygons`` primitives, node transforms (``matrix``,
-``translate``, ``rotate``, ``scale``), ``instance_node``, materials bound through
-``bind_material``, Phong/Lambert/Blinn/constant colours and diffuse textures. Float arrays are
-parsed in C by numpy, so a 30 MB file loads in a fraction of the time a general reader takes.
+``triangles``, ``polylist``, ``polygons``, ``tristrips`` and ``trifans`` primitives, node
+transforms (``matrix``, ``translate``, ``rotate``, ``scale``), ``instance_node``, skinned or
+morphed geometry through ``instance_controller`` (in its bind pose), materials bound through
+``bind_material``, Phong/Lambert/Blinn/constant colours and diffuse textures. Lines carry no
+surface and are left out; any other primitive is an error naming it, never silently dropped.
+Float arrays are parsed in C by numpy, so a 30 MB file loads in a fraction of the time a
+general reader takes.
 
 Units (``<unit meter=...>``) are applied. The up axis is reported but, by default, not applied:
 ROS tools draw DAE coordinates as they are, and real descriptions tag Z-up coordinates
@@ -146,12 +149,38 @@ def _walk(reader: _Reader, node, parent: np.ndarray, groups: dict, depth: int) -
             for bound in instance.iter(reader.tag("instance_material"))
         }
         _add_geometry(reader, geometry, transform, bindings, groups)
+    for instance in reader.findall(node, "instance_controller"):
+        geometry, bind_shape = _controlled_geometry(reader, instance.get("url"))
+        bindings = {
+            bound.get("symbol"): (bound.get("target") or "").lstrip("#")
+            for bound in instance.iter(reader.tag("instance_material"))
+        }
+        _add_geometry(reader, geometry, transform @ bind_shape, bindings, groups)
     for instance in reader.findall(node, "instance_node"):
         target = reader.by_url(instance.get("url"))
         if target is not None:
             _walk(reader, target, transform, groups, depth + 1)
     for child in reader.findall(node, "node"):
         _walk(reader, child, transform, groups, depth + 1)
+
+
+def _controlled_geometry(reader: _Reader, url: str | None):
+    """The geometry a ``<controller>`` deforms and the matrix placing it in its bind pose: a
+    skin's ``bind_shape_matrix``, or none for a morph (its base mesh)."""
+    controller = reader.by_url(url)
+    if controller is None:
+        raise reader.error(f"<instance_controller> refers to '{url}', which does not exist")
+    skin = reader.find(controller, "skin")
+    morph = reader.find(controller, "morph")
+    deformer = skin if skin is not None else morph
+    geometry = reader.by_url(deformer.get("source")) if deformer is not None else None
+    if geometry is None:
+        raise reader.error(f"controller '{controller.get('id')}' has no <skin> or <morph> geometry")
+    bind_shape = np.eye(4)
+    matrix = reader.find(skin, "bind_shape_matrix") if skin is not None else None
+    if matrix is not None and len(_floats(matrix.text)) == 16:
+        bind_shape = _floats(matrix.text).reshape(4, 4)
+    return geometry, bind_shape
 
 
 def _node_transform(reader: _Reader, node) -> np.ndarray:
@@ -237,6 +266,11 @@ def _source_array(reader: _Reader, source_id: str, cache: dict) -> np.ndarray:
     return result
 
 
+_SURFACES = ("triangles", "polylist", "polygons", "tristrips", "trifans")
+# Children of <mesh> that are not surfaces: data, and primitives without area.
+_NOT_SURFACES = ("source", "vertices", "extra", "lines", "linestrips")
+
+
 def _add_geometry(
     reader: _Reader, geometry, transform: np.ndarray, bindings: dict, groups: dict
 ) -> None:
@@ -245,9 +279,16 @@ def _add_geometry(
         return
     cache: dict = {}
     for primitive in mesh:
+        if not isinstance(primitive.tag, str):
+            continue  # comments, processing instructions
         kind = etree.QName(primitive).localname
-        if kind not in ("triangles", "polylist", "polygons"):
+        if kind in _NOT_SURFACES:
             continue
+        if kind not in _SURFACES:
+            raise reader.error(
+                f"geometry '{geometry.get('id')}' has a <{kind}> primitive, which mjcfbuild "
+                "does not read"
+            )
         inputs = reader.findall(primitive, "input")
         if not inputs:
             continue
@@ -263,7 +304,12 @@ def _add_geometry(
             ),
             next((i for i in inputs if i.get("semantic") == "TEXCOORD"), None),
         )
-        if kind == "polygons":
+        if kind == "polygons" and reader.find(primitive, "ph") is not None:
+            raise reader.error(
+                f"geometry '{geometry.get('id')}' has polygons with holes (<ph>), which "
+                "mjcfbuild does not read"
+            )
+        if kind in ("polygons", "tristrips", "trifans"):  # one <p> per polygon, strip or fan
             polygons = [_ints(p.text) for p in reader.findall(primitive, "p")]
             counts = np.array([len(p) // stride for p in polygons], dtype=np.int64)
             indices = np.concatenate(polygons) if polygons else np.zeros(0, dtype=np.int64)
@@ -289,13 +335,27 @@ def _add_geometry(
             uv_index = corners[:, int(uv_input.get("offset", "0"))]
             if uv_index.size and uv_index.max() < len(texcoords):
                 uv = texcoords[uv_index][:, :2]
-        faces = _fan_triangles(counts)
+        faces = _strip_triangles(counts) if kind == "tristrips" else _fan_triangles(counts)
         homogeneous = np.hstack([points, np.ones((len(points), 1))])
         placed = (homogeneous @ transform.T)[:, :3]
         if np.linalg.det(transform[:3, :3]) < 0:
             faces = faces[:, ::-1]
         material = bindings.get(primitive.get("material"), primitive.get("material") or "")
         groups.setdefault(material, []).append((placed, faces, uv))
+
+
+def _strip_triangles(counts: np.ndarray) -> np.ndarray:
+    """Triangles (as corner indices) of triangle strips; every other one is flipped so that
+    all keep the strip's winding."""
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]]) if len(counts) else []
+    triangles = [
+        (start + k, start + k + 1, start + k + 2)
+        if k % 2 == 0
+        else (start + k + 1, start + k, start + k + 2)
+        for start, count in zip(list(starts), counts.tolist(), strict=True)
+        for k in range(count - 2)
+    ]
+    return np.array(triangles, dtype=np.int64).reshape(-1, 3)
 
 
 def _fan_triangles(counts: np.ndarray) -> np.ndarray:

@@ -58,6 +58,8 @@ _TEMP_PREFIX = "mjcfbuild_unnamed_"
 # Poses and directions: values below this are rounding noise of rotations (1e-22 and the like).
 _GEOMETRIC = {"pos", "quat", "axis"}
 _NOISE = 1e-14
+# Below this fraction of its array's largest number, MuJoCo's writer prints a number as 0.
+_RELATIVE_ZERO = 1e-6
 
 
 def precise_xml(spec) -> etree._Element:
@@ -128,8 +130,9 @@ def _patch(element: etree._Element, values: dict[str, tuple[float, ...]]) -> Non
             shown = [float(t) for t in text.split()]
         except ValueError:
             continue
+        scale = max((abs(v) for v in exact[: len(shown)]), default=0.0)
         if len(shown) > len(exact) or not all(
-            math.isfinite(v) and _same_when_rounded(s, v)
+            math.isfinite(v) and _same_when_rounded(s, v, scale)
             for s, v in zip(shown, exact, strict=False)
         ):
             continue
@@ -146,8 +149,15 @@ def _patch(element: etree._Element, values: dict[str, tuple[float, ...]]) -> Non
             element.set(attribute, output_list(new))
 
 
-def _same_when_rounded(shown: float, exact: float) -> bool:
-    """Whether ``shown`` is ``exact`` printed with 6 significant digits (or tiny noise)."""
+def _same_when_rounded(shown: float, exact: float, scale: float) -> bool:
+    """Whether ``shown`` is ``exact`` printed with 6 significant digits (or tiny noise).
+
+    MuJoCo's writer prints a number that is tiny next to the largest of its array as 0 (a
+    cylinder's radius 0.01 beside a half-length of 1.25e11 came out as ``size="0 1.25e+11"``,
+    which MuJoCo then refuses to load); that 0 is ``exact`` too.
+    """
+    if shown == 0.0 and abs(exact) <= _RELATIVE_ZERO * scale:
+        return True
     return abs(shown - exact) <= 1e-5 * max(abs(exact), 1e-9) + 1e-12
 
 

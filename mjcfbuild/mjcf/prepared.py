@@ -23,6 +23,7 @@ from mjcfbuild.collision.policy import CollisionChoice
 from mjcfbuild.errors import InputError
 from mjcfbuild.mjcf.bodies import Body, PlacedShape
 from mjcfbuild.numbers import exact_list
+from mjcfbuild.urdf.limits import joint_range, unbounded_warning
 from mjcfbuild.urdf.transforms import Transform, matrix_to_rpy
 
 # Compiler settings the import needs, whatever the URDF's own <mujoco> says.
@@ -514,10 +515,14 @@ def _joint(body: Body, warnings: list[str], source: str) -> list[str]:
     limit = joint.limit
     if limit is not None and kind in ("revolute", "prismatic", "continuous"):
         attributes = []
-        if kind != "continuous":
-            lower, upper = limit.lower or 0.0, limit.upper or 0.0
+        where = f"{source}:{joint.line}" if joint.line else source
+        unbounded = unbounded_warning(joint, where)
+        if unbounded:
+            warnings.append(unbounded)
+        bounds = joint_range(joint)
+        if bounds is not None:
+            lower, upper = bounds
             if lower == upper:
-                where = f"{source}:{joint.line}" if joint.line else source
                 warnings.append(
                     f"{where}: joint '{joint.name}' has lower = upper = {lower:g}; locked it with "
                     f"the range {lower:g} +/- {LOCKED_JOINT_HALF_RANGE:g}, since MuJoCo would "

@@ -26,7 +26,8 @@ def run(payload: dict) -> dict:
         Path(payload["scene"]),
         repaired,
         CheckOptions(**payload["options"]),
-        assembly.get("readiness") or {},
+        readiness=assembly.get("readiness") or {},
+        urdf=Path(payload["urdf"]).read_bytes() if payload.get("urdf") else None,
     )
     outputs: dict[str, str] = {}
     data = {"passes": report.passes, "failures": report.failures, **report.results}

@@ -25,7 +25,10 @@ def run(payload: dict) -> dict:
     display = payload["display"]
     try:
         robot = parse_urdf(data, display)
-        resolve_files(robot, Path(payload["base_dir"]), packages)
+        prebuilt = payload.get("prebuilt_meshes")
+        resolve_files(
+            robot, Path(payload["base_dir"]), packages, Path(prebuilt) if prebuilt else None
+        )
         root = parse_xml(data, display, [])
         urdf_inputs = inputs_in_urdf(root, display)
         control = read_ros2_control(root, display)

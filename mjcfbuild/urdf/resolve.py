@@ -8,17 +8,21 @@ from mjcfbuild.errors import InputError
 from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.meshes.formats import MESH_FORMATS, mesh_format
 from mjcfbuild.meshes.naming import assign_mesh_ids
+from mjcfbuild.meshes.prebuilt import prebuilt_mesh
 from mjcfbuild.sources.packages import PackageResolver
 from mjcfbuild.sources.uris import resolve_uri
 from mjcfbuild.urdf.model import Robot, Shape
 
 
-def resolve_files(robot: Robot, base_dir: Path, packages: PackageResolver) -> None:
+def resolve_files(
+    robot: Robot, base_dir: Path, packages: PackageResolver, prebuilt: Path | None = None
+) -> None:
     """Fill in the real path of every mesh and texture, and give each mesh file an id.
 
     Relative references are relative to ``base_dir``, the folder of the URDF or xacro file.
     A reference that cannot be resolved, a missing file or an unsupported format is an
-    :class:`InputError` at the line of the element that names it.
+    :class:`InputError` at the line of the element that names it. With ``prebuilt``, a
+    folder of meshes converted before, a mesh with a pre-generated OBJ there is read from it.
     """
     mesh_paths: list[str] = []
     for link in robot.links:
@@ -28,6 +32,9 @@ def resolve_files(robot: Robot, base_dir: Path, packages: PackageResolver) -> No
                 geometry.path = _resolve_existing(
                     robot, shape, geometry.uri or "", base_dir, packages
                 )
+                if prebuilt is not None:
+                    found = prebuilt_mesh(prebuilt, geometry.path)
+                    geometry.path = str(found) if found is not None else geometry.path
                 if mesh_format(geometry.path) is None:
                     raise InputError(
                         f"mesh '{geometry.uri}' has an unsupported format",

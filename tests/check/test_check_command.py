@@ -84,3 +84,95 @@ def test_up_to_date_with_and_without_the_build_database(tmp_path):
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == EXIT_OK
     shutil.rmtree(arm / "mjcf" / ".mjcfbuild")
     assert run_cli("check", "--up-to-date", cwd=arm).code == EXIT_OK
+
+
+def test_up_to_date_names_each_manifest(tmp_path):
+    examples = copy_example("arm", tmp_path).parent
+    for name in ("arm", "reference_demo"):
+        assert run_cli("build", "-q", "--no-check", cwd=examples / name).code == EXIT_OK
+    result = run_cli(
+        "check", "--up-to-date", "arm/robot.yaml", "reference_demo/robot.yaml", cwd=examples
+    )
+    assert result.code == EXIT_OK, result.stderr
+    assert "arm/robot.yaml: mjcf is up to date" in result.stdout
+    assert "reference_demo/robot.yaml: mjcf is up to date" in result.stdout
+
+
+def test_a_xacro_urdf_is_expanded(tmp_path):
+    """As `convert -u` does: `check --urdf robot.urdf.xacro` is not "4 root links"."""
+    arm = copy_example("arm", tmp_path)
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == EXIT_OK
+    result = run_cli(
+        "check",
+        "--urdf",
+        "urdf/arm.urdf.xacro",
+        "--mjcf",
+        "mjcf/example_arm.xml",
+        cwd=arm,
+        env={"ROS_PACKAGE_PATH": str(arm)},
+    )
+    assert result.code == EXIT_OK, result.stdout + result.stderr
+
+
+# A hand-written model of a 3-link arm, with MuJoCo's 6 significant digits.
+ROUNDED_URDF = """<robot name="arm">
+  <link name="base"/>
+  <link name="upper"><inertial><mass value="0.255"/>
+    <inertia ixx="3.6800049e-05" iyy="3.6800049e-05" izz="1.2e-05" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="lower"><inertial><origin xyz="0 0 -0.1"/><mass value="0.255"/>
+    <inertia ixx="3.6800049e-05" iyy="3.6800049e-05" izz="1.2e-05" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="tool"/>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+    <origin xyz="0 0 1"/><axis xyz="0 1 0"/><limit lower="-1.972222222" upper="1.972222222" effort="1" velocity="1"/></joint>
+  <joint name="elbow" type="revolute"><parent link="upper"/><child link="lower"/>
+    <origin xyz="0 0 -0.2"/><axis xyz="0 1 0"/><limit lower="-2.356194490" upper="2.356194490" effort="1" velocity="1"/></joint>
+  <joint name="flange" type="fixed"><parent link="lower"/><child link="tool"/><origin xyz="0 0 -0.2"/></joint>
+</robot>"""
+
+ROUNDED_MJCF = """<mujoco><compiler angle="radian"/><worldbody>
+  <site name="base"/>
+  <body name="upper" pos="0 0 1">
+    <joint name="shoulder" axis="0 1 0" range="-1.97222 1.97222"/>
+    <inertial pos="0 0 0" mass="0.255" diaginertia="3.68001e-05 3.68001e-05 1.2e-05"/>
+    <body name="lower" pos="0 0 -0.2">
+      <joint name="elbow" axis="0 1 0" range="-2.35619 2.35619"/>
+      <inertial pos="0 0 -0.1" mass="0.255" diaginertia="3.68001e-05 3.68001e-05 1.2e-05"/>
+      TOOL
+    </body>
+  </body>
+</worldbody></mujoco>"""
+
+
+def test_rounding_of_a_hand_written_model_is_not_a_failure(tmp_path):
+    write(tmp_path / "arm.urdf", ROUNDED_URDF)
+    write(tmp_path / "arm.xml", ROUNDED_MJCF.replace("TOOL", '<site name="tool" pos="0 0 -0.2"/>'))
+    result = run_cli("check", "--urdf", "arm.urdf", "--mjcf", "arm.xml", cwd=tmp_path)
+    assert result.code == EXIT_OK, result.stdout + result.stderr
+    # --tolerance governs every quantity: asked for 1e-7, the ranges' rounding shows.
+    strict = run_cli(
+        "check", "--urdf", "arm.urdf", "--mjcf", "arm.xml", "--tolerance", "1e-7", cwd=tmp_path
+    )
+    assert strict.code == EXIT_CHECK
+    assert "joint 'shoulder': range (-1.97222, 1.97222) in the URDF" in strict.stderr
+
+
+def test_structural_findings_come_first(tmp_path):
+    write(tmp_path / "arm.urdf", ROUNDED_URDF)
+    wrong = (
+        ROUNDED_MJCF.replace("TOOL", "")
+        .replace('pos="0 0 -0.1" mass="0.255"', 'pos="0 0 -0.1" mass="0.085"')
+        .replace('axis="0 1 0" range="-2.35619', 'axis="0 0.9 0.1" range="-2.35619')
+    )
+    write(tmp_path / "arm.xml", wrong)
+    result = run_cli("check", "--urdf", "arm.urdf", "--mjcf", "arm.xml", cwd=tmp_path)
+    assert result.code == EXIT_CHECK
+    failures = [
+        line.removeprefix("mjcfbuild: check failed: ")
+        for line in result.stderr.splitlines()
+        if line.startswith("mjcfbuild: check failed: ")
+    ]
+    assert failures[0] == "link 'tool' has no body or site of its name in the model"
+    assert failures[1].startswith("body 'lower': mass 0.255 in the URDF")
+    assert "0.085 in the model" in failures[1]
+    assert any("joint 'elbow': axis" in f for f in failures[2:])
+    assert not any("shoulder" in f or "inertia" in f for f in failures)

@@ -15,3 +15,12 @@ def test_cache_command_after_a_build(cli, arm, tmp_path):
     assert "entries: 0" in pruned.stdout
     assert cli("cache", "clear", env=env).code == 0
     assert cli("cache", "prune", "--max-size", "lots", env=env).code == 2
+
+
+def test_prune_to_a_size_does_not_show_it_as_the_cap(cli, arm, tmp_path):
+    env = {"MJCFBUILD_CACHE_DIR": str(tmp_path / "cache"), "MJCFBUILD_CACHE_MAX": "2G"}
+    assert cli("build", "-q", "--no-check", cwd=arm, env=env).code == 0
+    pruned = cli("cache", "prune", "--max-size", "1M", env=env)
+    assert pruned.code == 0
+    assert "pruned to 1.0 MiB" in pruned.stdout
+    assert "of 2.0 GiB" in pruned.stdout and "of 1.0 MiB" not in pruned.stdout

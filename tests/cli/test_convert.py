@@ -47,3 +47,50 @@ def test_custom_scene_file_is_used(cli, tmp_path):
     result = cli("convert", "-u", "robot.urdf", "-o", "out", "--scene", str(scene), cwd=tmp_path)
     assert result.code == EXIT_OK, result.stderr
     assert (tmp_path / "out" / "scene.xml").read_text() == scene.read_text()
+
+
+def test_an_unknown_package_is_added_with_the_package_flag(cli, tmp_path):
+    urdf = two_link_urdf().replace(
+        '<geometry><box size="0.2 0.2 0.1"/></geometry>',
+        '<geometry><mesh filename="package://base_pkg/meshes/base.stl"/></geometry>',
+    )
+    write(tmp_path / "robot.urdf", urdf)
+    result = cli("convert", "-u", "robot.urdf", "-o", "out", cwd=tmp_path)
+    assert result.code == 4, result.stderr
+    assert "pass --package base_pkg=<folder>" in result.stderr
+    assert "robot.yaml" not in result.stderr
+
+
+def test_asset_dir_reads_pre_generated_obj_meshes(cli, tmp_path):
+    """-a: the reference converter's folder of pre-generated OBJ meshes (assets/full/<stem>/)."""
+    from tests.meshes.samples import ascii_stl
+
+    (tmp_path / "meshes").mkdir()
+    ascii_stl(tmp_path / "meshes" / "base.stl")
+    urdf = two_link_urdf().replace(
+        '<geometry><box size="0.2 0.2 0.1"/></geometry>',
+        '<geometry><mesh filename="meshes/base.stl"/></geometry>',
+    )
+    write(tmp_path / "robot.urdf", urdf)
+    # A pre-generated mesh unlike the STL: a tetrahedron far from the origin.
+    write(
+        tmp_path / "previous" / "assets" / "full" / "base" / "base.obj",
+        "v 5 5 5\nv 6 5 5\nv 5 6 5\nv 5 5 6\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    )
+    plain = cli("convert", "-u", "robot.urdf", "-o", "plain", cwd=tmp_path)
+    assert plain.code == EXIT_OK, plain.stderr
+    reused = cli("convert", "-u", "robot.urdf", "-o", "reused", "-a", "previous", cwd=tmp_path)
+    assert reused.code == EXIT_OK, reused.stderr
+    for folder, tetrahedron in (("plain", False), ("reused", True)):
+        model = mujoco.MjModel.from_xml_path(str(tmp_path / folder / "scene.xml"))
+        assert (4 in model.mesh_vertnum.tolist()) is tetrahedron, folder
+    missing = cli("convert", "-u", "robot.urdf", "-o", "x", "-a", "nowhere", cwd=tmp_path)
+    assert missing.code == EXIT_USAGE and "not a folder" in missing.stderr
+
+
+def test_help_says_what_each_reference_flag_does(cli):
+    text = " ".join(cli("convert", "--help").stdout.split()).split("options:", 1)[1]
+    for flag in ("--convert_stl_to_obj", "--save_only", "--use_collision_tags"):
+        after = text.split(flag, 1)[1][:200]
+        assert "no effect" in after and "always" in after, flag
+    assert "pre-generated OBJ meshes" in text.split("--asset_dir", 1)[1][:200]

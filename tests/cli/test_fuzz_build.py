@@ -12,11 +12,12 @@ from hypothesis import HealthCheck, given, settings
 
 from mjcfbuild.errors import EXIT_CODES, EXIT_INTERNAL
 from tests.conftest import run_cli
+from tests.fuzzing import examples
 from tests.meshes.samples import ascii_stl
 from tests.strategies import VALID_OPTIONS, urdf_text
 
 
-@settings(max_examples=12, deadline=None, suppress_health_check=list(HealthCheck))
+@settings(max_examples=examples(12), deadline=None, suppress_health_check=list(HealthCheck))
 @given(urdf_text(), VALID_OPTIONS)
 def test_generated_builds_end_in_documented_exit_codes(text, options):
     folder = Path(tempfile.mkdtemp(prefix="mjcfbuild-fuzz-build-"))

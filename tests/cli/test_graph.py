@@ -33,3 +33,27 @@ def test_before_the_first_build_only_the_planning_tasks_are_known(arm):
     assert result.code == 0
     assert "expand  (expand urdf/arm.urdf.xacro)" in result.stdout
     assert "mesh:" not in result.stdout and "once the plan has been made" in result.stdout
+
+
+def test_dot_into_a_closed_pipe_ends_quietly(arm):
+    """`mjcfbuild graph --dot | head -1`: the reader leaves early; no internal error. Here the
+    reader is gone before the first write, so every run sees the broken pipe."""
+    import os
+    import subprocess
+    import sys
+
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    read_end, write_end = os.pipe()
+    os.close(read_end)
+    try:
+        process = subprocess.run(
+            [sys.executable, "-m", "mjcfbuild", "graph", "--dot"],
+            cwd=arm,
+            stdout=write_end,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+    finally:
+        os.close(write_end)
+    assert process.returncode == 0, process.stderr
+    assert process.stderr == ""

@@ -22,3 +22,28 @@ def test_init_does_not_overwrite_without_force(cli, tmp_path):
     result = cli("init", str(source), cwd=tmp_path)
     assert result.code == EXIT_USAGE and (tmp_path / "robot.yaml").read_text() == "mine"
     assert cli("init", str(source), "--force", cwd=tmp_path).code == EXIT_OK
+
+
+def test_packages_without_package_xml_are_inferred_from_the_uris(cli, tmp_path):
+    """jvrc-, icub- and upkie-style wheels: the package folder is there, package.xml is not."""
+    from tests.conftest import two_link_urdf, write
+    from tests.meshes.samples import ascii_stl
+
+    share = tmp_path / "share" / "jvrc_description"
+    (share / "meshes").mkdir(parents=True)
+    ascii_stl(share / "meshes" / "base.stl")
+    urdf = two_link_urdf().replace(
+        '<geometry><box size="0.2 0.2 0.1"/></geometry>',
+        '<geometry><mesh filename="package://jvrc_description/meshes/base.stl"/></geometry>',
+    )
+    write(share / "urdf" / "jvrc1.urdf", urdf)
+    work = tmp_path / "work"
+    work.mkdir()
+    result = cli("init", str(share / "urdf" / "jvrc1.urdf"), "-o", "robot.yaml", cwd=work)
+    assert result.code == EXIT_OK, result.stderr
+    text = (work / "robot.yaml").read_text()
+    assert "packages: {}" not in text
+    assert "  jvrc_description: ../share/jvrc_description\n" in text
+    assert "# jvrc_description: inferred (no package.xml)" in text and "meshes/base.stl" in text
+    built = cli("build", "-q", "--no-check", cwd=work)
+    assert built.code == EXIT_OK, built.stderr

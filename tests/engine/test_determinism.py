@@ -1,11 +1,12 @@
-"""Same inputs, same bytes: builds in different folders, with different job counts."""
+"""Same inputs, same bytes: builds in different folders, with different job counts, hash seeds
+and caches of their own (so products are made twice, not read back from one shared cache)."""
 
 from __future__ import annotations
 
 import filecmp
 
-import mjcfbuild
-from tests.conftest import copy_example
+from mjcfbuild.errors import EXIT_OK
+from tests.conftest import copy_example, run_cli
 
 
 def output_files(folder):
@@ -17,21 +18,42 @@ def output_files(folder):
     )
 
 
-def test_two_clean_builds_in_different_folders_are_byte_identical(tmp_path):
-    first = copy_example("arm", tmp_path / "one")
-    second = copy_example("arm", tmp_path / "elsewhere" / "two")
-    mjcfbuild.build(first / "robot.yaml", jobs=2)
-    mjcfbuild.build(second / "robot.yaml", jobs=1)
-    files = output_files(first / "mjcf")
-    assert files == output_files(second / "mjcf")
-    assert len(files) >= 7
-    _, mismatch, errors = filecmp.cmpfiles(first / "mjcf", second / "mjcf", files, shallow=False)
+def _build(example, tmp_path, name: str, jobs: str, seed: str, warm_manifest: bool):
+    folder = copy_example(example, tmp_path / name)
+    env = {"MJCFBUILD_CACHE_DIR": str(tmp_path / f"cache-{name}"), "PYTHONHASHSEED": seed}
+    if warm_manifest:  # the build then reads its validated manifest back from the cache
+        assert run_cli("graph", cwd=folder, env=env).code == EXIT_OK
+    result = run_cli("build", "-q", "--no-check", "-j", jobs, cwd=folder, env=env)
+    assert result.code == EXIT_OK, result.stdout + result.stderr
+    return folder / "mjcf"
+
+
+def _assert_identical(first, second):
+    files = output_files(first)
+    assert files == output_files(second)
+    _, mismatch, errors = filecmp.cmpfiles(first, second, files, shallow=False)
     assert mismatch == [] and errors == []
+    return files
+
+
+def test_two_clean_builds_in_different_folders_are_byte_identical(tmp_path):
+    first = _build("arm", tmp_path, "one", "2", "1", warm_manifest=False)
+    second = _build("arm", tmp_path / "elsewhere", "two", "1", "2", warm_manifest=True)
+    assert len(_assert_identical(first, second)) >= 7
+
+
+def test_a_source_outside_the_manifest_folder_and_modify_attributes(tmp_path):
+    """The native demo's xacro is in a sibling folder, and it sets attributes with `modify`."""
+    first = _build("reference_demo_native", tmp_path, "one", "2", "1", warm_manifest=False)
+    second = _build(
+        "reference_demo_native", tmp_path / "elsewhere", "two", "1", "3", warm_manifest=True
+    )
+    for path in _assert_identical(first, second):
+        assert str(tmp_path).encode() not in (first / path).read_bytes(), path
 
 
 def test_outputs_hold_no_absolute_paths(tmp_path):
-    arm = copy_example("arm", tmp_path)
-    mjcfbuild.build(arm / "robot.yaml", jobs=2)
-    for path in output_files(arm / "mjcf"):
-        data = (arm / "mjcf" / path).read_bytes()
+    mjcf = _build("arm", tmp_path, "one", "2", "0", warm_manifest=False)
+    for path in output_files(mjcf):
+        data = (mjcf / path).read_bytes()
         assert str(tmp_path).encode() not in data, path

@@ -11,7 +11,7 @@ import pytest
 
 import mjcfbuild
 from mjcfbuild.errors import BuildFailed
-from tests.conftest import write
+from tests.conftest import run_cli, write
 
 ALL_ARM_TASKS = {
     "expand",
@@ -166,3 +166,38 @@ def test_check_follows_the_model(arm):
         "mesh:finger",
         "previews",
     ]
+
+
+def test_a_mesh_deleted_after_a_build_gives_the_clean_build_message(arm):
+    from mjcfbuild.errors import EXIT_INPUT
+
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    (arm / "meshes" / "base.stl").unlink()
+    after_build = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert run_cli("clean", cwd=arm).code == 0
+    after_clean = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert after_clean.code == EXIT_INPUT
+    error = [line for line in after_clean.stderr.splitlines() if "error" in line]
+    assert error and "base.stl" in error[0] and "source.urdf:18" in error[0], after_clean.stderr
+    assert after_build.code == EXIT_INPUT, after_build.stderr
+    assert [line for line in after_build.stderr.splitlines() if "error" in line] == error
+
+
+def test_a_xacro_argument_that_swaps_an_include_runs_expansion_once(built_arm):
+    """The expansion reads another file: counted and printed once (it ran twice, 6 lines for
+    5 counted, when the file it no longer read stayed among its dependencies)."""
+    xacro = built_arm / "urdf" / "arm.urdf.xacro"
+    write(built_arm / "urdf" / "finger2.xacro", (built_arm / "urdf" / "finger.xacro").read_text())
+    xacro.write_text(
+        xacro.read_text()
+        .replace("/urdf/finger.xacro", "/urdf/$(arg finger).xacro")
+        .replace("<xacro:include", '<xacro:arg name="finger" default="finger"/><xacro:include', 1)
+    )
+    assert run_cli("build", "-q", "--no-check", cwd=built_arm).code == 0
+    manifest = built_arm / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace("  args:\n", "  args:\n    finger: finger2\n"))
+    result = run_cli("build", "--no-check", "-j", "1", cwd=built_arm)
+    assert result.code == 0, result.stderr
+    lines = [line for line in result.stdout.splitlines() if line.startswith("[")]
+    assert sum("expand" in line for line in lines) == 1, result.stdout
+    assert f"{len(lines)} run," in result.stdout, result.stdout

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import shutil
+from pathlib import Path
 
 import mujoco
 import numpy as np
@@ -18,10 +19,10 @@ from mjcfbuild.sources.packages import PackageResolver
 from mjcfbuild.urdf.kinematics import link_poses
 from mjcfbuild.urdf.parse import parse_urdf
 from tests.conftest import EXAMPLES, ROOT, run_cli
+from tests.reference_fixtures import MARKER, RELATIVE, find_reference_demo
 
-REFERENCE = (
-    ROOT.parent / "shared" / "fixtures" / "reference_demo" / "reference_output" / "scene.xml"
-)
+FIXTURES = find_reference_demo(ROOT, Path.cwd())
+REFERENCE = FIXTURES / MARKER if FIXTURES else None
 DEMO = EXAMPLES / "reference_demo"
 
 
@@ -31,8 +32,11 @@ def names(model, kind, count):
 
 @pytest.fixture(scope="module")
 def reference():
-    if not REFERENCE.exists():
-        pytest.skip("the reference converter's output is not next to this checkout")
+    if REFERENCE is None:
+        pytest.skip(
+            f"the reference converter's output ({RELATIVE / MARKER}) is not in any folder above "
+            f"{ROOT}; set MJCFBUILD_REFERENCE_DEMO to its reference_demo folder"
+        )
     return mujoco.MjModel.from_xml_path(str(REFERENCE))
 
 
@@ -171,3 +175,18 @@ def test_lidar_has_25_rays_each_along_its_sweep(built, urdf_robot):
         assert np.allclose(data.site_xpos[site], frame.position, atol=1e-12)
     assert mujoco.mj_name2id(built, mujoco.mjtObj.mjOBJ_SITE, "rf-25") == -1
     assert math.isclose(-0.3 + 24 * 0.025, 0.3)
+
+
+def test_the_reference_output_is_found_from_a_clone_at_any_depth(tmp_path, monkeypatch):
+    """CI's clean clone is not necessarily a sibling of shared/: the parity tests must not
+    quietly skip there."""
+    monkeypatch.delenv("MJCFBUILD_REFERENCE_DEMO", raising=False)
+    fixtures = tmp_path / RELATIVE
+    (fixtures / MARKER).parent.mkdir(parents=True)
+    (fixtures / MARKER).write_text("<mujoco/>")
+    clone = tmp_path / "ci" / "build" / "mjcfbuild"
+    clone.mkdir(parents=True)
+    assert find_reference_demo(clone) == fixtures
+    elsewhere = tmp_path / "other"
+    monkeypatch.setenv("MJCFBUILD_REFERENCE_DEMO", str(fixtures))
+    assert find_reference_demo(elsewhere) == fixtures

@@ -7,6 +7,7 @@ it and installs mjcfbuild into an environment of its own, as it would from GitHu
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -19,9 +20,11 @@ from tests.conftest import EXAMPLES, ROOT
 pytestmark = pytest.mark.slow
 
 
-def git(*args: str, cwd: Path, check: bool = True) -> subprocess.CompletedProcess:
+def git(
+    *args: str, cwd: Path, check: bool = True, env: dict | None = None
+) -> subprocess.CompletedProcess:
     env = {
-        **os.environ,
+        **(env or os.environ),
         "GIT_AUTHOR_NAME": "t",
         "GIT_AUTHOR_EMAIL": "t@example.com",
         "GIT_COMMITTER_NAME": "t",
@@ -45,49 +48,78 @@ def project_commit():
     return head.stdout.strip()
 
 
-def test_hook_fails_regenerates_then_passes(tmp_path, project_commit, monkeypatch):
-    monkeypatch.setenv("PRE_COMMIT_HOME", str(tmp_path / "pre-commit-home"))
-    repo = tmp_path / "arm_description"
-    shutil.copytree(EXAMPLES / "arm", repo, ignore=shutil.ignore_patterns("mjcf"))
+def readme_configs() -> list[str]:
+    """The two .pre-commit-config.yaml blocks the README shows, as written there."""
+    readme = (ROOT / "README.md").read_text()
+    section = readme.split("### In a description repo: pre-commit", 1)[1].split("\n### ", 1)[0]
+    return re.findall(r"```yaml\n(.*?)```", section, re.S)
+
+
+def description_repo(tmp_path: Path) -> Path:
+    """A git repository holding the example arm under robots/arm, with its built model."""
+    repo = tmp_path / "description"
+    arm = repo / "robots" / "arm"
+    shutil.copytree(EXAMPLES / "arm", arm, ignore=shutil.ignore_patterns("mjcf"))
     git("init", "-q", cwd=repo)
-    (repo / ".pre-commit-config.yaml").write_text(
-        "repos:\n"
-        f"  - repo: {ROOT}\n"
-        f"    rev: {project_commit}\n"
-        "    hooks:\n"
-        "      - id: mjcfbuild\n"
-        "      - id: mjcfbuild-check\n"
-    )
-    # The description and its built model go in first, before the hooks are installed.
     build = subprocess.run(
         [sys.executable, "-m", "mjcfbuild", "build", "-q", "--no-check"],
-        cwd=repo,
+        cwd=arm,
         capture_output=True,
         text=True,
     )
     assert build.returncode == 0, build.stderr
     git("add", "-A", cwd=repo)
     git("commit", "-q", "-m", "arm with its model", cwd=repo)
+    return repo
+
+
+def install_and_commit_an_edit(repo: Path, config: str, env: dict | None = None) -> str:
+    """Install ``config``'s hooks, commit an edited joint limit: fails, then passes once the
+    rebuilt model is staged. What the passing commit printed."""
+    (repo / ".pre-commit-config.yaml").write_text(config)
+    git("add", ".pre-commit-config.yaml", cwd=repo)
     install = subprocess.run(
         [pre_commit_executable(), "install", "--install-hooks"],
         cwd=repo,
         capture_output=True,
         text=True,
+        env=env,
     )
     assert install.returncode == 0, install.stdout + install.stderr
 
     # Edit a joint limit: the hook rebuilds the model, so the commit fails...
-    limits = repo / "config" / "joint_limits.yaml"
+    arm = repo / "robots" / "arm"
+    limits = arm / "config" / "joint_limits.yaml"
     limits.write_text(limits.read_text().replace("upper: 2.5", "upper: 2.4"))
-    first = git("commit", "-am", "narrower elbow", cwd=repo, check=False)
-    assert first.returncode != 0
+    first = git("commit", "-am", "narrower elbow", cwd=repo, check=False, env=env)
+    assert first.returncode != 0, first.stdout + first.stderr
     assert "files were modified by this hook" in first.stdout + first.stderr
-    model = (repo / "mjcf" / "example_arm.xml").read_text()
+    model = (arm / "mjcf" / "example_arm.xml").read_text()
     assert 'range="-2.5 2.4"' in model
 
     # ...and passes once the regenerated model is staged with the change.
     git("add", "-A", cwd=repo)
-    second = git("commit", "-m", "narrower elbow", cwd=repo, check=False)
+    second = git("commit", "-m", "narrower elbow", cwd=repo, check=False, env=env)
     assert second.returncode == 0, second.stdout + second.stderr
-    assert "mjcfbuild check --up-to-date" in second.stdout + second.stderr
     assert git("status", "--porcelain", cwd=repo).stdout.strip() == ""
+    return second.stdout + second.stderr
+
+
+def test_readme_config_with_a_local_clone_and_rev(tmp_path, project_commit, monkeypatch):
+    monkeypatch.setenv("PRE_COMMIT_HOME", str(tmp_path / "pre-commit-home"))
+    config = readme_configs()[0]
+    assert "https://github.com/<owner>/mjcfbuild" in config and "<tag or commit>" in config
+    config = config.replace("https://github.com/<owner>/mjcfbuild", str(ROOT))
+    config = config.replace("<tag or commit>", project_commit)
+    output = install_and_commit_an_edit(description_repo(tmp_path), config)
+    assert "mjcfbuild build" in output
+
+
+def test_readme_config_with_repo_local(tmp_path, monkeypatch):
+    """The README's `repo: local` hook runs the mjcfbuild on PATH (this environment's)."""
+    monkeypatch.setenv("PRE_COMMIT_HOME", str(tmp_path / "pre-commit-home"))
+    config = readme_configs()[1]
+    assert "repo: local" in config
+    env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    output = install_and_commit_an_edit(description_repo(tmp_path), config, env)
+    assert "mjcfbuild build" in output

@@ -8,9 +8,12 @@ from hypothesis import strategies as st
 
 from mjcfbuild.errors import ManifestError
 from mjcfbuild.manifest.loading import parse_manifest
+from tests.fuzzing import examples
 from tests.strategies import manifest_data
 
-FUZZ = settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+FUZZ = settings(
+    max_examples=examples(300), deadline=None, suppress_health_check=[HealthCheck.too_slow]
+)
 
 
 def validates_or_explains(text: str) -> None:

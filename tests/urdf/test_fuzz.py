@@ -10,6 +10,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 
 from mjcfbuild.errors import InternalError, MjcfbuildError
+from tests.fuzzing import examples
 from tests.meshes.samples import ascii_stl
 from tests.mjcf.helpers import build
 from tests.strategies import urdf_text
@@ -26,7 +27,7 @@ def description() -> Path:
     return folder
 
 
-@settings(max_examples=250, deadline=None, suppress_health_check=list(HealthCheck))
+@settings(max_examples=examples(250), deadline=None, suppress_health_check=list(HealthCheck))
 @given(urdf_text())
 def test_any_urdf_builds_or_fails_with_a_documented_error(description, text):
     try:
@@ -37,3 +38,27 @@ def test_any_urdf_builds_or_fails_with_a_documented_error(description, text):
         assert "\n" not in error.one_line()
     else:
         assert model.nbody >= 1
+
+
+def test_a_very_long_thin_cylinder_keeps_its_radius(description):
+    """Found by the fuzz test: MuJoCo's writer printed radius 0.1 beside 1.25e11 as 0."""
+    text = (
+        '<robot name="r"><link name="base"><inertial><mass value="1"/>'
+        '<inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
+        '<collision><geometry><cylinder radius="0.1" length="2.5e11"/></geometry></collision>'
+        "</link></robot>"
+    )
+    _, model = build(text, description)
+    assert model.geom_size[0][:2].tolist() == [0.1, 1.25e11]
+
+
+def test_property_tests_are_deterministic_by_default():
+    """A clean clone runs the same examples every time; MJCFBUILD_FUZZ asks for random ones."""
+    from hypothesis import settings
+
+    from tests.fuzzing import fuzz_factor
+
+    if fuzz_factor():
+        pytest.skip("MJCFBUILD_FUZZ is set: this is the long randomized run")
+    assert settings.default.derandomize is True
+    assert settings.default.database is None
