@@ -148,7 +148,9 @@ def make_ready(
             continue
         index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, choice.joint)
         dof = model.jnt_dofadr[index]
-        record = _actuator(choice, urdf_joints[choice.joint], float(inertia[dof, dof]), taken)
+        load = abs(float(data.qfrc_bias[dof]))
+        limits = Servo(float(inertia[dof, dof]), load, model.opt.timestep)
+        record = _actuator(choice, urdf_joints[choice.joint], limits, taken)
         taken.add(record.name)
         readiness.actuators.append(record)
         etree.SubElement(section, record.type, _attributes(record))
@@ -221,9 +223,34 @@ def _stand_on_floor(root, model, data, qpos) -> float | None:
     return lift
 
 
-def _actuator(choice: ActuatorChoice, joint, inertia: float, taken: set[str]) -> ActuatorRecord:
+# Default gains are stiffened until gravity at home bends a joint by at most this much (rad or
+# m): a servo tuned by frequency alone lets a light link on a short lever sag by g / (r w^2).
+SAG = 0.01
+
+
+@dataclass(frozen=True)
+class Servo:
+    """What a joint's servo gains are worked out from: its effective inertia at home, the
+    gravity load it holds there, and the time step (which bounds a stable stiffness)."""
+
+    inertia: float
+    load: float
+    timestep: float
+
+    def omega(self, frequency: float, stiffen: bool) -> float:
+        """The natural frequency (rad/s) of the servo."""
+        omega = 2 * math.pi * frequency
+        if stiffen and self.inertia > 0:
+            # Never above a quarter of the step rate, where the implicit integrator stays accurate.
+            ceiling = 0.5 / self.timestep
+            omega = max(omega, min(math.sqrt(self.load / (SAG * self.inertia)), ceiling))
+        return omega
+
+
+def _actuator(choice: ActuatorChoice, joint, servo: Servo, taken: set[str]) -> ActuatorRecord:
     """The actuator of a choice, its gains worked out from the joint's effective inertia."""
-    omega = 2 * math.pi * choice.frequency
+    inertia = servo.inertia
+    omega = servo.omega(choice.frequency, choice.stiffen)
     name = choice.joint if choice.joint not in taken else f"{choice.joint}_actuator"
     forcerange = list(choice.forcerange) if choice.forcerange else None
     record = ActuatorRecord(name, choice.joint, choice.type, choice.source, forcerange=forcerange)

@@ -40,6 +40,7 @@ class ActuatorChoice:
     frictionloss: float | None = None
     gravcomp: bool = False
     rule: int | None = None  # index of the matching actuators.rules entry
+    stiffen: bool = True  # default gains: stiffened where gravity at home would bend the joint
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""
@@ -80,6 +81,7 @@ def choose_actuators(
             "frictionloss": gains.frictionloss,
             "gravcomp": bool(gains.gravcomp),
             "rule": index,
+            "stiffen": gains.kp is None and gains.frequency is None,
         }
         if joint.name in user_driven:
             kind, source = "user", "user"

@@ -102,10 +102,29 @@ def _check_simulation_settings(ctx: BuildContext, robot, plan: dict) -> None:
         check_rules(robot, ctx.manifest.actuators, ctx.manifest_label)
         control = Ros2Control.from_dict(plan.get("ros2_control", {}))
         home_values(robot, control, ctx.manifest.home, None, ctx.manifest_label)
+        _check_kept_pairs(robot, ctx)
     except MjcfbuildError as error:
         if ctx.manifest_file is not None:
             pinpoint(error, ctx.manifest_label, ctx.manifest_file)
         raise
+
+
+def _check_kept_pairs(robot, ctx: BuildContext) -> None:
+    from mjcfbuild.control.choose import listing
+    from mjcfbuild.errors import ManifestError
+
+    settings = ctx.manifest.self_collision
+    if settings == "none":
+        return
+    links = [link.name for link in robot.links]
+    for index, pair in enumerate(settings.keep):
+        for link in pair:
+            if link not in links:
+                raise ManifestError(
+                    f"link '{link}' is not a link of the robot",
+                    file=f"{ctx.manifest_label} self_collision.keep[{index}]",
+                    hint=f"links: {listing(links)}",
+                )
 
 
 SRDF_SUMMARY = "srdf.json"

@@ -18,7 +18,7 @@ STEP_FORMATS = {
     "check": 3,
     "previews": 2,
     "srdf": 1,
-    "selfcollision": 1,
+    "selfcollision": 2,
     "export_urdf": 1,
 }
 

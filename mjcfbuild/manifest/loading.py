@@ -138,6 +138,15 @@ def _dotted(loc: tuple) -> str:
     return text
 
 
+# Keys earlier versions accepted, and what replaced them.
+_REMOVED = {
+    ("ros2_control",): (
+        "the ros2_control section is gone: actuators and a home keyframe are built by default "
+        "(from <ros2_control> too); tune them with actuators: and home: (docs/simulation.md)"
+    ),
+}
+
+
 def describe(error: dict) -> str:
     """What is wrong, and what would be allowed, for one pydantic error."""
     kind = error["type"]
@@ -145,6 +154,8 @@ def describe(error: dict) -> str:
     value = error.get("input")
     if kind == "extra_forbidden":
         key = str(loc[-1]) if loc else "?"
+        if loc in _REMOVED:
+            return _REMOVED[loc]
         allowed = _allowed_keys(loc[:-1])
         suggestion = difflib.get_close_matches(key, allowed, n=1)
         text = f"unknown key '{key}'"

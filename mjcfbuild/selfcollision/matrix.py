@@ -91,15 +91,26 @@ def collision_matrix(model, home_qpos, settings: MatrixSettings) -> list[PairVer
     return verdicts
 
 
-def needs_exclude(model_parents: dict[str, str], verdict: PairVerdict) -> bool:
-    """Whether MuJoCo's own parent-child filter leaves this excluded pair to an exclude.
+def needs_exclude(model, verdict: PairVerdict) -> bool:
+    """Whether MuJoCo's own filter leaves this pair to a ``<contact><exclude>``.
 
-    MuJoCo never collides a body with its parent, unless the parent is the world.
+    MuJoCo never collides bodies welded together, nor a body with its parent's weld group,
+    unless one of them is welded to the world (a fixed base's root is).
     """
-    for child, parent in ((verdict.body1, verdict.body2), (verdict.body2, verdict.body1)):
-        if model_parents.get(child) == parent and parent != "world":
-            return False
-    return True
+    import mujoco
+
+    ids = [
+        mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, b)
+        for b in (verdict.body1, verdict.body2)
+    ]
+    if min(ids) < 0:
+        return True
+    weld1, weld2 = (int(model.body_weldid[b]) for b in ids)
+    if weld1 == weld2:
+        return False
+    parent1 = int(model.body_weldid[model.body_parentid[weld1]])
+    parent2 = int(model.body_weldid[model.body_parentid[weld2]])
+    return not (weld1 and weld2 and (weld1 == parent2 or weld2 == parent1))
 
 
 def _adjacent_pairs(model) -> set[tuple[int, int]]:

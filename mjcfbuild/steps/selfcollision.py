@@ -100,11 +100,10 @@ def run(payload: dict) -> dict:
             by_pair[key]["exclude"] = False
             by_pair[key]["reason"] += ", kept"
 
-    parents = {body.name: body.parent or "" for body in bodies}
     excludes = [
         [v["body1"], v["body2"]]
         for v in verdicts
-        if v["exclude"] and needs_exclude(parents, _verdict(v))
+        if v["exclude"] and needs_exclude(model, _verdict(v))
     ]
     result = {"pairs": verdicts, "excludes": excludes, "samples": settings.samples}
     outputs: dict[str, str] = {}

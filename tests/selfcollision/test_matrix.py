@@ -46,9 +46,10 @@ def test_pairs_touching_at_home_are_excluded_and_the_check_passes(tmp_path):
     assert reasons[("a", "b")] == ("adjacent", True)
     assert reasons[("a", "c")] == ("home", True)
     assert reasons[("a", "d")] == ("never", False)
-    assert _matrix(tmp_path)["excludes"] == [["a", "c"]]  # MuJoCo skips parent and child
+    # MuJoCo skips a body's parent, but not one welded to the world, as the fixed base 'a' is.
+    assert _matrix(tmp_path)["excludes"] == [["a", "b"], ["a", "c"]]
     model = mujoco.MjModel.from_xml_path(str(result.robot))
-    assert model.nexclude == 1
+    assert model.nexclude == 2
     report = (tmp_path / "mjcf/report/report.md").read_text()
     assert "| a | c | home |" in report
 
@@ -102,7 +103,8 @@ def test_a_malformed_srdf_is_an_error(tmp_path):
 def test_a_keep_pair_naming_a_missing_link_is_a_manifest_error(tmp_path):
     result = run_cli("build", str(_robot(tmp_path, "self_collision:\n  keep: [[a, nope]]\n")))
     assert result.code == 3
-    assert "robot.yaml:3" in result.stderr and "link 'nope'" in result.stderr
+    assert "robot.yaml:4" in result.stderr and "link 'nope'" in result.stderr
+    assert "self-collision matrix" not in result.stdout  # refused before any work
 
 
 def test_samples_must_be_positive(tmp_path):
