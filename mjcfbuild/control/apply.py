@@ -135,6 +135,7 @@ def make_ready(
             readiness.lowest_point = {"height": lowest.height, "body": lowest.body}
     inertia = np.zeros((model.nv, model.nv))
     mujoco.mj_fullM(model, data, inertia)
+    loads = np.abs(standing_torques(model, data) if floating else data.qfrc_bias)
 
     section = root.find("actuator")
     if section is None and generated:
@@ -148,8 +149,7 @@ def make_ready(
             continue
         index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, choice.joint)
         dof = model.jnt_dofadr[index]
-        load = abs(float(data.qfrc_bias[dof]))
-        limits = Servo(float(inertia[dof, dof]), load, model.opt.timestep)
+        limits = Servo(float(inertia[dof, dof]), float(loads[dof]), model.opt.timestep)
         record = _actuator(choice, urdf_joints[choice.joint], limits, taken)
         taken.add(record.name)
         readiness.actuators.append(record)
@@ -163,7 +163,8 @@ def make_ready(
     final_data = mujoco.MjData(final)
     final_data.qpos[:] = _home_qpos(final, home)
     mujoco.mj_forward(final, final_data)
-    ctrl = _home_ctrl(final, final_data)
+    torques = standing_torques(final, final_data) if floating else final_data.qfrc_bias
+    ctrl = _home_ctrl(final, final_data, torques)
     keyframe = root.find("keyframe")
     if keyframe is None:
         keyframe = etree.SubElement(root, "keyframe")
@@ -173,6 +174,32 @@ def make_ready(
     keyframe.insert(0, etree.Element("key", attributes))
     readiness.home_written = True
     return readiness
+
+
+def standing_torques(model, data, tolerance: float = 2e-3):
+    """Joint torques that hold a floating robot standing at ``data``'s pose: gravity, less the
+    robot's weight shared equally by the bodies whose collision geometry touches the floor
+    (z = 0), each pushing up at its lowest point."""
+    import mujoco
+    import numpy as np
+
+    from mjcfbuild.control.floor import geom_lowest_points
+
+    points = geom_lowest_points(model, data)
+    feet: dict[int, np.ndarray] = {}
+    for geom, point in points.items():
+        body = int(model.geom_bodyid[geom])
+        if point[2] <= tolerance and body not in feet:
+            feet[body] = point
+    torques = data.qfrc_bias.copy()
+    if not feet:
+        return torques
+    weight = float(model.body_subtreemass[0]) * float(np.linalg.norm(model.opt.gravity))
+    jacobian = np.zeros((3, model.nv))
+    for body, point in feet.items():
+        mujoco.mj_jac(model, data, jacobian, None, point, body)
+        torques -= jacobian.T @ np.array([0.0, 0.0, weight / len(feet)])
+    return torques
 
 
 def _set_dynamics(element, choice: ActuatorChoice) -> None:
@@ -297,9 +324,10 @@ def _fill_user_records(readiness: Readiness, root) -> None:
             record.type = element.tag
 
 
-def _home_ctrl(model, data):
+def _home_ctrl(model, data, torques):
     """Controls that hold the home pose: position servos aim at it, velocity servos rest, and
-    motors push against gravity (the bias force at home), all within their ctrlrange."""
+    motors push the ``torques`` that hold it (gravity, less the floor's support for a standing
+    robot), all within their ctrlrange."""
     import mujoco
     import numpy as np
 
@@ -315,7 +343,7 @@ def _home_ctrl(model, data):
         if affine and bias[1] != 0:  # a position servo: force = kp (ctrl - length) ...
             ctrl[actuator] = gear * data.qpos[address]
         elif not affine and model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_FIXED:
-            ctrl[actuator] = data.qfrc_bias[dof] / (gear * model.actuator_gainprm[actuator, 0])
+            ctrl[actuator] = torques[dof] / (gear * model.actuator_gainprm[actuator, 0])
         if model.actuator_ctrllimited[actuator]:
             low, high = model.actuator_ctrlrange[actuator]
             ctrl[actuator] = min(max(ctrl[actuator], low), high)

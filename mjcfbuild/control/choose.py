@@ -2,9 +2,10 @@
 
 Sources, strongest first: an actuator the user wrote (raw MJCF, inputs file, URDF
 ``<mujoco_inputs>``) - then an ``actuators.rules`` entry that names a type - then the joint's
-``<ros2_control>`` command interface - then a ROS 1 ``<transmission>`` - then
-``actuators.default``. Gains and joint dynamics come from the first matching rule, else the
-defaults. Mimic followers are driven through their equality, never by an actuator.
+``<ros2_control>`` command interface - then ``actuators.default``, for joints a ROS 1
+``<transmission>`` names (source ``transmission``) and all others (source ``default``). Gains
+and joint dynamics come from the first matching rule, else the defaults. Mimic followers are
+driven through their equality, never by an actuator.
 """
 
 from __future__ import annotations
@@ -65,7 +66,7 @@ def choose_actuators(
 ) -> list[ActuatorChoice]:
     """One choice per actuated joint, in URDF order (``none`` choices included)."""
     commands = {joint.name: joint.commands for joint in control.joints if joint.commands}
-    transmitted = {t.joint: t for t in control.transmissions}
+    transmitted = {t.joint for t in control.transmissions}
     choices = []
     for joint in actuated_joints(robot):
         index, rule = _first_rule(joint.name, settings.rules)
@@ -91,9 +92,10 @@ def choose_actuators(
             preferred = min(commands[joint.name], key=_preference)
             kind, source = _BY_COMMAND.get(preferred, settings.default), "ros2_control"
         elif joint.name in transmitted:
-            command = transmitted[joint.name].command
-            kind = _BY_COMMAND[command] if command else _default_type(joint, settings)
-            source = "transmission"
+            # A ROS 1 transmission names an actuated joint; its hardware interface is what a
+            # ROS controller commands (an effort interface usually under a position PID), not
+            # how the joint should be driven without one, so the default type applies.
+            kind, source = _default_type(joint, settings), "transmission"
         else:
             kind, source = _default_type(joint, settings), "default"
         choices.append(ActuatorChoice(joint.name, kind, source, **common))

@@ -20,9 +20,22 @@ def lowest_collision_point(model, data) -> LowestPoint | None:
     SDFs are ignored. None when the model has no colliding geom.
     """
     import mujoco
+
+    points = geom_lowest_points(model, data)
+    if not points:
+        return None
+    geom = min(points, key=lambda g: (points[g][2], g))
+    body = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, model.geom_bodyid[geom])
+    return LowestPoint(float(points[geom][2]), body or "world")
+
+
+def geom_lowest_points(model, data) -> dict:
+    """For every colliding geom: a point at its lowest height (x and y are its centre's for
+    primitives, the lowest vertex's for meshes)."""
+    import mujoco
     import numpy as np
 
-    lowest: LowestPoint | None = None
+    result = {}
     types = mujoco.mjtGeom
     for geom in range(model.ngeom):
         if model.geom_contype[geom] == 0 and model.geom_conaffinity[geom] == 0:
@@ -48,10 +61,13 @@ def lowest_collision_point(model, data) -> LowestPoint | None:
             mesh = model.geom_dataid[geom]
             start, count = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
             vertices = model.mesh_vert[start : start + count]
-            height = centre + float((vertices @ up).min())
+            lowest_vertex = vertices[int(np.argmin(vertices @ up))]
+            point = data.geom_xpos[geom] + rotation @ lowest_vertex
+            result[geom] = point
+            continue
         else:
             continue
-        if lowest is None or height < lowest.height:
-            body = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, model.geom_bodyid[geom])
-            lowest = LowestPoint(float(height), body or "world")
-    return lowest
+        point = data.geom_xpos[geom].copy()
+        point[2] = height
+        result[geom] = point
+    return result

@@ -54,15 +54,6 @@ class Transmission:
     interfaces: list[str]
     origin: str
 
-    @property
-    def command(self) -> str | None:
-        """'position', 'velocity' or 'effort', from the interface names (first one that says)."""
-        for interface in self.interfaces:
-            for command in ("Position", "Velocity", "Effort"):
-                if command in interface:
-                    return command.lower()
-        return None
-
 
 @dataclass
 class Ros2Control:

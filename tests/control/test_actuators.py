@@ -81,14 +81,16 @@ def test_ros2_control_command_interfaces_decide_the_type(tmp_path, interfaces, k
         assert list(model.actuator_ctrlrange[0]) == [-10, 10]
 
 
-def test_a_ros1_transmission_names_an_actuated_joint_and_its_interface(tmp_path):
+def test_a_ros1_transmission_names_an_actuated_joint(tmp_path):
+    """Its effort interface is what a ROS controller commands, usually under a position PID;
+    without that controller the joint gets the default servo."""
     transmission = """<transmission name="t"><type>transmission_interface/SimpleTransmission</type>
       <joint name="hinge"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
       <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>"""
     model = load(build_two_link(tmp_path, urdf_extra=transmission))
     record = readiness(tmp_path)["actuators"][0]
-    assert (record["type"], record["source"]) == ("motor", "transmission")
-    assert model.actuator_biastype[0] == mujoco.mjtBias.mjBIAS_NONE
+    assert (record["type"], record["source"]) == ("position", "transmission")
+    assert model.actuator_biastype[0] == mujoco.mjtBias.mjBIAS_AFFINE
 
 
 def test_an_actuator_the_user_wrote_replaces_the_generated_one(tmp_path):
