@@ -80,7 +80,6 @@ class FsspecBackend:
                 "read_timeout": 60,
                 "retries": {"max_attempts": 2, "mode": "standard"},
             }
-            options["retries"] = 1
             endpoint = environ.get("AWS_ENDPOINT_URL_S3") or environ.get("AWS_ENDPOINT_URL")
             if endpoint:
                 options["endpoint_url"] = endpoint
