@@ -252,7 +252,10 @@ class BuildContext:
 
                 choice = self.sharing_choice()
                 self._sharing = ProductSharing(
-                    choice.remote, choice.executor, self.warnings.append, self.environ,
+                    choice.remote,
+                    choice.executor,
+                    self.warnings.append,
+                    self.environ,
                     self.step_timeout,
                 )
             return self._sharing

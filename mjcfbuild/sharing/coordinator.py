@@ -103,9 +103,7 @@ class ProductSharing:
             options = payload["params"]
         root = Path(os.path.commonpath([p.parent for p in inputs]))
         files = {path: path.relative_to(root) for path in inputs}
-        return self._executor.compute(
-            kind, key, options, files, main, task, self._step_timeout
-        )
+        return self._executor.compute(kind, key, options, files, main, task, self._step_timeout)
 
     def finish(self, cache_folder: Path | None) -> dict:
         """Wait for uploads, disconnect, record the counters; the report's ``cache`` section."""

@@ -56,9 +56,7 @@ class DaskExecutor:
             from distributed import Client
 
             try:
-                client = Client(
-                    self.spec.scheduler, timeout=CONNECT_TIMEOUT, set_as_default=False
-                )
+                client = Client(self.spec.scheduler, timeout=CONNECT_TIMEOUT, set_as_default=False)
             except (OSError, TimeoutError) as exc:
                 self._unusable = True
                 self._warn(
@@ -87,8 +85,14 @@ class DaskExecutor:
             return client
 
     def compute(
-        self, kind: str, key: str, options: dict, files: dict[Path, Path], main: Path,
-        task: str, timeout: float | None,
+        self,
+        kind: str,
+        key: str,
+        options: dict,
+        files: dict[Path, Path],
+        main: Path,
+        task: str,
+        timeout: float | None,
     ) -> tuple[dict, dict[str, bytes]] | None:
         """Compute the product ``key`` on the cluster: its verified summary and files, or None
         when the cluster cannot be reached (the caller then computes locally).
@@ -107,8 +111,16 @@ class DaskExecutor:
         }
         [data] = client.scatter([payload], hash=False)
         future = client.submit(
-            compute_product, kind, key, options, data, files[main].as_posix(), self._versions,
-            failpoints, key=f"mjcfbuild-{task}-{uuid.uuid4().hex[:8]}", pure=False,
+            compute_product,
+            kind,
+            key,
+            options,
+            data,
+            files[main].as_posix(),
+            self._versions,
+            failpoints,
+            key=f"mjcfbuild-{task}-{uuid.uuid4().hex[:8]}",
+            pure=False,
         )
         try:
             reply = future.result(timeout=timeout)

@@ -78,9 +78,7 @@ def redact(url: str) -> str:
     parts = urlsplit(url)
     if not parts.scheme or len(parts.scheme) == 1:
         return url
-    host = parts.hostname or ""
-    if parts.port:
-        host += f":{parts.port}"
+    host = parts.netloc.rpartition("@")[2]
     return f"{parts.scheme}://{host}{parts.path}"
 
 
@@ -142,13 +140,13 @@ def parse_executor(text: str) -> ExecutorSpec:
     if text == "local":
         return ExecutorSpec("local")
     if not text.startswith("dask://"):
-        raise AddressError(
-            f"'{redact(text)}' is not an executor; use 'local' or dask://host:port"
-        )
+        raise AddressError(f"'{redact(text)}' is not an executor; use 'local' or dask://host:port")
     parts = urlsplit(text)
     host = parts.hostname or ""
     if not host or not _HOST.match(host) or parts.path not in ("", "/") or parts.query:
-        raise AddressError(f"'{redact(text)}' is not a Dask scheduler address; use dask://host:port")
+        raise AddressError(
+            f"'{redact(text)}' is not a Dask scheduler address; use dask://host:port"
+        )
     try:
         port = parts.port or DEFAULT_DASK_PORT
     except ValueError:

@@ -49,7 +49,7 @@ class Machine:
         return {
             str(p.relative_to(out)): p.read_bytes()
             for p in sorted(out.rglob("*"))
-            if p.is_file() and not p.relative_to(out).parts[0] in ("report", ".mjcfbuild")
+            if p.is_file() and p.relative_to(out).parts[0] not in ("report", ".mjcfbuild")
         }
 
 

@@ -56,9 +56,7 @@ def test_shared_folder_and_read_only_http(machines, tmp_path, monkeypatch):
     assert not list(shared.rglob("*.tmp"))
 
     # The same folder served over HTTP: readable, never written.
-    handler = functools.partial(
-        http.server.SimpleHTTPRequestHandler, directory=str(shared)
-    )
+    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(shared))
     handler.log_message = lambda *args: None
     server = http.server.ThreadingHTTPServer(("127.0.0.1", free_port()), handler)
     threading.Thread(target=server.serve_forever, daemon=True).start()
@@ -141,8 +139,11 @@ def test_wrong_credentials_are_a_warning(machines, tmp_path, monkeypatch):
         import boto3
 
         boto3.client(
-            "s3", endpoint_url=endpoint, region_name="us-east-1",
-            aws_access_key_id="setup", aws_secret_access_key="setup",
+            "s3",
+            endpoint_url=endpoint,
+            region_name="us-east-1",
+            aws_access_key_id="setup",
+            aws_secret_access_key="setup",
         ).create_bucket(Bucket="guarded-products")
         monkeypatch.setenv("AWS_ENDPOINT_URL", endpoint)
         monkeypatch.setenv("AWS_ACCESS_KEY_ID", "not-a-known-key")
