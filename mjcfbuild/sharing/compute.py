@@ -64,7 +64,7 @@ def compute_product(
     with tempfile.TemporaryDirectory(prefix="mjcfbuild-cluster-") as folder:
         inputs, output = Path(folder) / "in", Path(folder) / "out"
         try:
-            failpoint("cluster", **(failpoints or {}))
+            failpoint(f"cluster-{kind}", **(failpoints or {}))
             for name, data in files.items():
                 path = inputs / name
                 path.parent.mkdir(parents=True, exist_ok=True)

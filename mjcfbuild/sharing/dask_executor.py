@@ -22,7 +22,16 @@ from mjcfbuild.sharing.blob import BadObject, verify
 from mjcfbuild.sharing.compute import compute_product, version_mismatch, worker_versions
 from mjcfbuild.sharing.settings import ExecutorSpec
 
-CONNECT_TIMEOUT = 10.0
+CONNECT_TIMEOUT_VARIABLE = "MJCFBUILD_DASK_CONNECT_TIMEOUT"
+DEFAULT_CONNECT_TIMEOUT = 10.0
+
+
+def connect_timeout() -> float:
+    """Seconds to wait for the scheduler: ``$MJCFBUILD_DASK_CONNECT_TIMEOUT``, else 10."""
+    try:
+        return float(os.environ.get(CONNECT_TIMEOUT_VARIABLE) or DEFAULT_CONNECT_TIMEOUT)
+    except ValueError:
+        return DEFAULT_CONNECT_TIMEOUT
 
 
 class ExecutorError(MjcfbuildError):
@@ -56,7 +65,7 @@ class DaskExecutor:
             from distributed import Client
 
             try:
-                client = Client(self.spec.scheduler, timeout=CONNECT_TIMEOUT, set_as_default=False)
+                client = Client(self.spec.scheduler, timeout=connect_timeout(), set_as_default=False)
             except (OSError, TimeoutError) as exc:
                 self._unusable = True
                 self._warn(
@@ -109,13 +118,14 @@ class DaskExecutor:
             "spec": os.environ.get(VARIABLE, ""),
             "once_dir": os.environ.get(ONCE_DIR_VARIABLE, ""),
         }
-        [data] = client.scatter([payload], hash=False)
+        # The inputs travel inside the task, not as scattered data: scattered data dies with
+        # the worker holding it, and the task could then not run again elsewhere.
         future = client.submit(
             compute_product,
             kind,
             key,
             options,
-            data,
+            payload,
             files[main].as_posix(),
             self._versions,
             failpoints,
