@@ -65,7 +65,9 @@ class DaskExecutor:
             from distributed import Client
 
             try:
-                client = Client(self.spec.scheduler, timeout=connect_timeout(), set_as_default=False)
+                client = Client(
+                    self.spec.scheduler, timeout=connect_timeout(), set_as_default=False
+                )
             except (OSError, TimeoutError) as exc:
                 self._unusable = True
                 self._warn(

@@ -50,7 +50,7 @@ def test_a_no_op_build_imports_no_fsspec_s3fs_or_dask(machines, tmp_path):
     assert done.returncode == 0, done.stderr
     assert "0 run" in done.stdout and "warning" not in done.stderr
     [imported] = [line for line in done.stdout.splitlines() if line.startswith("imported:")]
-    assert imported == "imported:"
+    assert imported.strip() == "imported:"
 
 
 def _environ() -> dict[str, str]:
