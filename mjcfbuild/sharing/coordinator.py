@@ -122,13 +122,9 @@ class ProductSharing:
 
 
 def _key(kind: str, payload: dict) -> str:
-    if kind == "mesh":
-        from mjcfbuild.steps.mesh import cache_key
+    from mjcfbuild.steps import decompose, mesh
 
-        return cache_key(payload)
-    from mjcfbuild.steps.decompose import cache_key
-
-    return cache_key(payload)
+    return mesh.cache_key(payload) if kind == "mesh" else decompose.cache_key(payload)
 
 
 def _store_files(store, key: str, summary: dict, files: dict[str, bytes]) -> None:
