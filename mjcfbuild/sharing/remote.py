@@ -28,16 +28,13 @@ _SECRET_VARIABLES = ("AWS_SECRET_ACCESS_KEY", "AWS_SESSION_TOKEN", "GOOGLE_APPLI
 
 
 class Backend(Protocol):
-    """The three operations a remote cache needs."""
+    """The two operations a remote cache needs."""
 
     def get(self, name: str) -> bytes | None:
         """The object ``name``, or None when there is none."""
 
     def put(self, name: str, data: bytes) -> None:
         """Store ``data`` as ``name``; a reader sees the old object or the new, never a mix."""
-
-    def exists(self, name: str) -> bool:
-        """Whether ``name`` is there."""
 
 
 class FolderBackend:
@@ -61,9 +58,6 @@ class FolderBackend:
             os.replace(temporary, target)  # atomic: concurrent writers of a key never mix
         finally:
             temporary.unlink(missing_ok=True)
-
-    def exists(self, name: str) -> bool:
-        return (self.root / name).is_file()
 
 
 class FsspecBackend:
@@ -98,9 +92,6 @@ class FsspecBackend:
     def put(self, name: str, data: bytes) -> None:
         self.fs.pipe_file(self._path(name), data)  # one PUT: atomic on S3 and GCS
 
-    def exists(self, name: str) -> bool:
-        return self.fs.exists(self._path(name))
-
 
 def open_backend(spec: RemoteSpec, environ: dict[str, str]) -> Backend:
     """The backend of ``spec``: plain files for a folder, fsspec for everything else."""
@@ -133,7 +124,6 @@ class RemoteCache:
         self._lock = threading.Lock()
         self._disabled = False
         self._warned_bad = False
-        self._overwrite: set[str] = set()
         self._uploads: ThreadPoolExecutor | None = None
         self._pending: list[Future] = []
 
@@ -197,13 +187,10 @@ class RemoteCache:
             verify(key, data)  # the local files still match their summary: share nothing else
         except (OSError, KeyError, BadObject):
             return
-        name = object_name(key)
         try:
-            backend = self._open()
-            if key not in self._overwrite and backend.exists(name):
-                self.stats.count("already_remote")
-                return
-            backend.put(name, data)
+            # No existence check first: this build only computes a product after the remote
+            # missed it (or failed), and a racing writer of the same key writes the same bytes.
+            self._open().put(object_name(key), data)
         except Exception as exc:
             self._failed(exc)
             return
@@ -234,7 +221,6 @@ class RemoteCache:
     def _rejected(self, key: str, reason: str) -> None:
         self.stats.count("remote_rejected")
         with self._lock:
-            self._overwrite.add(key)
             first = not self._warned_bad
             self._warned_bad = True
         if first:

@@ -19,7 +19,6 @@ COUNTERS = (
     "remote_rejected",
     "remote_errors",
     "uploaded",
-    "already_remote",
     "computed_here",
     "computed_on_cluster",
 )
