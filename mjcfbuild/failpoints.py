@@ -16,17 +16,26 @@ import time
 
 VARIABLE = "MJCFBUILD_FAILPOINT"
 BUILD_PID = "MJCFBUILD_BUILD_PID"
+ONCE_DIR_VARIABLE = "MJCFBUILD_FAILPOINT_ONCE_DIR"
 
 
-def failpoint(name: str) -> None:
-    """Stop the build here if the environment asks for it."""
-    spec = os.environ.get(VARIABLE)
+def failpoint(name: str, spec: str | None = None, once_dir: str | None = None) -> None:
+    """Stop the build here if the environment (or ``spec``, sent to a cluster worker) asks.
+
+    An action ending in ``-once`` (``kill-once``) acts only the first time any process reaches
+    the point: a marker file in ``once_dir`` (default ``$MJCFBUILD_FAILPOINT_ONCE_DIR``) records it.
+    """
+    spec = spec if spec is not None else os.environ.get(VARIABLE)
     if not spec:
         return
     for item in spec.split(","):
         point, _, action = item.rpartition(":")
         if point != name:
             continue
+        if action.endswith("-once"):
+            action = action.removesuffix("-once")
+            if not _first_time(name, once_dir or os.environ.get(ONCE_DIR_VARIABLE, "")):
+                continue
         if action == "raise":
             raise RuntimeError(f"failpoint {name}")
         build = int(os.environ.get(BUILD_PID, os.getpid()))
@@ -36,3 +45,12 @@ def failpoint(name: str) -> None:
             return
         os.kill(build, signal.SIGKILL)
         os.kill(os.getpid(), signal.SIGKILL)
+
+
+def _first_time(name: str, folder: str) -> bool:
+    """Whether this is the first time a process reached ``name`` (marker in ``folder``)."""
+    try:
+        os.close(os.open(os.path.join(folder, f"failpoint-{name}"), os.O_CREAT | os.O_EXCL))
+    except FileExistsError:
+        return False
+    return True

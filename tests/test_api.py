@@ -43,7 +43,7 @@ def test_importing_mjcfbuild_does_not_import_heavy_libraries():
 
     code = (
         "import sys, mjcfbuild, mjcfbuild.cli, mjcfbuild.engine.runner, mjcfbuild.manifest;"
-        "heavy = [m for m in ('mujoco', 'trimesh', 'numpy', 'coacd', 'lxml') if m in sys.modules];"
+        "heavy = [m for m in ('mujoco', 'trimesh', 'numpy', 'coacd', 'lxml', 'fsspec', 's3fs', 'dask', 'distributed') if m in sys.modules];"
         "print(','.join(heavy))"
     )
     output = subprocess.run(

@@ -161,6 +161,8 @@ def load_context(path: str | Path, args: argparse.Namespace):
     except ManifestError as error:
         raise error.relocate(path.resolve().parent, Path.cwd()) from None
     ctx.run_check = not getattr(args, "no_check", False)
+    ctx.use_remote = not getattr(args, "no_remote", False)
+    ctx.executor_override = getattr(args, "executor", None)
     return ctx
 
 

@@ -37,6 +37,17 @@ def add_parser(commands) -> None:
         "--no-check", action="store_true", help="skip the check against the URDF (and previews)"
     )
     parser.add_argument(
+        "--no-remote",
+        action="store_true",
+        help="do not use the remote cache (cache.remote, $MJCFBUILD_CACHE_REMOTE) in this build",
+    )
+    parser.add_argument(
+        "--executor",
+        metavar="ADDRESS",
+        help="where mesh conversions and decompositions run: local, or dask://host:port "
+        "(default: $MJCFBUILD_EXECUTOR, else robot.yaml's executor, else local)",
+    )
+    parser.add_argument(
         "-n", "--dry-run", action="store_true", help="say what would run, and why; run nothing"
     )
     parser.set_defaults(handler=run)

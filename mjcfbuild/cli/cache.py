@@ -60,7 +60,28 @@ def run(args: argparse.Namespace) -> int:
         f"entries: {usage.entries}\n"
         f"size: {_human(usage.bytes)} of {_human(store.max_bytes)} (the cap builds prune to)"
     )
+    _show_remotes(store.folder)
     return 0
+
+
+def _show_remotes(folder: Path) -> None:
+    """What remote caches gave and took, as recorded by builds using this cache."""
+    import os
+
+    from mjcfbuild.sharing.settings import REMOTE_VARIABLE, redact
+    from mjcfbuild.sharing.stats import read
+
+    configured = os.environ.get(REMOTE_VARIABLE, "").strip()
+    if configured:
+        print(f"remote (${REMOTE_VARIABLE}): {redact(configured)}")
+    for remote, entry in sorted(read(folder).items()):
+        last, total = entry.get("last_build", {}), entry.get("total", {})
+        print(
+            f"remote {remote}: last build {last.get('remote_hits', 0)} hits, "
+            f"{last.get('remote_misses', 0)} misses, {last.get('uploaded', 0)} uploaded; "
+            f"in all {total.get('remote_hits', 0)} hits, {total.get('remote_misses', 0)} misses, "
+            f"{total.get('remote_rejected', 0)} rejected, {total.get('uploaded', 0)} uploaded"
+        )
 
 
 def _human(size: float) -> str:

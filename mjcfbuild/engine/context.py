@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import re
+import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -46,12 +47,18 @@ class BuildContext:
     output_override: Path | None = None
     prebuilt_mesh_dir: Path | None = None  # convert -a: a folder of meshes converted before
     run_check: bool = True
+    use_remote: bool = True
+    executor_override: str | None = None
+    cache_report: dict | None = None
 
     def __post_init__(self) -> None:
         self.base_dir = normalise(self.base_dir)
         self._hashes = None
         self._pool = None
         self._resolver = None
+        self._sharing_choice = None
+        self._sharing = None
+        self._sharing_lock = threading.Lock()  # doit runs tasks in threads
 
     @classmethod
     def from_manifest_file(cls, path: str | Path, **kwargs) -> BuildContext:
@@ -218,8 +225,72 @@ class BuildContext:
         max_bytes = parse_size(settings.max_size) if settings.max_size else default_max_bytes()
         return {"enabled": settings.enabled, "folder": str(folder), "max_bytes": max_bytes}
 
+    def sharing_choice(self):
+        """The remote cache and executor of this build, checked (:func:`choose`).
+
+        Standard library only: a build with nothing to compute imports no fsspec or dask.
+        """
+        if self._sharing_choice is None:
+            from mjcfbuild.manifest.pinpoint import pinpoint
+            from mjcfbuild.sharing.settings import choose
+
+            try:
+                self._sharing_choice = choose(
+                    manifest_remote=getattr(self.manifest.cache, "remote", None),
+                    manifest_executor=getattr(self.manifest, "executor", None),
+                    environ=self.environ,
+                    cli_executor=self.executor_override,
+                    use_remote=self.use_remote and self.manifest.cache.enabled,
+                    manifest_label=self.manifest_label,
+                )
+            except MjcfbuildError as error:
+                if self.manifest_file is not None:
+                    pinpoint(error, self.manifest_label, self.manifest_file)
+                raise
+        return self._sharing_choice
+
+    @property
+    def sharing(self):
+        """The :class:`ProductSharing` of this build, made when the first product is needed."""
+        with self._sharing_lock:
+            if self._sharing is None:
+                from mjcfbuild.sharing.coordinator import ProductSharing
+
+                choice = self.sharing_choice()
+                self._sharing = ProductSharing(
+                    choice.remote,
+                    choice.executor,
+                    self.warnings.append,
+                    self.environ,
+                    self.step_timeout,
+                )
+            return self._sharing
+
+    def finish_sharing(self) -> None:
+        """Wait for uploads to the remote cache and keep what was shared for the report."""
+        with self._sharing_lock:
+            sharing, self._sharing = self._sharing, None
+        if sharing is not None:
+            self.cache_report = sharing.finish(Path(self.cache_settings()["folder"]))
+
     def run_step(self, step: str, payload: dict, *, task: str, in_worker: bool) -> dict:
-        """Run a build step, in a worker process or here, and return its result."""
+        """Run a build step, in a worker process or here, and return its result.
+
+        Mesh conversions and decompositions go through :class:`ProductSharing` first, which
+        may fetch their product from the remote cache or compute it on a cluster.
+        """
+        from mjcfbuild.sharing.coordinator import SHARED_STEPS
+
+        kind = SHARED_STEPS.get(step)
+        if kind is None:
+            return self._run_step(step, payload, task, in_worker)
+        sharing = self.sharing
+        origin = sharing.before(kind, payload, task)
+        result = self._run_step(step, payload, task, in_worker)
+        sharing.after(kind, payload, origin, result)
+        return result
+
+    def _run_step(self, step: str, payload: dict, task: str, in_worker: bool) -> dict:
         if not in_worker:
             import importlib
 
@@ -246,7 +317,8 @@ class BuildContext:
         return error
 
     def close(self) -> None:
-        """Stop workers and save the hash cache."""
+        """Stop workers, finish uploads and save the hash cache."""
+        self.finish_sharing()
         if self._pool is not None:
             self._pool.close()
             self._pool = None

@@ -55,6 +55,7 @@ def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
         "readiness": assembly.get("readiness") or {},
         "self_collision": assembly.get("self_collision"),
         "times": record_timings(ctx),
+        "cache": ctx.cache_report,
         "previews": [f"previews/{name}" for name in previews],
     }
     write_if_changed(
@@ -112,6 +113,7 @@ def markdown(report: dict) -> str:
             for m in meshes
         ]
         lines.append("")
+    lines += _cache_lines(report.get("cache"))
     if report["times"]:
         lines += [
             "## Build times (when each task last ran)",
@@ -126,6 +128,30 @@ def markdown(report: dict) -> str:
         lines += [f"![{Path(p).stem.replace('_', ' ')}]({p})" for p in report["previews"]]
         lines.append("")
     return "\n".join(lines)
+
+
+def _cache_lines(cache: dict | None) -> list[str]:
+    """Where this build's meshes and decompositions came from."""
+    if not cache:
+        return []
+    computed = cache.get("computed", {})
+    made = ", ".join(
+        f"{kind} {n['here']} here, {n['on_cluster']} on the cluster" for kind, n in computed.items()
+    )
+    lines = [
+        "## Products (meshes, decompositions)",
+        "",
+        f"Computed: {made or 'none'}. Local cache hits: {cache['local_hits']}.",
+    ]
+    if cache.get("remote"):
+        lines.append(
+            f"Remote cache `{cache['remote']}`: {cache['remote_hits']} hits, "
+            f"{cache['remote_misses']} misses, {cache['remote_rejected']} rejected objects, "
+            f"{cache['uploaded']} uploaded."
+        )
+    if cache.get("executor", "local") != "local":
+        lines.append(f"Executor: `{cache['executor']}`.")
+    return [*lines, ""]
 
 
 def _checks(check: dict) -> list[str]:

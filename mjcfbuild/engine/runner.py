@@ -89,6 +89,7 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
     started = time.perf_counter()
     result = BuildResult(robot=ctx.robot_path, scene=ctx.scene_path)
     try:
+        ctx.sharing_choice()  # a bad remote or executor address stops the build before it starts
         with build_lock(ctx, progress):
             prepare_state(ctx)
             doit_output = _run_stage(ctx, planning_tasks(ctx), progress, result)
@@ -100,6 +101,7 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
                 # A failed check is what the report is for; any other failure means the model
                 # on disk is an earlier one, which the report must not claim to describe.
                 model_built = all(isinstance(e, CheckError) for e in result.errors)
+                ctx.finish_sharing()  # uploads are done before the build returns
                 if model_built and ctx.robot_path.exists():
                     write_report(ctx, list(dict.fromkeys(ctx.warnings)))
             if ctx.cache_grew:

@@ -111,6 +111,23 @@ class ProductStore:
         os.utime(entry / _SUMMARY, (now, now))
         return summary
 
+    def has(self, key: str) -> bool:
+        """Whether the product ``key`` is here."""
+        return (self._entry(key) / _SUMMARY).is_file()
+
+    def read(self, key: str) -> tuple[Path, dict] | None:
+        """The folder and summary of the product ``key``, without copying it anywhere."""
+        entry = self._entry(key)
+        try:
+            return entry, json.loads((entry / _SUMMARY).read_text())
+        except (OSError, ValueError):
+            return None
+
+    def temporary_folder(self, key: str) -> Path:
+        """A fresh folder to assemble the product ``key`` in before :meth:`store` (removed by
+        the caller; a killed build's leftovers are removed by :meth:`prune`)."""
+        return self._entry(key).parent / f".{key}.{uuid.uuid4().hex}.tmp"
+
     def store(self, key: str, source: Path, summary: dict) -> None:
         """Add a product (the files listed in ``summary['files']`` in ``source``)."""
         entry = self._entry(key)

@@ -253,6 +253,24 @@ class CacheSettings(StrictModel):
         description="Size cap, for example '2G'; least recently used entries go first. "
         "Default: $MJCFBUILD_CACHE_MAX, else 5G.",
     )
+    remote: str | None = Field(
+        None,
+        description="A remote cache shared by machines: s3://bucket/prefix, gs://bucket/prefix, "
+        "https://host/prefix (read-only) or a shared folder. $MJCFBUILD_CACHE_REMOTE wins; "
+        "build --no-remote turns it off.",
+    )
+
+    @field_validator("remote")
+    @classmethod
+    def _remote_address(cls, value: str | None) -> str | None:
+        from mjcfbuild.sharing.settings import AddressError, parse_remote
+
+        if value is not None:
+            try:
+                parse_remote(value)
+            except AddressError as exc:
+                raise ValueError(str(exc)) from None
+        return value
 
 
 Attribute = str | float | int | bool
@@ -487,6 +505,23 @@ class Manifest(StrictModel):
     check: CheckSettings = Field(default_factory=CheckSettings)
     scene: Scene = Field(default_factory=Scene)
     output: Output = Field(default_factory=Output)
+    executor: str | None = Field(
+        None,
+        description="Where mesh conversions and decompositions run: 'local' (default) or "
+        "dask://host:port. --executor and $MJCFBUILD_EXECUTOR win.",
+    )
+
+    @field_validator("executor")
+    @classmethod
+    def _executor_address(cls, value: str | None) -> str | None:
+        from mjcfbuild.sharing.settings import AddressError, parse_executor
+
+        if value is not None:
+            try:
+                parse_executor(value)
+            except AddressError as exc:
+                raise ValueError(str(exc)) from None
+        return value
 
     @field_validator("packages")
     @classmethod

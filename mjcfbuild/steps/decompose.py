@@ -13,12 +13,11 @@ from mjcfbuild.steps.outputs import write_output
 
 def run(payload: dict) -> dict:
     """Decompose the collision mesh of a mesh product into ``payload['output_dir']``."""
-    product = json.loads(Path(payload["product_summary"]).read_text())
-    mesh_file = Path(payload["product_dir"]) / product["collision"]
+    mesh_file = collision_mesh(payload)
     output_dir = Path(payload["output_dir"])
     params = payload["params"]
     store = open_store(payload["cache"])
-    key = product_key("decompose", {**params, "versions": step_versions("decompose")}, [mesh_file])
+    key = cache_key(payload)
     summary = store.fetch(key, output_dir) if store else None
     cached = summary is not None
     if summary is None:
@@ -32,3 +31,15 @@ def run(payload: dict) -> dict:
     text = json.dumps(summary, indent=1, sort_keys=True) + "\n"
     write_output(Path(payload["summary"]), text.encode(), outputs)
     return {"outputs": outputs, "cached": cached, "stored": not cached and store is not None}
+
+
+def collision_mesh(payload: dict) -> Path:
+    """The mesh file the decomposition ``payload`` asks for is made from."""
+    product = json.loads(Path(payload["product_summary"]).read_text())
+    return Path(payload["product_dir"]) / product["collision"]
+
+
+def cache_key(payload: dict) -> str:
+    """The product key of the decomposition ``payload`` asks for (see :func:`product_key`)."""
+    params = {**payload["params"], "versions": step_versions("decompose")}
+    return product_key("decompose", params, [collision_mesh(payload)])

@@ -22,7 +22,7 @@ def run(payload: dict) -> dict:
     check_size(source, payload["max_file_bytes"])
     references = referenced_files(source)
     store = open_store(payload["cache"])
-    key = product_key("mesh", {**options, "versions": step_versions("mesh")}, [source, *references])
+    key = cache_key(payload, references)
     summary = store.fetch(key, product_dir) if store else None
     cached = summary is not None
     if summary is None:
@@ -49,6 +49,15 @@ def run(payload: dict) -> dict:
         "cached": cached,
         "stored": not cached and store is not None,
     }
+
+
+def cache_key(payload: dict, references: list[Path] | None = None) -> str:
+    """The product key of the conversion ``payload`` asks for (see :func:`product_key`)."""
+    source = Path(payload["source"])
+    if references is None:
+        references = referenced_files(source)
+    params = {**payload["options"], "versions": step_versions("mesh")}
+    return product_key("mesh", params, [source, *references])
 
 
 def check_size(source: Path, max_bytes: int) -> None:

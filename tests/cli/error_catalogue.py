@@ -660,4 +660,30 @@ CASES: list[Case] = [
         args=["explain", "mesh:nothing"],
     ),
     Case("convert without input", {}, EXIT_USAGE, ["-u", "-r"], args=["convert", "-o", "out"]),
+    # ---- the remote cache and the executor (more in tests/sharing/test_settings.py) ------------
+    Case(
+        "malformed remote cache URL",
+        {"robot.yaml": MANIFEST + "cache:\n  remote: 's3://'\n", "robot.urdf": urdf()},
+        EXIT_MANIFEST,
+        ["robot.yaml:5", "bucket name", "s3://bucket/prefix"],
+    ),
+    Case(
+        "unknown remote cache protocol",
+        {"robot.yaml": MANIFEST + "cache:\n  remote: 'webdav://h/x'\n", "robot.urdf": urdf()},
+        EXIT_MANIFEST,
+        ["robot.yaml:5", "webdav://", "known:"],
+    ),
+    Case(
+        "malformed executor in robot.yaml",
+        {"robot.yaml": MANIFEST + "executor: 'dask://'\n", "robot.urdf": urdf()},
+        EXIT_MANIFEST,
+        ["robot.yaml:4", "dask://host:port"],
+    ),
+    Case(
+        "malformed executor on the command line",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+        EXIT_USAGE,
+        ["--executor", "not an executor", "dask://host:port"],
+        args=["build", "--executor", "ray://head:10001"],
+    ),
 ]

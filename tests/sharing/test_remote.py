@@ -1,0 +1,173 @@
+"""The remote cache end to end: two machines share products through S3 (moto), a shared
+folder and read-only HTTP; bad objects, a dead endpoint and wrong credentials are survived."""
+
+from __future__ import annotations
+
+import functools
+import http.server
+import threading
+
+from mjcfbuild.sharing.blob import verify
+from tests.conftest import run_cli
+from tests.sharing.conftest import PRODUCTS, SECRET, free_port, s3_objects
+
+
+def only_remote_warnings(result) -> list[str]:
+    return [w for w in result.warnings if "remote cache" in w]
+
+
+def test_second_machine_gets_every_product_from_s3(machines, s3_remote, monkeypatch):
+    first, second = machines
+    monkeypatch.setenv("MJCFBUILD_CACHE_REMOTE", s3_remote)
+    first.build(monkeypatch)
+    made = first.report()
+    assert made["computed"] == {
+        "decompose": {"here": 1, "on_cluster": 0},
+        "mesh": {"here": 4, "on_cluster": 0},
+    }
+    assert made["remote_misses"] == PRODUCTS and made["uploaded"] == PRODUCTS
+    objects = s3_objects(s3_remote)
+    assert len(objects) == PRODUCTS
+    for name, data in objects.items():
+        verify(name.rsplit("/", 1)[1], data)  # complete, intact, under its own key
+
+    result = second.build(monkeypatch)
+    got = second.report()
+    assert got["computed_here"] == 0 and got["computed"] == {}  # converted, decomposed nothing
+    assert got["remote_hits"] == PRODUCTS and got["uploaded"] == 0
+    assert not result.warnings
+    assert second.outputs() == first.outputs()
+
+    shown = run_cli("cache", "show", env={"MJCFBUILD_CACHE_DIR": str(second.cache)})
+    assert f"remote {s3_remote}: last build {PRODUCTS} hits, 0 misses" in shown.stdout
+
+    # Nothing secret reaches outputs, logs, reports or the caches.
+    for root in (first.folder, second.folder, first.cache, second.cache):
+        for path in root.rglob("*"):
+            assert not path.is_file() or SECRET.encode() not in path.read_bytes(), path
+
+
+def test_shared_folder_and_read_only_http(machines, tmp_path, monkeypatch):
+    first, second = machines
+    shared = tmp_path / "shared"
+    monkeypatch.setenv("MJCFBUILD_CACHE_REMOTE", str(shared))
+    first.build(monkeypatch)
+    assert first.report()["uploaded"] == PRODUCTS
+    assert not list(shared.rglob("*.tmp"))
+
+    # The same folder served over HTTP: readable, never written.
+    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(shared))
+    handler.log_message = lambda *args: None
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", free_port()), handler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    try:
+        url = f"http://127.0.0.1:{server.server_address[1]}/"
+        monkeypatch.setenv("MJCFBUILD_CACHE_REMOTE", url)
+        result = second.build(monkeypatch)
+    finally:
+        server.shutdown()
+    got = second.report()
+    assert got["remote_hits"] == PRODUCTS and got["computed_here"] == 0
+    assert not result.warnings
+    assert second.outputs() == first.outputs()
+
+
+def test_bad_objects_are_rebuilt_warned_once_and_replaced(machines, tmp_path, monkeypatch):
+    first, second = machines
+    shared = tmp_path / "shared"
+    monkeypatch.setenv("MJCFBUILD_CACHE_REMOTE", str(shared))
+    first.build(monkeypatch)
+    objects = sorted(p for p in shared.rglob("*") if p.is_file())
+    assert len(objects) == PRODUCTS
+    corrupted, truncated, foreign = objects[:3]
+    data = bytearray(corrupted.read_bytes())
+    data[-10] ^= 0xFF
+    corrupted.write_bytes(bytes(data))
+    truncated.write_bytes(truncated.read_bytes()[:-100])
+    foreign.write_bytes(objects[3].read_bytes())  # another product under this one's key
+
+    result = second.build(monkeypatch)
+    got = second.report()
+    assert got["remote_rejected"] == 3 and got["remote_hits"] == PRODUCTS - 3
+    assert got["computed_here"] == 3 and got["uploaded"] == 3
+    warnings = only_remote_warnings(result)
+    assert len(warnings) == 1 and "ignored object" in warnings[0]
+    assert second.outputs() == first.outputs()  # never used: rebuilt, same bytes
+    for path in objects:  # the remote is healed
+        verify(path.name, path.read_bytes())
+
+
+def test_unreachable_endpoint_is_a_warning(machines, s3_remote, monkeypatch):
+    first, _ = machines
+    monkeypatch.setenv("AWS_ENDPOINT_URL", f"http://127.0.0.1:{free_port()}")
+    monkeypatch.setenv("MJCFBUILD_CACHE_REMOTE", s3_remote)
+    result = first.build(monkeypatch)
+    warnings = only_remote_warnings(result)
+    assert len(warnings) == 1 and "cannot be used" in warnings[0], result.warnings
+    got = first.report()
+    assert got["computed_here"] == PRODUCTS and got["remote_errors"] == 1
+    assert first.outputs()
+
+
+def test_wrong_credentials_are_a_warning(machines, tmp_path, monkeypatch):
+    import os
+    import subprocess
+    import sys
+    import time
+    import urllib.request
+
+    first, _ = machines
+    port = free_port()
+    # A server that checks credentials: after one unauthenticated action (the bucket), every
+    # request must carry a key known to its IAM, and ours is not.
+    server = subprocess.Popen(
+        [sys.executable, "-m", "moto.server", "-H", "127.0.0.1", "-p", str(port)],
+        env={**os.environ, "INITIAL_NO_AUTH_ACTION_COUNT": "1"},
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    try:
+        endpoint = f"http://127.0.0.1:{port}"
+        deadline = time.monotonic() + 30
+        while True:
+            try:
+                urllib.request.urlopen(f"{endpoint}/moto-api/", timeout=1)
+                break
+            except OSError:
+                assert time.monotonic() < deadline, "moto server did not start"
+                time.sleep(0.1)
+        import boto3
+
+        boto3.client(
+            "s3",
+            endpoint_url=endpoint,
+            region_name="us-east-1",
+            aws_access_key_id="setup",
+            aws_secret_access_key="setup",
+        ).create_bucket(Bucket="guarded-products")
+        monkeypatch.setenv("AWS_ENDPOINT_URL", endpoint)
+        monkeypatch.setenv("AWS_ACCESS_KEY_ID", "not-a-known-key")
+        monkeypatch.setenv("AWS_SECRET_ACCESS_KEY", SECRET)
+        monkeypatch.setenv("AWS_CONFIG_FILE", str(tmp_path / "none"))
+        monkeypatch.setenv("AWS_SHARED_CREDENTIALS_FILE", str(tmp_path / "none"))
+        monkeypatch.setenv("MJCFBUILD_CACHE_REMOTE", "s3://guarded-products/team")
+        result = first.build(monkeypatch)
+    finally:
+        server.kill()
+        server.wait()
+    warnings = only_remote_warnings(result)
+    assert len(warnings) == 1 and "refused access" in warnings[0], result.warnings
+    assert SECRET not in warnings[0]
+    assert first.report()["computed_here"] == PRODUCTS
+
+
+def test_no_remote_flag_turns_it_off_for_one_build(machines, tmp_path, cli):
+    first, _ = machines
+    env = {
+        "MJCFBUILD_CACHE_REMOTE": str(tmp_path / "shared"),
+        "MJCFBUILD_CACHE_DIR": str(first.cache),
+    }
+    done = cli("build", "--no-check", "--no-remote", "-q", cwd=first.folder, env=env)
+    assert done.code == 0, done.stderr
+    assert first.report()["remote"] is None
+    assert not (tmp_path / "shared").exists()
