@@ -196,6 +196,7 @@ def _selfcollision_task(
             "exclude_never": settings.exclude_never,
         },
         "manifest_label": ctx.manifest_label,
+        "cache": ctx.cache_settings(),
         "output": str(ctx.state(SELF_COLLISION)),
     }
     params = {

@@ -77,7 +77,7 @@ def run(payload: dict) -> dict:
         if index >= 0:
             qpos[model.jnt_qposadr[index]] = value.value
     settings = MatrixSettings(**payload["settings"])
-    verdicts = [v.to_dict() for v in collision_matrix(model, qpos, settings)]
+    verdicts, cached = _matrix(model, qpos, settings, payload)
 
     by_pair = {frozenset((v["body1"], v["body2"])): v for v in verdicts}
     if srdf is not None:
@@ -112,7 +112,44 @@ def run(payload: dict) -> dict:
         (json.dumps(result, indent=1, sort_keys=True) + "\n").encode(),
         outputs,
     )
-    return {"outputs": outputs}
+    stored = not cached and bool(payload["cache"].get("enabled"))
+    return {"outputs": outputs, "cached": cached, "stored": stored}
+
+
+def _matrix(model, qpos, settings: MatrixSettings, payload: dict) -> tuple[list[dict], bool]:
+    """The verdicts of every pair, from the shared cache when this matrix was computed before
+    (in any folder: the key holds no paths), else computed and stored; whether cached."""
+    import tempfile
+
+    from mjcfbuild.engine.store import open_store, product_key
+    from mjcfbuild.engine.versions import step_versions
+    from mjcfbuild.fsutil import md5_file
+
+    store = open_store(payload["cache"])
+    robot = json.loads(json.dumps(payload["robot"]))
+    for link in robot["links"]:
+        for shape in link["visuals"] + link["collisions"]:
+            shape["geometry"]["path"] = None  # the mesh is identified by its product below
+    params = {
+        "robot": robot,
+        "choices": payload["choices"],
+        "fuse_static": payload["fuse_static"],
+        "free_joint": payload["free_joint"],
+        "home": [float(v) for v in qpos],
+        "settings": payload["settings"],
+        "versions": step_versions("selfcollision"),
+    }
+    inputs = [*payload["products"].values(), *(d["summary"] for d in payload["decompositions"])]
+    key = product_key("selfcollision", params, sorted(inputs, key=lambda p: Path(p).name))
+    with tempfile.TemporaryDirectory() as scratch:
+        if store is not None and store.fetch(key, Path(scratch)) is not None:
+            return json.loads((Path(scratch) / "matrix.json").read_text()), True
+        verdicts = [v.to_dict() for v in collision_matrix(model, qpos, settings)]
+        if store is not None:
+            matrix = Path(scratch) / "matrix.json"
+            matrix.write_text(json.dumps(verdicts, sort_keys=True))
+            store.store(key, Path(scratch), {"files": {"matrix.json": md5_file(matrix)}})
+    return verdicts, False
 
 
 def _compile(spec):

@@ -127,7 +127,19 @@ def test_a_visual_mesh_edit_does_not_rerun_the_matrix(tmp_path):
     assert "selfcollision" in mjcfbuild.build(manifest).ran
 
 
-def test_the_matrix_is_the_same_in_another_folder(tmp_path):
+def test_the_matrix_is_cached_and_the_same_in_another_folder(tmp_path, monkeypatch):
+    from mjcfbuild.engine.context import BuildContext
+    from mjcfbuild.engine.progress import Progress
+    from mjcfbuild.engine.runner import run_build
+
+    monkeypatch.setenv("MJCFBUILD_CACHE_DIR", str(tmp_path / "cache"))
     mjcfbuild.build(_robot(tmp_path / "one"))
-    mjcfbuild.build(_robot(tmp_path / "two"))
+    ctx = BuildContext.from_manifest_file(_robot(tmp_path / "two"), jobs=1)
+    run_build(ctx, Progress(quiet=True))
+    assert ctx.notes["selfcollision"] == "from cache"
     assert _matrix(tmp_path / "one") == _matrix(tmp_path / "two")
+
+    # Computed afresh (another cache, one worker), the matrix is the same.
+    monkeypatch.setenv("MJCFBUILD_CACHE_DIR", str(tmp_path / "other-cache"))
+    mjcfbuild.build(_robot(tmp_path / "three"), jobs=1)
+    assert _matrix(tmp_path / "three") == _matrix(tmp_path / "one")
