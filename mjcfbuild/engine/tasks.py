@@ -607,7 +607,8 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
 
 def _previews_task(ctx: BuildContext, prefix: str) -> dict:
     folder = report_dir(ctx) / "previews"
-    payload = {"model": str(ctx.robot_path), "folder": str(folder)}
+    # The scene: the robot at home, on its floor.
+    payload = {"model": str(ctx.scene_path), "folder": str(folder)}
     return _task(
         ctx,
         f"{prefix}previews",
@@ -615,7 +616,7 @@ def _previews_task(ctx: BuildContext, prefix: str) -> dict:
         "previews",
         payload,
         in_worker=True,
-        file_dep=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT)],
+        file_dep=[ctx.robot_path, ctx.scene_path, ctx.state(ASSEMBLY_REPORT)],
         targets=[],
         params={"folder": str(folder)},
     )
