@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from lxml import etree
 
@@ -165,7 +166,7 @@ def _apply_additions(
     write_excludes(root, options.excludes)
     assets = {name: Path(path).read_bytes() for name, path in prepared.files.items()}
 
-    def compile_tree(tree) -> object:
+    def compile_tree(tree) -> Any:
         xml = etree.tostring(tree, encoding="unicode")
         try:
             return mujoco.MjModel.from_xml_string(xml, assets)
