@@ -190,6 +190,7 @@ def _selfcollision_task(
         "initial": initial,
         "home": dict(ctx.manifest.home),
         "keep": [list(pair) for pair in settings.keep],
+        "home_state": settings.home_state,
         "settings": {
             "samples": settings.samples,
             "seed": settings.seed,
@@ -201,7 +202,16 @@ def _selfcollision_task(
     }
     params = {
         k: payload[k]
-        for k in ("robot", "choices", "fuse_static", "free_joint", "initial", "home", "keep")
+        for k in (
+            "robot",
+            "choices",
+            "fuse_static",
+            "free_joint",
+            "initial",
+            "home",
+            "keep",
+            "home_state",
+        )
     }
     params["settings"] = payload["settings"]
     params["srdf"] = payload["srdf"] is not None
@@ -518,6 +528,7 @@ def _assemble_task(
         "self_collision": str(matrix) if matrix else None,
         "floor": ctx.manifest.placement.floor,
         "srdf": str(srdf) if srdf else None,
+        "srdf_home": ctx.manifest.self_collision.home_state if srdf else None,
         "fuse_static": options.fuse_static,
         "free_joint": options.free_joint,
         "link_sites": options.link_sites,
@@ -551,6 +562,7 @@ def _assemble_task(
     params["assets_dir"] = payload["assets_dir"]
     params["self_collision"] = matrix is not None
     params["srdf"] = srdf is not None
+    params["srdf_home"] = payload["srdf_home"]
     return _task(
         ctx,
         f"{prefix}assemble",

@@ -113,6 +113,12 @@ class SelfCollisionSettings(_Strict):
         min_length=1,
         description="An SRDF (or xacro of one) whose <disable_collisions> pairs are excluded.",
     )
+    home_state: str = Field(
+        "home",
+        min_length=1,
+        description="The SRDF <group_state> that supplies the home pose, where it names a joint "
+        "robot.yaml's home: does not.",
+    )
 
 
 class Placement(_Strict):

@@ -54,7 +54,7 @@ def run(payload: dict) -> dict:
         control=control,
         actuators=ActuatorSettings(**payload["actuators"]),
         home=payload["home"],
-        home_state=(srdf or {}).get("states", {}).get("home"),
+        home_state=(srdf or {}).get("states", {}).get(payload["srdf_home"] or "home"),
         excludes=[tuple(pair) for pair in (matrix or {}).get("excludes", [])],
         manifest_label=payload["manifest_label"],
         fuse_static=payload["fuse_static"],

@@ -69,7 +69,7 @@ def run(payload: dict) -> dict:
     control = Ros2Control(
         joints=[ControlJoint(name, [], value, "") for name, value in payload["initial"].items()]
     )
-    home_state = _srdf_home(srdf, robot) if srdf else None
+    home_state = _srdf_home(srdf, robot, payload["home_state"]) if srdf else None
     home = home_values(robot, control, payload["home"], home_state, payload["manifest_label"])
     qpos = model.qpos0.copy()
     for value in home:
@@ -204,15 +204,15 @@ def _kept_body(link: str, body_of: dict[str, str], label: str, index: int) -> st
     return body_of[link]
 
 
-def _srdf_home(srdf: Srdf, robot) -> dict[str, float] | None:
-    state = srdf.states.get("home")
+def _srdf_home(srdf: Srdf, robot, name: str) -> dict[str, float] | None:
+    state = srdf.states.get(name)
     if state is None:
         return None
     names = {joint.name for joint in robot.joints}
     unknown = sorted(set(state) - names)
     if unknown:
         raise InputError(
-            f"group_state 'home' names joint '{unknown[0]}', which the robot does not have",
+            f"group_state '{name}' names joint '{unknown[0]}', which the robot does not have",
             file=srdf.label,
             hint=f"joints: {_listing(sorted(names))}",
         )
