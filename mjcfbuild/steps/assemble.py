@@ -95,6 +95,11 @@ def run(payload: dict) -> dict:
     write_output(
         report_path, (json.dumps(report, indent=1, sort_keys=True) + "\n").encode(), outputs
     )
+    lowest = assembly.readiness.lowest_point if assembly.readiness else None
+    floor = {"lowest_point": lowest}
+    write_output(
+        Path(payload["floor_record"]), (json.dumps(floor, sort_keys=True) + "\n").encode(), outputs
+    )
     failpoint("assemble")
     # The model is written last. If the build stops before this, the step has not succeeded
     # and the next build does it again, so an old model never passes for a current one.

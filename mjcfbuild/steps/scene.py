@@ -29,6 +29,5 @@ def _floor(payload: dict) -> float:
     """The floor height: as set, or 0 lowered under the lowest collision point at home."""
     if payload.get("floor") != "auto":
         return float(payload.get("floor") or 0.0)
-    report = json.loads(Path(payload["assembly_report"]).read_text())
-    lowest = (report.get("readiness") or {}).get("lowest_point")
+    lowest = json.loads(Path(payload["floor_record"]).read_text()).get("lowest_point")
     return min(float(lowest["height"]), 0.0) if lowest else 0.0
