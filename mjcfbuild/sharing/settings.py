@@ -74,9 +74,10 @@ class ExecutorSpec:
 
 
 def redact(url: str) -> str:
-    """``url`` without credentials or query string (they may hold secrets)."""
+    """``url`` without credentials, query or fragment (they may hold secrets); otherwise as
+    written, so messages show what the user typed."""
     parts = urlsplit(url)
-    if not parts.scheme or len(parts.scheme) == 1:
+    if "@" not in parts.netloc and not parts.query and not parts.fragment:
         return url
     host = parts.netloc.rpartition("@")[2]
     return f"{parts.scheme}://{host}{parts.path}"

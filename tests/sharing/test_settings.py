@@ -107,40 +107,42 @@ def test_a_protocol_whose_package_is_missing_names_the_extra():
 
 
 def write_arm(tmp_path, extra: str):
+    """The example arm with ``extra`` appended to its manifest; (folder, first added line)."""
     from tests.conftest import copy_example
 
     folder = copy_example("arm", tmp_path)
     manifest = folder / "robot.yaml"
-    manifest.write_text(manifest.read_text() + extra)
-    return folder
+    text = manifest.read_text()
+    manifest.write_text(text + extra)
+    return folder, len(text.splitlines()) + 1
 
 
 @pytest.mark.parametrize(
     ("extra", "env", "args", "code", "expected"),
     [
-        ("cache:\n  remote: 'sftp2://h/x'\n", {}, [], 3, "robot.yaml:14:"),
-        ("executor: 'dask:/nowhere'\n", {}, [], 3, "robot.yaml:13:"),
+        ("cache:\n  remote: 'sftp2://h/x'\n", {}, [], 3, "robot.yaml:{second}:3: cache.remote"),
+        ("executor: 'dask:/nowhere'\n", {}, [], 3, "robot.yaml:{first}:1: executor: 'dask:/no"),
         ("", {"MJCFBUILD_CACHE_REMOTE": "s3://"}, [], 2, "$MJCFBUILD_CACHE_REMOTE: 's3://'"),
         ("", {"MJCFBUILD_EXECUTOR": "tcp://h:1"}, [], 2, "$MJCFBUILD_EXECUTOR:"),
         ("", {}, ["--executor", "dask://h:port"], 2, "--executor: 'dask://h:port' has a port"),
     ],
 )
 def test_bad_addresses_are_one_line_errors(tmp_path, cli, extra, env, args, code, expected):
-    folder = write_arm(tmp_path, extra)
+    folder, added = write_arm(tmp_path, extra)
     done = cli("build", "-q", *args, cwd=folder, env=env)
     assert done.code == code, done.stderr
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("mjcfbuild: error: "), done.stderr
-    assert expected in lines[0]
+    assert expected.format(first=added, second=added + 1) in lines[0]
     assert not (folder / "mjcf").exists()  # refused before anything was built
 
 
 @pytest.mark.skipif(importlib.util.find_spec("gcsfs") is not None, reason="gcsfs is installed")
 def test_a_missing_package_in_robot_yaml_points_at_its_line(tmp_path, cli):
-    folder = write_arm(tmp_path, "cache:\n  remote: gs://team-bucket/robots\n")
+    folder, added = write_arm(tmp_path, "cache:\n  remote: gs://team-bucket/robots\n")
     done = cli("build", "-q", cwd=folder)
     assert done.code == 3
     assert done.stderr.strip() == (
-        "mjcfbuild: error: robot.yaml:14:3: cache.remote: a gs:// remote cache needs a "
+        f"mjcfbuild: error: robot.yaml:{added + 1}:3: cache.remote: a gs:// remote cache needs a "
         "package that is not installed (pip install 'mjcfbuild[gcs]', or build with --no-remote)"
     )
