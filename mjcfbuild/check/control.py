@@ -47,8 +47,13 @@ def check_control(model, passive: set[str], hold_tolerance: float, strict: bool)
                 f"{'above' if gap > 0 else 'below'} the floor (tolerance 1 mm)"
             )
     if home >= 0:
-        deviation, joint = hold_deviation(model, home, passive)
-        report.results["hold"] = {"max_deviation": deviation, "joint": joint, "floating": floating}
+        deviation, joint, tilt = hold_deviation(model, home, passive)
+        report.results["hold"] = {
+            "max_deviation": deviation,
+            "joint": joint,
+            "floating": floating,
+            "base_tilt": tilt if floating else None,
+        }
         if not floating and deviation > hold_tolerance:
             report.failures.append(
                 f"holding home's ctrl for 1 s, joint '{joint}' moved {deviation:.3g} from home "
@@ -113,8 +118,10 @@ def floor_gap(model, key: int) -> float | None:
     return lowest.height - _floor_height(model)
 
 
-def hold_deviation(model, key: int, passive: set[str]) -> tuple[float, str | None]:
-    """Largest distance of an actuated hinge or slide joint from home over 1 s of home ctrl."""
+def hold_deviation(model, key: int, passive: set[str]) -> tuple[float, str | None, float]:
+    """Largest distance of an actuated hinge or slide joint from home over 1 s of home ctrl,
+    its joint, and how far a floating base tilted by the end (rad; a robot that does not stand
+    in its home pose falls over)."""
     import mujoco
     import numpy as np
 
@@ -140,7 +147,18 @@ def hold_deviation(model, key: int, passive: set[str]) -> tuple[float, str | Non
         if deviation[index] > worst:
             worst = float(deviation[index])
             worst_joint = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, watched[index])
-    return worst, worst_joint
+    return worst, worst_joint, _base_tilt(model, data)
+
+
+def _base_tilt(model, data) -> float:
+    """The angle between the first free body's up axis and the world's (0 without one)."""
+    import mujoco
+
+    for joint in range(model.njnt):
+        if model.jnt_type[joint] == mujoco.mjtJoint.mjJNT_FREE:
+            up = data.xmat[model.jnt_bodyid[joint]].reshape(3, 3)[2, 2]
+            return float(math.acos(max(-1.0, min(1.0, up))))
+    return 0.0
 
 
 def menagerie_test(model) -> tuple[list[str], bool]:

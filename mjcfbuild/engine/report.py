@@ -197,8 +197,11 @@ def _checks(check: dict) -> list[str]:
     hold = check.get("hold")
     if hold:
         where = f" ({hold['joint']})" if hold.get("joint") else ""
+        tilt = hold.get("base_tilt")
+        tilted = f"; the base tilted {tilt:.2g} rad" if tilt is not None else ""
         lines.append(
-            f"| hold home's ctrl for 1 s | largest deviation {hold['max_deviation']:.3g}{where} |"
+            f"| hold home's ctrl for 1 s | largest deviation {hold['max_deviation']:.3g}{where}"
+            f"{tilted} |"
         )
     menagerie = check.get("menagerie_test")
     if menagerie:

@@ -43,4 +43,19 @@ def run(payload: dict) -> dict:
             file=payload["model_label"],
             hint=f"{more} more failure{'s' if more > 1 else ''} in the report" if more else None,
         )
-    return {"outputs": outputs, "warnings": []}
+    return {"outputs": outputs, "warnings": _standing_notes(report.results)}
+
+
+# A floating base tilting more than this in 1 s of holding home is falling over.
+FALLING_TILT = 0.3
+
+
+def _standing_notes(results: dict) -> list[str]:
+    """A warning when a floating robot does not stand in its home pose."""
+    tilt = (results.get("hold") or {}).get("base_tilt")
+    if tilt is None or tilt <= FALLING_TILT:
+        return []
+    return [
+        f"the robot falls over from its home pose (its base tilts {tilt:.2g} rad in 1 s of "
+        "holding it): give home: a pose it stands in, such as bent knees"
+    ]
