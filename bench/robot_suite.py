@@ -93,7 +93,10 @@ def main() -> None:
     for r in rows:
         gap = f"{r['floor_gap'] * 1000:.2f}" if r["floor_gap"] is not None else "fixed base"
         hold = r["hold"].get("max_deviation")
-        hold_text = f"{hold:.3f}" + (" (floating)" if r["hold"].get("floating") else "")
+        tilt = r["hold"].get("base_tilt")
+        hold_text = f"{hold:.3f}" + (
+            f" (floating; base tilts {tilt:.2f} rad)" if tilt is not None else ""
+        )
         menagerie = r["menagerie"]
         test = "pass" if menagerie.get("finite") and not menagerie.get("warnings") else "FAIL"
         print(
