@@ -166,11 +166,12 @@ def _prefix_element(element: etree._Element, prefix: str) -> None:
             sub.set("link", prefix + sub.get("link", ""))
         elif sub.tag == "mimic" and sub.get("joint") is not None:
             sub.set("joint", prefix + sub.get("joint", ""))
-        elif sub.tag == "material" and sub.get("name"):
+        elif (sub.tag == "material" and sub.get("name")) or (
+            sub.tag in ("joint", "sensor", "actuator")
+            and tag in ("transmission", "ros2_control")
+            and sub.get("name")
+        ):
             sub.set("name", prefix + sub.get("name", ""))
-        elif sub.tag in ("joint", "sensor", "actuator") and tag in ("transmission", "ros2_control"):
-            if sub.get("name"):
-                sub.set("name", prefix + sub.get("name", ""))
 
 
 def _rebase_files(element: etree._Element, part: Part, base_dir: Path) -> None:
