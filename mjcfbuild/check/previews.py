@@ -1,4 +1,5 @@
-"""Preview pictures of a built model, rendered offscreen: front and side, visual and collision.
+"""Preview pictures of a built model at home on its floor, rendered offscreen: front and side,
+visual and collision.
 
 MuJoCo renders through OpenGL; on a machine without a display this needs EGL (set
 ``MUJOCO_GL=egl``, which mjcfbuild does when nothing else is set) and Mesa's EGL packages. The
@@ -42,9 +43,14 @@ def render_previews(
     except ValueError as exc:  # the check reports why; there is nothing to draw
         raise ModelError(f"the model does not load: {str(exc).splitlines()[0]}") from None
     data = mujoco.MjData(model)
+    home = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home")
+    if home >= 0:
+        mujoco.mj_resetDataKeyframe(model, data, home)
     mujoco.mj_forward(model, data)
-    collides = (model.geom_contype != 0) | (model.geom_conaffinity != 0)
+    planes = model.geom_type == mujoco.mjtGeom.mjGEOM_PLANE
+    collides = ((model.geom_contype != 0) | (model.geom_conaffinity != 0)) & ~planes
     model.geom_group[:] = np.where(collides, 3, 2)
+    model.geom_group[planes] = 0  # the floor shows in every picture
     model.geom_rgba[collides] = COLLISION_RGBA
     model.geom_matid[collides] = -1
     center, distance = _framing(model, data)
@@ -60,6 +66,7 @@ def render_previews(
             for kind in KINDS:
                 option = mujoco.MjvOption()
                 option.geomgroup[:] = 0
+                option.geomgroup[0] = 1
                 option.geomgroup[2 if kind == "visual" else 3] = 1
                 option.sitegroup[:] = 0
                 renderer.update_scene(data, camera, option)
@@ -77,6 +84,7 @@ def render_previews(
 
 def _framing(model, data):
     """A point to look at and a distance that fits every geom's bounding box in the view."""
+    import mujoco
     import numpy as np
 
     if model.ngeom == 0:
@@ -84,10 +92,14 @@ def _framing(model, data):
     signs = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], dtype=float)
     corners = []
     for geom in range(model.ngeom):
+        if model.geom_type[geom] == mujoco.mjtGeom.mjGEOM_PLANE:
+            continue  # infinite: the robot is what the picture frames
         center, half = model.geom_aabb[geom][:3], model.geom_aabb[geom][3:]
         local = center + signs * half
         rotation = data.geom_xmat[geom].reshape(3, 3)
         corners.append(local @ rotation.T + data.geom_xpos[geom])
+    if not corners:
+        return np.zeros(3), 1.0
     points = np.concatenate(corners)
     low, high = points.min(axis=0), points.max(axis=0)
     center = (low + high) / 2

@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
+from typing import Any
 
 from lxml import etree
 
@@ -93,7 +94,7 @@ def make_ready(
     choices: list[ActuatorChoice],
     home: list[HomeValue],
     floating: bool,
-    compile_tree: Callable[[etree._Element], object],
+    compile_tree: Callable[[etree._Element], Any],
 ) -> Readiness:
     """Add actuators, joint dynamics and the home keyframe to ``root``; stand a floating base on
     the floor. ``compile_tree`` turns the tree into an ``MjModel``."""

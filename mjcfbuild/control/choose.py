@@ -70,20 +70,6 @@ def choose_actuators(
     choices = []
     for joint in actuated_joints(robot):
         index, rule = _first_rule(joint.name, settings.rules)
-        gains = rule or ActuatorRule(joints=["*"])
-        common = {
-            "kp": gains.kp,
-            "kv": gains.kv,
-            "frequency": gains.frequency or settings.frequency,
-            "damping_ratio": gains.damping_ratio or settings.damping_ratio,
-            "forcerange": gains.forcerange or _effort_range(joint),
-            "armature": gains.armature,
-            "damping": gains.damping,
-            "frictionloss": gains.frictionloss,
-            "gravcomp": bool(gains.gravcomp),
-            "rule": index,
-            "stiffen": gains.kp is None and gains.frequency is None,
-        }
         if joint.name in user_driven:
             kind, source = "user", "user"
         elif rule is not None and rule.type is not None:
@@ -98,8 +84,44 @@ def choose_actuators(
             kind, source = _default_type(joint, settings), "transmission"
         else:
             kind, source = _default_type(joint, settings), "default"
-        choices.append(ActuatorChoice(joint.name, kind, source, **common))
+        choices.append(_choice(joint, kind, source, settings, index, rule))
     return choices
+
+
+def _choice(
+    joint: Joint,
+    kind: str,
+    source: str,
+    settings: ActuatorSettings,
+    index: int | None,
+    rule: ActuatorRule | None,
+) -> ActuatorChoice:
+    """The choice for ``joint``: gains and dynamics from its rule, else the defaults."""
+    if rule is None:
+        return ActuatorChoice(
+            joint.name,
+            kind,
+            source,
+            frequency=settings.frequency,
+            damping_ratio=settings.damping_ratio,
+            forcerange=_effort_range(joint),
+        )
+    return ActuatorChoice(
+        joint.name,
+        kind,
+        source,
+        kp=rule.kp,
+        kv=rule.kv,
+        frequency=rule.frequency or settings.frequency,
+        damping_ratio=rule.damping_ratio or settings.damping_ratio,
+        forcerange=rule.forcerange or _effort_range(joint),
+        armature=rule.armature,
+        damping=rule.damping,
+        frictionloss=rule.frictionloss,
+        gravcomp=bool(rule.gravcomp),
+        rule=index,
+        stiffen=rule.kp is None and rule.frequency is None,
+    )
 
 
 def check_rules(robot: Robot, settings: ActuatorSettings, manifest_label: str) -> None:

@@ -70,10 +70,13 @@ def _mimic_value(joint: Joint, robot: Robot, values: dict[str, HomeValue]) -> fl
     """multiplier * leader + offset, following chains of mimics."""
     joints = {j.name: j for j in robot.joints}
     seen = {joint.name}
+    assert joint.mimic is not None
     leader, multiplier, offset = joint.mimic.joint, joint.mimic.multiplier, joint.mimic.offset
-    while leader not in values and joints[leader].mimic is not None and leader not in seen:
-        seen.add(leader)
+    while leader not in values and leader not in seen:
         step = joints[leader].mimic
+        if step is None:
+            break
+        seen.add(leader)
         leader, multiplier, offset = (
             step.joint,
             multiplier * step.multiplier,

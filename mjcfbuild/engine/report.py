@@ -285,8 +285,10 @@ def _self_collision(matrix: dict | None) -> list[str]:
     ]
     if excluded:
         lines += ["| body 1 | body 2 | reason | in collision |", "|---|---|---|---:|"]
+        # MuJoCo never reports parent-child contacts, so adjacent pairs have no fraction.
         lines += [
-            f"| {p['body1']} | {p['body2']} | {p['reason']} | {p['fraction']:.0%} |"
+            f"| {p['body1']} | {p['body2']} | {p['reason']} | "
+            f"{'-' if p['reason'] == 'adjacent' else format(p['fraction'], '.0%')} |"
             for p in excluded
         ]
         lines.append("")

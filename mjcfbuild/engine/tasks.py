@@ -245,13 +245,14 @@ def collision_settings(ctx: BuildContext, plan: dict) -> dict:
     """
     settings = ctx.manifest.collision
     defaults = dict(settings.decompose_defaults)
+    limit = ctx.manifest.meshes.max_hull_vertices
     thresholds: dict[str, float] = {}
     for source in ("urdf", "file"):
         for item in (plan["inputs"].get(source) or {}).get("decompositions", []):
             thresholds[item["mesh"]] = item["threshold"]
     for item in ctx.manifest.mujoco_inputs.decompose:
         thresholds[item.mesh] = item.threshold
-    rules = list(settings.effective_rules) + [
+    rules = [dict(rule, decompose=dict(rule["decompose"])) for rule in settings.effective_rules] + [
         {
             "links": [],
             "meshes": [mesh],
@@ -260,6 +261,10 @@ def collision_settings(ctx: BuildContext, plan: dict) -> dict:
         }
         for mesh, threshold in sorted(thresholds.items())
     ]
+    if limit is not None:  # CoACD parts respect the hull vertex limit too
+        for params in [defaults, *(rule["decompose"] for rule in rules)]:
+            if params:
+                params["max_ch_vertex"] = min(int(params["max_ch_vertex"]), limit)
     return {"default": settings.default, "rules": rules, "decompose": defaults}
 
 
@@ -453,6 +458,11 @@ def _mesh_task(ctx: BuildContext, mesh_id: str, path: str, roles: list[str], pre
         "max_faces": meshes.max_faces,
         "collada_up_axis": meshes.collada_up_axis,
     }
+    # Only when set, so products (and their cache keys) of builds without them stay the same.
+    if meshes.collision_max_faces is not None and "collision" in roles:
+        options["collision_max_faces"] = meshes.collision_max_faces
+    if meshes.max_hull_vertices is not None and "hull" in roles:
+        options["max_hull_vertices"] = meshes.max_hull_vertices
     payload = {
         "source": path,
         "product_dir": str(ctx.products_dir / mesh_id),
@@ -542,6 +552,7 @@ def _assemble_task(
         "fuse_static": options.fuse_static,
         "free_joint": options.free_joint,
         "link_sites": options.link_sites,
+        "max_hull_vertices": ctx.manifest.meshes.max_hull_vertices,
         "inertia": {
             "mode": inertia.policy,
             "min_mass": inertia.min_mass,
@@ -560,6 +571,7 @@ def _assemble_task(
             "actuators",
             "home",
             "floor",
+            "max_hull_vertices",
             "fuse_static",
             "free_joint",
             "link_sites",
@@ -638,7 +650,8 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
 
 def _previews_task(ctx: BuildContext, prefix: str) -> dict:
     folder = report_dir(ctx) / "previews"
-    payload = {"model": str(ctx.robot_path), "folder": str(folder)}
+    # The scene: the robot at home, on its floor.
+    payload = {"model": str(ctx.scene_path), "folder": str(folder)}
     return _task(
         ctx,
         f"{prefix}previews",
@@ -646,7 +659,7 @@ def _previews_task(ctx: BuildContext, prefix: str) -> dict:
         "previews",
         payload,
         in_worker=True,
-        file_dep=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT)],
+        file_dep=[ctx.robot_path, ctx.scene_path, ctx.state(ASSEMBLY_REPORT)],
         targets=[],
         params={"folder": str(folder)},
     )

@@ -11,7 +11,7 @@ from mjcfbuild import __version__
 STEP_FORMATS = {
     "expand": 1,
     "plan": 3,
-    "mesh": 3,
+    "mesh": 4,
     "decompose": 1,
     "assemble": 6,
     "scene": 3,

@@ -49,6 +49,8 @@ class FrozenManifest:
 def _thaw(value):
     if isinstance(value, dict) and value.get(_MODEL_TAG):
         return FrozenManifest(value)
+    if isinstance(value, list):  # lists of models (rules, cameras, ...) read by attribute too
+        return [_thaw(item) for item in value]
     return value
 
 

@@ -104,9 +104,27 @@ class MeshSettings(StrictModel):
         None,
         gt=3,
         description=(
-            "Face budget per mesh file: meshes with more faces are simplified (quadric "
-            "decimation), with a warning. Default: no budget (meshes are written as OBJ, "
-            "which MuJoCo reads at any size)."
+            "Face budget of the visual meshes of each mesh file: heavier ones are simplified "
+            "(quadric decimation), with a warning. Default: no budget (meshes are written as "
+            "OBJ, which MuJoCo reads at any size)."
+        ),
+    )
+    collision_max_faces: int | None = Field(
+        None,
+        gt=3,
+        description=(
+            "Face budget of a mesh used as collision geometry (authored or visual policy), "
+            "apart from the visual budget. Default: no budget."
+        ),
+    )
+    max_hull_vertices: int | None = Field(
+        None,
+        gt=3,
+        description=(
+            "Most vertices of any convex hull the model collides with: hulls of the hull and "
+            "primitive policies, CoACD parts (max_ch_vertex), and MuJoCo's own hulls of "
+            "collision meshes (maxhullvert). Fewer vertices make contacts cheaper. Default: "
+            "no limit."
         ),
     )
     max_file_mb: float = Field(

@@ -35,18 +35,19 @@ def convert_mesh(
     roles: list[str],
     max_faces: int | None = None,
     apply_up_axis: bool = False,
+    collision_max_faces: int | None = None,
+    max_hull_vertices: int | None = None,
 ) -> dict:
-    """Write the product of ``source`` into ``product_dir`` and return its summary."""
-    parts = load_parts(source, apply_up_axis=apply_up_axis)
+    """Write the product of ``source`` into ``product_dir`` and return its summary.
+
+    ``max_faces`` budgets the visual parts, ``collision_max_faces`` the collision mesh, and
+    ``max_hull_vertices`` the convex hull."""
+    original = load_parts(source, apply_up_axis=apply_up_axis)
     warnings: list[str] = []
-    budget = max_faces
-    total = sum(len(p.faces) for p in parts)
-    if budget is not None and total > budget:
-        parts = [_simplify(part, max(4, int(len(part.faces) * budget / total))) for part in parts]
-        warnings.append(
-            f"{source.name}: {total} faces over the budget of {budget}; "
-            f"simplified to {sum(len(p.faces) for p in parts)}"
-        )
+    parts = _within_budget(original, max_faces, f"{source.name} (visual)", warnings)
+    whole_parts = _within_budget(
+        original, collision_max_faces, f"{source.name} (collision)", warnings
+    )
     product_dir.mkdir(parents=True, exist_ok=True)
     files: dict[str, str] = {}
 
@@ -76,13 +77,14 @@ def convert_mesh(
                 "volume": _volume(part.vertices, part.faces),
             }
         )
-    vertices, faces = _whole(parts)
+    vertices, faces = _whole(whole_parts)
     collision = None
     if "collision" in roles:
-        collision = "mesh.obj" if single else store("collision.obj", obj_bytes(vertices, faces))
+        same = single and whole_parts is parts  # no budget made them differ
+        collision = "mesh.obj" if same else store("collision.obj", obj_bytes(vertices, faces))
     hull = None
     if "hull" in roles:
-        hull = store("hull.obj", _hull_obj(vertices))
+        hull = store("hull.obj", _hull_obj(_whole(original)[0], max_hull_vertices))
     for stale in product_dir.iterdir():
         if stale.name not in files:
             stale.unlink()
@@ -96,6 +98,21 @@ def convert_mesh(
         "files": dict(sorted(files.items())),
         "warnings": warnings,
     }
+
+
+def _within_budget(
+    parts: list[MeshPart], budget: int | None, what: str, warnings: list[str]
+) -> list[MeshPart]:
+    """``parts`` simplified together to about ``budget`` faces (the same list if within it)."""
+    total = sum(len(p.faces) for p in parts)
+    if budget is None or total <= budget:
+        return parts
+    simplified = [_simplify(part, max(4, int(len(part.faces) * budget / total))) for part in parts]
+    warnings.append(
+        f"{what}: {total} faces over the budget of {budget}; "
+        f"simplified to {sum(len(p.faces) for p in simplified)}"
+    )
+    return simplified
 
 
 def _obj(part: MeshPart) -> bytes:
@@ -115,16 +132,33 @@ def _volume(vertices: np.ndarray, faces: np.ndarray) -> float:
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
 
 
-def _hull_obj(vertices: np.ndarray) -> bytes:
+def _hull_obj(vertices: np.ndarray, max_vertices: int | None = None) -> bytes:
     import trimesh
 
     hull = trimesh.Trimesh(vertices=vertices, process=False).convex_hull
+    if max_vertices is not None and len(hull.vertices) > max_vertices:
+        kept = _farthest_points(np.asarray(hull.vertices), max_vertices)
+        hull = trimesh.Trimesh(vertices=kept, process=False).convex_hull
     order = np.lexsort(np.round(hull.vertices, 12).T[::-1])  # a stable vertex order
     rank = np.empty_like(order)
     rank[order] = np.arange(len(order))
     faces = rank[hull.faces]
     faces = faces[np.lexsort(np.sort(faces, axis=1).T[::-1])]
     return obj_bytes(hull.vertices[order], faces)
+
+
+def _farthest_points(points: np.ndarray, count: int) -> np.ndarray:
+    """``count`` of ``points`` spread as far apart as possible (greedy farthest-point
+    sampling from the lexicographically first point, so the choice is deterministic)."""
+    order = np.lexsort(np.round(points, 12).T[::-1])
+    points = points[order]
+    chosen = [0]
+    distance = np.linalg.norm(points - points[0], axis=1)
+    for _ in range(count - 1):
+        index = int(np.argmax(distance))
+        chosen.append(index)
+        distance = np.minimum(distance, np.linalg.norm(points - points[index], axis=1))
+    return points[sorted(chosen)]
 
 
 def _simplify(part: MeshPart, target_faces: int) -> MeshPart:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from lxml import etree
 
@@ -47,6 +48,7 @@ class AssemblyOptions:
     fuse_static: bool = True
     free_joint: bool = False
     link_sites: str = "all"
+    max_hull_vertices: int | None = None  # MuJoCo's maxhullvert on collision meshes
     inertia: InertiaPolicy = field(default_factory=InertiaPolicy)
     header: str = ""
     choices: list[CollisionChoice] | None = None  # default: the URDF's authored collisions
@@ -165,7 +167,7 @@ def _apply_additions(
     write_excludes(root, options.excludes)
     assets = {name: Path(path).read_bytes() for name, path in prepared.files.items()}
 
-    def compile_tree(tree) -> object:
+    def compile_tree(tree) -> Any:
         xml = etree.tostring(tree, encoding="unicode")
         try:
             return mujoco.MjModel.from_xml_string(xml, assets)
@@ -302,6 +304,12 @@ def _finish(
         for geom in spec.geoms:
             if geom.meshname == old:
                 geom.meshname = asset.name
+
+    if options.max_hull_vertices is not None:
+        colliding = {r.mesh for r in prepared.geoms.values() if r.role == "collision" and r.mesh}
+        for mesh in spec.meshes:
+            if mesh.name in colliding:
+                mesh.maxhullvert = options.max_hull_vertices
 
     authored = _unique_authored_names(prepared.geoms.values())
     for geom in spec.geoms:

@@ -90,6 +90,8 @@ def _run(kind: str, options: dict, source: Path, output: Path) -> dict:
             options["roles"],
             max_faces=options["max_faces"],
             apply_up_axis=options["collada_up_axis"] == "apply",
+            collision_max_faces=options.get("collision_max_faces"),
+            max_hull_vertices=options.get("max_hull_vertices"),
         )
     from mjcfbuild.collision.decompose import decompose
 

@@ -60,6 +60,7 @@ def run(payload: dict) -> dict:
         fuse_static=payload["fuse_static"],
         free_joint=payload["free_joint"],
         link_sites=payload["link_sites"],
+        max_hull_vertices=payload.get("max_hull_vertices"),
         inertia=InertiaPolicy(**payload["inertia"]),
         header=payload["header"],
         choices=choices,

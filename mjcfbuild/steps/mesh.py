@@ -34,6 +34,8 @@ def run(payload: dict) -> dict:
             options["roles"],
             max_faces=options["max_faces"],
             apply_up_axis=options["collada_up_axis"] == "apply",
+            collision_max_faces=options.get("collision_max_faces"),
+            max_hull_vertices=options.get("max_hull_vertices"),
         )
         if store:
             store.store(key, product_dir, summary)

@@ -47,3 +47,34 @@ def test_packages_without_package_xml_are_inferred_from_the_uris(cli, tmp_path):
     assert "# jvrc_description: inferred (no package.xml)" in text and "meshes/base.stl" in text
     built = cli("build", "-q", "--no-check", cwd=work)
     assert built.code == EXIT_OK, built.stderr
+
+
+def test_init_writes_commented_actuators_and_home_sections(cli, tmp_path):
+    source = EXAMPLES / "arm" / "urdf" / "arm.urdf.xacro"
+    assert cli("init", str(source), "-o", "robot.yaml", cwd=tmp_path).code == EXIT_OK
+    text = (tmp_path / "robot.yaml").read_text()
+    assert "\nactuators:\n  default: position" in text
+    assert "\nhome: {}\n" in text and '#   "*elbow*": 1.57' in text
+    assert "# self_collision: {srdf: config/robot.srdf}" in text
+    assert "free_joint: false" in text  # an arm: no leg words in its names
+
+
+def test_init_proposes_a_free_joint_for_a_legged_robot_and_says_why(cli, tmp_path):
+    from mjcfbuild.manifest.loading import load_manifest
+    from tests.conftest import INERTIA, write
+
+    legs = "".join(
+        f'<link name="{leg}_thigh">{INERTIA}</link>'
+        f'<joint name="{leg}_hip_joint" type="revolute"><parent link="body"/>'
+        f'<child link="{leg}_thigh"/><axis xyz="0 1 0"/>'
+        '<limit lower="-1" upper="1" effort="5" velocity="1"/></joint>'
+        for leg in ("FL", "FR", "RL", "RR")
+    )
+    write(
+        tmp_path / "dog.urdf", f'<robot name="dog"><link name="body">{INERTIA}</link>{legs}</robot>'
+    )
+    assert cli("init", "dog.urdf", "-o", "robot.yaml", cwd=tmp_path).code == EXIT_OK
+    text = (tmp_path / "robot.yaml").read_text()
+    assert "free_joint: true" in text
+    assert "say this robot walks" in text and "hip" in text
+    assert load_manifest(tmp_path / "robot.yaml").options.free_joint is True

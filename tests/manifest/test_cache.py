@@ -41,3 +41,18 @@ def test_cache_hit_does_not_import_pydantic(tmp_path):
     second = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
     assert first.stdout.split() == ["Manifest", "True"]
     assert second.stdout.split() == ["FrozenManifest", "False"]
+
+
+def test_lists_of_settings_in_a_cached_manifest_read_by_attribute(tmp_path, monkeypatch):
+    monkeypatch.setenv("MJCFBUILD_CACHE_DIR", str(tmp_path / "cache"))
+    path = write(
+        tmp_path / "robot.yaml",
+        "name: r\nsource: {urdf: r.urdf}\n"
+        "actuators:\n  rules: [{joints: ['*'], kp: 5}]\n"
+        "mujoco_inputs:\n  decompose: [{mesh: base, threshold: 0.1}]\n",
+    )
+    fresh = load_manifest(path, use_cache=True)
+    cached = load_manifest(path, use_cache=True)
+    assert isinstance(cached, FrozenManifest)
+    assert cached.actuators.rules[0].joints == fresh.actuators.rules[0].joints == ["*"]
+    assert cached.mujoco_inputs.decompose[0].mesh == "base"

@@ -38,3 +38,40 @@ def test_products_are_reproducible(tmp_path):
     assert (tmp_path / "a" / "part0.obj").read_bytes() == (
         tmp_path / "b" / "part0.obj"
     ).read_bytes()
+
+
+def _sphere(path):
+    import trimesh
+
+    trimesh.creation.icosphere(subdivisions=3, radius=0.1).export(path)
+    return path
+
+
+def test_visual_and_collision_budgets_are_separate(tmp_path):
+    source = _sphere(tmp_path / "ball.stl")  # 1280 faces
+    summary = convert_mesh(
+        source, tmp_path / "out", ["visual", "collision"], max_faces=1000, collision_max_faces=200
+    )
+    assert 900 <= summary["parts"][0]["faces"] <= 1000
+    assert summary["collision"] == "collision.obj"
+    collision = (tmp_path / "out" / "collision.obj").read_text()
+    assert 150 <= collision.count("\nf ") <= 200
+    assert any("(collision): 1280 faces over the budget of 200" in w for w in summary["warnings"])
+
+    # Without a collision budget the visual budget no longer decimates collision geometry.
+    summary = convert_mesh(source, tmp_path / "two", ["visual", "collision"], max_faces=1000)
+    collision = (tmp_path / "two" / summary["collision"]).read_text()
+    assert collision.count("\nf ") == 1280
+
+
+def test_the_hull_keeps_at_most_the_vertex_limit_and_stays_inside(tmp_path):
+    import numpy as np
+    import trimesh
+
+    source = _sphere(tmp_path / "ball.stl")  # its hull has 642 vertices
+    summary = convert_mesh(source, tmp_path / "out", ["hull"], max_hull_vertices=32)
+    hull = trimesh.load(tmp_path / "out" / summary["hull"], process=False)
+    assert 16 <= len(hull.vertices) <= 32
+    assert np.linalg.norm(hull.vertices, axis=1).max() <= 0.1 + 1e-6  # original (float32) points
+    again = convert_mesh(source, tmp_path / "again", ["hull"], max_hull_vertices=32)
+    assert again["files"] == summary["files"]  # deterministic

@@ -120,3 +120,17 @@ def test_inertia_policy_fail_names_the_link(cli, tmp_path):
     repaired = cli("build", cwd=tmp_path)
     assert repaired.code == 0
     assert "body 'arm': moving body with too small a mass; mass 0 -> mass 0.0001" in repaired.stderr
+
+
+def test_the_hull_vertex_limit_reaches_mujoco_and_coacd(arm):
+    _, model = build_arm(
+        arm,
+        "meshes: {max_hull_vertices: 16}\n"
+        "collision:\n  rules:\n    - meshes: ['upper_arm.*']\n      policy: hull\n",
+    )
+    import mujoco
+
+    mesh = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_MESH, "upper_arm_hull")
+    assert model.mesh_vertnum[mesh] <= 16
+    text = (arm / "mjcf" / "example_arm.xml").read_text()
+    assert 'maxhullvert="16"' in text
