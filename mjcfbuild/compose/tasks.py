@@ -9,6 +9,7 @@ meshes stay up to date when the gripper changes.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.errors import ManifestError, MjcfbuildError
@@ -27,7 +28,7 @@ def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
     if not parts:
         return []
     tasks = []
-    entries = []
+    entries: list[dict[str, Any]] = []
     for index, part in enumerate(parts):
         source = _part_source(ctx, index, part)
         packages = _part_packages(ctx, index, part)
