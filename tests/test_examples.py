@@ -39,3 +39,12 @@ def test_arm_meshes_are_exactly_what_the_script_generates():
 def test_arm_example_covers_the_formats_it_promises():
     suffixes = {p.suffix for p in (EXAMPLES / "arm" / "meshes").iterdir()}
     assert {".stl", ".dae", ".obj"} <= suffixes
+
+
+def test_gripper_meshes_are_exactly_what_the_script_generates():
+    folder = EXAMPLES / "arm_gripper" / "gripper"
+    spec = importlib.util.spec_from_file_location("make_gripper_meshes", folder / "make_meshes.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    for name, data in module.meshes().items():
+        assert (folder / "meshes" / name).read_bytes() == data, name

@@ -166,7 +166,7 @@ def _manifest(ctx, args) -> int:
 
     from mjcfbuild.check.model_check import check_model
     from mjcfbuild.engine.report import write_report
-    from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN, SOURCE_URDF
+    from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN, planned_urdf
     from mjcfbuild.urdf.model import robot_from_dict
 
     if not ctx.robot_path.exists() or not ctx.state(PLAN).exists():
@@ -187,7 +187,7 @@ def _manifest(ctx, args) -> int:
         {r["body"] for r in assembly.get("repairs", [])},
         _options(args, ctx.manifest.check),
         readiness=assembly.get("readiness") or {},
-        urdf=_read_if_present(ctx.state(SOURCE_URDF)),
+        urdf=_read_if_present(planned_urdf(ctx)),
     )
     data = {"passes": report.passes, "failures": report.failures, **report.results}
     ctx.state(CHECK_RESULTS).write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")

@@ -42,6 +42,7 @@ from mjcfbuild.urdf.model import robot_from_dict
 
 SOURCE_URDF = "source.urdf"
 SOURCE_DEPS = "source.deps.json"
+COMPOSED_URDF = "composed.urdf"
 PLAN = "plan.json"
 ASSEMBLY_REPORT = "assembly.json"
 # The lowest collision point at home, apart from the assembly report, so the scene's floor
@@ -52,7 +53,9 @@ URDF_EXPORT_RECORD = "urdf_export.json"
 
 def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
     """The tasks that decide what else gets built."""
-    return [_expand_task(ctx, prefix), _plan_task(ctx, prefix)]
+    from mjcfbuild.compose.tasks import composition_tasks
+
+    return [_expand_task(ctx, prefix), *composition_tasks(ctx, prefix), _plan_task(ctx, prefix)]
 
 
 def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True) -> list[dict]:
@@ -353,7 +356,30 @@ def _require_file(ctx: BuildContext, path: Path, what: str, key: str) -> None:
 def _expand_task(ctx: BuildContext, prefix: str) -> dict:
     source = ctx.source_path
     _require_file(ctx, source, "source file", "source")
-    output, deps = ctx.state(SOURCE_URDF), ctx.state(SOURCE_DEPS)
+    return expand_file_task(
+        ctx,
+        f"{prefix}expand",
+        source,
+        ctx.source_kind,
+        ctx.manifest.source.xacro_args,
+        ctx.resolver.explicit,
+        ctx.state(SOURCE_URDF),
+        ctx.state(SOURCE_DEPS),
+    )
+
+
+def expand_file_task(
+    ctx: BuildContext,
+    name: str,
+    source: Path,
+    kind: str,
+    args: dict[str, str],
+    packages: dict[str, Path],
+    output: Path,
+    deps: Path,
+) -> dict:
+    """The task expanding (xacro) or reading (URDF) ``source`` into ``output``; the files it
+    read are listed in ``deps`` and checked from the next build on."""
     depfile = Depfile.read(deps)
     file_dep = [source]
     extra = []
@@ -362,23 +388,22 @@ def _expand_task(ctx: BuildContext, prefix: str) -> dict:
         file_dep += [Path(f) for f in depfile.files if Path(f).exists()]
         if stale:
             extra.append(always_stale(stale))
-    resolver = ctx.resolver
     payload = {
-        "kind": ctx.source_kind,
+        "kind": kind,
         "source": str(source),
-        "args": ctx.manifest.source.xacro_args,
-        "packages": {name: str(path) for name, path in resolver.explicit.items()},
+        "args": args,
+        "packages": {package: str(path) for package, path in packages.items()},
         "environment": {key: ctx.environ.get(key, "") for key in ENV_VARIABLES},
         "output": str(output),
         "depfile": str(deps),
     }
     return _task(
         ctx,
-        f"{prefix}expand",
+        name,
         f"expand {ctx.label(source)}",
         "expand",
         payload,
-        in_worker=ctx.source_kind == "xacro",
+        in_worker=kind == "xacro",
         file_dep=file_dep,
         targets=[output, deps],
         params={k: v for k, v in payload.items() if k not in ("output", "depfile")},
@@ -386,13 +411,19 @@ def _expand_task(ctx: BuildContext, prefix: str) -> dict:
     )
 
 
+def planned_urdf(ctx: BuildContext) -> Path:
+    """The URDF the plan reads and the check compares with: the expanded source, or with
+    ``attach:`` parts, the source with the parts joined to it."""
+    return ctx.state(COMPOSED_URDF) if ctx.manifest.attach else ctx.state(SOURCE_URDF)
+
+
 def _plan_task(ctx: BuildContext, prefix: str) -> dict:
-    urdf = ctx.state(SOURCE_URDF)
+    urdf = planned_urdf(ctx)
     inputs_file = None
     if ctx.manifest.mujoco_inputs.file:
         inputs_file = ctx.resolve(ctx.manifest.mujoco_inputs.file)
         _require_file(ctx, inputs_file, "inputs file", "mujoco_inputs.file")
-    expanded = ctx.source_kind == "xacro"
+    expanded = ctx.source_kind == "xacro" or bool(ctx.manifest.attach)
     payload = {
         "urdf": str(urdf),
         "display": ctx.label(urdf if expanded else ctx.source_path),
@@ -610,7 +641,7 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
         "model": str(ctx.robot_path),
         "model_label": ctx.label(ctx.robot_path),
         "scene": str(ctx.scene_path),
-        "urdf": str(ctx.state(SOURCE_URDF)),  # for the check's own reader of the URDF
+        "urdf": str(planned_urdf(ctx)),  # for the check's own reader of the URDF
         "options": options,
         "output": str(ctx.state(CHECK_RESULTS)),
     }
@@ -626,7 +657,7 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
             ctx.scene_path,
             ctx.state(PLAN),
             ctx.state(ASSEMBLY_REPORT),
-            ctx.state(SOURCE_URDF),
+            planned_urdf(ctx),
         ],
         targets=[ctx.state(CHECK_RESULTS)],
         params={"options": options},

@@ -20,6 +20,7 @@ STEP_FORMATS = {
     "srdf": 1,
     "selfcollision": 2,
     "export_urdf": 1,
+    "compose": 1,
 }
 
 STEP_TOOLS = {
@@ -34,6 +35,7 @@ STEP_TOOLS = {
     "check": ("mujoco", "numpy", "yourdfpy"),
     "previews": ("mujoco", "numpy", "pillow"),
     "export_urdf": ("mujoco", "numpy"),
+    "compose": ("lxml",),
 }
 
 

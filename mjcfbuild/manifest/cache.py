@@ -17,7 +17,9 @@ from mjcfbuild.cachedir import user_cache_dir
 from mjcfbuild.fsutil import atomic_write
 
 # Every module that defines manifest models: a change to any of them changes the cache key.
-_MODELS = tuple(Path(__file__).with_name(name) for name in ("models.py", "simulation.py"))
+_MODELS = tuple(
+    Path(__file__).with_name(name) for name in ("models.py", "simulation.py", "composition.py")
+)
 _MODEL_TAG = "__model__"
 # Entries written before keys kept the manifest's order were sorted; they are not read.
 _FORMAT = b"ordered-keys"

@@ -12,6 +12,7 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, computed_field, field_validator, model_validator
 
+from mjcfbuild.manifest.composition import Attachment, check_prefixes
 from mjcfbuild.manifest.simulation import (
     ActuatorSettings,
     Placement,
@@ -500,6 +501,11 @@ class Manifest(StrictModel):
             "Packages not listed are looked up in ROS_PACKAGE_PATH and AMENT_PREFIX_PATH."
         ),
     )
+    attach: list[Attachment] = Field(
+        default_factory=list,
+        description="Parts attached to the main source (a gripper on an arm, an arm on a base), "
+        "each built like the main source, its names prefixed; see docs/composition.md.",
+    )
     options: Options = Field(default_factory=Options)
     meshes: MeshSettings = Field(default_factory=MeshSettings)
     collision: CollisionSettings = Field(default_factory=CollisionSettings)
@@ -540,6 +546,11 @@ class Manifest(StrictModel):
             except AddressError as exc:
                 raise ValueError(str(exc)) from None
         return value
+
+    @field_validator("attach")
+    @classmethod
+    def _distinct_prefixes(cls, value: list[Attachment]) -> list[Attachment]:
+        return check_prefixes(value)
 
     @field_validator("packages")
     @classmethod

@@ -1,0 +1,1 @@
+"""Composing one model from several descriptions (robot.yaml ``attach:``)."""

@@ -1,0 +1,189 @@
+"""Joining URDF parts to a main URDF: names prefixed, file references kept valid, a fixed joint.
+
+The result is one URDF the rest of the build treats like any other, so meshes, collision
+policies, inertia repair, actuators, the self-collision matrix and the check cover every part,
+and robot.yaml rules name the parts' links and joints with their prefix.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from lxml import etree
+
+from mjcfbuild.errors import InputError, ManifestError
+
+# Top-level URDF elements a part keeps; the others (gazebo, mujoco, mujoco_inputs) describe
+# the part's own simulation and are left out, with a warning.
+_KEPT = ("link", "joint", "material", "transmission", "ros2_control")
+
+
+@dataclass
+class Part:
+    """One expanded part and how it is attached."""
+
+    xml: bytes
+    label: str  # the part's file, as messages show it
+    key: str  # its place in robot.yaml, e.g. "robot.yaml attach[0]"
+    prefix: str
+    to: str
+    xyz: tuple[float, float, float]
+    rpy: tuple[float, float, float]
+    resolve: Callable[[str], Path]  # a file reference of the part -> an absolute path
+
+
+def compose(
+    main: bytes, main_label: str, parts: list[Part], base_dir: Path
+) -> tuple[bytes, list[str]]:
+    """The main URDF with every part joined to it, and warnings.
+
+    File references of the parts become paths relative to ``base_dir`` (the main source's
+    folder, against which the plan resolves relative paths). Parts are joined in the order
+    their ``to`` links exist, so a part may attach to another part's link.
+    """
+    root = _parse(main, main_label)
+    warnings: list[str] = []
+    pending = list(parts)
+    while pending:
+        links = _names(root, "link")
+        ready = [part for part in pending if part.to in links]
+        if not ready:
+            raise _unplaceable(pending, links)
+        for part in ready:
+            warnings += _join(root, part, base_dir)
+            pending.remove(part)
+    text = etree.tostring(root, encoding="utf-8", xml_declaration=True)
+    return text + b"\n", warnings
+
+
+def _parse(data: bytes, label: str) -> etree._Element:
+    parser = etree.XMLParser(remove_blank_text=False, resolve_entities=False, no_network=True)
+    try:
+        root = etree.fromstring(data, parser)
+    except etree.XMLSyntaxError as exc:
+        raise InputError(f"not valid XML: {exc.msg}", file=label, line=exc.lineno) from None
+    if root.tag != "robot":
+        raise InputError(f"the root element is <{root.tag}>, not <robot>", file=label)
+    return root
+
+
+def _names(root: etree._Element, tag: str) -> list[str]:
+    return [element.get("name", "") for element in root.findall(tag)]
+
+
+def _unplaceable(pending: list[Part], links: list[str]) -> ManifestError:
+    """Why none of ``pending`` can be joined: an unknown link, or parts attached to each other."""
+    from mjcfbuild.control.choose import listing
+
+    owner = {
+        part.prefix + name: part
+        for part in pending
+        for name in _names(_parse(part.xml, part.label), "link")
+    }
+    chain = [pending[0]]
+    while chain[-1].to in owner and owner[chain[-1].to] not in chain:
+        chain.append(owner[chain[-1].to])
+    last = chain[-1]
+    if last.to not in owner:
+        return ManifestError(
+            f"'to' names link '{last.to}', which is not a link of the model",
+            file=f"{last.key}.to",
+            hint=f"links: {listing(links)}",
+        )
+    cycle = chain[chain.index(owner[last.to]) :]
+    steps = " -> ".join(f"{part.prefix} (to {part.to})" for part in cycle)
+    return ManifestError(
+        f"parts are attached to each other in a cycle: {steps}",
+        file=f"{cycle[0].key}.to",
+        hint="attach one of them to a link of the main source",
+    )
+
+
+def _join(root: etree._Element, part: Part, base_dir: Path) -> list[str]:
+    """Append ``part`` to ``root``, prefixed, with a fixed joint to its ``to`` link."""
+    tree = _parse(part.xml, part.label)
+    warnings = []
+    part_links = _names(tree, "link")
+    children = {
+        child.get("link") for joint in tree.findall("joint") for child in joint.findall("child")
+    }
+    roots = [name for name in part_links if name not in children]
+    if len(roots) != 1:
+        raise InputError(
+            f"the part has {len(roots)} root links ({', '.join(roots) or 'none'}); it needs one",
+            file=part.label,
+            hint=f"fix the part of {part.key}",
+        )
+    _check_collisions(root, tree, part)
+    dropped = sorted({str(child.tag) for child in tree if isinstance(child.tag, str)} - set(_KEPT))
+    if dropped:
+        warnings.append(
+            f"{part.label}: the part's <{'>, <'.join(dropped)}> left out (only its links, "
+            "joints, materials, transmissions and ros2_control are attached)"
+        )
+    for element in list(tree):
+        if not isinstance(element.tag, str) or element.tag not in _KEPT:
+            continue
+        _prefix_element(element, part.prefix)
+        _rebase_files(element, part, base_dir)
+        root.append(element)
+    joint = etree.SubElement(root, "joint", name=f"{part.prefix}attachment", type="fixed")
+    etree.SubElement(joint, "parent", link=part.to)
+    etree.SubElement(joint, "child", link=part.prefix + roots[0])
+    etree.SubElement(
+        joint, "origin", xyz=" ".join(map(repr, part.xyz)), rpy=" ".join(map(repr, part.rpy))
+    )
+    return warnings
+
+
+def _check_collisions(root: etree._Element, tree: etree._Element, part: Part) -> None:
+    for tag in ("link", "joint", "material"):
+        existing = set(_names(root, tag))
+        if tag == "joint":
+            existing.add(f"{part.prefix}attachment")
+        clashes = sorted({part.prefix + name for name in _names(tree, tag)} & existing)
+        if clashes:
+            raise ManifestError(
+                f"prefix '{part.prefix}' makes {tag} name '{clashes[0]}' of {part.label} "
+                "collide with a name of the model",
+                file=f"{part.key}.prefix",
+                hint="choose a prefix no name of the model starts with",
+            )
+
+
+def _prefix_element(element: etree._Element, prefix: str) -> None:
+    """Prefix the names ``element`` defines and the links, joints and materials it refers to."""
+    tag = element.tag
+    if tag in ("link", "joint", "material"):
+        element.set("name", prefix + element.get("name", ""))
+    for sub in element.iter():
+        if sub is element:
+            continue
+        if sub.tag in ("parent", "child") and tag == "joint":
+            sub.set("link", prefix + sub.get("link", ""))
+        elif sub.tag == "mimic" and sub.get("joint") is not None:
+            sub.set("joint", prefix + sub.get("joint", ""))
+        elif (sub.tag == "material" and sub.get("name")) or (
+            sub.tag in ("joint", "sensor", "actuator")
+            and tag in ("transmission", "ros2_control")
+            and sub.get("name")
+        ):
+            sub.set("name", prefix + sub.get("name", ""))
+
+
+def _rebase_files(element: etree._Element, part: Part, base_dir: Path) -> None:
+    """Mesh and texture references of the part, as paths relative to the main source's folder."""
+    for sub in element.iter("mesh", "texture"):
+        uri = sub.get("filename")
+        if not uri or uri.startswith("file://") or Path(uri).is_absolute():
+            continue
+        try:
+            path = part.resolve(uri)
+        except InputError as exc:
+            raise InputError(
+                exc.message, file=part.label, line=sub.sourceline, hint=exc.hint
+            ) from None
+        sub.set("filename", Path(os.path.relpath(path, base_dir)).as_posix())

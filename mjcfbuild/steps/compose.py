@@ -1,0 +1,42 @@
+"""Step ``compose``: the expanded main source with the ``attach:`` parts joined to it."""
+
+from __future__ import annotations
+
+from functools import partial
+from pathlib import Path
+
+from mjcfbuild.compose.urdf import Part, compose
+from mjcfbuild.sources.packages import PackageResolver
+from mjcfbuild.sources.uris import resolve_uri
+from mjcfbuild.steps.outputs import write_output
+
+
+def run(payload: dict) -> dict:
+    """Write the composed URDF to ``payload['output']``."""
+    parts = []
+    for entry in payload["parts"]:
+        packages = PackageResolver(
+            {name: Path(folder) for name, folder in entry["packages"].items()},
+            payload["environment"],
+        )
+        parts.append(
+            Part(
+                xml=Path(entry["urdf"]).read_bytes(),
+                label=entry["label"],
+                key=entry["key"],
+                prefix=entry["prefix"],
+                to=entry["to"],
+                xyz=tuple(entry["xyz"]),
+                rpy=tuple(entry["rpy"]),
+                resolve=partial(_resolve, base_dir=Path(entry["base_dir"]), packages=packages),
+            )
+        )
+    main = Path(payload["main"]).read_bytes()
+    text, warnings = compose(main, payload["main_label"], parts, Path(payload["base_dir"]))
+    outputs: dict[str, str] = {}
+    write_output(Path(payload["output"]), text, outputs)
+    return {"outputs": outputs, "warnings": warnings}
+
+
+def _resolve(uri: str, base_dir: Path, packages: PackageResolver) -> Path:
+    return resolve_uri(uri, base_dir, packages)
