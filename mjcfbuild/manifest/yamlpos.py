@@ -61,6 +61,8 @@ def load_with_positions(text: str) -> tuple[object, Positions]:
         raise YamlSyntaxError(f"YAML syntax error: {problem}", line, column) from None
     except yaml.YAMLError as exc:
         raise YamlSyntaxError(f"YAML syntax error: {exc}", None, None) from None
+    except ValueError as exc:  # PyYAML's scanner on an escape beyond Unicode, like "\U00110000"
+        raise YamlSyntaxError(f"YAML syntax error: invalid character ({exc})", None, None) from None
     positions = Positions()
     if node is None:
         return None, positions

@@ -46,4 +46,8 @@ def test_panda_link_decomposition(tmp_path, monkeypatch):
     # A new threshold reruns that decomposition and the assembly only.
     changed = manifest(tmp_path / "a", 0.08)
     monkeypatch.setenv("MJCFBUILD_CACHE_DIR", str(tmp_path / "cache-a"))
-    assert sorted(mjcfbuild.build(changed, jobs=2).ran) == ["assemble", "decompose:collision_link4"]
+    assert sorted(mjcfbuild.build(changed, jobs=2).ran) == [
+        "assemble",
+        "decompose:collision_link4",
+        "selfcollision",
+    ]

@@ -21,7 +21,19 @@ from mjcfbuild.urdf.parse import parse_urdf
 pytestmark = [pytest.mark.robots, pytest.mark.slow]
 
 
-@pytest.mark.parametrize("name", sorted(robot_data.ROBOTS))
+# solo12's URDF gives every joint +-10 rad and 1000 N m (placeholders): pseudorandom control
+# over that range swings its 38 g lower legs through the body (docs/robots.md). Strict: the day
+# the default build passes, this marker must go.
+PLACEHOLDER_LIMITS = pytest.mark.xfail(
+    strict=True, reason="solo12's placeholder joint ranges and efforts fail the Menagerie test"
+)
+NAMES = [
+    pytest.param(name, marks=PLACEHOLDER_LIMITS) if name == "solo12" else name
+    for name in sorted(robot_data.ROBOTS)
+]
+
+
+@pytest.mark.parametrize("name", NAMES)
 def test_robot_builds_simulates_and_matches_urdf_kinematics(name, tmp_path):
     robot = robot_data.ROBOTS[name]
     urdf = robot_data.unpack(robot)
