@@ -1,4 +1,4 @@
-"""Where users wait: cold, no-op (fast path and full path), one mesh and one joint attribute changed.
+"""Where users wait: cold, no-op (fast and full path), one mesh or one joint attribute changed.
 
     python bench/edit_times.py [--robots panda,go1] [--repeat 5] [--jobs 2]
 
@@ -26,7 +26,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from bench.build_times import case_example, case_robot, nudge_mesh  # noqa: E402
+from bench.build_times import case_example, case_robot, nudge_mesh
 
 # The reference converter's full run, measured on this 2-core machine (issue 14).
 REFERENCE_RECORDED = {"panda": 5.4, "go1": 14.6}

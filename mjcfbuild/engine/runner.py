@@ -93,7 +93,7 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
     try:
         ctx.sharing_choice()  # a bad remote or executor address stops the build before it starts
         with build_lock(ctx, progress):
-            if ctx.noop_stamp:
+            if ctx.manifest_file is not None:  # whichever way it was started
                 stamp.discard(ctx.manifest_file, ctx.run_check)
             prepare_state(ctx)
             doit_output = _run_stage(ctx, planning_tasks(ctx), progress, result)
