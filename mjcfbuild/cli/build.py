@@ -57,14 +57,36 @@ def run(args: argparse.Namespace) -> int:
     """Build every manifest; the exit code of the first that failed."""
     code = EXIT_OK
     for manifest in args.manifests:
+        if not args.dry_run and _nothing_changed(manifest, args):
+            continue
         try:
             ctx = load_context(manifest, args)
+            ctx.noop_stamp = ctx.manifest.source.description != "-"
             result = dry_run(ctx) if args.dry_run else execute(ctx, args.quiet, args.debug)
         except MjcfbuildError as error:
             report_error(error, args.debug)
             result = error.exit_code
         code = code or result
     return code
+
+
+def _nothing_changed(manifest: str, args: argparse.Namespace) -> bool:
+    """Whether the no-op fast path found nothing to do (and said so, as a build would)."""
+    import time
+
+    from mjcfbuild.engine import stamp
+
+    started = time.perf_counter()
+    summary = stamp.nothing_to_do(manifest, run_check=not args.no_check)
+    if summary is None:
+        return False
+    if not args.quiet:
+        seconds = time.perf_counter() - started
+        print(
+            f"mjcfbuild: built {summary['robot']}: 0 run, {summary['tasks']} up to date "
+            f"in {seconds:.2f} s"
+        )
+    return True
 
 
 def execute(ctx, quiet: bool, debug: bool, hints: Callable[[str], str] | None = None) -> int:

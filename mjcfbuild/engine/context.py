@@ -47,6 +47,7 @@ class BuildContext:
     output_override: Path | None = None
     prebuilt_mesh_dir: Path | None = None  # convert -a: a folder of meshes converted before
     run_check: bool = True
+    noop_stamp: bool = False  # keep a stamp for the no-op fast path (mjcfbuild build)
     use_remote: bool = True
     executor_override: str | None = None
     cache_report: dict | None = None

@@ -11,6 +11,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from mjcfbuild.engine import stamp
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.loader import run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
@@ -88,9 +89,12 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
     progress.notes = ctx.notes
     started = time.perf_counter()
     result = BuildResult(robot=ctx.robot_path, scene=ctx.scene_path)
+    tasks: list[dict] = []
     try:
         ctx.sharing_choice()  # a bad remote or executor address stops the build before it starts
         with build_lock(ctx, progress):
+            if ctx.manifest_file is not None:  # whichever way it was started
+                stamp.discard(ctx.manifest_file, ctx.run_check)
             prepare_state(ctx)
             doit_output = _run_stage(ctx, planning_tasks(ctx), progress, result)
             if not result.errors:
@@ -116,6 +120,8 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
     result.slowest = progress.slowest()
     result.seconds = time.perf_counter() - started
     result.engine_log = doit_output if result.errors else ""
+    if ctx.noop_stamp and tasks and result.ok and not result.warnings:
+        stamp.record_build(ctx, tasks, len(result.ran) + len(result.up_to_date))
     return result
 
 

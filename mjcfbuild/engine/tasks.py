@@ -27,6 +27,7 @@ from mjcfbuild.collision.policy import (
 )
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.depfile import Depfile
+from mjcfbuild.engine.render_inputs import RenderInputsUnchanged
 from mjcfbuild.engine.uptodate import (
     ParamsUnchanged,
     always_stale,
@@ -675,9 +676,13 @@ def _previews_task(ctx: BuildContext, prefix: str) -> dict:
         "previews",
         payload,
         in_worker=True,
-        file_dep=[ctx.robot_path, ctx.scene_path, ctx.state(ASSEMBLY_REPORT)],
+        # Not the model file: only what a picture shows (a damping change leaves them alone),
+        # and the scene, whose floor the pictures show.
+        file_dep=[ctx.scene_path],
         targets=[],
         params={"folder": str(folder)},
+        extra_uptodate=[RenderInputsUnchanged(ctx.robot_path, ctx.assets_dir, ctx.hashes)],
+        after=[f"{prefix}assemble"],
     )
 
 

@@ -51,6 +51,18 @@ def test_a_no_op_build_imports_no_fsspec_s3fs_or_dask(machines, tmp_path):
     assert "0 run" in done.stdout and "warning" not in done.stderr
     [imported] = [line for line in done.stdout.splitlines() if line.startswith("imported:")]
     assert imported.strip() == "imported:"
+    # That build left a stamp: the next no-op stops at it, before doit and pydantic too.
+    done = subprocess.run(
+        [sys.executable, "-c", PROBE.format(modules=(*SHARING_MODULES, "doit", "pydantic"))],
+        cwd=first.folder,
+        env={**_environ(), **env},
+        capture_output=True,
+        text=True,
+    )
+    assert done.returncode == 0, done.stderr
+    assert "0 run" in done.stdout
+    [imported] = [line for line in done.stdout.splitlines() if line.startswith("imported:")]
+    assert imported.strip() == "imported:"
 
 
 def _environ() -> dict[str, str]:

@@ -1,0 +1,233 @@
+"""The no-op fast path: decide "nothing changed" from a stamp, before importing the engine.
+
+A successful build without warnings writes a *stamp*: every file the build read (the manifest,
+each task's file dependencies, what xacro and mesh steps discovered), every file it wrote
+(targets, products, assets, report, its own state), the files it looked for and did not find,
+the environment variables that can change a build, the folders Python imports packages from
+(their mtime moves when a package is installed or upgraded) and mjcfbuild's own source files.
+Each file is recorded with its size, mtime and MD5.
+
+The next ``mjcfbuild build`` of the same manifest checks the stamp first, importing nothing
+but the standard library. A file whose size and mtime are unchanged is unchanged; one whose
+mtime moved is hashed, and if its bytes are the same (a ``touch`` or a fresh checkout) the
+stamp is updated so it is not hashed again. Anything else - a changed byte, a file gone or
+appeared, a variable or package changed, no stamp - falls through to the full build, which
+decides what to run. A full build removes the stamp before it starts, so an interrupted or
+failed build never leaves one behind.
+
+A file written within two seconds of the stamp (``racy``) is always hashed: a later edit in
+the same timestamp tick would otherwise keep its size and mtime.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import json
+import os
+import sys
+import time
+from collections.abc import Iterable
+from pathlib import Path
+
+FORMAT = 1
+# Set to any value to skip the fast path (benchmarks of the full path, debugging).
+DISABLE_VARIABLE = "MJCFBUILD_FULL_BUILD"
+# Variables read by the build besides those a depfile records; every MJCFBUILD_* counts too.
+_VARIABLES = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH", "XDG_CACHE_HOME", "HOME")
+_RACY_SECONDS = 2.0
+STATE_NOT_CHECKED = ("lock", "logs")  # in the state folder: bookkeeping no step reads
+
+
+def stamp_path(manifest: Path, run_check: bool) -> Path:
+    """Where the stamp of a build of ``manifest`` (with or without its check) is kept."""
+    from mjcfbuild.cachedir import user_cache_dir
+
+    key = hashlib.sha256(f"{manifest}\0{run_check}".encode()).hexdigest()[:32]
+    return user_cache_dir() / "noop" / f"{key}.json"
+
+
+def _environment() -> dict[str, str | None]:
+    names = set(_VARIABLES) | {n for n in os.environ if n.startswith("MJCFBUILD_")}
+    names.discard(DISABLE_VARIABLE)
+    return {name: os.environ.get(name) for name in sorted(names)}
+
+
+def _same_environment(recorded: dict[str, str | None]) -> bool:
+    if any(name not in recorded for name in _environment()):
+        return False  # an MJCFBUILD_* variable was set since
+    return all(os.environ.get(name) == value for name, value in recorded.items())
+
+
+def _python_folders() -> dict[str, int | None]:
+    """The mtimes of the folders packages are imported from (not the current folder)."""
+    folders = {}
+    here = os.getcwd()
+    for entry in sys.path:
+        if entry and entry != here and os.path.isdir(entry):
+            folders[entry] = os.stat(entry).st_mtime_ns
+    return folders
+
+
+def _md5(path: str) -> str:
+    digest = hashlib.md5(usedforsecurity=False)
+    with open(path, "rb") as handle:
+        while chunk := handle.read(1 << 20):
+            digest.update(chunk)
+    return digest.hexdigest()
+
+
+def _record(path: str, stat: os.stat_result, digest: str, now: float) -> list:
+    racy = now - stat.st_mtime < _RACY_SECONDS
+    return [stat.st_size, stat.st_mtime_ns, digest, racy]
+
+
+def nothing_to_do(manifest: str | os.PathLike, run_check: bool) -> dict | None:
+    """The stamp's summary if nothing changed since the last successful build, else None.
+
+    ``{"robot": <model file name>, "tasks": <tasks of that build>}``. Never raises: any
+    problem reading the stamp means the full build decides.
+    """
+    if os.environ.get(DISABLE_VARIABLE):
+        return None
+    manifest_path = Path(os.path.normpath(os.path.abspath(manifest)))
+    path = stamp_path(manifest_path, run_check)
+    try:
+        stamp = json.loads(path.read_text())
+        if stamp.get("format") != FORMAT or stamp.get("python") != sys.executable:
+            return None
+        started = time.time()
+        if not _same_environment(stamp["environment"]):
+            return None
+        if stamp["python_folders"] != _python_folders():
+            return None
+        if any(os.path.lexists(name) for name in stamp["absent"]):
+            return None
+        refreshed = _verify_files(stamp["files"], started)
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return None
+    if refreshed is None:
+        return None
+    if refreshed:
+        stamp["files"].update(refreshed)
+        _write(path, stamp)
+    return stamp["summary"]
+
+
+def _verify_files(files: dict[str, list], now: float) -> dict[str, list] | None:
+    """None if a file changed; else the records of files whose mtime moved or were racy."""
+    refreshed = {}
+    for name, (size, mtime_ns, digest, racy) in files.items():
+        stat = os.stat(name)  # FileNotFoundError: a file is gone, the caller falls through
+        if stat.st_size != size:
+            return None
+        if stat.st_mtime_ns == mtime_ns and not racy:
+            continue
+        if _md5(name) != digest:
+            return None
+        refreshed[name] = _record(name, stat, digest, now)
+    return refreshed
+
+
+def _write(path: Path, stamp: dict) -> None:
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        temp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+        temp.write_text(json.dumps(stamp, separators=(",", ":")))
+        os.replace(temp, path)
+    except OSError:
+        pass  # without a stamp the next build takes the full path: slower, never wrong
+
+
+def discard(manifest: Path, run_check: bool) -> None:
+    """Remove the stamp: called when a build starts, so only a finished one leaves a stamp."""
+    with contextlib.suppress(OSError):
+        stamp_path(manifest, run_check).unlink()
+
+
+def write(
+    manifest: Path,
+    run_check: bool,
+    summary: dict,
+    inputs: Iterable[Path | str],
+    outputs: Iterable[Path | str],
+    absent: Iterable[str],
+    variables: Iterable[str],
+    hashes,
+) -> None:
+    """Record the state a successful build left, for :func:`nothing_to_do`.
+
+    ``hashes`` is the build's :class:`~mjcfbuild.engine.hashes.HashCache`, so files hashed by
+    the build are not read again.
+    """
+    now = time.time()
+    files: dict[str, list] = {}
+    for name in sorted({os.fspath(p) for p in [*inputs, *outputs]}):
+        try:
+            stat = os.stat(name)
+            if not os.path.isfile(name):
+                continue
+            files[name] = _record(name, stat, hashes.md5(name, stat), now)
+        except OSError:
+            continue  # a file the build names but never made: the full path decides again
+    environment = _environment()
+    for name in variables:
+        environment.setdefault(name, os.environ.get(name))
+    stamp = {
+        "format": FORMAT,
+        "python": sys.executable,
+        "summary": summary,
+        "environment": environment,
+        "python_folders": _python_folders(),
+        "absent": sorted(set(absent)),
+        "files": files,
+    }
+    _write(stamp_path(manifest, run_check), stamp)
+
+
+def files_under(folder: Path, skip: Iterable[str] = ()) -> list[Path]:
+    """Every file below ``folder`` except the top-level entries named in ``skip``."""
+    if not folder.is_dir():
+        return []
+    found = []
+    for entry in sorted(folder.iterdir()):
+        if entry.name in skip:
+            continue
+        if entry.is_dir():
+            found += [p for p in sorted(entry.rglob("*")) if p.is_file()]
+        elif entry.is_file():
+            found.append(entry)
+    return found
+
+
+def mjcfbuild_sources() -> list[Path]:
+    """mjcfbuild's own Python files: a changed step or model falls through to the full path."""
+    package = Path(__file__).resolve().parents[1]
+    return sorted(package.rglob("*.py"))
+
+
+def record_build(ctx, tasks: list[dict], task_count: int) -> None:
+    """Write the stamp of the successful build of ``ctx`` that ran ``tasks``."""
+    from mjcfbuild.engine.depfile import Depfile
+    from mjcfbuild.engine.tasks import SOURCE_DEPS
+
+    inputs: list[Path | str] = [ctx.manifest_file, *mjcfbuild_sources()]
+    outputs: list[Path | str] = [ctx.robot_path, ctx.scene_path]
+    absent: list[str] = []
+    variables: list[str] = []
+    for task in tasks:
+        inputs += task["file_dep"]
+        outputs += task["targets"]
+    depfiles = [ctx.state(SOURCE_DEPS), *sorted(ctx.products_dir.glob("*.deps.json"))]
+    for depfile in filter(None, (Depfile.read(path) for path in depfiles)):
+        inputs += depfile.files
+        absent += depfile.missing
+        variables += list(depfile.environment)
+    outputs += files_under(ctx.state_dir, skip=STATE_NOT_CHECKED)
+    for folder in (ctx.assets_dir, ctx.out_dir / "report", ctx.urdf_mesh_dir):
+        if folder is not None:
+            outputs += files_under(folder)
+    if ctx.urdf_path is not None:
+        outputs.append(ctx.urdf_path)
+    summary = {"robot": ctx.robot_path.name, "tasks": task_count}
+    write(ctx.manifest_file, ctx.run_check, summary, inputs, outputs, absent, variables, ctx.hashes)

@@ -1,0 +1,142 @@
+"""The no-op fast path agrees with the full build: it skips exactly when the full build runs nothing."""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from mjcfbuild.engine import stamp
+from tests.conftest import run_cli, write
+
+FULL = {stamp.DISABLE_VARIABLE: "1"}
+
+
+def fast_path_skips(folder: Path, check: bool = False) -> bool:
+    """Whether ``mjcfbuild build`` would stop at the stamp (asked in a process of its own)."""
+    probe = (
+        "import sys; from mjcfbuild.engine.stamp import nothing_to_do; "
+        f"print(nothing_to_do('robot.yaml', run_check={check}) is not None)"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", probe], cwd=folder, capture_output=True, text=True, check=True
+    )
+    return done.stdout.strip() == "True"
+
+
+def full_build_runs(folder: Path, *flags: str) -> int:
+    """How many tasks the full build runs (it also writes the next stamp)."""
+    done = run_cli("build", "--no-check", *flags, cwd=folder, env=FULL)
+    assert done.code == 0, done.stderr
+    return int(re.search(r"(\d+) run", done.stdout).group(1))
+
+
+def agree(folder: Path) -> bool:
+    """The fast path's decision, after asserting that the full build agrees with it."""
+    skips = fast_path_skips(folder)
+    runs = full_build_runs(folder)
+    assert skips == (runs == 0), f"fast path skips: {skips}, full build ran {runs}"
+    return skips
+
+
+@pytest.fixture
+def built_arm(arm):
+    assert full_build_runs(arm) > 0
+    return arm
+
+
+def test_the_fast_path_agrees_with_the_full_build_edit_by_edit(built_arm):
+    arm = built_arm
+    assert agree(arm)  # nothing changed
+
+    later = time.time() + 100  # touched, same bytes: sources, included xacro, meshes, outputs
+    for path in arm.rglob("*"):
+        if path.is_file():
+            os.utime(path, (later, later))
+    assert agree(arm)
+
+    finger = arm / "urdf" / "finger.xacro"  # found by xacro, not named in robot.yaml
+    finger.write_text(finger.read_text() + "\n<!-- edited -->\n")
+    assert not agree(arm)
+
+    limits = arm / "config" / "joint_limits.yaml"  # a YAML file xacro loaded
+    limits.write_text(limits.read_text() + "\n# edited\n")
+    assert not agree(arm)
+
+    mesh = arm / "meshes" / "forearm.obj"
+    mesh.write_text(re.sub(r"(\nv\s+)(-?[0-9.]+)", r"\g<1>0.25", mesh.read_text(), count=1))
+    assert not agree(arm)
+
+    model = arm / "mjcf" / "example_arm.xml"  # an output edited by hand
+    model.write_text(model.read_text().replace("<mujoco", "<!-- mine -->\n<mujoco", 1))
+    assert not agree(arm)
+
+    (arm / "mjcf" / "assets" / "base.obj").unlink()  # an output deleted
+    assert not agree(arm)
+
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "options:\n  link_sites: fused\n")
+    assert not agree(arm)
+    assert agree(arm)
+
+
+def test_environment_variables_fall_through(built_arm, monkeypatch):
+    monkeypatch.setenv("ROS_PACKAGE_PATH", str(built_arm))
+    assert not agree(built_arm)  # expand and plan take the ROS environment as parameters
+    assert agree(built_arm)
+    monkeypatch.delenv("ROS_PACKAGE_PATH")
+    assert not agree(built_arm)
+
+
+def test_variables_and_files_xacro_looked_for_are_dependencies(tmp_path, monkeypatch):
+    write(
+        tmp_path / "r.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<link name="$(optenv LINK_NAME base)"/></robot>',
+    )
+    write(tmp_path / "robot.yaml", "name: r\nsource:\n  xacro: r.xacro\n")
+    monkeypatch.delenv("LINK_NAME", raising=False)
+    full_build_runs(tmp_path)
+    assert agree(tmp_path)
+    monkeypatch.setenv("LINK_NAME", "torso")
+    assert not agree(tmp_path)
+    assert 'name="torso"' in (tmp_path / "mjcf" / "r.xml").read_text()
+    assert agree(tmp_path)
+
+
+def test_the_check_and_no_check_builds_have_their_own_stamps(built_arm):
+    assert fast_path_skips(built_arm, check=False)
+    assert not fast_path_skips(built_arm, check=True)  # the check has never run here
+
+
+def test_a_failed_build_leaves_no_stamp(built_arm):
+    finger = built_arm / "urdf" / "finger.xacro"
+    finger.write_text("<robot")
+    assert run_cli("build", "--no-check", cwd=built_arm).code != 0
+    assert not fast_path_skips(built_arm)
+    assert not stamp.stamp_path(built_arm.resolve() / "robot.yaml", False).exists()
+
+
+def test_a_no_op_imports_no_engine_doit_pydantic_or_heavy_module(built_arm):
+    probe = (
+        "import sys\n"
+        "from mjcfbuild.cli import run\n"
+        "code = run(['build', '--no-check'])\n"
+        "print('imported:', ','.join(sorted(m for m in sys.modules if m.split('.')[0] in "
+        "('doit', 'pydantic', 'yaml', 'numpy', 'mujoco', 'trimesh', 'lxml', 'fsspec', 'dask')"
+        " or m.startswith(('mjcfbuild.engine.', 'mjcfbuild.manifest')) "
+        "and m != 'mjcfbuild.engine.stamp')))\n"
+        "sys.exit(code)\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", probe], cwd=built_arm, capture_output=True, text=True
+    )
+    assert done.returncode == 0, done.stderr
+    assert "0 run, 9 up to date" in done.stdout
+    [imported] = [line for line in done.stdout.splitlines() if line.startswith("imported:")]
+    assert imported.strip() == "imported:"
