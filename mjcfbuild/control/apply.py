@@ -18,21 +18,12 @@ from lxml import etree
 
 from mjcfbuild.control.choose import ActuatorChoice
 from mjcfbuild.control.floor import lowest_collision_point
-from mjcfbuild.control.home import HomeValue, joint_range
+from mjcfbuild.control.home import HomeValue
+from mjcfbuild.inputs.apply import ACTUATOR_TAGS
 from mjcfbuild.numbers import output_list
+from mjcfbuild.urdf.limits import joint_range
 from mjcfbuild.urdf.model import Robot
 
-ACTUATOR_TAGS = (
-    "general",
-    "motor",
-    "position",
-    "velocity",
-    "intvelocity",
-    "damper",
-    "cylinder",
-    "muscle",
-    "adhesion",
-)
 HOME = "home"
 
 
@@ -286,7 +277,8 @@ def _actuator(choice: ActuatorChoice, joint, servo: Servo, taken: set[str]) -> A
         record.kp = choice.kp or inertia * omega**2
         record.kv = choice.kv or 2 * choice.damping_ratio * inertia * omega
         bounds = joint_range(joint)
-        record.ctrlrange = list(bounds) if bounds else None
+        # A locked joint (lower = upper) has no range to command.
+        record.ctrlrange = list(bounds) if bounds and bounds[0] < bounds[1] else None
     elif choice.type == "velocity":
         record.kv = choice.kv or inertia * omega  # a first-order servo with bandwidth omega
         velocity = joint.limit.velocity if joint.limit is not None else None

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from mjcfbuild.control.choose import listing, matches
 from mjcfbuild.errors import ManifestError
 from mjcfbuild.inputs.ros2_control import Ros2Control
+from mjcfbuild.urdf.limits import joint_range
 from mjcfbuild.urdf.model import Joint, Robot
 
 
@@ -22,16 +23,6 @@ class HomeValue:
     joint: str
     value: float
     source: str  # robot.yaml, srdf, ros2_control, zero, mimic
-
-
-def joint_range(joint: Joint) -> tuple[float, float] | None:
-    """The joint's range, or None when it is unlimited (continuous, or no lower/upper)."""
-    limit = joint.limit
-    if joint.kind not in ("revolute", "prismatic") or limit is None:
-        return None
-    if limit.lower is None or limit.upper is None:
-        return None
-    return (limit.lower, limit.upper)
 
 
 def home_values(

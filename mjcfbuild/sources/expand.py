@@ -31,6 +31,23 @@ class Expansion:
     environment: dict[str, str | None] = field(default_factory=dict)
 
 
+def expand_source(
+    source: Path,
+    xacro: bool,
+    args: Mapping[str, str],
+    packages: Mapping[str, str],
+    environment: Mapping[str, str],
+) -> Expansion:
+    """A source as URDF (or SRDF) text: expanded with xacro, or read as it is. ``packages`` maps
+    package names to folders; ``environment`` holds the ROS variables that find the others."""
+    if not xacro:
+        return read_urdf_file(source)
+    from mjcfbuild.sources.packages import PackageResolver
+
+    resolver = PackageResolver({name: Path(f) for name, f in packages.items()}, environment)
+    return expand_xacro(source, args, resolver)
+
+
 def read_urdf_file(path: Path) -> Expansion:
     """A plain URDF source: its bytes, unchanged (it is parsed as bytes later)."""
     try:

@@ -5,22 +5,20 @@ from __future__ import annotations
 from pathlib import Path
 
 from mjcfbuild.engine.depfile import Depfile
-from mjcfbuild.sources.expand import expand_xacro, read_urdf_file
-from mjcfbuild.sources.packages import PackageResolver
+from mjcfbuild.sources.expand import expand_source
 from mjcfbuild.steps.outputs import write_output
 
 
 def run(payload: dict) -> dict:
     """Expand (xacro) or read (URDF, description) the source into ``payload['output']``."""
     source = Path(payload["source"])
-    if payload["kind"] == "xacro":
-        packages = PackageResolver(
-            {name: Path(folder) for name, folder in payload["packages"].items()},
-            payload["environment"],
-        )
-        expansion = expand_xacro(source, payload["args"], packages)
-    else:
-        expansion = read_urdf_file(source)
+    expansion = expand_source(
+        source,
+        payload["kind"] == "xacro",
+        payload["args"],
+        payload["packages"],
+        payload["environment"],
+    )
     outputs: dict[str, str] = {}
     write_output(Path(payload["output"]), expansion.urdf, outputs)
     depfile = Path(payload["depfile"])

@@ -11,13 +11,19 @@ import json
 from pathlib import Path
 
 from mjcfbuild.collision.policy import CollisionChoice
+from mjcfbuild.control.choose import listing
 from mjcfbuild.control.home import home_values
 from mjcfbuild.errors import InputError, ManifestError
 from mjcfbuild.inputs.ros2_control import ControlJoint, Ros2Control
 from mjcfbuild.mjcf.assemble import compile_error, floats
 from mjcfbuild.mjcf.bodies import build_bodies
 from mjcfbuild.mjcf.prepared import Decomposition, prepare
-from mjcfbuild.selfcollision.matrix import MatrixSettings, collision_matrix, needs_exclude
+from mjcfbuild.selfcollision.matrix import (
+    MatrixSettings,
+    PairVerdict,
+    collision_matrix,
+    needs_exclude,
+)
 from mjcfbuild.selfcollision.srdf import Srdf
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.urdf.model import robot_from_dict
@@ -103,7 +109,7 @@ def run(payload: dict) -> dict:
     excludes = [
         [v["body1"], v["body2"]]
         for v in verdicts
-        if v["exclude"] and needs_exclude(model, _verdict(v))
+        if v["exclude"] and needs_exclude(model, PairVerdict(**v))
     ]
     result = {"pairs": verdicts, "excludes": excludes, "samples": settings.samples}
     outputs: dict[str, str] = {}
@@ -177,19 +183,13 @@ def _decomposition(entry: dict) -> Decomposition:
     )
 
 
-def _verdict(data: dict):
-    from mjcfbuild.selfcollision.matrix import PairVerdict
-
-    return PairVerdict(**data)
-
-
 def _body(link: str, body_of: dict[str, str], srdf: Srdf, line: int | None) -> str:
     if link not in body_of:
         raise InputError(
             f"link '{link}' is not a link of the robot",
             file=srdf.label,
             line=line,
-            hint=f"links: {_listing(sorted(body_of))}",
+            hint=f"links: {listing(sorted(body_of))}",
         )
     return body_of[link]
 
@@ -199,7 +199,7 @@ def _kept_body(link: str, body_of: dict[str, str], label: str, index: int) -> st
         raise ManifestError(
             f"link '{link}' is not a link of the robot",
             file=f"{label} self_collision.keep[{index}]",
-            hint=f"links: {_listing(sorted(body_of))}",
+            hint=f"links: {listing(sorted(body_of))}",
         )
     return body_of[link]
 
@@ -214,12 +214,6 @@ def _srdf_home(srdf: Srdf, robot, name: str) -> dict[str, float] | None:
         raise InputError(
             f"group_state '{name}' names joint '{unknown[0]}', which the robot does not have",
             file=srdf.label,
-            hint=f"joints: {_listing(sorted(names))}",
+            hint=f"joints: {listing(sorted(names))}",
         )
     return state
-
-
-def _listing(names: list[str]) -> str:
-    from mjcfbuild.control.choose import listing
-
-    return listing(names)

@@ -6,22 +6,20 @@ import json
 from pathlib import Path
 
 from mjcfbuild.selfcollision.srdf import parse_srdf
-from mjcfbuild.sources.expand import expand_xacro, read_urdf_file
-from mjcfbuild.sources.packages import PackageResolver
+from mjcfbuild.sources.expand import expand_source
 from mjcfbuild.steps.outputs import write_output
 
 
 def run(payload: dict) -> dict:
     """Write the SRDF's disabled pairs and group states to ``payload['output']``."""
     source = Path(payload["source"])
-    if source.name.endswith(".xacro"):
-        packages = PackageResolver(
-            {name: Path(folder) for name, folder in payload["packages"].items()},
-            payload["environment"],
-        )
-        expansion = expand_xacro(source, payload["args"], packages)
-    else:
-        expansion = read_urdf_file(source)
+    expansion = expand_source(
+        source,
+        source.name.endswith(".xacro"),
+        payload["args"],
+        payload["packages"],
+        payload["environment"],
+    )
     srdf = parse_srdf(expansion.urdf, payload["label"])
     outputs: dict[str, str] = {}
     text = json.dumps(srdf.to_dict(), indent=1, sort_keys=True) + "\n"
