@@ -143,3 +143,11 @@ def test_the_matrix_is_cached_and_the_same_in_another_folder(tmp_path, monkeypat
     monkeypatch.setenv("MJCFBUILD_CACHE_DIR", str(tmp_path / "other-cache"))
     mjcfbuild.build(_robot(tmp_path / "three"), jobs=1)
     assert _matrix(tmp_path / "three") == _matrix(tmp_path / "one")
+
+
+def test_a_missing_srdf_is_an_error_naming_the_setting(tmp_path):
+    result = run_cli("build", str(_robot(tmp_path, "self_collision: {srdf: nowhere.srdf}\n")))
+    assert result.code == 4
+    assert "nowhere.srdf" in result.stderr and "self_collision.srdf" in result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "mjcf/chain.xml").exists()
