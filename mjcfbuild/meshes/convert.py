@@ -100,6 +100,20 @@ def convert_mesh(
     }
 
 
+def convert_with_options(source: Path, product_dir: Path, options: dict) -> dict:
+    """:func:`convert_mesh` with a mesh task's options (as build steps and cluster workers get
+    them)."""
+    return convert_mesh(
+        source,
+        product_dir,
+        options["roles"],
+        max_faces=options["max_faces"],
+        apply_up_axis=options["collada_up_axis"] == "apply",
+        collision_max_faces=options.get("collision_max_faces"),
+        max_hull_vertices=options.get("max_hull_vertices"),
+    )
+
+
 def _within_budget(
     parts: list[MeshPart], budget: int | None, what: str, warnings: list[str]
 ) -> list[MeshPart]:

@@ -82,17 +82,9 @@ def compute_product(
 
 def _run(kind: str, options: dict, source: Path, output: Path) -> dict:
     if kind == "mesh":
-        from mjcfbuild.meshes.convert import convert_mesh
+        from mjcfbuild.meshes.convert import convert_with_options
 
-        return convert_mesh(
-            source,
-            output,
-            options["roles"],
-            max_faces=options["max_faces"],
-            apply_up_axis=options["collada_up_axis"] == "apply",
-            collision_max_faces=options.get("collision_max_faces"),
-            max_hull_vertices=options.get("max_hull_vertices"),
-        )
+        return convert_with_options(source, output, options)
     from mjcfbuild.collision.decompose import decompose
 
     return decompose(source, options, output)

@@ -26,17 +26,11 @@ def run(payload: dict) -> dict:
     summary = store.fetch(key, product_dir) if store else None
     cached = summary is not None
     if summary is None:
-        from mjcfbuild.meshes.convert import convert_mesh  # numpy, trimesh: only when needed
-
-        summary = convert_mesh(
-            source,
-            product_dir,
-            options["roles"],
-            max_faces=options["max_faces"],
-            apply_up_axis=options["collada_up_axis"] == "apply",
-            collision_max_faces=options.get("collision_max_faces"),
-            max_hull_vertices=options.get("max_hull_vertices"),
+        from mjcfbuild.meshes.convert import (
+            convert_with_options,  # numpy, trimesh: only when needed
         )
+
+        summary = convert_with_options(source, product_dir, options)
         if store:
             store.store(key, product_dir, summary)
     failpoint("mesh")

@@ -151,3 +151,15 @@ def test_a_missing_srdf_is_an_error_naming_the_setting(tmp_path):
     assert "nowhere.srdf" in result.stderr and "self_collision.srdf" in result.stderr
     assert len(result.stderr.strip().splitlines()) == 1
     assert not (tmp_path / "mjcf/chain.xml").exists()
+
+
+def test_an_srdf_written_as_xacro_is_expanded_with_the_robots_args(tmp_path):
+    write(
+        tmp_path / "robot.srdf.xacro",
+        '<robot name="chain" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:property name="far" value="d"/>\n'
+        '<disable_collisions link1="a" link2="${far}" reason="Never"/>\n'
+        "</robot>",
+    )
+    mjcfbuild.build(_robot(tmp_path, "self_collision: {srdf: robot.srdf.xacro}\n"))
+    assert _reasons(tmp_path)[("a", "d")] == ("srdf: Never", True)
