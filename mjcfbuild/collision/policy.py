@@ -51,6 +51,27 @@ class CollisionChoice:
         """The CoACD parameters as a dict."""
         return dict(self.decompose)
 
+    def to_dict(self) -> dict:
+        """The choice as JSON-ready data."""
+        return {
+            "link": self.link,
+            "role": self.role,
+            "index": self.index,
+            "policy": self.policy,
+            "decompose": [list(item) for item in self.decompose],
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict) -> CollisionChoice:
+        """The choice :meth:`to_dict` gave."""
+        return cls(
+            data["link"],
+            data["role"],
+            data["index"],
+            data["policy"],
+            tuple((str(key), value) for key, value in data["decompose"]),
+        )
+
 
 def decompose_id(mesh_id: str, params: dict) -> str:
     """A stable short id of one decomposition of a mesh with given parameters."""

@@ -9,13 +9,13 @@ meshes stay up to date when the gripper changes.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.errors import ManifestError, MjcfbuildError
 from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.manifest.composition import Attachment
 from mjcfbuild.sources.packages import ENV_VARIABLES
+from mjcfbuild.steps.payloads import ComposePayload, PartEntry
 
 PARTS_DIR = "attach"
 
@@ -28,7 +28,7 @@ def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
     if not parts:
         return []
     tasks = []
-    entries: list[dict[str, Any]] = []
+    entries: list[PartEntry] = []
     for index, part in enumerate(parts):
         source = _part_source(ctx, index, part)
         packages = _part_packages(ctx, index, part)
@@ -46,28 +46,28 @@ def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
             )
         )
         entries.append(
-            {
-                "urdf": str(output),
-                "label": ctx.label(output if part.source.kind == "xacro" else source),
-                "key": f"{ctx.manifest_label} attach[{index}]",
-                "prefix": part.prefix,
-                "to": part.to,
-                "xyz": list(part.pos),
-                "rpy": list(part.rpy),
-                "base_dir": str(source.parent),
-                "packages": {name: str(path) for name, path in packages.items()},
-            }
+            PartEntry(
+                urdf=str(output),
+                label=ctx.label(output if part.source.kind == "xacro" else source),
+                key=f"{ctx.manifest_label} attach[{index}]",
+                prefix=part.prefix,
+                to=part.to,
+                xyz=list(part.pos),
+                rpy=list(part.rpy),
+                base_dir=str(source.parent),
+                packages={name: str(path) for name, path in packages.items()},
+            )
         )
-    payload = {
-        "main": str(ctx.state(SOURCE_URDF)),
-        "main_label": ctx.label(
+    payload = ComposePayload(
+        main=str(ctx.state(SOURCE_URDF)),
+        main_label=ctx.label(
             ctx.state(SOURCE_URDF) if ctx.source_kind == "xacro" else ctx.source_path
         ),
-        "base_dir": str(ctx.source_base_dir),
-        "parts": entries,
-        "environment": {key: ctx.environ.get(key, "") for key in ENV_VARIABLES},
-        "output": str(ctx.state(COMPOSED_URDF)),
-    }
+        base_dir=str(ctx.source_base_dir),
+        parts=entries,
+        environment={key: ctx.environ.get(key, "") for key in ENV_VARIABLES},
+        output=str(ctx.state(COMPOSED_URDF)),
+    )
     tasks.append(
         _task(
             ctx,
@@ -76,9 +76,8 @@ def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
             "compose",
             payload,
             in_worker=False,
-            file_dep=[ctx.state(SOURCE_URDF), *(Path(e["urdf"]) for e in entries)],
+            file_dep=[ctx.state(SOURCE_URDF), *(Path(e.urdf) for e in entries)],
             targets=[ctx.state(COMPOSED_URDF)],
-            params={k: v for k, v in payload.items() if k not in ("main", "output")},
         )
     )
     return tasks

@@ -67,7 +67,7 @@ class BuildContext:
         from mjcfbuild.manifest.loading import load_manifest
 
         path = Path(path)
-        manifest = load_manifest(path, use_cache=True)
+        manifest = load_manifest(path)
         ctx = cls(
             manifest,
             normalise(path).parent,

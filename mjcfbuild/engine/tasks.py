@@ -19,12 +19,8 @@ from pathlib import Path
 
 from doit.exceptions import TaskFailed
 
-from mjcfbuild.collision.policy import (
-    choose_collisions,
-    decompositions,
-    mesh_roles,
-    rules_from_dicts,
-)
+from mjcfbuild.collision.policy import decompositions, mesh_roles
+from mjcfbuild.collision.settings import collision_settings
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.engine.render_inputs import RenderInputsUnchanged
@@ -37,8 +33,23 @@ from mjcfbuild.engine.uptodate import (
 from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
 from mjcfbuild.fsutil import unreadable_file
-from mjcfbuild.manifest.cache import plain
 from mjcfbuild.sources.packages import ENV_VARIABLES
+from mjcfbuild.steps.payloads import (
+    AssemblePayload,
+    CheckPayload,
+    DecomposePayload,
+    DecompositionFiles,
+    ExpandPayload,
+    ExportUrdfPayload,
+    MeshOptions,
+    MeshPayload,
+    Payload,
+    PlanPayload,
+    PreviewsPayload,
+    ScenePayload,
+    SelfCollisionPayload,
+    SrdfPayload,
+)
 from mjcfbuild.urdf.model import robot_from_dict
 
 SOURCE_URDF = "source.urdf"
@@ -63,10 +74,8 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
     """Every task of the build; reads the plan the planning tasks wrote."""
     plan = read_plan(ctx)
     robot = robot_from_dict(plan["robot"])
-    collision = collision_settings(ctx, plan)
-    choices = choose_collisions(
-        robot, collision["default"], rules_from_dicts(collision["rules"]), collision["decompose"]
-    )
+    collision = collision_settings(ctx.manifest, plan["inputs"])
+    choices = collision.choose(robot)
     roles = mesh_roles(robot, choices)
     paths = {mesh["id"]: mesh["path"] for mesh in plan["meshes"]}
     decomposed = decompositions(robot, choices)
@@ -82,11 +91,9 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
         tasks.append(srdf)
     matrix = None
     if ctx.manifest.self_collision != "none":
-        matrix = _selfcollision_task(
-            ctx, plan, robot, choices, roles, decomposed, collision, prefix
-        )
+        matrix = _selfcollision_task(ctx, plan, robot, choices, roles, decomposed, prefix)
         tasks.append(matrix)
-    tasks.append(_assemble_task(ctx, plan, sorted(roles), decomposed, collision, prefix))
+    tasks.append(_assemble_task(ctx, plan, sorted(roles), choices, decomposed, prefix))
     tasks.append(_scene_task(ctx, plan, prefix))
     if ctx.manifest.output.urdf is not None:
         tasks.append(_export_urdf_task(ctx, prefix))
@@ -148,14 +155,14 @@ def _srdf_source(ctx: BuildContext) -> Path | None:
 def _srdf_task(ctx: BuildContext, prefix: str) -> dict:
     source = _srdf_source(ctx)
     _require_file(ctx, source, "SRDF", "self_collision.srdf")
-    payload = {
-        "source": str(source),
-        "label": ctx.label(source),
-        "args": ctx.manifest.source.xacro_args,
-        "packages": {name: str(path) for name, path in ctx.resolver.explicit.items()},
-        "environment": {key: ctx.environ.get(key, "") for key in ENV_VARIABLES},
-        "output": str(ctx.state(SRDF_SUMMARY)),
-    }
+    payload = SrdfPayload(
+        source=str(source),
+        label=ctx.label(source),
+        args=ctx.manifest.source.xacro_args,
+        packages=_packages(ctx.resolver.explicit),
+        environment=_environment(ctx),
+        output=str(ctx.state(SRDF_SUMMARY)),
+    )
     return _task(
         ctx,
         f"{prefix}srdf",
@@ -165,63 +172,45 @@ def _srdf_task(ctx: BuildContext, prefix: str) -> dict:
         in_worker=source.name.endswith(".xacro"),
         file_dep=[source],
         targets=[ctx.state(SRDF_SUMMARY)],
-        params={k: v for k, v in payload.items() if k != "output"},
     )
 
 
 def _selfcollision_task(
-    ctx: BuildContext, plan: dict, robot, choices, roles, decomposed, collision, prefix: str
+    ctx: BuildContext, plan: dict, robot, choices, roles, decomposed, prefix: str
 ) -> dict:
-    from dataclasses import asdict
-
     from mjcfbuild.selfcollision.robot import collision_robot
 
     settings = ctx.manifest.self_collision
     meshes = sorted(m for m, r in roles.items() if set(r) - {"visual"})
-    decompositions = _decomposition_entries(ctx, decomposed)
+    decompositions = _decomposition_files(ctx, decomposed)
     srdf = ctx.state(SRDF_SUMMARY) if _srdf_source(ctx) else None
     initial = {
         joint["name"]: joint["initial"]
         for joint in plan.get("ros2_control", {}).get("joints", [])
         if joint.get("initial") is not None
     }
-    payload = {
-        "robot": collision_robot(robot, choices).to_dict(),
-        "choices": [asdict(choice) for choice in choices],
-        "fuse_static": ctx.manifest.options.fuse_static,
-        "free_joint": ctx.manifest.options.free_joint,
-        "products": {m: str(product_summary(ctx, m)) for m in meshes},
-        "product_dirs": {m: str(ctx.products_dir / m) for m in meshes},
-        "decompositions": decompositions,
-        "srdf": str(srdf) if srdf else None,
-        "initial": initial,
-        "home": dict(ctx.manifest.home),
-        "keep": [list(pair) for pair in settings.keep],
-        "home_state": settings.home_state,
-        "settings": {
+    payload = SelfCollisionPayload(
+        robot=collision_robot(robot, choices).to_dict(),
+        choices=[choice.to_dict() for choice in choices],
+        fuse_static=ctx.manifest.options.fuse_static,
+        free_joint=ctx.manifest.options.free_joint,
+        decompositions=decompositions,
+        initial=initial,
+        home=dict(ctx.manifest.home),
+        keep=[list(pair) for pair in settings.keep],
+        home_state=settings.home_state,
+        settings={
             "samples": settings.samples,
             "seed": settings.seed,
             "exclude_never": settings.exclude_never,
         },
-        "manifest_label": ctx.manifest_label,
-        "cache": ctx.cache_settings(),
-        "output": str(ctx.state(SELF_COLLISION)),
-    }
-    params = {
-        k: payload[k]
-        for k in (
-            "robot",
-            "choices",
-            "fuse_static",
-            "free_joint",
-            "initial",
-            "home",
-            "keep",
-            "home_state",
-        )
-    }
-    params["settings"] = payload["settings"]
-    params["srdf"] = payload["srdf"] is not None
+        srdf=str(srdf) if srdf else None,
+        products={m: str(product_summary(ctx, m)) for m in meshes},
+        product_dirs={m: str(ctx.products_dir / m) for m in meshes},
+        manifest_label=ctx.manifest_label,
+        cache=ctx.cache_settings(),
+        output=str(ctx.state(SELF_COLLISION)),
+    )
     return _task(
         ctx,
         f"{prefix}selfcollision",
@@ -231,55 +220,23 @@ def _selfcollision_task(
         in_worker=True,
         file_dep=[
             *(product_summary(ctx, m) for m in meshes),
-            *(Path(d["summary"]) for d in decompositions),
+            *(Path(d.summary) for d in decompositions),
             *([srdf] if srdf else []),
         ],
         targets=[ctx.state(SELF_COLLISION)],
-        params=params,
     )
 
 
-def _decomposition_entries(ctx: BuildContext, decomposed: dict) -> list[dict]:
+def _decomposition_files(ctx: BuildContext, decomposed: dict) -> list[DecompositionFiles]:
     return [
-        {
-            "mesh_id": mesh_id,
-            "params": params,
-            "folder": str(decomposition_dir(ctx, name)),
-            "summary": str(decomposition_dir(ctx, name).with_suffix(".json")),
-        }
+        DecompositionFiles(
+            mesh_id=mesh_id,
+            params=params,
+            folder=str(decomposition_dir(ctx, name)),
+            summary=str(decomposition_dir(ctx, name).with_suffix(".json")),
+        )
         for name, (mesh_id, params) in decomposed.items()
     ]
-
-
-def collision_settings(ctx: BuildContext, plan: dict) -> dict:
-    """The collision settings in the plain form build steps take.
-
-    ``decompose_mesh`` inputs (in the URDF, the inputs file or robot.yaml) become rules after
-    the manifest's own: decompose that mesh with its threshold and the default parameters.
-    """
-    settings = ctx.manifest.collision
-    defaults = dict(settings.decompose_defaults)
-    limit = ctx.manifest.meshes.max_hull_vertices
-    thresholds: dict[str, float] = {}
-    for source in ("urdf", "file"):
-        for item in (plan["inputs"].get(source) or {}).get("decompositions", []):
-            thresholds[item["mesh"]] = item["threshold"]
-    for item in ctx.manifest.mujoco_inputs.decompose:
-        thresholds[item.mesh] = item.threshold
-    rules = [dict(rule, decompose=dict(rule["decompose"])) for rule in settings.effective_rules] + [
-        {
-            "links": [],
-            "meshes": [mesh],
-            "policy": "decompose",
-            "decompose": {**defaults, "threshold": threshold},
-        }
-        for mesh, threshold in sorted(thresholds.items())
-    ]
-    if limit is not None:  # CoACD parts respect the hull vertex limit too
-        for params in [defaults, *(rule["decompose"] for rule in rules)]:
-            if params:
-                params["max_ch_vertex"] = min(int(params["max_ch_vertex"]), limit)
-    return {"default": settings.default, "rules": rules, "decompose": defaults}
 
 
 def read_plan(ctx: BuildContext) -> dict:
@@ -292,22 +249,25 @@ def _task(
     name: str,
     title: str,
     step: str,
-    payload: dict,
+    payload: Payload,
     *,
     in_worker: bool,
     file_dep: list[Path],
     targets: list[Path],
-    params: dict,
     extra_uptodate: list | None = None,
     after: list[str] | None = None,
 ) -> dict:
-    params = {**params, "versions": step_versions(step)}
+    """A doit task running build step ``step`` on ``payload``; up to date while its file
+    dependencies, the payload's counted fields and the step's tool versions are unchanged."""
+    params = {**payload.uptodate_params(), "versions": step_versions(step)}
     return {
         "task_dep": after or [],
         "name": name,
         "title": lambda _task, title=title: title,
         "doc": title,
-        "actions": [(_run, [ctx, name, f"mjcfbuild.steps.{step}:run", payload, in_worker])],
+        "actions": [
+            (_run, [ctx, name, f"mjcfbuild.steps.{step}:run", payload.to_dict(), in_worker])
+        ],
         "file_dep": sorted({str(p) for p in file_dep}),
         "targets": [str(p) for p in targets],
         "uptodate": [ParamsUnchanged(params), outputs_intact(ctx.hashes), *(extra_uptodate or [])],
@@ -354,6 +314,15 @@ def _require_file(ctx: BuildContext, path: Path, what: str, key: str) -> None:
         )
 
 
+def _packages(packages: dict[str, Path]) -> dict[str, str]:
+    return {name: str(path) for name, path in packages.items()}
+
+
+def _environment(ctx: BuildContext) -> dict[str, str]:
+    """The ROS variables package lookup reads, as the build sees them."""
+    return {key: ctx.environ.get(key, "") for key in ENV_VARIABLES}
+
+
 def _expand_task(ctx: BuildContext, prefix: str) -> dict:
     source = ctx.source_path
     _require_file(ctx, source, "source file", "source")
@@ -389,15 +358,15 @@ def expand_file_task(
         file_dep += [Path(f) for f in depfile.files if Path(f).exists()]
         if stale:
             extra.append(always_stale(stale))
-    payload = {
-        "kind": kind,
-        "source": str(source),
-        "args": args,
-        "packages": {package: str(path) for package, path in packages.items()},
-        "environment": {key: ctx.environ.get(key, "") for key in ENV_VARIABLES},
-        "output": str(output),
-        "depfile": str(deps),
-    }
+    payload = ExpandPayload(
+        kind=kind,
+        source=str(source),
+        args=args,
+        packages=_packages(packages),
+        environment=_environment(ctx),
+        output=str(output),
+        depfile=str(deps),
+    )
     return _task(
         ctx,
         name,
@@ -407,7 +376,6 @@ def expand_file_task(
         in_worker=kind == "xacro",
         file_dep=file_dep,
         targets=[output, deps],
-        params={k: v for k, v in payload.items() if k not in ("output", "depfile")},
         extra_uptodate=extra,
     )
 
@@ -425,19 +393,19 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
         inputs_file = ctx.resolve(ctx.manifest.mujoco_inputs.file)
         _require_file(ctx, inputs_file, "inputs file", "mujoco_inputs.file")
     expanded = ctx.source_kind == "xacro" or bool(ctx.manifest.attach)
-    payload = {
-        "urdf": str(urdf),
-        "display": ctx.label(urdf if expanded else ctx.source_path),
-        "expanded_from": ctx.label(ctx.source_path) if expanded else None,
-        "base_dir": str(ctx.source_base_dir),
-        "packages": {name: str(path) for name, path in ctx.resolver.explicit.items()},
-        "environment": {key: ctx.environ.get(key, "") for key in ENV_VARIABLES},
-        "inputs_file": str(inputs_file) if inputs_file else None,
-        "inputs_file_label": ctx.label(inputs_file) if inputs_file else None,
-        "output": str(ctx.state(PLAN)),
-    }
-    if ctx.prebuilt_mesh_dir is not None:  # convert -a
-        payload["prebuilt_meshes"] = str(ctx.prebuilt_mesh_dir)
+    prebuilt = ctx.prebuilt_mesh_dir  # convert -a
+    payload = PlanPayload(
+        urdf=str(urdf),
+        display=ctx.label(urdf if expanded else ctx.source_path),
+        expanded_from=ctx.label(ctx.source_path) if expanded else None,
+        base_dir=str(ctx.source_base_dir),
+        packages=_packages(ctx.resolver.explicit),
+        environment=_environment(ctx),
+        inputs_file=str(inputs_file) if inputs_file else None,
+        inputs_file_label=ctx.label(inputs_file) if inputs_file else None,
+        output=str(ctx.state(PLAN)),
+        prebuilt_meshes=str(prebuilt) if prebuilt is not None else None,
+    )
     return _task(
         ctx,
         f"{prefix}plan",
@@ -447,7 +415,6 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
         in_worker=False,
         file_dep=[urdf, *([inputs_file] if inputs_file else [])],
         targets=[ctx.state(PLAN)],
-        params={k: v for k, v in payload.items() if k not in ("urdf", "output")},
         extra_uptodate=[planned_meshes_exist(ctx.state(PLAN))],
     )
 
@@ -467,25 +434,23 @@ def _mesh_task(ctx: BuildContext, mesh_id: str, path: str, roles: list[str], pre
         if stale:
             extra.append(always_stale(stale))
     meshes = ctx.manifest.meshes
-    options = {
-        "roles": roles,
-        "max_faces": meshes.max_faces,
-        "collada_up_axis": meshes.collada_up_axis,
-    }
-    # Only when set, so products (and their cache keys) of builds without them stay the same.
-    if meshes.collision_max_faces is not None and "collision" in roles:
-        options["collision_max_faces"] = meshes.collision_max_faces
-    if meshes.max_hull_vertices is not None and "hull" in roles:
-        options["max_hull_vertices"] = meshes.max_hull_vertices
-    payload = {
-        "source": path,
-        "product_dir": str(ctx.products_dir / mesh_id),
-        "summary": str(product_summary(ctx, mesh_id)),
-        "depfile": str(_mesh_depfile(ctx, mesh_id)),
-        "options": options,
-        "max_file_bytes": int(meshes.max_file_mb * 1e6),
-        "cache": ctx.cache_settings(),
-    }
+    options = MeshOptions(
+        roles=roles,
+        max_faces=meshes.max_faces,
+        collada_up_axis=meshes.collada_up_axis,
+        # Each budget only for the product it shapes, so other products keep their cache keys.
+        collision_max_faces=meshes.collision_max_faces if "collision" in roles else None,
+        max_hull_vertices=meshes.max_hull_vertices if "hull" in roles else None,
+    )
+    payload = MeshPayload(
+        options=options,
+        max_file_bytes=int(meshes.max_file_mb * 1e6),
+        source=path,
+        product_dir=str(ctx.products_dir / mesh_id),
+        summary=str(product_summary(ctx, mesh_id)),
+        depfile=str(_mesh_depfile(ctx, mesh_id)),
+        cache=ctx.cache_settings(),
+    )
     return _task(
         ctx,
         f"{prefix}mesh:{mesh_id}",
@@ -495,7 +460,6 @@ def _mesh_task(ctx: BuildContext, mesh_id: str, path: str, roles: list[str], pre
         in_worker=True,
         file_dep=file_dep,
         targets=[product_summary(ctx, mesh_id)],
-        params=options,
         extra_uptodate=extra,
     )
 
@@ -511,14 +475,14 @@ def decomposition_dir(ctx: BuildContext, name: str) -> Path:
 
 def _decompose_task(ctx: BuildContext, name: str, mesh_id: str, params: dict, prefix: str) -> dict:
     folder = decomposition_dir(ctx, name)
-    payload = {
-        "product_summary": str(product_summary(ctx, mesh_id)),
-        "product_dir": str(ctx.products_dir / mesh_id),
-        "output_dir": str(folder),
-        "summary": str(folder.with_suffix(".json")),
-        "params": params,
-        "cache": ctx.cache_settings(),
-    }
+    payload = DecomposePayload(
+        params=params,
+        product_summary=str(product_summary(ctx, mesh_id)),
+        product_dir=str(ctx.products_dir / mesh_id),
+        output_dir=str(folder),
+        summary=str(folder.with_suffix(".json")),
+        cache=ctx.cache_settings(),
+    )
     return _task(
         ctx,
         f"{prefix}decompose:{name}",
@@ -528,7 +492,6 @@ def _decompose_task(ctx: BuildContext, name: str, mesh_id: str, params: dict, pr
         in_worker=True,
         file_dep=[product_summary(ctx, mesh_id)],
         targets=[folder.with_suffix(".json")],
-        params={"params": params},
     )
 
 
@@ -536,69 +499,49 @@ def _assemble_task(
     ctx: BuildContext,
     plan: dict,
     meshes: list[str],
+    choices: list,
     decomposed: dict,
-    collision: dict,
     prefix: str,
 ) -> dict:
     options = ctx.manifest.options
     inertia = ctx.manifest.inertia
     source_label = ctx.portable_label(ctx.source_path)
-    decompositions = _decomposition_entries(ctx, decomposed)
+    decompositions = _decomposition_files(ctx, decomposed)
     matrix = ctx.state(SELF_COLLISION) if ctx.manifest.self_collision != "none" else None
     srdf = ctx.state(SRDF_SUMMARY) if _srdf_source(ctx) else None
-    payload = {
-        "plan": str(ctx.state(PLAN)),
-        "products": {mesh_id: str(product_summary(ctx, mesh_id)) for mesh_id in meshes},
-        "product_dirs": {mesh_id: str(ctx.products_dir / mesh_id) for mesh_id in meshes},
-        "decompositions": decompositions,
-        "collision": collision,
-        "inputs": {
+    payload = AssemblePayload(
+        choices=[choice.to_dict() for choice in choices],
+        decompositions=decompositions,
+        inputs={
             "urdf": plan["inputs"]["urdf"],
             "file": plan["inputs"]["file"],
-            "native": plain(ctx.manifest.mujoco_inputs),
+            "native": ctx.manifest.mujoco_inputs.model_dump(mode="json"),
         },
-        "manifest_label": ctx.manifest_label,
-        "actuators": plain(ctx.manifest.actuators),
-        "home": dict(ctx.manifest.home),
-        "self_collision": str(matrix) if matrix else None,
-        "floor": ctx.manifest.placement.floor,
-        "srdf": str(srdf) if srdf else None,
-        "srdf_home": ctx.manifest.self_collision.home_state if srdf else None,
-        "fuse_static": options.fuse_static,
-        "free_joint": options.free_joint,
-        "link_sites": options.link_sites,
-        "max_hull_vertices": ctx.manifest.meshes.max_hull_vertices,
-        "inertia": {
+        actuators=ctx.manifest.actuators.model_dump(mode="json"),
+        home=dict(ctx.manifest.home),
+        floor=ctx.manifest.placement.floor,
+        srdf_home=ctx.manifest.self_collision.home_state if srdf else None,
+        fuse_static=options.fuse_static,
+        free_joint=options.free_joint,
+        link_sites=options.link_sites,
+        max_hull_vertices=ctx.manifest.meshes.max_hull_vertices,
+        inertia={
             "mode": inertia.policy,
             "min_mass": inertia.min_mass,
             "min_inertia": inertia.min_inertia,
         },
-        "header": f"Generated by mjcfbuild from {source_label}; edit the sources, not this file.",
-        "assets_dir": str(ctx.assets_dir),
-        "report": str(ctx.state(ASSEMBLY_REPORT)),
-        "floor_record": str(ctx.state(FLOOR_RECORD)),
-        "output": str(ctx.robot_path),
-    }
-    params = {
-        k: payload[k]
-        for k in (
-            "collision",
-            "inputs",
-            "actuators",
-            "home",
-            "floor",
-            "max_hull_vertices",
-            "fuse_static",
-            "free_joint",
-            "link_sites",
-            "inertia",
-            "header",
-        )
-    }
-    params["assets_dir"] = payload["assets_dir"]
-    params["self_collision"] = matrix is not None
-    params["srdf"] = srdf is not None
-    params["srdf_home"] = payload["srdf_home"]
+        header=f"Generated by mjcfbuild from {source_label}; edit the sources, not this file.",
+        assets_dir=str(ctx.assets_dir),
+        self_collision=str(matrix) if matrix else None,
+        srdf=str(srdf) if srdf else None,
+        plan=str(ctx.state(PLAN)),
+        products={mesh_id: str(product_summary(ctx, mesh_id)) for mesh_id in meshes},
+        product_dirs={mesh_id: str(ctx.products_dir / mesh_id) for mesh_id in meshes},
+        manifest_label=ctx.manifest_label,
+        report=str(ctx.state(ASSEMBLY_REPORT)),
+        floor_record=str(ctx.state(FLOOR_RECORD)),
+        output=str(ctx.robot_path),
+    )
     return _task(
         ctx,
         f"{prefix}assemble",
@@ -609,12 +552,11 @@ def _assemble_task(
         file_dep=[
             ctx.state(PLAN),
             *(product_summary(ctx, m) for m in meshes),
-            *(Path(d["summary"]) for d in decompositions),
+            *(Path(d.summary) for d in decompositions),
             *([matrix] if matrix else []),
             *([srdf] if srdf else []),
         ],
         targets=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT), ctx.state(FLOOR_RECORD)],
-        params=params,
     )
 
 
@@ -628,24 +570,23 @@ def report_dir(ctx: BuildContext) -> Path:
 
 def _check_task(ctx: BuildContext, prefix: str) -> dict:
     settings = ctx.manifest.check
-    options = {
-        "configurations": settings.configurations,
-        "position_tolerance": settings.position_tolerance,
-        "rotation_tolerance": settings.rotation_tolerance,
-        "steps": settings.steps,
-        "hold_tolerance": settings.hold_tolerance,
-        "seed": 0,
-    }
-    payload = {
-        "plan": str(ctx.state(PLAN)),
-        "assembly_report": str(ctx.state(ASSEMBLY_REPORT)),
-        "model": str(ctx.robot_path),
-        "model_label": ctx.label(ctx.robot_path),
-        "scene": str(ctx.scene_path),
-        "urdf": str(planned_urdf(ctx)),  # for the check's own reader of the URDF
-        "options": options,
-        "output": str(ctx.state(CHECK_RESULTS)),
-    }
+    payload = CheckPayload(
+        options={
+            "configurations": settings.configurations,
+            "position_tolerance": settings.position_tolerance,
+            "rotation_tolerance": settings.rotation_tolerance,
+            "steps": settings.steps,
+            "hold_tolerance": settings.hold_tolerance,
+            "seed": 0,
+        },
+        plan=str(ctx.state(PLAN)),
+        assembly_report=str(ctx.state(ASSEMBLY_REPORT)),
+        model=str(ctx.robot_path),
+        model_label=ctx.label(ctx.robot_path),
+        scene=str(ctx.scene_path),
+        urdf=str(planned_urdf(ctx)),  # for the check's own reader of the URDF
+        output=str(ctx.state(CHECK_RESULTS)),
+    )
     return _task(
         ctx,
         f"{prefix}check",
@@ -661,14 +602,13 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
             planned_urdf(ctx),
         ],
         targets=[ctx.state(CHECK_RESULTS)],
-        params={"options": options},
     )
 
 
 def _previews_task(ctx: BuildContext, prefix: str) -> dict:
     folder = report_dir(ctx) / "previews"
     # The scene: the robot at home, on its floor.
-    payload = {"model": str(ctx.scene_path), "folder": str(folder)}
+    payload = PreviewsPayload(folder=str(folder), model=str(ctx.scene_path))
     return _task(
         ctx,
         f"{prefix}previews",
@@ -680,7 +620,6 @@ def _previews_task(ctx: BuildContext, prefix: str) -> dict:
         # and the scene, whose floor the pictures show.
         file_dep=[ctx.scene_path],
         targets=[],
-        params={"folder": str(folder)},
         extra_uptodate=[RenderInputsUnchanged(ctx.robot_path, ctx.assets_dir, ctx.hashes)],
         after=[f"{prefix}assemble"],
     )
@@ -689,20 +628,20 @@ def _previews_task(ctx: BuildContext, prefix: str) -> dict:
 def _export_urdf_task(ctx: BuildContext, prefix: str) -> dict:
     export = ctx.manifest.output.urdf
     urdf, mesh_dir = ctx.urdf_path, ctx.urdf_mesh_dir
-    options = {
-        "asset_prefix": export.asset_prefix,
-        "sites": export.sites,
-        "mesh_folder": export.mesh_folder,
-        "header": f"Generated by mjcfbuild from {ctx.manifest.robot_file}; "
-        "edit the sources, not this file.",
-    }
-    payload = {
-        "model": str(ctx.robot_path),
-        "urdf": str(urdf),
-        "mesh_dir": str(mesh_dir),
-        "record": str(ctx.state(URDF_EXPORT_RECORD)),
-        "options": options,
-    }
+    assert export is not None and urdf is not None and mesh_dir is not None
+    payload = ExportUrdfPayload(
+        options={
+            "asset_prefix": export.asset_prefix,
+            "sites": export.sites,
+            "mesh_folder": export.mesh_folder,
+            "header": f"Generated by mjcfbuild from {ctx.manifest.robot_file}; "
+            "edit the sources, not this file.",
+        },
+        model=str(ctx.robot_path),
+        urdf=str(urdf),
+        mesh_dir=str(mesh_dir),
+        record=str(ctx.state(URDF_EXPORT_RECORD)),
+    )
     return _task(
         ctx,
         f"{prefix}export_urdf",
@@ -712,7 +651,6 @@ def _export_urdf_task(ctx: BuildContext, prefix: str) -> dict:
         in_worker=True,
         file_dep=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT)],
         targets=[urdf],
-        params={"options": options},
     )
 
 
@@ -730,15 +668,15 @@ def _scene_task(ctx: BuildContext, plan: dict, prefix: str) -> dict:
             if found:
                 block = found
                 break
-    payload = {
-        "scene_file": str(source) if source else None,
-        "scene_block": block,
-        "model": ctx.manifest.name,
-        "robot_file": ctx.manifest.robot_file,
-        "floor": ctx.manifest.placement.floor,
-        "floor_record": str(ctx.state(FLOOR_RECORD)),
-        "output": str(ctx.scene_path),
-    }
+    payload = ScenePayload(
+        scene_file=str(source) if source else None,
+        scene_block=block,
+        model=ctx.manifest.name,
+        robot_file=ctx.manifest.robot_file,
+        floor=ctx.manifest.placement.floor,
+        floor_record=str(ctx.state(FLOOR_RECORD)),
+        output=str(ctx.scene_path),
+    )
     auto_floor = ctx.manifest.placement.floor == "auto"
     return _task(
         ctx,
@@ -749,7 +687,6 @@ def _scene_task(ctx: BuildContext, plan: dict, prefix: str) -> dict:
         in_worker=False,
         file_dep=([source] if source else []) + ([ctx.state(FLOOR_RECORD)] if auto_floor else []),
         targets=[ctx.scene_path],
-        params={k: v for k, v in payload.items() if k not in ("output", "floor_record")},
         # Outputs change together: a build whose model fails leaves the scene alone too.
         after=[f"{prefix}assemble"],
     )

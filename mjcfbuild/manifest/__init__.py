@@ -1,7 +1,7 @@
 """The ``robot.yaml`` manifest: models, loading with positioned errors, and its JSON Schema.
 
-Imports are lazy: a no-op build reads an already validated manifest from the cache and never
-imports pydantic (see :mod:`mjcfbuild.manifest.cache`).
+Imports are lazy: a no-op build is decided from its stamp (:mod:`mjcfbuild.engine.stamp`) and
+never imports pydantic.
 """
 
 from __future__ import annotations

@@ -7,7 +7,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from mjcfbuild.errors import ManifestError
-from mjcfbuild.manifest import cache
 
 if TYPE_CHECKING:
     from pydantic import BaseModel, ValidationError
@@ -16,12 +15,11 @@ if TYPE_CHECKING:
     from mjcfbuild.manifest.yamlpos import Positions
 
 
-def load_manifest(path: str | Path, use_cache: bool = False):
+def load_manifest(path: str | Path) -> Manifest:
     """Read and validate a manifest file.
 
     Raises :class:`ManifestError` with ``file:line:column`` for unreadable files, YAML syntax
-    errors and every kind of validation error. With ``use_cache``, a manifest validated before
-    comes back as a :class:`~mjcfbuild.manifest.cache.FrozenManifest` without importing pydantic.
+    errors and every kind of validation error.
     """
     path = Path(path)
     try:
@@ -41,15 +39,8 @@ def load_manifest(path: str | Path, use_cache: bool = False):
         ) from None
     except OSError as exc:
         raise ManifestError(f"cannot read: {exc.strerror}", file=path) from None
-    if use_cache:
-        cached = cache.read_cached(data)
-        if cached is not None:
-            return cached
     # Errors name the manifest relative to its own folder, like every other file of a build.
-    manifest = parse_manifest(text, display_name=path.name)
-    if use_cache:
-        cache.remember(data, manifest)
-    return manifest
+    return parse_manifest(text, display_name=path.name)
 
 
 def parse_manifest(text: str, display_name: str = "robot.yaml") -> Manifest:

@@ -17,6 +17,7 @@ from mjcfbuild.engine.store import open_store
 from mjcfbuild.sharing import stats as stats_file
 from mjcfbuild.sharing.settings import ExecutorSpec, RemoteSpec
 from mjcfbuild.sharing.stats import ShareStats
+from mjcfbuild.steps.payloads import DecomposePayload, MeshPayload
 
 # step function -> product kind
 SHARED_STEPS = {"mjcfbuild.steps.mesh:run": "mesh", "mjcfbuild.steps.decompose:run": "decompose"}
@@ -91,16 +92,18 @@ class ProductSharing:
             from mjcfbuild.meshes.references import referenced_files
             from mjcfbuild.steps.mesh import check_size
 
-            main = Path(payload["source"])
-            check_size(main, payload["max_file_bytes"])
+            request = MeshPayload.from_dict(payload)
+            main = Path(request.source)
+            check_size(main, request.max_file_bytes)
             inputs = [main, *referenced_files(main)]
-            options = payload["options"]
+            options = request.options.cache_params()
         else:
             from mjcfbuild.steps.decompose import collision_mesh
 
-            main = collision_mesh(payload)
+            decomposition = DecomposePayload.from_dict(payload)
+            main = collision_mesh(decomposition)
             inputs = [main]
-            options = payload["params"]
+            options = decomposition.params
         root = Path(os.path.commonpath([p.parent for p in inputs]))
         files = {path: path.relative_to(root) for path in inputs}
         return self._executor.compute(kind, key, options, files, main, task, self._step_timeout)
@@ -124,7 +127,9 @@ class ProductSharing:
 def _key(kind: str, payload: dict) -> str:
     from mjcfbuild.steps import decompose, mesh
 
-    return mesh.cache_key(payload) if kind == "mesh" else decompose.cache_key(payload)
+    if kind == "mesh":
+        return mesh.cache_key(MeshPayload.from_dict(payload))
+    return decompose.cache_key(DecomposePayload.from_dict(payload))
 
 
 def _store_files(store, key: str, summary: dict, files: dict[str, bytes]) -> None:

@@ -6,7 +6,7 @@ import json
 import os
 from pathlib import Path
 
-from mjcfbuild.collision.policy import choose_collisions, rules_from_dicts
+from mjcfbuild.collision.policy import CollisionChoice
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import remove_stale_temp_files
 from mjcfbuild.inputs.combine import combine
@@ -18,60 +18,60 @@ from mjcfbuild.mjcf.assemble import AssemblyOptions, assemble
 from mjcfbuild.mjcf.inertia import InertiaPolicy
 from mjcfbuild.mjcf.prepared import Decomposition
 from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.steps.payloads import AssemblePayload
 from mjcfbuild.urdf.model import robot_from_dict
 
 
 def run(payload: dict) -> dict:
     """Assemble the model, publish its assets, then write the model file and the report."""
-    plan = json.loads(Path(payload["plan"]).read_text())
+    request = AssemblePayload.from_dict(payload)
+    plan = json.loads(Path(request.plan).read_text())
     robot = robot_from_dict(plan["robot"])
     products = {
         mesh_id: json.loads(Path(summary).read_text())
-        for mesh_id, summary in payload["products"].items()
+        for mesh_id, summary in request.products.items()
     }
-    product_dirs = {mesh_id: Path(folder) for mesh_id, folder in payload["product_dirs"].items()}
-    collision = payload["collision"]
-    rules = rules_from_dicts(collision["rules"])
-    choices = choose_collisions(robot, collision["default"], rules, collision["decompose"])
+    product_dirs = {mesh_id: Path(folder) for mesh_id, folder in request.product_dirs.items()}
+    choices = [CollisionChoice.from_dict(choice) for choice in request.choices]
     decompositions = []
-    for entry in payload["decompositions"]:
-        summary = json.loads(Path(entry["summary"]).read_text())
+    for entry in request.decompositions:
+        summary = json.loads(Path(entry.summary).read_text())
         decompositions.append(
             Decomposition(
-                entry["mesh_id"],
-                entry["params"],
-                Path(entry["folder"]),
+                entry.mesh_id,
+                entry.params,
+                Path(entry.folder),
                 summary["parts"],
                 summary["files"],
             )
         )
-    inputs, input_warnings = _inputs(payload)
+    inputs, input_warnings = _inputs(request)
     control = Ros2Control.from_dict(plan.get("ros2_control", {}))
-    matrix = _read(payload["self_collision"])
-    srdf = _read(payload["srdf"])
+    matrix = _read(request.self_collision)
+    srdf = _read(request.srdf)
     options = AssemblyOptions(
         inputs=inputs,
         control=control,
-        actuators=ActuatorSettings(**payload["actuators"]),
-        home=payload["home"],
-        home_state=(srdf or {}).get("states", {}).get(payload["srdf_home"] or "home"),
+        actuators=ActuatorSettings(**request.actuators),
+        home=request.home,
+        home_state=(srdf or {}).get("states", {}).get(request.srdf_home or "home"),
         excludes=[tuple(pair) for pair in (matrix or {}).get("excludes", [])],
-        manifest_label=payload["manifest_label"],
-        fuse_static=payload["fuse_static"],
-        free_joint=payload["free_joint"],
-        link_sites=payload["link_sites"],
-        max_hull_vertices=payload.get("max_hull_vertices"),
-        inertia=InertiaPolicy(**payload["inertia"]),
-        header=payload["header"],
+        manifest_label=request.manifest_label,
+        fuse_static=request.fuse_static,
+        free_joint=request.free_joint,
+        link_sites=request.link_sites,
+        max_hull_vertices=request.max_hull_vertices,
+        inertia=InertiaPolicy(**request.inertia),
+        header=request.header,
         choices=choices,
         decompositions=decompositions,
     )
     assembly = assemble(robot, products, product_dirs, options)
-    assembly.warnings += _placement_warnings(assembly, payload)
+    assembly.warnings += _placement_warnings(assembly, request.floor)
 
     outputs: dict[str, str] = {}
-    assets_dir = Path(payload["assets_dir"])
-    report_path = Path(payload["report"])
+    assets_dir = Path(request.assets_dir)
+    report_path = Path(request.report)
     previous = _previous_assets(report_path)
     assets_dir.mkdir(parents=True, exist_ok=True)
     remove_stale_temp_files(assets_dir)
@@ -98,12 +98,12 @@ def run(payload: dict) -> dict:
     lowest = assembly.readiness.lowest_point if assembly.readiness else None
     floor = {"lowest_point": lowest}
     write_output(
-        Path(payload["floor_record"]), (json.dumps(floor, sort_keys=True) + "\n").encode(), outputs
+        Path(request.floor_record), (json.dumps(floor, sort_keys=True) + "\n").encode(), outputs
     )
     failpoint("assemble")
     # The model is written last. If the build stops before this, the step has not succeeded
     # and the next build does it again, so an old model never passes for a current one.
-    write_output(Path(payload["output"]), assembly.xml, outputs)
+    write_output(Path(request.output), assembly.xml, outputs)
     return {
         "outputs": outputs,
         "warnings": input_warnings
@@ -112,19 +112,18 @@ def run(payload: dict) -> dict:
     }
 
 
-def _inputs(payload: dict):
+def _inputs(request: AssemblePayload):
     """The MuJoCo inputs of the URDF, the inputs file and robot.yaml, combined."""
-    sources = [inputs_from_dict(payload["inputs"]["urdf"])]
-    if payload["inputs"]["file"]:
-        sources.append(inputs_from_dict(payload["inputs"]["file"]))
-    sources.append(native_inputs(payload["inputs"]["native"], payload["manifest_label"]))
+    sources = [inputs_from_dict(request.inputs["urdf"])]
+    if request.inputs["file"]:
+        sources.append(inputs_from_dict(request.inputs["file"]))
+    sources.append(native_inputs(request.inputs["native"], request.manifest_label))
     return combine(sources)
 
 
-def _placement_warnings(assembly, payload: dict) -> list[str]:
+def _placement_warnings(assembly, floor: float | str) -> list[str]:
     """A fixed-base robot reaching below the scene's floor at home, and how to fix it."""
     lowest = assembly.readiness.lowest_point if assembly.readiness else None
-    floor = payload["floor"]
     if lowest is None or floor == "auto" or lowest["height"] >= float(floor) - 1e-3:
         return []
     return [

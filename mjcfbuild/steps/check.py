@@ -8,31 +8,33 @@ from pathlib import Path
 from mjcfbuild.check.model_check import CheckOptions, check_model
 from mjcfbuild.errors import CheckError
 from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.steps.payloads import CheckPayload
 from mjcfbuild.urdf.model import robot_from_dict
 
 
 def run(payload: dict) -> dict:
     """Check the model; write the results (also when a check fails, for the report)."""
-    plan = json.loads(Path(payload["plan"]).read_text())
+    request = CheckPayload.from_dict(payload)
+    plan = json.loads(Path(request.plan).read_text())
     robot = robot_from_dict(plan["robot"])
     try:
-        assembly = json.loads(Path(payload["assembly_report"]).read_text())
+        assembly = json.loads(Path(request.assembly_report).read_text())
     except (OSError, ValueError):
         assembly = {}
     repaired = {repair["body"] for repair in assembly.get("repairs", [])}
     report = check_model(
         robot,
-        Path(payload["model"]),
-        Path(payload["scene"]),
+        Path(request.model),
+        Path(request.scene),
         repaired,
-        CheckOptions(**payload["options"]),
+        CheckOptions(**request.options),
         readiness=assembly.get("readiness") or {},
-        urdf=Path(payload["urdf"]).read_bytes() if payload.get("urdf") else None,
+        urdf=Path(request.urdf).read_bytes() if request.urdf else None,
     )
     outputs: dict[str, str] = {}
     data = {"passes": report.passes, "failures": report.failures, **report.results}
     write_output(
-        Path(payload["output"]),
+        Path(request.output),
         (json.dumps(data, indent=1, sort_keys=True) + "\n").encode(),
         outputs,
     )
@@ -40,7 +42,7 @@ def run(payload: dict) -> dict:
         more = len(report.failures) - 1
         raise CheckError(
             f"check: {report.failures[0]}",
-            file=payload["model_label"],
+            file=request.model_label,
             hint=f"{more} more failure{'s' if more > 1 else ''} in the report" if more else None,
         )
     return {"outputs": outputs, "warnings": _standing_notes(report.results)}

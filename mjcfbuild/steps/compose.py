@@ -9,32 +9,34 @@ from mjcfbuild.compose.urdf import Part, compose
 from mjcfbuild.sources.packages import PackageResolver
 from mjcfbuild.sources.uris import resolve_uri
 from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.steps.payloads import ComposePayload
 
 
 def run(payload: dict) -> dict:
-    """Write the composed URDF to ``payload['output']``."""
+    """Write the composed URDF to its ``output``."""
+    request = ComposePayload.from_dict(payload)
     parts = []
-    for entry in payload["parts"]:
+    for entry in request.parts:
         packages = PackageResolver(
-            {name: Path(folder) for name, folder in entry["packages"].items()},
-            payload["environment"],
+            {name: Path(folder) for name, folder in entry.packages.items()},
+            request.environment,
         )
         parts.append(
             Part(
-                xml=Path(entry["urdf"]).read_bytes(),
-                label=entry["label"],
-                key=entry["key"],
-                prefix=entry["prefix"],
-                to=entry["to"],
-                xyz=tuple(entry["xyz"]),
-                rpy=tuple(entry["rpy"]),
-                resolve=partial(_resolve, base_dir=Path(entry["base_dir"]), packages=packages),
+                xml=Path(entry.urdf).read_bytes(),
+                label=entry.label,
+                key=entry.key,
+                prefix=entry.prefix,
+                to=entry.to,
+                xyz=tuple(entry.xyz),
+                rpy=tuple(entry.rpy),
+                resolve=partial(_resolve, base_dir=Path(entry.base_dir), packages=packages),
             )
         )
-    main = Path(payload["main"]).read_bytes()
-    text, warnings = compose(main, payload["main_label"], parts, Path(payload["base_dir"]))
+    main = Path(request.main).read_bytes()
+    text, warnings = compose(main, request.main_label, parts, Path(request.base_dir))
     outputs: dict[str, str] = {}
-    write_output(Path(payload["output"]), text, outputs)
+    write_output(Path(request.output), text, outputs)
     return {"outputs": outputs, "warnings": warnings}
 
 

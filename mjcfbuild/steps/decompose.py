@@ -9,15 +9,17 @@ from mjcfbuild.engine.store import open_store, product_key
 from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.steps.payloads import DecomposePayload
 
 
 def run(payload: dict) -> dict:
-    """Decompose the collision mesh of a mesh product into ``payload['output_dir']``."""
-    mesh_file = collision_mesh(payload)
-    output_dir = Path(payload["output_dir"])
-    params = payload["params"]
-    store = open_store(payload["cache"])
-    key = cache_key(payload)
+    """Decompose the collision mesh of a mesh product into ``output_dir``."""
+    request = DecomposePayload.from_dict(payload)
+    mesh_file = collision_mesh(request)
+    output_dir = Path(request.output_dir)
+    params = request.params
+    store = open_store(request.cache)
+    key = cache_key(request)
     summary = store.fetch(key, output_dir) if store else None
     cached = summary is not None
     if summary is None:
@@ -29,17 +31,17 @@ def run(payload: dict) -> dict:
             store.store(key, output_dir, summary)
     outputs = {str(output_dir / name): digest for name, digest in summary["files"].items()}
     text = json.dumps(summary, indent=1, sort_keys=True) + "\n"
-    write_output(Path(payload["summary"]), text.encode(), outputs)
+    write_output(Path(request.summary), text.encode(), outputs)
     return {"outputs": outputs, "cached": cached, "stored": not cached and store is not None}
 
 
-def collision_mesh(payload: dict) -> Path:
-    """The mesh file the decomposition ``payload`` asks for is made from."""
-    product = json.loads(Path(payload["product_summary"]).read_text())
-    return Path(payload["product_dir"]) / product["collision"]
+def collision_mesh(request: DecomposePayload) -> Path:
+    """The mesh file the decomposition ``request`` asks for is made from."""
+    product = json.loads(Path(request.product_summary).read_text())
+    return Path(request.product_dir) / product["collision"]
 
 
-def cache_key(payload: dict) -> str:
-    """The product key of the decomposition ``payload`` asks for (see :func:`product_key`)."""
-    params = {**payload["params"], "versions": step_versions("decompose")}
-    return product_key("decompose", params, [collision_mesh(payload)])
+def cache_key(request: DecomposePayload) -> str:
+    """The product key of the decomposition ``request`` asks for (see :func:`product_key`)."""
+    params = {**request.params, "versions": step_versions("decompose")}
+    return product_key("decompose", params, [collision_mesh(request)])

@@ -7,20 +7,22 @@ from pathlib import Path
 from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.sources.expand import expand_source
 from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.steps.payloads import ExpandPayload
 
 
 def run(payload: dict) -> dict:
-    """Expand (xacro) or read (URDF, description) the source into ``payload['output']``."""
-    source = Path(payload["source"])
+    """Expand (xacro) or read (URDF, description) the source into its ``output``."""
+    request = ExpandPayload.from_dict(payload)
+    source = Path(request.source)
     expansion = expand_source(
         source,
-        payload["kind"] == "xacro",
-        payload["args"],
-        payload["packages"],
-        payload["environment"],
+        request.kind == "xacro",
+        request.args,
+        request.packages,
+        request.environment,
     )
     outputs: dict[str, str] = {}
-    write_output(Path(payload["output"]), expansion.urdf, outputs)
-    depfile = Path(payload["depfile"])
+    write_output(Path(request.output), expansion.urdf, outputs)
+    depfile = Path(request.depfile)
     Depfile(expansion.files, expansion.missing, expansion.environment).write(depfile)
     return {"outputs": outputs, "discovered": [f for f in expansion.files if f != str(source)]}

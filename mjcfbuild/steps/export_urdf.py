@@ -8,23 +8,25 @@ from pathlib import Path
 from mjcfbuild.export import ExportOptions, export_urdf
 from mjcfbuild.export.publish import default_asset_prefix
 from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.steps.payloads import ExportUrdfPayload
 
 
 def run(payload: dict) -> dict:
     """Export, write the meshes and then the URDF, and remove meshes an earlier export left."""
-    options = payload["options"]
-    urdf, mesh_dir = Path(payload["urdf"]), Path(payload["mesh_dir"])
+    request = ExportUrdfPayload.from_dict(payload)
+    options = request.options
+    urdf, mesh_dir = Path(request.urdf), Path(request.mesh_dir)
     prefix = options["asset_prefix"]
     if prefix is None:
         prefix = default_asset_prefix(urdf, mesh_dir)
     result = export_urdf(
-        Path(payload["model"]),
+        Path(request.model),
         ExportOptions(asset_prefix=prefix, sites=options["sites"], header=options["header"]),
     )
     outputs: dict[str, str] = {}
     for name, data in sorted(result.meshes.items()):
         write_output(mesh_dir / name, data, outputs)
-    record = Path(payload["record"])
+    record = Path(request.record)
     for name in _previous_meshes(record) - set(result.meshes):
         if name == Path(name).name and not name.startswith("."):  # never outside the folder
             (mesh_dir / name).unlink(missing_ok=True)

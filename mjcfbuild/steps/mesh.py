@@ -12,32 +12,33 @@ from mjcfbuild.errors import InputError
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.meshes.references import referenced_files
 from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.steps.payloads import MeshPayload
 
 
 def run(payload: dict) -> dict:
-    """Convert ``payload['source']`` into ``payload['product_dir']``; write the summary."""
-    source = Path(payload["source"])
-    product_dir = Path(payload["product_dir"])
-    options = payload["options"]
-    check_size(source, payload["max_file_bytes"])
+    """Convert the ``source`` mesh into ``product_dir``; write the summary."""
+    request = MeshPayload.from_dict(payload)
+    source = Path(request.source)
+    product_dir = Path(request.product_dir)
+    options = request.options
+    check_size(source, request.max_file_bytes)
     references = referenced_files(source)
-    store = open_store(payload["cache"])
-    key = cache_key(payload, references)
+    store = open_store(request.cache)
+    key = cache_key(request, references)
     summary = store.fetch(key, product_dir) if store else None
     cached = summary is not None
     if summary is None:
-        from mjcfbuild.meshes.convert import (
-            convert_with_options,  # numpy, trimesh: only when needed
-        )
+        # numpy and trimesh: only when a conversion is needed
+        from mjcfbuild.meshes.convert import convert_with_options
 
-        summary = convert_with_options(source, product_dir, options)
+        summary = convert_with_options(source, product_dir, options.cache_params())
         if store:
             store.store(key, product_dir, summary)
     failpoint("mesh")
-    Depfile([str(p) for p in references], [], {}).write(Path(payload["depfile"]))
+    Depfile([str(p) for p in references], [], {}).write(Path(request.depfile))
     outputs = {str(product_dir / name): digest for name, digest in summary["files"].items()}
     text = json.dumps(summary, indent=1, sort_keys=True) + "\n"
-    write_output(Path(payload["summary"]), text.encode(), outputs)
+    write_output(Path(request.summary), text.encode(), outputs)
     return {
         "outputs": outputs,
         "discovered": [str(p) for p in references],
@@ -47,12 +48,12 @@ def run(payload: dict) -> dict:
     }
 
 
-def cache_key(payload: dict, references: list[Path] | None = None) -> str:
-    """The product key of the conversion ``payload`` asks for (see :func:`product_key`)."""
-    source = Path(payload["source"])
+def cache_key(request: MeshPayload, references: list[Path] | None = None) -> str:
+    """The product key of the conversion ``request`` asks for (see :func:`product_key`)."""
+    source = Path(request.source)
     if references is None:
         references = referenced_files(source)
-    params = {**payload["options"], "versions": step_versions("mesh")}
+    params = {**request.options.cache_params(), "versions": step_versions("mesh")}
     return product_key("mesh", params, [source, *references])
 
 

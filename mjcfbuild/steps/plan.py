@@ -11,34 +11,34 @@ from mjcfbuild.inputs.ros2_control import read_ros2_control
 from mjcfbuild.inputs.xml_inputs import inputs_in_urdf, read_inputs_file
 from mjcfbuild.sources.packages import PackageResolver
 from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.steps.payloads import PlanPayload
 from mjcfbuild.urdf.parse import parse_urdf, parse_xml
 from mjcfbuild.urdf.resolve import resolve_files
 
 
 def run(payload: dict) -> dict:
-    """Write the build plan (robot, meshes, inputs, ros2_control) to ``payload['output']``."""
+    """Write the build plan (robot, meshes, inputs, ros2_control) to its ``output``."""
+    request = PlanPayload.from_dict(payload)
     packages = PackageResolver(
-        {name: Path(folder) for name, folder in payload["packages"].items()},
-        payload["environment"],
+        {name: Path(folder) for name, folder in request.packages.items()},
+        request.environment,
     )
-    data = Path(payload["urdf"]).read_bytes()
-    display = payload["display"]
+    data = Path(request.urdf).read_bytes()
+    display = request.display
     try:
         robot = parse_urdf(data, display)
-        prebuilt = payload.get("prebuilt_meshes")
-        resolve_files(
-            robot, Path(payload["base_dir"]), packages, Path(prebuilt) if prebuilt else None
-        )
+        prebuilt = request.prebuilt_meshes
+        resolve_files(robot, Path(request.base_dir), packages, Path(prebuilt) if prebuilt else None)
         root = parse_xml(data, display, [])
         urdf_inputs = inputs_in_urdf(root, display)
         control = read_ros2_control(root, display)
     except InputError as exc:
-        if payload.get("expanded_from") and exc.hint is None:
-            exc.hint = f"the line is in the expansion of {payload['expanded_from']}"
+        if request.expanded_from and exc.hint is None:
+            exc.hint = f"the line is in the expansion of {request.expanded_from}"
         raise
     file_inputs = None
-    if payload.get("inputs_file"):
-        file_inputs = read_inputs_file(Path(payload["inputs_file"]), payload["inputs_file_label"])
+    if request.inputs_file:
+        file_inputs = read_inputs_file(Path(request.inputs_file), request.inputs_file_label)
     meshes = {
         shape.geometry.mesh_id: shape.geometry.path
         for link in robot.links
@@ -56,5 +56,5 @@ def run(payload: dict) -> dict:
     }
     outputs: dict[str, str] = {}
     text = json.dumps(plan, indent=1, sort_keys=True) + "\n"
-    write_output(Path(payload["output"]), text.encode(), outputs)
+    write_output(Path(request.output), text.encode(), outputs)
     return {"outputs": outputs, "warnings": robot.warnings}

@@ -7,13 +7,15 @@ from pathlib import Path
 from mjcfbuild.check.previews import render_previews
 from mjcfbuild.errors import MjcfbuildError, ModelError
 from mjcfbuild.steps.outputs import record_output
+from mjcfbuild.steps.payloads import PreviewsPayload
 
 
 def run(payload: dict) -> dict:
     """Render the previews; a machine without offscreen OpenGL gets a warning, not a failure."""
-    folder = Path(payload["folder"])
+    request = PreviewsPayload.from_dict(payload)
+    folder = Path(request.folder)
     try:
-        names = render_previews(Path(payload["model"]), folder)
+        names = render_previews(Path(request.model), folder)
     except ModelError:  # a model that does not load: the check task says why
         return {"outputs": {}}
     except MjcfbuildError:

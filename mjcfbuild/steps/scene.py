@@ -7,27 +7,29 @@ from pathlib import Path
 
 from mjcfbuild.mjcf.scene import default_scene, scene_with
 from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.steps.payloads import ScenePayload
 
 
 def run(payload: dict) -> dict:
     """Write the scene: the user's scene file verbatim, or the default scene."""
-    if payload.get("scene_file"):
-        data = Path(payload["scene_file"]).read_bytes()
-    elif payload.get("scene_block"):
-        block = payload["scene_block"]
+    request = ScenePayload.from_dict(payload)
+    if request.scene_file:
+        data = Path(request.scene_file).read_bytes()
+    elif request.scene_block:
+        block = request.scene_block
         data = scene_with(
-            payload["model"], payload["robot_file"], block["xml"], block["origin"], _floor(payload)
+            request.model, request.robot_file, block["xml"], block["origin"], _floor(request)
         )
     else:
-        data = default_scene(payload["model"], payload["robot_file"], _floor(payload)).encode()
+        data = default_scene(request.model, request.robot_file, _floor(request)).encode()
     outputs: dict[str, str] = {}
-    write_output(Path(payload["output"]), data, outputs)
+    write_output(Path(request.output), data, outputs)
     return {"outputs": outputs}
 
 
-def _floor(payload: dict) -> float:
+def _floor(request: ScenePayload) -> float:
     """The floor height: as set, or 0 lowered under the lowest collision point at home."""
-    if payload.get("floor") != "auto":
-        return float(payload.get("floor") or 0.0)
-    lowest = json.loads(Path(payload["floor_record"]).read_text()).get("lowest_point")
+    if request.floor != "auto":
+        return float(request.floor or 0.0)
+    lowest = json.loads(Path(request.floor_record).read_text()).get("lowest_point")
     return min(float(lowest["height"]), 0.0) if lowest else 0.0

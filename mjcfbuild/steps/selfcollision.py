@@ -26,29 +26,26 @@ from mjcfbuild.selfcollision.matrix import (
 )
 from mjcfbuild.selfcollision.srdf import Srdf
 from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.steps.payloads import DecompositionFiles, SelfCollisionPayload
 from mjcfbuild.urdf.model import robot_from_dict
 
 
 def run(payload: dict) -> dict:
     """Write the matrix (every pair with its reason) and the excludes the model needs."""
+    request = SelfCollisionPayload.from_dict(payload)
     import mujoco
 
-    robot = robot_from_dict(payload["robot"])
-    bodies = build_bodies(robot, payload["fuse_static"], float_from_world=payload["free_joint"])
+    robot = robot_from_dict(request.robot)
+    bodies = build_bodies(robot, request.fuse_static, float_from_world=request.free_joint)
     body_of = {frame.link: body.name for body in bodies for frame in body.links}
-    choices = [
-        CollisionChoice(
-            c["link"], c["role"], c["index"], c["policy"], tuple(map(tuple, c["decompose"]))
-        )
-        for c in payload["choices"]
-    ]
-    products = {m: json.loads(Path(s).read_text()) for m, s in payload["products"].items()}
-    decompositions = [_decomposition(entry) for entry in payload["decompositions"]]
+    choices = [CollisionChoice.from_dict(choice) for choice in request.choices]
+    products = {m: json.loads(Path(s).read_text()) for m, s in request.products.items()}
+    decompositions = [_decomposition(entry) for entry in request.decompositions]
     prepared = prepare(
         robot.name,
         bodies,
         products,
-        {m: Path(folder) for m, folder in payload["product_dirs"].items()},
+        {m: Path(folder) for m, folder in request.product_dirs.items()},
         choices,
         decompositions,
         robot.mujoco_compiler,
@@ -59,7 +56,7 @@ def run(payload: dict) -> dict:
         spec = mujoco.MjSpec.from_string(prepared.urdf)
     except Exception as exc:
         raise compile_error(exc, robot.source) from None
-    if payload["free_joint"]:
+    if request.free_joint:
         for body in bodies:
             if floats(body):
                 body.floating = True
@@ -69,21 +66,19 @@ def run(payload: dict) -> dict:
     except Exception as exc:
         raise compile_error(exc, robot.source) from None
 
-    srdf = (
-        Srdf.from_dict(json.loads(Path(payload["srdf"]).read_text())) if payload["srdf"] else None
-    )
+    srdf = Srdf.from_dict(json.loads(Path(request.srdf).read_text())) if request.srdf else None
     control = Ros2Control(
-        joints=[ControlJoint(name, [], value, "") for name, value in payload["initial"].items()]
+        joints=[ControlJoint(name, [], value, "") for name, value in request.initial.items()]
     )
-    home_state = _srdf_home(srdf, robot, payload["home_state"]) if srdf else None
-    home = home_values(robot, control, payload["home"], home_state, payload["manifest_label"])
+    home_state = _srdf_home(srdf, robot, request.home_state) if srdf else None
+    home = home_values(robot, control, request.home, home_state, request.manifest_label)
     qpos = model.qpos0.copy()
     for value in home:
         index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, value.joint)
         if index >= 0:
             qpos[model.jnt_qposadr[index]] = value.value
-    settings = MatrixSettings(**payload["settings"])
-    verdicts, cached = _matrix(model, qpos, settings, payload)
+    settings = MatrixSettings(**request.settings)
+    verdicts, cached = _matrix(model, qpos, settings, request)
 
     by_pair = {frozenset((v["body1"], v["body2"])): v for v in verdicts}
     if srdf is not None:
@@ -98,9 +93,9 @@ def run(payload: dict) -> dict:
             if verdict is not None:
                 verdict["reason"] = f"srdf: {pair.reason}"
                 verdict["exclude"] = True
-    for index, (link1, link2) in enumerate(payload["keep"]):
+    for index, (link1, link2) in enumerate(request.keep):
         key = frozenset(
-            _kept_body(link, body_of, payload["manifest_label"], index) for link in (link1, link2)
+            _kept_body(link, body_of, request.manifest_label, index) for link in (link1, link2)
         )
         if key in by_pair:
             by_pair[key]["exclude"] = False
@@ -114,15 +109,17 @@ def run(payload: dict) -> dict:
     result = {"pairs": verdicts, "excludes": excludes, "samples": settings.samples}
     outputs: dict[str, str] = {}
     write_output(
-        Path(payload["output"]),
+        Path(request.output),
         (json.dumps(result, indent=1, sort_keys=True) + "\n").encode(),
         outputs,
     )
-    stored = not cached and bool(payload["cache"].get("enabled"))
+    stored = not cached and bool(request.cache.get("enabled"))
     return {"outputs": outputs, "cached": cached, "stored": stored}
 
 
-def _matrix(model, qpos, settings: MatrixSettings, payload: dict) -> tuple[list[dict], bool]:
+def _matrix(
+    model, qpos, settings: MatrixSettings, request: SelfCollisionPayload
+) -> tuple[list[dict], bool]:
     """The verdicts of every pair, from the shared cache when this matrix was computed before
     (in any folder: the key holds no paths), else computed and stored; whether cached."""
     import tempfile
@@ -131,21 +128,21 @@ def _matrix(model, qpos, settings: MatrixSettings, payload: dict) -> tuple[list[
     from mjcfbuild.engine.versions import step_versions
     from mjcfbuild.fsutil import md5_file
 
-    store = open_store(payload["cache"])
-    robot = json.loads(json.dumps(payload["robot"]))
+    store = open_store(request.cache)
+    robot = json.loads(json.dumps(request.robot))
     for link in robot["links"]:
         for shape in link["visuals"] + link["collisions"]:
             shape["geometry"]["path"] = None  # the mesh is identified by its product below
     params = {
         "robot": robot,
-        "choices": payload["choices"],
-        "fuse_static": payload["fuse_static"],
-        "free_joint": payload["free_joint"],
+        "choices": request.choices,
+        "fuse_static": request.fuse_static,
+        "free_joint": request.free_joint,
         "home": [float(v) for v in qpos],
-        "settings": payload["settings"],
+        "settings": request.settings,
         "versions": step_versions("selfcollision"),
     }
-    inputs = [*payload["products"].values(), *(d["summary"] for d in payload["decompositions"])]
+    inputs = [*request.products.values(), *(d.summary for d in request.decompositions)]
     key = product_key("selfcollision", params, sorted(inputs, key=lambda p: Path(p).name))
     with tempfile.TemporaryDirectory() as scratch:
         if store is not None and store.fetch(key, Path(scratch)) is not None:
@@ -176,10 +173,10 @@ def _compile(spec):
     return spec.compile()
 
 
-def _decomposition(entry: dict) -> Decomposition:
-    summary = json.loads(Path(entry["summary"]).read_text())
+def _decomposition(entry: DecompositionFiles) -> Decomposition:
+    summary = json.loads(Path(entry.summary).read_text())
     return Decomposition(
-        entry["mesh_id"], entry["params"], Path(entry["folder"]), summary["parts"], summary["files"]
+        entry.mesh_id, entry.params, Path(entry.folder), summary["parts"], summary["files"]
     )
 
 

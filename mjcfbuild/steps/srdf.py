@@ -8,20 +8,22 @@ from pathlib import Path
 from mjcfbuild.selfcollision.srdf import parse_srdf
 from mjcfbuild.sources.expand import expand_source
 from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.steps.payloads import SrdfPayload
 
 
 def run(payload: dict) -> dict:
-    """Write the SRDF's disabled pairs and group states to ``payload['output']``."""
-    source = Path(payload["source"])
+    """Write the SRDF's disabled pairs and group states to its ``output``."""
+    request = SrdfPayload.from_dict(payload)
+    source = Path(request.source)
     expansion = expand_source(
         source,
         source.name.endswith(".xacro"),
-        payload["args"],
-        payload["packages"],
-        payload["environment"],
+        request.args,
+        request.packages,
+        request.environment,
     )
-    srdf = parse_srdf(expansion.urdf, payload["label"])
+    srdf = parse_srdf(expansion.urdf, request.label)
     outputs: dict[str, str] = {}
     text = json.dumps(srdf.to_dict(), indent=1, sort_keys=True) + "\n"
-    write_output(Path(payload["output"]), text.encode(), outputs)
+    write_output(Path(request.output), text.encode(), outputs)
     return {"outputs": outputs, "discovered": [f for f in expansion.files if f != str(source)]}

@@ -1,0 +1,63 @@
+"""The collision settings of one build, in the plain form tasks and steps share.
+
+robot.yaml's ``collision:`` rules come first; ``decompose_mesh`` inputs (from the URDF, the
+inputs file or robot.yaml's ``mujoco_inputs``) become rules after them, each decomposing one
+mesh with its own threshold and the default CoACD parameters. ``meshes.max_hull_vertices``
+caps the vertices of CoACD's parts too.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from mjcfbuild.collision.policy import CollisionChoice
+    from mjcfbuild.manifest.models import Manifest
+    from mjcfbuild.urdf.model import Robot
+
+
+@dataclass(frozen=True)
+class CollisionSettings:
+    """The default policy, the rules (first match wins) and the default CoACD parameters."""
+
+    default: str
+    rules: list[dict[str, Any]]
+    decompose: dict[str, Any]
+
+    def to_dict(self) -> dict[str, Any]:
+        """The settings as JSON-ready data."""
+        return {"default": self.default, "rules": self.rules, "decompose": self.decompose}
+
+    def choose(self, robot: Robot) -> list[CollisionChoice]:
+        """The collision geometry of every link of ``robot`` under these settings."""
+        from mjcfbuild.collision.policy import choose_collisions, rules_from_dicts
+
+        return choose_collisions(robot, self.default, rules_from_dicts(self.rules), self.decompose)
+
+
+def collision_settings(manifest: Manifest, plan_inputs: dict[str, Any]) -> CollisionSettings:
+    """The collision settings of ``manifest`` with the ``decompose_mesh`` inputs of the plan."""
+    settings = manifest.collision
+    defaults = dict(settings.decompose_defaults)
+    limit = manifest.meshes.max_hull_vertices
+    thresholds: dict[str, float] = {}
+    for source in ("urdf", "file"):
+        for item in (plan_inputs.get(source) or {}).get("decompositions", []):
+            thresholds[item["mesh"]] = item["threshold"]
+    for item in manifest.mujoco_inputs.decompose:
+        thresholds[item.mesh] = item.threshold
+    rules = [dict(rule, decompose=dict(rule["decompose"])) for rule in settings.effective_rules] + [
+        {
+            "links": [],
+            "meshes": [mesh],
+            "policy": "decompose",
+            "decompose": {**defaults, "threshold": threshold},
+        }
+        for mesh, threshold in sorted(thresholds.items())
+    ]
+    if limit is not None:
+        for params in [defaults, *(rule["decompose"] for rule in rules)]:
+            if params:
+                params["max_ch_vertex"] = min(int(params["max_ch_vertex"]), limit)
+    return CollisionSettings(settings.default, rules, defaults)

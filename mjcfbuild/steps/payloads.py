@@ -1,0 +1,359 @@
+"""What each build step is given: one frozen dataclass per task, the contract between the
+engine (which fills them in) and the steps (which read them).
+
+A task is up to date when its file dependencies and its *parameters* are unchanged. The
+parameters are derived from every field of the payload (:meth:`Payload.uptodate_params`), so an
+option added to a payload counts the moment it is added; forgetting it is not possible. A field
+that must not count says so in its type, with the reason (see the aliases below):
+
+* :class:`NotCounted` - where a result is written, a label used in messages only, or a file
+  whose content doit already compares as a file dependency;
+* :class:`CountedIfGiven` - a file dependency that may be absent: its content is compared by
+  doit, but whether it is given at all counts (doit does not notice a dependency dropped).
+
+Payloads travel to worker processes and cluster workers as JSON (:meth:`Payload.to_dict`) and
+are rebuilt there (:meth:`Payload.from_dict`). Standard library only: the engine imports this
+on every build.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import types
+import typing
+from dataclasses import dataclass
+from typing import Annotated, Any, Self
+
+
+@dataclass(frozen=True)
+class NotCounted:
+    """Marks a payload field that does not make its task rerun, with the reason."""
+
+    why: str
+
+
+@dataclass(frozen=True)
+class CountedIfGiven:
+    """Marks a file-dependency field that counts only by being given or not."""
+
+    why: str
+
+
+OUTPUT = "where the result is written: a target of the task, checked by doit and outputs_intact"
+FILE_DEPENDENCY = "a file dependency: doit compares its content"
+
+# Where a result is written.
+Output = Annotated[str, NotCounted(OUTPUT)]
+# A file whose content doit compares.
+FileDependency = Annotated[str, NotCounted(FILE_DEPENDENCY)]
+# A file dependency that may be absent: doit does not notice a dependency dropped.
+OptionalFileDependency = Annotated[str | None, CountedIfGiven(FILE_DEPENDENCY)]
+# Mesh id -> a file dependency (products listed by the plan, which is a dependency too).
+FileDependencies = Annotated[dict[str, str], NotCounted(FILE_DEPENDENCY)]
+# Text used in messages only.
+MessageLabel = Annotated[str, NotCounted("used in messages only")]
+# The shared product cache: where products are cached does not change them.
+CacheSettings = Annotated[
+    dict[str, Any], NotCounted("where products are cached does not change them")
+]
+
+
+@dataclass(frozen=True)
+class Payload:
+    """The base of every task payload."""
+
+    def to_dict(self) -> dict[str, Any]:
+        """The payload as JSON-ready data."""
+        return dataclasses.asdict(self)
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Self:
+        """The payload :meth:`to_dict` gave (after a JSON round trip)."""
+        hints = typing.get_type_hints(cls)
+        values = {}
+        for item in dataclasses.fields(cls):
+            if item.name in data:
+                values[item.name] = _rebuild(hints[item.name], data[item.name])
+        return cls(**values)
+
+    def uptodate_params(self) -> dict[str, Any]:
+        """Every field that counts, as JSON-ready data: the task's up-to-date parameters."""
+        return _counted(self)
+
+    @classmethod
+    def uncounted_fields(cls) -> dict[str, str]:
+        """Field name -> the reason it does not (fully) count."""
+        return {name: marker.why for name, marker in _markers(cls).items()}
+
+
+def _markers(cls: type) -> dict[str, NotCounted | CountedIfGiven]:
+    """The fields of payload class ``cls`` that carry a counting marker."""
+    hints = typing.get_type_hints(cls, include_extras=True)
+    found = {}
+    for name, hint in hints.items():
+        for extra in getattr(hint, "__metadata__", ()):
+            if isinstance(extra, NotCounted | CountedIfGiven):
+                found[name] = extra
+    return found
+
+
+def _counted(value: Any) -> Any:
+    if isinstance(value, Payload):
+        markers = _markers(type(value))
+        result = {}
+        for item in dataclasses.fields(value):
+            marker = markers.get(item.name)
+            inner = getattr(value, item.name)
+            if isinstance(marker, NotCounted):
+                continue
+            result[item.name] = (inner is not None) if marker else _counted(inner)
+        return result
+    if isinstance(value, list | tuple):
+        return [_counted(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _counted(v) for k, v in value.items()}
+    return value
+
+
+def _rebuild(hint: Any, data: Any) -> Any:
+    """``data`` as the type ``hint`` names, for the payload types used here."""
+    if data is None:
+        return None
+    if isinstance(hint, type) and issubclass(hint, Payload):
+        return hint.from_dict(data)
+    origin = typing.get_origin(hint)
+    arguments = typing.get_args(hint)
+    if origin in (types.UnionType, typing.Union):
+        for option in arguments:
+            if option is not type(None):
+                return _rebuild(option, data)
+    if origin is list:
+        return [_rebuild(arguments[0], item) for item in data]
+    if origin is tuple:
+        return tuple(data)
+    if origin is dict:
+        return {key: _rebuild(arguments[1], item) for key, item in data.items()}
+    return data
+
+
+# The tasks, in build order ---------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ExpandPayload(Payload):
+    """``expand``: a xacro expanded (or a URDF read) into the build's URDF."""
+
+    kind: str  # urdf, xacro or description
+    source: str
+    args: dict[str, str]
+    packages: dict[str, str]
+    environment: dict[str, str]  # the ROS variables package lookup reads
+    output: Output
+    depfile: Output
+
+
+@dataclass(frozen=True)
+class PartEntry(Payload):
+    """One ``attach:`` part as the ``compose`` step joins it."""
+
+    urdf: FileDependency
+    label: str
+    key: str  # the manifest key naming the part, for messages
+    prefix: str
+    to: str
+    xyz: list[float]
+    rpy: list[float]
+    base_dir: str
+    packages: dict[str, str]
+
+
+@dataclass(frozen=True)
+class ComposePayload(Payload):
+    """``compose``: the expanded parts joined to the expanded main source."""
+
+    main: FileDependency
+    main_label: str
+    base_dir: str
+    parts: list[PartEntry]
+    environment: dict[str, str]
+    output: Output
+
+
+@dataclass(frozen=True)
+class PlanPayload(Payload):
+    """``plan``: the URDF parsed, its files resolved, its meshes and inputs listed."""
+
+    urdf: FileDependency
+    display: str
+    expanded_from: str | None
+    base_dir: str
+    packages: dict[str, str]
+    environment: dict[str, str]
+    inputs_file: str | None
+    inputs_file_label: str | None
+    output: Output
+    prebuilt_meshes: str | None = None  # convert -a: a folder of meshes converted before
+
+
+@dataclass(frozen=True)
+class MeshOptions(Payload):
+    """How one mesh file is converted (also the product's cache parameters)."""
+
+    roles: list[str]
+    max_faces: int | None
+    collada_up_axis: str  # ignore or apply
+    collision_max_faces: int | None = None
+    max_hull_vertices: int | None = None
+
+    def cache_params(self) -> dict[str, Any]:
+        """The options as the product key takes them: budgets only when set, so products of
+        builds without them keep the keys they had before the budgets existed."""
+        params = self.to_dict()
+        for optional in ("collision_max_faces", "max_hull_vertices"):
+            if params[optional] is None:
+                del params[optional]
+        return params
+
+
+@dataclass(frozen=True)
+class MeshPayload(Payload):
+    """``mesh:<id>``: one mesh file converted into its product."""
+
+    source: Annotated[str, NotCounted("a file dependency; the task's name follows it")]
+    options: MeshOptions
+    max_file_bytes: int
+    product_dir: Output
+    summary: Output
+    depfile: Output
+    cache: CacheSettings
+
+
+@dataclass(frozen=True)
+class DecomposePayload(Payload):
+    """``decompose:<name>``: a mesh product's collision mesh split into convex parts."""
+
+    params: dict[str, Any]  # CoACD's keyword arguments
+    product_summary: FileDependency
+    product_dir: Annotated[str, NotCounted("the product's folder, named by product_summary")]
+    output_dir: Output
+    summary: Output
+    cache: CacheSettings
+
+
+@dataclass(frozen=True)
+class DecompositionFiles(Payload):
+    """Where a decomposition's parts are, for the steps that read them."""
+
+    mesh_id: str
+    params: dict[str, Any]
+    folder: Annotated[str, NotCounted("the parts, listed by the summary")]
+    summary: FileDependency
+
+
+@dataclass(frozen=True)
+class SrdfPayload(Payload):
+    """``srdf``: the SRDF (or its xacro) read into disabled pairs and group states."""
+
+    source: str
+    label: str
+    args: dict[str, str]
+    packages: dict[str, str]
+    environment: dict[str, str]
+    output: Output
+
+
+@dataclass(frozen=True)
+class SelfCollisionPayload(Payload):
+    """``selfcollision``: the collision matrix of the robot's links."""
+
+    robot: dict[str, Any]  # the collision robot (see selfcollision.robot)
+    choices: list[dict[str, Any]]  # collision.policy.CollisionChoice
+    fuse_static: bool
+    free_joint: bool
+    decompositions: list[DecompositionFiles]
+    initial: dict[str, float]  # ros2_control initial values
+    home: dict[str, float]
+    keep: list[list[str]]
+    home_state: str
+    settings: dict[str, Any]  # selfcollision.matrix.MatrixSettings
+    srdf: OptionalFileDependency
+    products: FileDependencies
+    product_dirs: Annotated[dict[str, str], NotCounted("the folders of the products")]
+    manifest_label: MessageLabel
+    cache: CacheSettings
+    output: Output
+
+
+@dataclass(frozen=True)
+class AssemblePayload(Payload):
+    """``assemble``: the MJCF written from the plan, the products and the settings."""
+
+    choices: list[dict[str, Any]]  # collision.policy.CollisionChoice, made once by the engine
+    decompositions: list[DecompositionFiles]
+    inputs: dict[str, Any]  # the MuJoCo inputs from the URDF, the inputs file and robot.yaml
+    actuators: dict[str, Any]  # manifest.simulation.ActuatorSettings
+    home: dict[str, float]
+    floor: float | str
+    srdf_home: str | None
+    fuse_static: bool
+    free_joint: bool
+    link_sites: str
+    max_hull_vertices: int | None
+    inertia: dict[str, Any]  # mjcf.inertia.InertiaPolicy
+    header: str
+    assets_dir: str  # counted: the model names its assets relative to it
+    self_collision: OptionalFileDependency
+    srdf: OptionalFileDependency
+    plan: FileDependency
+    products: FileDependencies
+    product_dirs: Annotated[dict[str, str], NotCounted("the folders of the products")]
+    manifest_label: MessageLabel
+    report: Output
+    floor_record: Output
+    output: Output
+
+
+@dataclass(frozen=True)
+class ScenePayload(Payload):
+    """``scene``: the scene file around the robot model."""
+
+    scene_file: str | None
+    scene_block: dict[str, str] | None  # {"xml", "origin"}
+    model: str  # the model's name
+    robot_file: str
+    floor: float | str
+    floor_record: FileDependency
+    output: Output
+
+
+@dataclass(frozen=True)
+class CheckPayload(Payload):
+    """``check``: the built model proven against its source."""
+
+    options: dict[str, Any]  # check.model_check.CheckOptions
+    plan: FileDependency
+    assembly_report: FileDependency
+    model: FileDependency
+    model_label: MessageLabel
+    scene: FileDependency
+    urdf: FileDependency
+    output: Output
+
+
+@dataclass(frozen=True)
+class PreviewsPayload(Payload):
+    """``previews``: pictures of the scene at home."""
+
+    folder: str
+    model: Annotated[str, NotCounted("the scene: what the pictures show is compared by digest")]
+
+
+@dataclass(frozen=True)
+class ExportUrdfPayload(Payload):
+    """``export_urdf``: the built model written back as URDF."""
+
+    options: dict[str, Any]
+    model: FileDependency
+    urdf: Output
+    mesh_dir: Annotated[str, NotCounted("named by options.mesh_folder")]
+    record: Output
