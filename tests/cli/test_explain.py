@@ -29,7 +29,7 @@ def test_explain_names_a_changed_parameter(arm):
     manifest.write_text(manifest.read_text() + "meshes:\n  max_faces: 500\n")
     result = run_cli("explain", "mesh:upper_arm", cwd=arm)
     assert "mesh:upper_arm: would run" in result.stdout
-    assert "  - parameters changed: max_faces" in result.stdout
+    assert "  - parameters changed: options.max_faces" in result.stdout
 
 
 def test_explain_before_the_first_build_writes_nothing(arm):
