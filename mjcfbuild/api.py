@@ -30,14 +30,15 @@ def build(
     jobs = jobs or default_jobs()
     cwd = Path.cwd()
     if isinstance(manifest, Manifest):
-        ctx = BuildContext(manifest, Path(base_dir or cwd), manifest_label="manifest", jobs=jobs)
+        ctx = BuildContext(
+            manifest, Path(base_dir or cwd), manifest_label="manifest", jobs=jobs, run_check=check
+        )
     else:
         path = Path(manifest)
         try:
-            ctx = BuildContext.from_manifest_file(path, jobs=jobs)
+            ctx = BuildContext.from_manifest_file(path, jobs=jobs, run_check=check)
         except ManifestError as exc:
             raise exc.relocate(path.resolve().parent, cwd) from None
-    ctx.run_check = check
     result = run_build(ctx, Progress(quiet=quiet))
     if not quiet:
         print(result.summary())

@@ -157,13 +157,16 @@ def load_context(path: str | Path, args: argparse.Namespace):
     path = Path(path)
     jobs = getattr(args, "jobs", None) or environment_jobs() or default_jobs()
     try:
-        ctx = BuildContext.from_manifest_file(path, jobs=jobs, step_timeout=step_timeout(args))
+        return BuildContext.from_manifest_file(
+            path,
+            jobs=jobs,
+            step_timeout=step_timeout(args),
+            run_check=not getattr(args, "no_check", False),
+            use_remote=not getattr(args, "no_remote", False),
+            executor_override=getattr(args, "executor", None),
+        )
     except ManifestError as error:
         raise error.relocate(path.resolve().parent, Path.cwd()) from None
-    ctx.run_check = not getattr(args, "no_check", False)
-    ctx.use_remote = not getattr(args, "no_remote", False)
-    ctx.executor_override = getattr(args, "executor", None)
-    return ctx
 
 
 def manifest_option(parser: argparse.ArgumentParser) -> None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Callable
+from dataclasses import replace
 
 from mjcfbuild.cli import (
     jobs_argument,
@@ -61,7 +62,7 @@ def run(args: argparse.Namespace) -> int:
             continue
         try:
             ctx = load_context(manifest, args)
-            ctx.noop_stamp = ctx.manifest.source.description != "-"
+            ctx = replace(ctx, noop_stamp=ctx.manifest.source.description != "-")
             result = dry_run(ctx) if args.dry_run else execute(ctx, args.quiet, args.debug)
         except MjcfbuildError as error:
             report_error(error, args.debug)

@@ -155,16 +155,22 @@ def run(args: argparse.Namespace) -> int:
         }
     )
     jobs = args.jobs or environment_jobs() or default_jobs()
-    ctx = BuildContext(
-        manifest, cwd, manifest_label="the command line", jobs=jobs, step_timeout=step_timeout(args)
-    )
+    prebuilt = None
     if args.asset_dir:
         if not Path(args.asset_dir).is_dir():
             raise UsageError(
                 f"-a {args.asset_dir}: not a folder",
                 hint="give the folder of pre-generated OBJ meshes (an earlier run's assets/)",
             )
-        ctx.prebuilt_mesh_dir = Path(args.asset_dir).resolve()
+        prebuilt = Path(args.asset_dir).resolve()
+    ctx = BuildContext(
+        manifest,
+        cwd,
+        manifest_label="the command line",
+        jobs=jobs,
+        step_timeout=step_timeout(args),
+        prebuilt_mesh_dir=prebuilt,
+    )
     return execute(ctx, quiet=args.quiet, debug=args.debug, hints=command_line_hint)
 
 

@@ -1,19 +1,21 @@
-"""Everything one build of one manifest needs: paths, packages, workers, hashes, errors."""
+"""The configuration of one build of one manifest: its manifest, folders, paths and options."""
 
 from __future__ import annotations
 
 import os
-import re
-import threading
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.errors import InternalError, MjcfbuildError
+from mjcfbuild.engine.session import BuildSession
+from mjcfbuild.errors import MjcfbuildError
 from mjcfbuild.fsutil import normalise
 
 if TYPE_CHECKING:
     from mjcfbuild.manifest.models import Manifest
+    from mjcfbuild.sharing.settings import SharingChoice
+    from mjcfbuild.sources.packages import PackageResolver
 
 STATE_DIR = ".mjcfbuild"
 DEFAULT_STEP_TIMEOUT = 1800.0
@@ -27,9 +29,10 @@ def default_jobs() -> int:
         return max(1, os.cpu_count() or 1)
 
 
-@dataclass
+@dataclass(frozen=True)
 class BuildContext:
-    """A validated manifest with its folder, and the state one build of it keeps."""
+    """A validated manifest with its folder and the options of a build: the configuration,
+    which does not change while the build runs. What does change is in :attr:`session`."""
 
     manifest: Manifest
     base_dir: Path
@@ -38,11 +41,6 @@ class BuildContext:
     jobs: int = field(default_factory=default_jobs)
     environ: dict[str, str] = field(default_factory=lambda: dict(os.environ))
     step_timeout: float | None = DEFAULT_STEP_TIMEOUT
-    failures: dict[str, MjcfbuildError] = field(default_factory=dict)
-    warnings: list[str] = field(default_factory=list)
-    timings: dict[str, float] = field(default_factory=dict)
-    notes: dict[str, str] = field(default_factory=dict)
-    cache_grew: bool = False
     cache_folder_override: Path | None = None
     output_override: Path | None = None
     prebuilt_mesh_dir: Path | None = None  # convert -a: a folder of meshes converted before
@@ -50,16 +48,18 @@ class BuildContext:
     noop_stamp: bool = False  # keep a stamp for the no-op fast path (mjcfbuild build)
     use_remote: bool = True
     executor_override: str | None = None
-    cache_report: dict | None = None
+    session: BuildSession = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        self.base_dir = normalise(self.base_dir)
-        self._hashes = None
-        self._pool = None
-        self._resolver = None
-        self._sharing_choice = None
-        self._sharing = None
-        self._sharing_lock = threading.Lock()  # doit runs tasks in threads
+        # Frozen: the two fields set here are set once, as the dataclass itself would.
+        object.__setattr__(self, "base_dir", normalise(self.base_dir))
+        object.__setattr__(self, "session", BuildSession(self))
+
+    def new_session(self) -> BuildSession:
+        """Start a new build of this context: a fresh :attr:`session` (the old one closed)."""
+        self.session.close()
+        object.__setattr__(self, "session", BuildSession(self))
+        return self.session
 
     @classmethod
     def from_manifest_file(cls, path: str | Path, **kwargs) -> BuildContext:
@@ -192,28 +192,15 @@ class BuildContext:
             return self.base_dir
         return self.source_path.parent
 
-    @property
-    def resolver(self):
+    @cached_property
+    def resolver(self) -> PackageResolver:
         """The :class:`PackageResolver` of this build."""
-        if self._resolver is None:
-            from mjcfbuild.sources.packages import PackageResolver
+        from mjcfbuild.sources.packages import PackageResolver
 
-            packages = {
-                name: self.resolve(folder) for name, folder in self.manifest.packages.items()
-            }
-            self._resolver = PackageResolver(packages, self.environ)
-        return self._resolver
+        packages = {name: self.resolve(folder) for name, folder in self.manifest.packages.items()}
+        return PackageResolver(packages, self.environ)
 
-    # Runtime ----------------------------------------------------------------------------
-
-    @property
-    def hashes(self):
-        """The :class:`HashCache` of this output folder."""
-        if self._hashes is None:
-            from mjcfbuild.engine.hashes import HashCache
-
-            self._hashes = HashCache(self.state("hashes.json") if self.state_dir.is_dir() else None)
-        return self._hashes
+    # Services ---------------------------------------------------------------------------
 
     def cache_settings(self) -> dict:
         """The shared product cache as build steps get it: on/off, folder, size cap."""
@@ -226,104 +213,25 @@ class BuildContext:
         max_bytes = parse_size(settings.max_size) if settings.max_size else default_max_bytes()
         return {"enabled": settings.enabled, "folder": str(folder), "max_bytes": max_bytes}
 
-    def sharing_choice(self):
+    @cached_property
+    def sharing_choice(self) -> SharingChoice:
         """The remote cache and executor of this build, checked (:func:`choose`).
 
         Standard library only: a build with nothing to compute imports no fsspec or dask.
         """
-        if self._sharing_choice is None:
-            from mjcfbuild.manifest.pinpoint import pinpoint
-            from mjcfbuild.sharing.settings import choose
+        from mjcfbuild.manifest.pinpoint import pinpoint
+        from mjcfbuild.sharing.settings import choose
 
-            try:
-                self._sharing_choice = choose(
-                    manifest_remote=getattr(self.manifest.cache, "remote", None),
-                    manifest_executor=getattr(self.manifest, "executor", None),
-                    environ=self.environ,
-                    cli_executor=self.executor_override,
-                    use_remote=self.use_remote and self.manifest.cache.enabled,
-                    manifest_label=self.manifest_label,
-                )
-            except MjcfbuildError as error:
-                if self.manifest_file is not None:
-                    pinpoint(error, self.manifest_label, self.manifest_file)
-                raise
-        return self._sharing_choice
-
-    @property
-    def sharing(self):
-        """The :class:`ProductSharing` of this build, made when the first product is needed."""
-        with self._sharing_lock:
-            if self._sharing is None:
-                from mjcfbuild.sharing.coordinator import ProductSharing
-
-                choice = self.sharing_choice()
-                self._sharing = ProductSharing(
-                    choice.remote,
-                    choice.executor,
-                    self.warnings.append,
-                    self.environ,
-                    self.step_timeout,
-                )
-            return self._sharing
-
-    def finish_sharing(self) -> None:
-        """Wait for uploads to the remote cache and keep what was shared for the report."""
-        with self._sharing_lock:
-            sharing, self._sharing = self._sharing, None
-        if sharing is not None:
-            self.cache_report = sharing.finish(Path(self.cache_settings()["folder"]))
-
-    def run_step(self, step: str, payload: dict, *, task: str, in_worker: bool) -> dict:
-        """Run a build step, in a worker process or here, and return its result.
-
-        Mesh conversions and decompositions go through :class:`ProductSharing` first, which
-        may fetch their product from the remote cache or compute it on a cluster.
-        """
-        from mjcfbuild.sharing.coordinator import SHARED_STEPS
-
-        kind = SHARED_STEPS.get(step)
-        if kind is None:
-            return self._run_step(step, payload, task, in_worker)
-        sharing = self.sharing
-        origin = sharing.before(kind, payload, task)
-        result = self._run_step(step, payload, task, in_worker)
-        sharing.after(kind, payload, origin, result)
-        return result
-
-    def _run_step(self, step: str, payload: dict, task: str, in_worker: bool) -> dict:
-        if not in_worker:
-            import importlib
-
-            module_name, _, function_name = step.partition(":")
-            return getattr(importlib.import_module(module_name), function_name)(payload)
-        if self._pool is None:
-            from mjcfbuild.engine.workers import WorkerPool
-
-            self._pool = WorkerPool(self.jobs, self.base_dir, self.logs_dir)
-        self.logs_dir.mkdir(parents=True, exist_ok=True)
-        log = self.logs_dir / (re.sub(r"[^A-Za-z0-9_.-]+", "-", task) + ".log")
-        return self._pool.run(step, payload, task, log, self.step_timeout)
-
-    def record_failure(self, task: str, error: BaseException) -> MjcfbuildError:
-        """Remember why ``task`` failed, as a :class:`MjcfbuildError`."""
-        if not isinstance(error, MjcfbuildError):
-            import traceback
-
-            error = InternalError(
-                f"{task}: {type(error).__name__}: {error}",
-                details="".join(traceback.format_exception(error)),
+        try:
+            return choose(
+                manifest_remote=getattr(self.manifest.cache, "remote", None),
+                manifest_executor=getattr(self.manifest, "executor", None),
+                environ=self.environ,
+                cli_executor=self.executor_override,
+                use_remote=self.use_remote and self.manifest.cache.enabled,
+                manifest_label=self.manifest_label,
             )
-        self.failures[task] = error
-        return error
-
-    def close(self) -> None:
-        """Stop workers, finish uploads and save the hash cache."""
-        self.finish_sharing()
-        if self._pool is not None:
-            self._pool.close()
-            self._pool = None
-        if self._hashes is not None:
-            if self._hashes.path is None and self.state_dir.is_dir():
-                self._hashes.path = self.state("hashes.json")
-            self._hashes.save()
+        except MjcfbuildError as error:
+            if self.manifest_file is not None:
+                pinpoint(error, self.manifest_label, self.manifest_file)
+            raise

@@ -78,7 +78,7 @@ class RobotTasks:
 
     def _close(self) -> None:
         for ctx in self.contexts:
-            ctx.close()
+            ctx.session.close()
         self._locks.close()
 
     @staticmethod

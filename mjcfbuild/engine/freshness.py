@@ -30,8 +30,7 @@ def stale_outputs(ctx: BuildContext) -> list[str]:
 def _from_database(ctx: BuildContext) -> list[str]:
     from mjcfbuild.engine.status import build_statuses
 
-    ctx.run_check = False
-    statuses, _ = build_statuses(ctx)
+    statuses, _ = build_statuses(replace(ctx, run_check=False))
     return [
         f"{status.title}: {'; '.join(status.reasons)}"
         for status in statuses
@@ -48,10 +47,6 @@ def _by_rebuilding(ctx: BuildContext) -> list[str]:
             ctx,
             output_override=Path(scratch) / "out",
             run_check=False,
-            failures={},
-            warnings=[],
-            timings={},
-            notes={},
         )
         result = run_build(shadow, Progress(quiet=True))
         if result.errors:

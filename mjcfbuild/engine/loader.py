@@ -33,8 +33,8 @@ class BuildLoader(TaskLoader2):
         return {
             "dep_file": str(self.ctx.state(DATABASE)),
             "backend": "sqlite3",
-            "check_file_uptodate": checker_class(self.ctx.hashes),
-            "reporter": ProgressReporter(self.progress, self.ctx.timings),
+            "check_file_uptodate": checker_class(self.ctx.session.hashes),
+            "reporter": ProgressReporter(self.progress, self.ctx.session.timings),
             "verbosity": 0,
             "continue": True,
             "num_process": jobs if jobs > 1 else 0,

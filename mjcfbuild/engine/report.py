@@ -1,9 +1,10 @@
 """The build report: ``report/report.json`` and ``report/report.md`` in the output folder.
 
-It gathers what the build steps recorded - the check results, inertia repairs, warnings, mesh
-statistics, the time each task took when it last ran, and the preview pictures - into one
-machine-readable file and one page people can read. The report describes the last build on
-this machine (its times differ from run to run), so its folder ignores itself in git.
+This module gathers what the build steps recorded - the check results, inertia repairs,
+warnings, mesh statistics, the time each task took when it last ran, and the preview pictures -
+into one machine-readable file; :mod:`mjcfbuild.check.report_page` renders the page people
+read. The report describes the last build on this machine (its times differ from run to run),
+so its folder ignores itself in git.
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from mjcfbuild.check.report_page import markdown
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, report_dir
 from mjcfbuild.fsutil import write_if_changed
@@ -26,7 +28,7 @@ def record_timings(ctx: BuildContext) -> dict[str, float]:
         timings = json.loads(path.read_text())
     except (OSError, ValueError):
         timings = {}
-    timings.update({name: round(seconds, 3) for name, seconds in ctx.timings.items()})
+    timings.update({name: round(seconds, 3) for name, seconds in ctx.session.timings.items()})
     write_if_changed(path, (json.dumps(dict(sorted(timings.items())), indent=1) + "\n").encode())
     return timings
 
@@ -55,7 +57,7 @@ def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
         "readiness": assembly.get("readiness") or {},
         "self_collision": assembly.get("self_collision"),
         "times": record_timings(ctx),
-        "cache": ctx.cache_report,
+        "cache": ctx.session.cache_report,
         "previews": [f"previews/{name}" for name in previews],
     }
     write_if_changed(
@@ -70,237 +72,3 @@ def _read(path: Path) -> dict:
         return json.loads(path.read_text())
     except (OSError, ValueError):
         return {}
-
-
-def markdown(report: dict) -> str:
-    """The human report."""
-    lines = [f"# {report['robot']}: build report", ""]
-    lines.append(
-        f"Model `{report['model']}` ({report.get('bodies') or '?'} bodies, "
-        f"{report.get('geoms') or '?'} geoms, {len(report['assets'])} asset files), "
-        f"scene `{report['scene']}`."
-    )
-    lines.append("")
-    lines += _checks(report.get("check") or {})
-    lines += _control(report.get("readiness") or {})
-    lines += _self_collision(report.get("self_collision"))
-    if report["repairs"]:
-        lines += [
-            "## Inertia repairs",
-            "",
-            "| body | problem | before | after |",
-            "|---|---|---|---|",
-        ]
-        lines += [
-            f"| {r['body']} | {r['problem']} | {r['before']} | {r['after']} |"
-            for r in report["repairs"]
-        ]
-        lines.append("")
-    if report["warnings"]:
-        lines += ["## Warnings", ""] + [f"- {w}" for w in report["warnings"]] + [""]
-    meshes = (report.get("check") or {}).get("meshes") or []
-    if meshes:
-        lines += [
-            "## Meshes",
-            "",
-            "| body | visual vertices | visual faces | collision vertices | collision faces "
-            "| convex parts |",
-            "|---|---:|---:|---:|---:|---:|",
-        ]
-        lines += [
-            f"| {m['body']} | {m['visual_vertices']} | {m['visual_faces']} | "
-            f"{m['collision_vertices']} | {m['collision_faces']} | {m['convex_parts']} |"
-            for m in meshes
-        ]
-        lines.append("")
-    lines += _cache_lines(report.get("cache"))
-    if report["times"]:
-        lines += [
-            "## Build times (when each task last ran)",
-            "",
-            "| task | seconds |",
-            "|---|---:|",
-        ]
-        lines += [f"| {task} | {seconds:.2f} |" for task, seconds in report["times"].items()]
-        lines.append("")
-    if report["previews"]:
-        lines += ["## Previews", ""]
-        lines += [f"![{Path(p).stem.replace('_', ' ')}]({p})" for p in report["previews"]]
-        lines.append("")
-    return "\n".join(lines)
-
-
-def _cache_lines(cache: dict | None) -> list[str]:
-    """Where this build's meshes and decompositions came from."""
-    if not cache:
-        return []
-    computed = cache.get("computed", {})
-    made = ", ".join(
-        f"{kind} {n['here']} here, {n['on_cluster']} on the cluster" for kind, n in computed.items()
-    )
-    lines = [
-        "## Products (meshes, decompositions)",
-        "",
-        f"Computed: {made or 'none'}. Local cache hits: {cache['local_hits']}.",
-    ]
-    if cache.get("remote"):
-        lines.append(
-            f"Remote cache `{cache['remote']}`: {cache['remote_hits']} hits, "
-            f"{cache['remote_misses']} misses, {cache['remote_rejected']} rejected objects, "
-            f"{cache['uploaded']} uploaded."
-        )
-    if cache.get("executor", "local") != "local":
-        lines.append(f"Executor: `{cache['executor']}`.")
-    return [*lines, ""]
-
-
-def _checks(check: dict) -> list[str]:
-    if not check:
-        return [
-            "## Checks",
-            "",
-            "Not run (check.enabled is false, or the build stopped before).",
-            "",
-        ]
-    verdict = "all checks pass" if check.get("passes") else "**checks failed**"
-    lines = ["## Checks", "", f"Result: {verdict}.", ""]
-    for failure in check.get("failures", []):
-        lines.append(f"- {failure}")
-    if check.get("failures"):
-        lines.append("")
-    kinematics = check.get("kinematics", {})
-    simulation = check.get("simulation", {})
-    masses = check.get("masses", {})
-    lines += ["| check | result |", "|---|---|"]
-    lines.append(f"| loads | {'yes' if check.get('loads') else 'no'} |")
-    if simulation:
-        lines.append(
-            f"| {simulation['steps']} zero-control steps of {simulation['model']} | "
-            f"{'finite' if simulation['finite'] else 'NOT finite'}, "
-            f"{len(simulation['warnings'])} MuJoCo warnings |"
-        )
-    if kinematics:
-        lines.append(
-            f"| link poses at {kinematics['configurations']} configurations | max error "
-            f"{kinematics['max_position_error']:.2g} m, "
-            f"{kinematics['max_rotation_error']:.2g} rad; "
-            f"{len(kinematics['missing_links'])} links missing |"
-        )
-    actuation = check.get("actuation")
-    if actuation is not None:
-        lines.append(
-            f"| every moving joint driven once | {check['actuation']['actuators']} actuators, "
-            f"{len(actuation['problems'])} problems |"
-        )
-    if check.get("floor_gap") is not None:
-        lines.append(f"| floating base on the floor at home | gap {check['floor_gap']:.2g} m |")
-    hold = check.get("hold")
-    if hold:
-        where = f" ({hold['joint']})" if hold.get("joint") else ""
-        tilt = hold.get("base_tilt")
-        tilted = f"; the base tilted {tilt:.2g} rad" if tilt is not None else ""
-        lines.append(
-            f"| hold home's ctrl for 1 s | largest deviation {hold['max_deviation']:.3g}{where}"
-            f"{tilted} |"
-        )
-    menagerie = check.get("menagerie_test")
-    if menagerie:
-        lines.append(
-            "| 1 s of pseudorandom control (Menagerie's model test) | "
-            f"{'finite' if menagerie['finite'] else 'NOT finite'}, "
-            f"{len(menagerie['warnings'])} MuJoCo warnings |"
-        )
-    joint_problems = len(check.get("joints", {}).get("problems", []))
-    lines.append(f"| joint types, axes, ranges | {joint_problems} problems |")
-    if masses:
-        lines.append(
-            f"| masses and inertias | total {masses['urdf_total']:.6g} kg in the URDF, "
-            f"{masses['model_total']:.6g} kg in the model; {len(masses['problems'])} problems |"
-        )
-    lines.append("")
-    contacts = check.get("resting_contacts", {})
-    if contacts.get("pairs"):
-        lines += ["### Robot bodies touching at home", ""]
-        lines += [
-            f"- {p['body1']} and {p['body2']} ({p['pose']} pose, {p['depth']:.3g} m deep)"
-            for p in contacts["pairs"]
-        ]
-        lines += [
-            "",
-            "To let them be, add to the raw inputs:",
-            "",
-            "```xml",
-            contacts["exclude"],
-            "```",
-            "",
-        ]
-    return lines
-
-
-def _control(readiness: dict) -> list[str]:
-    """The actuators (with where each came from), the home pose and the floating base."""
-    if not readiness:
-        return []
-    lines = ["## Actuators", ""]
-    if readiness.get("actuators"):
-        lines += ["| actuator | joint | type | from | kp | kv | ctrlrange | forcerange |"]
-        lines += ["|---|---|---|---|---:|---:|---|---|"]
-        for a in readiness["actuators"]:
-            lines.append(
-                f"| {a['name']} | {a['joint']} | {a['type']} | {a['source']} | "
-                f"{_number(a.get('kp'))} | {_number(a.get('kv'))} | {_range(a.get('ctrlrange'))} "
-                f"| {_range(a.get('forcerange'))} |"
-            )
-    else:
-        lines.append("None.")
-    if readiness.get("passive"):
-        lines += ["", "Passive joints (actuator type none): " + ", ".join(readiness["passive"])]
-    lines += ["", "## Home pose", ""]
-    if readiness.get("home"):
-        lines += ["| joint | position | from |", "|---|---:|---|"]
-        lines += [f"| {h['joint']} | {h['value']:.6g} | {h['source']} |" for h in readiness["home"]]
-    if readiness.get("base_height") is not None:
-        lines += [
-            "",
-            f"The floating base was raised {readiness['base_height']:.4g} m to stand on the floor.",
-        ]
-    lines.append("")
-    return lines
-
-
-def _self_collision(matrix: dict | None) -> list[str]:
-    """The collision matrix: every body pair that is excluded, with its reason."""
-    if not matrix:
-        return []
-    pairs = matrix.get("pairs", [])
-    excluded = [p for p in pairs if p["exclude"]]
-    counts: dict[str, int] = {}
-    for pair in pairs:
-        counts[pair["reason"]] = counts.get(pair["reason"], 0) + 1
-    summary = ", ".join(f"{count} {reason}" for reason, count in sorted(counts.items()))
-    lines = [
-        "## Self-collision",
-        "",
-        f"{len(pairs)} body pairs ({summary}) over {matrix.get('samples')} sampled "
-        f"configurations; {len(excluded)} excluded, {len(matrix.get('excludes', []))} of them "
-        "by a contact exclude (MuJoCo already skips parent and child).",
-        "",
-    ]
-    if excluded:
-        lines += ["| body 1 | body 2 | reason | in collision |", "|---|---|---|---:|"]
-        # MuJoCo never reports parent-child contacts, so adjacent pairs have no fraction.
-        lines += [
-            f"| {p['body1']} | {p['body2']} | {p['reason']} | "
-            f"{'-' if p['reason'] == 'adjacent' else format(p['fraction'], '.0%')} |"
-            for p in excluded
-        ]
-        lines.append("")
-    return lines
-
-
-def _number(value) -> str:
-    return f"{value:.4g}" if value is not None else ""
-
-
-def _range(values) -> str:
-    return f"[{values[0]:.4g}, {values[1]:.4g}]" if values else ""

@@ -85,13 +85,14 @@ def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
 
 def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResult:
     """Build ``ctx``'s manifest; never raises for a failing task (see ``result.errors``)."""
+    session = ctx.new_session()  # a context built twice reports each build's own findings
     progress = progress or Progress()
-    progress.notes = ctx.notes
+    progress.notes = session.notes
     started = time.perf_counter()
     result = BuildResult(robot=ctx.robot_path, scene=ctx.scene_path)
     tasks: list[dict] = []
     try:
-        ctx.sharing_choice()  # a bad remote or executor address stops the build before it starts
+        _ = ctx.sharing_choice  # a bad remote or executor address stops the build before it starts
         with build_lock(ctx, progress):
             if ctx.manifest_file is not None:  # whichever way it was started
                 stamp.discard(ctx.manifest_file, ctx.run_check)
@@ -105,18 +106,18 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
                 # A failed check is what the report is for; any other failure means the model
                 # on disk is an earlier one, which the report must not claim to describe.
                 model_built = all(isinstance(e, CheckError) for e in result.errors)
-                ctx.finish_sharing()  # uploads are done before the build returns
+                ctx.session.finish_sharing()  # uploads are done before the build returns
                 if model_built and ctx.robot_path.exists():
-                    write_report(ctx, list(dict.fromkeys(ctx.warnings)))
-            if ctx.cache_grew:
+                    write_report(ctx, list(dict.fromkeys(ctx.session.warnings)))
+            if ctx.session.cache_grew:
                 _prune_cache(ctx)
     finally:
-        ctx.close()
+        ctx.session.close()
         progress.clear()
     result.ran = progress.names(RAN)
     result.up_to_date = progress.names(UP_TO_DATE)
     result.blocked = progress.names(BLOCKED)
-    result.warnings = list(dict.fromkeys(ctx.warnings))
+    result.warnings = list(dict.fromkeys(ctx.session.warnings))
     result.slowest = progress.slowest()
     result.seconds = time.perf_counter() - started
     result.engine_log = doit_output if result.errors else ""
@@ -131,11 +132,11 @@ def _run_stage(
     code, output = run_doit(ctx, tasks, progress, ["run"])
     failed = progress.names(FAILED)
     for name in failed:
-        error = ctx.failures.get(name)
+        error = ctx.session.failures.get(name)
         if error is None:
             message = progress.failure_messages.get(name, "failed")
             error = MjcfbuildError(f"{name}: {_first_line(message)}")
-            ctx.failures[name] = error
+            ctx.session.failures[name] = error
         if ctx.manifest_file is not None:
             error = pinpoint(error, ctx.manifest_label, ctx.manifest_file)
         if error not in result.errors:

@@ -230,4 +230,13 @@ def record_build(ctx, tasks: list[dict], task_count: int) -> None:
     if ctx.urdf_path is not None:
         outputs.append(ctx.urdf_path)
     summary = {"robot": ctx.robot_path.name, "tasks": task_count}
-    write(ctx.manifest_file, ctx.run_check, summary, inputs, outputs, absent, variables, ctx.hashes)
+    write(
+        ctx.manifest_file,
+        ctx.run_check,
+        summary,
+        inputs,
+        outputs,
+        absent,
+        variables,
+        ctx.session.hashes,
+    )

@@ -39,7 +39,7 @@ def task_statuses(ctx: BuildContext, tasks: list[dict]) -> list[TaskStatus]:
             for task in objects
         ]
     by_name = {task.name: task for task in objects}
-    manager = Dependency(SqliteDB, str(database), checker_cls=checker_class(ctx.hashes))
+    manager = Dependency(SqliteDB, str(database), checker_cls=checker_class(ctx.session.hashes))
     try:
         result = []
         for task in objects:

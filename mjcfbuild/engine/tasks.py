@@ -270,7 +270,11 @@ def _task(
         ],
         "file_dep": sorted({str(p) for p in file_dep}),
         "targets": [str(p) for p in targets],
-        "uptodate": [ParamsUnchanged(params), outputs_intact(ctx.hashes), *(extra_uptodate or [])],
+        "uptodate": [
+            ParamsUnchanged(params),
+            outputs_intact(ctx.session.hashes),
+            *(extra_uptodate or []),
+        ],
         "verbosity": 0,
         "clean": True,
     }
@@ -285,17 +289,17 @@ def _run(ctx: BuildContext, name: str, step: str, payload: dict, in_worker: bool
     """
     started = time.perf_counter()
     try:
-        result = ctx.run_step(step, payload, task=name, in_worker=in_worker)
+        result = ctx.session.run_step(step, payload, task=name, in_worker=in_worker)
     except Exception as exc:
-        error = ctx.record_failure(name, exc)
+        error = ctx.session.record_failure(name, exc)
         return TaskFailed(error.one_line())
     finally:
-        ctx.timings[name] = time.perf_counter() - started
-    ctx.warnings.extend(result.get("warnings", []))
+        ctx.session.timings[name] = time.perf_counter() - started
+    ctx.session.warnings.extend(result.get("warnings", []))
     if result.get("cached"):
-        ctx.notes[name] = "from cache"
+        ctx.session.notes[name] = "from cache"
     if result.get("stored"):
-        ctx.cache_grew = True
+        ctx.session.cache_grew = True
     if "discovered" in result:
         # What this run read replaces what the last run's depfile listed: a file no longer
         # read would otherwise stay in the list doit saves, and the build stage would find
@@ -620,7 +624,7 @@ def _previews_task(ctx: BuildContext, prefix: str) -> dict:
         # and the scene, whose floor the pictures show.
         file_dep=[ctx.scene_path],
         targets=[],
-        extra_uptodate=[RenderInputsUnchanged(ctx.robot_path, ctx.assets_dir, ctx.hashes)],
+        extra_uptodate=[RenderInputsUnchanged(ctx.robot_path, ctx.assets_dir, ctx.session.hashes)],
         after=[f"{prefix}assemble"],
     )
 

@@ -136,7 +136,7 @@ def test_the_matrix_is_cached_and_the_same_in_another_folder(tmp_path, monkeypat
     mjcfbuild.build(_robot(tmp_path / "one"))
     ctx = BuildContext.from_manifest_file(_robot(tmp_path / "two"), jobs=1)
     run_build(ctx, Progress(quiet=True))
-    assert ctx.notes["selfcollision"] == "from cache"
+    assert ctx.session.notes["selfcollision"] == "from cache"
     assert _matrix(tmp_path / "one") == _matrix(tmp_path / "two")
 
     # Computed afresh (another cache, one worker), the matrix is the same.

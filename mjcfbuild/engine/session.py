@@ -1,0 +1,130 @@
+"""What changes while one build runs: its workers, its hash cache, its product sharing, and
+what its tasks reported (failures, warnings, timings, notes).
+
+A :class:`~mjcfbuild.engine.context.BuildContext` is the build's configuration and never
+changes; each context gets a new session, so a second build in one process (``replace`` of a
+context, or a new one) starts from nothing. doit runs tasks in threads: the lists and dicts
+here are only appended to or set per task, and the sharing service is started under a lock.
+"""
+
+from __future__ import annotations
+
+import re
+import threading
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from mjcfbuild.errors import InternalError, MjcfbuildError
+
+if TYPE_CHECKING:
+    from mjcfbuild.engine.context import BuildContext
+    from mjcfbuild.engine.hashes import HashCache
+    from mjcfbuild.engine.workers import WorkerPool
+    from mjcfbuild.sharing.coordinator import ProductSharing
+
+
+class BuildSession:
+    """The state of one build of one :class:`BuildContext`."""
+
+    def __init__(self, ctx: BuildContext) -> None:
+        self.ctx = ctx
+        self.failures: dict[str, MjcfbuildError] = {}
+        self.warnings: list[str] = []
+        self.timings: dict[str, float] = {}
+        self.notes: dict[str, str] = {}  # task -> a word for the progress line ("from cache")
+        self.cache_grew = False  # a product was stored: the cache may need pruning
+        self.cache_report: dict[str, Any] | None = None
+        self._hashes: HashCache | None = None
+        self._pool: WorkerPool | None = None
+        self._sharing: ProductSharing | None = None
+        self._sharing_lock = threading.Lock()
+
+    @property
+    def hashes(self) -> HashCache:
+        """The :class:`HashCache` of the output folder."""
+        if self._hashes is None:
+            from mjcfbuild.engine.hashes import HashCache
+
+            state = self.ctx.state_dir
+            self._hashes = HashCache(state / "hashes.json" if state.is_dir() else None)
+        return self._hashes
+
+    @property
+    def sharing(self) -> ProductSharing:
+        """The :class:`ProductSharing` of this build, made when the first product is needed."""
+        with self._sharing_lock:
+            if self._sharing is None:
+                from mjcfbuild.sharing.coordinator import ProductSharing
+
+                choice = self.ctx.sharing_choice
+                self._sharing = ProductSharing(
+                    choice.remote,
+                    choice.executor,
+                    self.warnings.append,
+                    self.ctx.environ,
+                    self.ctx.step_timeout,
+                )
+            return self._sharing
+
+    def finish_sharing(self) -> None:
+        """Wait for uploads to the remote cache and keep what was shared for the report."""
+        with self._sharing_lock:
+            sharing, self._sharing = self._sharing, None
+        if sharing is not None:
+            self.cache_report = sharing.finish(Path(self.ctx.cache_settings()["folder"]))
+
+    def run_step(self, step: str, payload: dict, *, task: str, in_worker: bool) -> dict:
+        """Run a build step, in a worker process or here, and return its result.
+
+        Mesh conversions and decompositions go through :class:`ProductSharing` first, which
+        may fetch their product from the remote cache or compute it on a cluster.
+        """
+        from mjcfbuild.sharing.coordinator import SHARED_STEPS
+
+        kind = SHARED_STEPS.get(step)
+        if kind is None:
+            return self._run_step(step, payload, task, in_worker)
+        sharing = self.sharing
+        origin = sharing.before(kind, payload, task)
+        result = self._run_step(step, payload, task, in_worker)
+        sharing.after(kind, payload, origin, result)
+        return result
+
+    def _run_step(self, step: str, payload: dict, task: str, in_worker: bool) -> dict:
+        if not in_worker:
+            import importlib
+
+            module_name, _, function_name = step.partition(":")
+            function = getattr(importlib.import_module(module_name), function_name)
+            result: dict = function(payload)
+            return result
+        if self._pool is None:
+            from mjcfbuild.engine.workers import WorkerPool
+
+            self._pool = WorkerPool(self.ctx.jobs, self.ctx.base_dir, self.ctx.logs_dir)
+        self.ctx.logs_dir.mkdir(parents=True, exist_ok=True)
+        log = self.ctx.logs_dir / (re.sub(r"[^A-Za-z0-9_.-]+", "-", task) + ".log")
+        return self._pool.run(step, payload, task, log, self.ctx.step_timeout)
+
+    def record_failure(self, task: str, error: BaseException) -> MjcfbuildError:
+        """Remember why ``task`` failed, as a :class:`MjcfbuildError`."""
+        if not isinstance(error, MjcfbuildError):
+            import traceback
+
+            error = InternalError(
+                f"{task}: {type(error).__name__}: {error}",
+                details="".join(traceback.format_exception(error)),
+            )
+        self.failures[task] = error
+        return error
+
+    def close(self) -> None:
+        """Stop workers, finish uploads and save the hash cache."""
+        self.finish_sharing()
+        if self._pool is not None:
+            self._pool.close()
+            self._pool = None
+        if self._hashes is not None:
+            if self._hashes.path is None and self.ctx.state_dir.is_dir():
+                self._hashes.path = self.ctx.state("hashes.json")
+            self._hashes.save()
