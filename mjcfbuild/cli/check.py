@@ -167,7 +167,7 @@ def _manifest(ctx, args) -> int:
     from mjcfbuild.check.model_check import check_model
     from mjcfbuild.engine.report import write_report
     from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN, planned_urdf
-    from mjcfbuild.urdf.model import robot_from_dict
+    from mjcfbuild.steps.plan_record import read_plan
 
     if not ctx.robot_path.exists() or not ctx.state(PLAN).exists():
         raise CheckError(
@@ -175,7 +175,7 @@ def _manifest(ctx, args) -> int:
             file=ctx.label(ctx.robot_path),
             hint=f"run mjcfbuild build {ctx.manifest_label}",
         )
-    robot = robot_from_dict(json.loads(ctx.state(PLAN).read_text())["robot"])
+    robot = read_plan(ctx.state(PLAN)).robot_model()
     try:
         assembly = json.loads(ctx.state(ASSEMBLY_REPORT).read_text())
     except (OSError, ValueError):

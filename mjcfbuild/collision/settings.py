@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from mjcfbuild.collision.policy import CollisionChoice
     from mjcfbuild.manifest.models import Manifest
+    from mjcfbuild.steps.plan_record import PlannedInputs
     from mjcfbuild.urdf.model import Robot
 
 
@@ -36,7 +37,7 @@ class CollisionSettings:
         return choose_collisions(robot, self.default, rules_from_dicts(self.rules), self.decompose)
 
 
-def collision_settings(manifest: Manifest, plan_inputs: dict[str, Any]) -> CollisionSettings:
+def collision_settings(manifest: Manifest, plan_inputs: PlannedInputs) -> CollisionSettings:
     """The collision settings of ``manifest`` with the ``decompose_mesh`` inputs of the plan."""
     settings = manifest.collision
     defaults = dict(settings.decompose_defaults)

@@ -13,7 +13,6 @@ user's own ``dodo.py`` (see the project's ``dodo.py``), optionally with a name p
 
 from __future__ import annotations
 
-import json
 import time
 from pathlib import Path
 
@@ -50,7 +49,7 @@ from mjcfbuild.steps.payloads import (
     SelfCollisionPayload,
     SrdfPayload,
 )
-from mjcfbuild.urdf.model import robot_from_dict
+from mjcfbuild.steps.plan_record import Plan, read_plan
 
 SOURCE_URDF = "source.urdf"
 SOURCE_DEPS = "source.deps.json"
@@ -72,12 +71,12 @@ def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
 
 def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True) -> list[dict]:
     """Every task of the build; reads the plan the planning tasks wrote."""
-    plan = read_plan(ctx)
-    robot = robot_from_dict(plan["robot"])
-    collision = collision_settings(ctx.manifest, plan["inputs"])
+    plan = read_plan(ctx.state(PLAN))
+    robot = plan.robot_model()
+    collision = collision_settings(ctx.manifest, plan.inputs)
     choices = collision.choose(robot)
     roles = mesh_roles(robot, choices)
-    paths = {mesh["id"]: mesh["path"] for mesh in plan["meshes"]}
+    paths = {mesh.id: mesh.path for mesh in plan.meshes}
     decomposed = decompositions(robot, choices)
     tasks = planning_tasks(ctx, prefix) if with_planning else []
     tasks += [_mesh_task(ctx, mesh_id, paths[mesh_id], roles[mesh_id], prefix) for mesh_id in roles]
@@ -104,17 +103,16 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
     return tasks
 
 
-def _check_simulation_settings(ctx: BuildContext, robot, plan: dict) -> None:
+def _check_simulation_settings(ctx: BuildContext, robot, plan: Plan) -> None:
     """Refuse actuator rules and home values that name no joint, before anything is built."""
     from mjcfbuild.control.choose import check_rules
     from mjcfbuild.control.home import home_values
     from mjcfbuild.errors import MjcfbuildError
-    from mjcfbuild.inputs.ros2_control import Ros2Control
     from mjcfbuild.manifest.pinpoint import pinpoint
 
     try:
         check_rules(robot, ctx.manifest.actuators, ctx.manifest_label)
-        control = Ros2Control.from_dict(plan.get("ros2_control", {}))
+        control = plan.control()
         home_values(robot, control, ctx.manifest.home, None, ctx.manifest_label)
         _check_kept_pairs(robot, ctx)
     except MjcfbuildError as error:
@@ -145,6 +143,12 @@ SRDF_SUMMARY = "srdf.json"
 SELF_COLLISION = "self_collision.json"
 
 
+def _srdf_home_state(ctx: BuildContext) -> str | None:
+    """The SRDF group state that is the home pose, when an SRDF is read."""
+    settings = ctx.manifest.self_collision
+    return settings.home_state if settings != "none" and settings.srdf else None
+
+
 def _srdf_source(ctx: BuildContext) -> Path | None:
     settings = ctx.manifest.self_collision
     if settings == "none" or settings.srdf is None:
@@ -154,6 +158,7 @@ def _srdf_source(ctx: BuildContext) -> Path | None:
 
 def _srdf_task(ctx: BuildContext, prefix: str) -> dict:
     source = _srdf_source(ctx)
+    assert source is not None, "only made when self_collision.srdf is set"
     _require_file(ctx, source, "SRDF", "self_collision.srdf")
     payload = SrdfPayload(
         source=str(source),
@@ -176,17 +181,18 @@ def _srdf_task(ctx: BuildContext, prefix: str) -> dict:
 
 
 def _selfcollision_task(
-    ctx: BuildContext, plan: dict, robot, choices, roles, decomposed, prefix: str
+    ctx: BuildContext, plan: Plan, robot, choices, roles, decomposed, prefix: str
 ) -> dict:
     from mjcfbuild.selfcollision.robot import collision_robot
 
     settings = ctx.manifest.self_collision
+    assert settings != "none", "only made when self-collision is on"
     meshes = sorted(m for m, r in roles.items() if set(r) - {"visual"})
     decompositions = _decomposition_files(ctx, decomposed)
     srdf = ctx.state(SRDF_SUMMARY) if _srdf_source(ctx) else None
     initial = {
         joint["name"]: joint["initial"]
-        for joint in plan.get("ros2_control", {}).get("joints", [])
+        for joint in plan.ros2_control.get("joints", [])
         if joint.get("initial") is not None
     }
     payload = SelfCollisionPayload(
@@ -237,11 +243,6 @@ def _decomposition_files(ctx: BuildContext, decomposed: dict) -> list[Decomposit
         )
         for name, (mesh_id, params) in decomposed.items()
     ]
-
-
-def read_plan(ctx: BuildContext) -> dict:
-    """The plan written by the ``plan`` task."""
-    return json.loads(ctx.state(PLAN).read_text())
 
 
 def _task(
@@ -501,7 +502,7 @@ def _decompose_task(ctx: BuildContext, name: str, mesh_id: str, params: dict, pr
 
 def _assemble_task(
     ctx: BuildContext,
-    plan: dict,
+    plan: Plan,
     meshes: list[str],
     choices: list,
     decomposed: dict,
@@ -517,14 +518,14 @@ def _assemble_task(
         choices=[choice.to_dict() for choice in choices],
         decompositions=decompositions,
         inputs={
-            "urdf": plan["inputs"]["urdf"],
-            "file": plan["inputs"]["file"],
+            "urdf": plan.inputs.urdf,
+            "file": plan.inputs.file,
             "native": ctx.manifest.mujoco_inputs.model_dump(mode="json"),
         },
         actuators=ctx.manifest.actuators.model_dump(mode="json"),
         home=dict(ctx.manifest.home),
         floor=ctx.manifest.placement.floor,
-        srdf_home=ctx.manifest.self_collision.home_state if srdf else None,
+        srdf_home=_srdf_home_state(ctx),
         fuse_static=options.fuse_static,
         free_joint=options.free_joint,
         link_sites=options.link_sites,
@@ -658,7 +659,7 @@ def _export_urdf_task(ctx: BuildContext, prefix: str) -> dict:
     )
 
 
-def _scene_task(ctx: BuildContext, plan: dict, prefix: str) -> dict:
+def _scene_task(ctx: BuildContext, plan: Plan, prefix: str) -> dict:
     scene = ctx.manifest.scene
     source = ctx.resolve(scene.file) if scene.file else None
     if source is not None:
@@ -668,7 +669,7 @@ def _scene_task(ctx: BuildContext, plan: dict, prefix: str) -> dict:
         block = {"xml": scene.mjcf, "origin": f"{ctx.manifest_label} scene.mjcf"}
     elif source is None:
         for where in ("file", "urdf"):
-            found = (plan["inputs"].get(where) or {}).get("scene")
+            found = (plan.inputs.get(where) or {}).get("scene")
             if found:
                 block = found
                 break

@@ -89,13 +89,15 @@ def planned_meshes_exist(plan: Path) -> Callable:
     """
 
     def check(task, values) -> bool:
+        from mjcfbuild.steps.plan_record import read_plan
+
         try:
-            meshes = json.loads(plan.read_text())["meshes"]
+            meshes = read_plan(plan).meshes
         except (OSError, ValueError, KeyError, TypeError):
             return True  # no plan yet: the task runs anyway for its missing target
         for mesh in meshes:
-            if not Path(mesh["path"]).is_file():
-                check.reason = f"mesh file gone since the last plan: {mesh['path']}"
+            if not Path(mesh.path).is_file():
+                check.reason = f"mesh file gone since the last plan: {mesh.path}"
                 return False
         return True
 

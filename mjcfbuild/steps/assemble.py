@@ -12,21 +12,20 @@ from mjcfbuild.fsutil import remove_stale_temp_files
 from mjcfbuild.inputs.combine import combine
 from mjcfbuild.inputs.model import inputs_from_dict
 from mjcfbuild.inputs.native import native_inputs
-from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.manifest.simulation import ActuatorSettings
 from mjcfbuild.mjcf.assemble import AssemblyOptions, assemble
 from mjcfbuild.mjcf.inertia import InertiaPolicy
 from mjcfbuild.mjcf.prepared import Decomposition
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import AssemblePayload
-from mjcfbuild.urdf.model import robot_from_dict
+from mjcfbuild.steps.plan_record import read_plan
 
 
 def run(payload: dict) -> dict:
     """Assemble the model, publish its assets, then write the model file and the report."""
     request = AssemblePayload.from_dict(payload)
-    plan = json.loads(Path(request.plan).read_text())
-    robot = robot_from_dict(plan["robot"])
+    plan = read_plan(Path(request.plan))
+    robot = plan.robot_model()
     products = {
         mesh_id: json.loads(Path(summary).read_text())
         for mesh_id, summary in request.products.items()
@@ -46,7 +45,7 @@ def run(payload: dict) -> dict:
             )
         )
     inputs, input_warnings = _inputs(request)
-    control = Ros2Control.from_dict(plan.get("ros2_control", {}))
+    control = plan.control()
     matrix = _read(request.self_collision)
     srdf = _read(request.srdf)
     options = AssemblyOptions(

@@ -9,14 +9,13 @@ from mjcfbuild.check.model_check import CheckOptions, check_model
 from mjcfbuild.errors import CheckError
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import CheckPayload
-from mjcfbuild.urdf.model import robot_from_dict
+from mjcfbuild.steps.plan_record import read_plan
 
 
 def run(payload: dict) -> dict:
     """Check the model; write the results (also when a check fails, for the report)."""
     request = CheckPayload.from_dict(payload)
-    plan = json.loads(Path(request.plan).read_text())
-    robot = robot_from_dict(plan["robot"])
+    robot = read_plan(Path(request.plan)).robot_model()
     try:
         assembly = json.loads(Path(request.assembly_report).read_text())
     except (OSError, ValueError):

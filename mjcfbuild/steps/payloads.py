@@ -59,8 +59,9 @@ CacheSettings = Annotated[
 
 
 @dataclass(frozen=True)
-class Payload:
-    """The base of every task payload."""
+class Record:
+    """A frozen dataclass written as JSON and read back: payloads, and what steps write for
+    other steps (the plan)."""
 
     def to_dict(self) -> dict[str, Any]:
         """The payload as JSON-ready data."""
@@ -75,6 +76,11 @@ class Payload:
             if item.name in data:
                 values[item.name] = _rebuild(hints[item.name], data[item.name])
         return cls(**values)
+
+
+@dataclass(frozen=True)
+class Payload(Record):
+    """The base of every task payload."""
 
     def uptodate_params(self) -> dict[str, Any]:
         """Every field that counts, as JSON-ready data: the task's up-to-date parameters."""
@@ -119,7 +125,7 @@ def _rebuild(hint: Any, data: Any) -> Any:
     """``data`` as the type ``hint`` names, for the payload types used here."""
     if data is None:
         return None
-    if isinstance(hint, type) and issubclass(hint, Payload):
+    if isinstance(hint, type) and issubclass(hint, Record):
         return hint.from_dict(data)
     origin = typing.get_origin(hint)
     arguments = typing.get_args(hint)

@@ -3,7 +3,6 @@ read the MuJoCo inputs and ros2_control it holds (and the inputs file, if any)."
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from mjcfbuild.errors import InputError
@@ -12,6 +11,7 @@ from mjcfbuild.inputs.xml_inputs import inputs_in_urdf, read_inputs_file
 from mjcfbuild.sources.packages import PackageResolver
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import PlanPayload
+from mjcfbuild.steps.plan_record import Plan, PlannedInputs, PlannedMesh
 from mjcfbuild.urdf.parse import parse_urdf, parse_xml
 from mjcfbuild.urdf.resolve import resolve_files
 
@@ -45,16 +45,15 @@ def run(payload: dict) -> dict:
         for shape in link.shapes
         if shape.geometry.kind == "mesh"
     }
-    plan = {
-        "robot": robot.to_dict(),
-        "meshes": [{"id": mesh_id, "path": path} for mesh_id, path in sorted(meshes.items())],
-        "inputs": {
-            "urdf": urdf_inputs.to_dict(),
-            "file": file_inputs.to_dict() if file_inputs is not None else None,
-        },
-        "ros2_control": control.to_dict(),
-    }
+    plan = Plan(
+        robot=robot.to_dict(),
+        meshes=[PlannedMesh(mesh_id, path) for mesh_id, path in sorted(meshes.items())],
+        inputs=PlannedInputs(
+            urdf=urdf_inputs.to_dict(),
+            file=file_inputs.to_dict() if file_inputs is not None else None,
+        ),
+        ros2_control=control.to_dict(),
+    )
     outputs: dict[str, str] = {}
-    text = json.dumps(plan, indent=1, sort_keys=True) + "\n"
-    write_output(Path(request.output), text.encode(), outputs)
+    write_output(Path(request.output), plan.text(), outputs)
     return {"outputs": outputs, "warnings": robot.warnings}
