@@ -25,8 +25,7 @@ import numpy as np
 from mjcfbuild.fsutil import write_if_changed
 from mjcfbuild.meshes.load import MeshPart, load_parts
 from mjcfbuild.meshes.objfile import obj_bytes
-
-PRODUCT_FORMAT = 2
+from mjcfbuild.meshes.product import PRODUCT_FORMAT, WHOLE_MESH, MeshProduct, ProductPart
 
 
 def convert_mesh(
@@ -37,7 +36,7 @@ def convert_mesh(
     apply_up_axis: bool = False,
     collision_max_faces: int | None = None,
     max_hull_vertices: int | None = None,
-) -> dict:
+) -> MeshProduct:
     """Write the product of ``source`` into ``product_dir`` and return its summary.
 
     ``max_faces`` budgets the visual parts, ``collision_max_faces`` the collision mesh, and
@@ -66,41 +65,41 @@ def convert_mesh(
             if texture_file is None:
                 texture_file = store(f"texture{len(textures)}.png", part.texture.png)
                 textures[part.texture.key] = texture_file
-        name = store("mesh.obj" if single else f"part{index}.obj", _obj(part))
+        name = store(WHOLE_MESH if single else f"part{index}.obj", _obj(part))
         summary_parts.append(
-            {
-                "file": name,
-                "rgba": list(part.rgba) if part.rgba is not None else None,
-                "texture": texture_file,
-                "vertices": len(part.vertices),
-                "faces": len(part.faces),
-                "volume": _volume(part.vertices, part.faces),
-            }
+            ProductPart(
+                file=name,
+                rgba=[float(v) for v in part.rgba] if part.rgba is not None else None,
+                texture=texture_file,
+                vertices=len(part.vertices),
+                faces=len(part.faces),
+                volume=_volume(part.vertices, part.faces),
+            )
         )
     vertices, faces = _whole(whole_parts)
     collision = None
     if "collision" in roles:
         same = single and whole_parts is parts  # no budget made them differ
-        collision = "mesh.obj" if same else store("collision.obj", obj_bytes(vertices, faces))
+        collision = WHOLE_MESH if same else store("collision.obj", obj_bytes(vertices, faces))
     hull = None
     if "hull" in roles:
         hull = store("hull.obj", _hull_obj(_whole(original)[0], max_hull_vertices))
     for stale in product_dir.iterdir():
         if stale.name not in files:
             stale.unlink()
-    return {
-        "format": PRODUCT_FORMAT,
-        "parts": summary_parts,
-        "collision": collision,
-        "collision_volume": _volume(vertices, faces),
-        "hull": hull,
-        "faces": int(sum(len(p.faces) for p in parts)),
-        "files": dict(sorted(files.items())),
-        "warnings": warnings,
-    }
+    return MeshProduct(
+        format=PRODUCT_FORMAT,
+        parts=summary_parts,
+        collision=collision,
+        collision_volume=_volume(vertices, faces),
+        hull=hull,
+        faces=int(sum(len(p.faces) for p in parts)),
+        files=dict(sorted(files.items())),
+        warnings=warnings,
+    )
 
 
-def convert_with_options(source: Path, product_dir: Path, options: dict) -> dict:
+def convert_with_options(source: Path, product_dir: Path, options: dict) -> MeshProduct:
     """:func:`convert_mesh` with a mesh task's options (as build steps and cluster workers get
     them)."""
     return convert_mesh(

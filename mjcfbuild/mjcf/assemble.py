@@ -21,6 +21,7 @@ from mjcfbuild.errors import ModelError
 from mjcfbuild.inputs.model import Inputs
 from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.manifest.simulation import ActuatorSettings
+from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies
 from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
 from mjcfbuild.mjcf.precise import precise_xml
@@ -77,7 +78,7 @@ class Assembly:
 
 def assemble(
     robot: Robot,
-    products: dict[str, dict],
+    products: dict[str, MeshProduct],
     product_dirs: dict[str, Path],
     options: AssemblyOptions,
 ) -> Assembly:

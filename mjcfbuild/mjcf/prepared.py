@@ -21,6 +21,7 @@ import numpy as np
 
 from mjcfbuild.collision.policy import CollisionChoice
 from mjcfbuild.errors import InputError
+from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.mjcf.bodies import Body, PlacedShape
 from mjcfbuild.numbers import exact_list
 from mjcfbuild.urdf.limits import joint_range, unbounded_warning
@@ -140,7 +141,7 @@ class _Names:
 def prepare(
     robot_name: str,
     bodies: list[Body],
-    products: dict[str, dict],
+    products: dict[str, MeshProduct],
     product_dirs: dict[str, Path],
     choices: list[CollisionChoice],
     decompositions: list[Decomposition],
@@ -262,24 +263,24 @@ class _Builder:
         if any(s == 0 for s in geometry.scale):
             return self._zero_size(placed, f"mesh scale {exact_list(geometry.scale)}")
         product = self.products[geometry.mesh_id]
-        single = len(product["parts"]) == 1
+        single = len(product.parts) == 1
         geoms = []
-        for index, part in enumerate(product["parts"]):
+        for index, part in enumerate(product.parts):
             stem = geometry.mesh_id if single else f"{geometry.mesh_id}_{index}"
-            shell = abs(part.get("volume", 1.0)) < 1e-9
+            shell = abs(part.volume) < 1e-9
             use = self._use(
-                geometry.mesh_id, part["file"], product["files"][part["file"]], stem, placed, shell
+                geometry.mesh_id, part.file, product.files[part.file], stem, placed, shell
             )
             record = self._record(placed, body, "visual", "mesh")
             record.rgba = colour
             look = None
-            if part["rgba"] is not None or part.get("texture"):
-                texture = part.get("texture")
-                texture_md5 = product["files"][texture] if texture else None
+            if part.rgba is not None or part.texture:
+                texture = part.texture
+                texture_md5 = product.files[texture] if texture else None
                 texture_path = (
                     str(self.product_dirs[geometry.mesh_id] / texture) if texture else None
                 )
-                look = (tuple(part["rgba"]) if part["rgba"] else None, texture_md5, texture_path)
+                look = (tuple(part.rgba) if part.rgba else None, texture_md5, texture_path)
                 self.looks.setdefault(look, (stem, geometry.mesh_id))
             geoms.append(_Geom("visual", placed.pose, record, mesh=use, look=look))
         return geoms
@@ -297,18 +298,16 @@ class _Builder:
         mesh_id = geometry.mesh_id
         product = self.products[mesh_id]
         if choice.policy in ("authored", "visual"):
-            file = product["collision"]
-            stem = mesh_id if file == "mesh.obj" else f"{mesh_id}_collision"
-            shell = abs(product.get("collision_volume", 1.0)) < 1e-9
-            use = self._use(mesh_id, file, product["files"][file], stem, placed, shell)
+            file = product.collision
+            assert file is not None, "the mesh task was given the collision role"
+            stem = mesh_id if product.collision_is_whole else f"{mesh_id}_collision"
+            shell = abs(product.collision_volume) < 1e-9
+            use = self._use(mesh_id, file, product.files[file], stem, placed, shell)
             return [_Geom("collision", placed.pose, record, mesh=use)]
         if choice.policy == "hull":
+            assert product.hull is not None, "the mesh task was given the hull role"
             use = self._use(
-                mesh_id,
-                product["hull"],
-                product["files"][product["hull"]],
-                f"{mesh_id}_hull",
-                placed,
+                mesh_id, product.hull, product.files[product.hull], f"{mesh_id}_hull", placed
             )
             return [_Geom("collision", placed.pose, record, mesh=use)]
         if choice.policy == "primitive":
@@ -334,12 +333,13 @@ class _Builder:
         raise KeyError(f"no decomposition of {mesh_id} with {params}")
 
     def _fitted(
-        self, placed: PlacedShape, record: GeomRecord, mesh_id: str, product: dict
+        self, placed: PlacedShape, record: GeomRecord, mesh_id: str, product: MeshProduct
     ) -> _Geom:
         from mjcfbuild.collision.primitives import fit_primitive
         from mjcfbuild.meshes.objfile import read_obj_vertices
 
-        points = read_obj_vertices(self.product_dirs[mesh_id] / product["hull"])
+        assert product.hull is not None, "the mesh task was given the hull role"
+        points = read_obj_vertices(self.product_dirs[mesh_id] / product.hull)
         primitive = fit_primitive(points * np.asarray(placed.shape.geometry.scale))
         offset = Transform(
             tuple(tuple(float(v) for v in row) for row in primitive.transform[:3, :3]),

@@ -84,7 +84,7 @@ def _run(kind: str, options: dict, source: Path, output: Path) -> dict:
     if kind == "mesh":
         from mjcfbuild.meshes.convert import convert_with_options
 
-        return convert_with_options(source, output, options)
+        return convert_with_options(source, output, options).to_dict()
     from mjcfbuild.collision.decompose import decompose
 
     return decompose(source, options, output)

@@ -13,6 +13,7 @@ from mjcfbuild.inputs.combine import combine
 from mjcfbuild.inputs.model import inputs_from_dict
 from mjcfbuild.inputs.native import native_inputs
 from mjcfbuild.manifest.simulation import ActuatorSettings
+from mjcfbuild.meshes.product import read_product
 from mjcfbuild.mjcf.assemble import AssemblyOptions, assemble
 from mjcfbuild.mjcf.inertia import InertiaPolicy
 from mjcfbuild.mjcf.prepared import Decomposition
@@ -27,8 +28,7 @@ def run(payload: dict) -> dict:
     plan = read_plan(Path(request.plan))
     robot = plan.robot_model()
     products = {
-        mesh_id: json.loads(Path(summary).read_text())
-        for mesh_id, summary in request.products.items()
+        mesh_id: read_product(Path(summary)) for mesh_id, summary in request.products.items()
     }
     product_dirs = {mesh_id: Path(folder) for mesh_id, folder in request.product_dirs.items()}
     choices = [CollisionChoice.from_dict(choice) for choice in request.choices]

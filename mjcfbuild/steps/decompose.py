@@ -8,6 +8,7 @@ from pathlib import Path
 from mjcfbuild.engine.store import open_store, product_key
 from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.failpoints import failpoint
+from mjcfbuild.meshes.product import read_product
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import DecomposePayload
 
@@ -37,8 +38,9 @@ def run(payload: dict) -> dict:
 
 def collision_mesh(request: DecomposePayload) -> Path:
     """The mesh file the decomposition ``request`` asks for is made from."""
-    product = json.loads(Path(request.product_summary).read_text())
-    return Path(request.product_dir) / product["collision"]
+    collision = read_product(Path(request.product_summary)).collision
+    assert collision is not None, "a decomposed mesh is collision geometry"
+    return Path(request.product_dir) / collision
 
 
 def cache_key(request: DecomposePayload) -> str:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from mjcfbuild.engine.depfile import Depfile
@@ -10,6 +9,7 @@ from mjcfbuild.engine.store import open_store, product_key
 from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
 from mjcfbuild.failpoints import failpoint
+from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.meshes.references import referenced_files
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import MeshPayload
@@ -25,24 +25,25 @@ def run(payload: dict) -> dict:
     references = referenced_files(source)
     store = open_store(request.cache)
     key = cache_key(request, references)
-    summary = store.fetch(key, product_dir) if store else None
-    cached = summary is not None
-    if summary is None:
+    stored = store.fetch(key, product_dir) if store else None
+    cached = stored is not None
+    if stored is not None:
+        summary = MeshProduct.from_dict(stored)
+    else:
         # numpy and trimesh: only when a conversion is needed
         from mjcfbuild.meshes.convert import convert_with_options
 
         summary = convert_with_options(source, product_dir, options.cache_params())
         if store:
-            store.store(key, product_dir, summary)
+            store.store(key, product_dir, summary.to_dict())
     failpoint("mesh")
     Depfile([str(p) for p in references], [], {}).write(Path(request.depfile))
-    outputs = {str(product_dir / name): digest for name, digest in summary["files"].items()}
-    text = json.dumps(summary, indent=1, sort_keys=True) + "\n"
-    write_output(Path(request.summary), text.encode(), outputs)
+    outputs = {str(product_dir / name): digest for name, digest in summary.files.items()}
+    write_output(Path(request.summary), summary.text(), outputs)
     return {
         "outputs": outputs,
         "discovered": [str(p) for p in references],
-        "warnings": summary.get("warnings", []),
+        "warnings": summary.warnings,
         "cached": cached,
         "stored": not cached and store is not None,
     }

@@ -19,10 +19,11 @@ on every build.
 from __future__ import annotations
 
 import dataclasses
-import types
 import typing
 from dataclasses import dataclass
-from typing import Annotated, Any, Self
+from typing import Annotated, Any
+
+from mjcfbuild.records import Record
 
 
 @dataclass(frozen=True)
@@ -56,26 +57,6 @@ MessageLabel = Annotated[str, NotCounted("used in messages only")]
 CacheSettings = Annotated[
     dict[str, Any], NotCounted("where products are cached does not change them")
 ]
-
-
-@dataclass(frozen=True)
-class Record:
-    """A frozen dataclass written as JSON and read back: payloads, and what steps write for
-    other steps (the plan)."""
-
-    def to_dict(self) -> dict[str, Any]:
-        """The payload as JSON-ready data."""
-        return dataclasses.asdict(self)
-
-    @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> Self:
-        """The payload :meth:`to_dict` gave (after a JSON round trip)."""
-        hints = typing.get_type_hints(cls)
-        values = {}
-        for item in dataclasses.fields(cls):
-            if item.name in data:
-                values[item.name] = _rebuild(hints[item.name], data[item.name])
-        return cls(**values)
 
 
 @dataclass(frozen=True)
@@ -119,27 +100,6 @@ def _counted(value: Any) -> Any:
     if isinstance(value, dict):
         return {k: _counted(v) for k, v in value.items()}
     return value
-
-
-def _rebuild(hint: Any, data: Any) -> Any:
-    """``data`` as the type ``hint`` names, for the payload types used here."""
-    if data is None:
-        return None
-    if isinstance(hint, type) and issubclass(hint, Record):
-        return hint.from_dict(data)
-    origin = typing.get_origin(hint)
-    arguments = typing.get_args(hint)
-    if origin in (types.UnionType, typing.Union):
-        for option in arguments:
-            if option is not type(None):
-                return _rebuild(option, data)
-    if origin is list:
-        return [_rebuild(arguments[0], item) for item in data]
-    if origin is tuple:
-        return tuple(data)
-    if origin is dict:
-        return {key: _rebuild(arguments[1], item) for key, item in data.items()}
-    return data
 
 
 # The tasks, in build order ---------------------------------------------------------------

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from mjcfbuild.steps.payloads import Record
+from mjcfbuild.records import Record
 
 if TYPE_CHECKING:
     from mjcfbuild.inputs.ros2_control import Ros2Control

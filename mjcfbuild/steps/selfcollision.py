@@ -15,6 +15,7 @@ from mjcfbuild.control.choose import listing
 from mjcfbuild.control.home import home_values
 from mjcfbuild.errors import InputError, ManifestError
 from mjcfbuild.inputs.ros2_control import ControlJoint, Ros2Control
+from mjcfbuild.meshes.product import read_product
 from mjcfbuild.mjcf.assemble import compile_error, floats
 from mjcfbuild.mjcf.bodies import build_bodies
 from mjcfbuild.mjcf.prepared import Decomposition, prepare
@@ -39,7 +40,7 @@ def run(payload: dict) -> dict:
     bodies = build_bodies(robot, request.fuse_static, float_from_world=request.free_joint)
     body_of = {frame.link: body.name for body in bodies for frame in body.links}
     choices = [CollisionChoice.from_dict(choice) for choice in request.choices]
-    products = {m: json.loads(Path(s).read_text()) for m, s in request.products.items()}
+    products = {m: read_product(Path(s)) for m, s in request.products.items()}
     decompositions = [_decomposition(entry) for entry in request.decompositions]
     prepared = prepare(
         robot.name,

@@ -10,24 +10,24 @@ def test_single_material_mesh_serves_visual_and_collision(tmp_path):
     summary = convert_mesh(
         EXAMPLES / "arm" / "meshes" / "upper_arm.dae", tmp_path, ["collision", "visual"]
     )
-    assert [p["file"] for p in summary["parts"]] == ["mesh.obj"]
-    assert summary["collision"] == "mesh.obj"
-    assert summary["parts"][0]["rgba"][0] > 0.8
+    assert [p.file for p in summary.parts] == ["mesh.obj"]
+    assert summary.collision == "mesh.obj"
+    assert summary.parts[0].rgba[0] > 0.8
 
 
 def test_two_materials_give_two_parts_and_a_merged_collision_file(tmp_path):
     summary = convert_mesh(
         EXAMPLES / "arm" / "meshes" / "forearm.obj", tmp_path, ["collision", "visual"]
     )
-    assert [p["file"] for p in summary["parts"]] == ["part0.obj", "part1.obj"]
-    assert summary["collision"] == "collision.obj"
+    assert [p.file for p in summary.parts] == ["part0.obj", "part1.obj"]
+    assert summary.collision == "collision.obj"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["collision.obj", "part0.obj", "part1.obj"]
 
 
 def test_visual_only_mesh_has_no_collision_file_and_stale_files_go(tmp_path):
     (tmp_path / "old.obj").write_text("stale")
     summary = convert_mesh(EXAMPLES / "arm" / "meshes" / "forearm.obj", tmp_path, ["visual"])
-    assert summary["collision"] is None
+    assert summary.collision is None
     assert not (tmp_path / "old.obj").exists()
 
 
@@ -52,15 +52,15 @@ def test_visual_and_collision_budgets_are_separate(tmp_path):
     summary = convert_mesh(
         source, tmp_path / "out", ["visual", "collision"], max_faces=1000, collision_max_faces=200
     )
-    assert 900 <= summary["parts"][0]["faces"] <= 1000
-    assert summary["collision"] == "collision.obj"
+    assert 900 <= summary.parts[0].faces <= 1000
+    assert summary.collision == "collision.obj"
     collision = (tmp_path / "out" / "collision.obj").read_text()
     assert 150 <= collision.count("\nf ") <= 200
-    assert any("(collision): 1280 faces over the budget of 200" in w for w in summary["warnings"])
+    assert any("(collision): 1280 faces over the budget of 200" in w for w in summary.warnings)
 
     # Without a collision budget the visual budget no longer decimates collision geometry.
     summary = convert_mesh(source, tmp_path / "two", ["visual", "collision"], max_faces=1000)
-    collision = (tmp_path / "two" / summary["collision"]).read_text()
+    collision = (tmp_path / "two" / summary.collision).read_text()
     assert collision.count("\nf ") == 1280
 
 
@@ -70,8 +70,8 @@ def test_the_hull_keeps_at_most_the_vertex_limit_and_stays_inside(tmp_path):
 
     source = _sphere(tmp_path / "ball.stl")  # its hull has 642 vertices
     summary = convert_mesh(source, tmp_path / "out", ["hull"], max_hull_vertices=32)
-    hull = trimesh.load(tmp_path / "out" / summary["hull"], process=False)
+    hull = trimesh.load(tmp_path / "out" / summary.hull, process=False)
     assert 16 <= len(hull.vertices) <= 32
     assert np.linalg.norm(hull.vertices, axis=1).max() <= 0.1 + 1e-6  # original (float32) points
     again = convert_mesh(source, tmp_path / "again", ["hull"], max_hull_vertices=32)
-    assert again["files"] == summary["files"]  # deterministic
+    assert again.files == summary.files  # deterministic

@@ -46,10 +46,10 @@ def test_ply_face_colours_become_parts(tmp_path):
 def test_textured_product_has_png_and_uv(tmp_path):
     obj = samples.obj_with_named_mtl_and_texture(tmp_path / "o")
     summary = convert_mesh(obj, tmp_path / "product", ["visual"])
-    textured = [p for p in summary["parts"] if p["texture"]]
-    assert textured[0]["texture"] == "texture0.png"
+    textured = [p for p in summary.parts if p.texture]
+    assert textured[0].texture == "texture0.png"
     assert (tmp_path / "product" / "texture0.png").read_bytes().startswith(b"\x89PNG")
-    assert b"\nvt " in (tmp_path / "product" / textured[0]["file"]).read_bytes()
+    assert b"\nvt " in (tmp_path / "product" / textured[0].file).read_bytes()
 
 
 def test_faces_over_the_budget_are_simplified_with_a_warning(tmp_path):
@@ -59,12 +59,12 @@ def test_faces_over_the_budget_are_simplified_with_a_warning(tmp_path):
     path = tmp_path / "dense.stl"
     sphere.export(path)
     summary = convert_mesh(path, tmp_path / "product", ["visual"], max_faces=1000)
-    assert summary["faces"] <= 1000
-    assert "simplified" in summary["warnings"][0]
+    assert summary.faces <= 1000
+    assert "simplified" in summary.warnings[0]
 
 
 def test_hull_file_when_asked(tmp_path):
     summary = convert_mesh(
         EXAMPLES / "arm" / "meshes" / "forearm.obj", tmp_path, ["hull", "visual"]
     )
-    assert summary["hull"] == "hull.obj" and summary["collision"] is None
+    assert summary.hull == "hull.obj" and summary.collision is None
