@@ -61,8 +61,11 @@ def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
 
 def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True) -> list[dict]:
     """Every task of the build; reads the plan the planning tasks wrote."""
+    from mjcfbuild.compose.tasks import mjcf_parts, part_robot
+
     plan = read_plan(ctx)
     robot = robot_from_dict(plan["robot"])
+    parts = mjcf_parts(ctx, robot)  # attach: MJCF parts, checked and in attach order
     collision = collision_settings(ctx, plan)
     choices = choose_collisions(
         robot, collision["default"], rules_from_dicts(collision["rules"]), collision["decompose"]
@@ -76,7 +79,7 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
         _decompose_task(ctx, name, mesh_id, params, prefix)
         for name, (mesh_id, params) in decomposed.items()
     ]
-    _check_simulation_settings(ctx, robot, plan)
+    _check_simulation_settings(ctx, part_robot(ctx, robot, parts), plan)
     srdf = _srdf_task(ctx, prefix) if _srdf_source(ctx) else None
     if srdf is not None:
         tasks.append(srdf)
@@ -86,12 +89,12 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
             ctx, plan, robot, choices, roles, decomposed, collision, prefix
         )
         tasks.append(matrix)
-    tasks.append(_assemble_task(ctx, plan, sorted(roles), decomposed, collision, prefix))
+    tasks.append(_assemble_task(ctx, plan, sorted(roles), decomposed, collision, prefix, parts))
     tasks.append(_scene_task(ctx, plan, prefix))
     if ctx.manifest.output.urdf is not None:
         tasks.append(_export_urdf_task(ctx, prefix))
     if ctx.manifest.check.enabled and ctx.run_check:
-        tasks.append(_check_task(ctx, prefix))
+        tasks.append(_check_task(ctx, prefix, parts))
         if ctx.manifest.check.previews:
             tasks.append(_previews_task(ctx, prefix))
     return tasks
@@ -415,7 +418,9 @@ def expand_file_task(
 def planned_urdf(ctx: BuildContext) -> Path:
     """The URDF the plan reads and the check compares with: the expanded source, or with
     ``attach:`` parts, the source with the parts joined to it."""
-    return ctx.state(COMPOSED_URDF) if ctx.manifest.attach else ctx.state(SOURCE_URDF)
+    from mjcfbuild.compose.tasks import has_urdf_parts
+
+    return ctx.state(COMPOSED_URDF) if has_urdf_parts(ctx.manifest) else ctx.state(SOURCE_URDF)
 
 
 def _plan_task(ctx: BuildContext, prefix: str) -> dict:
@@ -424,7 +429,7 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
     if ctx.manifest.mujoco_inputs.file:
         inputs_file = ctx.resolve(ctx.manifest.mujoco_inputs.file)
         _require_file(ctx, inputs_file, "inputs file", "mujoco_inputs.file")
-    expanded = ctx.source_kind == "xacro" or bool(ctx.manifest.attach)
+    expanded = ctx.source_kind == "xacro" or urdf != ctx.state(SOURCE_URDF)
     payload = {
         "urdf": str(urdf),
         "display": ctx.label(urdf if expanded else ctx.source_path),
@@ -539,7 +544,9 @@ def _assemble_task(
     decomposed: dict,
     collision: dict,
     prefix: str,
+    parts: list[dict] | None = None,
 ) -> dict:
+    parts = parts or []
     options = ctx.manifest.options
     inertia = ctx.manifest.inertia
     source_label = ctx.portable_label(ctx.source_path)
@@ -578,10 +585,12 @@ def _assemble_task(
         "report": str(ctx.state(ASSEMBLY_REPORT)),
         "floor_record": str(ctx.state(FLOOR_RECORD)),
         "output": str(ctx.robot_path),
+        "mjcf_parts": parts,
     }
     params = {
         k: payload[k]
         for k in (
+            *(("mjcf_parts",) if parts else ()),
             "collision",
             "inputs",
             "actuators",
@@ -612,6 +621,7 @@ def _assemble_task(
             *(Path(d["summary"]) for d in decompositions),
             *([matrix] if matrix else []),
             *([srdf] if srdf else []),
+            *(Path(part[key]) for part in parts for key in ("xml", "summary")),
         ],
         targets=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT), ctx.state(FLOOR_RECORD)],
         params=params,
@@ -626,7 +636,8 @@ def report_dir(ctx: BuildContext) -> Path:
     return ctx.out_dir / "report"
 
 
-def _check_task(ctx: BuildContext, prefix: str) -> dict:
+def _check_task(ctx: BuildContext, prefix: str, parts: list[dict] | None = None) -> dict:
+    parts = parts or []
     settings = ctx.manifest.check
     options = {
         "configurations": settings.configurations,
@@ -643,6 +654,7 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
         "model_label": ctx.label(ctx.robot_path),
         "scene": str(ctx.scene_path),
         "urdf": str(planned_urdf(ctx)),  # for the check's own reader of the URDF
+        "mjcf_parts": parts,  # each compared with the part compiled alone
         "options": options,
         "output": str(ctx.state(CHECK_RESULTS)),
     }
@@ -659,9 +671,10 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
             ctx.state(PLAN),
             ctx.state(ASSEMBLY_REPORT),
             planned_urdf(ctx),
+            *(Path(part[key]) for part in parts for key in ("xml", "summary")),
         ],
         targets=[ctx.state(CHECK_RESULTS)],
-        params={"options": options},
+        params={"options": options, **({"mjcf_parts": parts} if parts else {})},
     )
 
 

@@ -7,6 +7,7 @@ import os
 from pathlib import Path
 
 from mjcfbuild.collision.policy import choose_collisions, rules_from_dicts
+from mjcfbuild.compose.attach import AttachedPart
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import remove_stale_temp_files
 from mjcfbuild.inputs.combine import combine
@@ -65,6 +66,7 @@ def run(payload: dict) -> dict:
         header=payload["header"],
         choices=choices,
         decompositions=decompositions,
+        parts=[AttachedPart.from_dict(entry) for entry in payload.get("mjcf_parts", [])],
     )
     assembly = assemble(robot, products, product_dirs, options)
     assembly.warnings += _placement_warnings(assembly, payload)
