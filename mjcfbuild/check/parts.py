@@ -162,9 +162,9 @@ def _joint_problems(alone, model, joint: int, found: int, name: str) -> list[str
 def _qpos_span(model, joint: int) -> tuple[int, int]:
     import mujoco
 
-    size = {mujoco.mjtJoint.mjJNT_FREE: 7, mujoco.mjtJoint.mjJNT_BALL: 4}
+    size = {int(mujoco.mjtJoint.mjJNT_FREE): 7, int(mujoco.mjtJoint.mjJNT_BALL): 4}
     start = int(model.jnt_qposadr[joint])
-    return start, start + size.get(model.jnt_type[joint], 1)
+    return start, start + size.get(int(model.jnt_type[joint]), 1)
 
 
 def _random_position(model, joint: int, rng: random.Random) -> list[float]:

@@ -98,13 +98,16 @@ def part_error(exc: Exception, label: str, what: str) -> InputError:
     """A MuJoCo error about a part as one line, with the line MuJoCo names if it names one."""
     text = str(exc).strip().replace("XML Error: ", "").replace("Error: ", "")
     lines = [line.strip() for line in text.splitlines() if line.strip()]
-    message = lines[0] if lines else type(exc).__name__
-    found = re.search(r"line (\d+)", text)
+    message = lines[0].rstrip(":") if lines else type(exc).__name__
+    parse_error = re.search(r"Error=XML_ERROR_(\w+)", text)
+    if parse_error:  # tinyxml2's own words, e.g. XML_ERROR_PARSING_ELEMENT
+        message = f"XML error: {parse_error.group(1).lower().replace('_', ' ')}"
+    found = re.search(r"[Ll]ine(?: number=| )(\d+)", text)
     return InputError(
         f"{what}: {message}",
         file=label,
         line=int(found.group(1)) if found else None,
-        hint="fix the part, or build it alone with MuJoCo's simulate to see more",
+        hint="fix the part; MuJoCo's simulate shows it alone",
     )
 
 
@@ -135,11 +138,11 @@ def summarise(spec, model, label: str) -> PartSummary:
         )
     home = mujoco.mj_name2id(model, obj.mjOBJ_KEY, HOME)
     qpos = model.key_qpos[home] if home >= 0 else model.qpos0
-    sizes = {mujoco.mjtJoint.mjJNT_FREE: 7, mujoco.mjtJoint.mjJNT_BALL: 4}
+    sizes = {int(mujoco.mjtJoint.mjJNT_FREE): 7, int(mujoco.mjtJoint.mjJNT_BALL): 4}
     home_qpos = {}
     for j, joint in enumerate(joints):
         address = model.jnt_qposadr[j]
-        size = sizes.get(model.jnt_type[j], 1)
+        size = sizes.get(int(model.jnt_type[j]), 1)
         home_qpos[joint.name] = [float(v) for v in qpos[address : address + size]]
     home_ctrl = {}
     if home >= 0:
@@ -205,17 +208,19 @@ def _actuated_joints(model) -> set[int]:
     return driven
 
 
-# Physics options a part may set that the model it joins does not take on.
-_OPTIONS = ("timestep", "integrator", "cone", "impratio", "noslip_iterations", "jacobian")
-
-
-def _option_warnings(spec, label: str) -> list[str]:
+def _changed_options(spec) -> list[str]:
+    """The physics options (``<option>``) the part sets to other than MuJoCo's defaults."""
     import mujoco
 
     default = mujoco.MjSpec().option
-    changed = [
-        name for name in _OPTIONS if str(getattr(spec.option, name)) != str(getattr(default, name))
+    names = [name for name in dir(default) if not name.startswith("_")]
+    return [
+        name for name in names if str(getattr(spec.option, name)) != str(getattr(default, name))
     ]
+
+
+def _option_warnings(spec, label: str) -> list[str]:
+    changed = _changed_options(spec)
     if not changed:
         return []
     return [
@@ -295,6 +300,9 @@ def normalise(spec, model, stored: dict[str, Path]) -> None:
 
     for key in list(spec.keys):
         spec.delete(key)
+    default_option = mujoco.MjSpec().option
+    for name in _changed_options(spec):  # the model's options win; summarise() warned
+        setattr(spec.option, name, getattr(default_option, name))
     degree = bool(spec.compiler.degree)
     sequence = spec.compiler.eulerseq
     for kind in ("bodies", "geoms", "sites", "cameras", "frames", "lights"):

@@ -297,3 +297,15 @@ def part_robot(ctx: BuildContext, robot: Robot, parts: list[dict[str, Any]]) -> 
         summary = PartSummary.from_dict(json.loads(Path(entry["summary"]).read_text()))
         joints += part_joints_as_urdf(summary, entry["prefix"])
     return replace(robot, joints=[*robot.joints, *joints]) if joints else robot
+
+
+def urdf_home(robot: Robot, home: dict[str, float]) -> dict[str, float]:
+    """The ``home`` patterns that name joints of the URDF model (not only MJCF parts')."""
+    from mjcfbuild.control.choose import matches
+
+    moving = [joint.name for joint in robot.joints if joint.moves]
+    return {
+        pattern: value
+        for pattern, value in home.items()
+        if any(matches(name, [pattern]) for name in moving)
+    }

@@ -177,6 +177,7 @@ def _selfcollision_task(
 ) -> dict:
     from dataclasses import asdict
 
+    from mjcfbuild.compose.tasks import urdf_home
     from mjcfbuild.selfcollision.robot import collision_robot
 
     settings = ctx.manifest.self_collision
@@ -198,7 +199,7 @@ def _selfcollision_task(
         "decompositions": decompositions,
         "srdf": str(srdf) if srdf else None,
         "initial": initial,
-        "home": dict(ctx.manifest.home),
+        "home": urdf_home(robot, ctx.manifest.home),  # MJCF parts' joints are not in the matrix
         "keep": [list(pair) for pair in settings.keep],
         "home_state": settings.home_state,
         "settings": {
