@@ -48,3 +48,12 @@ def test_gripper_meshes_are_exactly_what_the_script_generates():
     spec.loader.exec_module(module)
     for name, data in module.meshes().items():
         assert (folder / "meshes" / name).read_bytes() == data, name
+
+
+def test_mjcf_hand_meshes_are_exactly_what_the_script_generates():
+    folder = EXAMPLES / "arm_mjcf_gripper" / "hand"
+    spec = importlib.util.spec_from_file_location("make_hand_meshes", folder / "make_meshes.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    for name, data in module.meshes().items():
+        assert (folder / "assets" / name).read_bytes() == data, name

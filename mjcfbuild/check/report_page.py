@@ -123,6 +123,13 @@ def _checks(check: dict) -> list[str]:
             f"{kinematics['max_rotation_error']:.2g} rad; "
             f"{len(kinematics['missing_links'])} links missing |"
         )
+    for prefix, part in sorted(check.get("parts", {}).items()):
+        lines.append(
+            f"| MJCF part {prefix} ({part['label']}) against the part alone, at "
+            f"{part['configurations']} configurations | max error "
+            f"{part['max_position_error']:.2g} m, {part['max_rotation_error']:.2g} rad; "
+            f"{len(part['missing'])} missing, {len(part['problems'])} problems |"
+        )
     actuation = check.get("actuation")
     if actuation is not None:
         lines.append(

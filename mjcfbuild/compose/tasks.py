@@ -1,35 +1,51 @@
-"""The tasks of ``attach:`` parts: one expansion per part, then the composition.
+"""The tasks of ``attach:`` parts: one task per part, then the composition.
 
-Each part is expanded by a task of its own (``expand:<prefix>``), so editing a gripper's xacro
-re-expands the gripper alone; the ``compose`` task joins the expanded parts to the expanded main
-source, and the plan reads its result. Mesh tasks are per mesh file as always, so the arm's
-meshes stay up to date when the gripper changes.
+Each URDF or xacro part is expanded by a task of its own (``expand:<prefix>``), so editing a
+gripper's xacro re-expands the gripper alone; the ``compose`` task joins the expanded parts to
+the expanded main source, and the plan reads its result. Mesh tasks are per mesh file as always,
+so the arm's meshes stay up to date when the gripper changes.
+
+Each MJCF part is read, compiled alone and normalised by a task of its own (``part:<prefix>``,
+in the planning stage, so its joints are known before anything is built); the ``assemble`` task
+attaches the normalised parts and the ``check`` task compares them with the parts compiled alone.
 """
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.errors import ManifestError, MjcfbuildError
 from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.manifest.composition import Attachment
+from mjcfbuild.manifest.models import Manifest
 from mjcfbuild.sources.packages import ENV_VARIABLES
-from mjcfbuild.steps.payloads import ComposePayload, PartEntry
+from mjcfbuild.steps.payloads import ComposePayload, MjcfPartFiles, MjcfPartPayload, PartEntry
+from mjcfbuild.urdf.model import Robot
 
 PARTS_DIR = "attach"
 
 
+def has_urdf_parts(manifest: Manifest) -> bool:
+    """Whether URDF or xacro parts are joined to the main source (into composed.urdf)."""
+    return any(part.source.kind != "mjcf" for part in manifest.attach)
+
+
 def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
-    """The part expansions and the ``compose`` task; none without ``attach:``."""
+    """The part tasks and the ``compose`` task; none without ``attach:``."""
     from mjcfbuild.engine.tasks import COMPOSED_URDF, SOURCE_URDF, _task, expand_file_task
 
-    parts = ctx.manifest.attach
+    tasks = [
+        _mjcf_part_task(ctx, prefix, index, part)
+        for index, part in enumerate(ctx.manifest.attach)
+        if part.source.kind == "mjcf"
+    ]
+    parts = [(i, part) for i, part in enumerate(ctx.manifest.attach) if part.source.kind != "mjcf"]
     if not parts:
-        return []
-    tasks = []
+        return tasks
     entries: list[PartEntry] = []
-    for index, part in enumerate(parts):
+    for index, part in parts:
         source = _part_source(ctx, index, part)
         packages = _part_packages(ctx, index, part)
         output = part_urdf(ctx, index)
@@ -72,7 +88,7 @@ def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
         _task(
             ctx,
             f"{prefix}compose",
-            f"attach {', '.join(part.prefix for part in parts)}",
+            f"attach {', '.join(part.prefix for _, part in parts)}",
             "compose",
             payload,
             in_worker=False,
@@ -89,7 +105,7 @@ def part_urdf(ctx: BuildContext, index: int) -> Path:
 
 
 def _part_source(ctx: BuildContext, index: int, part: Attachment) -> Path:
-    source = ctx.resolve(part.source.xacro or part.source.urdf or "")
+    source = ctx.resolve(part.source.file)
     problem = unreadable_file(source)
     if problem:
         raise _pinpointed(
@@ -127,3 +143,170 @@ def _pinpointed(ctx: BuildContext, error: MjcfbuildError) -> MjcfbuildError:
     if ctx.manifest_file is not None:
         pinpoint(error, ctx.manifest_label, ctx.manifest_file)
     return error
+
+
+def mjcf_part_paths(ctx: BuildContext, index: int) -> dict[str, Path]:
+    """Where the ``part:`` task of part ``index`` writes its normalised XML, summary, depfile
+    and (shared by every part, content-addressed) asset copies."""
+    folder = ctx.state_dir / PARTS_DIR
+    return {
+        "xml": folder / f"{index}.mjcf.xml",
+        "summary": folder / f"{index}.mjcf.json",
+        "depfile": folder / f"{index}.mjcf.deps.json",
+        "assets_dir": folder / "assets",
+    }
+
+
+def _mjcf_part_task(ctx: BuildContext, prefix: str, index: int, part: Attachment) -> dict:
+    from mjcfbuild.engine.depfile import Depfile
+    from mjcfbuild.engine.tasks import _task
+    from mjcfbuild.engine.uptodate import always_stale
+
+    source = _part_source(ctx, index, part)
+    paths = mjcf_part_paths(ctx, index)
+    file_dep = [source]
+    extra = []
+    depfile = Depfile.read(paths["depfile"])
+    if depfile is not None:
+        file_dep += [Path(f) for f in depfile.files if Path(f).exists()]
+        stale = depfile.stale_reason(ctx.environ)
+        if stale:
+            extra.append(always_stale(stale))
+    payload = MjcfPartPayload(
+        source=str(source),
+        label=ctx.label(source),
+        assets_dir=str(paths["assets_dir"]),
+        xml=str(paths["xml"]),
+        summary=str(paths["summary"]),
+        depfile=str(paths["depfile"]),
+    )
+    return _task(
+        ctx,
+        f"{prefix}part:{part.prefix}",
+        f"part {ctx.label(source)}",
+        "mjcfpart",
+        payload,
+        in_worker=True,
+        file_dep=file_dep,
+        targets=[paths["xml"], paths["summary"]],
+        extra_uptodate=extra,
+    )
+
+
+def mjcf_parts(ctx: BuildContext, robot: Robot) -> list[MjcfPartFiles]:
+    """The MJCF parts as the assemble and check tasks take them, in the order they can be
+    attached (a part may attach to a body of another). Refuses, before anything is built, a
+    ``to`` that names nothing of the model, parts attached to each other in a cycle and a
+    prefix that makes a name collide."""
+    from mjcfbuild.compose.mjcf import PartSummary
+
+    pending = []
+    for index, part in enumerate(ctx.manifest.attach):
+        if part.source.kind != "mjcf":
+            continue
+        paths = mjcf_part_paths(ctx, index)
+        summary = PartSummary.from_dict(json.loads(paths["summary"].read_text()))
+        pending.append((index, part, paths, summary))
+    if not pending:
+        return []
+    links = [link.name for link in robot.links]
+    known = {"body": set(links), "site": set(links), "joint": {j.name for j in robot.joints}}
+    known["actuator"] = set(known["joint"])  # generated actuators are named after joints
+    targets = list(links)
+    ordered: list[MjcfPartFiles] = []
+    while pending:
+        ready = [entry for entry in pending if entry[1].to in targets]
+        if not ready:
+            raise _pinpointed(ctx, _unplaceable(ctx, pending, targets))
+        for index, part, paths, summary in ready:
+            _check_names(ctx, index, part, summary, known)
+            targets += [part.prefix + n for n in (*summary.bodies, *summary.sites)]
+            ordered.append(
+                MjcfPartFiles(
+                    key=f"{ctx.manifest_label} attach[{index}]",
+                    prefix=part.prefix,
+                    to=part.to,
+                    pos=list(part.pos),
+                    quat=list(part.orientation),
+                    label=summary.label,
+                    source=str(ctx.resolve(part.source.file)),
+                    xml=str(paths["xml"]),
+                    summary=str(paths["summary"]),
+                )
+            )
+            pending.remove((index, part, paths, summary))
+    return ordered
+
+
+def _check_names(
+    ctx: BuildContext, index: int, part: Attachment, summary, known: dict[str, set[str]]
+) -> None:
+    for kind, seen in known.items():
+        names = {part.prefix + name for name in summary.names.get(kind, [])}
+        clashes = sorted(names & seen)
+        if clashes:
+            raise _pinpointed(
+                ctx,
+                ManifestError(
+                    f"prefix '{part.prefix}' makes {kind} name '{clashes[0]}' of "
+                    f"{summary.label} collide with a name of the model",
+                    file=f"{ctx.manifest_label} attach[{index}].prefix",
+                    hint="choose a prefix no name of the model starts with",
+                ),
+            )
+        seen |= names
+
+
+def _unplaceable(ctx: BuildContext, pending: list, targets: list[str]) -> ManifestError:
+    """Why none of ``pending`` can be attached: an unknown ``to``, or a cycle."""
+    from mjcfbuild.control.choose import listing
+
+    owner = {
+        part.prefix + name: (index, part)
+        for index, part, _, summary in pending
+        for name in (*summary.bodies, *summary.sites)
+    }
+    chain = [(pending[0][0], pending[0][1])]
+    while chain[-1][1].to in owner and owner[chain[-1][1].to] not in chain:
+        chain.append(owner[chain[-1][1].to])
+    index, last = chain[-1]
+    if last.to not in owner:
+        return ManifestError(
+            f"'to' names '{last.to}', which is not a link of the model nor a body or site of "
+            "an MJCF part",
+            file=f"{ctx.manifest_label} attach[{index}].to",
+            hint=f"links: {listing(targets)}",
+        )
+    cycle = chain[chain.index(owner[last.to]) :]
+    steps = " -> ".join(f"{part.prefix} (to {part.to})" for _, part in cycle)
+    return ManifestError(
+        f"parts are attached to each other in a cycle: {steps}",
+        file=f"{ctx.manifest_label} attach[{cycle[0][0]}].to",
+        hint="attach one of them to a link of the main source",
+    )
+
+
+def part_robot(ctx: BuildContext, robot: Robot, parts: list[MjcfPartFiles]) -> Robot:
+    """``robot`` with the MJCF parts' hinge and slide joints, as home patterns and actuator
+    rules may name them."""
+    from dataclasses import replace
+
+    from mjcfbuild.compose.mjcf import PartSummary, part_joints_as_urdf
+
+    joints = []
+    for entry in parts:
+        summary = PartSummary.from_dict(json.loads(Path(entry.summary).read_text()))
+        joints += part_joints_as_urdf(summary, entry.prefix)
+    return replace(robot, joints=[*robot.joints, *joints]) if joints else robot
+
+
+def urdf_home(robot: Robot, home: dict[str, float]) -> dict[str, float]:
+    """The ``home`` patterns that name joints of the URDF model (not only MJCF parts')."""
+    from mjcfbuild.control.choose import matches
+
+    moving = [joint.name for joint in robot.joints if joint.moves]
+    return {
+        pattern: value
+        for pattern, value in home.items()
+        if any(matches(name, [pattern]) for name in moving)
+    }

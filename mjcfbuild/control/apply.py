@@ -86,9 +86,13 @@ def make_ready(
     home: list[HomeValue],
     floating: bool,
     compile_tree: Callable[[etree._Element], Any],
+    preset_qpos: dict[str, list[float]] | None = None,
+    preset_ctrl: dict[str, float] | None = None,
 ) -> Readiness:
     """Add actuators, joint dynamics and the home keyframe to ``root``; stand a floating base on
-    the floor. ``compile_tree`` turns the tree into an ``MjModel``."""
+    the floor. ``compile_tree`` turns the tree into an ``MjModel``. ``preset_qpos`` and
+    ``preset_ctrl`` are MJCF parts' own home: the qpos of joints ``home`` does not set (ball
+    joints) and the ctrl of actuators not driving a joint directly (see _preset_ctrl)."""
     import mujoco
     import numpy as np
 
@@ -113,12 +117,12 @@ def make_ready(
 
     model = compile_tree(root)
     data = mujoco.MjData(model)
-    qpos = _home_qpos(model, home)
+    qpos = _home_qpos(model, home, preset_qpos)
     if floating:
         readiness.base_height = _stand_on_floor(root, model, data, qpos)
         model = compile_tree(root)
         data = mujoco.MjData(model)
-        qpos = _home_qpos(model, home)
+        qpos = _home_qpos(model, home, preset_qpos)
     data.qpos[:] = qpos
     mujoco.mj_forward(model, data)
     if not floating:
@@ -153,10 +157,11 @@ def make_ready(
         return readiness
     final = compile_tree(root)
     final_data = mujoco.MjData(final)
-    final_data.qpos[:] = _home_qpos(final, home)
+    final_data.qpos[:] = _home_qpos(final, home, preset_qpos)
     mujoco.mj_forward(final, final_data)
     torques = standing_torques(final, final_data) if floating else final_data.qfrc_bias
     ctrl = _home_ctrl(final, final_data, torques)
+    _preset_ctrl(final, final_data, ctrl, preset_ctrl or {})
     keyframe = root.find("keyframe")
     if keyframe is None:
         keyframe = etree.SubElement(root, "keyframe")
@@ -211,10 +216,15 @@ def _has_key(root, name: str) -> bool:
     return any(key.get("name") == name for key in root.iter("key"))
 
 
-def _home_qpos(model, home: list[HomeValue]):
+def _home_qpos(model, home: list[HomeValue], preset: dict[str, list[float]] | None = None):
     import mujoco
 
     qpos = model.qpos0.copy()
+    for name, values in (preset or {}).items():
+        index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
+        if index >= 0:
+            address = model.jnt_qposadr[index]
+            qpos[address : address + len(values)] = values
     for value in home:
         index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, value.joint)
         if index >= 0:
@@ -315,6 +325,26 @@ def _fill_user_records(readiness: Readiness, root) -> None:
             element = by_joint[record.joint]
             record.name = element.get("name") or ""
             record.type = element.tag
+
+
+def _preset_ctrl(model, data, ctrl, preset: dict[str, float]) -> None:
+    """An MJCF part's home ctrl for its actuators that drive no joint directly (joint
+    actuators are set like the robot's own). A position servo on a tendon aims at the
+    tendon's length at home, which robot.yaml's home may have changed; other actuators keep
+    the part's home ctrl."""
+    import mujoco
+
+    direct = (mujoco.mjtTrn.mjTRN_JOINT, mujoco.mjtTrn.mjTRN_JOINTINPARENT)
+    for name, value in preset.items():
+        index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, name)
+        if index < 0 or model.actuator_trntype[index] in direct:
+            continue
+        bias = model.actuator_biasprm[index]
+        affine = model.actuator_biastype[index] == mujoco.mjtBias.mjBIAS_AFFINE
+        ctrl[index] = float(data.actuator_length[index]) if affine and bias[1] != 0 else value
+        if model.actuator_ctrllimited[index]:
+            low, high = model.actuator_ctrlrange[index]
+            ctrl[index] = min(max(ctrl[index], low), high)
 
 
 def _home_ctrl(model, data, torques):

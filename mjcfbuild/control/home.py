@@ -1,8 +1,9 @@
 """The home pose: a position for every moving joint.
 
 Each joint takes the first of: the first ``home:`` pattern in robot.yaml that matches it, the
-SRDF's ``<group_state name="home">``, its ros2_control ``initial_value``, and 0 - clipped into
-the joint's range. A mimic follower sits where its equality puts it.
+SRDF's ``<group_state name="home">``, its ros2_control ``initial_value``, an MJCF part's own
+home (``fallback``), and 0 - clipped into the joint's range. A mimic follower sits where its
+equality puts it.
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ class HomeValue:
 
     joint: str
     value: float
-    source: str  # robot.yaml, srdf, ros2_control, zero, mimic
+    source: str  # robot.yaml, srdf, ros2_control, part, zero, mimic
 
 
 def home_values(
@@ -31,8 +32,10 @@ def home_values(
     patterns: dict[str, float],
     srdf_state: dict[str, float] | None = None,
     manifest_label: str = "robot.yaml",
+    fallback: dict[str, float] | None = None,
 ) -> list[HomeValue]:
-    """The home position of every moving joint, in URDF order."""
+    """The home position of every moving joint, in URDF order. ``fallback`` gives joints of
+    MJCF parts their part's own home."""
     moving = [joint for joint in robot.joints if joint.moves]
     _check_patterns(moving, patterns, manifest_label)
     initial = {j.name: j.initial for j in control.joints if j.initial is not None}
@@ -48,6 +51,8 @@ def home_values(
             value, source = srdf_state[joint.name], "srdf"
         elif joint.name in initial:
             value, source = initial[joint.name], "ros2_control"
+        elif fallback and joint.name in fallback:
+            value, source = fallback[joint.name], "part"
         else:
             value, source = 0.0, "zero"
         values[joint.name] = HomeValue(joint.name, _clip(value, joint), source)

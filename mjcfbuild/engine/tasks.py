@@ -42,6 +42,7 @@ from mjcfbuild.steps.payloads import (
     ExportUrdfPayload,
     MeshOptions,
     MeshPayload,
+    MjcfPartFiles,
     Payload,
     PlanPayload,
     PreviewsPayload,
@@ -71,8 +72,11 @@ def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
 
 def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True) -> list[dict]:
     """Every task of the build; reads the plan the planning tasks wrote."""
+    from mjcfbuild.compose.tasks import mjcf_parts, part_robot
+
     plan = read_plan(ctx.state(PLAN))
     robot = plan.robot_model()
+    parts = mjcf_parts(ctx, robot)  # attach: MJCF parts, checked and in attach order
     collision = collision_settings(ctx.manifest, plan.inputs)
     choices = collision.choose(robot)
     roles = mesh_roles(robot, choices)
@@ -84,7 +88,7 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
         _decompose_task(ctx, name, mesh_id, params, prefix)
         for name, (mesh_id, params) in decomposed.items()
     ]
-    _check_simulation_settings(ctx, robot, plan)
+    _check_simulation_settings(ctx, part_robot(ctx, robot, parts), plan)
     srdf = _srdf_task(ctx, prefix) if _srdf_source(ctx) else None
     if srdf is not None:
         tasks.append(srdf)
@@ -92,12 +96,12 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
     if ctx.manifest.self_collision != "none":
         matrix = _selfcollision_task(ctx, plan, robot, choices, roles, decomposed, prefix)
         tasks.append(matrix)
-    tasks.append(_assemble_task(ctx, plan, sorted(roles), choices, decomposed, prefix))
+    tasks.append(_assemble_task(ctx, plan, sorted(roles), choices, decomposed, prefix, parts))
     tasks.append(_scene_task(ctx, plan, prefix))
     if ctx.manifest.output.urdf is not None:
         tasks.append(_export_urdf_task(ctx, prefix))
     if ctx.manifest.check.enabled and ctx.run_check:
-        tasks.append(_check_task(ctx, prefix))
+        tasks.append(_check_task(ctx, prefix, parts))
         if ctx.manifest.check.previews:
             tasks.append(_previews_task(ctx, prefix))
     return tasks
@@ -183,6 +187,7 @@ def _srdf_task(ctx: BuildContext, prefix: str) -> dict:
 def _selfcollision_task(
     ctx: BuildContext, plan: Plan, robot, choices, roles, decomposed, prefix: str
 ) -> dict:
+    from mjcfbuild.compose.tasks import urdf_home
     from mjcfbuild.selfcollision.robot import collision_robot
 
     settings = ctx.manifest.self_collision
@@ -202,7 +207,7 @@ def _selfcollision_task(
         free_joint=ctx.manifest.options.free_joint,
         decompositions=decompositions,
         initial=initial,
-        home=dict(ctx.manifest.home),
+        home=urdf_home(robot, ctx.manifest.home),  # MJCF parts' joints are not in the matrix
         keep=[list(pair) for pair in settings.keep],
         home_state=settings.home_state,
         settings={
@@ -388,7 +393,9 @@ def expand_file_task(
 def planned_urdf(ctx: BuildContext) -> Path:
     """The URDF the plan reads and the check compares with: the expanded source, or with
     ``attach:`` parts, the source with the parts joined to it."""
-    return ctx.state(COMPOSED_URDF) if ctx.manifest.attach else ctx.state(SOURCE_URDF)
+    from mjcfbuild.compose.tasks import has_urdf_parts
+
+    return ctx.state(COMPOSED_URDF) if has_urdf_parts(ctx.manifest) else ctx.state(SOURCE_URDF)
 
 
 def _plan_task(ctx: BuildContext, prefix: str) -> dict:
@@ -397,7 +404,7 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
     if ctx.manifest.mujoco_inputs.file:
         inputs_file = ctx.resolve(ctx.manifest.mujoco_inputs.file)
         _require_file(ctx, inputs_file, "inputs file", "mujoco_inputs.file")
-    expanded = ctx.source_kind == "xacro" or bool(ctx.manifest.attach)
+    expanded = ctx.source_kind == "xacro" or urdf != ctx.state(SOURCE_URDF)
     prebuilt = ctx.prebuilt_mesh_dir  # convert -a
     payload = PlanPayload(
         urdf=str(urdf),
@@ -507,6 +514,7 @@ def _assemble_task(
     choices: list,
     decomposed: dict,
     prefix: str,
+    parts: list[MjcfPartFiles],
 ) -> dict:
     options = ctx.manifest.options
     inertia = ctx.manifest.inertia
@@ -546,6 +554,7 @@ def _assemble_task(
         report=str(ctx.state(ASSEMBLY_REPORT)),
         floor_record=str(ctx.state(FLOOR_RECORD)),
         output=str(ctx.robot_path),
+        mjcf_parts=parts,
     )
     return _task(
         ctx,
@@ -560,6 +569,7 @@ def _assemble_task(
             *(Path(d.summary) for d in decompositions),
             *([matrix] if matrix else []),
             *([srdf] if srdf else []),
+            *(Path(path) for part in parts for path in (part.xml, part.summary)),
         ],
         targets=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT), ctx.state(FLOOR_RECORD)],
     )
@@ -573,7 +583,7 @@ def report_dir(ctx: BuildContext) -> Path:
     return ctx.out_dir / "report"
 
 
-def _check_task(ctx: BuildContext, prefix: str) -> dict:
+def _check_task(ctx: BuildContext, prefix: str, parts: list[MjcfPartFiles]) -> dict:
     settings = ctx.manifest.check
     payload = CheckPayload(
         options={
@@ -591,6 +601,7 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
         scene=str(ctx.scene_path),
         urdf=str(planned_urdf(ctx)),  # for the check's own reader of the URDF
         output=str(ctx.state(CHECK_RESULTS)),
+        mjcf_parts=parts,  # each compared with the part compiled alone
     )
     return _task(
         ctx,
@@ -605,6 +616,7 @@ def _check_task(ctx: BuildContext, prefix: str) -> dict:
             ctx.state(PLAN),
             ctx.state(ASSEMBLY_REPORT),
             planned_urdf(ctx),
+            *(Path(path) for part in parts for path in (part.xml, part.summary)),
         ],
         targets=[ctx.state(CHECK_RESULTS)],
     )

@@ -21,6 +21,7 @@ STEP_FORMATS = {
     "selfcollision": 2,
     "export_urdf": 1,
     "compose": 1,
+    "mjcfpart": 1,
 }
 
 STEP_TOOLS = {
@@ -36,6 +37,7 @@ STEP_TOOLS = {
     "previews": ("mujoco", "numpy", "pillow"),
     "export_urdf": ("mujoco", "numpy"),
     "compose": ("lxml",),
+    "mjcfpart": ("mujoco", "lxml"),
 }
 
 

@@ -1,8 +1,9 @@
 """The ``attach:`` section of robot.yaml: parts attached to the main source.
 
-Each part is a URDF or xacro description that goes through the same pipeline as the main source.
-Its names get a prefix, and its root link is joined to a link of the model built so far by a
-fixed joint at an optional offset.
+A URDF or xacro part goes through the same pipeline as the main source; an MJCF part (a
+hand-tuned MuJoCo model) is attached to the assembled model through ``MjSpec.attach`` with its
+own actuators, sensors, tendons, equalities and defaults. Either way its names get a prefix and
+its root is fixed to a link of the model built so far at an optional offset.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ class _Strict(BaseModel):
 
 
 class PartSource(_Strict):
-    """Where an attached part comes from: one of ``urdf`` or ``xacro``."""
+    """Where an attached part comes from: one of ``urdf``, ``xacro`` or ``mjcf``."""
 
     urdf: Annotated[str, Field(min_length=1)] | None = Field(
         None, description="A URDF file (relative to robot.yaml)."
@@ -28,16 +29,21 @@ class PartSource(_Strict):
     xacro: Annotated[str, Field(min_length=1)] | None = Field(
         None, description="A xacro file (relative to robot.yaml), expanded with the given args."
     )
+    mjcf: Annotated[str, Field(min_length=1)] | None = Field(
+        None,
+        description="A MuJoCo MJCF file (relative to robot.yaml), attached with its actuators, "
+        "sensors, tendons, equalities, defaults and assets; its 'home' keyframe fills its joints.",
+    )
     args: dict[str, str | int | float | bool] = Field(
         default_factory=dict, description="xacro arguments of the part."
     )
 
     @model_validator(mode="after")
     def _exactly_one(self) -> PartSource:
-        given = [key for key in ("urdf", "xacro") if getattr(self, key)]
+        given = [key for key in ("urdf", "xacro", "mjcf") if getattr(self, key)]
         if len(given) != 1:
             found = ", ".join(given) if given else "none"
-            raise ValueError(f"give exactly one of urdf, xacro (found: {found})")
+            raise ValueError(f"give exactly one of urdf, xacro, mjcf (found: {found})")
         if self.args and not self.xacro:
             raise ValueError("args are xacro arguments; they need a xacro source")
         return self
@@ -45,8 +51,14 @@ class PartSource(_Strict):
     @computed_field
     @property
     def kind(self) -> str:
-        """``urdf`` or ``xacro``."""
-        return "xacro" if self.xacro else "urdf"
+        """``urdf``, ``xacro`` or ``mjcf``."""
+        return "xacro" if self.xacro else "mjcf" if self.mjcf else "urdf"
+
+    @computed_field
+    @property
+    def file(self) -> str:
+        """The part's file, as robot.yaml gives it."""
+        return self.xacro or self.mjcf or self.urdf or ""
 
     @computed_field
     @property
@@ -65,11 +77,13 @@ class Attachment(_Strict):
     to: str = Field(
         min_length=1,
         description="The link the part's root is fixed to: a link of the main source or of "
-        "another part (with that part's prefix).",
+        "another part (with that part's prefix); an MJCF part may also name a body or site of "
+        "an MJCF part attached before it.",
     )
     prefix: str = Field(
         pattern=PREFIX_PATTERN,
-        description="Put before every name of the part (links, joints, materials), e.g. 'hand_'.",
+        description="Put before every name of the part (links, joints, materials; for an MJCF "
+        "part also bodies, actuators, sensors, tendons, defaults, assets), e.g. 'hand_'.",
     )
     pos: tuple[float, float, float] = Field(
         (0.0, 0.0, 0.0), description="Position of the part's root in the 'to' link's frame (m)."
@@ -97,6 +111,8 @@ class Attachment(_Strict):
             raise ValueError("pos, quat and euler must be finite numbers")
         if self.quat is not None and math.sqrt(sum(q * q for q in self.quat)) < 1e-9:
             raise ValueError("quat must not be zero")
+        if self.packages and self.source.kind == "mjcf":
+            raise ValueError("packages are for URDF and xacro parts; an MJCF part names files")
         return self
 
     @computed_field
@@ -110,6 +126,18 @@ class Attachment(_Strict):
         from mjcfbuild.urdf.transforms import matrix_to_rpy, quat_to_matrix
 
         return matrix_to_rpy(quat_to_matrix(self.quat))
+
+    @computed_field
+    @property
+    def orientation(self) -> tuple[float, float, float, float]:
+        """The orientation as a unit quaternion w, x, y, z (for an MJCF part's frame)."""
+        from mjcfbuild.urdf.transforms import matrix_to_quat, rpy_to_matrix
+
+        if self.quat is not None:
+            norm = math.sqrt(sum(q * q for q in self.quat))
+            w, x, y, z = (q / norm for q in self.quat)
+            return (w, x, y, z)
+        return matrix_to_quat(rpy_to_matrix(self.euler or (0.0, 0.0, 0.0)))
 
 
 def check_prefixes(parts: list[Attachment]) -> list[Attachment]:

@@ -16,6 +16,7 @@ from typing import Any
 from lxml import etree
 
 from mjcfbuild.collision.policy import CollisionChoice, choose_collisions
+from mjcfbuild.compose.attach import AttachedPart, attach_parts, part_frames, publish_part_files
 from mjcfbuild.control.apply import Readiness
 from mjcfbuild.errors import ModelError
 from mjcfbuild.inputs.model import Inputs
@@ -61,6 +62,7 @@ class AssemblyOptions:
     home_state: dict[str, float] | None = None  # an SRDF's group_state named 'home'
     excludes: list[tuple[str, str]] = field(default_factory=list)
     manifest_label: str = "robot.yaml"
+    parts: list[AttachedPart] = field(default_factory=list)  # MJCF parts, in attach order
 
 
 @dataclass
@@ -117,8 +119,11 @@ def assemble(
             f"MuJoCo could not import the prepared URDF: {_first_line(exc)}", file=robot.source
         ) from None
     _finish(spec, prepared, bodies, robot, options)
+    published = attach_parts(spec, bodies, options.parts)
     root = _write_with_shell_retries(spec, prepared, robot.source)
     _finish_xml(root, prepared, robot, options)
+    publish_part_files(root, published)
+    prepared.files.update(published)  # published with the robot's, compiled from memory
     warnings, readiness = _apply_additions(root, prepared, bodies, robot, options)
     _layout(root)
     xml = etree.tostring(root, encoding="unicode")
@@ -146,6 +151,7 @@ def _apply_additions(
     of the finished model."""
     import mujoco
 
+    from mjcfbuild.compose.control import with_parts
     from mjcfbuild.control.apply import make_ready, user_driven_joints
     from mjcfbuild.control.choose import choose_actuators
     from mjcfbuild.control.home import home_values
@@ -180,9 +186,30 @@ def _apply_additions(
             ) from None
 
     compile_tree(root)  # the user's inputs are at fault, not what follows
-    choices = choose_actuators(robot, control, options.actuators, user_driven_joints(root))
-    home = home_values(robot, control, options.home, options.home_state, options.manifest_label)
-    readiness = make_ready(root, robot, choices, home, options.free_joint, compile_tree)
+    parts = with_parts(robot, options.parts, options.actuators)
+    choices = choose_actuators(
+        parts.actuator_robot, control, options.actuators, user_driven_joints(root)
+    )
+    home = home_values(
+        parts.home_robot,
+        control,
+        options.home,
+        options.home_state,
+        options.manifest_label,
+        fallback=parts.fallback,
+    )
+    readiness = make_ready(
+        root,
+        parts.actuator_robot,
+        choices,
+        home,
+        options.free_joint,
+        compile_tree,
+        preset_qpos=parts.preset_qpos,
+        preset_ctrl=parts.preset_ctrl,
+    )
+    chosen = {choice.joint for choice in choices}
+    readiness.passive += [joint for joint in parts.undriven if joint not in chosen]
     warnings += readiness.notes
     compile_tree(root)
     return warnings, readiness
@@ -436,8 +463,10 @@ def _finish_xml(
             texture.attrib.pop("colorspace", None)
         texture.attrib.pop("content_type", None)
     # MuJoCo omits type="sphere" (its default); written out, no input default can change it.
+    # An MJCF part's geoms keep their classes' types.
+    parted = {geom for frame in part_frames(root, options.parts) for geom in frame.iter("geom")}
     for geom in root.find("worldbody").iter("geom"):
-        if geom.get("type") is None:
+        if geom.get("type") is None and geom not in parted:
             geom.set("type", "sphere")
 
 

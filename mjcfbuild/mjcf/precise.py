@@ -44,6 +44,7 @@ FIELDS: dict[str, dict[str, str]] = {
     "site": {"pos": "pos", "quat": "quat", "size": "size"},
     "camera": {"pos": "pos", "quat": "quat", "fovy": "fovy"},
     "mesh": {"scale": "scale"},
+    "frame": {"pos": "pos", "quat": "quat"},
 }
 DEFAULTS = {"pos": (0.0, 0.0, 0.0), "quat": (1.0, 0.0, 0.0, 0.0)}
 _COLLECTIONS = {
@@ -53,6 +54,7 @@ _COLLECTIONS = {
     "site": "sites",
     "camera": "cameras",
     "mesh": "meshes",
+    "frame": "frames",
 }
 _TEMP_PREFIX = "mjcfbuild_unnamed_"
 # Poses and directions: values below this are rounding noise of rotations (1e-22 and the like).
@@ -89,7 +91,7 @@ def precise_xml(spec) -> etree._Element:
 
 def _name_unnamed(spec) -> list:
     named = []
-    for kind in ("geoms", "sites", "cameras", "bodies", "joints"):
+    for kind in ("geoms", "sites", "cameras", "bodies", "joints", "frames"):
         for index, element in enumerate(getattr(spec, kind)):
             if not element.name and not (kind == "bodies" and element == spec.worldbody):
                 element.name = f"{_TEMP_PREFIX}{kind}_{index}"

@@ -7,6 +7,7 @@ import os
 from pathlib import Path
 
 from mjcfbuild.collision.policy import CollisionChoice
+from mjcfbuild.compose.attach import AttachedPart
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import remove_stale_temp_files
 from mjcfbuild.inputs.combine import combine
@@ -64,6 +65,7 @@ def run(payload: dict) -> dict:
         header=request.header,
         choices=choices,
         decompositions=decompositions,
+        parts=[AttachedPart.from_dict(entry.to_dict()) for entry in request.mjcf_parts],
     )
     assembly = assemble(robot, products, product_dirs, options)
     assembly.warnings += _placement_warnings(assembly, request.floor)

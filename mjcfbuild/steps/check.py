@@ -8,7 +8,7 @@ from pathlib import Path
 from mjcfbuild.check.model_check import CheckOptions, check_model
 from mjcfbuild.errors import CheckError
 from mjcfbuild.steps.outputs import write_output
-from mjcfbuild.steps.payloads import CheckPayload
+from mjcfbuild.steps.payloads import CheckPayload, MjcfPartFiles
 from mjcfbuild.steps.plan_record import read_plan
 
 
@@ -30,6 +30,8 @@ def run(payload: dict) -> dict:
         readiness=assembly.get("readiness") or {},
         urdf=Path(request.urdf).read_bytes() if request.urdf else None,
     )
+    if request.mjcf_parts and report.results.get("loads"):
+        _check_parts(report, Path(request.model), request.mjcf_parts, request.options)
     outputs: dict[str, str] = {}
     data = {"passes": report.passes, "failures": report.failures, **report.results}
     write_output(
@@ -45,6 +47,40 @@ def run(payload: dict) -> dict:
             hint=f"{more} more failure{'s' if more > 1 else ''} in the report" if more else None,
         )
     return {"outputs": outputs, "warnings": _standing_notes(report.results)}
+
+
+def _check_parts(report, model_path: Path, parts: list[MjcfPartFiles], options: dict) -> None:
+    """Compare every MJCF part with the part compiled alone; add results and failures."""
+    import mujoco
+
+    from mjcfbuild.check.parts import PartReference, check_part
+
+    model = mujoco.MjModel.from_xml_path(str(model_path))
+    tolerance = max(options["position_tolerance"], options["rotation_tolerance"])
+    results = {}
+    for entry in parts:
+        reference = PartReference(
+            prefix=entry.prefix,
+            source=Path(entry.source),
+            label=entry.label,
+            to=entry.to,
+            pos=tuple(entry.pos),
+            quat=tuple(entry.quat),
+        )
+        result = check_part(model, reference, options["configurations"], options["seed"], tolerance)
+        results[entry.prefix] = result.to_dict()
+        where = f"MJCF part {entry.prefix} ({entry.label})"
+        if result.missing:
+            report.failures.append(f"{where}: {', '.join(result.missing)} not in the model")
+        report.failures += [f"{where}: {problem}" for problem in result.problems]
+        if result.max_position_error > options["position_tolerance"] or (
+            result.max_rotation_error > options["rotation_tolerance"]
+        ):
+            report.failures.append(
+                f"{where}: body '{result.worst_body}' is {result.max_position_error:.3g} m and "
+                f"{result.max_rotation_error:.3g} rad from where the part alone puts it"
+            )
+    report.results["parts"] = results
 
 
 # A floating base tilting more than this in 1 s of holding home is falling over.

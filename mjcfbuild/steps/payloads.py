@@ -217,6 +217,33 @@ class DecompositionFiles(Payload):
 
 
 @dataclass(frozen=True)
+class MjcfPartPayload(Payload):
+    """``part:<prefix>``: an ``attach:`` MJCF part compiled alone and normalised."""
+
+    source: Annotated[str, NotCounted("a file dependency, with the files it includes")]
+    label: str
+    assets_dir: str  # counted: the normalised part names its assets in it
+    xml: Output
+    summary: Output
+    depfile: Output
+
+
+@dataclass(frozen=True)
+class MjcfPartFiles(Payload):
+    """An ``attach:`` MJCF part as the assemble and check steps take it."""
+
+    key: MessageLabel  # its place in robot.yaml, e.g. "robot.yaml attach[1]"
+    prefix: str
+    to: str
+    pos: list[float]
+    quat: list[float]
+    label: MessageLabel
+    source: Annotated[str, NotCounted("the part task read it; its summary is a dependency")]
+    xml: FileDependency  # the normalised part
+    summary: FileDependency  # compose.mjcf.PartSummary
+
+
+@dataclass(frozen=True)
 class SrdfPayload(Payload):
     """``srdf``: the SRDF (or its xacro) read into disabled pairs and group states."""
 
@@ -277,6 +304,7 @@ class AssemblePayload(Payload):
     report: Output
     floor_record: Output
     output: Output
+    mjcf_parts: list[MjcfPartFiles]  # attached after the URDF model is assembled
 
 
 @dataclass(frozen=True)
@@ -304,6 +332,7 @@ class CheckPayload(Payload):
     scene: FileDependency
     urdf: FileDependency
     output: Output
+    mjcf_parts: list[MjcfPartFiles]  # each compared with the part compiled alone
 
 
 @dataclass(frozen=True)

@@ -84,6 +84,7 @@ def test_an_optional_file_dependency_counts_by_being_given():
             report="/out/report.json",
             floor_record="/out/floor.json",
             output="/out/robot.xml",
+            mjcf_parts=[],
         )
 
     given = assemble("/out/self_collision.json").uptodate_params()
