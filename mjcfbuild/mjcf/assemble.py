@@ -17,7 +17,7 @@ from lxml import etree
 
 from mjcfbuild.collision.policy import CollisionChoice, choose_collisions
 from mjcfbuild.compose.attach import AttachedPart, attach_parts, part_frames, publish_part_files
-from mjcfbuild.control.apply import Readiness
+from mjcfbuild.control.apply import ActuatorRecord, Readiness
 from mjcfbuild.errors import ModelError
 from mjcfbuild.inputs.model import Inputs
 from mjcfbuild.inputs.ros2_control import Ros2Control
@@ -210,9 +210,24 @@ def _apply_additions(
     )
     chosen = {choice.joint for choice in choices}
     readiness.passive += [joint for joint in parts.undriven if joint not in chosen]
+    readiness.actuators += _part_actuators(root, options.parts)
     warnings += readiness.notes
     compile_tree(root)
     return warnings, readiness
+
+
+def _part_actuators(root: etree._Element, parts: list[AttachedPart]) -> list[ActuatorRecord]:
+    """The MJCF parts' own actuators, for the report: the part wrote them, not mjcfbuild."""
+    from mjcfbuild.inputs.apply import ACTUATOR_TAGS
+
+    names = {part.prefix + name for part in parts for name in part.summary.actuators}
+    section = root.find("actuator")
+    records = []
+    for element in section if section is not None else []:
+        if element.tag in ACTUATOR_TAGS and element.get("name") in names:
+            target = element.get("joint") or element.get("tendon") or element.get("site") or ""
+            records.append(ActuatorRecord(element.get("name") or "", target, element.tag, "part"))
+    return records
 
 
 def _mesh_aliases(prepared: Prepared) -> dict[str, set[str]]:

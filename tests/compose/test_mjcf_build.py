@@ -93,6 +93,8 @@ def test_assets_are_published_by_content_and_the_check_covers_the_hand(built):
     assert part["max_position_error"] < 1e-9 and part["max_rotation_error"] < 1e-9
     report = (output / "report" / "report.md").read_text()
     assert "MJCF part hand_ (hand/hand.xml) against the part alone" in report
+    # The report lists the hand's own actuator, as the part's.
+    assert "| hand_grip | hand_split | general | part |" in report
 
 
 def test_editing_the_hand_reruns_its_part_and_the_assembly_only(tmp_path):
