@@ -10,12 +10,14 @@ from __future__ import annotations
 
 import math
 import re
+from typing import Literal, overload
 
 from lxml import etree
 
 from mjcfbuild.errors import InputError
 from mjcfbuild.urdf.model import (
     JOINT_TYPES,
+    RGBA,
     Geometry,
     Inertial,
     Joint,
@@ -26,7 +28,9 @@ from mjcfbuild.urdf.model import (
     Pose,
     Robot,
     Shape,
+    Vec3,
 )
+from mjcfbuild.urdf.transforms import vec3
 from mjcfbuild.xmlguard import refuse_entities
 
 _SEPARATORS = re.compile(r"[\s,]+")
@@ -104,8 +108,30 @@ class _Reader:
             raise self.error(element, f"<{element.tag}> needs a '{attribute}' attribute")
         return value.strip()
 
+    # The overloads say what a fixed count gives: `count` numbers, or `default` when the
+    # attribute is absent.
+    @overload
     def numbers(
-        self, element: etree._Element, attribute: str, count: int | None, default=None
+        self, element: etree._Element, attribute: str, count: Literal[3], default: Vec3
+    ) -> Vec3: ...
+    @overload
+    def numbers(
+        self, element: etree._Element, attribute: str, count: Literal[4], default: None = None
+    ) -> RGBA | None: ...
+    @overload
+    def numbers(
+        self, element: etree._Element, attribute: str, count: int | None, default: tuple[float, ...]
+    ) -> tuple[float, ...]: ...
+    @overload
+    def numbers(
+        self, element: etree._Element, attribute: str, count: int | None, default: None = None
+    ) -> tuple[float, ...] | None: ...
+    def numbers(
+        self,
+        element: etree._Element,
+        attribute: str,
+        count: int | None,
+        default: tuple[float, ...] | None = None,
     ) -> tuple[float, ...] | None:
         text = element.get(attribute)
         if text is None:
@@ -276,7 +302,7 @@ def _parse_geometry(element: etree._Element, reader: _Reader) -> Geometry:
             scale = (scale[0],) * 3
         if len(scale) != 3:
             raise reader.error(element, "<mesh> scale needs 1 or 3 numbers")
-        return Geometry("mesh", uri=uri, scale=tuple(scale))
+        return Geometry("mesh", uri=uri, scale=vec3(scale))
     raise reader.error(
         element,
         f"unknown geometry <{kind}>",
