@@ -13,7 +13,12 @@ from mjcfbuild.errors import InternalError, MjcfbuildError
 from mjcfbuild.fsutil import normalise
 
 if TYPE_CHECKING:
+    from mjcfbuild.engine.hashes import HashCache
+    from mjcfbuild.engine.workers import WorkerPool
     from mjcfbuild.manifest.models import Manifest
+    from mjcfbuild.sharing.coordinator import ProductSharing
+    from mjcfbuild.sharing.settings import SharingChoice
+    from mjcfbuild.sources.packages import PackageResolver
 
 STATE_DIR = ".mjcfbuild"
 DEFAULT_STEP_TIMEOUT = 1800.0
@@ -54,11 +59,11 @@ class BuildContext:
 
     def __post_init__(self) -> None:
         self.base_dir = normalise(self.base_dir)
-        self._hashes = None
-        self._pool = None
-        self._resolver = None
-        self._sharing_choice = None
-        self._sharing = None
+        self._hashes: HashCache | None = None
+        self._pool: WorkerPool | None = None
+        self._resolver: PackageResolver | None = None
+        self._sharing_choice: SharingChoice | None = None
+        self._sharing: ProductSharing | None = None
         self._sharing_lock = threading.Lock()  # doit runs tasks in threads
 
     @classmethod
@@ -141,12 +146,14 @@ class BuildContext:
     def urdf_path(self) -> Path | None:
         """The exported URDF, if the manifest asks for one."""
         export = self.manifest.output.urdf
+        assert not isinstance(export, str), "validation makes a file name a UrdfExport"
         return self.out_dir / export.file if export else None
 
     @property
     def urdf_mesh_dir(self) -> Path | None:
         """The folder of the exported URDF's meshes, if the manifest asks for a URDF."""
         export = self.manifest.output.urdf
+        assert not isinstance(export, str), "validation makes a file name a UrdfExport"
         return self.out_dir / export.mesh_folder if export else None
 
     @property
@@ -182,7 +189,9 @@ class BuildContext:
         source = self.manifest.source
         if source.description == "-":
             return self.state("stdin.urdf")
-        return self.resolve(source.xacro or source.urdf or source.description)
+        path = source.xacro or source.urdf or source.description
+        assert path is not None, "validation requires one of the three"
+        return self.resolve(path)
 
     @property
     def source_base_dir(self) -> Path:

@@ -16,6 +16,7 @@ from __future__ import annotations
 import json
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from doit.exceptions import TaskFailed
 
@@ -51,6 +52,10 @@ from mjcfbuild.steps.payloads import (
     SrdfPayload,
 )
 from mjcfbuild.urdf.model import robot_from_dict
+
+if TYPE_CHECKING:
+    from mjcfbuild.collision.policy import CollisionChoice
+    from mjcfbuild.urdf.model import Robot
 
 SOURCE_URDF = "source.urdf"
 SOURCE_DEPS = "source.deps.json"
@@ -104,7 +109,7 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
     return tasks
 
 
-def _check_simulation_settings(ctx: BuildContext, robot, plan: dict) -> None:
+def _check_simulation_settings(ctx: BuildContext, robot: Robot, plan: dict) -> None:
     """Refuse actuator rules and home values that name no joint, before anything is built."""
     from mjcfbuild.control.choose import check_rules
     from mjcfbuild.control.home import home_values
@@ -123,7 +128,7 @@ def _check_simulation_settings(ctx: BuildContext, robot, plan: dict) -> None:
         raise
 
 
-def _check_kept_pairs(robot, ctx: BuildContext) -> None:
+def _check_kept_pairs(robot: Robot, ctx: BuildContext) -> None:
     from mjcfbuild.control.choose import listing
     from mjcfbuild.errors import ManifestError
 
@@ -154,6 +159,7 @@ def _srdf_source(ctx: BuildContext) -> Path | None:
 
 def _srdf_task(ctx: BuildContext, prefix: str) -> dict:
     source = _srdf_source(ctx)
+    assert source is not None, "the task exists only when self_collision.srdf is set"
     _require_file(ctx, source, "SRDF", "self_collision.srdf")
     payload = SrdfPayload(
         source=str(source),
@@ -176,11 +182,18 @@ def _srdf_task(ctx: BuildContext, prefix: str) -> dict:
 
 
 def _selfcollision_task(
-    ctx: BuildContext, plan: dict, robot, choices, roles, decomposed, prefix: str
+    ctx: BuildContext,
+    plan: dict,
+    robot: Robot,
+    choices: list[CollisionChoice],
+    roles: dict[str, list[str]],
+    decomposed: dict[str, tuple[str, dict]],
+    prefix: str,
 ) -> dict:
     from mjcfbuild.selfcollision.robot import collision_robot
 
     settings = ctx.manifest.self_collision
+    assert settings != "none", "the task exists only when self_collision is not 'none'"
     meshes = sorted(m for m, r in roles.items() if set(r) - {"visual"})
     decompositions = _decomposition_files(ctx, decomposed)
     srdf = ctx.state(SRDF_SUMMARY) if _srdf_source(ctx) else None
@@ -276,7 +289,14 @@ def _task(
     }
 
 
-def _run(ctx: BuildContext, name: str, step: str, payload: dict, in_worker: bool, task):
+def _run(
+    ctx: BuildContext,
+    name: str,
+    step: str,
+    payload: dict,
+    in_worker: bool,
+    task: Any,  # doit's Task, which doit passes to an action that names a `task` parameter
+) -> TaskFailed | dict:
     """The action of every task: run the step, keep its warnings, report its outputs.
 
     Files the step reports as ``discovered`` (what a xacro expansion included) join the
@@ -520,7 +540,11 @@ def _assemble_task(
         actuators=ctx.manifest.actuators.model_dump(mode="json"),
         home=dict(ctx.manifest.home),
         floor=ctx.manifest.placement.floor,
-        srdf_home=ctx.manifest.self_collision.home_state if srdf else None,
+        srdf_home=(
+            ctx.manifest.self_collision.home_state
+            if srdf and ctx.manifest.self_collision != "none"
+            else None
+        ),
         fuse_static=options.fuse_static,
         free_joint=options.free_joint,
         link_sites=options.link_sites,
@@ -629,6 +653,7 @@ def _export_urdf_task(ctx: BuildContext, prefix: str) -> dict:
     export = ctx.manifest.output.urdf
     urdf, mesh_dir = ctx.urdf_path, ctx.urdf_mesh_dir
     assert export is not None and urdf is not None and mesh_dir is not None
+    assert not isinstance(export, str), "validation makes a file name a UrdfExport"
     payload = ExportUrdfPayload(
         options={
             "asset_prefix": export.asset_prefix,

@@ -38,6 +38,7 @@ def run(payload: dict) -> dict:
         raise
     file_inputs = None
     if request.inputs_file:
+        assert request.inputs_file_label is not None, "set with inputs_file"
         file_inputs = read_inputs_file(Path(request.inputs_file), request.inputs_file_label)
     meshes = {
         shape.geometry.mesh_id: shape.geometry.path
