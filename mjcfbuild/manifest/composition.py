@@ -42,13 +42,15 @@ class PartSource(_Strict):
             raise ValueError("args are xacro arguments; they need a xacro source")
         return self
 
-    @computed_field
+    # pydantic's documented form; mypy rejects any decorator above @property
+    @computed_field  # type: ignore[prop-decorator]
     @property
     def kind(self) -> str:
         """``urdf`` or ``xacro``."""
         return "xacro" if self.xacro else "urdf"
 
-    @computed_field
+    # pydantic's documented form; mypy rejects any decorator above @property
+    @computed_field  # type: ignore[prop-decorator]
     @property
     def xacro_args(self) -> dict[str, str]:
         """The xacro args as the strings xacro expects (YAML true becomes 'true')."""
@@ -99,7 +101,8 @@ class Attachment(_Strict):
             raise ValueError("quat must not be zero")
         return self
 
-    @computed_field
+    # pydantic's documented form; mypy rejects any decorator above @property
+    @computed_field  # type: ignore[prop-decorator]
     @property
     def rpy(self) -> tuple[float, float, float]:
         """The orientation as URDF roll, pitch, yaw."""

@@ -107,7 +107,7 @@ def expand_xacro(path: Path, mappings: Mapping[str, str], packages: PackageResol
         included = list(xacro.all_includes)
     text = document.toprettyxml(indent="  ", encoding="utf-8")
     files = {str(normalise(path))}
-    missing = set()
+    missing: set[str] = set()
     for name in included:
         resolved = str(normalise(name))
         (files if os.path.isfile(resolved) else missing).add(resolved)
