@@ -59,7 +59,7 @@ class DaskExecutor:
         """The executor as messages show it."""
         return f"dask://{self.spec.address}"
 
-    def _connect(self):
+    def _connect(self) -> Client | None:
         """The client, or None when the scheduler cannot be reached (warned once)."""
         with self._lock:
             if self._refusal is not None:

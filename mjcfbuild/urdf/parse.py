@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import re
-from typing import Literal, overload
+from typing import Literal, NoReturn, overload
 
 from lxml import etree
 
@@ -98,7 +98,9 @@ class _Reader:
         self.file = display_file
         self.warnings = warnings
 
-    def error(self, element: etree._Element | None, message: str, hint: str | None = None):
+    def error(
+        self, element: etree._Element | None, message: str, hint: str | None = None
+    ) -> InputError:
         line = element.sourceline if element is not None else None
         return InputError(message, file=self.file, line=line, hint=hint)
 
@@ -164,7 +166,15 @@ class _Reader:
             values.append(value)
         return tuple(values)
 
-    def number(self, element: etree._Element, attribute: str, default: float | None = None):
+    @overload
+    def number(self, element: etree._Element, attribute: str, default: float) -> float: ...
+    @overload
+    def number(
+        self, element: etree._Element, attribute: str, default: None = None
+    ) -> float | None: ...
+    def number(
+        self, element: etree._Element, attribute: str, default: float | None = None
+    ) -> float | None:
         values = self.numbers(element, attribute, 1)
         return default if values is None else values[0]
 
@@ -244,10 +254,11 @@ def _parse_inertial(element: etree._Element, reader: _Reader) -> Inertial:
     inertia_element = element.find("inertia")
     if inertia_element is None:
         raise reader.error(element, "<inertial> needs <inertia ixx=... iyy=... izz=.../>")
-    inertia = tuple(
+    ixx, ixy, ixz, iyy, iyz, izz = (
         reader.number(inertia_element, key, 0.0)
         for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
     )
+    inertia = (ixx, ixy, ixz, iyy, iyz, izz)
     return Inertial(reader.pose(element), mass, inertia, element.sourceline)
 
 
@@ -310,7 +321,7 @@ def _parse_geometry(element: etree._Element, reader: _Reader) -> Geometry:
     )
 
 
-def _missing(reader: _Reader, element: etree._Element, attribute: str):
+def _missing(reader: _Reader, element: etree._Element, attribute: str) -> NoReturn:
     raise reader.error(element, f"<{element.tag}> needs a '{attribute}' attribute")
 
 
