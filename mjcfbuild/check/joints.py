@@ -10,7 +10,7 @@ from mjcfbuild.check.findings import Problem
 from mjcfbuild.urdf.kinematics import link_poses
 from mjcfbuild.urdf.limits import joint_range
 from mjcfbuild.urdf.model import Robot
-from mjcfbuild.urdf.transforms import apply
+from mjcfbuild.urdf.transforms import apply, vec3
 
 EXPECTED_TYPES = {
     "revolute": "hinge",
@@ -54,9 +54,7 @@ def compare_joints(robot: Robot, model, tolerance: float = 1e-6) -> list[Problem
             continue
         # Axes in world coordinates at the zero configuration, so any body frame convention works.
         norm = math.sqrt(sum(a * a for a in joint.axis))
-        urdf_axis = np.array(
-            apply(poses[joint.child].rotation, tuple(a / norm for a in joint.axis))
-        )
+        urdf_axis = np.array(apply(poses[joint.child].rotation, vec3(a / norm for a in joint.axis)))
         model_axis = data.xaxis[index]
         if np.linalg.norm(urdf_axis - model_axis) > tolerance:
             problems.append(

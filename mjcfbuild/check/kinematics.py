@@ -17,7 +17,7 @@ from mjcfbuild.check.reference import ReferenceKinematics
 from mjcfbuild.urdf.kinematics import link_poses
 from mjcfbuild.urdf.limits import joint_range
 from mjcfbuild.urdf.model import Robot
-from mjcfbuild.urdf.transforms import rotation_angle_between
+from mjcfbuild.urdf.transforms import matrix3, rotation_angle_between
 
 MOVING = ("revolute", "continuous", "prismatic")
 
@@ -149,37 +149,37 @@ def compare_kinematics(
     data = mujoco.MjData(model)
     for number, values in enumerate(random_configurations(robot, count, seed)):
         qpos = model.qpos0.copy()
-        for joint in range(model.njnt):
-            if model.jnt_type[joint] == mujoco.mjtJoint.mjJNT_FREE:
-                address = model.jnt_qposadr[joint]
+        for jnt in range(model.njnt):
+            if model.jnt_type[jnt] == mujoco.mjtJoint.mjJNT_FREE:
+                address = model.jnt_qposadr[jnt]
                 qpos[address : address + 7] = [0, 0, 0, 1, 0, 0, 0]
         for name, address in addresses.items():
             qpos[address] = values.get(name, 0.0)
         data.qpos[:] = qpos
         mujoco.mj_kinematics(model, data)
         expected = reference.poses(values) if reference else link_poses(robot, values)
-        for link, (kind, index) in frames.items():
-            if link not in expected:
+        for link_name, (kind, index) in frames.items():
+            if link_name not in expected:
                 continue
             if kind == "body":
                 position, matrix = data.xpos[index], data.xmat[index]
             else:
                 position, matrix = data.site_xpos[index], data.site_xmat[index]
-            urdf_pose = expected[link]
+            urdf_pose = expected[link_name]
             position_error = float(np.linalg.norm(np.array(urdf_pose.position) - position))
-            rotation = tuple(tuple(float(v) for v in row) for row in matrix.reshape(3, 3))
+            rotation = matrix3((float(v) for v in row) for row in matrix.reshape(3, 3))
             rotation_error = rotation_angle_between(urdf_pose.rotation, rotation)
-            error = LinkError(link, position_error, rotation_error, number)
+            error = LinkError(link_name, position_error, rotation_error, number)
             worst = result.worst
             if worst is None or max(position_error, rotation_error) > max(
                 worst.position, worst.rotation
             ):
                 result.worst = error
-            known = result.per_link.get(link)
+            known = result.per_link.get(link_name)
             if known is None or max(position_error, rotation_error) > max(
                 known.position, known.rotation
             ):
-                result.per_link[link] = error
+                result.per_link[link_name] = error
             result.max_position = max(result.max_position, position_error)
             result.max_rotation = max(result.max_rotation, rotation_error)
     return result

@@ -142,9 +142,9 @@ def _model_tensor(model, body: int) -> np.ndarray:
     """The compiled inertia of a body as a tensor in the body frame, about its centre of mass."""
     import mujoco
 
-    rotation = np.zeros(9)
-    mujoco.mju_quat2Mat(rotation, model.body_iquat[body])
-    rotation = rotation.reshape(3, 3)
+    flat = np.zeros(9)
+    mujoco.mju_quat2Mat(flat, model.body_iquat[body])
+    rotation = flat.reshape(3, 3)
     return rotation @ np.diag(model.body_inertia[body]) @ rotation.T
 
 

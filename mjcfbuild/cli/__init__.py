@@ -76,10 +76,10 @@ def run(argv: Sequence[str] | None = None) -> int:
     except Exception as exc:  # a bug: say so plainly, traceback only with --debug
         import traceback
 
-        error = InternalError(
+        internal = InternalError(
             f"{type(exc).__name__}: {exc}", details="".join(traceback.format_exception(exc))
         )
-        report_error(error, debug=args.debug)
+        report_error(internal, debug=args.debug)
         return EXIT_INTERNAL
 
 

@@ -110,8 +110,8 @@ def execute(ctx, quiet: bool, debug: bool, hints: Callable[[str], str] | None = 
         return error.exit_code
     for warning in result.warnings:
         report_warning(warning)
-    for error in result.errors:
-        report(error)
+    for failure in result.errors:
+        report(failure)
     if debug and result.engine_log.strip():
         print(result.engine_log, file=sys.stderr)
     if not quiet or result.errors:

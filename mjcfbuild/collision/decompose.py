@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import hashlib
 from pathlib import Path
+from typing import cast
 
 import numpy as np
 
@@ -21,7 +22,8 @@ def decompose(mesh_file: Path, params: dict, output_dir: Path) -> dict:
     import trimesh
 
     coacd.set_log_level("error")
-    mesh = trimesh.load(str(mesh_file), process=False, force="mesh")
+    # trimesh.load is typed to return any Geometry; force="mesh" makes it a Trimesh
+    mesh = cast(trimesh.Trimesh, trimesh.load(str(mesh_file), process=False, force="mesh"))
     if len(mesh.faces) == 0:
         raise InputError("cannot decompose a mesh without triangles", file=mesh_file)
     arguments = {_COACD_NAMES.get(k, k): v for k, v in params.items()}

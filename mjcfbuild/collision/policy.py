@@ -146,6 +146,7 @@ def mesh_roles(robot: Robot, choices: list[CollisionChoice]) -> dict[str, list[s
     for link in robot.links:
         for shape in link.visuals:
             if shape.geometry.kind == "mesh":
+                assert shape.geometry.mesh_id is not None, "resolve gives every mesh an id"
                 roles.setdefault(shape.geometry.mesh_id, set()).add("visual")
     for choice in choices:
         shape = shapes[(choice.link, choice.role, choice.index)]
@@ -158,6 +159,7 @@ def mesh_roles(robot: Robot, choices: list[CollisionChoice]) -> dict[str, list[s
             "hull": "hull",
             "primitive": "hull",
         }[choice.policy]
+        assert shape.geometry.mesh_id is not None, "resolve gives every mesh an id"
         roles.setdefault(shape.geometry.mesh_id, set()).add(needed)
     return {mesh_id: sorted(r) for mesh_id, r in sorted(roles.items())}
 
@@ -175,6 +177,7 @@ def decompositions(robot: Robot, choices: list[CollisionChoice]) -> dict[str, tu
         if choice.policy == "decompose" and shape.geometry.kind == "mesh":
             params = choice.decompose_params
             key = json.dumps(params, sort_keys=True)
+            assert shape.geometry.mesh_id is not None, "resolve gives every mesh an id"
             wanted.setdefault(shape.geometry.mesh_id, {})[key] = params
     result = {}
     for mesh_id, sets in wanted.items():

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 from doit.dependency import FileChangedChecker
 
 from mjcfbuild.engine.hashes import HashCache
@@ -13,10 +15,10 @@ def checker_class(hashes: HashCache) -> type[FileChangedChecker]:
     class ContentChecker(FileChangedChecker):
         """A dependency changed when its bytes did; mtime alone never counts."""
 
-        def check_modified(self, file_path, file_stat, state) -> bool:
+        def check_modified(self, file_path: str, file_stat: os.stat_result, state: object) -> bool:
             return state != hashes.md5(file_path, file_stat)
 
-        def get_state(self, dep, current_state):
+        def get_state(self, dep: str, current_state: object) -> str | None:
             digest = hashes.md5(dep)
             return None if digest == current_state else digest
 

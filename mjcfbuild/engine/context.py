@@ -141,12 +141,14 @@ class BuildContext:
     def urdf_path(self) -> Path | None:
         """The exported URDF, if the manifest asks for one."""
         export = self.manifest.output.urdf
+        assert not isinstance(export, str), "validation makes a file name a UrdfExport"
         return self.out_dir / export.file if export else None
 
     @property
     def urdf_mesh_dir(self) -> Path | None:
         """The folder of the exported URDF's meshes, if the manifest asks for a URDF."""
         export = self.manifest.output.urdf
+        assert not isinstance(export, str), "validation makes a file name a UrdfExport"
         return self.out_dir / export.mesh_folder if export else None
 
     @property
@@ -182,7 +184,9 @@ class BuildContext:
         source = self.manifest.source
         if source.description == "-":
             return self.state("stdin.urdf")
-        return self.resolve(source.xacro or source.urdf or source.description)
+        path = source.xacro or source.urdf or source.description
+        assert path is not None, "validation requires one of the three"
+        return self.resolve(path)
 
     @property
     def source_base_dir(self) -> Path:

@@ -13,7 +13,7 @@ import sys
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import TextIO
+from typing import Any, TextIO
 
 from doit.exceptions import UnmetDependency
 
@@ -112,43 +112,46 @@ class Progress:
 
 
 class ProgressReporter:
-    """The doit reporter interface, forwarding to a :class:`Progress`."""
+    """The doit reporter interface, forwarding to a :class:`Progress`.
+
+    ``task`` arguments are doit's untyped ``Task`` objects, hence ``Any``.
+    """
 
     def __init__(self, progress: Progress, timings: dict[str, float]) -> None:
         self.progress = progress
         self.timings = timings  # measured inside each task's action, exact in parallel too
 
-    def initialize(self, tasks, selected_tasks) -> None:
+    def initialize(self, tasks: dict[str, Any], selected_tasks: list[str]) -> None:
         self.progress.known(list(tasks))
 
-    def get_status(self, task) -> None:
+    def get_status(self, task: Any) -> None:
         pass
 
-    def execute_task(self, task) -> None:
+    def execute_task(self, task: Any) -> None:
         self.progress.started(task.name, task.title())
 
-    def add_failure(self, task, fail) -> None:
+    def add_failure(self, task: Any, fail: Any) -> None:
         outcome = BLOCKED if isinstance(fail, UnmetDependency) else FAILED
         self.progress.finished(task.name, outcome, self.timings.get(task.name))
         if outcome == FAILED:
             self.progress.failure_messages[task.name] = fail.get_msg().strip()
 
-    def add_success(self, task) -> None:
+    def add_success(self, task: Any) -> None:
         self.progress.finished(task.name, RAN, self.timings.get(task.name))
 
-    def skip_uptodate(self, task) -> None:
+    def skip_uptodate(self, task: Any) -> None:
         self.progress.finished(task.name, UP_TO_DATE)
 
-    def skip_ignore(self, task) -> None:
+    def skip_ignore(self, task: Any) -> None:
         self.progress.finished(task.name, UP_TO_DATE)
 
-    def cleanup_error(self, exception) -> None:
+    def cleanup_error(self, exception: BaseException) -> None:
         pass
 
     def runtime_error(self, msg: str) -> None:
         self.progress.failure_messages["(doit)"] = msg
 
-    def teardown_task(self, task) -> None:
+    def teardown_task(self, task: Any) -> None:
         pass
 
     def complete_run(self) -> None:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import hashlib
 import xml.etree.ElementTree as ET
 from pathlib import Path
+from typing import Any
 
 from mjcfbuild.engine.hashes import HashCache
 
@@ -81,7 +82,7 @@ class RenderInputsUnchanged:
         self.hashes = hashes
         self.reason = ""
 
-    def configure_task(self, task) -> None:
+    def configure_task(self, task: Any) -> None:
         """Save the digest with the task's values when it succeeds (doit hook)."""
         task.value_savers.append(lambda: {self.KEY: self.digest()})
 
@@ -89,7 +90,7 @@ class RenderInputsUnchanged:
         """The current digest of the model as drawn."""
         return render_digest(self.model, self.assets, self.hashes)
 
-    def __call__(self, task, values) -> bool:
+    def __call__(self, task: Any, values: dict) -> bool:
         current = self.digest()
         if current is not None and values.get(self.KEY) == current:
             return True

@@ -29,6 +29,11 @@ import sys
 import time
 from collections.abc import Iterable
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from mjcfbuild.engine.context import BuildContext
+    from mjcfbuild.engine.hashes import HashCache
 
 FORMAT = 1
 # Set to any value to skip the fast path (benchmarks of the full path, debugging).
@@ -61,7 +66,7 @@ def _same_environment(recorded: dict[str, str | None]) -> bool:
 
 def _python_folders() -> dict[str, int | None]:
     """The mtimes of the folders packages are imported from (not the current folder)."""
-    folders = {}
+    folders: dict[str, int | None] = {}
     here = os.getcwd()
     for entry in sys.path:
         if entry and entry != here and os.path.isdir(entry):
@@ -153,7 +158,7 @@ def write(
     outputs: Iterable[Path | str],
     absent: Iterable[str],
     variables: Iterable[str],
-    hashes,
+    hashes: HashCache,
 ) -> None:
     """Record the state a successful build left, for :func:`nothing_to_do`.
 
@@ -206,12 +211,14 @@ def mjcfbuild_sources() -> list[Path]:
     return sorted(package.rglob("*.py"))
 
 
-def record_build(ctx, tasks: list[dict], task_count: int) -> None:
+def record_build(ctx: BuildContext, tasks: list[dict], task_count: int) -> None:
     """Write the stamp of the successful build of ``ctx`` that ran ``tasks``."""
     from mjcfbuild.engine.depfile import Depfile
     from mjcfbuild.engine.tasks import SOURCE_DEPS
 
-    inputs: list[Path | str] = [ctx.manifest_file, *mjcfbuild_sources()]
+    manifest = ctx.manifest_file
+    assert manifest is not None, "a stamp is kept only for the build of a manifest file"
+    inputs: list[Path | str] = [manifest, *mjcfbuild_sources()]
     outputs: list[Path | str] = [ctx.robot_path, ctx.scene_path]
     absent: list[str] = []
     variables: list[str] = []
@@ -231,7 +238,7 @@ def record_build(ctx, tasks: list[dict], task_count: int) -> None:
         outputs.append(ctx.urdf_path)
     summary = {"robot": ctx.robot_path.name, "tasks": task_count}
     write(
-        ctx.manifest_file,
+        manifest,
         ctx.run_check,
         summary,
         inputs,

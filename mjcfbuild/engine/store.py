@@ -173,7 +173,7 @@ class ProductStore:
         return len(entries)
 
     def _entries(self) -> list[tuple[Path, float, int]]:
-        result = []
+        result: list[tuple[Path, float, int]] = []
         if not self.folder.is_dir():
             return result
         stale_before = time.time() - 3600

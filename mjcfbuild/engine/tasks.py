@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from doit.exceptions import TaskFailed
 
@@ -51,6 +52,10 @@ from mjcfbuild.steps.payloads import (
     SrdfPayload,
 )
 from mjcfbuild.steps.plan_record import Plan, read_plan
+
+if TYPE_CHECKING:
+    from mjcfbuild.collision.policy import CollisionChoice
+    from mjcfbuild.urdf.model import Robot
 
 SOURCE_URDF = "source.urdf"
 SOURCE_DEPS = "source.deps.json"
@@ -107,7 +112,7 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
     return tasks
 
 
-def _check_simulation_settings(ctx: BuildContext, robot, plan: Plan) -> None:
+def _check_simulation_settings(ctx: BuildContext, robot: Robot, plan: Plan) -> None:
     """Refuse actuator rules and home values that name no joint, before anything is built."""
     from mjcfbuild.control.choose import check_rules
     from mjcfbuild.control.home import home_values
@@ -125,7 +130,7 @@ def _check_simulation_settings(ctx: BuildContext, robot, plan: Plan) -> None:
         raise
 
 
-def _check_kept_pairs(robot, ctx: BuildContext) -> None:
+def _check_kept_pairs(robot: Robot, ctx: BuildContext) -> None:
     from mjcfbuild.control.choose import listing
     from mjcfbuild.errors import ManifestError
 
@@ -185,7 +190,13 @@ def _srdf_task(ctx: BuildContext, prefix: str) -> dict:
 
 
 def _selfcollision_task(
-    ctx: BuildContext, plan: Plan, robot, choices, roles, decomposed, prefix: str
+    ctx: BuildContext,
+    plan: Plan,
+    robot: Robot,
+    choices: list[CollisionChoice],
+    roles: dict[str, list[str]],
+    decomposed: dict[str, tuple[str, dict]],
+    prefix: str,
 ) -> dict:
     from mjcfbuild.compose.tasks import urdf_home
     from mjcfbuild.selfcollision.robot import collision_robot
@@ -286,7 +297,14 @@ def _task(
     }
 
 
-def _run(ctx: BuildContext, name: str, step: str, payload: dict, in_worker: bool, task):
+def _run(
+    ctx: BuildContext,
+    name: str,
+    step: str,
+    payload: dict,
+    in_worker: bool,
+    task: Any,  # doit's Task, which doit passes to an action that names a `task` parameter
+) -> TaskFailed | dict:
     """The action of every task: run the step, keep its warnings, report its outputs.
 
     Files the step reports as ``discovered`` (what a xacro expansion included) join the
@@ -646,6 +664,7 @@ def _export_urdf_task(ctx: BuildContext, prefix: str) -> dict:
     export = ctx.manifest.output.urdf
     urdf, mesh_dir = ctx.urdf_path, ctx.urdf_mesh_dir
     assert export is not None and urdf is not None and mesh_dir is not None
+    assert not isinstance(export, str), "validation makes a file name a UrdfExport"
     payload = ExportUrdfPayload(
         options={
             "asset_prefix": export.asset_prefix,

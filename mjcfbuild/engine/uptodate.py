@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from mjcfbuild.engine.hashes import HashCache
 
@@ -24,11 +25,11 @@ class ParamsUnchanged:
         # Normalise through JSON so tuples and lists compare equal after a round trip.
         self.params = json.loads(json.dumps(params, sort_keys=True))
 
-    def configure_task(self, task) -> None:
+    def configure_task(self, task: Any) -> None:
         """Save the parameters with the task's values when it succeeds (doit hook)."""
         task.value_savers.append(lambda: {self.KEY: self.params})
 
-    def __call__(self, task, values) -> bool:
+    def __call__(self, task: Any, values: dict) -> bool:
         return values.get(self.KEY) == self.params
 
     def changes(self, values: dict) -> list[str]:
@@ -48,21 +49,25 @@ def _differences(old: object, new: object, prefix: str) -> list[str]:
     return [] if old == new else [prefix or "(all)"]
 
 
+# The checks below are functions carrying a `reason` attribute for `explain` (engine/status.py);
+# mypy does not know attributes set on a function, hence the attr-defined ignores.
+
+
 def outputs_intact(hashes: HashCache) -> Callable:
     """An uptodate check: the outputs recorded by the last run still have their bytes."""
 
-    def check(task, values) -> bool | None:
+    def check(task: Any, values: dict) -> bool | None:
         outputs = values.get("outputs")
         if outputs is None:
-            check.reason = "it has not run in this output folder yet"
+            check.reason = "it has not run in this output folder yet"  # type: ignore[attr-defined]
             return False
         for path, digest in outputs.items():
             try:
                 if hashes.md5(path) != digest:
-                    check.reason = f"output edited since it was built: {path}"
+                    check.reason = f"output edited since it was built: {path}"  # type: ignore[attr-defined]
                     return False
             except OSError:
-                check.reason = f"output deleted since it was built: {path}"
+                check.reason = f"output deleted since it was built: {path}"  # type: ignore[attr-defined]
                 return False
         return True
 
@@ -73,7 +78,7 @@ def outputs_intact(hashes: HashCache) -> Callable:
 def always_stale(reason: str) -> Callable:
     """An uptodate check that is always false, carrying the reason for ``explain``."""
 
-    def check(task, values) -> bool:
+    def check(task: Any, values: dict) -> bool:
         return False
 
     check.reason = reason  # type: ignore[attr-defined]
@@ -88,7 +93,7 @@ def planned_meshes_exist(plan: Path) -> Callable:
     its own "Dependent file ... does not exist").
     """
 
-    def check(task, values) -> bool:
+    def check(task: Any, values: dict) -> bool:
         from mjcfbuild.steps.plan_record import read_plan
 
         try:
@@ -97,7 +102,7 @@ def planned_meshes_exist(plan: Path) -> Callable:
             return True  # no plan yet: the task runs anyway for its missing target
         for mesh in meshes:
             if not Path(mesh.path).is_file():
-                check.reason = f"mesh file gone since the last plan: {mesh.path}"
+                check.reason = f"mesh file gone since the last plan: {mesh.path}"  # type: ignore[attr-defined]
                 return False
         return True
 

@@ -41,26 +41,30 @@ class _Worker:
                 cwd=cwd,
                 env=env,
             )
+        # Both pipes exist: they were asked for above.
+        assert self.process.stdin is not None and self.process.stdout is not None
+        self._stdin = self.process.stdin
+        self._stdout = self.process.stdout
         self._buffer = b""
 
     def call(self, request: dict, label: str, timeout: float | None) -> dict:
         data = (json.dumps(request) + "\n").encode()
         try:
-            self.process.stdin.write(data)
-            self.process.stdin.flush()
+            self._stdin.write(data)
+            self._stdin.flush()
         except (BrokenPipeError, OSError):
             raise self._died(label, request) from None
         deadline = None if timeout is None else time.monotonic() + timeout
         while b"\n" not in self._buffer:
             wait = None if deadline is None else max(0.0, deadline - time.monotonic())
-            ready, _, _ = select.select([self.process.stdout], [], [], wait)
+            ready, _, _ = select.select([self._stdout], [], [], wait)
             if not ready:
                 self.kill()
                 raise TaskCrashed(
                     f"{label} did not finish within {timeout:g} s and was stopped",
                     hint=_log_hint(request),
                 )
-            chunk = os.read(self.process.stdout.fileno(), 1 << 16)
+            chunk = os.read(self._stdout.fileno(), 1 << 16)
             if not chunk:
                 raise self._died(label, request)
             self._buffer += chunk
@@ -89,7 +93,7 @@ class _Worker:
     def close(self) -> None:
         if self.process.poll() is None:
             try:
-                self.process.stdin.close()
+                self._stdin.close()
                 self.process.wait(timeout=2)
             except (OSError, subprocess.TimeoutExpired):
                 self.kill()

@@ -71,7 +71,8 @@ class MeshFiles:
             base = safe_stem(self.meshes[mesh].name)
             keys = self.uses[mesh]
             wanted = [(key, base if len(keys) == 1 else f"{base}_{key}") for key in keys]
-            for key, stem in wanted or [(None, base)]:
+            fallback: list[tuple[str | None, str]] = [(None, base)]
+            for key, stem in wanted or fallback:
                 unique, number = stem, 2
                 while unique.lower() in taken:
                     unique, number = f"{stem}_{number}", number + 1

@@ -7,9 +7,13 @@ rules that turn MuJoCo's concepts into URDF's are kept apart from both.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from mjcfbuild.urdf.model import Vec3
 from mjcfbuild.urdf.transforms import Matrix, Transform
+
+if TYPE_CHECKING:
+    import numpy as np
 
 RGBA = tuple[float, float, float, float]
 
@@ -65,8 +69,8 @@ class MeshOut:
     arrays of vertices (N, 3) and triangles (M, 3)."""
 
     name: str
-    vertices: object
-    faces: object
+    vertices: np.ndarray
+    faces: np.ndarray
 
 
 @dataclass

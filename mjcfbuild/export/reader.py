@@ -12,7 +12,7 @@ from pathlib import Path
 from mjcfbuild.errors import InputError, ModelError
 from mjcfbuild.export.model import BodyOut, GeomOut, JointOut, MeshOut, MimicOut, ModelOut
 from mjcfbuild.fsutil import unreadable_file
-from mjcfbuild.urdf.transforms import Transform, matmul, quat_to_matrix, transpose
+from mjcfbuild.urdf.transforms import Transform, matmul, matrix3, quat_to_matrix, transpose
 
 WORLD = "world"
 DEFAULT_GEOM_RGBA = (0.5, 0.5, 0.5, 1.0)
@@ -79,7 +79,7 @@ def _body(model, index: int, names: list[str]) -> BodyOut:
         body.com = _vec(model.body_ipos[index])
         axes = quat_to_matrix(_quat(model.body_iquat[index]))
         moments = _vec(model.body_inertia[index])
-        diagonal = tuple(tuple(moments[i] if i == j else 0.0 for j in range(3)) for i in range(3))
+        diagonal = matrix3((moments[i] if i == j else 0.0 for j in range(3)) for i in range(3))
         body.inertia = matmul(matmul(axes, diagonal), transpose(axes))
     first = model.body_jntadr[index]
     for joint in range(first, first + model.body_jntnum[index]) if first >= 0 else ():

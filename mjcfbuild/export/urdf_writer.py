@@ -31,7 +31,7 @@ from xml.sax.saxutils import quoteattr
 from mjcfbuild.export.meshfiles import MeshFiles, colour_key, colour_text
 from mjcfbuild.export.model import BodyOut, GeomOut, JointOut, ModelOut
 from mjcfbuild.numbers import output_list
-from mjcfbuild.urdf.transforms import Transform
+from mjcfbuild.urdf.transforms import Transform, vec3
 
 WORLD = "world"
 UNLIMITED_SLIDE = 1000.0
@@ -91,9 +91,9 @@ def write_urdf(model: ModelOut, options: ExportOptions) -> ExportResult:
     link_names, joint_names = _Names(), _Names()
     links = {body.name: link_names.claim(body.name) for body in model.bodies}
     for body in model.bodies:  # joint names come from the model and are kept as they are
-        for joint in body.joints:
-            if joint.kind in ("hinge", "slide", "free"):
-                joint_names.claim(joint.name)
+        for model_joint in body.joints:
+            if model_joint.kind in ("hinge", "slide", "free"):
+                joint_names.claim(model_joint.name)
     root = _root(model, options)
     joints: list[_Joint] = []
     extra_links: list[str] = []
@@ -127,10 +127,10 @@ def write_urdf(model: ModelOut, options: ExportOptions) -> ExportResult:
     if options.header:
         lines.append(f"<!-- {options.header} -->")
     lines.append(f"<robot name={quoteattr(model.name)}>")
-    for key in sorted(files.colours):
-        rgba = files.colours[key]
+    for colour in sorted(files.colours):
+        rgba = files.colours[colour]
         lines.append(
-            f'  <material name="color_{key}"><color rgba="{colour_text(rgba)}"/></material>'
+            f'  <material name="color_{colour}"><color rgba="{colour_text(rgba)}"/></material>'
         )
     for body in bodies:
         lines += body_lines[body.name]
@@ -167,6 +167,7 @@ def _body_joints(
     extra_links: list[str],
     warnings: list[str],
 ) -> list[_Joint]:
+    assert body.parent is not None, "called only for a child body"
     parent, child = links[body.parent], links[body.name]
     steps = _steps(body, joint_names, warnings)
     if not steps:
@@ -191,7 +192,8 @@ def _body_joints(
         result.append(step)
         previous_link, previous_anchor = step.child, anchor
     if previous_link != child:
-        back = Transform(position=tuple(-v for v in previous_anchor))
+        assert previous_anchor is not None, "set by the steps, of which there is one or more"
+        back = Transform(position=vec3(-v for v in previous_anchor))
         result.append(
             _Joint(joint_names.claim(f"{child}_joint"), "fixed", previous_link, child, back)
         )
@@ -206,7 +208,9 @@ def _steps(body: BodyOut, joint_names: _Names, warnings: list[str]) -> list[_Joi
         if joint.kind == "free":
             steps.append(_Joint(joint.name, "floating", "", "", anchor))
         elif joint.kind == "hinge":
-            limit = (joint.lower, joint.upper, joint.effort) if joint.limited else None
+            limit: tuple[float | None, float | None, float] | None = (
+                (joint.lower, joint.upper, joint.effort) if joint.limited else None
+            )
             kind = "revolute" if joint.limited else "continuous"
             if not joint.limited and joint.effort > 0:
                 limit = (None, None, joint.effort)
@@ -295,6 +299,7 @@ def _geom_lines(geom: GeomOut, role: str, files: MeshFiles) -> list[str]:
         key = colour_key(geom.rgba) if role == "visual" else ""
         shapes.append((geom.pose, f'<mesh filename="@MESH:{mesh}:{key}@"/>'))
     else:  # mesh
+        assert geom.mesh is not None, "a geom of kind mesh has its mesh"
         files.use(geom.mesh, geom.rgba if role == "visual" else None)
         key = colour_key(geom.rgba) if role == "visual" else ""
         shapes.append((geom.pose, f'<mesh filename="@MESH:{geom.mesh}:{key}@"/>'))
@@ -365,7 +370,7 @@ def _origin(pose: Transform) -> str:
         return ""
     urdf = pose.to_pose()
     # Rounding noise (1e-17 where MuJoCo computed a zero) says nothing; write it as 0.
-    urdf = type(urdf)(tuple(0.0 if abs(v) < 1e-15 else v for v in urdf.xyz), urdf.rpy)
+    urdf = type(urdf)(vec3(0.0 if abs(v) < 1e-15 else v for v in urdf.xyz), urdf.rpy)
     return f'<origin xyz="{output_list(urdf.xyz)}" rpy="{output_list(urdf.rpy)}"/>'
 
 

@@ -8,6 +8,9 @@ decompose, a scene), the higher one wins and the build warns, naming both places
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Protocol, TypeVar
+
 from lxml import etree
 
 from mjcfbuild.inputs.model import (
@@ -45,8 +48,17 @@ def combine(sources: list[Inputs]) -> tuple[Inputs, list[str]]:
     return combined, warnings
 
 
-def _by_key(items: list, key, what: str, warnings: list[str]) -> list:
-    chosen: dict[str, object] = {}
+class _Given(Protocol):
+    origin: str  # where the input was given, for warnings
+
+
+_Item = TypeVar("_Item", bound=_Given)
+
+
+def _by_key(
+    items: list[_Item], key: Callable[[_Item], str], what: str, warnings: list[str]
+) -> list[_Item]:
+    chosen: dict[str, _Item] = {}
     for item in items:
         name = key(item)
         if name in chosen:

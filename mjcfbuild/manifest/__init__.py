@@ -6,10 +6,12 @@ never imports pydantic.
 
 from __future__ import annotations
 
+from typing import Any
+
 __all__ = ["Manifest", "load_manifest", "parse_manifest"]
 
 
-def __getattr__(name: str):
+def __getattr__(name: str) -> Any:
     if name == "Manifest":
         from mjcfbuild.manifest.models import Manifest
 

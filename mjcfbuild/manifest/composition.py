@@ -48,19 +48,21 @@ class PartSource(_Strict):
             raise ValueError("args are xacro arguments; they need a xacro source")
         return self
 
-    @computed_field
+    # pydantic's documented form; mypy rejects any decorator above @property
+    @computed_field  # type: ignore[prop-decorator]
     @property
     def kind(self) -> str:
         """``urdf``, ``xacro`` or ``mjcf``."""
         return "xacro" if self.xacro else "mjcf" if self.mjcf else "urdf"
 
-    @computed_field
+    @computed_field  # type: ignore[prop-decorator]
     @property
     def file(self) -> str:
         """The part's file, as robot.yaml gives it."""
         return self.xacro or self.mjcf or self.urdf or ""
 
-    @computed_field
+    # pydantic's documented form; mypy rejects any decorator above @property
+    @computed_field  # type: ignore[prop-decorator]
     @property
     def xacro_args(self) -> dict[str, str]:
         """The xacro args as the strings xacro expects (YAML true becomes 'true')."""
@@ -115,7 +117,8 @@ class Attachment(_Strict):
             raise ValueError("packages are for URDF and xacro parts; an MJCF part names files")
         return self
 
-    @computed_field
+    # pydantic's documented form; mypy rejects any decorator above @property
+    @computed_field  # type: ignore[prop-decorator]
     @property
     def rpy(self) -> tuple[float, float, float]:
         """The orientation as URDF roll, pitch, yaw."""
@@ -127,7 +130,7 @@ class Attachment(_Strict):
 
         return matrix_to_rpy(quat_to_matrix(self.quat))
 
-    @computed_field
+    @computed_field  # type: ignore[prop-decorator]
     @property
     def orientation(self) -> tuple[float, float, float, float]:
         """The orientation as a unit quaternion w, x, y, z (for an MJCF part's frame)."""

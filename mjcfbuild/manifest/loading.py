@@ -10,6 +10,7 @@ from mjcfbuild.errors import ManifestError
 
 if TYPE_CHECKING:
     from pydantic import BaseModel, ValidationError
+    from pydantic_core import ErrorDetails
 
     from mjcfbuild.manifest.models import Manifest
     from mjcfbuild.manifest.yamlpos import Positions
@@ -113,7 +114,7 @@ def _real_keys(loc: tuple, positions: Positions) -> tuple:
 _UNION_TAG_HINTS = {"str", "int", "float", "bool", "list", "dict", "none", "lax-or-strict"}
 
 
-def _most_relevant(errors: list[dict]) -> dict:
+def _most_relevant(errors: list[ErrorDetails]) -> ErrorDetails:
     """Prefer errors about a specific key, then errors that are not just "wrong type" (of one
     member of a union, when another member's error says more), over errors about a mapping."""
     return sorted(
@@ -138,7 +139,7 @@ _REMOVED = {
 }
 
 
-def describe(error: dict) -> str:
+def describe(error: ErrorDetails) -> str:
     """What is wrong, and what would be allowed, for one pydantic error."""
     kind = error["type"]
     loc = tuple(error["loc"])

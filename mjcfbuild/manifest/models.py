@@ -64,7 +64,8 @@ class Source(StrictModel):
             raise ValueError("args are xacro arguments; they need a xacro source")
         return self
 
-    @computed_field
+    # pydantic's documented form; mypy rejects any decorator above @property
+    @computed_field  # type: ignore[prop-decorator]
     @property
     def xacro_args(self) -> dict[str, str]:
         """The xacro args as the strings xacro expects (YAML true becomes 'true')."""
@@ -220,13 +221,15 @@ class CollisionSettings(StrictModel):
         default_factory=list, description="Rules in order; the first that matches wins."
     )
 
-    @computed_field
+    # pydantic's documented form; mypy rejects any decorator above @property
+    @computed_field  # type: ignore[prop-decorator]
     @property
     def decompose_defaults(self) -> dict:
         """The default CoACD parameters as a plain mapping."""
         return self.decompose.model_dump()
 
-    @computed_field
+    # pydantic's documented form; mypy rejects any decorator above @property
+    @computed_field  # type: ignore[prop-decorator]
     @property
     def effective_rules(self) -> list[dict]:
         """The rules with their complete, validated CoACD parameters."""
@@ -449,7 +452,8 @@ class UrdfExport(StrictModel):
             raise ValueError(f"'{self.mesh_folder}' is used by the build; choose another 'meshes'")
         return self
 
-    @computed_field
+    # pydantic's documented form; mypy rejects any decorator above @property
+    @computed_field  # type: ignore[prop-decorator]
     @property
     def mesh_folder(self) -> str:
         """The mesh folder's name."""
@@ -481,7 +485,8 @@ class Output(StrictModel):
     def _distinct_files(self) -> Output:
         if self.robot is not None and self.robot == self.scene:
             raise ValueError("robot and scene must be different files")
-        if self.urdf is not None and self.urdf.file in (self.robot, self.scene):
+        # _urdf_file_alone has made a file name a UrdfExport; the field's type still admits str
+        if isinstance(self.urdf, UrdfExport) and self.urdf.file in (self.robot, self.scene):
             raise ValueError("the URDF must be a file of its own")
         return self
 
@@ -569,7 +574,8 @@ class Manifest(StrictModel):
             )
         return self
 
-    @computed_field
+    # pydantic's documented form; mypy rejects any decorator above @property
+    @computed_field  # type: ignore[prop-decorator]
     @property
     def robot_file(self) -> str:
         """File name of the robot model inside the output folder."""

@@ -9,6 +9,7 @@ indices. It also refuses duplicate keys, which ``safe_load`` silently collapses.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import yaml
 
@@ -71,7 +72,7 @@ def load_with_positions(text: str) -> tuple[object, Positions]:
     return value, positions
 
 
-def _build(node: yaml.Node, path: Path_, positions: Positions, constructor: yaml.SafeLoader):
+def _build(node: yaml.Node, path: Path_, positions: Positions, constructor: yaml.SafeLoader) -> Any:
     positions.values[path] = _mark(node)
     if isinstance(node, yaml.MappingNode):
         constructor.flatten_mapping(node)

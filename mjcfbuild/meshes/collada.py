@@ -347,7 +347,9 @@ def _add_geometry(
 def _strip_triangles(counts: np.ndarray) -> np.ndarray:
     """Triangles (as corner indices) of triangle strips; every other one is flipped so that
     all keep the strip's winding."""
-    starts = np.concatenate([[0], np.cumsum(counts)[:-1]]) if len(counts) else []
+    starts: np.ndarray | list[int] = (
+        np.concatenate([[0], np.cumsum(counts)[:-1]]) if len(counts) else []
+    )
     triangles = [
         (start + k, start + k + 1, start + k + 2)
         if k % 2 == 0

@@ -12,6 +12,7 @@ import hashlib
 import io
 from dataclasses import dataclass
 from pathlib import Path
+from typing import cast
 
 import numpy as np
 
@@ -107,7 +108,8 @@ def _trimesh_pieces(path: Path) -> list[MeshPart]:
     import trimesh
 
     try:
-        scene = trimesh.load(str(path), force="scene", process=False)
+        # trimesh.load is typed to return any Geometry; force="scene" makes it a Scene
+        scene = cast(trimesh.Scene, trimesh.load(str(path), force="scene", process=False))
     except Exception as exc:  # trimesh raises many kinds for broken files
         raise InputError(
             f"cannot read mesh: {_first_line(exc)}",
@@ -177,7 +179,8 @@ def _rgba255(values) -> tuple[float, float, float, float]:
     rgba = [float(v) / 255.0 for v in values][:4]
     while len(rgba) < 4:
         rgba.append(1.0)
-    return tuple(round(v, 6) for v in rgba)
+    r, g, b, a = (round(v, 6) for v in rgba)
+    return (r, g, b, a)
 
 
 def _material_colour(material) -> tuple[float, float, float, float] | None:
@@ -186,7 +189,8 @@ def _material_colour(material) -> tuple[float, float, float, float] | None:
         values = np.asarray(base)
         if values.dtype == np.uint8:
             return _rgba255(values)
-        return tuple(round(float(v), 6) for v in values)
+        r, g, b, a = (round(float(v), 6) for v in values)  # glTF's factor is RGBA
+        return (r, g, b, a)
     diffuse = getattr(material, "diffuse", None)
     if diffuse is not None:
         return _rgba255(diffuse)

@@ -405,8 +405,9 @@ def _set_principal_inertia(spec_body, body: Body) -> None:
     """
     import numpy as np
 
-    from mjcfbuild.urdf.transforms import matrix_to_quat
+    from mjcfbuild.urdf.transforms import matrix3, matrix_to_quat
 
+    assert body.mass is not None, "called only for a body with mass properties"
     tensor = np.array(body.mass.inertia, dtype=float)
     moments, axes = np.linalg.eigh(0.5 * (tensor + tensor.T))
     # Order and orient the principal axes like the body's own axes where they nearly are,
@@ -418,7 +419,7 @@ def _set_principal_inertia(spec_body, body: Body) -> None:
         axes = axes * np.sign(np.diag(axes))
     if np.linalg.det(axes) < 0:
         axes[:, 2] = -axes[:, 2]
-    rotation = tuple(tuple(float(v) for v in row) for row in axes)
+    rotation = matrix3((float(v) for v in row) for row in axes)
     spec_body.ipos = list(body.mass.com)
     spec_body.iquat = list(matrix_to_quat(rotation))
     spec_body.inertia = [max(float(m), 0.0) for m in moments]

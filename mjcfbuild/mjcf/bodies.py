@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from mjcfbuild.urdf.model import Joint, Robot, Shape
-from mjcfbuild.urdf.transforms import Matrix, Transform, matmul, transpose
+from mjcfbuild.urdf.transforms import Matrix, Transform, matmul, matrix3, transpose, vec3
 
 WORLD = "world"
 
@@ -115,7 +115,7 @@ def combine_masses(robot: Robot, body: Body) -> MassProperties | None:
         return None
     total = sum(mass for _, mass, _, _ in parts)
     if total > 0:
-        com = tuple(sum(mass * pos[i] for _, mass, pos, _ in parts) / total for i in range(3))
+        com = vec3(sum(mass * pos[i] for _, mass, pos, _ in parts) / total for i in range(3))
     else:
         com = parts[0][2]
     inertia = [[0.0] * 3 for _ in range(3)]
@@ -128,6 +128,6 @@ def combine_masses(robot: Robot, body: Body) -> MassProperties | None:
     return MassProperties(
         mass=total,
         com=com,
-        inertia=tuple(tuple(row) for row in inertia),
+        inertia=matrix3(inertia),
         links=[name for name, _, _, _ in parts],
     )

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from mjcfbuild.errors import InputError
 from mjcfbuild.mjcf.bodies import Body, MassProperties
 from mjcfbuild.numbers import output_list
+from mjcfbuild.urdf.transforms import matrix3
 
 TOLERANCE = 1e-12
 # Repairs smaller than this (relative to the largest moment) are rounding, not defects: they are
@@ -155,7 +156,7 @@ def _problems(body: Body, policy: InertiaPolicy):
     fixed = MassProperties(
         mass=mass.mass,
         com=mass.com,
-        inertia=tuple(tuple(float(v) for v in row) for row in new_tensor),
+        inertia=matrix3((float(v) for v in row) for row in new_tensor),
         links=mass.links,
     )
     yield (

@@ -25,7 +25,7 @@ from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.mjcf.bodies import Body, PlacedShape
 from mjcfbuild.numbers import exact_list
 from mjcfbuild.urdf.limits import joint_range, unbounded_warning
-from mjcfbuild.urdf.transforms import Transform, matrix_to_rpy
+from mjcfbuild.urdf.transforms import Transform, matrix3, matrix_to_rpy, vec3
 
 # Compiler settings the import needs, whatever the URDF's own <mujoco> says.
 IMPORT_COMPILER = {
@@ -155,7 +155,7 @@ def prepare(
     must not depend on visual meshes)."""
     prepared = Prepared(urdf="")
     builder = _Builder(products, product_dirs, decompositions, source, prepared)
-    by_link = {}
+    by_link: dict[str, list[CollisionChoice]] = {}
     for choice in choices:
         by_link.setdefault(choice.link, []).append(choice)
     geoms_of = {}
@@ -191,6 +191,7 @@ def prepare(
                     record.rgba = None
                 geometry = _mesh_xml(asset)
             else:
+                assert geom.primitive is not None, "a geom is a mesh or a primitive"
                 geometry = geom.primitive
             prepared.geoms[temp] = record
             lines.append(
@@ -262,6 +263,7 @@ class _Builder:
             return [_Geom("visual", placed.pose, record, primitive=primitive)]
         if any(s == 0 for s in geometry.scale):
             return self._zero_size(placed, f"mesh scale {exact_list(geometry.scale)}")
+        assert geometry.mesh_id is not None, "resolve gives every mesh an id"
         product = self.products[geometry.mesh_id]
         single = len(product.parts) == 1
         geoms = []
@@ -296,6 +298,7 @@ class _Builder:
         if any(s == 0 for s in geometry.scale):
             return self._zero_size(placed, f"mesh scale {exact_list(geometry.scale)}", "collision")
         mesh_id = geometry.mesh_id
+        assert mesh_id is not None, "resolve gives every mesh an id"
         product = self.products[mesh_id]
         if choice.policy in ("authored", "visual"):
             file = product.collision
@@ -342,8 +345,8 @@ class _Builder:
         points = read_obj_vertices(self.product_dirs[mesh_id] / product.hull)
         primitive = fit_primitive(points * np.asarray(placed.shape.geometry.scale))
         offset = Transform(
-            tuple(tuple(float(v) for v in row) for row in primitive.transform[:3, :3]),
-            tuple(float(v) for v in primitive.transform[:3, 3]),
+            matrix3((float(v) for v in row) for row in primitive.transform[:3, :3]),
+            vec3(float(v) for v in primitive.transform[:3, 3]),
         )
         record.kind = primitive.kind
         xml = _primitive_xml(primitive.kind, primitive.size)
@@ -475,6 +478,7 @@ def _origin(pose: Transform) -> str:
 
 def _inertial(body: Body) -> list[str]:
     mass = body.mass
+    assert mass is not None, "called only for a body with mass properties"
     i = mass.inertia
     values = {
         "ixx": i[0][0],
@@ -501,6 +505,7 @@ LOCKED_JOINT_HALF_RANGE = 1e-6
 
 def _joint(body: Body, warnings: list[str], source: str) -> list[str]:
     joint = body.joint
+    assert joint is not None and body.parent is not None, "called only for a child body"
     kind = joint.kind
     lines = [
         f"  <joint name={quoteattr(joint.name)} type={quoteattr(kind)}>",

@@ -13,7 +13,7 @@ import os
 from collections.abc import Callable
 from pathlib import Path
 
-from mjcfbuild.engine.store import open_store
+from mjcfbuild.engine.store import ProductStore, open_store
 from mjcfbuild.sharing import stats as stats_file
 from mjcfbuild.sharing.settings import ExecutorSpec, RemoteSpec
 from mjcfbuild.sharing.stats import ShareStats
@@ -82,11 +82,13 @@ class ProductSharing:
         if store is not None and self._remote is not None and result.get("stored"):
             self._upload(store, _key(kind, payload))
 
-    def _upload(self, store, key: str) -> None:
+    def _upload(self, store: ProductStore, key: str) -> None:
         if self._remote is not None:
             self._remote.upload_later(key, store)
 
-    def _compute_on_cluster(self, kind: str, payload: dict, key: str, task: str):
+    def _compute_on_cluster(
+        self, kind: str, payload: dict, key: str, task: str
+    ) -> tuple[dict, dict[str, bytes]] | None:
         assert self._executor is not None
         if kind == "mesh":
             from mjcfbuild.meshes.references import referenced_files
@@ -132,7 +134,7 @@ def _key(kind: str, payload: dict) -> str:
     return decompose.cache_key(DecomposePayload.from_dict(payload))
 
 
-def _store_files(store, key: str, summary: dict, files: dict[str, bytes]) -> None:
+def _store_files(store: ProductStore, key: str, summary: dict, files: dict[str, bytes]) -> None:
     import shutil
 
     temporary = store.temporary_folder(key)

@@ -15,12 +15,16 @@ import threading
 import uuid
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from mjcfbuild.errors import MjcfbuildError, TaskCrashed
 from mjcfbuild.failpoints import ONCE_DIR_VARIABLE, VARIABLE
 from mjcfbuild.sharing.blob import BadObject, verify
 from mjcfbuild.sharing.compute import compute_product, version_mismatch, worker_versions
 from mjcfbuild.sharing.settings import ExecutorSpec
+
+if TYPE_CHECKING:
+    from distributed import Client
 
 CONNECT_TIMEOUT_VARIABLE = "MJCFBUILD_DASK_CONNECT_TIMEOUT"
 DEFAULT_CONNECT_TIMEOUT = 10.0
@@ -45,7 +49,7 @@ class DaskExecutor:
         self.spec = spec
         self._warn = warn
         self._lock = threading.Lock()
-        self._client = None
+        self._client: Client | None = None
         self._unusable = False
         self._refusal: ExecutorError | None = None
         self._versions = worker_versions()
@@ -55,7 +59,7 @@ class DaskExecutor:
         """The executor as messages show it."""
         return f"dask://{self.spec.address}"
 
-    def _connect(self):
+    def _connect(self) -> Client | None:
         """The client, or None when the scheduler cannot be reached (warned once)."""
         with self._lock:
             if self._refusal is not None:

@@ -14,6 +14,7 @@ from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import IO, Any
 
 from mjcfbuild.errors import InputError
 from mjcfbuild.fsutil import normalise, unreadable_file
@@ -107,7 +108,7 @@ def expand_xacro(path: Path, mappings: Mapping[str, str], packages: PackageResol
         included = list(xacro.all_includes)
     text = document.toprettyxml(indent="  ", encoding="utf-8")
     files = {str(normalise(path))}
-    missing = set()
+    missing: set[str] = set()
     for name in included:
         resolved = str(normalise(name))
         (files if os.path.isfile(resolved) else missing).add(resolved)
@@ -126,7 +127,7 @@ def _xacro_message(exc: Exception) -> str:
     return text.splitlines()[0] if text else type(exc).__name__
 
 
-def _current_file(xacro_module, fallback: Path) -> str:
+def _current_file(xacro_module: Any, fallback: Path) -> str:  # the untyped xacro module
     stack = getattr(xacro_module, "filestack", None) or []
     for entry in reversed(stack):
         if entry:
@@ -136,7 +137,7 @@ def _current_file(xacro_module, fallback: Path) -> str:
 
 @contextmanager
 def _xacro_hooks(
-    xacro_module,
+    xacro_module: Any,  # the untyped xacro module
     packages: PackageResolver,
     reads: dict[str, str | None],
     raised: list[InputError],
@@ -174,7 +175,7 @@ def _xacro_hooks(
 
     original_parse = xacro_module.parse
 
-    def parse(inp, filename=None):
+    def parse(inp: IO[bytes] | str | None, filename: str | None = None) -> Any:
         """xacro's parse, refusing entity declarations in every file it reads."""
         if inp is None and filename is not None:
             try:

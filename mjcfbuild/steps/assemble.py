@@ -11,11 +11,11 @@ from mjcfbuild.compose.attach import AttachedPart
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import remove_stale_temp_files
 from mjcfbuild.inputs.combine import combine
-from mjcfbuild.inputs.model import inputs_from_dict
+from mjcfbuild.inputs.model import Inputs, inputs_from_dict
 from mjcfbuild.inputs.native import native_inputs
 from mjcfbuild.manifest.simulation import ActuatorSettings
 from mjcfbuild.meshes.product import read_product
-from mjcfbuild.mjcf.assemble import AssemblyOptions, assemble
+from mjcfbuild.mjcf.assemble import Assembly, AssemblyOptions, assemble
 from mjcfbuild.mjcf.inertia import InertiaPolicy
 from mjcfbuild.mjcf.prepared import Decomposition
 from mjcfbuild.steps.outputs import write_output
@@ -113,7 +113,7 @@ def run(payload: dict) -> dict:
     }
 
 
-def _inputs(request: AssemblePayload):
+def _inputs(request: AssemblePayload) -> tuple[Inputs, list[str]]:
     """The MuJoCo inputs of the URDF, the inputs file and robot.yaml, combined."""
     sources = [inputs_from_dict(request.inputs["urdf"])]
     if request.inputs["file"]:
@@ -122,7 +122,7 @@ def _inputs(request: AssemblePayload):
     return combine(sources)
 
 
-def _placement_warnings(assembly, floor: float | str) -> list[str]:
+def _placement_warnings(assembly: Assembly, floor: float | str) -> list[str]:
     """A fixed-base robot reaching below the scene's floor at home, and how to fix it."""
     lowest = assembly.readiness.lowest_point if assembly.readiness else None
     if lowest is None or floor == "auto" or lowest["height"] >= float(floor) - 1e-3:

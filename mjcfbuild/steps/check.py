@@ -5,11 +5,12 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from mjcfbuild.check.model_check import CheckOptions, check_model
+from mjcfbuild.check.model_check import CheckOptions, CheckReport, check_model
 from mjcfbuild.errors import CheckError
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import CheckPayload, MjcfPartFiles
 from mjcfbuild.steps.plan_record import read_plan
+from mjcfbuild.urdf.transforms import vec3
 
 
 def run(payload: dict) -> dict:
@@ -49,7 +50,9 @@ def run(payload: dict) -> dict:
     return {"outputs": outputs, "warnings": _standing_notes(report.results)}
 
 
-def _check_parts(report, model_path: Path, parts: list[MjcfPartFiles], options: dict) -> None:
+def _check_parts(
+    report: CheckReport, model_path: Path, parts: list[MjcfPartFiles], options: dict
+) -> None:
     """Compare every MJCF part with the part compiled alone; add results and failures."""
     import mujoco
 
@@ -64,8 +67,8 @@ def _check_parts(report, model_path: Path, parts: list[MjcfPartFiles], options: 
             source=Path(entry.source),
             label=entry.label,
             to=entry.to,
-            pos=tuple(entry.pos),
-            quat=tuple(entry.quat),
+            pos=vec3(entry.pos),
+            quat=(entry.quat[0], entry.quat[1], entry.quat[2], entry.quat[3]),
         )
         result = check_part(model, reference, options["configurations"], options["seed"], tolerance)
         results[entry.prefix] = result.to_dict()

@@ -10,6 +10,7 @@ from mjcfbuild.sources.packages import PackageResolver
 from mjcfbuild.sources.uris import resolve_uri
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import ComposePayload
+from mjcfbuild.urdf.transforms import vec3
 
 
 def run(payload: dict) -> dict:
@@ -28,8 +29,8 @@ def run(payload: dict) -> dict:
                 key=entry.key,
                 prefix=entry.prefix,
                 to=entry.to,
-                xyz=tuple(entry.xyz),
-                rpy=tuple(entry.rpy),
+                xyz=vec3(entry.xyz),
+                rpy=vec3(entry.rpy),
                 resolve=partial(_resolve, base_dir=Path(entry.base_dir), packages=packages),
             )
         )

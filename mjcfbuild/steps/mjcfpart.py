@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import Any
 
 from mjcfbuild.compose.mjcf import (
     asset_files,
@@ -69,7 +70,7 @@ def run(payload: dict) -> dict:
     }
 
 
-def etree_text(root) -> bytes:
+def etree_text(root: Any) -> bytes:
     """The normalised part as bytes."""
     from lxml import etree
 

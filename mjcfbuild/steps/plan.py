@@ -38,13 +38,14 @@ def run(payload: dict) -> dict:
         raise
     file_inputs = None
     if request.inputs_file:
+        assert request.inputs_file_label is not None, "set with inputs_file"
         file_inputs = read_inputs_file(Path(request.inputs_file), request.inputs_file_label)
-    meshes = {
-        shape.geometry.mesh_id: shape.geometry.path
-        for link in robot.links
-        for shape in link.shapes
-        if shape.geometry.kind == "mesh"
-    }
+    meshes: dict[str, str] = {}
+    for link in robot.links:
+        for shape in link.shapes:
+            mesh_id, path = shape.geometry.mesh_id, shape.geometry.path
+            if shape.geometry.kind == "mesh" and mesh_id is not None and path is not None:
+                meshes[mesh_id] = path
     plan = Plan(
         robot=robot.to_dict(),
         meshes=[PlannedMesh(mesh_id, path) for mesh_id, path in sorted(meshes.items())],

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from mjcfbuild.collision.policy import CollisionChoice
 from mjcfbuild.control.choose import listing
@@ -28,7 +29,11 @@ from mjcfbuild.selfcollision.matrix import (
 from mjcfbuild.selfcollision.srdf import Srdf
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import DecompositionFiles, SelfCollisionPayload
-from mjcfbuild.urdf.model import robot_from_dict
+from mjcfbuild.urdf.model import Robot, robot_from_dict
+
+if TYPE_CHECKING:
+    import mujoco  # untyped: its classes are Any to mypy, named here for the reader
+    import numpy as np
 
 
 def run(payload: dict) -> dict:
@@ -119,7 +124,7 @@ def run(payload: dict) -> dict:
 
 
 def _matrix(
-    model, qpos, settings: MatrixSettings, request: SelfCollisionPayload
+    model: mujoco.MjModel, qpos: np.ndarray, settings: MatrixSettings, request: SelfCollisionPayload
 ) -> tuple[list[dict], bool]:
     """The verdicts of every pair, from the shared cache when this matrix was computed before
     (in any folder: the key holds no paths), else computed and stored; whether cached."""
@@ -156,7 +161,7 @@ def _matrix(
     return verdicts, False
 
 
-def _compile(spec):
+def _compile(spec: mujoco.MjSpec) -> mujoco.MjModel:
     """Compile, giving meshes MuJoCo finds too thin for volume inertia shell inertia."""
     import mujoco
 
@@ -202,7 +207,7 @@ def _kept_body(link: str, body_of: dict[str, str], label: str, index: int) -> st
     return body_of[link]
 
 
-def _srdf_home(srdf: Srdf, robot, name: str) -> dict[str, float] | None:
+def _srdf_home(srdf: Srdf, robot: Robot, name: str) -> dict[str, float] | None:
     state = srdf.states.get(name)
     if state is None:
         return None

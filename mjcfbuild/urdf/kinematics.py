@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 
 from mjcfbuild.urdf.model import Robot
-from mjcfbuild.urdf.transforms import Transform, axis_angle_matrix
+from mjcfbuild.urdf.transforms import Transform, axis_angle_matrix, vec3
 
 
 def link_poses(robot: Robot, joint_values: dict[str, float] | None = None) -> dict[str, Transform]:
@@ -31,7 +31,7 @@ def link_poses(robot: Robot, joint_values: dict[str, float] | None = None) -> di
                 pose = pose.compose(Transform(axis_angle_matrix(joint.axis, q)))
             elif joint.kind == "prismatic":
                 norm = math.sqrt(sum(a * a for a in joint.axis))
-                pose = pose.compose(Transform(position=tuple(a / norm * q for a in joint.axis)))
+                pose = pose.compose(Transform(position=vec3(a / norm * q for a in joint.axis)))
             poses[joint.child] = pose
             pending.append(joint.child)
     return poses

@@ -10,12 +10,14 @@ from __future__ import annotations
 
 import math
 import re
+from typing import Literal, NoReturn, overload
 
 from lxml import etree
 
 from mjcfbuild.errors import InputError
 from mjcfbuild.urdf.model import (
     JOINT_TYPES,
+    RGBA,
     Geometry,
     Inertial,
     Joint,
@@ -26,7 +28,9 @@ from mjcfbuild.urdf.model import (
     Pose,
     Robot,
     Shape,
+    Vec3,
 )
+from mjcfbuild.urdf.transforms import vec3
 from mjcfbuild.xmlguard import refuse_entities
 
 _SEPARATORS = re.compile(r"[\s,]+")
@@ -94,7 +98,9 @@ class _Reader:
         self.file = display_file
         self.warnings = warnings
 
-    def error(self, element: etree._Element | None, message: str, hint: str | None = None):
+    def error(
+        self, element: etree._Element | None, message: str, hint: str | None = None
+    ) -> InputError:
         line = element.sourceline if element is not None else None
         return InputError(message, file=self.file, line=line, hint=hint)
 
@@ -104,8 +110,30 @@ class _Reader:
             raise self.error(element, f"<{element.tag}> needs a '{attribute}' attribute")
         return value.strip()
 
+    # The overloads say what a fixed count gives: `count` numbers, or `default` when the
+    # attribute is absent.
+    @overload
     def numbers(
-        self, element: etree._Element, attribute: str, count: int | None, default=None
+        self, element: etree._Element, attribute: str, count: Literal[3], default: Vec3
+    ) -> Vec3: ...
+    @overload
+    def numbers(
+        self, element: etree._Element, attribute: str, count: Literal[4], default: None = None
+    ) -> RGBA | None: ...
+    @overload
+    def numbers(
+        self, element: etree._Element, attribute: str, count: int | None, default: tuple[float, ...]
+    ) -> tuple[float, ...]: ...
+    @overload
+    def numbers(
+        self, element: etree._Element, attribute: str, count: int | None, default: None = None
+    ) -> tuple[float, ...] | None: ...
+    def numbers(
+        self,
+        element: etree._Element,
+        attribute: str,
+        count: int | None,
+        default: tuple[float, ...] | None = None,
     ) -> tuple[float, ...] | None:
         text = element.get(attribute)
         if text is None:
@@ -138,7 +166,15 @@ class _Reader:
             values.append(value)
         return tuple(values)
 
-    def number(self, element: etree._Element, attribute: str, default: float | None = None):
+    @overload
+    def number(self, element: etree._Element, attribute: str, default: float) -> float: ...
+    @overload
+    def number(
+        self, element: etree._Element, attribute: str, default: None = None
+    ) -> float | None: ...
+    def number(
+        self, element: etree._Element, attribute: str, default: float | None = None
+    ) -> float | None:
         values = self.numbers(element, attribute, 1)
         return default if values is None else values[0]
 
@@ -218,10 +254,11 @@ def _parse_inertial(element: etree._Element, reader: _Reader) -> Inertial:
     inertia_element = element.find("inertia")
     if inertia_element is None:
         raise reader.error(element, "<inertial> needs <inertia ixx=... iyy=... izz=.../>")
-    inertia = tuple(
+    ixx, ixy, ixz, iyy, iyz, izz = (
         reader.number(inertia_element, key, 0.0)
         for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
     )
+    inertia = (ixx, ixy, ixz, iyy, iyz, izz)
     return Inertial(reader.pose(element), mass, inertia, element.sourceline)
 
 
@@ -276,7 +313,7 @@ def _parse_geometry(element: etree._Element, reader: _Reader) -> Geometry:
             scale = (scale[0],) * 3
         if len(scale) != 3:
             raise reader.error(element, "<mesh> scale needs 1 or 3 numbers")
-        return Geometry("mesh", uri=uri, scale=tuple(scale))
+        return Geometry("mesh", uri=uri, scale=vec3(scale))
     raise reader.error(
         element,
         f"unknown geometry <{kind}>",
@@ -284,7 +321,7 @@ def _parse_geometry(element: etree._Element, reader: _Reader) -> Geometry:
     )
 
 
-def _missing(reader: _Reader, element: etree._Element, attribute: str):
+def _missing(reader: _Reader, element: etree._Element, attribute: str) -> NoReturn:
     raise reader.error(element, f"<{element.tag}> needs a '{attribute}' attribute")
 
 

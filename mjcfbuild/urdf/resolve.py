@@ -51,6 +51,7 @@ def resolve_files(
     for link in robot.links:
         for shape in link.shapes:
             if shape.geometry.kind == "mesh":
+                assert shape.geometry.path is not None, "every mesh was resolved above"
                 shape.geometry.mesh_id = ids[shape.geometry.path]
 
 

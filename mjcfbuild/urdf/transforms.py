@@ -8,6 +8,7 @@ Quaternions are (w, x, y, z), as MuJoCo writes them.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 from mjcfbuild.urdf.model import Pose, Vec3
@@ -16,6 +17,22 @@ Matrix = tuple[Vec3, Vec3, Vec3]
 Quat = tuple[float, float, float, float]
 
 IDENTITY: Matrix = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+
+
+def vec3(values: Iterable[float]) -> Vec3:
+    """Three values as a ``Vec3`` (a tuple of exactly three)."""
+    x, y, z = values
+    return (x, y, z)
+
+
+def matrix3(rows: Iterable[Iterable[float]]) -> Matrix:
+    """Three rows of three values as a ``Matrix``.
+
+    Each row is read as it comes, so rows that are generators over a shared loop variable
+    (``(... for j in ...) for i in ...``) see the right one.
+    """
+    a, b, c = (vec3(row) for row in rows)
+    return (a, b, c)
 
 
 def rpy_to_matrix(rpy: Vec3) -> Matrix:
@@ -62,8 +79,8 @@ def matrix_to_quat(m: Matrix) -> Quat:
         s = 2.0 * math.sqrt(1.0 + m[2][2] - m[0][0] - m[1][1])
         q = ((m[1][0] - m[0][1]) / s, (m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s)
     norm = math.sqrt(sum(c * c for c in q))
-    q = tuple(c / norm for c in q)
-    return q if q[0] >= 0 else tuple(-c for c in q)
+    w, x, y, z = (c / norm for c in q)
+    return (w, x, y, z) if w >= 0 else (-w, -x, -y, -z)
 
 
 def quat_to_matrix(q: Quat) -> Matrix:
@@ -92,19 +109,17 @@ def axis_angle_matrix(axis: Vec3, angle: float) -> Matrix:
 
 def matmul(a: Matrix, b: Matrix) -> Matrix:
     """Product of two 3x3 matrices."""
-    return tuple(
-        tuple(sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)) for i in range(3)
-    )
+    return matrix3((sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)) for i in range(3))
 
 
 def transpose(m: Matrix) -> Matrix:
     """Transpose (the inverse, for a rotation)."""
-    return tuple(tuple(m[j][i] for j in range(3)) for i in range(3))
+    return matrix3((m[j][i] for j in range(3)) for i in range(3))
 
 
 def apply(m: Matrix, v: Vec3) -> Vec3:
     """Matrix times vector."""
-    return tuple(sum(m[i][k] * v[k] for k in range(3)) for i in range(3))
+    return vec3(sum(m[i][k] * v[k] for k in range(3)) for i in range(3))
 
 
 def rotation_angle_between(a: Matrix, b: Matrix) -> float:
@@ -128,19 +143,19 @@ class Transform:
     @staticmethod
     def from_pose(pose: Pose) -> Transform:
         """The transform of a URDF ``<origin>``."""
-        return Transform(rpy_to_matrix(pose.rpy), tuple(float(v) for v in pose.xyz))
+        return Transform(rpy_to_matrix(pose.rpy), vec3(float(v) for v in pose.xyz))
 
     @staticmethod
     def from_quat(position: Vec3, quat: Quat) -> Transform:
         """The transform of a MuJoCo ``pos``/``quat`` pair."""
-        return Transform(quat_to_matrix(quat), tuple(position))
+        return Transform(quat_to_matrix(quat), vec3(position))
 
     def compose(self, other: Transform) -> Transform:
         """``self * other``: ``other`` expressed in this transform's parent frame."""
         position = apply(self.rotation, other.position)
         return Transform(
             matmul(self.rotation, other.rotation),
-            tuple(self.position[i] + position[i] for i in range(3)),
+            vec3(self.position[i] + position[i] for i in range(3)),
         )
 
     def inverse(self) -> Transform:
