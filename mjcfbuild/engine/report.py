@@ -12,7 +12,7 @@ import json
 from pathlib import Path
 
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, report_dir
+from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, decomposition_dir, report_dir
 from mjcfbuild.fsutil import write_if_changed
 
 TIMINGS = "timings.json"
@@ -54,6 +54,7 @@ def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
         "assets": assembly.get("assets", []),
         "readiness": assembly.get("readiness") or {},
         "self_collision": assembly.get("self_collision"),
+        "decompositions": decompositions(ctx),
         "times": record_timings(ctx),
         "cache": ctx.cache_report,
         "previews": [f"previews/{name}" for name in previews],
@@ -63,6 +64,26 @@ def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
     )
     write_if_changed(folder / "report.md", markdown(report).encode())
     return folder
+
+
+def decompositions(ctx: BuildContext) -> list[dict]:
+    """Per decomposition of this build: hull kept or CoACD, parts, concavities, seconds."""
+    rows = []
+    for path in sorted(decomposition_dir(ctx, "any").parent.glob("*.json")):
+        summary = _read(path)
+        if "parts" not in summary:
+            continue
+        rows.append(
+            {
+                "name": path.stem,
+                "method": summary.get("method", "coacd"),
+                "parts": len(summary["parts"]),
+                "hull_concavity": summary.get("hull_concavity"),
+                "concavity": summary.get("concavity"),
+                "seconds": summary.get("seconds"),
+            }
+        )
+    return rows
 
 
 def _read(path: Path) -> dict:
@@ -113,6 +134,7 @@ def markdown(report: dict) -> str:
             for m in meshes
         ]
         lines.append("")
+    lines += _decomposition_lines(report.get("decompositions") or [])
     lines += _cache_lines(report.get("cache"))
     if report["times"]:
         lines += [
@@ -128,6 +150,28 @@ def markdown(report: dict) -> str:
         lines += [f"![{Path(p).stem.replace('_', ' ')}]({p})" for p in report["previews"]]
         lines.append("")
     return "\n".join(lines)
+
+
+def _decomposition_lines(rows: list[dict]) -> list[str]:
+    """The decompositions table; concavities in CoACD's units (see collision/concavity.py)."""
+    if not rows:
+        return []
+    lines = [
+        "## Convex decompositions",
+        "",
+        "Concavity: how far the hull, or the union of the parts, stands off the mesh, relative "
+        "to half the mesh's largest extent (the units of CoACD's threshold).",
+        "",
+        "| mesh | how | parts | hull concavity | concavity | seconds |",
+        "|---|---|---:|---:|---:|---:|",
+    ]
+    lines += [
+        f"| {r['name']} | {'hull kept' if r['method'] == 'hull' else 'CoACD'} | {r['parts']} "
+        f"| {_number(r['hull_concavity'])} | {_number(r['concavity'])} "
+        f"| {_number(r['seconds'])} |"
+        for r in rows
+    ]
+    return [*lines, ""]
 
 
 def _cache_lines(cache: dict | None) -> list[str]:

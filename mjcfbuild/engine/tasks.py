@@ -332,8 +332,9 @@ def _run(ctx: BuildContext, name: str, step: str, payload: dict, in_worker: bool
     finally:
         ctx.timings[name] = time.perf_counter() - started
     ctx.warnings.extend(result.get("warnings", []))
-    if result.get("cached"):
-        ctx.notes[name] = "from cache"
+    notes = ["from cache" if result.get("cached") else "", result.get("note", "")]
+    if any(notes):
+        ctx.notes[name] = "; ".join(n for n in notes if n)
     if result.get("stored"):
         ctx.cache_grew = True
     if "discovered" in result:
