@@ -49,7 +49,7 @@ def parts_concavity(
     points = _outer_points(parts, rng)
     if len(points) == 0:
         return 0.0
-    distance = _distance_to_surface(vertices, faces, points, rng)
+    distance = _distance_to_surface(vertices, faces, points, rng, outside_only=len(parts) > 1)
     return round(float(distance.max()) / scale(vertices), 6)
 
 
@@ -91,11 +91,13 @@ def _covered(vertices: np.ndarray, faces: np.ndarray, points: np.ndarray, margin
     return np.all(points @ normals.T <= offsets + margin, axis=1)
 
 
-def _distance_to_surface(vertices, faces, points, rng) -> np.ndarray:
+def _distance_to_surface(vertices, faces, points, rng, outside_only: bool) -> np.ndarray:
     """Distance from each point to the mesh surface, exact against the triangles nearby.
 
     The triangles of a point's nearest surface samples, and their neighbours across an edge
     (the nearest triangle of a point near an edge may have no sample among the nearest).
+    With ``outside_only``, points behind their nearest triangle (inside the mesh: faces of
+    parts that CoACD cut apart and that do not quite meet) count as on the surface.
     """
     import trimesh
     from scipy.spatial import cKDTree
@@ -115,7 +117,22 @@ def _distance_to_surface(vertices, faces, points, rng) -> np.ndarray:
     repeated = np.repeat(points, candidates.shape[1], axis=0)
     closest = trimesh.triangles.closest_point(vertices[faces[candidates.ravel()]], repeated)
     distances = np.linalg.norm(closest - repeated, axis=1).reshape(candidates.shape)
-    return distances.min(axis=1)
+    rows = np.arange(len(points))
+    best = distances.argmin(axis=1)
+    result = distances[rows, best]
+    if outside_only:
+        nearest_point = closest.reshape(*candidates.shape, 3)[rows, best]
+        normals = mesh.face_normals[candidates[rows, best]] * _orientation(vertices, faces)
+        behind = np.einsum("ij,ij->i", points - nearest_point, normals) < 0
+        result[behind] = 0.0
+    return result
+
+
+def _orientation(vertices: np.ndarray, faces: np.ndarray) -> float:
+    """1 if the triangles face outward (positive enclosed volume, also for a mesh with small
+    holes), else -1."""
+    a, b, c = (vertices[faces[:, i]] - vertices.mean(axis=0) for i in range(3))
+    return 1.0 if np.einsum("ij,ij->i", a, np.cross(b, c)).sum() >= 0 else -1.0
 
 
 def _with_neighbours(count: int, adjacency: np.ndarray) -> np.ndarray:
