@@ -45,7 +45,7 @@ def note(summary: dict) -> str:
         how = f"hull kept ({summary['hull_concavity']:.3f} <= {summary['hull_tolerance']:g})"
     else:
         how = f"{count} part{'s' if count != 1 else ''}, concavity {summary['concavity']:.3f}"
-    return f"{how}, in {summary['seconds']:.1f} s"
+    return f"{how}, computed in {summary['seconds']:.1f} s"
 
 
 def collision_mesh(payload: dict) -> Path:
