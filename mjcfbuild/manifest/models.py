@@ -236,7 +236,7 @@ class CollisionRule(StrictModel):
                 f"allowed: {', '.join(sorted(CoacdParams.model_fields))}"
             )
         try:  # here, so a bad value is reported at its rule, not as an internal error
-            CoacdParams(**self.decompose)
+            CoacdParams.model_validate(self.decompose)
         except ValidationError as error:
             first = error.errors()[0]
             where = ".".join(str(part) for part in first["loc"])
