@@ -50,6 +50,7 @@ def markdown(report: dict) -> str:
             for m in meshes
         ]
         lines.append("")
+    lines += _decomposition_lines(report.get("decompositions") or [])
     lines += _cache_lines(report.get("cache"))
     if report["times"]:
         lines += [
@@ -65,6 +66,28 @@ def markdown(report: dict) -> str:
         lines += [f"![{Path(p).stem.replace('_', ' ')}]({p})" for p in report["previews"]]
         lines.append("")
     return "\n".join(lines)
+
+
+def _decomposition_lines(rows: list[dict]) -> list[str]:
+    """The decompositions table; concavities in CoACD's units (see collision/concavity.py)."""
+    if not rows:
+        return []
+    lines = [
+        "## Convex decompositions",
+        "",
+        "Concavity: how far the hull, or the union of the parts, stands off the mesh, relative "
+        "to half the mesh's largest extent (the units of CoACD's threshold).",
+        "",
+        "| mesh | how | parts | hull concavity | concavity | seconds |",
+        "|---|---|---:|---:|---:|---:|",
+    ]
+    lines += [
+        f"| {r['name']} | {'hull kept' if r['method'] == 'hull' else 'CoACD'} | {r['parts']} "
+        f"| {_number(r['hull_concavity'])} | {_number(r['concavity'])} "
+        f"| {_number(r['seconds'])} |"
+        for r in rows
+    ]
+    return [*lines, ""]
 
 
 def _cache_lines(cache: dict | None) -> list[str]:

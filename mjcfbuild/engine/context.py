@@ -6,7 +6,7 @@ import os
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from mjcfbuild.engine.session import BuildSession
 from mjcfbuild.errors import MjcfbuildError
@@ -62,7 +62,7 @@ class BuildContext:
         return self.session
 
     @classmethod
-    def from_manifest_file(cls, path: str | Path, **kwargs) -> BuildContext:
+    def from_manifest_file(cls, path: str | Path, **kwargs: Any) -> BuildContext:
         """Load and validate ``path`` and build a context for it."""
         from mjcfbuild.manifest.loading import load_manifest
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+from typing import Any
 
 from doit.cmd_base import TaskLoader2
 from doit.doit_cmd import DoitMain
@@ -24,7 +25,7 @@ class BuildLoader(TaskLoader2):
         self.tasks = tasks
         self.progress = progress
 
-    def setup(self, opt_values) -> None:
+    def setup(self, opt_values: dict[str, Any]) -> None:
         # doit opens its database before loading tasks: the folder must exist by then.
         self.ctx.state_dir.mkdir(parents=True, exist_ok=True)
 
@@ -41,7 +42,7 @@ class BuildLoader(TaskLoader2):
             "par_type": "thread",
         }
 
-    def load_tasks(self, cmd, pos_args) -> list:
+    def load_tasks(self, cmd: Any, pos_args: list[str]) -> list:
         return [dict_to_task(dict(task)) for task in self.tasks]
 
 

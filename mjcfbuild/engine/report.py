@@ -14,7 +14,7 @@ from pathlib import Path
 
 from mjcfbuild.check.report_page import markdown
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, report_dir
+from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, decomposition_dir, report_dir
 from mjcfbuild.fsutil import write_if_changed
 
 TIMINGS = "timings.json"
@@ -56,6 +56,7 @@ def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
         "assets": assembly.get("assets", []),
         "readiness": assembly.get("readiness") or {},
         "self_collision": assembly.get("self_collision"),
+        "decompositions": decompositions(ctx),
         "times": record_timings(ctx),
         "cache": ctx.session.cache_report,
         "previews": [f"previews/{name}" for name in previews],
@@ -65,6 +66,26 @@ def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
     )
     write_if_changed(folder / "report.md", markdown(report).encode())
     return folder
+
+
+def decompositions(ctx: BuildContext) -> list[dict]:
+    """Per decomposition of this build: hull kept or CoACD, parts, concavities, seconds."""
+    rows = []
+    for path in sorted(decomposition_dir(ctx, "any").parent.glob("*.json")):
+        summary = _read(path)
+        if "parts" not in summary:
+            continue
+        rows.append(
+            {
+                "name": path.stem,
+                "method": summary.get("method", "coacd"),
+                "parts": len(summary["parts"]),
+                "hull_concavity": summary.get("hull_concavity"),
+                "concavity": summary.get("concavity"),
+                "seconds": summary.get("seconds"),
+            }
+        )
+    return rows
 
 
 def _read(path: Path) -> dict:

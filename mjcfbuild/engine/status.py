@@ -8,6 +8,7 @@ deleted. ``mjcfbuild check --up-to-date`` and ``mjcfbuild explain`` are built on
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.uptodate import ParamsUnchanged
@@ -54,7 +55,7 @@ def task_statuses(ctx: BuildContext, tasks: list[dict]) -> list[TaskStatus]:
         manager.close()
 
 
-def _reasons(status, task, values: dict, ctx: BuildContext) -> list[str]:
+def _reasons(status: Any, task: Any, values: dict, ctx: BuildContext) -> list[str]:
     if status.status == "up-to-date":
         return []
     if not values:

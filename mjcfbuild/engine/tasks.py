@@ -320,8 +320,9 @@ def _run(
     finally:
         ctx.session.timings[name] = time.perf_counter() - started
     ctx.session.warnings.extend(result.get("warnings", []))
-    if result.get("cached"):
-        ctx.session.notes[name] = "from cache"
+    notes = ["from cache" if result.get("cached") else "", result.get("note", "")]
+    if any(notes):
+        ctx.session.notes[name] = "; ".join(n for n in notes if n)
     if result.get("stored"):
         ctx.session.cache_grew = True
     if "discovered" in result:

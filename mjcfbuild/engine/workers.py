@@ -26,6 +26,9 @@ class _Worker:
     def __init__(self, cwd: Path, stderr_log: Path) -> None:
         env = dict(os.environ)
         env.setdefault("PYTHONHASHSEED", "0")
+        # One thread per worker: -j is the build's CPU budget. CoACD is OpenMP-parallel, and
+        # two workers each starting a thread per core would fight over the same cores.
+        env.setdefault("OMP_NUM_THREADS", "1")
         env[BUILD_PID] = str(os.getpid())
         if sys.platform.startswith("linux"):
             # Offscreen rendering (previews) without a display; must be set before import mujoco.

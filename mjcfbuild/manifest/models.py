@@ -10,7 +10,15 @@ from __future__ import annotations
 import re
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, computed_field, field_validator, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    ValidationError,
+    computed_field,
+    field_validator,
+    model_validator,
+)
 
 from mjcfbuild.manifest.composition import Attachment, check_prefixes
 from mjcfbuild.manifest.simulation import (
@@ -147,10 +155,30 @@ class MeshSettings(StrictModel):
 
 
 class CoacdParams(StrictModel):
-    """CoACD convex decomposition parameters (the names of ``coacd.run_coacd``)."""
+    """Convex decomposition parameters: when to keep the hull, and CoACD's own (the names of
+    ``coacd.run_coacd``)."""
 
     threshold: float = Field(
         0.05, gt=0, le=1, description="Concavity threshold: lower gives more, tighter parts."
+    )
+    hull_tolerance: float | None = Field(
+        None,
+        ge=0,
+        le=1,
+        allow_inf_nan=False,
+        description=(
+            "Keep a mesh's convex hull (one part, no CoACD) when the hull stands off the mesh "
+            "by at most this, in the threshold's units (relative to half the mesh's largest "
+            "extent). Default (null): the threshold. 0 runs CoACD on every mesh."
+        ),
+    )
+    scale_to_mesh: bool = Field(
+        True,
+        description=(
+            "Scale CoACD's remeshing resolution and tree search to what the threshold can "
+            "resolve on each mesh (much faster on detailed meshes); false passes the "
+            "parameters below to CoACD unchanged."
+        ),
     )
     max_convex_hull: int = Field(-1, description="Most parts to keep; -1 for no limit.")
     preprocess_mode: Literal["auto", "on", "off"] = "auto"
@@ -167,6 +195,13 @@ class CoacdParams(StrictModel):
     extrude_margin: float = Field(0.01, ge=0)
     approximate_mode: Literal["ch", "box"] = "ch"
     seed: int = Field(0, ge=0, description="Random seed; fixed so results are reproducible.")
+
+    @field_validator("hull_tolerance", mode="before")
+    @classmethod
+    def _tolerance_is_a_number(cls, value: object) -> object:
+        if isinstance(value, bool):  # YAML's yes/no would otherwise read as 1.0 and 0.0
+            raise ValueError("use a number between 0 and 1 (0 runs CoACD on every mesh)")
+        return value
 
 
 Policy = Literal["authored", "visual", "hull", "decompose", "primitive", "none"]
@@ -201,6 +236,12 @@ class CollisionRule(StrictModel):
                 f"unknown CoACD parameter(s) {', '.join(unknown)}; "
                 f"allowed: {', '.join(sorted(CoacdParams.model_fields))}"
             )
+        try:  # here, so a bad value is reported at its rule, not as an internal error
+            CoacdParams.model_validate(self.decompose)
+        except ValidationError as error:
+            first = error.errors()[0]
+            where = ".".join(str(part) for part in first["loc"])
+            raise ValueError(f"decompose.{where}: {first['msg']}") from None
         return self
 
 

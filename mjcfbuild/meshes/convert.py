@@ -150,7 +150,7 @@ def _hull_obj(vertices: np.ndarray, max_vertices: int | None = None) -> bytes:
 
     hull = trimesh.Trimesh(vertices=vertices, process=False).convex_hull
     if max_vertices is not None and len(hull.vertices) > max_vertices:
-        kept = _farthest_points(np.asarray(hull.vertices), max_vertices)
+        kept = farthest_points(np.asarray(hull.vertices), max_vertices)
         hull = trimesh.Trimesh(vertices=kept, process=False).convex_hull
     order = np.lexsort(np.round(hull.vertices, 12).T[::-1])  # a stable vertex order
     rank = np.empty_like(order)
@@ -160,7 +160,7 @@ def _hull_obj(vertices: np.ndarray, max_vertices: int | None = None) -> bytes:
     return obj_bytes(hull.vertices[order], faces)
 
 
-def _farthest_points(points: np.ndarray, count: int) -> np.ndarray:
+def farthest_points(points: np.ndarray, count: int) -> np.ndarray:
     """``count`` of ``points`` spread as far apart as possible (greedy farthest-point
     sampling from the lexicographically first point, so the choice is deterministic)."""
     order = np.lexsort(np.round(points, 12).T[::-1])

@@ -33,7 +33,22 @@ def run(payload: dict) -> dict:
     outputs = {str(output_dir / name): digest for name, digest in summary["files"].items()}
     text = json.dumps(summary, indent=1, sort_keys=True) + "\n"
     write_output(Path(request.summary), text.encode(), outputs)
-    return {"outputs": outputs, "cached": cached, "stored": not cached and store is not None}
+    return {
+        "outputs": outputs,
+        "cached": cached,
+        "stored": not cached and store is not None,
+        "note": note(summary),
+    }
+
+
+def note(summary: dict) -> str:
+    """What the build prints for a decomposition: parts, concavity reached, seconds."""
+    count = len(summary["parts"])
+    if summary.get("method") == "hull":
+        how = f"hull kept ({summary['hull_concavity']:.3f} <= {summary['hull_tolerance']:g})"
+    else:
+        how = f"{count} part{'s' if count != 1 else ''}, concavity {summary['concavity']:.3f}"
+    return f"{how}, computed in {summary['seconds']:.1f} s"
 
 
 def collision_mesh(request: DecomposePayload) -> Path:

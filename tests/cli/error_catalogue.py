@@ -205,6 +205,28 @@ CASES: list[Case] = [
         ["robot.yaml:6:5", "threshold", "less than or equal to 1"],
     ),
     Case(
+        "hull tolerance out of range",
+        {"robot.yaml": MANIFEST + "collision:\n  decompose:\n    hull_tolerance: -0.1\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:6:5", "hull_tolerance", "greater than or equal to 0"],
+    ),
+    Case(
+        "hull tolerance yes or no",
+        {"robot.yaml": MANIFEST + "collision:\n  decompose:\n    hull_tolerance: no\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:6:5", "hull_tolerance", "0 runs CoACD on every mesh"],
+    ),
+    Case(
+        "hull tolerance in a rule",
+        {
+            "robot.yaml": MANIFEST
+            + "collision:\n  rules:\n    - links: [a]\n      policy: decompose\n"
+            "      decompose: {hull_tolerance: 2}\n"
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml", "hull_tolerance", "less than or equal to 1"],
+    ),
+    Case(
         "not a number",
         {"robot.yaml": MANIFEST + "inertia:\n  min_mass: .nan\n"},
         EXIT_MANIFEST,
