@@ -73,14 +73,19 @@ class Payload(Record):
         return {name: marker.why for name, marker in _markers(cls).items()}
 
 
+_MARKERS: dict[type, dict[str, NotCounted | CountedIfGiven]] = {}
+
+
 def _markers(cls: type) -> dict[str, NotCounted | CountedIfGiven]:
-    """The fields of payload class ``cls`` that carry a counting marker."""
-    hints = typing.get_type_hints(cls, include_extras=True)
-    found = {}
-    for name, hint in hints.items():
-        for extra in getattr(hint, "__metadata__", ()):
-            if isinstance(extra, NotCounted | CountedIfGiven):
-                found[name] = extra
+    """The fields of payload class ``cls`` that carry a counting marker (read once per class)."""
+    found = _MARKERS.get(cls)
+    if found is None:
+        found = {}
+        for name, hint in typing.get_type_hints(cls, include_extras=True).items():
+            for extra in getattr(hint, "__metadata__", ()):
+                if isinstance(extra, NotCounted | CountedIfGiven):
+                    found[name] = extra
+        _MARKERS[cls] = found
     return found
 
 
