@@ -19,16 +19,13 @@ if TYPE_CHECKING:
 
 
 @dataclass(frozen=True)
-class CollisionSettings:
-    """The default policy, the rules (first match wins) and the default CoACD parameters."""
+class EffectiveCollisionSettings:
+    """robot.yaml's ``collision:`` with the plan's ``decompose_mesh`` inputs added: the default
+    policy, the rules (first match wins) and the default CoACD parameters."""
 
     default: str
     rules: list[dict[str, Any]]
     decompose: dict[str, Any]
-
-    def to_dict(self) -> dict[str, Any]:
-        """The settings as JSON-ready data."""
-        return {"default": self.default, "rules": self.rules, "decompose": self.decompose}
 
     def choose(self, robot: Robot) -> list[CollisionChoice]:
         """The collision geometry of every link of ``robot`` under these settings."""
@@ -37,7 +34,9 @@ class CollisionSettings:
         return choose_collisions(robot, self.default, rules_from_dicts(self.rules), self.decompose)
 
 
-def collision_settings(manifest: Manifest, plan_inputs: PlannedInputs) -> CollisionSettings:
+def collision_settings(
+    manifest: Manifest, plan_inputs: PlannedInputs
+) -> EffectiveCollisionSettings:
     """The collision settings of ``manifest`` with the ``decompose_mesh`` inputs of the plan."""
     settings = manifest.collision
     defaults = dict(settings.decompose_defaults)
@@ -61,4 +60,4 @@ def collision_settings(manifest: Manifest, plan_inputs: PlannedInputs) -> Collis
         for params in [defaults, *(rule["decompose"] for rule in rules)]:
             if params:
                 params["max_ch_vertex"] = min(int(params["max_ch_vertex"]), limit)
-    return CollisionSettings(settings.default, rules, defaults)
+    return EffectiveCollisionSettings(settings.default, rules, defaults)
