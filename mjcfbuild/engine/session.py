@@ -38,6 +38,7 @@ class BuildSession:
         self._pool: WorkerPool | None = None
         self._sharing: ProductSharing | None = None
         self._sharing_lock = threading.Lock()
+        self._pool_lock = threading.Lock()
 
     @property
     def hashes(self) -> HashCache:
@@ -98,13 +99,21 @@ class BuildSession:
             function = getattr(importlib.import_module(module_name), function_name)
             result: dict = function(payload)
             return result
-        if self._pool is None:
-            from mjcfbuild.engine.workers import WorkerPool
-
-            self._pool = WorkerPool(self.ctx.jobs, self.ctx.base_dir, self.ctx.logs_dir)
         self.ctx.logs_dir.mkdir(parents=True, exist_ok=True)
         log = self.ctx.logs_dir / (re.sub(r"[^A-Za-z0-9_.-]+", "-", task) + ".log")
-        return self._pool.run(step, payload, task, log, self.ctx.step_timeout)
+        return self._workers().run(step, payload, task, log, self.ctx.step_timeout)
+
+    def _workers(self) -> WorkerPool:
+        with self._pool_lock:  # doit's threads may ask for the first worker together
+            if self._pool is None:
+                from mjcfbuild.engine.workers import WorkerPool
+
+                self._pool = WorkerPool(self.ctx.jobs, self.ctx.base_dir, self.ctx.logs_dir)
+            return self._pool
+
+    def warm_workers(self) -> None:
+        """Start the worker processes now; they import the steps' modules while they wait."""
+        self._workers().warm()
 
     def record_failure(self, task: str, error: BaseException) -> MjcfbuildError:
         """Remember why ``task`` failed, as a :class:`MjcfbuildError`."""

@@ -4,18 +4,25 @@ Steps that run C++ code (mesh loading, CoACD, MuJoCo's compiler) run here so a c
 this process, not the build. The protocol is one JSON line per request and per reply on a
 private copy of stdout; file descriptors 1 and 2 are pointed at the step's log file while it
 runs, so anything the C++ libraries print ends up there instead of corrupting the protocol.
+
+While it waits for its first requests, a worker imports the heavy modules the pool names
+(``MJCFBUILD_WORKER_PRELOAD``), one at a time and only while no request is waiting, so a
+request is held up by at most one import and later steps find them loaded.
 """
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import json
 import os
+import select
 import signal
 import sys
 import threading
 import time
 import traceback
+from collections.abc import Iterator
 
 
 def _watch_parent(parent: int) -> None:
@@ -57,6 +64,33 @@ def _run(request: dict) -> dict:
         os.close(saved[1])
 
 
+PRELOAD_VARIABLE = "MJCFBUILD_WORKER_PRELOAD"
+
+
+def _preload(module: str) -> None:
+    """Import ``module`` now; a module that fails to import is left to the step that needs it."""
+    with contextlib.suppress(Exception):  # the step that imports it reports the error
+        importlib.import_module(module)
+
+
+def requests(stdin: int, preload: list[str]) -> Iterator[bytes]:
+    """Request lines read from the file descriptor ``stdin``; between them, while none is
+    waiting, the next module of ``preload`` is imported (and removed from the list)."""
+    buffer = b""
+    while True:
+        while b"\n" not in buffer:
+            if preload and not select.select([stdin], [], [], 0)[0]:
+                _preload(preload.pop(0))
+                continue
+            chunk = os.read(stdin, 1 << 16)
+            if not chunk:
+                return
+            buffer += chunk
+        line, _, buffer = buffer.partition(b"\n")
+        if line.strip():
+            yield line
+
+
 def main() -> None:
     """Serve requests from stdin until it closes."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the build process decides about Ctrl-C
@@ -65,9 +99,8 @@ def main() -> None:
     devnull = os.open(os.devnull, os.O_WRONLY)
     os.dup2(devnull, 1)
     os.close(devnull)
-    for line in sys.stdin:
-        if not line.strip():
-            continue
+    preload = [name for name in os.environ.get(PRELOAD_VARIABLE, "").split(",") if name]
+    for line in requests(sys.stdin.fileno(), preload):
         reply = _run(json.loads(line))
         protocol.write(json.dumps(reply) + "\n")
         protocol.flush()

@@ -4,6 +4,10 @@ doit runs tasks in threads; each thread hands its step to an idle worker process
 demand, up to the job count) and waits for the reply. If the worker dies (a segfault in C++
 code) or exceeds its time limit, the step fails with :class:`TaskCrashed` naming the task and
 its log, the worker is replaced, and every other task carries on.
+
+A build starts its workers as it begins (:meth:`WorkerPool.warm`), and each imports the heavy
+modules of the build steps while it waits, so that work overlaps the build's own start and
+the tasks that come before a worker's first step.
 """
 
 from __future__ import annotations
@@ -21,10 +25,27 @@ from pathlib import Path
 from mjcfbuild.errors import InternalError, MjcfbuildError, TaskCrashed
 from mjcfbuild.failpoints import BUILD_PID
 
+# What the build steps import, heaviest last: workers import these while idle.
+STEP_MODULES = (
+    "numpy",
+    "lxml.etree",
+    "trimesh",
+    "mujoco",
+    "mjcfbuild.steps.mesh",
+    "mjcfbuild.steps.assemble",
+    "yourdfpy",
+    "mjcfbuild.steps.check",
+    "mjcfbuild.steps.previews",
+)
+
 
 class _Worker:
-    def __init__(self, cwd: Path, stderr_log: Path) -> None:
+    def __init__(self, cwd: Path, stderr_log: Path, preload: tuple[str, ...]) -> None:
+        from mjcfbuild.engine.worker_main import PRELOAD_VARIABLE
+
+        self.used = False  # whether a step was ever sent: an unused worker holds no work
         env = dict(os.environ)
+        env[PRELOAD_VARIABLE] = ",".join(preload)
         env.setdefault("PYTHONHASHSEED", "0")
         # One thread per worker: -j is the build's CPU budget. CoACD is OpenMP-parallel, and
         # two workers each starting a thread per core would fight over the same cores.
@@ -52,6 +73,7 @@ class _Worker:
 
     def call(self, request: dict, label: str, timeout: float | None) -> dict:
         data = (json.dumps(request) + "\n").encode()
+        self.used = True
         try:
             self._stdin.write(data)
             self._stdin.flush()
@@ -120,12 +142,16 @@ def _tail(path: Path, limit: int = 200) -> str:
 
 
 class WorkerPool:
-    """Up to ``size`` worker processes, started when first needed."""
+    """Up to ``size`` worker processes, started by :meth:`warm` or when first needed; each
+    imports ``preload`` (module names) while it has nothing to do."""
 
-    def __init__(self, size: int, cwd: Path, log_dir: Path) -> None:
+    def __init__(
+        self, size: int, cwd: Path, log_dir: Path, preload: tuple[str, ...] = STEP_MODULES
+    ) -> None:
         self.size = max(1, size)
         self.cwd = cwd
         self.log_dir = log_dir
+        self.preload = preload
         self._idle: list[_Worker] = []
         self._started = 0
         self._all: list[_Worker] = []
@@ -155,6 +181,25 @@ class WorkerPool:
             error.details = reply.get("traceback", "")
         raise error
 
+    def warm(self) -> None:
+        """Start every worker now, so they are ready (and have imported) when steps come."""
+        while True:
+            with self._condition:
+                if self._closed or self._started >= self.size:
+                    return
+                self._started += 1
+            worker = self._start()
+            with self._condition:
+                self._idle.append(worker)
+                self._condition.notify()
+
+    def _start(self) -> _Worker:
+        self.log_dir.mkdir(parents=True, exist_ok=True)
+        worker = _Worker(self.cwd, self.log_dir / "workers.log", self.preload)
+        with self._condition:
+            self._all.append(worker)
+        return worker
+
     def _acquire(self) -> _Worker:
         with self._condition:
             while True:
@@ -168,11 +213,7 @@ class WorkerPool:
                     self._started += 1
                     break
                 self._condition.wait()
-        self.log_dir.mkdir(parents=True, exist_ok=True)
-        worker = _Worker(self.cwd, self.log_dir / "workers.log")
-        with self._condition:
-            self._all.append(worker)
-        return worker
+        return self._start()
 
     def _release(self, worker: _Worker, healthy: bool) -> None:
         with self._condition:
@@ -184,14 +225,16 @@ class WorkerPool:
             self._condition.notify()
 
     def close(self) -> None:
-        """Stop every worker (idle ones politely, busy ones at once)."""
+        """Stop every worker: idle ones that ran a step politely, the others at once (a worker
+        that never got a step may still be importing, and has nothing to finish)."""
         with self._condition:
             self._closed = True
             idle = list(self._idle)
             busy = [worker for worker in self._all if worker not in idle]
             self._all, self._idle = [], []
             self._condition.notify_all()
-        for worker in busy:
+        for worker in busy + [worker for worker in idle if not worker.used]:
             worker.kill()
         for worker in idle:
-            worker.close()
+            if worker.used:
+                worker.close()

@@ -50,3 +50,54 @@ def test_errors_keep_their_class_and_location(pool):
         pool.run(f"{STEPS}:bug", {}, "mesh:m", None, timeout=60)
     assert "ValueError: unexpected" in info.value.message
     assert "Traceback" in info.value.details
+
+
+def test_a_worker_imports_while_idle_and_a_request_waits_for_one_import_at_most(
+    tmp_path, monkeypatch
+):
+    import os
+    import sys
+
+    from mjcfbuild.engine.worker_main import requests
+
+    read, write = os.pipe()
+    monkeypatch.setenv("PROBE_FD", str(write))
+    monkeypatch.delitem(sys.modules, "tests.engine.preload_probe", raising=False)
+    os.write(write, b'{"step": "first"}\n')
+    preload = ["tests.engine.preload_probe", "tests.engine.slow_import"]
+    lines = requests(read, preload)
+    # a request is waiting: it is served before anything is imported
+    assert next(lines) == b'{"step": "first"}'
+    assert "tests.engine.preload_probe" not in sys.modules
+    # idle: the probe is imported, and the request it sends is served before the next import
+    assert next(lines) == b'{"step": "after the probe"}'
+    assert "tests.engine.preload_probe" in sys.modules
+    assert preload == ["tests.engine.slow_import"]
+    os.close(write)
+    os.close(read)
+
+
+def test_warm_starts_every_worker_and_steps_use_them(tmp_path):
+    from tests.conftest import ROOT
+
+    pool = WorkerPool(2, ROOT, tmp_path / "logs", preload=("json",))
+    try:
+        pool.warm()
+        pool.warm()  # never more than the pool's size
+        started = {worker.process.pid for worker in pool._all}
+        assert len(started) == 2
+        pids = {pool.run(f"{STEPS}:echo", {}, "echo", None, timeout=60)["pid"] for _ in range(3)}
+        assert pids <= started
+    finally:
+        pool.close()
+
+
+def test_close_stops_workers_that_never_got_a_step_at_once(tmp_path):
+    from tests.conftest import ROOT
+
+    # each worker spends a minute importing: close must not wait for that
+    pool = WorkerPool(2, ROOT, tmp_path / "logs", preload=("tests.engine.slow_import",))
+    pool.warm()
+    workers = list(pool._all)
+    pool.close()
+    assert [worker.process.returncode for worker in workers] == [-9, -9]
