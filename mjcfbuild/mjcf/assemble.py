@@ -9,6 +9,7 @@ is written with :func:`precise_xml` and the compiler settings it needs to load a
 
 from __future__ import annotations
 
+from copy import deepcopy
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -172,12 +173,11 @@ def _apply_additions(
     control = options.control or Ros2Control()
     warnings += sensor_warnings(control, [c.name for c in inputs.cameras], result.lidar_sensors)
     write_excludes(root, options.excludes)
-    assets = {name: Path(path).read_bytes() for name, path in prepared.files.items()}
 
     def compile_tree(tree) -> Any:
-        xml = etree.tostring(tree, encoding="unicode")
+        xml = etree.tostring(_reading_products(tree, prepared), encoding="unicode")
         try:
-            return mujoco.MjModel.from_xml_string(xml, assets)
+            return mujoco.MjModel.from_xml_string(xml)
         except Exception as exc:
             message = _first_line(exc).replace("Error: ", "")
             raise ModelError(
@@ -214,6 +214,24 @@ def _apply_additions(
     warnings += readiness.notes
     compile_tree(root)
     return warnings, readiness
+
+
+def _reading_products(root: etree._Element, prepared: Prepared) -> etree._Element:
+    """A copy of the model that reads each asset from the file it is published from.
+
+    The same bytes as the published assets, under the names the first compile (of the
+    prepared URDF) read them by: MuJoCo caches processed meshes by file name, so every later
+    compile of this build skips processing them again (seconds for a detailed robot).
+    """
+    copy = deepcopy(root)
+    for compiler in copy.iter("compiler"):
+        compiler.attrib.pop("meshdir", None)
+        compiler.attrib.pop("texturedir", None)
+    for element in (*copy.iter("mesh"), *copy.iter("texture")):
+        source = prepared.files.get(element.get("file") or "")
+        if source is not None:
+            element.set("file", str(source))
+    return copy
 
 
 def _part_actuators(root: etree._Element, parts: list[AttachedPart]) -> list[ActuatorRecord]:
