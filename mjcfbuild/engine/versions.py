@@ -12,7 +12,7 @@ STEP_FORMATS = {
     "expand": 1,
     "plan": 3,
     "mesh": 4,
-    "decompose": 2,
+    "decompose": 3,
     "assemble": 6,
     "scene": 3,
     "check": 3,

@@ -60,7 +60,7 @@ def test_coacd_parameters_are_scaled_to_the_threshold_and_bounded_by_the_manifes
     box = trimesh.creation.box([1, 1, 1])
     scaled = coacd_arguments(params(), box.vertices, box.faces)
     assert scaled["preprocess_resolution"] == 20  # 1 / 0.05, CoACD's default is 50
-    assert scaled["mcts_iterations"] == 30 and scaled["mcts_max_depth"] == 2
+    assert scaled["mcts_iterations"] == 20 and scaled["mcts_max_depth"] == 2
     assert scaled["resolution"] == 1000
     assert "hull_tolerance" not in scaled and "scale_to_mesh" not in scaled
     assert scaled["apx_mode"] == "ch"
