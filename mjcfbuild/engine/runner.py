@@ -97,9 +97,6 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
             if ctx.manifest_file is not None:  # whichever way it was started
                 stamp.discard(ctx.manifest_file, ctx.run_check)
             prepare_state(ctx)
-            # Something is to be built (the stamp said so): workers start while this process
-            # plans, and import the steps' modules before their first step arrives.
-            ctx.session.warm_workers()
             doit_output = _run_stage(ctx, planning_tasks(ctx), progress, result)
             if not result.errors:
                 tasks = build_tasks(ctx)

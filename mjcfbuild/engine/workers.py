@@ -5,9 +5,9 @@ demand, up to the job count) and waits for the reply. If the worker dies (a segf
 code) or exceeds its time limit, the step fails with :class:`TaskCrashed` naming the task and
 its log, the worker is replaced, and every other task carries on.
 
-A build starts its workers as it begins (:meth:`WorkerPool.warm`), and each imports the heavy
-modules of the build steps while it waits, so that work overlaps the build's own start and
-the tasks that come before a worker's first step.
+A build starts all its workers when its first task runs (:meth:`WorkerPool.warm`), and each
+imports the heavy modules of the build steps while it waits, so that work overlaps the tasks
+that come before a worker's first step (the check's worker is ready when assembly ends).
 """
 
 from __future__ import annotations
