@@ -3,7 +3,8 @@ visual and collision.
 
 MuJoCo renders through OpenGL; on a machine without a display this needs EGL (set
 ``MUJOCO_GL=egl``, which mjcfbuild does when nothing else is set) and Mesa's EGL packages. The
-background is made light grey with a segmentation pass, so the pictures read on any page.
+background is made light grey, so the pictures read on any page: each picture is drawn once
+without the skybox, and the pixels that kept the cleared depth are the background.
 """
 
 from __future__ import annotations
@@ -56,7 +57,7 @@ def render_previews(
     center, distance = _framing(model, data)
     folder.mkdir(parents=True, exist_ok=True)
     written = []
-    with mujoco.Renderer(model, height, width) as renderer:
+    with _Offscreen(model, width, height) as offscreen:
         for view, azimuth in VIEWS.items():
             camera = mujoco.MjvCamera()
             camera.lookat[:] = center
@@ -69,17 +70,57 @@ def render_previews(
                 option.geomgroup[0] = 1
                 option.geomgroup[2 if kind == "visual" else 3] = 1
                 option.sitegroup[:] = 0
-                renderer.update_scene(data, camera, option)
-                pixels = renderer.render().copy()
-                renderer.enable_segmentation_rendering()
-                renderer.update_scene(data, camera, option)
-                background = renderer.render()[:, :, 0] < 0
-                renderer.disable_segmentation_rendering()
+                pixels, background = offscreen.draw(data, camera, option)
                 pixels[background] = BACKGROUND
                 name = f"{view}_{kind}.png"
                 Image.fromarray(pixels).save(folder / name, optimize=False)
                 written.append(name)
     return written
+
+
+class _Offscreen:
+    """An offscreen OpenGL buffer that draws a model's scene into colour and depth at once."""
+
+    def __init__(self, model, width: int, height: int) -> None:
+        import mujoco
+
+        self.model = model
+        self.width, self.height = width, height
+        # The offscreen buffer is sized from the model; the pictures must fit in it.
+        model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
+        model.vis.global_.offheight = max(model.vis.global_.offheight, height)
+        self.gl = mujoco.GLContext(width, height)
+        self.gl.make_current()
+        self.context = mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_150)
+        mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN, self.context)
+        self.context.readDepthMap = mujoco.mjtDepthMap.mjDEPTH_ZEROFAR  # the far plane reads 0
+        self.scene = mujoco.MjvScene(model, maxgeom=10000)
+        # Without the skybox nothing is drawn where no geom is: those pixels keep the cleared
+        # depth, which marks the background in the same pass as the colours.
+        self.scene.flags[mujoco.mjtRndFlag.mjRND_SKYBOX] = 0
+        self.viewport = mujoco.MjrRect(0, 0, width, height)
+
+    def draw(self, data, camera, option):
+        """The picture (height x width x 3 bytes) and where it shows the background."""
+        import mujoco
+        import numpy as np
+
+        mujoco.mjv_updateScene(
+            self.model, data, option, None, camera, mujoco.mjtCatBit.mjCAT_ALL, self.scene
+        )
+        mujoco.mjr_render(self.viewport, self.scene, self.context)
+        pixels = np.empty((self.height, self.width, 3), dtype=np.uint8)
+        depth = np.empty((self.height, self.width), dtype=np.float32)
+        mujoco.mjr_readPixels(pixels, depth, self.viewport, self.context)
+        # OpenGL's rows run bottom to top; nothing drawn means the far plane, read as 0.
+        return np.flipud(pixels).copy(), np.flipud(depth) <= 0.0
+
+    def __enter__(self) -> _Offscreen:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.context.free()
+        self.gl.free()
 
 
 def _framing(model, data):

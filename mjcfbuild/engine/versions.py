@@ -16,7 +16,7 @@ STEP_FORMATS = {
     "assemble": 6,
     "scene": 3,
     "check": 3,
-    "previews": 2,
+    "previews": 3,
     "srdf": 1,
     "selfcollision": 2,
     "export_urdf": 1,
