@@ -1,21 +1,26 @@
 """Where users wait: cold, no-op (fast and full path), one mesh or one joint attribute changed.
 
-    python bench/edit_times.py [--robots panda,go1] [--repeat 5] [--jobs 2]
+    python bench/edit_times.py [--robots panda,go1] [--repeat 5] [--jobs 2] [--no-check]
+                               [--reference "COMMAND {urdf} {output}"]
 
 Each robot is copied into a temporary folder and built with the ``mjcfbuild`` command line
-(check and previews included), timed from the outside as a user would see it, with a fresh
-cache folder. The no-op is timed twice: as ``mjcfbuild build`` runs it (the stamp fast path)
-and with ``MJCFBUILD_FULL_BUILD=1`` (the full doit graph). The joint edit changes the damping
-of the first joint of the URDF (or xacro), the mesh edit one vertex of one mesh. The reference
-converter rebuilds everything on every run; its figures are the ones recorded on this machine
-(issue 14) unless ``--reference`` names a live command to time.
-"""
+(check and previews included, unless ``--no-check``), timed from the outside as a user would
+see it, with a fresh cache folder. The no-op is timed twice: as ``mjcfbuild build`` runs it
+(the stamp fast path) and with ``MJCFBUILD_FULL_BUILD=1`` (the full doit graph). The joint
+edit changes the damping of the first joint of the URDF (or xacro), the mesh edit one vertex
+of one mesh; each edit is made ``--repeat`` times, alternating, and the median is shown. The
+reference converter rebuilds everything on every run; its figures are the ones recorded on
+this machine (issue 14) unless ``--reference`` gives a command to time live, in which
+``{urdf}`` is the robot's URDF (a xacro source expanded by the build) and ``{output}`` a fresh
+folder, for example ``--reference "ros2 run mujoco_ros2_control
+make_mjcf_from_robot_description.py --urdf {urdf} --output {output}"`` where ROS is installed."""
 
 from __future__ import annotations
 
 import argparse
 import os
 import re
+import shlex
 import shutil
 import statistics
 import subprocess
@@ -32,11 +37,12 @@ from bench.build_times import case_example, case_robot, nudge_mesh
 REFERENCE_RECORDED = {"panda": 5.4, "go1": 14.6}
 
 
-def timed_build(manifest: Path, jobs: int, env: dict) -> tuple[float, str]:
+def timed_build(manifest: Path, jobs: int, env: dict, check: bool = True) -> tuple[float, str]:
     """Wall-clock seconds of one ``mjcfbuild build`` and its summary line."""
     started = time.perf_counter()
     done = subprocess.run(
-        [sys.executable, "-m", "mjcfbuild", "build", str(manifest), "-j", str(jobs)],
+        [sys.executable, "-m", "mjcfbuild", "build", str(manifest), "-j", str(jobs)]
+        + ([] if check else ["--no-check"]),
         capture_output=True,
         text=True,
         env=env,
@@ -65,34 +71,67 @@ def edit_joint(manifest: Path) -> Path:
     return source
 
 
-def measure(label: str, manifest: Path, mesh: Path, repeat: int, jobs: int) -> dict:
+def measure(
+    label: str, manifest: Path, mesh: Path, repeat: int, jobs: int, check: bool, reference: str
+) -> dict:
     """The times of one robot (seconds) and which tasks ran after each edit."""
     env = dict(os.environ)
     full = {**env, "MJCFBUILD_FULL_BUILD": "1"}
     row: dict = {"robot": label}
     with tempfile.TemporaryDirectory() as cache:
         env["MJCFBUILD_CACHE_DIR"] = full["MJCFBUILD_CACHE_DIR"] = cache
-        row["cold"], _ = timed_build(manifest, jobs, env)
+        row["cold"], _ = timed_build(manifest, jobs, env, check)
         time.sleep(2.1)  # past the racy window: the fast path trusts mtimes from here on
-        timed_build(manifest, jobs, env)  # refreshes the stamp of files written in the window
-        row["noop"] = statistics.median(timed_build(manifest, jobs, env)[0] for _ in range(repeat))
-        row["noop_full"] = statistics.median(
-            timed_build(manifest, jobs, full)[0] for _ in range(repeat)
+        timed_build(manifest, jobs, env, check)  # restamps files written in that window
+        row["noop"] = statistics.median(
+            timed_build(manifest, jobs, env, check)[0] for _ in range(repeat)
         )
-        nudge_mesh(mesh)
-        row["mesh"], row["mesh_summary"] = timed_build(manifest, jobs, env)
-        edit_joint(manifest)
-        row["joint"], row["joint_summary"] = timed_build(manifest, jobs, env)
-    row["reference"] = REFERENCE_RECORDED.get(label)
+        row["noop_full"] = statistics.median(
+            timed_build(manifest, jobs, full, check)[0] for _ in range(repeat)
+        )
+        mesh_times, joint_times = [], []
+        for _ in range(repeat):
+            nudge_mesh(mesh)
+            seconds, row["mesh_summary"] = timed_build(manifest, jobs, env, check)
+            mesh_times.append(seconds)
+            edit_joint(manifest)
+            seconds, row["joint_summary"] = timed_build(manifest, jobs, env, check)
+            joint_times.append(seconds)
+        row["mesh"] = statistics.median(mesh_times)
+        row["joint"] = statistics.median(joint_times)
+    row["reference"] = (
+        time_reference(reference, manifest, repeat) if reference else REFERENCE_RECORDED.get(label)
+    )
+    row["reference_live"] = bool(reference)
     return row
 
 
-def print_table(rows: list[dict], jobs: int) -> None:
+def time_reference(template: str, manifest: Path, repeat: int) -> float:
+    """Median wall-clock seconds of the reference converter's command on this robot."""
+    from mjcfbuild.engine.context import BuildContext
+    from mjcfbuild.engine.tasks import planned_urdf
+
+    urdf = planned_urdf(BuildContext.from_manifest_file(manifest))  # written by the cold build
+    times = []
+    for _ in range(repeat):
+        with tempfile.TemporaryDirectory() as output:
+            command = template.format(urdf=shlex.quote(str(urdf)), output=shlex.quote(output))
+            started = time.perf_counter()
+            done = subprocess.run(command, shell=True, capture_output=True, text=True)
+            times.append(time.perf_counter() - started)
+            if done.returncode != 0:
+                raise SystemExit(f"the reference command failed:\n{command}\n{done.stderr}")
+    return statistics.median(times)
+
+
+def print_table(rows: list[dict], jobs: int, check: bool) -> None:
     """The results as a Markdown table."""
-    print(f"\nmjcfbuild build times, wall clock in seconds, -j {jobs}, check and previews on\n")
+    what = "check and previews on" if check else "--no-check"
+    print(f"\nmjcfbuild build times, wall clock in seconds, -j {jobs}, {what}\n")
+    how = "live" if any(row["reference_live"] for row in rows) else "recorded"
     print(
         "| robot | cold | no-op | no-op, full graph | one mesh changed | one joint damping "
-        "changed | reference converter (every run, recorded) |"
+        f"changed | reference converter (every run, {how}) |"
     )
     print("|---|---:|---:|---:|---:|---:|---:|")
     for row in rows:
@@ -112,18 +151,27 @@ def main() -> None:
     parser.add_argument("--robots", default="panda,go1", help="example-robot-data robots")
     parser.add_argument("--repeat", type=int, default=5, help="no-op runs (median)")
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--no-check", action="store_true", help="build without check and previews")
+    parser.add_argument(
+        "--reference", default="", help="the reference converter's command: {urdf}, {output}"
+    )
     args = parser.parse_args()
+    check = not args.no_check
     rows = []
     with tempfile.TemporaryDirectory() as scratch:
         folder = Path(scratch)
         manifest, mesh, _ = case_example(folder / "example")
-        rows.append(measure("example arm", manifest, mesh, args.repeat, args.jobs))
+        rows.append(
+            measure("example arm", manifest, mesh, args.repeat, args.jobs, check, args.reference)
+        )
         for name in [n for n in args.robots.split(",") if n]:
             manifest, mesh, _ = case_robot(name, folder / name)
-            rows.append(measure(name, manifest, mesh, args.repeat, args.jobs))
+            rows.append(
+                measure(name, manifest, mesh, args.repeat, args.jobs, check, args.reference)
+            )
             print(f"measured {name}", file=sys.stderr)
         shutil.rmtree(folder, ignore_errors=True)
-    print_table(rows, args.jobs)
+    print_table(rows, args.jobs, check)
 
 
 if __name__ == "__main__":

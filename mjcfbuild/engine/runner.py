@@ -13,7 +13,7 @@ from pathlib import Path
 
 from mjcfbuild.engine import stamp
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.loader import run_doit
+from mjcfbuild.engine.loader import DATABASE, run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.report import write_report
 from mjcfbuild.engine.tasks import build_tasks, planning_tasks
@@ -97,6 +97,10 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
             if ctx.manifest_file is not None:  # whichever way it was started
                 stamp.discard(ctx.manifest_file, ctx.run_check)
             prepare_state(ctx)
+            if not ctx.state(DATABASE).exists():
+                # A first build runs everything: the workers start now, while this process
+                # plans, and import the steps' modules until their first step arrives.
+                ctx.session.warm_workers()
             doit_output = _run_stage(ctx, planning_tasks(ctx), progress, result)
             if not result.errors:
                 tasks = build_tasks(ctx)

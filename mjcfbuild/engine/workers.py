@@ -5,9 +5,10 @@ demand, up to the job count) and waits for the reply. If the worker dies (a segf
 code) or exceeds its time limit, the step fails with :class:`TaskCrashed` naming the task and
 its log, the worker is replaced, and every other task carries on.
 
-A build starts all its workers when its first task runs (:meth:`WorkerPool.warm`), and each
-imports the heavy modules of the build steps while it waits, so that work overlaps the tasks
-that come before a worker's first step (the check's worker is ready when assembly ends).
+A build starts all its workers at once (:meth:`WorkerPool.warm`): a first build as it
+begins, any other when its first task runs (a no-op starts none). Each worker imports the
+heavy modules of the build steps while it waits, so that work overlaps the build's planning
+and the tasks before its first step (the check's worker is ready when assembly ends).
 """
 
 from __future__ import annotations
