@@ -112,8 +112,12 @@ class BuildSession:
             return self._pool
 
     def warm_workers(self) -> None:
-        """Start the worker processes now; they import the steps' modules while they wait."""
-        self._workers().warm()
+        """Start the worker processes now; they import the steps' modules while they wait
+        (the check's too when the build checks)."""
+        from mjcfbuild.engine.workers import BUILD_MODULES, CHECK_MODULES
+
+        checks = self.ctx.run_check and self.ctx.manifest.check.enabled
+        self._workers().warm(BUILD_MODULES + (CHECK_MODULES if checks else ()))
 
     def record_failure(self, task: str, error: BaseException) -> MjcfbuildError:
         """Remember why ``task`` failed, as a :class:`MjcfbuildError`."""

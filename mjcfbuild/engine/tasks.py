@@ -331,9 +331,6 @@ def _run(
     build on, like the dependencies a compiler writes into a ``.d`` file.
     """
     started = time.perf_counter()
-    # The first task that runs starts every worker (if the build has not): more work is likely
-    # to follow, and idle workers import the steps' modules meanwhile. A no-op starts none.
-    ctx.session.warm_workers()
     try:
         result = ctx.session.run_step(step, payload, task=name, in_worker=in_worker)
     except Exception as exc:

@@ -15,7 +15,7 @@ STEP_FORMATS = {
     "decompose": 3,
     "assemble": 6,
     "scene": 3,
-    "check": 3,
+    "check": 4,
     "previews": 3,
     "srdf": 1,
     "selfcollision": 2,

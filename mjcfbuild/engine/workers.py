@@ -5,10 +5,11 @@ demand, up to the job count) and waits for the reply. If the worker dies (a segf
 code) or exceeds its time limit, the step fails with :class:`TaskCrashed` naming the task and
 its log, the worker is replaced, and every other task carries on.
 
-A build starts all its workers at once (:meth:`WorkerPool.warm`): a first build as it
-begins, any other when its first task runs (a no-op starts none). Each worker imports the
-heavy modules of the build steps while it waits, so that work overlaps the build's planning
-and the tasks before its first step (the check's worker is ready when assembly ends).
+A first build, which runs every step, starts all its workers as it begins
+(:meth:`WorkerPool.warm`), and each imports the heavy modules of the build steps while it
+waits, so that work overlaps the build's planning. Other builds start workers when a step
+needs one: an incremental build often needs one or two steps, and importing what it does not
+need would only compete with them for the CPU.
 """
 
 from __future__ import annotations
@@ -26,18 +27,17 @@ from pathlib import Path
 from mjcfbuild.errors import InternalError, MjcfbuildError, TaskCrashed
 from mjcfbuild.failpoints import BUILD_PID
 
-# What the build steps import, heaviest last: workers import these while idle.
-STEP_MODULES = (
+# What the build steps import, in the order a build needs them: warm workers import these.
+BUILD_MODULES = (
     "numpy",
     "lxml.etree",
     "trimesh",
-    "mujoco",
     "mjcfbuild.steps.mesh",
+    "mujoco",
+    "mjcfbuild.steps.selfcollision",
     "mjcfbuild.steps.assemble",
-    "yourdfpy",
-    "mjcfbuild.steps.check",
-    "mjcfbuild.steps.previews",
 )
+CHECK_MODULES = ("yourdfpy", "mjcfbuild.steps.check", "mjcfbuild.steps.previews")
 
 
 class _Worker:
@@ -143,16 +143,12 @@ def _tail(path: Path, limit: int = 200) -> str:
 
 
 class WorkerPool:
-    """Up to ``size`` worker processes, started by :meth:`warm` or when first needed; each
-    imports ``preload`` (module names) while it has nothing to do."""
+    """Up to ``size`` worker processes, started by :meth:`warm` or when first needed."""
 
-    def __init__(
-        self, size: int, cwd: Path, log_dir: Path, preload: tuple[str, ...] = STEP_MODULES
-    ) -> None:
+    def __init__(self, size: int, cwd: Path, log_dir: Path) -> None:
         self.size = max(1, size)
         self.cwd = cwd
         self.log_dir = log_dir
-        self.preload = preload
         self._idle: list[_Worker] = []
         self._started = 0
         self._all: list[_Worker] = []
@@ -182,21 +178,21 @@ class WorkerPool:
             error.details = reply.get("traceback", "")
         raise error
 
-    def warm(self) -> None:
-        """Start every worker now, so they are ready (and have imported) when steps come."""
+    def warm(self, preload: tuple[str, ...]) -> None:
+        """Start every worker now; each imports ``preload`` (module names) until steps come."""
         while True:
             with self._condition:
                 if self._closed or self._started >= self.size:
                     return
                 self._started += 1
-            worker = self._start()
+            worker = self._start(preload)
             with self._condition:
                 self._idle.append(worker)
                 self._condition.notify()
 
-    def _start(self) -> _Worker:
+    def _start(self, preload: tuple[str, ...] = ()) -> _Worker:
         self.log_dir.mkdir(parents=True, exist_ok=True)
-        worker = _Worker(self.cwd, self.log_dir / "workers.log", self.preload)
+        worker = _Worker(self.cwd, self.log_dir / "workers.log", preload)
         with self._condition:
             self._all.append(worker)
         return worker

@@ -80,10 +80,10 @@ def test_a_worker_imports_while_idle_and_a_request_waits_for_one_import_at_most(
 def test_warm_starts_every_worker_and_steps_use_them(tmp_path):
     from tests.conftest import ROOT
 
-    pool = WorkerPool(2, ROOT, tmp_path / "logs", preload=("json",))
+    pool = WorkerPool(2, ROOT, tmp_path / "logs")
     try:
-        pool.warm()
-        pool.warm()  # never more than the pool's size
+        pool.warm(("json",))
+        pool.warm(("json",))  # never more than the pool's size
         started = {worker.process.pid for worker in pool._all}
         assert len(started) == 2
         pids = {pool.run(f"{STEPS}:echo", {}, "echo", None, timeout=60)["pid"] for _ in range(3)}
@@ -96,8 +96,8 @@ def test_close_stops_workers_that_never_got_a_step_at_once(tmp_path):
     from tests.conftest import ROOT
 
     # each worker spends a minute importing: close must not wait for that
-    pool = WorkerPool(2, ROOT, tmp_path / "logs", preload=("tests.engine.slow_import",))
-    pool.warm()
+    pool = WorkerPool(2, ROOT, tmp_path / "logs")
+    pool.warm(("tests.engine.slow_import",))
     workers = list(pool._all)
     pool.close()
     assert [worker.process.returncode for worker in workers] == [-9, -9]
