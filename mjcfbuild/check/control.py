@@ -60,13 +60,49 @@ def check_control(model, passive: set[str], hold_tolerance: float, strict: bool)
                 f"(check.hold_tolerance {hold_tolerance:g}); stiffen its actuator "
                 "(actuators.frequency, or kp in a rule)"
             )
-    warnings, finite = menagerie_test(model)
-    report.results["menagerie_test"] = {"warnings": warnings, "finite": finite}
-    if not finite:
-        report.failures.append("the state is not finite under 1 s of pseudorandom control")
-    for warning in warnings:
-        report.failures.append(f"MuJoCo warned under pseudorandom control: {warning}")
+    test = menagerie_test(model)
+    report.results["menagerie_test"] = {
+        "warnings": test.warnings,
+        "finite": test.finite,
+        "fastest_joint": test.fastest_joint,
+        "fastest_speed": test.fastest_speed,
+        "unstable_joint": test.unstable_joint,
+    }
+    advice = _unstable_advice(model, test) if test.warnings or not test.finite else ""
+    if not test.finite:
+        report.failures.append(f"the state is not finite under 1 s of pseudorandom control{advice}")
+    for warning in test.warnings:
+        report.failures.append(f"MuJoCo warned under pseudorandom control: {warning}{advice}")
     return report
+
+
+def _unstable_advice(model, test: MenagerieTest) -> str:
+    """Which joint ran away under the pseudorandom control, its actuator's force limit, and
+    what to change; '' when no joint stands out."""
+    import mujoco
+
+    if test.unstable_joint is not None:
+        name, where = test.unstable_joint, f"at joint '{test.unstable_joint}'"
+    elif test.fastest_joint is not None:
+        name = test.fastest_joint
+        where = f"joint '{name}' reached {test.fastest_speed:.3g} rad/s"
+    else:
+        return ""
+    joint = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
+    limit = ""
+    for actuator in range(model.nu):
+        if (
+            model.actuator_trntype[actuator] == mujoco.mjtTrn.mjTRN_JOINT
+            and model.actuator_trnid[actuator][0] == joint
+            and model.actuator_forcelimited[actuator]
+        ):
+            low, high = model.actuator_forcerange[actuator]
+            limit = f", its actuator's force range [{low:g}, {high:g}]"
+    return (
+        f" ({where}{limit}); if "
+        "the URDF's effort or range is a placeholder, give the real one (a rule's forcerange "
+        "in actuators:), or lower actuators.frequency"
+    )
 
 
 def actuation_problems(model, passive: set[str]) -> list[str]:
@@ -161,9 +197,21 @@ def _base_tilt(model, data) -> float:
     return 0.0
 
 
-def menagerie_test(model) -> tuple[list[str], bool]:
-    """1 s of Halton-sequence control over each ctrlrange from the default state: MuJoCo's
-    warnings (as 'name (xN)') and whether the state stayed finite."""
+@dataclass
+class MenagerieTest:
+    """What 1 s of pseudorandom control did: MuJoCo's warnings (as 'name (xN)'), whether the
+    state stayed finite, the fastest hinge or slide joint with its top speed (before any
+    reset), and the joint of an unstable acceleration."""
+
+    warnings: list[str]
+    finite: bool
+    fastest_joint: str | None
+    fastest_speed: float
+    unstable_joint: str | None  # where MuJoCo found an unstable acceleration, if it did
+
+
+def menagerie_test(model) -> MenagerieTest:
+    """1 s of Halton-sequence control over each ctrlrange from the default state."""
     import mujoco
     import numpy as np
 
@@ -175,6 +223,11 @@ def menagerie_test(model) -> tuple[list[str], bool]:
     ranges = model.actuator_ctrlrange
     centre[limited] = ranges[limited].mean(axis=1)
     radius[limited] = (ranges[limited, 1] - ranges[limited, 0]) / 2
+    # The joints' own speeds (hinges and slides): a free base tumbling is a consequence.
+    jointed = np.isin(
+        model.jnt_type[model.dof_jntid], [mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE]
+    )
+    top = np.zeros(model.nv)
     step = 0
     finite = True
     # MuJoCo resets an unstable simulation to time 0 (with a warning): count steps instead.
@@ -188,6 +241,7 @@ def menagerie_test(model) -> tuple[list[str], bool]:
         if not (np.all(np.isfinite(data.qpos)) and np.all(np.isfinite(data.qvel))):
             finite = False
             break
+        np.maximum(top, np.abs(data.qvel), out=top)
         if any(stat.number for stat in data.warning):
             break
     warnings = [
@@ -195,7 +249,22 @@ def menagerie_test(model) -> tuple[list[str], bool]:
         for index, stat in enumerate(data.warning)
         if stat.number
     ]
-    return warnings, finite
+    fastest_joint, fastest_speed = None, 0.0
+    if jointed.any():
+        dof = int(np.argmax(np.where(jointed, top, -1.0)))
+        fastest_joint = _dof_joint(model, dof)
+        fastest_speed = float(top[dof])
+    unstable = data.warning[mujoco.mjtWarning.mjWARN_BADQACC]
+    unstable_joint = _dof_joint(model, int(unstable.lastinfo)) if unstable.number else None
+    return MenagerieTest(warnings, finite, fastest_joint, fastest_speed, unstable_joint)
+
+
+def _dof_joint(model, dof: int) -> str | None:
+    import mujoco
+
+    if not 0 <= dof < model.nv:
+        return None
+    return mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, model.dof_jntid[dof])
 
 
 def _floating(model) -> bool:
