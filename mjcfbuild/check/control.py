@@ -254,8 +254,13 @@ def menagerie_test(model) -> MenagerieTest:
         dof = int(np.argmax(np.where(jointed, top, -1.0)))
         fastest_joint = _dof_joint(model, dof)
         fastest_speed = float(top[dof])
+    # MuJoCo records the DOF of an unstable acceleration: named if it is a joint's own (on a
+    # free base it is the base, which only carries what the legs did; the fastest joint says
+    # more then).
     unstable = data.warning[mujoco.mjtWarning.mjWARN_BADQACC]
-    unstable_joint = _dof_joint(model, int(unstable.lastinfo)) if unstable.number else None
+    dof = int(unstable.lastinfo)
+    own = unstable.number and 0 <= dof < model.nv and jointed[dof]
+    unstable_joint = _dof_joint(model, dof) if own else None
     return MenagerieTest(warnings, finite, fastest_joint, fastest_speed, unstable_joint)
 
 
