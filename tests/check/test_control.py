@@ -6,6 +6,7 @@ from __future__ import annotations
 import mujoco
 
 from mjcfbuild.check.control import check_control, menagerie_test
+from mjcfbuild.mjwarnings import capture_mujoco_warnings, take_mujoco_warnings
 
 PENDULUM = """<mujoco>
   <option timestep="0.002" integrator="Euler"/>
@@ -27,9 +28,14 @@ def pendulum(kp: float, force: float) -> mujoco.MjModel:
     return mujoco.MjModel.from_xml_string(xml)
 
 
-def test_a_runaway_joint_is_named_with_its_force_range_and_the_fix():
+def test_a_runaway_joint_is_named_with_its_force_range_and_the_fix(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    capture_mujoco_warnings()  # as the check step does: no MUJOCO_LOG.TXT where it runs
+    take_mujoco_warnings()
     # A servo far too stiff for the explicit integrator, with a placeholder force limit.
     report = check_control(pendulum(1e9, 1e9), set(), 0.05, strict=True)
+    assert any("QACC" in warning for warning in take_mujoco_warnings())
+    assert not (tmp_path / "MUJOCO_LOG.TXT").exists()
     runaway = [f for f in report.failures if "pseudorandom control" in f]
     assert runaway == [
         "MuJoCo warned under pseudorandom control: badqacc (x1) (at joint 'swing', its "
