@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 import os
 from pathlib import Path
+from typing import Any
 
 from mjcfbuild.errors import ModelError
 
@@ -100,7 +101,7 @@ class _Offscreen:
         self.scene.flags[mujoco.mjtRndFlag.mjRND_SKYBOX] = 0
         self.viewport = mujoco.MjrRect(0, 0, width, height)
 
-    def draw(self, data, camera, option):
+    def draw(self, data: Any, camera: Any, option: Any) -> tuple[Any, Any]:
         """The picture (height x width x 3 bytes) and where it shows the background."""
         import mujoco
         import numpy as np
