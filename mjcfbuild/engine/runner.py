@@ -97,10 +97,8 @@ def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResul
             if ctx.manifest_file is not None:  # whichever way it was started
                 stamp.discard(ctx.manifest_file, ctx.run_check)
             prepare_state(ctx)
-            if not ctx.state(DATABASE).exists():
-                # A first build runs everything: the workers start now, while this process
-                # plans, and import the steps' modules until their first step arrives.
-                ctx.session.warm_workers()
+            # Workers start while this process plans, importing until their first step comes.
+            ctx.session.warm_workers(first_build=not ctx.state(DATABASE).exists())
             doit_output = _run_stage(ctx, planning_tasks(ctx), progress, result)
             if not result.errors:
                 tasks = build_tasks(ctx)

@@ -111,13 +111,17 @@ class BuildSession:
                 self._pool = WorkerPool(self.ctx.jobs, self.ctx.base_dir, self.ctx.logs_dir)
             return self._pool
 
-    def warm_workers(self) -> None:
-        """Start the worker processes now; they import the steps' modules while they wait
-        (the check's too when the build checks)."""
-        from mjcfbuild.engine.workers import BUILD_MODULES, CHECK_MODULES
+    def warm_workers(self, first_build: bool) -> None:
+        """Start worker processes now; they import the steps' modules while they wait. A first
+        build starts all, with every module it will use; another build one, with MuJoCo and
+        the steps that compile the model, which nearly every rebuild runs."""
+        from mjcfbuild.engine.workers import BUILD_MODULES, CHECK_MODULES, MODEL_MODULES
 
-        checks = self.ctx.run_check and self.ctx.manifest.check.enabled
-        self._workers().warm(BUILD_MODULES + (CHECK_MODULES if checks else ()))
+        if first_build:
+            checks = self.ctx.run_check and self.ctx.manifest.check.enabled
+            self._workers().warm(BUILD_MODULES + (CHECK_MODULES if checks else ()))
+        else:
+            self._workers().warm(MODEL_MODULES, count=1)
 
     def record_failure(self, task: str, error: BaseException) -> MjcfbuildError:
         """Remember why ``task`` failed, as a :class:`MjcfbuildError`."""
