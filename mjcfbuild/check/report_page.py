@@ -204,6 +204,12 @@ def _checks(check: dict) -> list[str]:
     return lines
 
 
+def _replaced(actuator: dict) -> str:
+    """The placeholder effort an actuator's force range replaced, if any."""
+    effort = actuator.get("placeholder_effort")
+    return f" (URDF effort {effort:g}, a placeholder)" if effort else ""
+
+
 def _control(readiness: dict) -> list[str]:
     """The actuators (with where each came from), the home pose and the floating base."""
     if not readiness:
@@ -216,7 +222,7 @@ def _control(readiness: dict) -> list[str]:
             lines.append(
                 f"| {a['name']} | {a['joint']} | {a['type']} | {a['source']} | "
                 f"{_number(a.get('kp'))} | {_number(a.get('kv'))} | {_range(a.get('ctrlrange'))} "
-                f"| {_range(a.get('forcerange'))} |"
+                f"| {_range(a.get('forcerange'))}{_replaced(a)} |"
             )
     else:
         lines.append("None.")

@@ -17,6 +17,7 @@ from typing import Any
 from lxml import etree
 
 from mjcfbuild.control.choose import ActuatorChoice
+from mjcfbuild.control.efforts import EffortCap, describe, placeholder_efforts
 from mjcfbuild.control.floor import lowest_collision_point
 from mjcfbuild.control.home import HomeValue
 from mjcfbuild.inputs.apply import ACTUATOR_TAGS
@@ -39,6 +40,7 @@ class ActuatorRecord:
     kv: float | None = None
     ctrlrange: list[float] | None = None
     forcerange: list[float] | None = None
+    placeholder_effort: float | None = None  # the URDF effort the forcerange replaced
 
 
 @dataclass
@@ -132,6 +134,7 @@ def make_ready(
     inertia = np.zeros((model.nv, model.nv))
     mujoco.mj_fullM(model, data, inertia)
     loads = np.abs(standing_torques(model, data) if floating else data.qfrc_bias)
+    caps = _effort_caps(model, data, generated, readiness) if floating else {}
 
     section = root.find("actuator")
     if section is None and generated:
@@ -146,7 +149,7 @@ def make_ready(
         index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, choice.joint)
         dof = model.jnt_dofadr[index]
         limits = Servo(float(inertia[dof, dof]), float(loads[dof]), model.opt.timestep)
-        record = _actuator(choice, urdf_joints[choice.joint], limits, taken)
+        record = _actuator(choice, urdf_joints[choice.joint], limits, taken, caps.get(choice.joint))
         taken.add(record.name)
         readiness.actuators.append(record)
         etree.SubElement(section, record.type, _attributes(record))
@@ -276,13 +279,37 @@ class Servo:
         return omega
 
 
-def _actuator(choice: ActuatorChoice, joint, servo: Servo, taken: set[str]) -> ActuatorRecord:
-    """The actuator of a choice, its gains worked out from the joint's effective inertia."""
+def _effort_caps(model, data, generated: list[ActuatorChoice], readiness: Readiness):
+    """A floating robot's placeholder efforts (joint -> the holding load that replaces them),
+    noted in ``readiness``; empty where the URDF's efforts are plausible."""
+    efforts = {
+        choice.joint: choice.forcerange[1]
+        for choice in generated
+        if choice.effort_limited and choice.forcerange
+    }
+    caps = placeholder_efforts(model, data, efforts)
+    if caps:
+        readiness.notes.append(describe(caps))
+    return {cap.joint: cap for cap in caps}
+
+
+def _actuator(
+    choice: ActuatorChoice,
+    joint,
+    servo: Servo,
+    taken: set[str],
+    cap: EffortCap | None = None,
+) -> ActuatorRecord:
+    """The actuator of a choice, its gains worked out from the joint's effective inertia; a
+    ``cap`` replaces a placeholder effort."""
     inertia = servo.inertia
     omega = servo.omega(choice.frequency, choice.stiffen)
     name = choice.joint if choice.joint not in taken else f"{choice.joint}_actuator"
     forcerange = list(choice.forcerange) if choice.forcerange else None
     record = ActuatorRecord(name, choice.joint, choice.type, choice.source, forcerange=forcerange)
+    if cap is not None:
+        record.forcerange = [-cap.holding, cap.holding]
+        record.placeholder_effort = cap.effort
     if choice.type == "position":
         record.kp = choice.kp or inertia * omega**2
         record.kv = choice.kv or 2 * choice.damping_ratio * inertia * omega
@@ -294,8 +321,7 @@ def _actuator(choice: ActuatorChoice, joint, servo: Servo, taken: set[str]) -> A
         velocity = joint.limit.velocity if joint.limit is not None else None
         record.ctrlrange = [-velocity, velocity] if velocity else None
     else:  # motor
-        record.forcerange = None
-        record.ctrlrange = forcerange
+        record.ctrlrange, record.forcerange = record.forcerange, None
     return record
 
 

@@ -36,6 +36,7 @@ class ActuatorChoice:
     frequency: float = 10.0
     damping_ratio: float = 1.0
     forcerange: tuple[float, float] | None = None
+    effort_limited: bool = False  # forcerange is the URDF's effort (no rule gave one)
     armature: float | None = None
     damping: float | None = None
     frictionloss: float | None = None
@@ -105,6 +106,7 @@ def _choice(
             frequency=settings.frequency,
             damping_ratio=settings.damping_ratio,
             forcerange=_effort_range(joint),
+            effort_limited=_effort_range(joint) is not None,
         )
     return ActuatorChoice(
         joint.name,
@@ -115,6 +117,7 @@ def _choice(
         frequency=rule.frequency or settings.frequency,
         damping_ratio=rule.damping_ratio or settings.damping_ratio,
         forcerange=rule.forcerange or _effort_range(joint),
+        effort_limited=rule.forcerange is None and _effort_range(joint) is not None,
         armature=rule.armature,
         damping=rule.damping,
         frictionloss=rule.frictionloss,

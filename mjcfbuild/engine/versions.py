@@ -13,7 +13,7 @@ STEP_FORMATS = {
     "plan": 3,
     "mesh": 4,
     "decompose": 3,
-    "assemble": 6,
+    "assemble": 7,
     "scene": 3,
     "check": 4,
     "previews": 3,

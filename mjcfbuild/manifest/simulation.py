@@ -60,7 +60,9 @@ class ActuatorRule(_Strict):
         None, ge=0, description="Dry friction; default the URDF <dynamics friction>."
     )
     forcerange: tuple[float, float] | None = Field(
-        None, description="Force limits; default plus and minus the URDF effort limit."
+        None,
+        description="Force limits; default plus and minus the URDF effort limit (on a floating "
+        "robot whose efforts are all placeholders, the load that holds the robot).",
     )
     gravcomp: bool | None = Field(
         None, description="Compensate gravity on the bodies the joints move (body gravcomp)."
