@@ -104,6 +104,9 @@ def main() -> None:
         reply = _run(json.loads(line))
         protocol.write(json.dumps(reply) + "\n")
         protocol.flush()
+    # Replies and logs are flushed; skipping the interpreter's teardown (unloading MuJoCo,
+    # trimesh, numpy: 0.2-0.4 s) spares the build that waits for its workers to stop.
+    os._exit(0)
 
 
 if __name__ == "__main__":
