@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from mjcfbuild.collision.policy import CollisionChoice
-from mjcfbuild.urdf.model import Inertial, Pose, Robot
+from mjcfbuild.urdf.model import Inertial, Joint, Limit, Pose, Robot
 
 # Every link weighs the same in the collision model: masses do not decide contacts, and an
 # inertia edit must not rerun the matrix.
@@ -15,8 +15,10 @@ _UNIT_INERTIAL = Inertial(Pose(), 1.0, (0.01, 0.0, 0.0, 0.01, 0.0, 0.01))
 def collision_robot(robot: Robot, choices: list[CollisionChoice]) -> Robot:
     """``robot`` with only the shapes collision geometry is made from and unit inertias.
 
-    Line numbers stay, so errors in collision geometry point at their line (an edit that moves
-    lines reruns the matrix; one that changes a visual mesh or an inertia does not)."""
+    Joints keep their kinematics (the matrix only poses the robot) but not their dynamics,
+    effort or velocity. Line numbers stay, so errors in collision geometry point at their line
+    (an edit that moves lines reruns the matrix; one that changes a visual mesh, an inertia or
+    a joint's damping does not)."""
     used = {(c.link, c.role, c.index) for c in choices}
     links = []
     for link in robot.links:
@@ -36,4 +38,10 @@ def collision_robot(robot: Robot, choices: list[CollisionChoice]) -> Robot:
                 collisions=kept(link.collisions),
             )
         )
-    return replace(robot, links=links, warnings=[])
+    return replace(robot, links=links, joints=[_kinematic(j) for j in robot.joints], warnings=[])
+
+
+def _kinematic(joint: Joint) -> Joint:
+    """``joint`` without what does not move it: dynamics, effort and velocity limits."""
+    limit = joint.limit and Limit(joint.limit.lower, joint.limit.upper)
+    return replace(joint, limit=limit, damping=0.0, friction=0.0)

@@ -113,10 +113,19 @@ def test_samples_must_be_positive(tmp_path):
     assert "robot.yaml:3" in result.stderr and "samples" in result.stderr
 
 
-def test_a_visual_mesh_edit_does_not_rerun_the_matrix(tmp_path):
+def test_visual_mesh_and_joint_dynamics_edits_do_not_rerun_the_matrix(tmp_path):
     manifest = _robot(tmp_path)
     mjcfbuild.build(manifest)
     write(tmp_path / "look.obj", LOOK.replace("v 0 0 0.1", "v 0 0 0.2"))
+    result = mjcfbuild.build(manifest)
+    assert "assemble" in result.ran
+    assert "selfcollision" not in result.ran
+    # Effort, velocity and damping do not move the robot (same lines, so same line numbers).
+    dynamics = CHAIN.replace(
+        'effort="5" velocity="1"/></joint>',
+        'effort="7" velocity="2"/><dynamics damping="0.3" friction="0.1"/></joint>',
+    )
+    write(tmp_path / "robot.urdf", dynamics)
     result = mjcfbuild.build(manifest)
     assert "assemble" in result.ran
     assert "selfcollision" not in result.ran
