@@ -49,6 +49,7 @@ class _Worker:
         from mjcfbuild.engine.worker_main import PRELOAD_VARIABLE
 
         self.used = False  # whether a step was ever sent: an unused worker holds no work
+        self.preload = preload
         env = dict(os.environ)
         env[PRELOAD_VARIABLE] = ",".join(preload)
         env.setdefault("PYTHONHASHSEED", "0")
@@ -166,7 +167,7 @@ class WorkerPool:
 
         Errors the step raises come back as the same :class:`MjcfbuildError` class.
         """
-        worker = self._acquire()
+        worker = self._acquire(step.partition(":")[0])
         healthy = False
         try:
             reply = worker.call(
@@ -203,15 +204,19 @@ class WorkerPool:
             self._all.append(worker)
         return worker
 
-    def _acquire(self) -> _Worker:
+    def _acquire(self, module: str) -> _Worker:
+        """An idle worker, preferably one that preloads ``module``; else a new one if the pool
+        has room; else wait."""
         with self._condition:
             while True:
                 if self._closed:
                     raise MjcfbuildError("the build was stopped")
-                while self._idle:
-                    worker = self._idle.pop()
-                    if worker.alive():
-                        return worker
+                self._idle = [worker for worker in self._idle if worker.alive()]
+                if self._idle:
+                    ready = [w for w in self._idle if module in w.preload] or self._idle
+                    worker = ready[-1]
+                    self._idle.remove(worker)
+                    return worker
                 if self._started < self.size:
                     self._started += 1
                     break

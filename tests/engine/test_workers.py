@@ -101,3 +101,20 @@ def test_close_stops_workers_that_never_got_a_step_at_once(tmp_path):
     workers = list(pool._all)
     pool.close()
     assert [worker.process.returncode for worker in workers] == [-9, -9]
+
+
+def test_a_step_goes_to_the_idle_worker_that_preloads_its_module(tmp_path):
+    from tests.conftest import ROOT
+
+    pool = WorkerPool(2, ROOT, tmp_path / "logs")
+    try:
+        pool.warm((STEPS,), count=1)
+        pool.warm(("json",), count=2)  # a second worker, preloading something else
+        preloads = {worker.process.pid: worker.preload for worker in pool._all}
+        assert len(preloads) == 2
+        # Whichever worker was started or released last, the step's module decides.
+        for _ in range(3):
+            pid = pool.run(f"{STEPS}:echo", {}, "echo", None, timeout=60)["pid"]
+            assert preloads[pid] == (STEPS,)
+    finally:
+        pool.close()
