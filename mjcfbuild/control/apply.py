@@ -279,7 +279,9 @@ class Servo:
         return omega
 
 
-def _effort_caps(model, data, generated: list[ActuatorChoice], readiness: Readiness):
+def _effort_caps(
+    model, data, generated: list[ActuatorChoice], readiness: Readiness
+) -> dict[str, EffortCap]:
     """A floating robot's placeholder efforts (joint -> the holding load that replaces them),
     noted in ``readiness``; empty where the URDF's efforts are plausible."""
     efforts = {

@@ -117,15 +117,20 @@ class BuildSession:
         steps that compile the model, which nearly every rebuild runs, and, if it checks, a
         second with the check's and previews' modules, imported while the model is assembled
         (a step goes to a worker that preloads its module where one is idle)."""
-        from mjcfbuild.engine.workers import BUILD_MODULES, CHECK_MODULES, MODEL_MODULES
+        from mjcfbuild.engine.workers import (
+            BUILD_MODULES,
+            CHECK_MODULES,
+            MESH_MODULES,
+            MODEL_MODULES,
+        )
 
         checks = self.ctx.run_check and self.ctx.manifest.check.enabled
         if first_build:
             self._workers().warm(BUILD_MODULES + (CHECK_MODULES if checks else ()))
             return
         self._workers().warm(MODEL_MODULES, count=1)
-        if checks:
-            self._workers().warm(("mujoco", *CHECK_MODULES), count=2)
+        second = MESH_MODULES + (("mujoco", *CHECK_MODULES) if checks else ())
+        self._workers().warm(second, count=2)
 
     def record_failure(self, task: str, error: BaseException) -> MjcfbuildError:
         """Remember why ``task`` failed, as a :class:`MjcfbuildError`."""

@@ -31,17 +31,10 @@ from mjcfbuild.errors import InternalError, MjcfbuildError, TaskCrashed
 from mjcfbuild.failpoints import BUILD_PID
 
 # What the build steps import, in the order a build needs them: warm workers import these.
-BUILD_MODULES = (
-    "numpy",
-    "lxml.etree",
-    "trimesh",
-    "mjcfbuild.steps.mesh",
-    "mujoco",
-    "mjcfbuild.steps.selfcollision",
-    "mjcfbuild.steps.assemble",
-)
-CHECK_MODULES = ("yourdfpy", "mjcfbuild.steps.check", "mjcfbuild.steps.previews")
+MESH_MODULES = ("numpy", "lxml.etree", "trimesh", "mjcfbuild.steps.mesh")
 MODEL_MODULES = ("mujoco", "mjcfbuild.steps.selfcollision", "mjcfbuild.steps.assemble")
+BUILD_MODULES = MESH_MODULES + MODEL_MODULES
+CHECK_MODULES = ("yourdfpy", "mjcfbuild.steps.check", "mjcfbuild.steps.previews")
 
 
 class _Worker:
