@@ -41,7 +41,6 @@ class _Worker:
     def __init__(self, cwd: Path, stderr_log: Path, preload: tuple[str, ...]) -> None:
         from mjcfbuild.engine.worker_main import PRELOAD_VARIABLE
 
-        self.used = False  # whether a step was ever sent: an unused worker holds no work
         self.preload = preload
         env = dict(os.environ)
         env[PRELOAD_VARIABLE] = ",".join(preload)
@@ -72,7 +71,6 @@ class _Worker:
 
     def call(self, request: dict, label: str, timeout: float | None) -> dict:
         data = (json.dumps(request) + "\n").encode()
-        self.used = True
         try:
             self._stdin.write(data)
             self._stdin.flush()
@@ -113,14 +111,6 @@ class _Worker:
         if self.process.poll() is None:
             self.process.kill()
         self.process.wait()
-
-    def close(self) -> None:
-        if self.process.poll() is None:
-            try:
-                self._stdin.close()
-                self.process.wait(timeout=2)
-            except (OSError, subprocess.TimeoutExpired):
-                self.kill()
 
 
 def _log_hint(request: dict) -> str | None:
@@ -226,16 +216,11 @@ class WorkerPool:
             self._condition.notify()
 
     def close(self) -> None:
-        """Stop every worker: idle ones that ran a step politely, the others at once (a worker
-        that never got a step may still be importing, and has nothing to finish)."""
+        """Stop every worker at once: every reply is in and every step's log flushed, so
+        nothing is lost, and a worker may still be importing a module it was warmed with."""
         with self._condition:
             self._closed = True
-            idle = list(self._idle)
-            busy = [worker for worker in self._all if worker not in idle]
-            self._all, self._idle = [], []
+            workers, self._all, self._idle = self._all, [], []
             self._condition.notify_all()
-        for worker in busy + [worker for worker in idle if not worker.used]:
+        for worker in workers:
             worker.kill()
-        for worker in idle:
-            if worker.used:
-                worker.close()

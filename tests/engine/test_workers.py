@@ -92,10 +92,10 @@ def test_warm_starts_every_worker_and_steps_use_them(tmp_path):
         pool.close()
 
 
-def test_close_stops_workers_that_never_got_a_step_at_once(tmp_path):
+def test_close_stops_every_worker_at_once(tmp_path):
     from tests.conftest import ROOT
 
-    # each worker spends a minute importing: close must not wait for that
+    # each worker spends a minute importing: close must not wait for that, used or not
     pool = WorkerPool(2, ROOT, tmp_path / "logs")
     pool.warm(("tests.engine.slow_import",))
     workers = list(pool._all)
