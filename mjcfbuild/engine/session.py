@@ -113,10 +113,11 @@ class BuildSession:
 
     def warm_workers(self, first_build: bool) -> None:
         """Start worker processes now; they import the steps' modules while they wait. A first
-        build starts all, with every module it will use; another build one with MuJoCo and the
-        steps that compile the model, which nearly every rebuild runs, and, if it checks, a
-        second with the check's and previews' modules, imported while the model is assembled
-        (a step goes to a worker that preloads its module where one is idle)."""
+        build starts all, with every module it will use. Another build starts two: one with
+        MuJoCo and the steps that compile the model, which nearly every rebuild runs, and one
+        with the mesh step and, if the build checks, the check's and previews' modules, which
+        it imports while the model is assembled. A step goes to an idle worker that preloads
+        its module (see WorkerPool)."""
         from mjcfbuild.engine.workers import (
             BUILD_MODULES,
             CHECK_MODULES,

@@ -194,7 +194,10 @@ class WorkerPool:
             while True:
                 if self._closed:
                     raise MjcfbuildError("the build was stopped")
-                self._idle = [worker for worker in self._idle if worker.alive()]
+                dead = [worker for worker in self._idle if not worker.alive()]
+                for worker in dead:  # died while idle (killed from outside): make room
+                    self._idle.remove(worker)
+                    self._started -= 1
                 if self._idle:
                     ready = [w for w in self._idle if module in w.preload] or self._idle
                     worker = ready[-1]

@@ -118,3 +118,29 @@ def test_a_step_goes_to_the_idle_worker_that_preloads_its_module(tmp_path):
             assert preloads[pid] == (STEPS,)
     finally:
         pool.close()
+
+
+def test_a_worker_killed_while_idle_is_replaced(tmp_path):
+    import threading
+
+    from tests.conftest import ROOT
+
+    pool = WorkerPool(1, ROOT, tmp_path / "logs")
+    try:
+        first = pool.run(f"{STEPS}:echo", {}, "echo", None, timeout=60)["pid"]
+        [worker] = pool._all
+        worker.process.kill()
+        worker.process.wait()
+        # Run in a thread so that a pool still counting the dead worker fails here, not hangs.
+        results: list[int] = []
+        thread = threading.Thread(
+            target=lambda: results.append(
+                pool.run(f"{STEPS}:echo", {}, "echo", None, timeout=60)["pid"]
+            ),
+            daemon=True,
+        )
+        thread.start()
+        thread.join(timeout=60)
+        assert results and results[0] != first
+    finally:
+        pool.close()
