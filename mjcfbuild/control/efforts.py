@@ -74,8 +74,8 @@ def describe(caps: list[EffortCap]) -> str:
         f"the URDF's effort limits look like placeholders: on all {len(caps)} actuated joints "
         f"the effort ({efforts}) is {min(ratios):.0f}-{max(ratios):.0f} times the load that "
         "holds the whole robot at the joint (real robots: at most 16), so each force range is "
-        f"that holding load ({holdings}); give the real limits with a rule's forcerange in "
-        "actuators:"
+        f"that holding load ({holdings}); give the real limits with rules' forceranges, e.g. "
+        'actuators: {rules: [{joints: ["*"], forcerange: [-N, N]}]}'
     )
 
 

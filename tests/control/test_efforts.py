@@ -73,7 +73,7 @@ def test_placeholder_efforts_become_the_load_that_holds_the_robot(tmp_path):
     assert _forcerange(model, "knee") == pytest.approx(weight * KNEE_REACH, rel=1e-6)
     [warning] = [w for w in result.warnings if "placeholders" in w]
     assert "on all 2 actuated joints the effort (1000)" in warning
-    assert "a rule's forcerange in actuators:" in warning
+    assert 'actuators: {rules: [{joints: ["*"], forcerange: [-N, N]}]}' in warning
     records = {a["joint"]: a for a in readiness(tmp_path)["actuators"]}
     assert records["hip"]["placeholder_effort"] == 1000
 
