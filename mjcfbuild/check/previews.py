@@ -14,18 +14,26 @@ import os
 from pathlib import Path
 from typing import Any
 
+from mjcfbuild.check.loading import compile_model
 from mjcfbuild.errors import ModelError
 
 VIEWS = {"front": 180.0, "side": -90.0}
 KINDS = ("visual", "collision")
 BACKGROUND = (235, 235, 235)
 COLLISION_RGBA = (0.9, 0.45, 0.15, 1.0)
+SHADOW_MAP_SIZE = 1024
+MULTISAMPLES = 2
 
 
 def render_previews(
-    model_path: Path, folder: Path, width: int = 480, height: int = 360
+    model_path: Path,
+    folder: Path,
+    width: int = 480,
+    height: int = 360,
+    sources: dict[str, Path] | None = None,
 ) -> list[str]:
-    """Write ``<view>_<kind>.png`` files into ``folder``; their names."""
+    """Write ``<view>_<kind>.png`` files into ``folder``; their names. ``sources``: the
+    products a build published the assets from (see check.loading)."""
     from mjcfbuild.cachedir import user_cache_dir
 
     os.environ.setdefault("MUJOCO_GL", "egl")
@@ -41,7 +49,7 @@ def render_previews(
     capture_mujoco_warnings()
 
     try:
-        model = mujoco.MjModel.from_xml_path(str(model_path))
+        model = compile_model(model_path, sources)
     except ValueError as exc:  # the check reports why; there is nothing to draw
         raise ModelError(f"the model does not load: {str(exc).splitlines()[0]}") from None
     data = mujoco.MjData(model)
@@ -90,6 +98,11 @@ class _Offscreen:
         # The offscreen buffer is sized from the model; the pictures must fit in it.
         model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
         model.vis.global_.offheight = max(model.vis.global_.offheight, height)
+        # Software OpenGL (Mesa's llvmpipe) pays for every shadow-map texel and every sample:
+        # at 480 x 360 a 1024 map and 2x multisampling look the same as MuJoCo's 4096 and 4x
+        # and halve the drawing time (go1: 1.3 -> 0.7 s for the four pictures).
+        model.vis.quality.shadowsize = SHADOW_MAP_SIZE
+        model.vis.quality.offsamples = MULTISAMPLES
         self.gl = mujoco.GLContext(width, height)
         self.gl.make_current()
         self.context = mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_150)
@@ -99,6 +112,9 @@ class _Offscreen:
         # Without the skybox nothing is drawn where no geom is: those pixels keep the cleared
         # depth, which marks the background in the same pass as the colours.
         self.scene.flags[mujoco.mjtRndFlag.mjRND_SKYBOX] = 0
+        # A mirrored robot in the floor draws everything twice and reads as extra geometry in
+        # the collision pictures.
+        self.scene.flags[mujoco.mjtRndFlag.mjRND_REFLECTION] = 0
         self.viewport = mujoco.MjrRect(0, 0, width, height)
 
     def draw(self, data: Any, camera: Any, option: Any) -> tuple[Any, Any]:

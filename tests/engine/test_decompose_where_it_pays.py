@@ -96,7 +96,7 @@ def test_hull_where_close_coacd_elsewhere_with_figures(tmp_path, monkeypatch):
     assert summary(tmp_path / "a", "u")["method"] == "hull"
 
 
-def test_decompositions_start_with_the_largest_mesh_file(tmp_path, monkeypatch):
+def test_mesh_and_decomposition_tasks_start_with_the_largest_mesh_file(tmp_path, monkeypatch):
     from mjcfbuild.engine.tasks import build_tasks
 
     monkeypatch.setenv("MJCFBUILD_CACHE_DIR", str(tmp_path / "cache"))
@@ -104,14 +104,14 @@ def test_decompositions_start_with_the_largest_mesh_file(tmp_path, monkeypatch):
     ctx = BuildContext.from_manifest_file(manifest, jobs=1)
     assert run_build(ctx, Progress(quiet=True)).ok  # the plan the task list is made from
 
-    def decompositions():
+    def started(kind: str) -> list[str]:
         names = [task["name"] for task in build_tasks(ctx)]
-        return [name for name in names if name.startswith("decompose:")]
+        return [name.partition(":")[2] for name in names if name.startswith(kind + ":")]
 
     sizes = {name: (tmp_path / "meshes" / f"{name}.obj").stat().st_size for name in ("box", "u")}
     assert sizes["u"] > sizes["box"]
-    assert decompositions() == ["decompose:u", "decompose:box"]
+    assert started("mesh") == started("decompose") == ["u", "box"]
     # A comment makes the box's file the larger: it goes first.
     with open(tmp_path / "meshes" / "box.obj", "a") as file:
         file.write("#" * sizes["u"] + "\n")
-    assert decompositions() == ["decompose:box", "decompose:u"]
+    assert started("mesh") == started("decompose") == ["box", "u"]
