@@ -18,6 +18,7 @@ from mjcfbuild.check.control import check_control
 from mjcfbuild.check.findings import Problem, structural_first
 from mjcfbuild.check.joints import compare_joints
 from mjcfbuild.check.kinematics import compare_kinematics
+from mjcfbuild.check.loading import compile_model
 from mjcfbuild.check.masses import compare_masses
 from mjcfbuild.check.meshstats import mesh_statistics
 from mjcfbuild.check.precision import relative_tolerance
@@ -61,13 +62,14 @@ def check_model(
     options: CheckOptions | None = None,
     readiness: dict | None = None,
     urdf: bytes | None = None,
+    sources: dict[str, Path] | None = None,
 ) -> CheckReport:
     """Check the model at ``model_path`` against ``robot``; simulate ``simulate_path`` (the
     scene, with its floor) or the model itself. ``readiness`` is what the build recorded about
     actuators and home (None for a model mjcfbuild did not build: undriven joints are then
     reported, not failures). ``urdf``, the URDF's text, gives the reference kinematics through
-    an independent reader; ``robot`` names links and lines in messages."""
-    import mujoco
+    an independent reader; ``robot`` names links and lines in messages. ``sources``, the
+    products a build published the assets from, make loading faster (see check.loading)."""
 
     from mjcfbuild.mjwarnings import capture_mujoco_warnings
 
@@ -77,7 +79,7 @@ def check_model(
     # The scene includes the model, so one load serves every check (meshes load once).
     path = simulate_path or model_path
     try:
-        model = mujoco.MjModel.from_xml_path(str(path))
+        model = compile_model(path, sources)
     except Exception as exc:
         report.failures.append(f"{path.name} does not load: {str(exc).strip().splitlines()[0]}")
         report.results["loads"] = False

@@ -16,6 +16,17 @@ from typing import TYPE_CHECKING, Any
 
 from mjcfbuild.errors import InternalError, MjcfbuildError
 
+ASSEMBLE = "mjcfbuild.steps.assemble:run"
+WARM = "mjcfbuild.steps.warm:run"
+# Steps that compile the built model with MuJoCo: each runs where one ran before, or where the
+# model's meshes were warmed while it was assembled, and finds them processed (check.loading).
+COMPILES_MODEL = {
+    "mjcfbuild.steps.selfcollision:run",
+    ASSEMBLE,
+    "mjcfbuild.steps.check:run",
+    "mjcfbuild.steps.previews:run",
+}
+
 if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext
     from mjcfbuild.engine.hashes import HashCache
@@ -101,7 +112,16 @@ class BuildSession:
             return result
         self.ctx.logs_dir.mkdir(parents=True, exist_ok=True)
         log = self.ctx.logs_dir / (re.sub(r"[^A-Za-z0-9_.-]+", "-", task) + ".log")
-        return self._workers().run(step, payload, task, log, self.ctx.step_timeout)
+        pool = self._workers()
+        affinity = str(self.ctx.robot_path) if step in COMPILES_MODEL else None
+        if step == ASSEMBLE and self.ctx.run_check and self.ctx.manifest.check.enabled:
+            from mjcfbuild.steps.payloads import WarmPayload
+
+            folders = [*payload["product_dirs"].values()]
+            folders += [entry["folder"] for entry in payload["decompositions"]]
+            warm = WarmPayload(folders=sorted(folders)).to_dict()
+            pool.warm_for(str(self.ctx.robot_path), WARM, warm, self.ctx.step_timeout)
+        return pool.run(step, payload, task, log, self.ctx.step_timeout, affinity)
 
     def _workers(self) -> WorkerPool:
         with self._pool_lock:  # doit's threads may ask for the first worker together

@@ -42,6 +42,10 @@ class _Worker:
         from mjcfbuild.engine.worker_main import PRELOAD_VARIABLE
 
         self.preload = preload
+        # The model whose meshes MuJoCo has cached in this process (the affinity of the last
+        # step it ran that had one), and the affinity of the step it is running now.
+        self.holds: str | None = None
+        self.running: str | None = None
         env = dict(os.environ)
         env[PRELOAD_VARIABLE] = ",".join(preload)
         env.setdefault("PYTHONHASHSEED", "0")
@@ -144,13 +148,22 @@ class WorkerPool:
         self._closed = False
 
     def run(
-        self, step: str, payload: dict, label: str, log: Path | None, timeout: float | None
+        self,
+        step: str,
+        payload: dict,
+        label: str,
+        log: Path | None,
+        timeout: float | None,
+        affinity: str | None = None,
     ) -> dict:
         """Run ``step`` ("module:function") with ``payload`` in a worker; its result dict.
 
-        Errors the step raises come back as the same :class:`MjcfbuildError` class.
+        Steps that compile the same model give the same ``affinity``: such a step goes to a
+        worker that ran one before (MuJoCo has the model's meshes cached there), waiting for
+        it while it runs one. Errors the step raises come back as the same
+        :class:`MjcfbuildError` class.
         """
-        worker = self._acquire(step.partition(":")[0])
+        worker = self._acquire(step.partition(":")[0], affinity)
         healthy = False
         try:
             reply = worker.call(
@@ -158,7 +171,7 @@ class WorkerPool:
             )
             healthy = True
         finally:
-            self._release(worker, healthy)
+            self._release(worker, healthy, affinity)
         if reply["ok"]:
             return reply["result"]
         error = MjcfbuildError.from_dict(reply["error"])
@@ -187,9 +200,35 @@ class WorkerPool:
             self._all.append(worker)
         return worker
 
-    def _acquire(self, module: str) -> _Worker:
-        """An idle worker, preferably one that preloads ``module``; else a new one if the pool
-        has room; else wait."""
+    def warm_for(self, affinity: str, step: str, payload: dict, timeout: float | None) -> None:
+        """Run ``step`` in the background on an idle worker that does not hold ``affinity``,
+        which holds it afterwards: it prepares a second worker for the steps that will compile
+        the model (see :func:`mjcfbuild.check.loading.warm_meshes`). Nothing happens when no
+        worker is idle; a failure only loses the head start."""
+        with self._condition:
+            idle = [w for w in self._idle if w.holds != affinity and w.alive()]
+            if self._closed or not idle:
+                return
+            worker = idle[-1]
+            self._idle.remove(worker)
+            worker.running = affinity
+
+        def warm() -> None:
+            healthy = warmed = False
+            try:
+                warmed = worker.call({"step": step, "payload": payload}, "warm", timeout)["ok"]
+                healthy = True
+            except MjcfbuildError:  # crashed or too slow: the worker is replaced as usual
+                pass
+            finally:
+                self._release(worker, healthy, affinity if warmed else None)
+
+        threading.Thread(target=warm, daemon=True).start()
+
+    def _acquire(self, module: str, affinity: str | None = None) -> _Worker:
+        """A worker for a step of ``module``: an idle one holding ``affinity``, or, if one
+        holding it is busy with its model, that one when it is done; else an idle one,
+        preferably preloading ``module``; else a new one if the pool has room; else wait."""
         with self._condition:
             while True:
                 if self._closed:
@@ -198,25 +237,35 @@ class WorkerPool:
                 for worker in dead:  # died while idle (killed from outside): make room
                     self._idle.remove(worker)
                     self._started -= 1
-                if self._idle:
-                    ready = [w for w in self._idle if module in w.preload] or self._idle
+                holders = [w for w in self._all if affinity and w.holds == affinity]
+                ready = [w for w in holders if w in self._idle]
+                if not ready and any(w.running == affinity for w in holders):
+                    self._condition.wait()  # a compile in a cold worker costs more
+                    continue
+                ready = ready or [w for w in self._idle if module in w.preload] or self._idle
+                if ready:
                     worker = ready[-1]
                     self._idle.remove(worker)
+                    worker.running = affinity
                     return worker
                 if self._started < self.size:
                     self._started += 1
                     break
                 self._condition.wait()
-        return self._start()
+        worker = self._start()
+        worker.running = affinity
+        return worker
 
-    def _release(self, worker: _Worker, healthy: bool) -> None:
+    def _release(self, worker: _Worker, healthy: bool, affinity: str | None = None) -> None:
         with self._condition:
+            worker.running = None
             if healthy and worker.alive() and not self._closed:
+                worker.holds = affinity or worker.holds
                 self._idle.append(worker)
             else:
                 worker.kill()
                 self._started -= 1
-            self._condition.notify()
+            self._condition.notify_all()
 
     def close(self) -> None:
         """Stop every worker at once: every reply is in and every step's log flushed, so

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from mjcfbuild.check.loading import asset_sources, compile_model
 from mjcfbuild.check.model_check import CheckOptions, CheckReport, check_model
 from mjcfbuild.errors import CheckError
 from mjcfbuild.steps.outputs import write_output
@@ -22,6 +23,7 @@ def run(payload: dict) -> dict:
     except (OSError, ValueError):
         assembly = {}
     repaired = {repair["body"] for repair in assembly.get("repairs", [])}
+    sources = asset_sources(Path(request.assembly_report))
     report = check_model(
         robot,
         Path(request.model),
@@ -30,9 +32,10 @@ def run(payload: dict) -> dict:
         CheckOptions(**request.options),
         readiness=assembly.get("readiness") or {},
         urdf=Path(request.urdf).read_bytes() if request.urdf else None,
+        sources=sources,
     )
     if request.mjcf_parts and report.results.get("loads"):
-        _check_parts(report, Path(request.model), request.mjcf_parts, request.options)
+        _check_parts(report, Path(request.model), request.mjcf_parts, request.options, sources)
     outputs: dict[str, str] = {}
     data = {"passes": report.passes, "failures": report.failures, **report.results}
     write_output(
@@ -51,14 +54,16 @@ def run(payload: dict) -> dict:
 
 
 def _check_parts(
-    report: CheckReport, model_path: Path, parts: list[MjcfPartFiles], options: dict
+    report: CheckReport,
+    model_path: Path,
+    parts: list[MjcfPartFiles],
+    options: dict,
+    sources: dict[str, Path],
 ) -> None:
     """Compare every MJCF part with the part compiled alone; add results and failures."""
-    import mujoco
-
     from mjcfbuild.check.parts import PartReference, check_part
 
-    model = mujoco.MjModel.from_xml_path(str(model_path))
+    model = compile_model(model_path, sources)
     tolerance = max(options["position_tolerance"], options["rotation_tolerance"])
     results = {}
     for entry in parts:

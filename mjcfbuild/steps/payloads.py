@@ -313,6 +313,13 @@ class AssemblePayload(Payload):
 
 
 @dataclass(frozen=True)
+class WarmPayload(Payload):
+    """``warm`` (not a task): the folders of the mesh products a model is assembled from."""
+
+    folders: list[str]
+
+
+@dataclass(frozen=True)
 class ScenePayload(Payload):
     """``scene``: the scene file around the robot model."""
 
@@ -346,6 +353,9 @@ class PreviewsPayload(Payload):
 
     folder: str
     model: Annotated[str, NotCounted("the scene: what the pictures show is compared by digest")]
+    assembly_report: Annotated[
+        str, NotCounted("names the products the assets were published from: speed, not content")
+    ]
 
 
 @dataclass(frozen=True)

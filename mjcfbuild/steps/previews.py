@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from mjcfbuild.check.loading import asset_sources
 from mjcfbuild.check.previews import render_previews
 from mjcfbuild.errors import MjcfbuildError, ModelError
 from mjcfbuild.steps.outputs import record_output
@@ -15,7 +16,8 @@ def run(payload: dict) -> dict:
     request = PreviewsPayload.from_dict(payload)
     folder = Path(request.folder)
     try:
-        names = render_previews(Path(request.model), folder)
+        sources = asset_sources(Path(request.assembly_report))
+        names = render_previews(Path(request.model), folder, sources=sources)
     except ModelError:  # a model that does not load: the check task says why
         return {"outputs": {}}
     except MjcfbuildError:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import ctypes
 import os
 import time
+from pathlib import Path
 
 from mjcfbuild.errors import InputError
 
@@ -36,3 +37,11 @@ def echo(payload: dict) -> dict:
     """Succeed, saying which process ran the step."""
     os.write(1, b"C-level output that must not corrupt the protocol\n")
     return {"pid": os.getpid(), **payload}
+
+
+def pause(payload: dict) -> dict:
+    """Wait until the file ``payload["until"]`` exists, saying which process ran the step."""
+    until = Path(payload["until"])
+    while not until.exists():
+        time.sleep(0.01)
+    return {"pid": os.getpid()}

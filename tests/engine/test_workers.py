@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import threading
+import time
+
 import pytest
 
 from mjcfbuild.engine.workers import WorkerPool
@@ -144,3 +147,81 @@ def test_a_worker_killed_while_idle_is_replaced(tmp_path):
         assert results and results[0] != first
     finally:
         pool.close()
+
+
+def _in_thread(function) -> tuple[threading.Thread, list]:
+    results: list = []
+    thread = threading.Thread(target=lambda: results.append(function()), daemon=True)
+    thread.start()
+    return thread, results
+
+
+def _wait_for(condition) -> None:
+    """Wait (up to a minute, for slow machines) until ``condition()`` holds."""
+    deadline = time.monotonic() + 60
+    while not condition():
+        assert time.monotonic() < deadline, "timed out"
+        time.sleep(0.01)
+
+
+@pytest.fixture
+def two_workers(tmp_path):
+    from tests.conftest import ROOT
+
+    pool = WorkerPool(2, ROOT, tmp_path / "logs")
+    pool.warm((STEPS,))  # both preload the same: only the affinity decides
+    yield pool
+    pool.close()
+
+
+def test_steps_of_one_model_follow_the_worker_that_ran_one(two_workers, tmp_path):
+    pool = two_workers
+    holder = pool.run(f"{STEPS}:echo", {}, "assemble", None, 60, affinity="robot.xml")["pid"]
+    for _ in range(3):
+        pool.run(f"{STEPS}:echo", {}, "mesh:m", None, 60)  # steps of no model go anywhere
+        assert pool.run(f"{STEPS}:echo", {}, "check", None, 60, affinity="robot.xml")["pid"] == (
+            holder
+        )
+    # While the holder runs a step of the model, the next one waits for it, though the other
+    # worker is idle: MuJoCo would process every mesh again there.
+    until = tmp_path / "go"
+    first, first_pid = _in_thread(
+        lambda: pool.run(f"{STEPS}:pause", {"until": str(until)}, "check", None, 60, "robot.xml")
+    )
+    _wait_for(lambda: any(w.running == "robot.xml" for w in pool._all))
+    second, second_pid = _in_thread(
+        lambda: pool.run(f"{STEPS}:echo", {}, "previews", None, 60, affinity="robot.xml")
+    )
+    _wait_for(lambda: len(pool._condition._waiters) == 1)  # type: ignore[attr-defined]
+    assert second.is_alive()
+    # Another model's step takes the idle worker meanwhile.
+    other = pool.run(f"{STEPS}:echo", {}, "assemble", None, 60, affinity="other.xml")["pid"]
+    assert other != holder
+    until.touch()
+    first.join(60)
+    second.join(60)
+    assert first_pid == [{"pid": holder}]
+    assert second_pid[0]["pid"] == holder
+
+
+def test_warm_for_prepares_a_second_worker_for_the_model(two_workers, tmp_path):
+    pool = two_workers
+    holder = pool.run(f"{STEPS}:echo", {}, "assemble", None, 60, affinity="robot.xml")["pid"]
+    pool.warm_for("robot.xml", f"{STEPS}:echo", {}, 60)
+    _wait_for(lambda: all(w.holds == "robot.xml" for w in pool._all) and len(pool._idle) == 2)
+    # Both hold the model now: two of its steps run side by side.
+    until = tmp_path / "go"
+    first, first_pid = _in_thread(
+        lambda: pool.run(f"{STEPS}:pause", {"until": str(until)}, "check", None, 60, "robot.xml")
+    )
+    _wait_for(lambda: len(pool._idle) == 1)
+    second = pool.run(f"{STEPS}:echo", {}, "previews", None, 60, affinity="robot.xml")["pid"]
+    until.touch()
+    first.join(60)
+    assert {first_pid[0]["pid"], second} == {w.process.pid for w in pool._all}
+    assert holder in {first_pid[0]["pid"], second}
+    # A warm that fails leaves the worker usable, holding nothing new.
+    pool.warm_for("third.xml", f"{STEPS}:bug", {}, 60)
+    _wait_for(lambda: len(pool._idle) == 2)
+    assert not any(w.holds == "third.xml" for w in pool._all)
+    assert pool.run(f"{STEPS}:echo", {}, "echo", None, 60)["pid"] in {second, first_pid[0]["pid"]}

@@ -1,0 +1,87 @@
+"""The check and previews read a built model's assets from the products they were published
+from, but only where the bytes are the same."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import mujoco
+
+import mjcfbuild
+from mjcfbuild.check.loading import (
+    SOURCES_KEY,
+    asset_sources,
+    compile_model,
+    source_entries,
+    spec_reading_sources,
+    warm_meshes,
+)
+from tests.conftest import write
+
+TETRAHEDRON = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
+PRISM = TETRAHEDRON.replace("f 1 3 2", "v 1 1 1\nf 1 3 2\nf 2 5 3") + "f 3 5 4\nf 2 4 5\n"
+
+
+def published_model(folder: Path) -> tuple[Path, Path]:
+    """A model naming ``assets/part.obj`` and the product it was published from."""
+    model = write(
+        folder / "model.xml",
+        '<mujoco><compiler meshdir="assets"/><asset><mesh name="part" file="part.obj"/>'
+        '</asset><worldbody><body><freejoint/><geom type="mesh" mesh="part"/></body>'
+        "</worldbody></mujoco>",
+    )
+    write(folder / "assets" / "part.obj", TETRAHEDRON)
+    product = write(folder / ".mjcfbuild" / "products" / "part" / "mesh.obj", TETRAHEDRON)
+    return model, product
+
+
+def test_an_identical_asset_is_read_from_its_product(tmp_path):
+    model, product = published_model(tmp_path)
+    spec = spec_reading_sources(model, {"part.obj": product})
+    assert spec.meshes[0].file == str(product)
+    built = compile_model(model, {"part.obj": product})
+    plain = mujoco.MjModel.from_xml_path(str(model))
+    assert built.mesh_vertnum.tolist() == plain.mesh_vertnum.tolist() == [4]
+
+
+def test_an_asset_that_differs_from_its_product_is_read_as_published(tmp_path):
+    model, product = published_model(tmp_path)
+    (tmp_path / "assets" / "part.obj").write_text(PRISM)  # edited after the build
+    assert spec_reading_sources(model, {"part.obj": product}).meshes[0].file == "part.obj"
+    assert compile_model(model, {"part.obj": product}).mesh_vertnum.tolist() == [5]
+    product.unlink()  # and a product gone since is no source either
+    assert compile_model(model, {"part.obj": product}).mesh_vertnum.tolist() == [5]
+
+
+def test_the_sources_record_is_relative_and_optional(tmp_path):
+    report = tmp_path / "state" / "assembly.json"
+    product = tmp_path / "state" / "products" / "part" / "mesh.obj"
+    entries = source_entries({"part.obj": str(product)}, report.parent)
+    assert entries == {"part.obj": "products/part/mesh.obj"}
+    write(report, json.dumps({SOURCES_KEY: entries}))
+    assert asset_sources(report) == {"part.obj": report.parent / "products/part/mesh.obj"}
+    write(report, "{}")  # a report written before the record existed
+    assert asset_sources(report) == {}
+    assert asset_sources(tmp_path / "missing.json") == {}
+    assert asset_sources(None) == {}
+
+
+def test_warming_skips_files_mujoco_rejects(tmp_path):
+    broken = write(tmp_path / "broken.obj", "this is not a mesh\n")
+    warm_meshes([str(broken), str(write(tmp_path / "notes.txt", "no mesh"))])  # no error
+
+
+def test_a_build_records_the_product_of_every_asset(tmp_path, monkeypatch):
+    from tests.conftest import copy_example
+
+    monkeypatch.setenv("MJCFBUILD_CACHE_DIR", str(tmp_path / "cache"))
+    folder = copy_example("arm", tmp_path)
+    result = mjcfbuild.build(folder / "robot.yaml", jobs=1, check=False)
+    assert result.ok
+    output = result.robot.parent
+    sources = asset_sources(output / ".mjcfbuild" / "assembly.json")
+    assets = sorted(path.name for path in (output / "assets").iterdir())
+    assert sorted(sources) == assets
+    for asset, source in sources.items():
+        assert source.read_bytes() == (output / "assets" / asset).read_bytes()
