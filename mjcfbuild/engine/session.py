@@ -112,16 +112,20 @@ class BuildSession:
             return result
         self.ctx.logs_dir.mkdir(parents=True, exist_ok=True)
         log = self.ctx.logs_dir / (re.sub(r"[^A-Za-z0-9_.-]+", "-", task) + ".log")
-        pool = self._workers()
         affinity = str(self.ctx.robot_path) if step in COMPILES_MODEL else None
         if step == ASSEMBLE and self.ctx.run_check and self.ctx.manifest.check.enabled:
-            from mjcfbuild.steps.payloads import WarmPayload
+            self._warm_second_worker(payload)
+        return self._workers().run(step, payload, task, log, self.ctx.step_timeout, affinity)
 
-            folders = [*payload["product_dirs"].values()]
-            folders += [entry["folder"] for entry in payload["decompositions"]]
-            warm = WarmPayload(folders=sorted(folders)).to_dict()
-            pool.warm_for(str(self.ctx.robot_path), WARM, warm, self.ctx.step_timeout)
-        return pool.run(step, payload, task, log, self.ctx.step_timeout, affinity)
+    def _warm_second_worker(self, assemble_payload: dict) -> None:
+        """While the model is assembled, an idle worker processes its mesh products, so that
+        the check and the previews can both run in a worker that has them."""
+        from mjcfbuild.steps.payloads import AssemblePayload, WarmPayload
+
+        request = AssemblePayload.from_dict(assemble_payload)
+        folders = [*request.product_dirs.values(), *(d.folder for d in request.decompositions)]
+        warm = WarmPayload(folders=sorted(folders)).to_dict()
+        self._workers().warm_for(str(self.ctx.robot_path), WARM, warm, self.ctx.step_timeout)
 
     def _workers(self) -> WorkerPool:
         with self._pool_lock:  # doit's threads may ask for the first worker together

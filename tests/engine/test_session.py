@@ -1,0 +1,56 @@
+"""A build sends the steps that compile the model to workers holding it, and warms a second
+worker with the model's mesh products while it is assembled."""
+
+from __future__ import annotations
+
+import threading
+from pathlib import Path
+
+import mjcfbuild
+from mjcfbuild.engine.workers import WorkerPool
+from tests.conftest import copy_example
+
+
+def test_model_steps_carry_the_model_and_a_second_worker_is_warmed(tmp_path, monkeypatch):
+    monkeypatch.setenv("MJCFBUILD_CACHE_DIR", str(tmp_path / "cache"))
+    asked: list[tuple[str, str | None]] = []
+    warmed: list[tuple[str, str, dict]] = []
+    lock = threading.Lock()
+    run, warm_for = WorkerPool.run, WorkerPool.warm_for
+
+    def recording_run(self, step, payload, label, log, timeout, affinity=None):
+        with lock:
+            asked.append((label, affinity))
+        return run(self, step, payload, label, log, timeout, affinity)
+
+    def recording_warm_for(self, affinity, step, payload, timeout):
+        with lock:
+            warmed.append((affinity, step, payload))
+        return warm_for(self, affinity, step, payload, timeout)
+
+    monkeypatch.setattr(WorkerPool, "run", recording_run)
+    monkeypatch.setattr(WorkerPool, "warm_for", recording_warm_for)
+    folder = copy_example("arm", tmp_path)
+    result = mjcfbuild.build(folder / "robot.yaml", jobs=2)
+    assert result.ok
+    model = str(result.robot)
+    affinities = dict(asked)
+    assert {label for label, affinity in asked if affinity == model} == {
+        "selfcollision",
+        "assemble",
+        "check",
+        "previews",
+    }
+    assert all(affinities[label] is None for label in affinities if label.startswith("mesh:"))
+    [(affinity, step, payload)] = warmed
+    assert (affinity, step) == (model, "mjcfbuild.steps.warm:run")
+    assert payload["folders"] and all(Path(f).is_dir() for f in payload["folders"])
+
+    # Without the check there is nothing to warm a second worker for.
+    warmed.clear()
+    asked.clear()
+    xacro = folder / "urdf" / "arm.urdf.xacro"
+    xacro.write_text(xacro.read_text().replace('damping="0.5"', 'damping="0.6"', 1))
+    assert mjcfbuild.build(folder / "robot.yaml", jobs=2, check=False).ok
+    assert ("assemble", model) in asked
+    assert warmed == []
