@@ -6,8 +6,10 @@ import argparse
 import sys
 from collections.abc import Callable
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 from mjcfbuild.cli import (
+    environment_jobs,
     jobs_argument,
     load_context,
     report_error,
@@ -15,6 +17,9 @@ from mjcfbuild.cli import (
     timeout_argument,
 )
 from mjcfbuild.errors import EXIT_OK, MjcfbuildError
+
+if TYPE_CHECKING:
+    from mjcfbuild.engine.workers import WorkerPool
 
 
 def add_parser(commands) -> None:
@@ -60,15 +65,31 @@ def run(args: argparse.Namespace) -> int:
     for manifest in args.manifests:
         if not args.dry_run and _nothing_changed(manifest, args):
             continue
+        workers = None if args.dry_run else _start_workers(manifest, args)
         try:
             ctx = load_context(manifest, args)
             ctx = replace(ctx, noop_stamp=ctx.manifest.source.description != "-")
-            result = dry_run(ctx) if args.dry_run else execute(ctx, args.quiet, args.debug)
+            if args.dry_run:
+                result = dry_run(ctx)
+            else:
+                result = execute(ctx, args.quiet, args.debug, workers=workers)
         except MjcfbuildError as error:
             report_error(error, args.debug)
             result = error.exit_code
+        finally:
+            if workers is not None:
+                workers.close()  # not adopted, or adopted and closed by the build already
         code = code or result
     return code
+
+
+def _start_workers(manifest: str, args: argparse.Namespace):
+    """Workers for the rebuild of ``manifest``, started before it is read (engine.early)."""
+    from mjcfbuild.engine.context import default_jobs
+    from mjcfbuild.engine.early import start_workers
+
+    jobs = args.jobs or environment_jobs() or default_jobs()
+    return start_workers(manifest, run_check=not args.no_check, jobs=jobs)
 
 
 def _nothing_changed(manifest: str, args: argparse.Namespace) -> bool:
@@ -90,10 +111,17 @@ def _nothing_changed(manifest: str, args: argparse.Namespace) -> bool:
     return True
 
 
-def execute(ctx, quiet: bool, debug: bool, hints: Callable[[str], str] | None = None) -> int:
+def execute(
+    ctx,
+    quiet: bool,
+    debug: bool,
+    hints: Callable[[str], str] | None = None,
+    workers: WorkerPool | None = None,
+) -> int:
     """Run a build of ``ctx`` and print its warnings, errors and summary; the exit code.
 
-    ``hints`` rewrites the advice errors give (``convert`` has flags where robot.yaml has keys).
+    ``hints`` rewrites the advice errors give (``convert`` has flags where robot.yaml has keys);
+    ``workers`` were started for this build before its manifest was read.
     """
     from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.runner import run_build
@@ -104,7 +132,7 @@ def execute(ctx, quiet: bool, debug: bool, hints: Callable[[str], str] | None = 
         report_error(error, debug, base_dir=ctx.base_dir)
 
     try:
-        result = run_build(ctx, Progress(quiet=quiet))
+        result = run_build(ctx, Progress(quiet=quiet), workers)
     except MjcfbuildError as error:  # found while making the graph (missing source, ...)
         report(error)
         return error.exit_code

@@ -10,6 +10,7 @@ import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from mjcfbuild.engine import stamp
 from mjcfbuild.engine.context import BuildContext
@@ -20,6 +21,9 @@ from mjcfbuild.engine.tasks import build_tasks, planning_tasks
 from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError
 from mjcfbuild.fsutil import remove_stale_temp_files, write_if_changed
 from mjcfbuild.manifest.pinpoint import pinpoint
+
+if TYPE_CHECKING:
+    from mjcfbuild.engine.workers import WorkerPool
 
 
 @dataclass
@@ -83,9 +87,17 @@ def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
             fcntl.flock(handle, fcntl.LOCK_UN)
 
 
-def run_build(ctx: BuildContext, progress: Progress | None = None) -> BuildResult:
-    """Build ``ctx``'s manifest; never raises for a failing task (see ``result.errors``)."""
+def run_build(
+    ctx: BuildContext, progress: Progress | None = None, workers: WorkerPool | None = None
+) -> BuildResult:
+    """Build ``ctx``'s manifest; never raises for a failing task (see ``result.errors``).
+
+    ``workers`` (mjcfbuild.engine.early) are used if they suit the build; the caller closes
+    them either way.
+    """
     session = ctx.new_session()  # a context built twice reports each build's own findings
+    if workers is not None:
+        session.adopt(workers)
     progress = progress or Progress()
     progress.notes = session.notes
     started = time.perf_counter()

@@ -113,7 +113,7 @@ class BuildSession:
         self.ctx.logs_dir.mkdir(parents=True, exist_ok=True)
         log = self.ctx.logs_dir / (re.sub(r"[^A-Za-z0-9_.-]+", "-", task) + ".log")
         affinity = str(self.ctx.robot_path) if step in COMPILES_MODEL else None
-        if step == ASSEMBLE and self.ctx.run_check and self.ctx.manifest.check.enabled:
+        if step == ASSEMBLE and self.checks:
             self._warm_second_worker(payload)
         return self._workers().run(step, payload, task, log, self.ctx.step_timeout, affinity)
 
@@ -136,26 +136,37 @@ class BuildSession:
             return self._pool
 
     def warm_workers(self, first_build: bool) -> None:
-        """Start worker processes now; they import the steps' modules while they wait. A first
-        build starts all, with every module it will use. Another build starts two: one with
-        MuJoCo and the steps that compile the model, which nearly every rebuild runs, and one
-        with the mesh step and, if the build checks, the check's and previews' modules, which
-        it imports while the model is assembled. A step goes to an idle worker that preloads
-        its module (see WorkerPool)."""
-        from mjcfbuild.engine.workers import (
-            BUILD_MODULES,
-            CHECK_MODULES,
-            MESH_MODULES,
-            MODEL_MODULES,
-        )
+        """Start worker processes now, unless the build adopted some (:meth:`adopt`); they
+        import the steps' modules while they wait. A first build starts all, with every
+        module it will use; another starts two (see
+        :func:`~mjcfbuild.engine.workers.rebuild_preloads`). A step goes to an idle worker
+        that preloads its module (see WorkerPool)."""
+        from mjcfbuild.engine.workers import BUILD_MODULES, CHECK_MODULES, rebuild_preloads
 
-        checks = self.ctx.run_check and self.ctx.manifest.check.enabled
         if first_build:
-            self._workers().warm(BUILD_MODULES + (CHECK_MODULES if checks else ()))
+            self._workers().warm(BUILD_MODULES + (CHECK_MODULES if self.checks else ()))
             return
-        self._workers().warm(MODEL_MODULES, count=1)
-        second = MESH_MODULES + (("mujoco", *CHECK_MODULES) if checks else ())
+        first, second = rebuild_preloads(self.checks)
+        self._workers().warm(first, count=1)
         self._workers().warm(second, count=2)
+
+    @property
+    def checks(self) -> bool:
+        """Whether this build checks the model (and draws its previews)."""
+        return self.ctx.run_check and self.ctx.manifest.check.enabled
+
+    def adopt(self, pool: WorkerPool) -> bool:
+        """Use ``pool`` (started before the manifest was read, mjcfbuild.engine.early) as
+        this build's workers, if it was started for this build's folder and job count;
+        whether it was. A pool not adopted is the caller's to close."""
+        with self._pool_lock:
+            if self._pool is not None or pool.cwd != self.ctx.base_dir:
+                return False
+            if pool.size != max(1, self.ctx.jobs):
+                return False
+            pool.log_dir = self.ctx.logs_dir
+            self._pool = pool
+            return True
 
     def record_failure(self, task: str, error: BaseException) -> MjcfbuildError:
         """Remember why ``task`` failed, as a :class:`MjcfbuildError`."""

@@ -119,6 +119,22 @@ def nothing_to_do(manifest: str | os.PathLike, run_check: bool) -> dict | None:
     return stamp["summary"]
 
 
+def previous_build(manifest: str | os.PathLike, run_check: bool) -> dict | None:
+    """What the last successful build of ``manifest`` recorded for the next one's workers
+    (its workers' ``logs`` folder, its ``assembly_report``, whether it ``checks``), whether
+    or not anything changed since; None without a readable stamp. A prediction only: never
+    raises."""
+    manifest_path = Path(os.path.normpath(os.path.abspath(manifest)))
+    try:
+        stamp = json.loads(stamp_path(manifest_path, run_check).read_text())
+        if stamp.get("format") != FORMAT or stamp.get("python") != sys.executable:
+            return None
+        hint = stamp.get("next_build")
+    except (OSError, ValueError, AttributeError):
+        return None
+    return hint if isinstance(hint, dict) else None
+
+
 def _verify_files(files: dict[str, list], now: float) -> dict[str, list] | None:
     """None if a file changed; else the records of files whose mtime moved or were racy."""
     refreshed = {}
@@ -159,11 +175,12 @@ def write(
     absent: Iterable[str],
     variables: Iterable[str],
     hashes: HashCache,
+    next_build: dict | None = None,
 ) -> None:
     """Record the state a successful build left, for :func:`nothing_to_do`.
 
     ``hashes`` is the build's :class:`~mjcfbuild.engine.hashes.HashCache`, so files hashed by
-    the build are not read again.
+    the build are not read again; ``next_build`` is kept for :func:`previous_build`.
     """
     now = time.time()
     files: dict[str, list] = {}
@@ -186,6 +203,7 @@ def write(
         "python_folders": _python_folders(),
         "absent": sorted(set(absent)),
         "files": files,
+        "next_build": next_build,
     }
     _write(stamp_path(manifest, run_check), stamp)
 
@@ -214,7 +232,7 @@ def mjcfbuild_sources() -> list[Path]:
 def record_build(ctx: BuildContext, tasks: list[dict], task_count: int) -> None:
     """Write the stamp of the successful build of ``ctx`` that ran ``tasks``."""
     from mjcfbuild.engine.depfile import Depfile
-    from mjcfbuild.engine.tasks import SOURCE_DEPS
+    from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, SOURCE_DEPS
 
     manifest = ctx.manifest_file
     assert manifest is not None, "a stamp is kept only for the build of a manifest file"
@@ -246,4 +264,9 @@ def record_build(ctx: BuildContext, tasks: list[dict], task_count: int) -> None:
         absent,
         variables,
         ctx.session.hashes,
+        {
+            "logs": str(ctx.logs_dir),
+            "assembly_report": str(ctx.state(ASSEMBLY_REPORT)),
+            "checks": ctx.session.checks,
+        },
     )

@@ -6,8 +6,11 @@ private copy of stdout; file descriptors 1 and 2 are pointed at the step's log f
 runs, so anything the C++ libraries print ends up there instead of corrupting the protocol.
 
 While it waits for its first requests, a worker imports the heavy modules the pool names
-(``MJCFBUILD_WORKER_PRELOAD``), one at a time and only while no request is waiting, so a
-request is held up by at most one import and later steps find them loaded.
+(``MJCFBUILD_WORKER_PRELOAD``) and then has MuJoCo process the mesh products of the model a
+previous build published (``MJCFBUILD_WORKER_MESHES``, its assembly report), one module or
+mesh at a time and only while no request is waiting: a request is held up by at most one of
+them, and later steps find the modules loaded and, where the meshes are the same, MuJoCo's
+cache filled (see mjcfbuild.check.loading).
 """
 
 from __future__ import annotations
@@ -22,7 +25,8 @@ import sys
 import threading
 import time
 import traceback
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from functools import partial
 
 
 def _watch_parent(parent: int) -> None:
@@ -65,6 +69,19 @@ def _run(request: dict) -> dict:
 
 
 PRELOAD_VARIABLE = "MJCFBUILD_WORKER_PRELOAD"
+MESHES_VARIABLE = "MJCFBUILD_WORKER_MESHES"
+
+# What a worker does while no request is waiting, first item first.
+IdleWork = list[Callable[[], None]]
+
+
+def idle_work(preload: list[str], meshes_from: str | None = None) -> IdleWork:
+    """Import each module of ``preload``; then, if ``meshes_from`` names an assembly report,
+    process the mesh products its model was published from, one item per mesh."""
+    work: IdleWork = [partial(_preload, module) for module in preload]
+    if meshes_from:
+        work.append(partial(_queue_meshes, meshes_from, work))
+    return work
 
 
 def _preload(module: str) -> None:
@@ -73,14 +90,61 @@ def _preload(module: str) -> None:
         importlib.import_module(module)
 
 
-def requests(stdin: int, preload: list[str]) -> Iterator[bytes]:
+def _queue_meshes(report: str, work: IdleWork) -> None:
+    from pathlib import Path
+
+    from mjcfbuild.check.loading import asset_sources
+
+    for product in sorted(set(asset_sources(Path(report)).values())):
+        work.append(partial(_warm, str(product)))
+
+
+# Mesh files processed while idle, with what identified them then (inode, size, mtime).
+_warmed: dict[str, tuple[int, int, int]] = {}
+
+
+def _identity(path: str) -> tuple[int, int, int] | None:
+    try:
+        stat = os.stat(path)
+    except OSError:
+        return None
+    return stat.st_ino, stat.st_size, stat.st_mtime_ns
+
+
+def _warm(path: str) -> None:
+    from mjcfbuild.check.loading import warm_meshes
+
+    identity = _identity(path)
+    if identity is not None:
+        warm_meshes([path])
+        _warmed[path] = identity
+
+
+def forget_changed_meshes() -> None:
+    """Empty MuJoCo's cache if a mesh processed while idle has changed since. MuJoCo finds a
+    file in its cache by name and a coarse timestamp (measured with MuJoCo 4.0: a mesh
+    replaced 50 ms later compiles as the old one, 2 s later as the new one), and the build
+    rewrites a product when its source changes - possibly after this worker processed the
+    earlier one."""
+    if not _warmed:
+        return
+    if all(_identity(path) == identity for path, identity in _warmed.items()):
+        return
+    import mujoco
+
+    mujoco.mj_clearCache(mujoco.mj_getCache())
+    _warmed.clear()
+
+
+def requests(stdin: int, idle: IdleWork) -> Iterator[bytes]:
     """Request lines read from the file descriptor ``stdin``; between them, while none is
-    waiting, the next module of ``preload`` is imported (and removed from the list)."""
+    waiting, the next item of ``idle`` is done (and removed from the list)."""
     buffer = b""
     while True:
         while b"\n" not in buffer:
-            if preload and not select.select([stdin], [], [], 0)[0]:
-                _preload(preload.pop(0))
+            if idle and not select.select([stdin], [], [], 0)[0]:
+                with contextlib.suppress(Exception):  # only a head start: the step decides
+                    idle.pop(0)()
                 continue
             chunk = os.read(stdin, 1 << 16)
             if not chunk:
@@ -100,7 +164,9 @@ def main() -> None:
     os.dup2(devnull, 1)
     os.close(devnull)
     preload = [name for name in os.environ.get(PRELOAD_VARIABLE, "").split(",") if name]
-    for line in requests(sys.stdin.fileno(), preload):
+    idle = idle_work(preload, os.environ.get(MESHES_VARIABLE))
+    for line in requests(sys.stdin.fileno(), idle):
+        forget_changed_meshes()
         reply = _run(json.loads(line))
         protocol.write(json.dumps(reply) + "\n")
         protocol.flush()

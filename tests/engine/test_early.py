@@ -1,0 +1,83 @@
+"""A rebuild starts its workers before reading the manifest, from the last build's stamp, and
+the build uses them."""
+
+from __future__ import annotations
+
+import shutil
+
+import pytest
+
+import mjcfbuild
+from mjcfbuild.cli import run
+from mjcfbuild.engine.early import start_workers
+from mjcfbuild.engine.session import BuildSession
+from mjcfbuild.engine.workers import rebuild_preloads
+from tests.conftest import copy_example
+
+
+@pytest.fixture
+def built_arm(tmp_path, monkeypatch):
+    monkeypatch.setenv("MJCFBUILD_CACHE_DIR", str(tmp_path / "cache"))
+    folder = copy_example("arm", tmp_path)
+    assert run(["build", str(folder / "robot.yaml"), "-j", "2", "-q"]) == 0  # leaves a stamp
+    return folder
+
+
+def _environment(worker) -> dict[str, str]:
+    with open(f"/proc/{worker.process.pid}/environ", "rb") as handle:
+        entries = handle.read().split(b"\0")
+    return dict(e.decode().partition("=")[::2] for e in entries if e)
+
+
+def test_the_workers_of_a_rebuild_start_from_the_stamp(built_arm):
+    state = built_arm / "mjcf" / ".mjcfbuild"
+    pool = start_workers(built_arm / "robot.yaml", run_check=True, jobs=2)
+    assert pool is not None
+    try:
+        assert pool.cwd == built_arm and pool.log_dir == state / "logs"
+        assert [w.preload for w in pool._all] == list(rebuild_preloads(True))
+        for worker in pool._all:
+            assert _environment(worker)["MJCFBUILD_WORKER_MESHES"] == str(state / "assembly.json")
+    finally:
+        pool.close()
+    # The stamp of a build with the check says nothing about one without it.
+    assert start_workers(built_arm / "robot.yaml", run_check=False, jobs=2) is None
+
+
+def test_no_workers_without_a_stamp_or_its_folder(built_arm, tmp_path):
+    other = copy_example("arm", tmp_path / "other")
+    assert start_workers(other / "robot.yaml", run_check=True, jobs=2) is None
+    shutil.rmtree(built_arm / "mjcf")
+    assert start_workers(built_arm / "robot.yaml", run_check=True, jobs=2) is None
+    assert not (built_arm / "mjcf").exists()  # nothing made where the old build was
+
+
+def test_a_rebuild_adopts_them_and_builds_what_a_fresh_build_does(built_arm, tmp_path):
+    adopted: list[bool] = []
+    adopt = BuildSession.adopt
+
+    def recording_adopt(self, pool):
+        adopted.append(adopt(self, pool))
+        return adopted[-1]
+
+    mesh = built_arm / "meshes" / "forearm.obj"
+    mesh.write_text(mesh.read_text().replace(" 0.240000", " 0.250000"))  # a longer forearm
+    damped = (
+        (built_arm / "urdf" / "arm.urdf.xacro")
+        .read_text()
+        .replace('damping="0.5"', 'damping="0.7"', 1)
+    )
+    (built_arm / "urdf" / "arm.urdf.xacro").write_text(damped)
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(BuildSession, "adopt", recording_adopt)
+        assert run(["build", str(built_arm / "robot.yaml"), "-j", "2", "-q"]) == 0
+    assert adopted == [True]
+    # The same edits built from nothing give the same files.
+    fresh = copy_example("arm", tmp_path / "fresh")
+    shutil.copy(mesh, fresh / "meshes" / "forearm.obj")
+    (fresh / "urdf" / "arm.urdf.xacro").write_text(damped)
+    assert mjcfbuild.build(fresh / "robot.yaml", jobs=2).ok
+    # (Whether a worker processed the old forearm before the build rewrote it depends on
+    # timing; test_worker_main covers that case deterministically.)
+    for name in ("example_arm.xml", "scene.xml", ".mjcfbuild/assembly.json"):
+        assert (built_arm / "mjcf" / name).read_bytes() == (fresh / "mjcf" / name).read_bytes()
