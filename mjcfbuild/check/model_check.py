@@ -22,7 +22,7 @@ from mjcfbuild.check.loading import compile_model
 from mjcfbuild.check.masses import compare_masses
 from mjcfbuild.check.meshstats import mesh_statistics
 from mjcfbuild.check.precision import relative_tolerance
-from mjcfbuild.check.reference import reference_kinematics
+from mjcfbuild.check.reference import reference_from_record
 from mjcfbuild.check.simulation import simulate
 from mjcfbuild.urdf.model import Robot
 
@@ -61,14 +61,15 @@ def check_model(
     repaired: set[str] | None = None,
     options: CheckOptions | None = None,
     readiness: dict | None = None,
-    urdf: bytes | None = None,
+    reference: dict | None = None,
     sources: dict[str, Path] | None = None,
 ) -> CheckReport:
     """Check the model at ``model_path`` against ``robot``; simulate ``simulate_path`` (the
     scene, with its floor) or the model itself. ``readiness`` is what the build recorded about
     actuators and home (None for a model mjcfbuild did not build: undriven joints are then
-    reported, not failures). ``urdf``, the URDF's text, gives the reference kinematics through
-    an independent reader; ``robot`` names links and lines in messages. ``sources``, the
+    reported, not failures). ``reference``, what an independent reader read from the URDF text
+    (:func:`~mjcfbuild.check.reference.read_kinematics`), gives the reference kinematics;
+    ``robot`` names links and lines in messages. ``sources``, the
     products a build published the assets from, make loading faster (see check.loading)."""
 
     from mjcfbuild.mjwarnings import capture_mujoco_warnings
@@ -100,8 +101,8 @@ def check_model(
     for warning in simulation.warnings:
         problems.append(Problem(f"MuJoCo warned while simulating: {warning}"))
 
-    reference, fallback = reference_kinematics(urdf)
-    kinematics = compare_kinematics(robot, model, options.configurations, options.seed, reference)
+    reader, fallback = reference_from_record(reference)
+    kinematics = compare_kinematics(robot, model, options.configurations, options.seed, reader)
     report.results["kinematics"] = {
         "configurations": options.configurations,
         "max_position_error": kinematics.max_position,
@@ -109,7 +110,7 @@ def check_model(
         "worst_link": kinematics.worst.link if kinematics.worst else None,
         "missing_links": kinematics.missing_links,
         "missing_joints": kinematics.missing_joints,
-        "reference": reference.name if reference else f"mjcfbuild's URDF parser: {fallback}",
+        "reference": reader.name if reader else f"mjcfbuild's URDF parser: {fallback}",
     }
     for link in kinematics.missing_links:
         problems.append(

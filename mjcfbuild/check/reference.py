@@ -2,46 +2,132 @@
 
 The build parses the URDF with mjcfbuild's own parser. If the check computed its reference
 poses from that same parse, a parser bug (an origin read wrongly, a joint axis dropped) would
-pass both. The reference poses therefore come from yourdfpy, which reads the URDF text on its
-own, mimic joints included; mjcfbuild's parse only supplies names and lines for messages.
+pass both. The reference therefore comes from yourdfpy, which reads the URDF text on its own,
+mimic joints included; mjcfbuild's parse only supplies names and lines for messages.
+
+yourdfpy reads the URDF in a task of its own (``reference``), which keeps what it read - each
+joint's type, links, origin matrix, axis and mimic - as a *record*; the check computes link
+poses from the record the way yourdfpy does. Importing yourdfpy (and trimesh and scipy with
+it) takes about a second of CPU, which a build now spends only when the URDF's kinematics
+change: the task reruns when :func:`kinematic_digest` of the URDF text changes, so a damping
+or inertia edit does not rerun it.
 """
 
 from __future__ import annotations
 
+import hashlib
 import io
+import json
+import math
+from collections import defaultdict
+from typing import Any
 
 from mjcfbuild.urdf.transforms import Transform
 
 Matrix = tuple[tuple[float, float, float], tuple[float, float, float], tuple[float, float, float]]
+READER = "yourdfpy"
+MOVING = ("revolute", "continuous", "prismatic")
+# What yourdfpy takes from a <joint> for forward kinematics.
+_JOINT_PARTS = ("parent", "child", "origin", "axis", "mimic")
 
 
-class ReferenceKinematics:
-    """Link poses of a URDF text, relative to its root link, at given joint values."""
+def kinematic_digest(urdf: bytes) -> str:
+    """A digest of what the reference reads from the URDF text: the links' names and each
+    joint's name, type, parent, child, origin, axis and mimic, as written. Any other change
+    (dynamics, limits, inertia, geometry, comments) leaves it alone."""
+    from lxml import etree
 
-    name = "yourdfpy"
+    try:
+        parser = etree.XMLParser(resolve_entities=False, no_network=True, remove_comments=True)
+        root = etree.fromstring(urdf, parser)
+    except etree.XMLSyntaxError:
+        return "text:" + hashlib.sha256(urdf).hexdigest()  # unreadable: any change counts
+    links = [element.get("name") for element in root.findall("link")]
+    joints = [
+        [sorted(joint.attrib.items()), [[p, sorted(e.attrib.items())] for p, e in _parts(joint)]]
+        for joint in root.findall("joint")
+    ]
+    text = json.dumps([links, joints], separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()
 
-    def __init__(self, urdf: bytes) -> None:
-        import yourdfpy  # numpy, trimesh: only when a check runs
 
-        self._urdf = yourdfpy.URDF.load(
+def _parts(joint: Any) -> list[tuple[str, Any]]:
+    return [(part, element) for part in _JOINT_PARTS for element in joint.findall(part)]
+
+
+def read_kinematics(urdf: bytes | None) -> dict[str, Any]:
+    """What yourdfpy reads from the URDF text for forward kinematics, as JSON-ready data, or
+    ``{"error": why}`` when it cannot read it (the check then falls back to mjcfbuild's own
+    parse and says so). Never raises."""
+    if urdf is None:
+        return {"error": "no URDF text given"}
+    try:
+        import numpy as np
+        import yourdfpy  # numpy, trimesh, scipy: only where the reference is read
+
+        loaded = yourdfpy.URDF.load(
             io.BytesIO(urdf),
             load_meshes=False,
             build_collision_scene_graph=False,
             load_collision_meshes=False,
         )
-        self._actuated = set(self._urdf.actuated_joint_names)
-        self.links = list(self._urdf.link_map)
+        joints = [
+            {
+                "name": joint.name,
+                "type": joint.type,
+                "parent": joint.parent,
+                "child": joint.child,
+                "origin": (np.eye(4) if joint.origin is None else joint.origin).tolist(),
+                "axis": [float(v) for v in joint.axis] if joint.axis is not None else None,
+                "mimic": None
+                if joint.mimic is None
+                else {
+                    "joint": joint.mimic.joint,
+                    "multiplier": float(joint.mimic.multiplier),
+                    "offset": float(joint.mimic.offset),
+                },
+            }
+            for joint in loaded.robot.joints
+        ]
+        return {
+            "reader": READER,
+            "base": loaded.base_link,
+            "links": list(loaded.link_map),
+            "actuated": list(loaded.actuated_joint_names),
+            "joints": joints,
+        }
+    except Exception as exc:  # any reader failure: fall back, never fail the check for it
+        return {"error": f"{READER} could not read the URDF ({type(exc).__name__}: {exc})"}
+
+
+class ReferenceKinematics:
+    """Link poses relative to the root link at given joint values, from a record of
+    :func:`read_kinematics`, computed as yourdfpy computes them."""
+
+    def __init__(self, record: dict[str, Any]) -> None:
+        self.name: str = record["reader"]
+        self.links: list[str] = list(record["links"])
+        self._base: str = record["base"]
+        self._actuated = set(record["actuated"])
+        self._children: dict[str, list[dict]] = defaultdict(list)
+        for joint in record["joints"]:
+            self._children[joint["parent"]].append(joint)
 
     def poses(self, joint_values: dict[str, float]) -> dict[str, Transform]:
         """Every link's pose at ``joint_values`` (by joint name; mimic joints follow their
         leaders as the URDF says, whatever value they are given here)."""
-        self._urdf.update_cfg(
-            {name: value for name, value in joint_values.items() if name in self._actuated}
-        )
-        base = self._urdf.base_link
+        import numpy as np
+
+        values = {name: joint_values.get(name, 0.0) for name in self._actuated}
+        frames = {self._base: np.eye(4)}
+        order = [self._base]
+        for link in order:
+            for joint in self._children.get(link, []):
+                motion = _motion(joint, values)
+                frames[joint["child"]] = frames[link] @ np.array(joint["origin"]) @ motion
+                order.append(joint["child"])
         result = {}
-        for link in self.links:
-            matrix = self._urdf.get_transform(frame_to=link, frame_from=base)
+        for link, matrix in frames.items():
             rotation: Matrix = tuple(  # type: ignore[assignment]
                 tuple(float(v) for v in matrix[row, :3]) for row in range(3)
             )
@@ -50,12 +136,44 @@ class ReferenceKinematics:
         return result
 
 
-def reference_kinematics(urdf: bytes | None) -> tuple[ReferenceKinematics | None, str | None]:
-    """The independent reference for ``urdf``, or (None, why not) when yourdfpy cannot read
-    it (the check then falls back to mjcfbuild's own forward kinematics and says so)."""
-    if urdf is None:
-        return None, "no URDF text given"
+def _motion(joint: dict, values: dict[str, float]) -> Any:
+    """The joint's own motion at its value (4x4): a rotation about its unit axis or a
+    translation along its axis as written; nothing for fixed, floating and planar joints."""
+    import numpy as np
+
+    motion = np.eye(4)
+    if joint["type"] not in MOVING:
+        return motion
+    mimic = joint["mimic"]
+    if mimic is None:
+        value = values.get(joint["name"], 0.0)
+    elif mimic["joint"] in values:
+        value = values[mimic["joint"]] * mimic["multiplier"] + mimic["offset"]
+    else:  # yourdfpy: a mimic of a joint that is not actuated stays at its offset
+        value = mimic["offset"]
+    axis = np.array(joint["axis"], dtype=float)
+    if joint["type"] == "prismatic":
+        motion[:3, 3] = value * axis
+        return motion
+    unit = axis / np.linalg.norm(axis)
+    cross = np.array([[0.0, -unit[2], unit[1]], [unit[2], 0.0, -unit[0]], [-unit[1], unit[0], 0.0]])
+    motion[:3, :3] = (
+        math.cos(value) * np.eye(3)
+        + math.sin(value) * cross
+        + (1.0 - math.cos(value)) * np.outer(unit, unit)
+    )
+    return motion
+
+
+def reference_from_record(
+    record: dict[str, Any] | None,
+) -> tuple[ReferenceKinematics | None, str | None]:
+    """The independent reference a record describes, or (None, why not)."""
+    if record is None:
+        return None, "no reference read"
+    if "error" in record:
+        return None, str(record["error"])
     try:
-        return ReferenceKinematics(urdf), None
-    except Exception as exc:  # any reader failure: fall back, never fail the check for it
-        return None, f"yourdfpy could not read the URDF ({type(exc).__name__}: {exc})"
+        return ReferenceKinematics(record), None
+    except (KeyError, TypeError) as exc:
+        return None, f"the reference record is incomplete ({exc})"

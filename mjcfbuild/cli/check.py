@@ -132,6 +132,7 @@ def _print(report, label: str) -> int:
 
 def _pair(args) -> int:
     from mjcfbuild.check.model_check import check_model
+    from mjcfbuild.check.reference import read_kinematics
     from mjcfbuild.errors import InputError
     from mjcfbuild.fsutil import unreadable_file
     from mjcfbuild.urdf.parse import parse_urdf
@@ -143,7 +144,7 @@ def _pair(args) -> int:
             raise InputError(f"file {problem}", file=path)
     text = _urdf_bytes(urdf)
     robot = parse_urdf(text, str(urdf))
-    report = check_model(robot, mjcf, mjcf, set(), _options(args), urdf=text)
+    report = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))
     return _print(report, f"{mjcf} against {urdf}")
 
 
@@ -165,6 +166,7 @@ def _manifest(ctx, args) -> int:
     import json
 
     from mjcfbuild.check.model_check import check_model
+    from mjcfbuild.check.reference import read_kinematics
     from mjcfbuild.engine.report import write_report
     from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN, planned_urdf
     from mjcfbuild.steps.plan_record import read_plan
@@ -187,7 +189,7 @@ def _manifest(ctx, args) -> int:
         {r["body"] for r in assembly.get("repairs", [])},
         _options(args, ctx.manifest.check),
         readiness=assembly.get("readiness") or {},
-        urdf=_read_if_present(planned_urdf(ctx)),
+        reference=read_kinematics(_read_if_present(planned_urdf(ctx))),
     )
     data = {"passes": report.passes, "failures": report.failures, **report.results}
     ctx.state(CHECK_RESULTS).write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")

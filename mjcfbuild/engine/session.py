@@ -141,10 +141,16 @@ class BuildSession:
         module it will use; another starts two (see
         :func:`~mjcfbuild.engine.workers.rebuild_preloads`). A step goes to an idle worker
         that preloads its module (see WorkerPool)."""
-        from mjcfbuild.engine.workers import BUILD_MODULES, CHECK_MODULES, rebuild_preloads
+        from mjcfbuild.engine.workers import (
+            BUILD_MODULES,
+            CHECK_MODULES,
+            REFERENCE_MODULES,
+            rebuild_preloads,
+        )
 
         if first_build:
-            self._workers().warm(BUILD_MODULES + (CHECK_MODULES if self.checks else ()))
+            checking = CHECK_MODULES + REFERENCE_MODULES if self.checks else ()
+            self._workers().warm(BUILD_MODULES + checking)
             return
         first, second = rebuild_preloads(self.checks)
         self._workers().warm(first, count=1)

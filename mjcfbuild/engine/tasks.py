@@ -48,6 +48,7 @@ from mjcfbuild.steps.payloads import (
     Payload,
     PlanPayload,
     PreviewsPayload,
+    ReferencePayload,
     ScenePayload,
     SelfCollisionPayload,
     SrdfPayload,
@@ -110,6 +111,7 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
     if ctx.manifest.output.urdf is not None:
         tasks.append(_export_urdf_task(ctx, prefix))
     if ctx.manifest.check.enabled and ctx.run_check:
+        tasks.append(_reference_task(ctx, prefix))
         tasks.append(_check_task(ctx, prefix, parts))
         if ctx.manifest.check.previews:
             tasks.append(_previews_task(ctx, prefix))
@@ -617,6 +619,7 @@ def _assemble_task(
 
 
 CHECK_RESULTS = "check.json"
+REFERENCE = "reference.json"  # what the check's independent reader read from the URDF
 
 
 def report_dir(ctx: BuildContext) -> Path:
@@ -640,7 +643,7 @@ def _check_task(ctx: BuildContext, prefix: str, parts: list[MjcfPartFiles]) -> d
         model=str(ctx.robot_path),
         model_label=ctx.label(ctx.robot_path),
         scene=str(ctx.scene_path),
-        urdf=str(planned_urdf(ctx)),  # for the check's own reader of the URDF
+        reference=str(ctx.state(REFERENCE)),
         output=str(ctx.state(CHECK_RESULTS)),
         mjcf_parts=parts,  # each compared with the part compiled alone
     )
@@ -656,10 +659,33 @@ def _check_task(ctx: BuildContext, prefix: str, parts: list[MjcfPartFiles]) -> d
             ctx.scene_path,
             ctx.state(PLAN),
             ctx.state(ASSEMBLY_REPORT),
-            planned_urdf(ctx),
+            ctx.state(REFERENCE),
             *(Path(path) for part in parts for path in (part.xml, part.summary)),
         ],
         targets=[ctx.state(CHECK_RESULTS)],
+    )
+
+
+def _reference_task(ctx: BuildContext, prefix: str) -> dict:
+    """The check's independent reading of the URDF's kinematics: reruns only when they
+    change (check.reference.kinematic_digest), not for a damping or inertia edit."""
+    from mjcfbuild.check.reference import kinematic_digest
+
+    urdf = planned_urdf(ctx)
+    payload = ReferencePayload(
+        urdf=str(urdf),
+        kinematics=kinematic_digest(urdf.read_bytes()),
+        output=str(ctx.state(REFERENCE)),
+    )
+    return _task(
+        ctx,
+        f"{prefix}reference",
+        "reference kinematics",
+        "reference",
+        payload,
+        in_worker=True,
+        file_dep=[],
+        targets=[ctx.state(REFERENCE)],
     )
 
 

@@ -38,16 +38,21 @@ from mjcfbuild.failpoints import BUILD_PID
 MESH_MODULES = ("numpy", "lxml.etree", "trimesh", "mjcfbuild.steps.mesh")
 MODEL_MODULES = ("mujoco", "mjcfbuild.steps.selfcollision", "mjcfbuild.steps.assemble")
 BUILD_MODULES = MESH_MODULES + MODEL_MODULES
-CHECK_MODULES = ("yourdfpy", "mjcfbuild.steps.check", "mjcfbuild.steps.previews")
+CHECK_MODULES = ("mjcfbuild.steps.check", "mjcfbuild.steps.previews")
+# The check's reader of the URDF (yourdfpy, with trimesh and scipy: a second of CPU) runs only
+# when the URDF's kinematics change: a first build preloads it, a rebuild imports it if needed.
+REFERENCE_MODULES = ("yourdfpy", "mjcfbuild.steps.reference")
 
 
 def rebuild_preloads(checks: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """What the two workers of a build that is not the first import while they wait: the
     first MuJoCo and the steps that compile the model, which nearly every rebuild runs; the
-    second the mesh step and, if the build checks, the check's and previews' modules, which
-    it imports while the model is assembled."""
-    second = MESH_MODULES + (("mujoco", *CHECK_MODULES) if checks else ())
-    return MODEL_MODULES, second
+    second the mesh step. If the build checks, both then import the check's and previews'
+    modules (light without the URDF reader): the check runs in either, where MuJoCo has the
+    model's meshes."""
+    if not checks:
+        return MODEL_MODULES, MESH_MODULES
+    return MODEL_MODULES + CHECK_MODULES, (*MESH_MODULES, "mujoco", *CHECK_MODULES)
 
 
 class _Worker:

@@ -31,7 +31,7 @@ def run(payload: dict) -> dict:
         repaired,
         CheckOptions(**request.options),
         readiness=assembly.get("readiness") or {},
-        urdf=Path(request.urdf).read_bytes() if request.urdf else None,
+        reference=_read_reference(Path(request.reference)),
         sources=sources,
     )
     if request.mjcf_parts and report.results.get("loads"):
@@ -51,6 +51,16 @@ def run(payload: dict) -> dict:
             hint=f"{more} more failure{'s' if more > 1 else ''} in the report" if more else None,
         )
     return {"outputs": outputs, "warnings": _standing_notes(report.results)}
+
+
+def _read_reference(path: Path) -> dict:
+    """The record of the ``reference`` task (check.reference), or one saying why there is
+    none (the check then compares with mjcfbuild's own parse and says so)."""
+    try:
+        record = json.loads(path.read_text())
+    except (OSError, ValueError) as exc:
+        return {"error": f"the reference record could not be read ({exc})"}
+    return record if isinstance(record, dict) else {"error": "the reference record is not one"}
 
 
 def _check_parts(

@@ -342,9 +342,18 @@ class CheckPayload(Payload):
     model: FileDependency
     model_label: MessageLabel
     scene: FileDependency
-    urdf: FileDependency
+    reference: FileDependency  # what the independent reader read from the URDF
     output: Output
     mjcf_parts: list[MjcfPartFiles]  # each compared with the part compiled alone
+
+
+@dataclass(frozen=True)
+class ReferencePayload(Payload):
+    """``reference``: the URDF's kinematics as the check's independent reader reads them."""
+
+    urdf: Annotated[str, NotCounted("read for its kinematics alone, which `kinematics` digests")]
+    kinematics: str  # check.reference.kinematic_digest of the URDF text
+    output: Output
 
 
 @dataclass(frozen=True)
