@@ -115,3 +115,46 @@ def test_a_joint_with_lower_equal_upper_stays_locked(tmp_path):
     for _ in range(500):
         mujoco.mj_step(model, data)
     assert abs(data.qpos[0] - 0.2) < 0.05  # held like any joint at its limit (soft limits)
+
+
+DRAWN = """<mujoco>
+  <default>
+    <default class="visual"><geom contype="0" conaffinity="0" group="2" density="0"/></default>
+  </default>
+  <asset>
+    <mesh name="shell" file="shell.obj"/><mesh name="shared" file="shared.obj"/>
+    <mesh name="badge" file="badge.obj"/>
+  </asset>
+  <worldbody>
+    <body name="b">
+      <geom class="visual" type="mesh" mesh="shell"/>
+      <geom class="visual" type="mesh" mesh="shared"/>
+      <geom class="collision" type="mesh" mesh="shared"/>
+      <geom class="visual" type="mesh" mesh="badge" name="badge"/>
+      <geom class="visual" type="box" size="0.1 0.1 0.1"/>
+    </body>
+  </worldbody>
+</mujoco>"""
+
+
+def _meshes_and_geoms(root) -> tuple[list[str], list[str]]:
+    meshes = [m.get("name") for m in root.iter("mesh")]
+    geoms = [
+        g.get("mesh") or g.get("type") for g in root.iter("geom") if g.getparent().tag == "body"
+    ]
+    return meshes, geoms
+
+
+def test_compiles_before_the_last_skip_only_meshes_that_draw():
+    from mjcfbuild.mjcf.assemble import _drop_drawing_meshes
+
+    root = etree.fromstring(DRAWN)
+    _drop_drawing_meshes(root)
+    # The named geom may be referred to, the shared mesh collides, the box costs nothing.
+    assert _meshes_and_geoms(root) == (["shared", "badge"], ["shared", "badge", "box"])
+    # Inputs that give visual geoms mass or contacts leave the model alone.
+    for change in ('density="0"/>', 'contype="0"'):
+        edited = DRAWN.replace(change, change.replace("0", "1"), 1)
+        root = etree.fromstring(edited)
+        _drop_drawing_meshes(root)
+        assert _meshes_and_geoms(root) == _meshes_and_geoms(etree.fromstring(edited))
