@@ -78,12 +78,12 @@ def run(args: argparse.Namespace) -> int:
             result = error.exit_code
         finally:
             if workers is not None:
-                workers.close()  # not adopted, or adopted and closed by the build already
+                workers.close()  # the build closed them already, unless it never started
         code = code or result
     return code
 
 
-def _start_workers(manifest: str, args: argparse.Namespace):
+def _start_workers(manifest: str, args: argparse.Namespace) -> WorkerPool | None:
     """Workers for the rebuild of ``manifest``, started before it is read (engine.early)."""
     from mjcfbuild.engine.context import default_jobs
     from mjcfbuild.engine.early import start_workers

@@ -92,12 +92,11 @@ def run_build(
 ) -> BuildResult:
     """Build ``ctx``'s manifest; never raises for a failing task (see ``result.errors``).
 
-    ``workers`` (mjcfbuild.engine.early) are used if they suit the build; the caller closes
-    them either way.
+    ``workers`` (mjcfbuild.engine.early) are used if they suit the build, else stopped.
     """
     session = ctx.new_session()  # a context built twice reports each build's own findings
-    if workers is not None:
-        session.adopt(workers)
+    if workers is not None and not session.adopt(workers):
+        workers.close()  # importing and processing meshes for nothing: free the CPU
     progress = progress or Progress()
     progress.notes = session.notes
     started = time.perf_counter()

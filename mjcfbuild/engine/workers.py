@@ -62,11 +62,11 @@ class _Worker:
         from mjcfbuild.engine.worker_main import MESHES_VARIABLE, PRELOAD_VARIABLE
 
         self.preload = preload
+        self.meshes_from = meshes_from
         # The model whose meshes MuJoCo has cached in this process (the affinity of the last
         # step it ran that had one), and the affinity of the step it is running now.
         self.holds: str | None = None
         self.running: str | None = None
-        self.warming: str | None = None  # the affinity of a warm_for it is running
         env = dict(os.environ)
         env[PRELOAD_VARIABLE] = ",".join(preload)
         env.pop(MESHES_VARIABLE, None)
@@ -238,7 +238,7 @@ class WorkerPool:
                 return
             worker = idle[-1]
             self._idle.remove(worker)
-            worker.running = worker.warming = affinity
+            worker.running = affinity
 
         def warm() -> None:
             healthy = warmed = False
@@ -254,9 +254,9 @@ class WorkerPool:
 
     def _acquire(self, module: str, affinity: str | None = None) -> _Worker:
         """A worker for a step of ``module``: an idle one holding ``affinity`` (preferably
-        preloading ``module``), or, if one holding it is busy with its model or one preloading
-        ``module`` is being warmed for it, that one when it is done; else an idle one,
-        preferably preloading ``module``; else a new one if the pool has room; else wait."""
+        preloading ``module``), or, if one holding it is busy with its model, that one when it
+        is done; else an idle one, preferably preloading ``module``; else a new one if the pool
+        has room; else wait."""
         with self._condition:
             while True:
                 if self._closed:
@@ -269,9 +269,6 @@ class WorkerPool:
                 ready = [w for w in holders if w in self._idle]
                 if not ready and any(w.running == affinity for w in holders):
                     self._condition.wait()  # a compile in a cold worker costs more
-                    continue
-                if self._warming_is_better(module, affinity, ready):
-                    self._condition.wait()
                     continue
                 ready = (
                     [w for w in ready if module in w.preload]
@@ -292,19 +289,9 @@ class WorkerPool:
         worker.running = affinity
         return worker
 
-    def _warming_is_better(self, module: str, affinity: str | None, ready: list[_Worker]) -> bool:
-        """Whether a step of ``module`` should wait for the worker being warmed for its model
-        rather than take an idle holder: when only the warming one preloads the module.
-        Measured on panda: the check took 0.8-1.1 s in the holder that assembled the model
-        (importing its URDF reader, trimesh and scipy) and 0.2-0.5 s in the warmed worker,
-        whose warm ended 0.1-0.3 s after the assembly."""
-        if affinity is None or any(module in w.preload for w in ready):
-            return False
-        return any(w.warming == affinity and module in w.preload for w in self._all)
-
     def _release(self, worker: _Worker, healthy: bool, affinity: str | None = None) -> None:
         with self._condition:
-            worker.running = worker.warming = None
+            worker.running = None
             if healthy and worker.alive() and not self._closed:
                 worker.holds = affinity or worker.holds
                 self._idle.append(worker)

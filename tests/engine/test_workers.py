@@ -225,30 +225,3 @@ def test_warm_for_prepares_a_second_worker_for_the_model(two_workers, tmp_path):
     _wait_for(lambda: len(pool._idle) == 2)
     assert not any(w.holds == "third.xml" for w in pool._all)
     assert pool.run(f"{STEPS}:echo", {}, "echo", None, 60)["pid"] in {second, first_pid[0]["pid"]}
-
-
-def test_a_step_waits_for_the_worker_warmed_for_its_model_that_has_its_imports(tmp_path):
-    from tests.conftest import ROOT
-
-    pool = WorkerPool(2, ROOT, tmp_path / "logs")
-    try:
-        pool.warm(("json",), count=1)
-        pool.warm((STEPS,), count=2)
-        [other, importer] = pool._all
-        # The worker without the step's imports ran a step of the model: it holds it.
-        pool.run("json:loads", "{}", "assemble", None, 60, affinity="robot.xml")  # type: ignore[arg-type]
-        assert other.holds == "robot.xml" and importer.holds is None
-        until = tmp_path / "go"
-        pool.warm_for("robot.xml", f"{STEPS}:pause", {"until": str(until)}, 60)
-        assert importer.warming == "robot.xml"
-        check, pid = _in_thread(
-            lambda: pool.run(f"{STEPS}:echo", {}, "check", None, 60, affinity="robot.xml")
-        )
-        # Importing what the holder lacks would cost more than the rest of the warm.
-        _wait_for(lambda: len(pool._condition._waiters) == 1)  # type: ignore[attr-defined]
-        assert check.is_alive() and other in pool._idle
-        until.touch()
-        check.join(60)
-        assert pid == [{"pid": importer.process.pid}]
-    finally:
-        pool.close()
