@@ -95,12 +95,11 @@ def nothing_to_do(manifest: str | os.PathLike, run_check: bool) -> dict | None:
     """
     if os.environ.get(DISABLE_VARIABLE):
         return None
-    manifest_path = Path(os.path.normpath(os.path.abspath(manifest)))
-    path = stamp_path(manifest_path, run_check)
+    path = stamp_path(Path(os.path.normpath(os.path.abspath(manifest))), run_check)
+    stamp = _read(path)
+    if stamp is None:
+        return None
     try:
-        stamp = json.loads(path.read_text())
-        if stamp.get("format") != FORMAT or stamp.get("python") != sys.executable:
-            return None
         started = time.time()
         if not _same_environment(stamp["environment"]):
             return None
@@ -124,15 +123,22 @@ def previous_build(manifest: str | os.PathLike, run_check: bool) -> dict | None:
     (its workers' ``logs`` folder, its ``assembly_report``, whether it ``checks``), whether
     or not anything changed since; None without a readable stamp. A prediction only: never
     raises."""
-    manifest_path = Path(os.path.normpath(os.path.abspath(manifest)))
-    try:
-        stamp = json.loads(stamp_path(manifest_path, run_check).read_text())
-        if stamp.get("format") != FORMAT or stamp.get("python") != sys.executable:
-            return None
-        hint = stamp.get("next_build")
-    except (OSError, ValueError, AttributeError):
-        return None
+    stamp = _read(stamp_path(Path(os.path.normpath(os.path.abspath(manifest))), run_check))
+    hint = stamp.get("next_build") if stamp is not None else None
     return hint if isinstance(hint, dict) else None
+
+
+def _read(path: Path) -> dict | None:
+    """The stamp at ``path`` if it is one this mjcfbuild and this Python wrote, else None."""
+    try:
+        stamp = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(stamp, dict):
+        return None
+    if stamp.get("format") != FORMAT or stamp.get("python") != sys.executable:
+        return None
+    return stamp
 
 
 def _verify_files(files: dict[str, list], now: float) -> dict[str, list] | None:
