@@ -35,7 +35,9 @@ from mjcfbuild.errors import InternalError, MjcfbuildError, TaskCrashed
 from mjcfbuild.failpoints import BUILD_PID
 
 # What the build steps import, in the order a build needs them: warm workers import these.
-MESH_MODULES = ("numpy", "lxml.etree", "trimesh", "mjcfbuild.steps.mesh")
+# Not trimesh (0.6 s of CPU with the scipy and networkx it imports): binary STL and COLLADA,
+# the formats of nearly every description, are read without it; the step imports it if needed.
+MESH_MODULES = ("numpy", "lxml.etree", "mjcfbuild.steps.mesh")
 MODEL_MODULES = ("mujoco", "mjcfbuild.steps.selfcollision", "mjcfbuild.steps.assemble")
 BUILD_MODULES = MESH_MODULES + MODEL_MODULES
 CHECK_MODULES = ("mjcfbuild.steps.check", "mjcfbuild.steps.previews")

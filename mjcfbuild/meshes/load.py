@@ -1,7 +1,8 @@
 """Reading a mesh file of any supported format into parts, one per distinct look.
 
 A *look* is a colour and optionally a texture. DAE files go through mjcfbuild's own COLLADA
-reader (:mod:`mjcfbuild.meshes.collada`); STL, OBJ (with the ``.mtl`` its ``mtllib`` names),
+reader (:mod:`mjcfbuild.meshes.collada`), binary STL through numpy
+(:mod:`mjcfbuild.meshes.stlfile`); ASCII STL, OBJ (with the ``.mtl`` its ``mtllib`` names),
 glTF/GLB and PLY go through trimesh. Coordinates are used as the file stores them, in metres
 (DAE units are applied), which is how ROS tools draw them.
 """
@@ -17,6 +18,7 @@ from typing import cast
 import numpy as np
 
 from mjcfbuild.errors import InputError
+from mjcfbuild.meshes.stlfile import read_binary_stl
 
 
 @dataclass(frozen=True)
@@ -70,9 +72,11 @@ def load_parts(path: Path, apply_up_axis: bool = False) -> list[MeshPart]:
 
     ``apply_up_axis`` rotates DAE files tagged Y_UP or X_UP to Z up.
     """
-    if path.suffix.lower() == ".dae":
+    suffix = path.suffix.lower()
+    pieces = _binary_stl_pieces(path) if suffix == ".stl" else None
+    if suffix == ".dae":
         pieces = _collada_pieces(path, apply_up_axis)
-    else:
+    elif pieces is None:
         pieces = _trimesh_pieces(path)
     groups: dict[tuple, list[MeshPart]] = {}
     for piece in pieces:
@@ -102,6 +106,19 @@ def _collada_pieces(path: Path, apply_up_axis: bool) -> list[MeshPart]:
             MeshPart(part.vertices, part.faces, part.rgba, uv, texture if uv is not None else None)
         )
     return pieces
+
+
+def _binary_stl_pieces(path: Path) -> list[MeshPart] | None:
+    """A binary STL as one uncoloured piece (trimesh reads no colours from STL either), or
+    None when the file is not binary STL."""
+    try:
+        read = read_binary_stl(path)
+    except OSError as exc:
+        raise InputError(f"cannot read mesh: {exc.strerror}", file=path) from None
+    if read is None:
+        return None
+    corners, triangles = read
+    return [MeshPart(corners, triangles, None)]
 
 
 def _trimesh_pieces(path: Path) -> list[MeshPart]:
