@@ -7,11 +7,12 @@ checked: that is enough to start the workers of a rebuild at once (the same two 
 starts, :func:`~mjcfbuild.engine.workers.rebuild_preloads`), each importing its modules and
 then having MuJoCo process the mesh products the previous model used. Most rebuilds use most
 of those products unchanged (a joint edit, all of them), and the build finds them processed.
+When a mesh file changed, the worker that runs mesh steps only imports: its first step is due.
 
 The stamp is only a prediction: the build adopts the workers only if they suit it
 (:meth:`~mjcfbuild.engine.session.BuildSession.adopt`), and a product that changed after a
-worker processed it empties that worker's MuJoCo cache before its next step
-(mjcfbuild.engine.worker_main), so a wrong prediction costs time, never correctness.
+worker processed it is processed again (mjcfbuild.engine.worker_main), so a wrong prediction
+costs time, never correctness.
 """
 
 from __future__ import annotations
@@ -41,5 +42,7 @@ def start_workers(manifest: str | os.PathLike, run_check: bool, jobs: int) -> Wo
     pool = WorkerPool(jobs, normalise(manifest).parent, Path(logs))
     first, second = rebuild_preloads(bool(hint.get("checks")))
     pool.warm(first, count=1, meshes_from=Path(report))
-    pool.warm(second, count=2, meshes_from=Path(report))
+    # The second worker runs the mesh steps: when a mesh changed, its first step comes soon
+    # and would wait for whichever mesh the worker is processing.
+    pool.warm(second, count=2, meshes_from=None if hint["meshes_moved"] else Path(report))
     return pool

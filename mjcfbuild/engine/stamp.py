@@ -121,11 +121,31 @@ def nothing_to_do(manifest: str | os.PathLike, run_check: bool) -> dict | None:
 def previous_build(manifest: str | os.PathLike, run_check: bool) -> dict | None:
     """What the last successful build of ``manifest`` recorded for the next one's workers
     (its workers' ``logs`` folder, its ``assembly_report``, whether it ``checks``), whether
-    or not anything changed since; None without a readable stamp. A prediction only: never
-    raises."""
+    or not anything changed since, with ``meshes_moved``: whether a mesh file it read has
+    another size or time now (touched or edited). None without a readable stamp. A
+    prediction only: never raises."""
     stamp = _read(stamp_path(Path(os.path.normpath(os.path.abspath(manifest))), run_check))
     hint = stamp.get("next_build") if stamp is not None else None
-    return hint if isinstance(hint, dict) else None
+    if not isinstance(hint, dict):
+        return None
+    return {**hint, "meshes_moved": _meshes_moved(stamp.get("files"))}
+
+
+def _meshes_moved(files: object) -> bool:
+    from mjcfbuild.meshes.formats import mesh_format
+
+    if not isinstance(files, dict):
+        return True
+    for name, record in files.items():
+        if not mesh_format(name):
+            continue
+        try:
+            stat = os.stat(name)
+            if [stat.st_size, stat.st_mtime_ns] != record[:2]:
+                return True
+        except (OSError, TypeError):
+            return True
+    return False
 
 
 def _read(path: Path) -> dict | None:

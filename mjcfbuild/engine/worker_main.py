@@ -10,7 +10,7 @@ While it waits for its first requests, a worker imports the heavy modules the po
 previous build published (``MJCFBUILD_WORKER_MESHES``, its assembly report), one module or
 mesh at a time and only while no request is waiting: a request is held up by at most one of
 them, and later steps find the modules loaded and, where the meshes are the same, MuJoCo's
-cache filled (see mjcfbuild.check.loading).
+cache filled (see mjcfbuild.check.loading). Meshes are processed only until the first request.
 """
 
 from __future__ import annotations
@@ -120,20 +120,33 @@ def _warm(path: str) -> None:
         _warmed[path] = identity
 
 
-def forget_changed_meshes() -> None:
-    """Empty MuJoCo's cache if a mesh processed while idle has changed since. MuJoCo finds a
-    file in its cache by name and a coarse timestamp (measured with MuJoCo 4.0: a mesh
-    replaced 50 ms later compiles as the old one, 2 s later as the new one), and the build
-    rewrites a product when its source changes - possibly after this worker processed the
-    earlier one."""
-    if not _warmed:
-        return
-    if all(_identity(path) == identity for path, identity in _warmed.items()):
-        return
-    import mujoco
+def drop_mesh_work(idle: IdleWork) -> None:
+    """Remove the meshes from ``idle``, once the build has sent its first step: from then on it
+    asks for the meshes it needs (a step compiles them, or step ``warm`` processes them), and
+    a large one processed between two steps would hold up the second (go1's trunk: 0.5 s)."""
+    idle[:] = [item for item in idle if getattr(item, "func", None) not in (_queue_meshes, _warm)]
 
-    mujoco.mj_clearCache(mujoco.mj_getCache())
-    _warmed.clear()
+
+def forget_changed_meshes() -> None:
+    """Empty MuJoCo's cache if a mesh processed while idle has changed since and MuJoCo
+    cannot tell. MuJoCo finds a file in its cache by name and modification time in whole
+    seconds (measured with MuJoCo 4.0: a mesh rewritten within the same second compiles as
+    the old one; with another second, as the new one), and the build rewrites a product when
+    its source changes - possibly within a second of this worker processing the earlier one."""
+    if any(_unseen_change(path, identity) for path, identity in _warmed.items()):
+        import mujoco
+
+        mujoco.mj_clearCache(mujoco.mj_getCache())
+        _warmed.clear()
+
+
+def _unseen_change(path: str, warmed: tuple[int, int, int]) -> bool:
+    """Whether the file at ``path`` differs from when it was processed (``warmed``) while
+    keeping the whole-second time MuJoCo's cache compares."""
+    now = _identity(path)
+    if now is None or now == warmed:
+        return False  # gone: MuJoCo cannot read it either; unchanged: the cache is right
+    return now[2] // 1_000_000_000 == warmed[2] // 1_000_000_000
 
 
 def requests(stdin: int, idle: IdleWork) -> Iterator[bytes]:
@@ -166,6 +179,7 @@ def main() -> None:
     preload = [name for name in os.environ.get(PRELOAD_VARIABLE, "").split(",") if name]
     idle = idle_work(preload, os.environ.get(MESHES_VARIABLE))
     for line in requests(sys.stdin.fileno(), idle):
+        drop_mesh_work(idle)
         forget_changed_meshes()
         reply = _run(json.loads(line))
         protocol.write(json.dumps(reply) + "\n")

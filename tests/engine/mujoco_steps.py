@@ -1,5 +1,5 @@
-"""Build steps that report on MuJoCo's state in a worker process, for testing what workers do
-with MuJoCo while they wait."""
+"""Steps that report on MuJoCo's state in the process that runs them, for testing what workers
+do with MuJoCo's cache."""
 
 from __future__ import annotations
 

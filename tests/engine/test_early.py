@@ -37,6 +37,18 @@ def test_the_workers_of_a_rebuild_start_from_the_stamp(built_arm):
     assert start_workers(built_arm / "robot.yaml", run_check=False, jobs=2) is None
 
 
+def test_after_a_mesh_edit_the_mesh_worker_only_imports(built_arm):
+    state = built_arm / "mjcf" / ".mjcfbuild"
+    mesh = built_arm / "meshes" / "forearm.obj"
+    mesh.write_text(mesh.read_text().replace(" 0.240000", " 0.250000"))
+    pool = start_workers(built_arm / "robot.yaml", run_check=True, jobs=2)
+    assert pool is not None
+    try:
+        assert [w.meshes_from for w in pool._all] == [state / "assembly.json", None]
+    finally:
+        pool.close()
+
+
 def test_no_workers_without_a_stamp_or_its_folder(built_arm, tmp_path):
     other = copy_example("arm", tmp_path / "other")
     assert start_workers(other / "robot.yaml", run_check=True, jobs=2) is None

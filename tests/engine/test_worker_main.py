@@ -5,14 +5,12 @@ from __future__ import annotations
 
 import json
 import os
-import time
+from collections.abc import Callable
 from pathlib import Path
 
-from mjcfbuild.engine.worker_main import idle_work
-from mjcfbuild.engine.workers import WorkerPool
-from tests.conftest import ROOT
-
-STEPS = "tests.engine.mujoco_steps"
+from mjcfbuild.engine import worker_main
+from mjcfbuild.engine.worker_main import drop_mesh_work, idle_work
+from tests.engine.mujoco_steps import cache_size, mesh_vertices
 
 
 def _tetrahedron() -> str:
@@ -38,12 +36,23 @@ def _report(tmp_path: Path) -> tuple[Path, Path]:
     return report, mesh
 
 
-def _wait_until_cached(pool: WorkerPool) -> int:
-    deadline = time.monotonic() + 60
-    while (size := pool.run(f"{STEPS}:cache_size", {}, "size", None, 60)["bytes"]) == 0:
-        assert time.monotonic() < deadline, "the worker never processed the mesh"
-        time.sleep(0.05)
-    return size
+class _Worker:
+    """What a worker process does with MuJoCo, in this process: its idle work until the
+    first step (all of it: a real worker does it while no step is waiting), then steps."""
+
+    def __init__(self, report: Path) -> None:
+        import mujoco
+
+        mujoco.mj_clearCache(mujoco.mj_getCache())
+        worker_main._warmed.clear()
+        self.idle = idle_work(["mujoco"], str(report))
+        while self.idle:
+            self.idle.pop(0)()
+
+    def step(self, function: Callable[[dict], dict], payload: dict) -> dict:
+        drop_mesh_work(self.idle)
+        worker_main.forget_changed_meshes()
+        return function(payload)
 
 
 def test_idle_work_imports_then_queues_one_item_per_mesh(tmp_path):
@@ -56,37 +65,60 @@ def test_idle_work_imports_then_queues_one_item_per_mesh(tmp_path):
     assert len(idle_work(["json"])) == 1
 
 
+def test_the_first_step_ends_the_mesh_work_but_not_the_imports(tmp_path):
+    report, _ = _report(tmp_path)
+    work = idle_work(["json", "csv"], str(report))
+    work.pop(0)()
+    drop_mesh_work(work)
+    assert [item.args for item in work] == [("csv",)]
+    work = idle_work(["json"], str(report))
+    work.pop(0)()
+    work.pop(0)()  # the report is read: one item per mesh
+    drop_mesh_work(work)
+    assert work == []
+
+
 def test_a_waiting_worker_processes_the_meshes_and_forgets_them_when_one_changes(tmp_path):
     report, mesh = _report(tmp_path)
-    pool = WorkerPool(1, ROOT, tmp_path / "logs")
-    try:
-        pool.warm(("mujoco",), meshes_from=report)
-        size = _wait_until_cached(pool)
-        # Unchanged, the mesh stays cached across steps: a second one joins it.
-        other = mesh.with_name("other.obj")
-        other.write_text(_cube())
-        assert pool.run(f"{STEPS}:mesh_vertices", {"file": str(mesh)}, "m", None, 60) == {
-            "vertices": 4
-        }
-        pool.run(f"{STEPS}:mesh_vertices", {"file": str(other)}, "m", None, 60)
-        assert pool.run(f"{STEPS}:cache_size", {}, "size", None, 60)["bytes"] > size
-        # Replaced by another mesh with the same timestamp (a rewrite within MuJoCo's
-        # timestamp resolution): MuJoCo alone would compile the tetrahedron again.
-        stamp = os.stat(mesh).st_mtime_ns
-        replacement = mesh.with_name("new.obj")
-        replacement.write_text(_cube())
-        os.utime(replacement, ns=(stamp, stamp))
-        os.replace(replacement, mesh)
-        assert pool.run(f"{STEPS}:mesh_vertices", {"file": str(mesh)}, "m", None, 60) == {
-            "vertices": 8
-        }
-    finally:
-        pool.close()
+    worker = _Worker(report)
+    size = worker.step(cache_size, {})["bytes"]
+    assert size > 0
+    # Unchanged, the mesh stays cached across steps: a second one joins it.
+    other = mesh.with_name("other.obj")
+    other.write_text(_cube())
+    assert worker.step(mesh_vertices, {"file": str(mesh)}) == {"vertices": 4}
+    worker.step(mesh_vertices, {"file": str(other)})
+    assert worker.step(cache_size, {})["bytes"] > size
+    # Replaced by another mesh with the same timestamp (a rewrite within MuJoCo's
+    # timestamp resolution): MuJoCo alone would compile the tetrahedron again.
+    stamp = os.stat(mesh).st_mtime_ns
+    replacement = mesh.with_name("new.obj")
+    replacement.write_text(_cube())
+    os.utime(replacement, ns=(stamp, stamp))
+    os.replace(replacement, mesh)
+    assert worker.step(mesh_vertices, {"file": str(mesh)}) == {"vertices": 8}
+
+
+def test_a_mesh_changed_in_another_second_is_reread_without_emptying_the_cache(tmp_path):
+    report, mesh = _report(tmp_path)
+    worker = _Worker(report)
+    warmed = worker.step(cache_size, {})["bytes"]
+    other = mesh.with_name("other.obj")
+    other.write_text(_cube())
+    worker.step(mesh_vertices, {"file": str(other)})
+    cube = worker.step(cache_size, {})["bytes"] - warmed
+    # A time two seconds later, as a rebuild writes it: MuJoCo sees the change itself.
+    later = os.stat(mesh).st_mtime_ns + 2_000_000_000
+    replacement = mesh.with_name("new.obj")
+    replacement.write_text(_cube())
+    os.utime(replacement, ns=(later, later))
+    os.replace(replacement, mesh)
+    assert worker.step(mesh_vertices, {"file": str(mesh)}) == {"vertices": 8}
+    # Both cubes are cached: the unchanged one was kept (emptying would leave one).
+    assert worker.step(cache_size, {})["bytes"] >= 2 * cube
 
 
 def test_a_missing_report_or_mesh_is_skipped(tmp_path):
-    from mjcfbuild.engine import worker_main
-
     report, mesh = _report(tmp_path)
     mesh.unlink()
     assert idle_work([], str(tmp_path / "no such report.json"))
