@@ -125,10 +125,9 @@ def previous_build(manifest: str | os.PathLike, run_check: bool) -> dict | None:
     another size or time now (touched or edited). None without a readable stamp. A
     prediction only: never raises."""
     stamp = _read(stamp_path(Path(os.path.normpath(os.path.abspath(manifest))), run_check))
-    hint = stamp.get("next_build") if stamp is not None else None
-    if not isinstance(hint, dict):
+    if stamp is None or not isinstance(stamp.get("next_build"), dict):
         return None
-    return {**hint, "meshes_moved": _meshes_moved(stamp.get("files"))}
+    return {**stamp["next_build"], "meshes_moved": _meshes_moved(stamp.get("files"))}
 
 
 def _meshes_moved(files: object) -> bool:
