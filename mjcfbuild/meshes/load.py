@@ -73,10 +73,11 @@ def load_parts(path: Path, apply_up_axis: bool = False) -> list[MeshPart]:
     ``apply_up_axis`` rotates DAE files tagged Y_UP or X_UP to Z up.
     """
     suffix = path.suffix.lower()
-    pieces = _binary_stl_pieces(path) if suffix == ".stl" else None
     if suffix == ".dae":
         pieces = _collada_pieces(path, apply_up_axis)
-    elif pieces is None:
+    elif suffix == ".stl" and (binary := _binary_stl_pieces(path)) is not None:
+        pieces = binary
+    else:
         pieces = _trimesh_pieces(path)
     groups: dict[tuple, list[MeshPart]] = {}
     for piece in pieces:
