@@ -138,7 +138,7 @@ class BuildSession:
     def warm_workers(self, first_build: bool) -> None:
         """Start worker processes now, unless the build adopted some (:meth:`adopt`); they
         import the steps' modules while they wait. A first build starts all, with every
-        module it will use; another starts two (see
+        module it will use (the check's URDF reader in one only); another starts two (see
         :func:`~mjcfbuild.engine.workers.rebuild_preloads`). A step goes to an idle worker
         that preloads its module (see WorkerPool)."""
         from mjcfbuild.engine.workers import (
@@ -149,7 +149,11 @@ class BuildSession:
         )
 
         if first_build:
-            checking = CHECK_MODULES + REFERENCE_MODULES if self.checks else ()
+            checking = CHECK_MODULES if self.checks else ()
+            if self.checks:
+                # One worker imports the check's URDF reader (a second of CPU) for the one
+                # step that uses it; while it does, a mesh step sent there would wait.
+                self._workers().warm(BUILD_MODULES + checking + REFERENCE_MODULES, count=1)
             self._workers().warm(BUILD_MODULES + checking)
             return
         first, second = rebuild_preloads(self.checks)

@@ -90,6 +90,9 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
     paths = {mesh.id: mesh.path for mesh in plan.meshes}
     decomposed = decompositions(robot, choices)
     tasks = planning_tasks(ctx, prefix) if with_planning else []
+    checks = ctx.manifest.check.enabled and ctx.run_check
+    if checks:  # first: it needs only the URDF, and runs beside the meshes instead of after them
+        tasks.append(_reference_task(ctx, prefix))
     tasks += [
         _mesh_task(ctx, mesh_id, paths[mesh_id], roles[mesh_id], prefix)
         for mesh_id in _largest_first(roles, lambda mesh_id: paths[mesh_id])
@@ -110,8 +113,7 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
     tasks.append(_scene_task(ctx, plan, prefix))
     if ctx.manifest.output.urdf is not None:
         tasks.append(_export_urdf_task(ctx, prefix))
-    if ctx.manifest.check.enabled and ctx.run_check:
-        tasks.append(_reference_task(ctx, prefix))
+    if checks:
         tasks.append(_check_task(ctx, prefix, parts))
         if ctx.manifest.check.previews:
             tasks.append(_previews_task(ctx, prefix))

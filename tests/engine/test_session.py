@@ -54,3 +54,34 @@ def test_model_steps_carry_the_model_and_a_second_worker_is_warmed(tmp_path, mon
     assert mjcfbuild.build(folder / "robot.yaml", jobs=2, check=False).ok
     assert ("assemble", model) in asked
     assert warmed == []
+
+
+def test_a_first_build_reads_the_urdf_first_in_the_one_worker_with_its_reader(
+    tmp_path, monkeypatch
+):
+    from mjcfbuild.engine import tasks
+    from mjcfbuild.engine.workers import REFERENCE_MODULES
+
+    monkeypatch.setenv("MJCFBUILD_CACHE_DIR", str(tmp_path / "cache"))
+    started: list[tuple[str, ...]] = []
+    lists: list[list[str]] = []
+    start, build_tasks = WorkerPool._start, tasks.build_tasks
+
+    def recording_start(self, preload=(), meshes_from=None):
+        started.append(preload)
+        return start(self, preload, meshes_from)
+
+    def recording_build_tasks(*args, **kwargs):
+        made = build_tasks(*args, **kwargs)
+        lists.append([task["name"] for task in made])
+        return made
+
+    monkeypatch.setattr(WorkerPool, "_start", recording_start)
+    monkeypatch.setattr("mjcfbuild.engine.runner.build_tasks", recording_build_tasks)
+    folder = copy_example("arm", tmp_path)
+    assert mjcfbuild.build(folder / "robot.yaml", jobs=2).ok
+    assert len(started) == 2
+    assert [set(REFERENCE_MODULES) <= set(preload) for preload in started] == [True, False]
+    [names] = lists
+    worker_steps = [n for n in names if n == "reference" or n.startswith("mesh:")]
+    assert worker_steps[0] == "reference" and len(worker_steps) > 1
