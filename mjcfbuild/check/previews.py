@@ -14,7 +14,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-from mjcfbuild.check.loading import compile_model
+from mjcfbuild.check.loading import spec_reading_sources
 from mjcfbuild.errors import ModelError
 
 VIEWS = {"front": 180.0, "side": -90.0}
@@ -49,7 +49,7 @@ def render_previews(
     capture_mujoco_warnings()
 
     try:
-        model = compile_model(model_path, sources)
+        model = _model_to_draw(model_path, sources or {})
     except ValueError as exc:  # the check reports why; there is nothing to draw
         raise ModelError(f"the model does not load: {str(exc).splitlines()[0]}") from None
     data = mujoco.MjData(model)
@@ -85,6 +85,20 @@ def render_previews(
                 Image.fromarray(pixels).save(folder / name, optimize=False)
                 written.append(name)
     return written
+
+
+def _model_to_draw(model_path: Path, sources: dict[str, Path]) -> Any:
+    """The model as the pictures show it: without its skybox textures, which they do not
+    draw and the renderer would otherwise upload (Menagerie's gradient: six 512 x 512 faces
+    with their mipmaps, a tenth of a second in software OpenGL)."""
+    import mujoco
+
+    spec = spec_reading_sources(model_path, sources)
+    used = {name for material in spec.materials for name in material.textures if name}
+    for texture in list(spec.textures):
+        if texture.type == mujoco.mjtTexture.mjTEXTURE_SKYBOX and texture.name not in used:
+            spec.delete(texture)
+    return spec.compile()
 
 
 class _Offscreen:
