@@ -62,8 +62,8 @@ def collision_matrix(model, home_qpos, settings: MatrixSettings) -> list[PairVer
     at_home = _touching(model, data, home_qpos)
     counts: dict[tuple[int, int], int] = {}
     rng = np.random.default_rng(settings.seed)
-    for _ in range(settings.samples):
-        for pair in _touching(model, data, _sample(model, rng)):
+    for qpos in _samples(model, rng, settings.samples):
+        for pair in _touching(model, data, qpos):
             counts[pair] = counts.get(pair, 0) + 1
 
     def name(body: int) -> str:
@@ -147,43 +147,54 @@ def _adjacent_pairs(model) -> set[tuple[int, int]]:
 
 
 def _touching(model, data, qpos) -> set[tuple[int, int]]:
+    """The body pairs in contact (or overlapping) at ``qpos``."""
     import mujoco
+    import numpy as np
 
     data.qpos[:] = qpos
     mujoco.mj_kinematics(model, data)
     mujoco.mj_collision(model, data)
-    pairs = set()
-    for contact in data.contact[: data.ncon]:
-        if contact.dist > 0:
-            continue
-        a, b = int(model.geom_bodyid[contact.geom1]), int(model.geom_bodyid[contact.geom2])
-        if a != b:
-            pairs.add((min(a, b), max(a, b)))
-    return pairs
+    if not data.ncon:
+        return set()
+    contacts = data.contact
+    touching = ~(contacts.dist > 0)
+    first = model.geom_bodyid[contacts.geom1[touching]]
+    second = model.geom_bodyid[contacts.geom2[touching]]
+    apart = first != second
+    low = np.minimum(first, second)[apart].tolist()
+    high = np.maximum(first, second)[apart].tolist()
+    return set(zip(low, high, strict=True))
 
 
-def _sample(model, rng):
-    """A random configuration: limited joints uniform in range, unlimited hinges in +-pi,
-    mimic followers where their equality puts them, everything else at qpos0."""
+def _samples(model, rng, count: int):
+    """``count`` random configurations (rows): limited joints uniform in range, unlimited
+    hinges in +-pi, mimic followers where their equality puts them, everything else at
+    qpos0. The numbers are drawn row by row, joint by joint, as one draw per joint would."""
     import mujoco
     import numpy as np
 
-    qpos = model.qpos0.copy()
+    addresses, lows, highs = [], [], []
     for joint in range(model.njnt):
         kind = mujoco.mjtJoint(model.jnt_type[joint])
         if kind not in (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE):
             continue
-        address = model.jnt_qposadr[joint]
         if model.jnt_limited[joint]:
             low, high = model.jnt_range[joint]
-            qpos[address] = rng.uniform(low, high)
         elif kind == mujoco.mjtJoint.mjJNT_HINGE:
-            qpos[address] = rng.uniform(-np.pi, np.pi)
+            low, high = -np.pi, np.pi
+        else:
+            continue
+        addresses.append(model.jnt_qposadr[joint])
+        lows.append(low)
+        highs.append(high)
+    qpos = np.tile(model.qpos0, (count, 1))
+    if addresses:
+        qpos[:, addresses] = rng.uniform(lows, highs, size=(count, len(addresses)))
     for equality in range(model.neq):
         if model.eq_type[equality] != mujoco.mjtEq.mjEQ_JOINT or model.eq_obj2id[equality] < 0:
             continue
         follower = model.jnt_qposadr[model.eq_obj1id[equality]]
         leader = model.jnt_qposadr[model.eq_obj2id[equality]]
         coefficients = model.eq_data[equality]
-        qpos[follower] = coefficients[0] + coefficients[1] * qpos[leader]
+        qpos[:, follower] = coefficients[0] + coefficients[1] * qpos[:, leader]
     return qpos

@@ -5,8 +5,10 @@ from __future__ import annotations
 import json
 
 import mujoco
+import numpy as np
 
 import mjcfbuild
+from mjcfbuild.selfcollision.matrix import _samples, _touching
 from tests.conftest import INERTIA, run_cli, write
 
 # A chain whose first and third links overlap at the zero pose, with a visual-only mesh.
@@ -172,3 +174,44 @@ def test_an_srdf_written_as_xacro_is_expanded_with_the_robots_args(tmp_path):
     )
     mjcfbuild.build(_robot(tmp_path, "self_collision: {srdf: robot.srdf.xacro}\n"))
     assert _reasons(tmp_path)[("a", "d")] == ("srdf: Never", True)
+
+
+# Every kind of joint the sampler treats differently, and a mimic follower of the first.
+JOINTS = """<mujoco><compiler angle="radian"/><worldbody>
+  <body name="a"><joint name="limited" range="-0.5 1.5" limited="true"/><geom size="0.1"/>
+    <body name="b" pos="0 0 0.3"><joint name="hinge" limited="false"/><geom size="0.1"/>
+      <body name="c" pos="0 0 0.3"><joint name="slide" type="slide" limited="false"/>
+        <geom size="0.1"/>
+        <body name="d" pos="0 0 0.3"><joint name="rail" type="slide" range="0 0.2" limited="true"/>
+          <geom size="0.1"/>
+          <body name="e" pos="0 0 0.3"><joint name="follower" range="-3 3" limited="true"/>
+            <geom size="0.1"/>
+          </body></body></body></body></body></worldbody>
+  <equality><joint joint1="follower" joint2="limited" polycoef="0.1 2 0 0 0"/></equality>
+</mujoco>"""
+
+
+def test_samples_are_drawn_joint_by_joint_and_followers_placed_by_their_equality():
+    model = mujoco.MjModel.from_xml_string(JOINTS)
+    rows = _samples(model, np.random.default_rng(7), 3)
+    rng = np.random.default_rng(7)  # the same numbers, one draw per joint and row
+    for row in rows:
+        limited, hinge = rng.uniform(-0.5, 1.5), rng.uniform(-np.pi, np.pi)
+        rail = rng.uniform(0, 0.2)
+        rng.uniform(-3, 3)  # the follower's own draw, replaced by its equality
+        assert row.tolist() == [limited, hinge, 0.0, rail, 0.1 + 2 * limited]
+
+
+def test_touching_pairs_are_bodies_in_contact_not_geoms_within_the_margin():
+    model = mujoco.MjModel.from_xml_string("""<mujoco><worldbody>
+      <body name="a"><freejoint/><geom size="0.1" margin="0.1"/><geom size="0.1" pos="0 0 0.1"/>
+      </body>
+      <body name="b" pos="0.15 0 0"><freejoint/><geom size="0.1"/></body>
+      <body name="c" pos="-0.25 0 0"><freejoint/><geom size="0.1" margin="0.1"/></body>
+    </worldbody></mujoco>""")
+    data = mujoco.MjData(model)
+    # a and b overlap; a and c are 0.05 apart, inside the margin: a contact, not a touch;
+    # a's own two geoms overlap but are one body.
+    assert _touching(model, data, model.qpos0) == {(1, 2)}
+    mujoco.mj_collision(model, data)
+    assert data.ncon > 1
