@@ -213,5 +213,4 @@ def test_touching_pairs_are_bodies_in_contact_not_geoms_within_the_margin():
     # a and b overlap; a and c are 0.05 apart, inside the margin: a contact, not a touch;
     # a's own two geoms overlap but are one body.
     assert _touching(model, data, model.qpos0) == {(1, 2)}
-    mujoco.mj_collision(model, data)
-    assert data.ncon > 1
+    assert any(dist > 0 for dist in data.contact.dist)  # the margin's contact was there
