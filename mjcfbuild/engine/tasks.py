@@ -68,6 +68,7 @@ ASSEMBLY_REPORT = "assembly.json"
 # follows it without rerunning for every other change of the model.
 FLOOR_RECORD = "floor.json"
 URDF_EXPORT_RECORD = "urdf_export.json"
+PREVIEWS_RECORD = "previews.json"
 
 
 def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
@@ -698,6 +699,7 @@ def _previews_task(ctx: BuildContext, prefix: str) -> dict:
         folder=str(folder),
         model=str(ctx.scene_path),
         assembly_report=str(ctx.state(ASSEMBLY_REPORT)),
+        record=str(ctx.state(PREVIEWS_RECORD)),
     )
     return _task(
         ctx,
@@ -709,7 +711,7 @@ def _previews_task(ctx: BuildContext, prefix: str) -> dict:
         # Not the model file: only what a picture shows (a damping change leaves them alone),
         # and the scene, whose floor the pictures show.
         file_dep=[ctx.scene_path],
-        targets=[],
+        targets=[ctx.state(PREVIEWS_RECORD)],
         extra_uptodate=[RenderInputsUnchanged(ctx.robot_path, ctx.assets_dir, ctx.session.hashes)],
         after=[f"{prefix}assemble"],
     )

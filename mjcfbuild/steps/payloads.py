@@ -365,6 +365,7 @@ class PreviewsPayload(Payload):
     assembly_report: Annotated[
         str, NotCounted("names the products the assets were published from: speed, not content")
     ]
+    record: Output  # each picture in ``folder`` with what it shows, to keep those unchanged
 
 
 @dataclass(frozen=True)

@@ -1,23 +1,33 @@
-"""Step ``previews``: pictures of the model from the front and the side, visual and collision."""
+"""Step ``previews``: pictures of the model from the front and the side, visual and collision.
+
+Only the pictures whose content changed are drawn again. The step's record lists each picture
+it left in the folder with the digest of what it shows and the hash of its bytes; a picture
+counts as drawn only while its file still has those bytes, so one edited by hand, or left
+half-written by an interrupted build, is drawn again.
+"""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 from mjcfbuild.check.loading import asset_sources
 from mjcfbuild.check.previews import render_previews
 from mjcfbuild.errors import MjcfbuildError, ModelError
-from mjcfbuild.steps.outputs import record_output
+from mjcfbuild.fsutil import md5_file
+from mjcfbuild.steps.outputs import record_output, write_output
 from mjcfbuild.steps.payloads import PreviewsPayload
 
 
 def run(payload: dict) -> dict:
     """Render the previews; a machine without offscreen OpenGL gets a warning, not a failure."""
     request = PreviewsPayload.from_dict(payload)
-    folder = Path(request.folder)
+    folder, record = Path(request.folder), Path(request.record)
     try:
         sources = asset_sources(Path(request.assembly_report))
-        names = render_previews(Path(request.model), folder, sources=sources)
+        shown = render_previews(
+            Path(request.model), folder, sources=sources, drawn=pictures_in_place(folder, record)
+        )
     except ModelError:  # a model that does not load: the check task says why
         return {"outputs": {}}
     except MjcfbuildError:
@@ -31,6 +41,32 @@ def run(payload: dict) -> dict:
             ],
         }
     outputs: dict[str, str] = {}
-    for name in names:
+    entries = {}
+    for name, digest in shown.items():
         record_output(folder / name, outputs)
+        if digest is not None:
+            entries[name] = {"shows": digest, "md5": outputs[str(folder / name)]}
+    text = json.dumps(entries, indent=1, sort_keys=True) + "\n"
+    write_output(record, text.encode(), outputs)
     return {"outputs": outputs}
+
+
+def pictures_in_place(folder: Path, record: Path) -> dict[str, str]:
+    """The pictures in ``folder`` that are as the step's ``record`` says it left them, each
+    with the digest of what it shows."""
+    try:
+        entries = json.loads(record.read_text())
+        return {
+            name: entry["shows"]
+            for name, entry in entries.items()
+            if _has_md5(folder / name, entry["md5"])
+        }
+    except (OSError, ValueError, AttributeError, KeyError, TypeError):
+        return {}
+
+
+def _has_md5(path: Path, md5: str) -> bool:
+    try:
+        return md5_file(path) == md5
+    except OSError:
+        return False

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import mjcfbuild
@@ -61,3 +62,24 @@ def test_a_damping_change_reruns_the_check_but_not_the_previews(arm):
     data[84 + 12] ^= 0x01
     mesh.write_bytes(bytes(data))
     assert "previews" in mjcfbuild.build(manifest, jobs=2).ran  # a shape changed: redrawn
+
+
+def test_a_visual_mesh_edit_redraws_the_visual_pictures_only(arm):
+    manifest = arm / "robot.yaml"
+    mjcfbuild.build(manifest, jobs=2)
+    record = arm / "mjcf" / ".mjcfbuild" / "previews.json"
+    before = json.loads(record.read_text())
+    assert sorted(before) == [
+        "front_collision.png",
+        "front_visual.png",
+        "side_collision.png",
+        "side_visual.png",
+    ]
+    mesh = arm / "meshes" / "base.stl"  # the base's collision geometry is a cylinder
+    data = bytearray(mesh.read_bytes())
+    data[84 + 12] ^= 0x01
+    mesh.write_bytes(bytes(data))
+    assert "previews" in mjcfbuild.build(manifest, jobs=2).ran
+    after = json.loads(record.read_text())
+    for name in before:
+        assert (after[name] == before[name]) == ("collision" in name), name
