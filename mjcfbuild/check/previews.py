@@ -31,10 +31,11 @@ KINDS = ("visual", "collision")
 BACKGROUND = (235, 235, 235)
 COLLISION_RGBA = (0.9, 0.45, 0.15, 1.0)
 SHADOW_MAP_SIZE = 1024
-MULTISAMPLES = 2
+# Each picture is drawn at twice its width and height and reduced, four samples a pixel.
+SUPERSAMPLING = 2
 # Everything above that decides how a picture looks; a change to the drawing code that
 # changes the pictures changes this too (a new first element), so they are drawn again.
-DRAWING = (1, VIEWS, ELEVATION, BACKGROUND, COLLISION_RGBA, SHADOW_MAP_SIZE, MULTISAMPLES)
+DRAWING = (2, VIEWS, ELEVATION, BACKGROUND, COLLISION_RGBA, SHADOW_MAP_SIZE, SUPERSAMPLING)
 # File name -> the view's azimuth and the kind of geometry shown, in the order drawn.
 PICTURES = {
     f"{view}_{kind}.png": (azimuth, kind) for view, azimuth in VIEWS.items() for kind in KINDS
@@ -92,7 +93,7 @@ def render_previews(
     model.geom_rgba[collides] = COLLISION_RGBA
     model.geom_matid[collides] = -1
     folder.mkdir(parents=True, exist_ok=True)
-    with _Offscreen(model, width, height) as offscreen:
+    with _Offscreen(model, width * SUPERSAMPLING, height * SUPERSAMPLING) as offscreen:
         for name in to_draw:
             azimuth, kind = PICTURES[name]
             camera = mujoco.MjvCamera()
@@ -107,7 +108,8 @@ def render_previews(
             option.sitegroup[:] = 0
             pixels, background = offscreen.draw(data, camera, option)
             pixels[background] = BACKGROUND
-            Image.fromarray(pixels).save(folder / name, optimize=False)
+            picture = Image.fromarray(pixels).reduce(SUPERSAMPLING)  # the mean of each square
+            picture.save(folder / name, optimize=False)
     return shown
 
 
@@ -175,11 +177,13 @@ class _Offscreen:
         # The offscreen buffer is sized from the model; the pictures must fit in it.
         model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
         model.vis.global_.offheight = max(model.vis.global_.offheight, height)
-        # Software OpenGL (Mesa's llvmpipe) pays for every shadow-map texel and every sample:
-        # at 480 x 360 a 1024 map and 2x multisampling look the same as MuJoCo's 4096 and 4x
-        # and draw in two thirds of the time (go1: 1.3 -> 0.9 s for the four pictures).
+        # Software OpenGL (Mesa's llvmpipe) pays for every shadow-map texel: at these sizes a
+        # 1024 map looks the same as MuJoCo's 4096 (go1: 1.3 -> 0.9 s for four pictures).
+        # No multisampling: the pictures are supersampled instead, which llvmpipe draws in
+        # about the same time (the robots' meshes, not the pixels, take it) and reads back
+        # without resolving samples, a step whose first use costs 0.04 s in every process.
         model.vis.quality.shadowsize = SHADOW_MAP_SIZE
-        model.vis.quality.offsamples = MULTISAMPLES
+        model.vis.quality.offsamples = 0
         self.gl = mujoco.GLContext(width, height)
         self.gl.make_current()
         self.context = mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_150)

@@ -10,6 +10,7 @@ import sys
 from pathlib import Path
 
 import mujoco
+from PIL import Image
 
 from mjcfbuild.check.previews import _model_to_draw
 
@@ -132,6 +133,8 @@ def test_only_the_pictures_of_what_changed_are_drawn_again(tmp_path):
     scene = _two_meshes(tmp_path)
     first = _render(scene)
     assert _pictures(tmp_path) == set(first) and None not in first.values()
+    with Image.open(tmp_path / "previews" / "front_visual.png") as picture:
+        assert picture.size == (160, 120)  # drawn larger, reduced to the size asked for
     assert first["front_visual.png"] == first["side_visual.png"] != first["front_collision.png"]
 
     _forget_pictures(tmp_path)  # a picture not drawn again is not written again
