@@ -1,12 +1,13 @@
 """Where users wait: cold, no-op (fast and full path), one mesh or one joint attribute changed.
 
-    python bench/edit_times.py [--robots panda,go1] [--repeat 5] [--jobs 2] [--no-check]
-                               [--reference "COMMAND {urdf} {output}"]
+    python bench/edit_times.py [--robots panda,go1] [--repeat 5] [--cold-repeat 3] [--jobs 2]
+                               [--no-check] [--reference "COMMAND {urdf} {output}"]
 
 Each robot is copied into a temporary folder and built with the ``mjcfbuild`` command line
 (check and previews included, unless ``--no-check``), timed from the outside as a user would
-see it, with a fresh cache folder, and with mjcfbuild's bytecode written first, as
-installing it does (``compile_package`` in build_times). The no-op is timed twice: as
+see it, with mjcfbuild's bytecode written first, as installing it does
+(``compile_package`` in build_times). A cold build starts from a fresh cache folder and no
+output folder; it is made ``--cold-repeat`` times and the median shown. The no-op is timed twice: as
 ``mjcfbuild build`` runs it (the stamp fast path) and with ``MJCFBUILD_FULL_BUILD=1`` (the
 full doit graph). The joint edit changes the damping of the first joint of the URDF (or
 xacro), the mesh edit one vertex of one mesh; each edit is made ``--repeat`` times,
@@ -74,15 +75,32 @@ def edit_joint(manifest: Path) -> Path:
 
 
 def measure(
-    label: str, manifest: Path, mesh: Path, repeat: int, jobs: int, check: bool, reference: str
+    label: str,
+    manifest: Path,
+    mesh: Path,
+    repeats: tuple[int, int],
+    jobs: int,
+    check: bool,
+    reference: str,
 ) -> dict:
-    """The times of one robot (seconds) and which tasks ran after each edit."""
+    """The times of one robot (seconds) and which tasks ran after each edit; ``repeats``:
+    how often each edit and each cold build is made."""
+    from mjcfbuild.engine.context import BuildContext
+
+    repeat, cold_repeat = repeats
     env = dict(os.environ)
     full = {**env, "MJCFBUILD_FULL_BUILD": "1"}
     row: dict = {"robot": label}
+    output = BuildContext.from_manifest_file(manifest).out_dir
     with tempfile.TemporaryDirectory() as cache:
         env["MJCFBUILD_CACHE_DIR"] = full["MJCFBUILD_CACHE_DIR"] = cache
-        row["cold"], _ = timed_build(manifest, jobs, env, check)
+        cold_times = []
+        for _ in range(cold_repeat):
+            shutil.rmtree(output, ignore_errors=True)
+            shutil.rmtree(cache)
+            os.mkdir(cache)
+            cold_times.append(timed_build(manifest, jobs, env, check)[0])
+        row["cold"] = statistics.median(cold_times)
         time.sleep(2.1)  # past the racy window: the fast path trusts mtimes from here on
         timed_build(manifest, jobs, env, check)  # restamps files written in that window
         row["noop"] = statistics.median(
@@ -151,7 +169,8 @@ def print_table(rows: list[dict], jobs: int, check: bool) -> None:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--robots", default="panda,go1", help="example-robot-data robots")
-    parser.add_argument("--repeat", type=int, default=5, help="no-op runs (median)")
+    parser.add_argument("--repeat", type=int, default=5, help="no-op runs and edits (median)")
+    parser.add_argument("--cold-repeat", type=int, default=3, help="cold builds (median)")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--no-check", action="store_true", help="build without check and previews")
     parser.add_argument(
@@ -164,14 +183,13 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as scratch:
         folder = Path(scratch)
         manifest, mesh, _ = case_example(folder / "example")
+        repeats = (args.repeat, args.cold_repeat)
         rows.append(
-            measure("example arm", manifest, mesh, args.repeat, args.jobs, check, args.reference)
+            measure("example arm", manifest, mesh, repeats, args.jobs, check, args.reference)
         )
         for name in [n for n in args.robots.split(",") if n]:
             manifest, mesh, _ = case_robot(name, folder / name)
-            rows.append(
-                measure(name, manifest, mesh, args.repeat, args.jobs, check, args.reference)
-            )
+            rows.append(measure(name, manifest, mesh, repeats, args.jobs, check, args.reference))
             print(f"measured {name}", file=sys.stderr)
         shutil.rmtree(folder, ignore_errors=True)
     print_table(rows, args.jobs, check)
