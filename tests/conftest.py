@@ -16,11 +16,15 @@ EXAMPLES = ROOT / "examples"
 
 
 def pytest_configure(config):
-    """Keep the tests' shared cache (validated manifests, mesh products) out of the user's."""
+    """Keep the tests' shared cache (validated manifests, mesh products) out of the user's,
+    and their workers to themselves."""
     import tempfile
 
     if "MJCFBUILD_CACHE_DIR" not in os.environ:
         os.environ["MJCFBUILD_CACHE_DIR"] = tempfile.mkdtemp(prefix="mjcfbuild-test-cache-")
+    # Every build starts its own workers: a worker that stayed after one test's build would
+    # serve the next test's. tests/engine/test_resident.py turns them on where it tests them.
+    os.environ["MJCFBUILD_RESIDENT_WORKERS"] = "0"
     from tests.fuzzing import load_profile
 
     load_profile()  # property tests: deterministic unless MJCFBUILD_FUZZ asks for a long run

@@ -54,6 +54,9 @@ def check_part(
     import mujoco
     import numpy as np
 
+    from mjcfbuild.mjcache import forget_earlier_builds
+
+    forget_earlier_builds()  # the part's files are the user's
     alone = mujoco.MjModel.from_xml_path(str(part.source))
     result = PartResult(part.label, configurations)
     obj = mujoco.mjtObj

@@ -184,7 +184,7 @@ class _Offscreen:
         # without resolving samples, a step whose first use costs 0.04 s in every process.
         model.vis.quality.shadowsize = SHADOW_MAP_SIZE
         model.vis.quality.offsamples = 0
-        self.gl = mujoco.GLContext(width, height)
+        self.gl = _gl_context(width, height)
         self.gl.make_current()
         self.context = mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_150)
         mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN, self.context)
@@ -218,7 +218,19 @@ class _Offscreen:
 
     def __exit__(self, *exc: object) -> None:
         self.context.free()
-        self.gl.free()
+
+
+# The OpenGL context of this process, made once: a worker that draws previews again (in a
+# later build, as a resident worker) finds the shaders Mesa compiled for the last pictures.
+_contexts: dict[tuple[int, int], Any] = {}
+
+
+def _gl_context(width: int, height: int) -> Any:
+    import mujoco
+
+    if (width, height) not in _contexts:
+        _contexts[(width, height)] = mujoco.GLContext(width, height)
+    return _contexts[(width, height)]
 
 
 def _framing(model, data):

@@ -32,6 +32,7 @@ def build_parser() -> argparse.ArgumentParser:
         graph,
         init,
         schema,
+        workers,
     )
 
     parser = argparse.ArgumentParser(
@@ -45,7 +46,8 @@ def build_parser() -> argparse.ArgumentParser:
     )
     commands = parser.add_subparsers(title="commands", dest="command", metavar="COMMAND")
     commands.required = True
-    for module in (build, check, explain, graph, clean, convert, export_urdf, init, schema, cache):
+    commands_in_order = (build, check, explain, graph, clean, convert, export_urdf, init, schema)
+    for module in (*commands_in_order, cache, workers):
         module.add_parser(commands)
     return parser
 

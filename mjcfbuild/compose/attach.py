@@ -71,6 +71,10 @@ def attach_parts(spec, bodies: list[Body], parts: list[AttachedPart]) -> dict[st
     """Attach ``parts`` (in order) to ``spec``; the asset files they publish, by name."""
     import mujoco
 
+    from mjcfbuild.mjcache import forget_earlier_builds
+
+    if parts:
+        forget_earlier_builds()  # the parts' files are the user's
     published: dict[str, str] = {}
     spec.copy_during_attach = True
     for part in parts:

@@ -75,6 +75,9 @@ def load_part(path: Path, label: str):
     part's file (and line, when MuJoCo gives one) if either fails."""
     import mujoco
 
+    from mjcfbuild.mjcache import forget_earlier_builds
+
+    forget_earlier_builds()  # the part's files are the user's
     try:
         spec = mujoco.MjSpec.from_file(str(path))
     except Exception as exc:

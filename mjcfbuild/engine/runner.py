@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import fcntl
+import os
 import shutil
 import sys
 import time
@@ -94,6 +95,9 @@ def run_build(
 
     ``workers`` (mjcfbuild.engine.early) are used if they suit the build, else stopped.
     """
+    from mjcfbuild.engine.resident import idle_seconds
+
+    idle_seconds(os.environ)  # a bad value stops the build before it starts, not in a step
     session = ctx.new_session()  # a context built twice reports each build's own findings
     if workers is not None and not session.adopt(workers):
         workers.close()  # importing and processing meshes for nothing: free the CPU

@@ -30,9 +30,14 @@ import sys
 import threading
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING
 
+from mjcfbuild.engine.worker_main import MESHES_VARIABLE, PRELOAD_VARIABLE
 from mjcfbuild.errors import InternalError, MjcfbuildError, TaskCrashed
 from mjcfbuild.failpoints import BUILD_PID
+
+if TYPE_CHECKING:
+    from mjcfbuild.engine.resident import Resident
 
 # What the build steps import, in the order a build needs them: warm workers import these.
 # Not trimesh (0.6 s of CPU with the scipy and networkx it imports): binary STL and COLLADA,
@@ -57,35 +62,65 @@ def rebuild_preloads(checks: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
     return MODEL_MODULES + CHECK_MODULES, (*MESH_MODULES, "mujoco", *CHECK_MODULES)
 
 
-class _Worker:
-    def __init__(
-        self, cwd: Path, stderr_log: Path, preload: tuple[str, ...], meshes_from: Path | None
-    ) -> None:
-        from mjcfbuild.engine.worker_main import MESHES_VARIABLE, PRELOAD_VARIABLE
+def worker_environment() -> dict[str, str]:
+    """The environment of a worker process of this build."""
+    env = dict(os.environ)
+    for variable in (PRELOAD_VARIABLE, MESHES_VARIABLE):
+        env.pop(variable, None)
+    env.setdefault("PYTHONHASHSEED", "0")
+    # One thread per worker: -j is the build's CPU budget. CoACD is OpenMP-parallel, and
+    # two workers each starting a thread per core would fight over the same cores.
+    env.setdefault("OMP_NUM_THREADS", "1")
+    env[BUILD_PID] = str(os.getpid())
+    if sys.platform.startswith("linux"):
+        # Offscreen rendering (previews) without a display; must be set before import mujoco.
+        env.setdefault("MUJOCO_GL", "egl")
+    package_root = str(Path(__file__).resolve().parents[2])
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [package_root, env.get("PYTHONPATH")]))
+    return env
 
+
+class _Worker:
+    """One worker process and the channel to it: its stdin and stdout when this build
+    started it for itself, or a socket when it is resident (mjcfbuild.engine.resident)."""
+
+    def __init__(
+        self,
+        preload: tuple[str, ...],
+        meshes_from: Path | None,
+        process: subprocess.Popen | None,
+        resident: Resident | None = None,
+    ) -> None:
         self.preload = preload
         self.meshes_from = meshes_from
         # The model whose meshes MuJoCo has cached in this process (the affinity of the last
         # step it ran that had one), and the affinity of the step it is running now.
-        self.holds: str | None = None
+        self.holds: str | None = resident.holds if resident is not None else None
         self.running: str | None = None
-        env = dict(os.environ)
+        self.calling = False
+        self.process = process
+        self.resident = resident
+        if resident is not None:
+            self.pid = resident.pid
+            self._send_fd = self._receive_fd = resident.connection.fileno()
+        else:
+            # Both pipes exist: the caller asked for them.
+            assert process is not None and process.stdin and process.stdout
+            self.pid = process.pid
+            self._send_fd, self._receive_fd = process.stdin.fileno(), process.stdout.fileno()
+        self._buffer = b""
+
+    @staticmethod
+    def start(
+        cwd: Path, stderr_log: Path, preload: tuple[str, ...], meshes_from: Path | None
+    ) -> _Worker:
+        """A worker process of this build's own, which ends with it."""
+        env = worker_environment()
         env[PRELOAD_VARIABLE] = ",".join(preload)
-        env.pop(MESHES_VARIABLE, None)
         if meshes_from is not None:
             env[MESHES_VARIABLE] = str(meshes_from)
-        env.setdefault("PYTHONHASHSEED", "0")
-        # One thread per worker: -j is the build's CPU budget. CoACD is OpenMP-parallel, and
-        # two workers each starting a thread per core would fight over the same cores.
-        env.setdefault("OMP_NUM_THREADS", "1")
-        env[BUILD_PID] = str(os.getpid())
-        if sys.platform.startswith("linux"):
-            # Offscreen rendering (previews) without a display; must be set before import mujoco.
-            env.setdefault("MUJOCO_GL", "egl")
-        package_root = str(Path(__file__).resolve().parents[2])
-        env["PYTHONPATH"] = os.pathsep.join(filter(None, [package_root, env.get("PYTHONPATH")]))
         with open(stderr_log, "ab") as stderr:
-            self.process = subprocess.Popen(
+            process = subprocess.Popen(
                 [sys.executable, "-m", "mjcfbuild.engine.worker_main"],
                 stdin=subprocess.PIPE,
                 stdout=subprocess.PIPE,
@@ -93,30 +128,36 @@ class _Worker:
                 cwd=cwd,
                 env=env,
             )
-        # Both pipes exist: they were asked for above.
-        assert self.process.stdin is not None and self.process.stdout is not None
-        self._stdin = self.process.stdin
-        self._stdout = self.process.stdout
-        self._buffer = b""
+        return _Worker(preload, meshes_from, process)
 
     def call(self, request: dict, label: str, timeout: float | None) -> dict:
-        data = (json.dumps(request) + "\n").encode()
+        self.calling = True
         try:
-            self._stdin.write(data)
-            self._stdin.flush()
-        except (BrokenPipeError, OSError):
+            return self._call(request, label, timeout)
+        finally:
+            self.calling = False
+
+    def _call(self, request: dict, label: str, timeout: float | None) -> dict:
+        data = memoryview((json.dumps(request) + "\n").encode())
+        try:
+            while data:
+                data = data[os.write(self._send_fd, data) :]
+        except OSError:
             raise self._died(label, request) from None
         deadline = None if timeout is None else time.monotonic() + timeout
         while b"\n" not in self._buffer:
             wait = None if deadline is None else max(0.0, deadline - time.monotonic())
-            ready, _, _ = select.select([self._stdout], [], [], wait)
+            ready, _, _ = select.select([self._receive_fd], [], [], wait)
             if not ready:
                 self.kill()
                 raise TaskCrashed(
                     f"{label} did not finish within {timeout:g} s and was stopped",
                     hint=_log_hint(request),
                 )
-            chunk = os.read(self._stdout.fileno(), 1 << 16)
+            try:
+                chunk = os.read(self._receive_fd, 1 << 16)
+            except OSError:
+                chunk = b""
             if not chunk:
                 raise self._died(label, request)
             self._buffer += chunk
@@ -124,23 +165,49 @@ class _Worker:
         return json.loads(line)
 
     def _died(self, label: str, request: dict) -> TaskCrashed:
-        code = self.process.wait()
-        if code < 0:
-            try:
-                how = f"crashed ({signal.Signals(-code).name})"
-            except ValueError:
-                how = f"was killed by signal {-code}"
+        if self.process is None:  # a resident worker
+            from mjcfbuild.engine.resident import how_it_ended, running
+
+            if running(self.pid):  # it closed the connection: it must not go on
+                self.kill()
+            how = how_it_ended(self.pid)
         else:
-            how = f"exited with code {code}"
+            code = self.process.wait()
+            if code < 0:
+                try:
+                    how = f"crashed ({signal.Signals(-code).name})"
+                except ValueError:
+                    how = f"was killed by signal {-code}"
+            else:
+                how = f"exited with code {code}"
         return TaskCrashed(f"{label}: the worker process {how}", hint=_log_hint(request))
 
     def alive(self) -> bool:
-        return self.process.poll() is None
+        if self.process is not None:
+            return self.process.poll() is None
+        from mjcfbuild.engine.resident import running
+
+        return running(self.pid)
 
     def kill(self) -> None:
-        if self.process.poll() is None:
-            self.process.kill()
-        self.process.wait()
+        if self.process is not None:
+            if self.process.poll() is None:
+                self.process.kill()
+            self.process.wait()
+        else:
+            from mjcfbuild.engine.resident import stop
+
+            stop(self.pid)
+        if self.resident is not None:
+            self.resident.connection.close()
+
+    def let_go(self) -> None:
+        """End this build's use of the worker: a resident worker that is not running a step
+        waits for the next build; any other is stopped."""
+        if self.resident is None or self.calling or not self.alive():
+            self.kill()
+        else:
+            self.resident.connection.close()
 
 
 def _log_hint(request: dict) -> str | None:
@@ -164,9 +231,14 @@ class WorkerPool:
     """Up to ``size`` worker processes, started by :meth:`warm` or when first needed."""
 
     def __init__(self, size: int, cwd: Path, log_dir: Path) -> None:
+        from mjcfbuild.engine.resident import idle_seconds, resident_dir
+
         self.size = max(1, size)
         self.cwd = cwd
         self.log_dir = log_dir
+        # Where resident workers wait (mjcfbuild.engine.resident), or None when they are off.
+        self.residents = resident_dir(os.environ) if idle_seconds(os.environ) > 0 else None
+        self._key: str | None = None
         self._idle: list[_Worker] = []
         self._started = 0
         self._all: list[_Worker] = []
@@ -192,9 +264,8 @@ class WorkerPool:
         worker = self._acquire(step.partition(":")[0], affinity)
         healthy = False
         try:
-            reply = worker.call(
-                {"step": step, "payload": payload, "log": str(log) if log else None}, label, timeout
-            )
+            request = {"step": step, "payload": payload, "log": str(log) if log else None}
+            reply = worker.call({**request, "affinity": affinity}, label, timeout)
             healthy = True
         finally:
             self._release(worker, healthy, affinity)
@@ -223,11 +294,40 @@ class WorkerPool:
                 self._condition.notify()
 
     def _start(self, preload: tuple[str, ...] = (), meshes_from: Path | None = None) -> _Worker:
-        self.log_dir.mkdir(parents=True, exist_ok=True)
-        worker = _Worker(self.cwd, self.log_dir / "workers.log", preload, meshes_from)
+        worker = None
+        if self.residents is not None:
+            worker = self._resident(self.residents, preload, meshes_from)
+        if worker is None:
+            self.log_dir.mkdir(parents=True, exist_ok=True)
+            worker = _Worker.start(self.cwd, self.log_dir / "workers.log", preload, meshes_from)
         with self._condition:
             self._all.append(worker)
         return worker
+
+    def _resident(
+        self, folder: Path, preload: tuple[str, ...], meshes_from: Path | None
+    ) -> _Worker | None:
+        """An idle resident worker, or a new one that stays after this build; None if a new
+        one could not be started (the build starts one of its own)."""
+        from mjcfbuild.engine.resident import claim, spawn, worker_key
+
+        env = worker_environment()
+        if self._key is None:
+            self._key = worker_key(env)
+        hello = {
+            "key": self._key,
+            "env": env,
+            "cwd": str(self.cwd),
+            "preload": list(preload),
+            "meshes_from": str(meshes_from) if meshes_from is not None else None,
+        }
+        resident = claim(folder, self._key, hello)
+        if resident is None:
+            try:
+                resident = spawn(folder, self._key, hello, env, self.cwd)
+            except OSError:
+                return None
+        return _Worker(preload, meshes_from, None, resident)
 
     def warm_for(self, affinity: str, step: str, payload: dict, timeout: float | None) -> None:
         """Run ``step`` in the background on an idle worker that does not hold ``affinity``,
@@ -245,7 +345,8 @@ class WorkerPool:
         def warm() -> None:
             healthy = warmed = False
             try:
-                warmed = worker.call({"step": step, "payload": payload}, "warm", timeout)["ok"]
+                request = {"step": step, "payload": payload, "affinity": affinity}
+                warmed = worker.call(request, "warm", timeout)["ok"]
                 healthy = True
             except MjcfbuildError:  # crashed or too slow: the worker is replaced as usual
                 pass
@@ -303,11 +404,13 @@ class WorkerPool:
             self._condition.notify_all()
 
     def close(self) -> None:
-        """Stop every worker at once: every reply is in and every step's log flushed, so
-        nothing is lost, and a worker may still be importing a module it was warmed with."""
+        """Let go of every worker at once: every reply is in and every step's log flushed,
+        so nothing is lost. Resident workers wait for the next build; the others stop, even
+        if still importing a module they were warmed with, and so does any worker still
+        running a step (a warm-up, or a step of a build that was interrupted)."""
         with self._condition:
             self._closed = True
             workers, self._all, self._idle = self._all, [], []
             self._condition.notify_all()
         for worker in workers:
-            worker.kill()
+            worker.let_go()

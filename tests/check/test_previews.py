@@ -179,3 +179,27 @@ def test_what_both_kinds_show_draws_both_again(tmp_path):
     robot.write_text(robot.read_text().replace('damping="1"', 'damping="2"'))
     assert _render(scene, first) == first
     assert _pictures(tmp_path) == set()
+
+
+def test_a_process_that_draws_twice_draws_what_a_new_process_draws(tmp_path):
+    """A worker keeps its OpenGL context from one model's previews to the next (a resident
+    worker, from one build to the next): nothing of the first drawing shows in the second."""
+    first, second = _two_meshes(tmp_path / "one"), _scene(tmp_path / "two", SKYBOX)
+    code = (
+        "import sys; from pathlib import Path; "
+        "from mjcfbuild.check.previews import render_previews; "
+        "[render_previews(Path(a), Path(a).parent / 'again', 160, 120) for a in sys.argv[1:]]"
+    )
+    environment = {**os.environ, "MUJOCO_GL": "egl"}
+    done = subprocess.run(
+        [sys.executable, "-c", code, str(first), str(second)],
+        env=environment,
+        capture_output=True,
+        text=True,
+    )
+    assert done.returncode == 0, done.stderr
+    _render(second)  # alone, in a process of its own
+    pictures = sorted((tmp_path / "two" / "previews").glob("*.png"))
+    assert len(pictures) == 4
+    for picture in pictures:
+        assert picture.read_bytes() == (tmp_path / "two" / "again" / picture.name).read_bytes()

@@ -1,0 +1,67 @@
+"""``mjcfbuild workers``: show or stop the resident workers waiting for the next build."""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import os
+import signal
+from pathlib import Path
+
+
+def add_parser(commands) -> None:
+    """Register the subcommand."""
+    parser = commands.add_parser(
+        "workers",
+        help="show or stop the worker processes that wait for the next build",
+        description=(
+            "A build leaves its worker processes running, with MuJoCo loaded and the model's "
+            "meshes processed, for the next build to use. They wait "
+            "$MJCFBUILD_RESIDENT_WORKERS seconds (default 900; 0 turns them off, as does a "
+            "set CI variable) and then exit. Folder: $MJCFBUILD_RESIDENT_DIR, else "
+            "$XDG_RUNTIME_DIR/mjcfbuild-<uid>, else the temporary folder's."
+        ),
+    )
+    parser.add_argument(
+        "action",
+        nargs="?",
+        default="show",
+        choices=("show", "stop"),
+        help="show (default): the waiting workers and their memory; stop: end them now",
+    )
+    parser.set_defaults(handler=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Show or stop the waiting workers."""
+    from mjcfbuild.engine.resident import idle_seconds, resident_dir, resident_pids
+
+    folder = resident_dir(os.environ)
+    if folder is None:
+        print("mjcfbuild: no private folder for resident workers; builds start their own")
+        return 0
+    pids = resident_pids(folder)
+    if args.action == "stop":
+        for pid in pids:
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, signal.SIGTERM)
+            for socket_file in folder.glob(f"*-{pid}.sock"):
+                socket_file.unlink(missing_ok=True)
+        print(f"mjcfbuild: stopped {len(pids)} waiting worker{'' if len(pids) == 1 else 's'}")
+        return 0
+    seconds = idle_seconds(os.environ)
+    print(f"folder: {folder}")
+    print(f"wait: {seconds:g} s" + (" (resident workers are off)" if seconds == 0 else ""))
+    print(f"waiting: {len(pids)}")
+    for pid in pids:
+        print(f"  pid {pid}: {_megabytes(pid)}")
+    return 0
+
+
+def _megabytes(pid: int) -> str:
+    """The memory a process holds (resident set), where the system tells it."""
+    try:
+        pages = int(Path(f"/proc/{pid}/statm").read_text().split()[1])
+    except (OSError, IndexError, ValueError):
+        return "memory unknown"
+    return f"{pages * os.sysconf('SC_PAGE_SIZE') / 2**20:.0f} MB"

@@ -1,0 +1,29 @@
+"""``mjcfbuild workers`` shows the workers that wait for the next build and stops them."""
+
+from __future__ import annotations
+
+from mjcfbuild.engine import resident
+from mjcfbuild.errors import EXIT_OK
+from tests.conftest import copy_example, run_cli
+from tests.engine.test_resident import _wait_for, _waiting, residents  # noqa: F401
+
+
+def test_show_and_stop(residents, tmp_path):  # noqa: F811
+    shown = run_cli("workers")
+    assert shown.code == EXIT_OK and f"folder: {residents}" in shown.stdout
+    assert "waiting: 0" in shown.stdout and "wait: 300 s" in shown.stdout
+    arm = copy_example("arm", tmp_path)
+    assert run_cli("build", "-q", "--no-check", "-j", "1", cwd=arm).code == EXIT_OK
+    [pid] = _waiting(residents, 1)
+    shown = run_cli("workers")
+    assert "waiting: 1" in shown.stdout and f"pid {pid}: " in shown.stdout
+    assert " MB" in shown.stdout
+    stopped = run_cli("workers", "stop")
+    assert stopped.code == EXIT_OK and "stopped 1 waiting worker" in stopped.stdout
+    _wait_for(lambda: not resident.running(pid))
+    assert "waiting: 0" in run_cli("workers").stdout
+
+
+def test_off_says_so(tmp_path):
+    shown = run_cli("workers", env={resident.DIR_VARIABLE: str(tmp_path / "w")})
+    assert shown.code == EXIT_OK and "resident workers are off" in shown.stdout
