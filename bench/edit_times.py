@@ -6,21 +6,26 @@
 Each robot is copied into a temporary folder and built with the ``mjcfbuild`` command line
 (check and previews included, unless ``--no-check``), timed from the outside as a user would
 see it, with mjcfbuild's bytecode written first, as installing it does
-(``compile_package`` in build_times). A cold build starts from a fresh cache folder and no
-output folder; it is made ``--cold-repeat`` times and the median shown. The no-op is timed twice: as
-``mjcfbuild build`` runs it (the stamp fast path) and with ``MJCFBUILD_FULL_BUILD=1`` (the
-full doit graph). The joint edit changes the damping of the first joint of the URDF (or
-xacro), the mesh edit one vertex of one mesh; each edit is made ``--repeat`` times,
-alternating, and the median is shown. The reference converter rebuilds everything on every
-run; its figures are the ones recorded on this machine (issue 14) unless ``--reference``
-gives a command to time live, in which ``{urdf}`` is the robot's URDF (a xacro source
-expanded by the build) and ``{output}`` a fresh folder, for example ``--reference "ros2 run
-mujoco_ros2_control make_mjcf_from_robot_description.py --urdf {urdf} --output {output}"``
-where ROS is installed."""
+(``compile_package`` in build_times). A cold build starts from a fresh cache folder, no
+output folder and no resident worker; it is made ``--cold-repeat`` times and the median
+shown. The no-op is timed twice: as ``mjcfbuild build`` runs it (the stamp fast path) and
+with ``MJCFBUILD_FULL_BUILD=1`` (the full doit graph). The joint edit changes the damping of
+the first joint of the URDF (or xacro), the mesh edit one vertex of one mesh; each edit is
+made ``--repeat`` times, alternating, once with the workers the last build left (resident
+workers, as in an edit-and-rebuild loop) and once with new workers
+(``MJCFBUILD_RESIDENT_WORKERS=0``, as after they left), and the medians are shown. The
+workers live in a private folder of the benchmark and are stopped at its end. The
+reference converter rebuilds everything on every run; its figures are the ones recorded on
+this machine (issue 14) unless ``--reference`` gives a command to time live, in which
+``{urdf}`` is the robot's URDF (a xacro source expanded by the build) and ``{output}`` a
+fresh folder, for example ``--reference "ros2 run mujoco_ros2_control
+make_mjcf_from_robot_description.py --urdf {urdf} --output {output}"`` where ROS is
+installed."""
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import re
 import shlex
@@ -30,11 +35,14 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Iterator
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from bench.build_times import case_example, case_robot, compile_package, nudge_mesh
+from mjcfbuild.engine.resident import DIR_VARIABLE as RESIDENT_DIR_VARIABLE
+from mjcfbuild.engine.resident import VARIABLE as RESIDENT_VARIABLE
 
 # The reference converter's full run, measured on this 2-core machine (issue 14).
 REFERENCE_RECORDED = {"panda": 5.4, "go1": 14.6}
@@ -89,16 +97,22 @@ def measure(
 
     repeat, cold_repeat = repeats
     env = dict(os.environ)
+    env.pop("CI", None)  # resident workers on, as on a user's machine
+    env[RESIDENT_VARIABLE] = "900"
     full = {**env, "MJCFBUILD_FULL_BUILD": "1"}
+    new_workers = {**env, RESIDENT_VARIABLE: "0"}
     row: dict = {"robot": label}
     output = BuildContext.from_manifest_file(manifest).out_dir
-    with tempfile.TemporaryDirectory() as cache:
-        env["MJCFBUILD_CACHE_DIR"] = full["MJCFBUILD_CACHE_DIR"] = cache
+    with tempfile.TemporaryDirectory() as cache, resident_folder() as residents:
+        for each in (env, full, new_workers):
+            each["MJCFBUILD_CACHE_DIR"] = cache
+            each[RESIDENT_DIR_VARIABLE] = str(residents)
         cold_times = []
         for _ in range(cold_repeat):
             shutil.rmtree(output, ignore_errors=True)
             shutil.rmtree(cache)
             os.mkdir(cache)
+            stop_workers(residents)  # a first build: no worker waits for it
             cold_times.append(timed_build(manifest, jobs, env, check)[0])
         row["cold"] = statistics.median(cold_times)
         time.sleep(2.1)  # past the racy window: the fast path trusts mtimes from here on
@@ -109,21 +123,44 @@ def measure(
         row["noop_full"] = statistics.median(
             timed_build(manifest, jobs, full, check)[0] for _ in range(repeat)
         )
-        mesh_times, joint_times = [], []
+        times: dict[str, list[float]] = {}
         for _ in range(repeat):
-            nudge_mesh(mesh)
-            seconds, row["mesh_summary"] = timed_build(manifest, jobs, env, check)
-            mesh_times.append(seconds)
-            edit_joint(manifest)
-            seconds, row["joint_summary"] = timed_build(manifest, jobs, env, check)
-            joint_times.append(seconds)
-        row["mesh"] = statistics.median(mesh_times)
-        row["joint"] = statistics.median(joint_times)
+            for workers, environment in (("", env), ("_new", new_workers)):
+                nudge_mesh(mesh)
+                seconds, row["mesh_summary"] = timed_build(manifest, jobs, environment, check)
+                times.setdefault("mesh" + workers, []).append(seconds)
+                edit_joint(manifest)
+                seconds, row["joint_summary"] = timed_build(manifest, jobs, environment, check)
+                times.setdefault("joint" + workers, []).append(seconds)
+        row.update({name: statistics.median(values) for name, values in times.items()})
+        stop_workers(residents)
     row["reference"] = (
         time_reference(reference, manifest, repeat) if reference else REFERENCE_RECORDED.get(label)
     )
     row["reference_live"] = bool(reference)
     return row
+
+
+@contextlib.contextmanager
+def resident_folder() -> Iterator[Path]:
+    """A private folder for the resident workers of one robot's builds (short: a socket's
+    path is limited), whose workers are stopped at the end."""
+    folder = Path(tempfile.mkdtemp(prefix="mjcfbuild-bench-", dir="/tmp"))
+    try:
+        yield folder
+    finally:
+        stop_workers(folder)
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def stop_workers(folder: Path) -> None:
+    """Stop the resident workers waiting in ``folder``."""
+    from mjcfbuild.engine.resident import resident_pids, stop
+
+    for pid in resident_pids(folder):
+        stop(pid)
+    for socket_file in folder.glob("*.sock"):
+        socket_file.unlink()
 
 
 def time_reference(template: str, manifest: Path, repeat: int) -> float:
@@ -151,14 +188,16 @@ def print_table(rows: list[dict], jobs: int, check: bool) -> None:
     how = "live" if any(row["reference_live"] for row in rows) else "recorded"
     print(
         "| robot | cold | no-op | no-op, full graph | one mesh changed | one joint damping "
-        f"changed | reference converter (every run, {how}) |"
+        "changed | one mesh, new workers | one joint, new workers | reference converter "
+        f"(every run, {how}) |"
     )
-    print("|---|---:|---:|---:|---:|---:|---:|")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     for row in rows:
         reference = f"{row['reference']:.1f}" if row["reference"] else "n/a"
         print(
             f"| {row['robot']} | {row['cold']:.2f} | {row['noop']:.3f} | {row['noop_full']:.3f} "
-            f"| {row['mesh']:.2f} | {row['joint']:.2f} | {reference} |"
+            f"| {row['mesh']:.2f} | {row['joint']:.2f} | {row['mesh_new']:.2f} "
+            f"| {row['joint_new']:.2f} | {reference} |"
         )
     print()
     for row in rows:

@@ -204,16 +204,23 @@ def main() -> None:
         _serve_resident(socket.socket(fileno=int(fd)), Path(folder), key, float(seconds))
         os._exit(0)
     threading.Thread(target=_watch_parent, args=(os.getppid(),), daemon=True).start()
-    protocol = os.fdopen(os.dup(1), "wb", buffering=0)
+    protocol = os.dup(1)
     os.dup2(devnull, 1)
     os.close(devnull)
     preload = [name for name in os.environ.get(PRELOAD_VARIABLE, "").split(",") if name]
     idle = idle_work(preload, os.environ.get(MESHES_VARIABLE))
-    for _ in serve(sys.stdin.fileno(), protocol.write, idle):
+    for _ in serve(sys.stdin.fileno(), partial(_write_all, protocol), idle):
         pass
     # Stdin closed (the build process is gone). Replies and logs are flushed; the
     # interpreter's teardown (unloading MuJoCo, trimesh, numpy) would take 0.2-0.4 s.
     os._exit(0)
+
+
+def _write_all(fd: int, data: bytes) -> None:
+    """Write all of ``data`` to ``fd`` (a write to a pipe may take only part of it)."""
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view) :]
 
 
 class _Between:
