@@ -14,7 +14,8 @@ the first joint of the URDF (or xacro), the mesh edit one vertex of one mesh; ea
 made ``--repeat`` times, alternating, once with the workers the last build left (resident
 workers, as in an edit-and-rebuild loop) and once with new workers
 (``MJCFBUILD_RESIDENT_WORKERS=0``, as after they left), and the medians are shown. The
-workers live in a private folder of the benchmark and are stopped at its end. The
+workers live in a private folder of the benchmark and are stopped at its end; each edit is
+made a second after the last build, as a person editing takes at least that. The
 reference converter rebuilds everything on every run; its figures are the ones recorded on
 this machine (issue 14) unless ``--reference`` gives a command to time live, in which
 ``{urdf}`` is the robot's URDF (a xacro source expanded by the build) and ``{output}`` a
@@ -126,9 +127,13 @@ def measure(
         times: dict[str, list[float]] = {}
         for _ in range(repeat):
             for workers, environment in (("", env), ("_new", new_workers)):
+                # A second between builds, as an edit takes: the workers the last build left
+                # tidy up before they wait, and would otherwise compete with the next build.
+                time.sleep(1.0)
                 nudge_mesh(mesh)
                 seconds, row["mesh_summary"] = timed_build(manifest, jobs, environment, check)
                 times.setdefault("mesh" + workers, []).append(seconds)
+                time.sleep(1.0)
                 edit_joint(manifest)
                 seconds, row["joint_summary"] = timed_build(manifest, jobs, environment, check)
                 times.setdefault("joint" + workers, []).append(seconds)

@@ -123,9 +123,12 @@ def worker_key(environ: dict[str, str]) -> str:
     package = Path(__file__).resolve().parents[1]
     parts = [sys.executable, sys.version, str(package)]
     parts += _code_fingerprint(package)
+    here = os.getcwd()
     for entry in sys.path:  # installing or removing a package changes its folder's mtime
+        if entry in ("", ".", here):
+            continue  # the folder `python -m` runs in: any file made there would change it
         with contextlib.suppress(OSError):
-            parts.append(f"{entry}@{os.stat(entry or '.').st_mtime_ns}")
+            parts.append(f"{entry}@{os.stat(entry).st_mtime_ns}")
     parts += sorted(f"{k}={v}" for k, v in environ.items() if k.startswith(_START_VARIABLES))
     digest.update("\0".join(parts).encode("utf-8", "surrogateescape"))
     return digest.hexdigest()[:20]

@@ -5,7 +5,8 @@ from __future__ import annotations
 from mjcfbuild.engine import resident
 from mjcfbuild.errors import EXIT_OK
 from tests.conftest import copy_example, run_cli
-from tests.engine.test_resident import _wait_for, _waiting, residents  # noqa: F401
+from tests.engine.test_resident import _waiting, residents  # noqa: F401
+from tests.engine.test_workers import _wait_for
 
 
 def test_show_and_stop(residents, tmp_path):  # noqa: F811

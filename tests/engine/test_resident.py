@@ -21,6 +21,7 @@ from mjcfbuild.engine.workers import WorkerPool
 from mjcfbuild.errors import EXIT_INTERRUPTED, EXIT_OK, TaskCrashed, UsageError
 from tests.conftest import ROOT, copy_example, run_cli
 from tests.engine.test_determinism import _assert_identical
+from tests.engine.test_workers import _wait_for
 
 STEPS = "tests.engine.misbehaving_steps"
 
@@ -37,14 +38,6 @@ def residents(tmp_path, monkeypatch):
     for pid in resident.resident_pids(folder):
         resident.stop(pid)
     shutil.rmtree(folder, ignore_errors=True)
-
-
-def _wait_for(condition, seconds: float = 60.0) -> None:
-    """Wait (up to ``seconds``, for slow machines) until ``condition()`` holds."""
-    deadline = time.monotonic() + seconds
-    while not condition():
-        assert time.monotonic() < deadline, "timed out"
-        time.sleep(0.02)
 
 
 def _waiting(folder: Path, count: int) -> list[int]:
@@ -217,27 +210,6 @@ def test_a_build_within_the_second_the_last_ended_finds_meshes_read_again(tmp_pa
     _keep_or_forget_meshes(between)
     assert size(model) == pytest.approx(1.0)
     assert between.holds is None
-
-
-def test_a_later_build_keeps_the_meshes_and_forgets_only_before_user_files(tmp_path):
-    import mujoco
-
-    from mjcfbuild import mjcache
-    from mjcfbuild.engine.worker_main import _Between, _keep_or_forget_meshes
-
-    mujoco.MjModel.from_xml_path(str(_box_model(tmp_path, 0.5)))
-    cache = mujoco.mj_getCache()
-    assert mujoco.mj_getCacheSize(cache) > 0
-    between = _Between()
-    between.holds = "model"
-    between.last_end = time.time() - 2.0  # ended in an earlier second
-    _keep_or_forget_meshes(between)
-    assert between.holds == "model" and mujoco.mj_getCacheSize(cache) > 0
-    mjcache.forget_earlier_builds()  # before a composed part, which the user edits
-    assert mujoco.mj_getCacheSize(cache) == 0
-    mujoco.MjModel.from_xml_path(str(tmp_path / "box.xml"))
-    mjcache.forget_earlier_builds()  # once per build: what this build read stays
-    assert mujoco.mj_getCacheSize(cache) > 0
 
 
 def test_the_folder_must_be_private_and_short(tmp_path):
