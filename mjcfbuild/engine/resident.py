@@ -216,7 +216,16 @@ def spawn(folder: Path, key: str, hello: dict, env: dict[str, str], cwd: Path) -
 def _handshake(connection: socket.socket, hello: dict) -> dict | None:
     try:
         connection.sendall((json.dumps(hello) + "\n").encode())
-        data = b""
+    except OSError:
+        return None
+    return receive_line(connection)
+
+
+def receive_line(connection: socket.socket) -> dict | None:
+    """The next JSON line from ``connection`` (the first of a build's claim, or the reply to
+    it); None if the other side closed or reset it first."""
+    data = b""
+    try:
         while not data.endswith(b"\n"):
             chunk = connection.recv(1 << 16)
             if not chunk:
@@ -224,8 +233,8 @@ def _handshake(connection: socket.socket, hello: dict) -> dict | None:
             data += chunk
     except OSError:
         return None
-    reply: dict = json.loads(data)
-    return reply
+    line: dict = json.loads(data)
+    return line
 
 
 def _remove_if_dead(path: Path) -> None:

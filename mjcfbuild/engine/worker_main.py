@@ -263,7 +263,9 @@ def _give_back_memory() -> None:
 
 
 def _serve_build(connection: socket.socket, key: str, between: _Between, idle: IdleWork) -> None:
-    hello = _read_line(connection)
+    from mjcfbuild.engine.resident import receive_line
+
+    hello = receive_line(connection)
     if hello is None or hello.get("key") != key:
         return
     try:
@@ -309,20 +311,6 @@ def _keep_or_forget_meshes(between: _Between) -> None:
             mujoco.mj_clearCache(mujoco.mj_getCache())
     else:
         mjcache.kept_from_earlier_build()
-
-
-def _read_line(connection: socket.socket) -> dict | None:
-    data = b""
-    try:
-        while not data.endswith(b"\n"):
-            chunk = connection.recv(1 << 16)
-            if not chunk:
-                return None
-            data += chunk
-    except OSError:
-        return None
-    line: dict = json.loads(data)
-    return line
 
 
 def _wait_for_build(path: Path, seconds: float, idle: IdleWork) -> socket.socket | None:
