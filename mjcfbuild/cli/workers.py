@@ -34,11 +34,20 @@ def add_parser(commands) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Show or stop the waiting workers."""
-    from mjcfbuild.engine.resident import idle_seconds, resident_dir, resident_pids
+    from mjcfbuild.engine.resident import (
+        idle_seconds,
+        resident_dir,
+        resident_dir_path,
+        resident_pids,
+    )
 
     folder = resident_dir(os.environ)
     if folder is None:
-        print("mjcfbuild: no private folder for resident workers; builds start their own")
+        print(
+            f"mjcfbuild: resident workers are off: {resident_dir_path(os.environ)} is not a "
+            "folder only this user can open (mode 0700), or its path is too long for a socket; "
+            "every build starts its own workers"
+        )
         return 0
     pids = resident_pids(folder)
     if args.action == "stop":

@@ -94,15 +94,7 @@ def resident_dir(environ: dict[str, str] | os._Environ[str]) -> Path | None:
     """The private folder of this user's resident workers, made if needed; None if it cannot
     be made private (another user owns it, or others may write to it) or its path is too long
     for a socket."""
-    import tempfile
-
-    explicit = environ.get(DIR_VARIABLE)
-    if explicit:
-        folder = Path(explicit)
-    else:
-        runtime = environ.get("XDG_RUNTIME_DIR")
-        base = runtime if runtime and os.path.isdir(runtime) else tempfile.gettempdir()
-        folder = Path(base) / f"mjcfbuild-{os.getuid()}"
+    folder = resident_dir_path(environ)
     if len(str(folder)) > _MAX_DIR_LENGTH:
         return None
     with contextlib.suppress(FileExistsError):
@@ -113,6 +105,18 @@ def resident_dir(environ: dict[str, str] | os._Environ[str]) -> Path | None:
         return None
     private = info.st_uid == os.getuid() and not info.st_mode & 0o077
     return folder if stat.S_ISDIR(info.st_mode) and private else None
+
+
+def resident_dir_path(environ: dict[str, str] | os._Environ[str]) -> Path:
+    """Where resident workers wait (see :func:`resident_dir`), whether or not it can be used."""
+    import tempfile
+
+    explicit = environ.get(DIR_VARIABLE)
+    if explicit:
+        return Path(explicit)
+    runtime = environ.get("XDG_RUNTIME_DIR")
+    base = runtime if runtime and os.path.isdir(runtime) else tempfile.gettempdir()
+    return Path(base) / f"mjcfbuild-{os.getuid()}"
 
 
 def worker_key(environ: dict[str, str]) -> str:

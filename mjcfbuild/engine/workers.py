@@ -17,6 +17,10 @@ warm worker makes it 0.3 s faster).
 Steps that compile the same model name it as their *affinity*: they go to a worker that ran
 one before, where MuJoCo has the model's meshes processed, or one warmed for it
 (:meth:`WorkerPool.warm_for`).
+
+Unless resident workers are off, the pool first takes workers an earlier build left waiting
+(mjcfbuild.engine.resident), which may hold the model's meshes already, and the workers it
+starts stay for the next build when this one lets go of them (:meth:`WorkerPool.close`).
 """
 
 from __future__ import annotations

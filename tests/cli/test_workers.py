@@ -26,5 +26,15 @@ def test_show_and_stop(residents, tmp_path):  # noqa: F811
 
 
 def test_off_says_so(tmp_path):
-    shown = run_cli("workers", env={resident.DIR_VARIABLE: str(tmp_path / "w")})
+    env = {resident.DIR_VARIABLE: str(tmp_path / "w"), resident.VARIABLE: "0"}
+    shown = run_cli("workers", env=env)
     assert shown.code == EXIT_OK and "resident workers are off" in shown.stdout
+
+
+def test_a_folder_others_can_open_is_not_used_and_it_says_why(tmp_path):
+    shared = tmp_path / "shared"
+    shared.mkdir()
+    shared.chmod(0o755)
+    shown = run_cli("workers", env={resident.DIR_VARIABLE: str(shared), resident.VARIABLE: "60"})
+    assert shown.code == EXIT_OK
+    assert f"resident workers are off: {shared} is not a folder only this user" in shown.stdout
