@@ -26,7 +26,6 @@ installed."""
 from __future__ import annotations
 
 import argparse
-import contextlib
 import os
 import re
 import shlex
@@ -36,12 +35,18 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Iterator
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from bench.build_times import case_example, case_robot, compile_package, nudge_mesh
+from bench.build_times import (
+    case_example,
+    case_robot,
+    compile_package,
+    nudge_mesh,
+    resident_folder,
+    stop_workers,
+)
 from mjcfbuild.engine.resident import DIR_VARIABLE as RESIDENT_DIR_VARIABLE
 from mjcfbuild.engine.resident import VARIABLE as RESIDENT_VARIABLE
 
@@ -144,28 +149,6 @@ def measure(
     )
     row["reference_live"] = bool(reference)
     return row
-
-
-@contextlib.contextmanager
-def resident_folder() -> Iterator[Path]:
-    """A private folder for the resident workers of one robot's builds (short: a socket's
-    path is limited), whose workers are stopped at the end."""
-    folder = Path(tempfile.mkdtemp(prefix="mjcfbuild-bench-", dir="/tmp"))
-    try:
-        yield folder
-    finally:
-        stop_workers(folder)
-        shutil.rmtree(folder, ignore_errors=True)
-
-
-def stop_workers(folder: Path) -> None:
-    """Stop the resident workers waiting in ``folder``."""
-    from mjcfbuild.engine.resident import resident_pids, stop
-
-    for pid in resident_pids(folder):
-        stop(pid)
-    for socket_file in folder.glob("*.sock"):
-        socket_file.unlink()
 
 
 def time_reference(template: str, manifest: Path, repeat: int) -> float:
