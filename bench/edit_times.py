@@ -1,6 +1,6 @@
 """Where users wait: cold, no-op (fast and full path), one mesh or one joint attribute changed.
 
-    python bench/edit_times.py [--robots panda,go1] [--repeat 5] [--cold-repeat 3] [--jobs 2]
+    python bench/edit_times.py [--robots panda,go1,g1] [--repeat 5] [--cold-repeat 3] [--jobs 2]
                                [--no-check] [--reference "COMMAND {urdf} {output}"]
 
 Each robot is copied into a temporary folder and built with the ``mjcfbuild`` command line
@@ -195,7 +195,7 @@ def print_table(rows: list[dict], jobs: int, check: bool) -> None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--robots", default="panda,go1", help="example-robot-data robots")
+    parser.add_argument("--robots", default="panda,go1,g1", help="example-robot-data robots")
     parser.add_argument("--repeat", type=int, default=5, help="no-op runs and edits (median)")
     parser.add_argument("--cold-repeat", type=int, default=3, help="cold builds (median)")
     parser.add_argument("--jobs", type=int, default=2)

@@ -12,6 +12,7 @@ import mjcfbuild
 from mjcfbuild.check.loading import (
     SOURCES_KEY,
     asset_sources,
+    collision_files,
     compile_model,
     source_entries,
     spec_reading_sources,
@@ -70,6 +71,40 @@ def test_the_sources_record_is_relative_and_optional(tmp_path):
 def test_warming_skips_files_mujoco_rejects(tmp_path):
     broken = write(tmp_path / "broken.obj", "this is not a mesh\n")
     warm_meshes([str(broken), str(write(tmp_path / "notes.txt", "no mesh"))])  # no error
+
+
+def _product(folder: Path, name: str, collision: str | None) -> str:
+    """A mesh product ``name`` whose summary says whether collision geoms use its mesh."""
+    mesh = write(folder / "products" / name / "mesh.obj", PRISM)
+    summary = {
+        "format": 2,
+        "parts": [],
+        "collision": collision,
+        "collision_volume": 0.0,
+        "hull": None,
+        "faces": 4,
+        "files": {},
+        "warnings": [],
+    }
+    write(folder / "products" / f"{name}.json", json.dumps(summary))
+    return str(mesh)
+
+
+def test_warming_gives_the_meshes_collision_geoms_use_their_hull(tmp_path):
+    """MuJoCo keeps a file's first processing: one without the hull a collision geom needs
+    would be processed again by every compile of the model, and never cached."""
+    drawn = _product(tmp_path, "drawn", None)
+    colliding = _product(tmp_path, "colliding", "mesh.obj")
+    part = str(write(tmp_path / "decompositions" / "x" / "part000.obj", TETRAHEDRON))
+    assert collision_files([drawn, colliding, part]) == {colliding, part}
+    cache = mujoco.mj_getCache()
+    sizes = []
+    for file in (drawn, colliding):
+        mujoco.mj_clearCache(cache)
+        warm_meshes([file])
+        sizes.append(mujoco.mj_getCacheSize(cache))
+    mujoco.mj_clearCache(cache)
+    assert 0 < sizes[0] < sizes[1]  # the same mesh, with its hull
 
 
 def test_a_build_records_the_product_of_every_asset(tmp_path, monkeypatch):
