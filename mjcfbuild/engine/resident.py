@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING
 
 from mjcfbuild.errors import UsageError
 
-if TYPE_CHECKING:  # imported where used: the command line checks the variable on every run
+if TYPE_CHECKING:  # imported where used: every build reads the variables, few start workers
     import socket
 
 VARIABLE = "MJCFBUILD_RESIDENT_WORKERS"
