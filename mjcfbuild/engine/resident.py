@@ -181,7 +181,7 @@ def claim(folder: Path, key: str, hello: dict) -> Resident | None:
     return None
 
 
-def spawn(folder: Path, key: str, hello: dict, env: dict[str, str], cwd: Path) -> Resident:
+def spawn(folder: Path, key: str, hello: dict, env: dict[str, str]) -> Resident:
     """Start a resident worker of ``key`` serving this build first."""
     import socket
 
@@ -208,11 +208,10 @@ def spawn(folder: Path, key: str, hello: dict, env: dict[str, str], cwd: Path) -
     finally:
         os.close(log)
         theirs.close()
-    reply = _handshake(ours, {**hello, "cwd": str(cwd)})
+    reply = _handshake(ours, hello)  # the hello sets its folder, as for a waiting worker
     if reply is None:
         ours.close()
-        with contextlib.suppress(ProcessLookupError):
-            os.kill(pid, 9)
+        stop(pid)
         raise OSError("a new worker process did not answer")
     return Resident(ours, pid, None)
 
@@ -243,10 +242,16 @@ def receive_line(connection: socket.socket) -> dict | None:
 
 def _remove_if_dead(path: Path) -> None:
     """A socket nobody listens on is left by a worker that was killed: remove it."""
-    pid = path.stem.rpartition("-")[2]
-    if pid.isdigit() and not _process_exists(int(pid)):
+    pid = _pid_of(path)
+    if pid is not None and not _process_exists(pid):
         with contextlib.suppress(OSError):
             path.unlink()
+
+
+def _pid_of(socket_file: Path) -> int | None:
+    """The process id in a waiting worker's socket name (``<key>-<pid>.sock``)."""
+    pid = socket_file.stem.rpartition("-")[2]
+    return int(pid) if pid.isdigit() else None
 
 
 def _process_exists(pid: int) -> bool:
@@ -316,9 +321,5 @@ def how_it_ended(pid: int) -> str:
 
 def resident_pids(folder: Path, key: str | None = None) -> list[int]:
     """The process ids of the idle resident workers in ``folder`` (of ``key``, if given)."""
-    pids = []
-    for path in sorted(folder.glob(f"{key or '*'}-*.sock")):
-        pid = path.stem.rpartition("-")[2]
-        if pid.isdigit() and _process_exists(int(pid)):
-            pids.append(int(pid))
-    return pids
+    pids = [_pid_of(path) for path in sorted(folder.glob(f"{key or '*'}-*.sock"))]
+    return [pid for pid in pids if pid is not None and _process_exists(pid)]

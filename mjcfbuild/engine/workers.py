@@ -328,7 +328,7 @@ class WorkerPool:
         resident = claim(folder, self._key, hello)
         if resident is None:
             try:
-                resident = spawn(folder, self._key, hello, env, self.cwd)
+                resident = spawn(folder, self._key, hello, env)
             except OSError:
                 return None
         return _Worker(preload, meshes_from, None, resident)
