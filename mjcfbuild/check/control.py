@@ -4,6 +4,10 @@
   passive excepted);
 - a floating robot's lowest collision geometry rests on the floor at home (within 1 mm);
 - a fixed-base robot holding its home ``ctrl`` for 1 s stays near home;
+- a floating robot that can stand (its feet span an area its centre of mass lies over) stands:
+  holding home's ``ctrl`` for 5 s from home, its base stays upright and at height and every
+  joint within the hold tolerance; one that cannot (point feet, two wheels on an axle, no
+  contact with the floor) is reported as needing a controller, and does not fail;
 - MuJoCo Menagerie's model test: 1 s of pseudorandom control over each actuator's ctrlrange
   (a Halton sequence), no MuJoCo warning, finite state.
 """
@@ -15,6 +19,10 @@ from dataclasses import dataclass, field
 
 FLOOR_TOLERANCE = 1e-3  # m
 TEST_SECONDS = 1.0
+STAND_SECONDS = 5.0
+# Standing: the base may tilt this much (rad) and sink this share of its height at home.
+STAND_TILT = 0.2
+STAND_SINK = 0.1
 
 
 @dataclass
@@ -57,9 +65,16 @@ def check_control(model, passive: set[str], hold_tolerance: float, strict: bool)
         if not floating and deviation > hold_tolerance:
             report.failures.append(
                 f"holding home's ctrl for 1 s, joint '{joint}' moved {deviation:.3g} from home "
-                f"(check.hold_tolerance {hold_tolerance:g}); stiffen its actuator "
-                "(actuators.frequency, or kp in a rule)"
+                f"(check.hold_tolerance {hold_tolerance:g}); " + _hold_advice(model, home, joint)
             )
+    if floating and home >= 0:
+        stand = stand_test(model, home, passive)
+        report.results["stand"] = stand.to_dict()
+        if stand.needs_controller:
+            report.results["needs_controller"] = stand.needs_controller
+        elif stand.fails(hold_tolerance):
+            advice = _hold_advice(model, home, stand.joint)
+            report.failures.append(stand.failure(hold_tolerance, advice))
     test = menagerie_test(model)
     report.results["menagerie_test"] = {
         "warnings": test.warnings,
@@ -74,6 +89,160 @@ def check_control(model, passive: set[str], hold_tolerance: float, strict: bool)
     for warning in test.warnings:
         report.failures.append(f"MuJoCo warned under pseudorandom control: {warning}{advice}")
     return report
+
+
+@dataclass
+class StandTest:
+    """What holding home's ctrl for 5 s from home did to a floating robot."""
+
+    seconds: float
+    max_tilt: float  # rad, the base's largest tilt from upright
+    max_sink: float  # m, how far the base sank below its height at home at most
+    home_height: float  # m, the base's height at home
+    max_deviation: float  # of a watched joint from home
+    joint: str | None  # the joint of max_deviation
+    needs_controller: str  # why the robot cannot stand without a controller ('' if it can)
+
+    def to_dict(self) -> dict:
+        """A JSON-friendly form."""
+        return dict(self.__dict__)
+
+    def fails(self, hold_tolerance: float) -> bool:
+        """Whether the robot fell, sank or bent past the tolerances."""
+        sink = STAND_SINK * max(self.home_height, 0.0) + 0.01
+        return (
+            self.max_tilt > STAND_TILT
+            or self.max_sink > sink
+            or self.max_deviation > hold_tolerance
+        )
+
+    def failure(self, hold_tolerance: float, advice: str) -> str:
+        """The check's failure line."""
+        if self.max_tilt > STAND_TILT or self.max_sink > STAND_SINK * self.home_height + 0.01:
+            return (
+                f"the robot does not stand at home: holding home's ctrl for "
+                f"{self.seconds:g} s its base tilted {self.max_tilt:.2g} rad and sank "
+                f"{self.max_sink * 1000:.0f} mm (of {self.home_height * 1000:.0f} mm); give "
+                "home: a pose it stands in (feet under the centre of mass, knees bent), or "
+                "name an SRDF group_state with self_collision.srdf and home_state"
+            )
+        return (
+            f"standing at home for {self.seconds:g} s, joint '{self.joint}' moved "
+            f"{self.max_deviation:.3g} from home (check.hold_tolerance {hold_tolerance:g}); "
+            + advice
+        )
+
+
+def stand_test(model, key: int, passive: set[str], seconds: float = STAND_SECONDS) -> StandTest:
+    """Hold keyframe ``key``'s ctrl for ``seconds`` from it and watch the floating base."""
+    import mujoco
+    import numpy as np
+
+    from mjcfbuild.control.standing import stance
+
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, key)
+    mujoco.mj_forward(model, data)
+    found = stance(model, data)
+    root = _free_body(model)
+    height = float(data.xpos[root][2]) - _floor_height(model)
+    if not found.can_stand:
+        return StandTest(0.0, 0.0, 0.0, height, 0.0, None, found.why_not())
+    watched = _watched(model, passive)
+    addresses = np.array([model.jnt_qposadr[j] for j in watched], dtype=int)
+    home = data.qpos.copy()
+    tilt = sink = worst = 0.0
+    worst_joint = None
+    for _ in range(round(seconds / model.opt.timestep)):
+        mujoco.mj_step(model, data)
+        tilt = max(tilt, _base_tilt(model, data))
+        sink = max(sink, height - (float(data.xpos[root][2]) - _floor_height(model)))
+        if len(addresses):
+            deviation = np.abs(data.qpos[addresses] - home[addresses])
+            index = int(np.argmax(deviation))
+            if deviation[index] > worst:
+                worst = float(deviation[index])
+                worst_joint = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, watched[index])
+        if not np.all(np.isfinite(data.qpos)):
+            tilt = math.pi
+            break
+    return StandTest(seconds, tilt, sink, height, worst, worst_joint, "")
+
+
+def _hold_advice(model, key: int, joint: str | None) -> str:
+    """What to change when ``joint`` does not hold home: its force limit when gravity at home
+    needs more than it allows (both numbers, and the two fixes), else its stiffness."""
+    import mujoco
+
+    stiffen = "stiffen its actuator (actuators.frequency, or kp in a rule)"
+    index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint or "")
+    if index < 0:
+        return stiffen
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, key)
+    mujoco.mj_forward(model, data)
+    if _floating(model):
+        from mjcfbuild.control.apply import standing_torques
+
+        load = abs(float(standing_torques(model, data)[model.jnt_dofadr[index]]))
+    else:
+        load = abs(float(data.qfrc_bias[model.jnt_dofadr[index]]))
+    limit = _force_limit(model, index)
+    if limit is None or load <= limit:
+        return stiffen
+    return (
+        f"gravity at home needs {load:.3g} N m at '{joint}' but its force limit is "
+        f"{limit:.3g}: raise it with a rule (actuators: {{rules: [{{joints: [{joint}], "
+        f"forcerange: [-{_round_up(load)}, {_round_up(load)}]}}]}}) or, where the real robot "
+        f"carries this load with a spring or counterweight, compensate gravity on the bodies "
+        f"it moves (a rule's gravcomp: true)"
+    )
+
+
+def _force_limit(model, joint: int) -> float | None:
+    """The smallest force limit on ``joint``: its own, or its actuator's."""
+    import mujoco
+
+    limits = []
+    if model.jnt_actfrclimited[joint]:
+        limits.append(float(max(abs(v) for v in model.jnt_actfrcrange[joint])))
+    for actuator in range(model.nu):
+        if (
+            model.actuator_trntype[actuator] == mujoco.mjtTrn.mjTRN_JOINT
+            and model.actuator_trnid[actuator][0] == joint
+            and model.actuator_forcelimited[actuator]
+        ):
+            gear = abs(float(model.actuator_gear[actuator][0])) or 1.0
+            limits.append(float(max(abs(v) for v in model.actuator_forcerange[actuator])) * gear)
+    return min(limits) if limits else None
+
+
+def _round_up(value: float) -> str:
+    """``value`` rounded up to two significant digits, with a fifth more for margin."""
+    digits = f"{value * 1.2:.2g}"
+    return digits if float(digits) >= value * 1.2 else f"{float(digits) * 1.1:.2g}"
+
+
+def _watched(model, passive: set[str]) -> list[int]:
+    """The hinge and slide joints an actuator holds (not asked to be passive)."""
+    import mujoco
+
+    return [
+        j
+        for j in range(model.njnt)
+        if mujoco.mjtJoint(model.jnt_type[j])
+        in (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE)
+        and (mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or "") not in passive
+    ]
+
+
+def _free_body(model) -> int:
+    import mujoco
+
+    for joint in range(model.njnt):
+        if model.jnt_type[joint] == mujoco.mjtJoint.mjJNT_FREE:
+            return int(model.jnt_bodyid[joint])
+    return 0
 
 
 def _unstable_advice(model, test: MenagerieTest) -> str:
@@ -164,13 +333,7 @@ def hold_deviation(model, key: int, passive: set[str]) -> tuple[float, str | Non
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, key)
     home = data.qpos.copy()
-    watched = [
-        j
-        for j in range(model.njnt)
-        if mujoco.mjtJoint(model.jnt_type[j])
-        in (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE)
-        and (mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or "") not in passive
-    ]
+    watched = _watched(model, passive)
     addresses = np.array([model.jnt_qposadr[j] for j in watched], dtype=int)
     worst, worst_joint = 0.0, None
     steps = round(TEST_SECONDS / model.opt.timestep)

@@ -11,15 +11,16 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from typing import Any
 
 from lxml import etree
 
-from mjcfbuild.control.choose import ActuatorChoice
+from mjcfbuild.control.choose import ActuatorChoice, limit_notes, positive_velocity
 from mjcfbuild.control.efforts import EffortCap, describe, placeholder_efforts
 from mjcfbuild.control.floor import lowest_collision_point
 from mjcfbuild.control.home import HomeValue
+from mjcfbuild.control.standing import MARGIN
 from mjcfbuild.inputs.apply import ACTUATOR_TAGS
 from mjcfbuild.numbers import output_list
 from mjcfbuild.urdf.limits import joint_range
@@ -41,6 +42,7 @@ class ActuatorRecord:
     ctrlrange: list[float] | None = None
     forcerange: list[float] | None = None
     placeholder_effort: float | None = None  # the URDF effort the forcerange replaced
+    weight_bearing: bool = False  # kp raised to hold the standing robot (control.standing)
 
 
 @dataclass
@@ -53,6 +55,7 @@ class Readiness:
     home_written: bool = False
     base_height: float | None = None  # how far a floating base was raised to stand
     lowest_point: dict | None = None  # the lowest collision point at home (fixed base)
+    stance: dict | None = None  # how a floating robot meets the floor at home
     notes: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict:
@@ -99,11 +102,13 @@ def make_ready(
     import numpy as np
 
     readiness = Readiness(home=[asdict(value) for value in home])
+    readiness.notes += limit_notes(robot)
     joints = {element.get("name"): element for element in root.iter("joint")}
     bodies = {element.get("name"): element for element in root.iter("body")}
     urdf_joints = {joint.name: joint for joint in robot.joints}
     for choice in choices:
         _set_dynamics(joints.get(choice.joint), choice)
+        _set_force_limit(joints.get(choice.joint), choice)
         if choice.gravcomp and urdf_joints[choice.joint].child in bodies:
             bodies[urdf_joints[choice.joint].child].set("gravcomp", "1")
     generated = [c for c in choices if c.type not in ("none", "user")]
@@ -131,10 +136,12 @@ def make_ready(
         lowest = lowest_collision_point(model, data)
         if lowest is not None:
             readiness.lowest_point = {"height": lowest.height, "body": lowest.body}
+    choices = _drive_wheels(model, data, choices)
     inertia = np.zeros((model.nv, model.nv))
     mujoco.mj_fullM(model, data, inertia)
-    loads = np.abs(standing_torques(model, data) if floating else data.qfrc_bias)
+    bias = standing_torques(model, data) if floating else data.qfrc_bias
     caps = _effort_caps(model, data, generated, readiness) if floating else {}
+    pendulum = _pendulum(model, data, readiness) if floating else None
 
     section = root.find("actuator")
     if section is None and generated:
@@ -146,13 +153,20 @@ def make_ready(
             continue
         if choice.type == "none":
             continue
-        index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, choice.joint)
-        dof = model.jnt_dofadr[index]
-        limits = Servo(float(inertia[dof, dof]), float(loads[dof]), model.opt.timestep)
-        record = _actuator(choice, urdf_joints[choice.joint], limits, taken, caps.get(choice.joint))
+        motion = _coupled_motion(model, choice.joint, robot)
+        servo = Servo(
+            float(motion @ inertia @ motion),
+            abs(float(motion @ bias)),
+            model.opt.timestep,
+            *(_carried(pendulum, motion) if pendulum is not None else (0.0, 0.0)),
+        )
+        record = _actuator(choice, urdf_joints[choice.joint], servo, taken, caps.get(choice.joint))
         taken.add(record.name)
         readiness.actuators.append(record)
-        etree.SubElement(section, record.type, _attributes(record))
+    _match_mirrored(model, data, readiness.actuators)
+    for record in readiness.actuators:
+        if record.source != "user":
+            etree.SubElement(section, record.type, _attributes(record))
     _fill_user_records(readiness, root)
 
     if _has_key(root, HOME):
@@ -200,6 +214,106 @@ def standing_torques(model, data, tolerance: float = 2e-3):
         mujoco.mj_jac(model, data, jacobian, None, point, body)
         torques -= jacobian.T @ np.array([0.0, 0.0, weight / len(feet)])
     return torques
+
+
+def _set_force_limit(element, choice: ActuatorChoice) -> None:
+    """The joint's own force limit: a rule's forcerange, else none where the URDF's effort is
+    not a limit (MuJoCo's import would clamp the joint to it)."""
+    if element is None:
+        return
+    if choice.rule_forcerange and choice.forcerange is not None:
+        element.set("actuatorfrcrange", output_list(list(choice.forcerange)))
+    elif choice.forcerange is None and element.get("actuatorfrcrange") is not None:
+        low, high = (float(v) for v in element.get("actuatorfrcrange").split())
+        if not low < high:  # effort="-1" or "0": unknown, not a limit
+            del element.attrib["actuatorfrcrange"]
+
+
+def _drive_wheels(model, data, choices: list[ActuatorChoice]) -> list[ActuatorChoice]:
+    """Wheel candidates whose geometry is a wheel on the floor get velocity servos."""
+    from mjcfbuild.control.wheels import wheel_joints
+
+    candidates = [choice.joint for choice in choices if choice.wheel_candidate]
+    if not candidates:
+        return choices
+    wheels = wheel_joints(model, data, candidates)
+    return [
+        replace(choice, type="velocity", source="wheel") if choice.joint in wheels else choice
+        for choice in choices
+    ]
+
+
+def _pendulum(model, data, readiness: Readiness):
+    """The gravity stiffness and carried inertia per DOF of a floating robot at home (see
+    control.standing); records how it stands."""
+    from mjcfbuild.control.standing import pendulum_loads, stance
+
+    found = stance(model, data)
+    readiness.stance = {
+        "feet": sorted(mujoco_name(model, "body", body) for body in found.feet),
+        "area": found.area,
+        "com_margin": found.margin,
+        "can_stand": found.can_stand,
+        "why_not": found.why_not(),
+    }
+    return pendulum_loads(model, data, found.feet)
+
+
+def mujoco_name(model, kind: str, index: int) -> str:
+    """The name of MuJoCo object ``index`` of ``kind`` (body, joint, ...), or '#index'."""
+    import mujoco
+
+    kinds = {"body": mujoco.mjtObj.mjOBJ_BODY, "joint": mujoco.mjtObj.mjOBJ_JOINT}
+    return mujoco.mj_id2name(model, kinds[kind], index) or f"#{index}"
+
+
+def _carried(pendulum, motion) -> tuple[float, float]:
+    stiffness, carried = pendulum
+    return float(abs(motion) @ stiffness), float((motion * motion) @ carried)
+
+
+def _coupled_motion(model, joint: str, robot: Robot):
+    """The joint-space direction that moving ``joint`` by one unit moves: 1 at its own DOF and
+    each mimic follower's multiplier at theirs (followers of followers too), so a leader's
+    servo is sized for the inertia and load of everything it moves."""
+    import mujoco
+    import numpy as np
+
+    motion = np.zeros(model.nv)
+    factors = {joint: 1.0}
+    changed = True
+    while changed:
+        changed = False
+        for follower in robot.joints:
+            mimic = follower.mimic
+            if mimic is None or follower.name in factors or mimic.joint not in factors:
+                continue
+            factors[follower.name] = factors[mimic.joint] * mimic.multiplier
+            changed = True
+    for name, factor in factors.items():
+        index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
+        if index >= 0 and mujoco.mjtJoint(model.jnt_type[index]) in (
+            mujoco.mjtJoint.mjJNT_HINGE,
+            mujoco.mjtJoint.mjJNT_SLIDE,
+        ):
+            motion[model.jnt_dofadr[index]] = factor
+    return motion
+
+
+def _match_mirrored(model, data, records: list[ActuatorRecord]) -> None:
+    """Give joints that mirror each other across the base's sagittal plane the same gains
+    (the larger of the two), so a left-right symmetric robot gets symmetric servos."""
+    from mjcfbuild.control.standing import mirror_pairs
+
+    generated = {r.joint: r for r in records if r.source != "user" and r.type == "position"}
+    for left, right in mirror_pairs(model, data, sorted(generated)):
+        first, second = generated[left], generated[right]
+        for attribute in ("kp", "kv"):
+            values = [getattr(first, attribute), getattr(second, attribute)]
+            if None in values:
+                continue
+            setattr(first, attribute, max(values))
+            setattr(second, attribute, max(values))
 
 
 def _set_dynamics(element, choice: ActuatorChoice) -> None:
@@ -268,6 +382,8 @@ class Servo:
     inertia: float
     load: float
     timestep: float
+    pendulum: float = 0.0  # gravity stiffness of what the joint carries standing (N m/rad)
+    carried: float = 0.0  # inertia of what the joint carries standing (kg m^2)
 
     def omega(self, frequency: float, stiffen: bool) -> float:
         """The natural frequency (rad/s) of the servo."""
@@ -315,12 +431,20 @@ def _actuator(
     if choice.type == "position":
         record.kp = choice.kp or inertia * omega**2
         record.kv = choice.kv or 2 * choice.damping_ratio * inertia * omega
+        if choice.stiffen and choice.kp is None and servo.pendulum * MARGIN > record.kp:
+            # Weight-bearing: stiff enough to hold the pendulum the robot forms over its feet,
+            # damped for what the joint moves while standing.
+            record.kp = servo.pendulum * MARGIN
+            if choice.kv is None:
+                moved = inertia + servo.carried
+                record.kv = 2 * choice.damping_ratio * math.sqrt(record.kp * moved)
+            record.weight_bearing = True
         bounds = joint_range(joint)
         # A locked joint (lower = upper) has no range to command.
         record.ctrlrange = list(bounds) if bounds and bounds[0] < bounds[1] else None
     elif choice.type == "velocity":
         record.kv = choice.kv or inertia * omega  # a first-order servo with bandwidth omega
-        velocity = joint.limit.velocity if joint.limit is not None else None
+        velocity = positive_velocity(joint)
         record.ctrlrange = [-velocity, velocity] if velocity else None
     else:  # motor
         record.ctrlrange, record.forcerange = record.forcerange, None

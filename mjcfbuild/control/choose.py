@@ -5,13 +5,22 @@ Sources, strongest first: an actuator the user wrote (raw MJCF, inputs file, URD
 ``<ros2_control>`` command interface - then ``actuators.default``, for joints a ROS 1
 ``<transmission>`` names (source ``transmission``) and all others (source ``default``). Gains
 and joint dynamics come from the first matching rule, else the defaults. Mimic followers are
-driven through their equality, never by an actuator.
+driven through their equality, never by an actuator; free (URDF ``floating``) and planar
+joints never get a generated actuator: one servo cannot drive several degrees of freedom.
+
+A continuous joint is not taken for a wheel by its type alone (arms and legs have continuous
+joints too): it is a *wheel candidate*, given a position servo here, which
+:mod:`mjcfbuild.control.wheels` turns into a velocity servo where the compiled model shows a
+wheel (see there).
+
+URDF effort and velocity limits that are not positive (``effort="-1"``, ``velocity="0"``) are
+the "unknown" marker of many descriptions: they are treated as no limit, and reported.
 """
 
 from __future__ import annotations
 
 import fnmatch
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 from mjcfbuild.errors import ManifestError
 from mjcfbuild.inputs.ros2_control import Ros2Control
@@ -43,6 +52,8 @@ class ActuatorChoice:
     gravcomp: bool = False
     rule: int | None = None  # index of the matching actuators.rules entry
     stiffen: bool = True  # default gains: stiffened where gravity at home would bend the joint
+    wheel_candidate: bool = False  # continuous, default type: a wheel if its geometry says so
+    rule_forcerange: bool = False  # forcerange from a rule: it also sets the joint's own limit
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""
@@ -54,9 +65,35 @@ def matches(name: str, patterns: list[str]) -> bool:
     return any(fnmatch.fnmatchcase(name, pattern) for pattern in patterns)
 
 
+# Joints with several degrees of freedom: no single generated servo can drive them.
+MULTI_DOF_KINDS = ("floating", "planar")
+
+
 def actuated_joints(robot: Robot) -> list[Joint]:
-    """The joints an actuator may drive: moving, and not following another through <mimic>."""
-    return [joint for joint in robot.joints if joint.moves and joint.mimic is None]
+    """The joints an actuator may drive: moving with one degree of freedom, and not following
+    another through <mimic>."""
+    return [
+        joint
+        for joint in robot.joints
+        if joint.moves and joint.mimic is None and joint.kind not in MULTI_DOF_KINDS
+    ]
+
+
+def limit_notes(robot: Robot) -> list[str]:
+    """A warning per actuated joint whose URDF effort or velocity limit is not positive."""
+    notes = []
+    for joint in actuated_joints(robot):
+        limit = joint.limit
+        if limit is None:
+            continue
+        for name, value in (("effort", limit.effort), ("velocity", limit.velocity)):
+            if value is not None and value <= 0:
+                notes.append(
+                    f"joint '{joint.name}' has {name}=\"{value:g}\" in the URDF (line "
+                    f"{joint.line}): not a limit, taken as unknown (no {name} limit); give "
+                    "the real one in the URDF or with a rule's forcerange"
+                )
+    return notes
 
 
 def choose_actuators(
@@ -67,7 +104,7 @@ def choose_actuators(
 ) -> list[ActuatorChoice]:
     """One choice per actuated joint, in URDF order (``none`` choices included)."""
     commands = {joint.name: joint.commands for joint in control.joints if joint.commands}
-    transmitted = {t.joint for t in control.transmissions}
+    transmitted = {t.joint: t.interfaces for t in control.transmissions}
     choices = []
     for joint in actuated_joints(robot):
         index, rule = _first_rule(joint.name, settings.rules)
@@ -81,11 +118,22 @@ def choose_actuators(
         elif joint.name in transmitted:
             # A ROS 1 transmission names an actuated joint; its hardware interface is what a
             # ROS controller commands (an effort interface usually under a position PID), not
-            # how the joint should be driven without one, so the default type applies.
+            # how the joint should be driven without one, so the default type applies - but a
+            # continuous joint commanded by velocity is a wheel.
             kind, source = _default_type(joint, settings), "transmission"
+            velocity = any("velocity" in i.lower() for i in transmitted[joint.name])
+            if joint.kind == "continuous" and velocity:
+                kind = "velocity"
         else:
             kind, source = _default_type(joint, settings), "default"
-        choices.append(_choice(joint, kind, source, settings, index, rule))
+        choice = _choice(joint, kind, source, settings, index, rule)
+        if (
+            source in ("default", "transmission")
+            and joint.kind == "continuous"
+            and kind == "position"
+        ):
+            choice = replace(choice, wheel_candidate=True)
+        choices.append(choice)
     return choices
 
 
@@ -118,6 +166,7 @@ def _choice(
         damping_ratio=rule.damping_ratio or settings.damping_ratio,
         forcerange=rule.forcerange or _effort_range(joint),
         effort_limited=rule.forcerange is None and _effort_range(joint) is not None,
+        rule_forcerange=rule.forcerange is not None,
         armature=rule.armature,
         damping=rule.damping,
         frictionloss=rule.frictionloss,
@@ -151,16 +200,18 @@ def _preference(command: str) -> int:
 
 
 def _default_type(joint: Joint, settings: ActuatorSettings) -> str:
-    # A continuous joint is a wheel or a spinner: position control of an unbounded angle
-    # winds up, so it gets a velocity servo, as ros2_control's wheel controllers use.
-    if settings.default == "position" and joint.kind == "continuous":
-        return "velocity"
     return settings.default
 
 
 def _effort_range(joint: Joint) -> tuple[float, float] | None:
     effort = joint.limit.effort if joint.limit is not None else None
-    return (-effort, effort) if effort else None
+    return (-effort, effort) if effort is not None and effort > 0 else None
+
+
+def positive_velocity(joint: Joint) -> float | None:
+    """The joint's URDF velocity limit where it is one (positive), else None."""
+    velocity = joint.limit.velocity if joint.limit is not None else None
+    return velocity if velocity is not None and velocity > 0 else None
 
 
 def listing(names: list[str], most: int = 12) -> str:

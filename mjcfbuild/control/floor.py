@@ -1,7 +1,9 @@
-"""The lowest point of a model's collision geometry, for standing robots on the floor."""
+"""The lowest points of a model's collision geometry, and points on it, for standing robots on
+the floor."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 
@@ -32,42 +34,110 @@ def lowest_collision_point(model, data) -> LowestPoint | None:
 def geom_lowest_points(model, data) -> dict:
     """For every colliding geom: a point at its lowest height (x and y are its centre's for
     primitives, the lowest vertex's for meshes)."""
-    import mujoco
-    import numpy as np
-
     result = {}
-    types = mujoco.mjtGeom
     for geom in range(model.ngeom):
         if model.geom_contype[geom] == 0 and model.geom_conaffinity[geom] == 0:
             continue
-        kind = model.geom_type[geom]
-        size = model.geom_size[geom]
-        rotation = data.geom_xmat[geom].reshape(3, 3)
-        centre = float(data.geom_xpos[geom][2])
-        up = rotation[2]  # the world z row: how far each local axis reaches upwards
-        if kind == types.mjGEOM_SPHERE:
-            height = centre - size[0]
-        elif kind == types.mjGEOM_CAPSULE:
-            height = centre - abs(up[2]) * size[1] - size[0]
-        elif kind == types.mjGEOM_CYLINDER:
-            height = (
-                centre - abs(up[2]) * size[1] - size[0] * float(np.sqrt(max(0.0, 1 - up[2] ** 2)))
-            )
-        elif kind == types.mjGEOM_BOX:
-            height = centre - float(np.abs(up) @ size)
-        elif kind == types.mjGEOM_ELLIPSOID:
-            height = centre - float(np.sqrt(((up * size) ** 2).sum()))
-        elif kind == types.mjGEOM_MESH:
-            mesh = model.geom_dataid[geom]
-            start, count = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
-            vertices = model.mesh_vert[start : start + count]
-            lowest_vertex = vertices[int(np.argmin(vertices @ up))]
-            point = data.geom_xpos[geom] + rotation @ lowest_vertex
+        point = geom_lowest_points_of(model, data, geom)
+        if point is not None:
             result[geom] = point
-            continue
-        else:
-            continue
-        point = data.geom_xpos[geom].copy()
-        point[2] = height
-        result[geom] = point
     return result
+
+
+def geom_lowest_points_of(model, data, geom: int):
+    """A point at ``geom``'s lowest height, or None for planes, height fields and SDFs."""
+    import mujoco
+    import numpy as np
+
+    types = mujoco.mjtGeom
+    kind = model.geom_type[geom]
+    size = model.geom_size[geom]
+    rotation = data.geom_xmat[geom].reshape(3, 3)
+    centre = float(data.geom_xpos[geom][2])
+    up = rotation[2]  # the world z row: how far each local axis reaches upwards
+    if kind == types.mjGEOM_SPHERE:
+        height = centre - size[0]
+    elif kind == types.mjGEOM_CAPSULE:
+        height = centre - abs(up[2]) * size[1] - size[0]
+    elif kind == types.mjGEOM_CYLINDER:
+        height = centre - abs(up[2]) * size[1] - size[0] * float(np.sqrt(max(0.0, 1 - up[2] ** 2)))
+    elif kind == types.mjGEOM_BOX:
+        height = centre - float(np.abs(up) @ size)
+    elif kind == types.mjGEOM_ELLIPSOID:
+        height = centre - float(np.sqrt(((up * size) ** 2).sum()))
+    elif kind == types.mjGEOM_MESH:
+        mesh = model.geom_dataid[geom]
+        start, count = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
+        vertices = model.mesh_vert[start : start + count]
+        lowest_vertex = vertices[int(np.argmin(vertices @ up))]
+        return data.geom_xpos[geom] + rotation @ lowest_vertex
+    else:
+        return None
+    point = data.geom_xpos[geom].copy()
+    point[2] = height
+    return point
+
+
+def body_points(model, data, body: int):
+    """Points on the collision geometry of ``body`` in world coordinates: mesh vertices, and
+    for primitives their corners and rims."""
+    import numpy as np
+
+    chunks = []
+    for geom in range(model.ngeom):
+        if model.geom_bodyid[geom] != body:
+            continue
+        if not (model.geom_contype[geom] or model.geom_conaffinity[geom]):
+            continue
+        points = geom_points(model, data, geom)
+        if points is not None:
+            chunks.append(points)
+    return np.concatenate(chunks) if chunks else np.zeros((0, 3))
+
+
+def geom_points(model, data, geom: int):
+    """Points on ``geom`` in world coordinates (mesh vertices; corners and rims of
+    primitives), or None for a plane or a height field."""
+    local = _local_points(model, geom)
+    if local is None:
+        return None
+    rotation = data.geom_xmat[geom].reshape(3, 3)
+    return local @ rotation.T + data.geom_xpos[geom]
+
+
+def geom_support_points(model, data, geom: int, tolerance: float) -> list:
+    """The points of ``geom`` within ``tolerance`` of the floor (z = 0), its lowest included:
+    where it can push on the floor."""
+    points = geom_points(model, data, geom)
+    lowest = geom_lowest_points_of(model, data, geom)
+    found = [] if points is None else [p for p in points if p[2] <= tolerance]
+    return [*found, *([lowest] if lowest is not None else [])]
+
+
+def _local_points(model, geom: int):
+    """A geom's points in its own frame, or None for a plane or a height field."""
+    import mujoco
+    import numpy as np
+
+    kind = model.geom_type[geom]
+    size = model.geom_size[geom]
+    circle = np.linspace(0, 2 * math.pi, 48, endpoint=False)
+    ring = np.stack([np.cos(circle), np.sin(circle), np.zeros_like(circle)], axis=1)
+    if kind == mujoco.mjtGeom.mjGEOM_MESH:
+        mesh = model.geom_dataid[geom]
+        start, count = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
+        return np.asarray(model.mesh_vert[start : start + count], dtype=float)
+    if kind == mujoco.mjtGeom.mjGEOM_SPHERE:
+        great = np.concatenate([ring, ring[:, [0, 2, 1]], ring[:, [2, 0, 1]]])
+        return great * size[0]
+    if kind in (mujoco.mjtGeom.mjGEOM_CYLINDER, mujoco.mjtGeom.mjGEOM_CAPSULE):
+        radius, half = size[0], size[1]
+        rims = [ring * radius + [0, 0, half], ring * radius - [0, 0, half]]
+        if kind == mujoco.mjtGeom.mjGEOM_CAPSULE:
+            rims.append(np.array([[0, 0, half + radius], [0, 0, -half - radius]]))
+        return np.concatenate(rims)
+    if kind == mujoco.mjtGeom.mjGEOM_ELLIPSOID:
+        return np.concatenate([ring, ring[:, [0, 2, 1]], ring[:, [2, 0, 1]]]) * size
+    if kind == mujoco.mjtGeom.mjGEOM_BOX:
+        return np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)]) * size
+    return None

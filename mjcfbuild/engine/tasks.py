@@ -185,24 +185,42 @@ def _srdf_home_state(ctx: BuildContext) -> str | None:
     return settings.home_state if settings != "none" and settings.srdf else None
 
 
-def _srdf_source(ctx: BuildContext) -> Path | None:
+def _named_srdf(ctx: BuildContext) -> Path | None:
+    """The SRDF robot.yaml names (self_collision.srdf)."""
     settings = ctx.manifest.self_collision
     if settings == "none" or settings.srdf is None:
         return None
     return ctx.resolve(settings.srdf)
 
 
+def _srdf_source(ctx: BuildContext) -> Path | None:
+    """The SRDF the build reads: the one robot.yaml names, else, for a floating robot whose
+    home robot.yaml does not give, the one shipped beside the description (for its standing
+    pose; see selfcollision.discover)."""
+    named = _named_srdf(ctx)
+    if named is not None:
+        return named
+    if not ctx.manifest.options.free_joint or ctx.source_kind == "description":
+        return None
+    from mjcfbuild.selfcollision.discover import find_srdf
+
+    return find_srdf(ctx.source_path)
+
+
 def _srdf_task(ctx: BuildContext, prefix: str) -> dict:
     source = _srdf_source(ctx)
-    assert source is not None, "only made when self_collision.srdf is set"
-    _require_file(ctx, source, "SRDF", "self_collision.srdf")
+    assert source is not None, "only made when there is an SRDF to read"
+    named = _named_srdf(ctx) is not None
+    if named:
+        _require_file(ctx, source, "SRDF", "self_collision.srdf")
     payload = SrdfPayload(
         source=str(source),
         label=ctx.label(source),
-        args=ctx.manifest.source.xacro_args,
+        args=ctx.manifest.source.xacro_args if named else {},
         packages=_packages(ctx.resolver.explicit),
         environment=_environment(ctx),
         output=str(ctx.state(SRDF_SUMMARY)),
+        discovered=not named,
     )
     return _task(
         ctx,

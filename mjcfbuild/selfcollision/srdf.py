@@ -24,6 +24,9 @@ class Srdf:
     label: str
     pairs: list[DisabledPair] = field(default_factory=list)
     states: dict[str, dict[str, float]] = field(default_factory=dict)
+    # The floating root's joint names: virtual joints, and joints with a whole pose as value.
+    floating: list[str] = field(default_factory=list)
+    discovered: bool = False  # found beside the description: only its poses are used
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""
@@ -32,7 +35,13 @@ class Srdf:
     @staticmethod
     def from_dict(data: dict) -> Srdf:
         """Rebuild from :meth:`to_dict`."""
-        return Srdf(data["label"], [DisabledPair(**p) for p in data["pairs"]], data["states"])
+        return Srdf(
+            data["label"],
+            [DisabledPair(**p) for p in data["pairs"]],
+            data["states"],
+            data.get("floating", []),
+            data.get("discovered", False),
+        )
 
 
 def parse_srdf(text: bytes, label: str) -> Srdf:
@@ -66,11 +75,20 @@ def parse_srdf(text: bytes, label: str) -> Srdf:
         result.pairs.append(
             DisabledPair(link1, link2, element.get("reason") or "SRDF", element.sourceline)
         )
+    floating = {
+        element.get("name", "")
+        for element in root.iter("virtual_joint")
+        if element.get("type") in ("floating", "planar")
+    }
     for state in root.iter("group_state"):
         values: dict[str, float] = {}
         for joint in state.iter("joint"):
+            words = (joint.get("value") or "").replace(",", " ").split()
+            if len(words) > 1:  # a whole pose: the floating root (the model's free joint)
+                floating.add(joint.get("name", ""))
+                continue
             try:
-                values[joint.get("name", "")] = float((joint.get("value") or "").split()[0])
+                values[joint.get("name", "")] = float(words[0])
             except (ValueError, IndexError):
                 raise InputError(
                     f"joint '{joint.get('name')}' has no numeric value",
@@ -79,4 +97,33 @@ def parse_srdf(text: bytes, label: str) -> Srdf:
                     hint='write value="<number>"',
                 ) from None
         result.states.setdefault(state.get("name", ""), {}).update(values)
+    result.floating = sorted(floating)
     return result
+
+
+def home_state(
+    srdf: Srdf, joints: set[str], name: str | None, floating_robot: bool
+) -> tuple[str | None, dict[str, float] | None]:
+    """The group_state that is the home pose, and its name: the one called ``name`` where the
+    SRDF has it, else, for a floating robot, its standing pose
+    (:func:`~mjcfbuild.selfcollision.discover.standing_state`). Root joints are left out; a
+    named state naming another unknown joint is an error, a found one is skipped."""
+    from mjcfbuild.control.choose import listing
+    from mjcfbuild.selfcollision.discover import standing_state
+
+    floating = set(srdf.floating)
+    chosen = name if name in srdf.states and not srdf.discovered else None
+    if chosen is None and floating_robot:
+        chosen = standing_state(srdf.states, joints, floating)
+    if chosen is None:
+        return None, None
+    state = {joint: value for joint, value in srdf.states[chosen].items() if joint not in floating}
+    unknown = sorted(set(state) - joints)
+    if unknown:
+        raise InputError(
+            f"group_state '{chosen}' names joint '{unknown[0]}', which the robot does not have",
+            file=srdf.label,
+            hint=f"joints: {listing(sorted(joints))}; name the root joint in a "
+            '<virtual_joint type="floating"> if it is the floating base',
+        )
+    return chosen, state

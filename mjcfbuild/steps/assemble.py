@@ -55,7 +55,7 @@ def run(payload: dict) -> dict:
         control=control,
         actuators=ActuatorSettings(**request.actuators),
         home=request.home,
-        home_state=(srdf or {}).get("states", {}).get(request.srdf_home or "home"),
+        home_state=_srdf_home(srdf, robot, request),
         excludes=[tuple(pair) for pair in (matrix or {}).get("excludes", [])],
         manifest_label=request.manifest_label,
         fuse_static=request.fuse_static,
@@ -146,3 +146,17 @@ def _previous_assets(report_path: Path) -> set[str]:
         return set(json.loads(report_path.read_text())["assets"])
     except (OSError, ValueError, KeyError):
         return set()
+
+
+def _srdf_home(srdf: dict | None, robot, request: AssemblePayload) -> dict[str, float] | None:
+    """The SRDF pose that is home: the group_state robot.yaml names, else a floating robot's
+    standing pose (see selfcollision.discover)."""
+    if not srdf:
+        return None
+    from mjcfbuild.selfcollision.srdf import Srdf, home_state
+
+    joints = {joint.name for joint in robot.joints}
+    _, state = home_state(
+        Srdf.from_dict(srdf), joints, request.srdf_home or "home", request.free_joint
+    )
+    return state

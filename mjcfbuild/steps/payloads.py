@@ -258,6 +258,7 @@ class SrdfPayload(Payload):
     packages: dict[str, str]
     environment: dict[str, str]
     output: Output
+    discovered: bool = False  # found beside the description, not named in robot.yaml
 
 
 @dataclass(frozen=True)

@@ -27,9 +27,10 @@ from mjcfbuild.selfcollision.matrix import (
     needs_exclude,
 )
 from mjcfbuild.selfcollision.srdf import Srdf
+from mjcfbuild.selfcollision.srdf import home_state as home_state_of
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import DecompositionFiles, SelfCollisionPayload
-from mjcfbuild.urdf.model import Robot, robot_from_dict
+from mjcfbuild.urdf.model import robot_from_dict
 
 if TYPE_CHECKING:
     import mujoco  # untyped: its classes are Any to mypy, named here for the reader
@@ -76,7 +77,12 @@ def run(payload: dict) -> dict:
     control = Ros2Control(
         joints=[ControlJoint(name, [], value, "") for name, value in request.initial.items()]
     )
-    home_state = _srdf_home(srdf, robot, request.home_state) if srdf else None
+    joint_names = {joint.name for joint in robot.joints}
+    _, home_state = (
+        home_state_of(srdf, joint_names, request.home_state, request.free_joint)
+        if srdf
+        else (None, None)
+    )
     home = home_values(robot, control, request.home, home_state, request.manifest_label)
     qpos = model.qpos0.copy()
     for value in home:
@@ -87,7 +93,7 @@ def run(payload: dict) -> dict:
     verdicts, cached = _matrix(model, qpos, settings, request)
 
     by_pair = {frozenset((v["body1"], v["body2"])): v for v in verdicts}
-    if srdf is not None:
+    if srdf is not None and not srdf.discovered:
         for pair in srdf.pairs:
             bodies_of_pair = [
                 _body(link, body_of, srdf, pair.line) for link in (pair.link1, pair.link2)
@@ -205,18 +211,3 @@ def _kept_body(link: str, body_of: dict[str, str], label: str, index: int) -> st
             hint=f"links: {listing(sorted(body_of))}",
         )
     return body_of[link]
-
-
-def _srdf_home(srdf: Srdf, robot: Robot, name: str) -> dict[str, float] | None:
-    state = srdf.states.get(name)
-    if state is None:
-        return None
-    names = {joint.name for joint in robot.joints}
-    unknown = sorted(set(state) - names)
-    if unknown:
-        raise InputError(
-            f"group_state '{name}' names joint '{unknown[0]}', which the robot does not have",
-            file=srdf.label,
-            hint=f"joints: {listing(sorted(names))}",
-        )
-    return state

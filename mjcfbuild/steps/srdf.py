@@ -23,6 +23,7 @@ def run(payload: dict) -> dict:
         request.environment,
     )
     srdf = parse_srdf(expansion.urdf, request.label)
+    srdf.discovered = request.discovered
     outputs: dict[str, str] = {}
     text = json.dumps(srdf.to_dict(), indent=1, sort_keys=True) + "\n"
     write_output(Path(request.output), text.encode(), outputs)
