@@ -18,7 +18,7 @@ def markdown(report: dict) -> str:
         f"scene `{report['scene']}`."
     )
     lines.append("")
-    lines += _checks(report.get("check") or {})
+    lines += _checks(report.get("check") or {}, report.get("warnings") or [])
     lines += _control(report.get("readiness") or {})
     lines += _self_collision(report.get("self_collision"))
     if report["repairs"]:
@@ -114,7 +114,27 @@ def _cache_lines(cache: dict | None) -> list[str]:
     return [*lines, ""]
 
 
-def _checks(check: dict) -> list[str]:
+def verdict(check: dict, warnings: list[str]) -> str:
+    """The report's one-line result: "all checks pass" only when nothing failed, the robot
+    needs nothing the checks assumed it has, and the build warned of nothing; otherwise what
+    comes first."""
+    if not check.get("passes"):
+        failures = check.get("failures") or []
+        first = f": {failures[0]}" if failures else ""
+        more = f" (and {len(failures) - 1} more, below)" if len(failures) > 1 else ""
+        return f"**checks failed**{first}{more}"
+    if check.get("needs_controller"):
+        return (
+            "checks pass, but the robot cannot stand without a controller "
+            f"({check['needs_controller']}): the stand test was not run"
+        )
+    if warnings:
+        count = f"{len(warnings)} warning{'s' if len(warnings) > 1 else ''}"
+        return f"checks pass with {count} (see Warnings): {warnings[0]}"
+    return "all checks pass"
+
+
+def _checks(check: dict, warnings: list[str]) -> list[str]:
     if not check:
         return [
             "## Checks",
@@ -122,8 +142,7 @@ def _checks(check: dict) -> list[str]:
             "Not run (check.enabled is false, or the build stopped before).",
             "",
         ]
-    verdict = "all checks pass" if check.get("passes") else "**checks failed**"
-    lines = ["## Checks", "", f"Result: {verdict}.", ""]
+    lines = ["## Checks", "", f"Result: {verdict(check, warnings)}.", ""]
     for failure in check.get("failures", []):
         lines.append(f"- {failure}")
     if check.get("failures"):
@@ -170,6 +189,16 @@ def _checks(check: dict) -> list[str]:
             f"| hold home's ctrl for 1 s | largest deviation {hold['max_deviation']:.3g}{where}"
             f"{tilted} |"
         )
+    stand = check.get("stand")
+    if stand:
+        if stand.get("needs_controller"):
+            lines.append(f"| stand at home for 5 s | not run: {stand['needs_controller']} |")
+        else:
+            lines.append(
+                f"| stand at home holding its ctrl for {stand['seconds']:g} s | base tilted "
+                f"{stand['max_tilt']:.2g} rad, sank {stand['max_sink'] * 1000:.0f} mm; largest "
+                f"joint deviation {stand['max_deviation']:.3g} ({stand['joint']}) |"
+            )
     menagerie = check.get("menagerie_test")
     if menagerie:
         lines.append(

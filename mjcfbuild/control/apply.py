@@ -108,7 +108,7 @@ def make_ready(
     urdf_joints = {joint.name: joint for joint in robot.joints}
     for choice in choices:
         _set_dynamics(joints.get(choice.joint), choice)
-        _set_force_limit(joints.get(choice.joint), choice)
+        _set_force_limit(joints.get(choice.joint), choice, urdf_joints[choice.joint])
         if choice.gravcomp and urdf_joints[choice.joint].child in bodies:
             bodies[urdf_joints[choice.joint].child].set("gravcomp", "1")
     generated = [c for c in choices if c.type not in ("none", "user")]
@@ -216,17 +216,15 @@ def standing_torques(model, data, tolerance: float = 2e-3):
     return torques
 
 
-def _set_force_limit(element, choice: ActuatorChoice) -> None:
+def _set_force_limit(element, choice: ActuatorChoice, joint) -> None:
     """The joint's own force limit: a rule's forcerange, else none where the URDF's effort is
-    not a limit (MuJoCo's import would clamp the joint to it)."""
+    not a limit (MuJoCo's import makes effort="-1" a limit of 1)."""
     if element is None:
         return
     if choice.rule_forcerange and choice.forcerange is not None:
         element.set("actuatorfrcrange", output_list(list(choice.forcerange)))
-    elif choice.forcerange is None and element.get("actuatorfrcrange") is not None:
-        low, high = (float(v) for v in element.get("actuatorfrcrange").split())
-        if not low < high:  # effort="-1" or "0": unknown, not a limit
-            del element.attrib["actuatorfrcrange"]
+    elif joint.limit is not None and joint.limit.effort is not None and joint.limit.effort <= 0:
+        element.attrib.pop("actuatorfrcrange", None)
 
 
 def _drive_wheels(model, data, choices: list[ActuatorChoice]) -> list[ActuatorChoice]:

@@ -119,7 +119,7 @@ def _local_points(model, geom: int):
     import mujoco
     import numpy as np
 
-    kind = model.geom_type[geom]
+    kind = mujoco.mjtGeom(model.geom_type[geom])  # an enum: `in` needs one
     size = model.geom_size[geom]
     circle = np.linspace(0, 2 * math.pi, 48, endpoint=False)
     ring = np.stack([np.cos(circle), np.sin(circle), np.zeros_like(circle)], axis=1)

@@ -101,16 +101,13 @@ def _check_parts(
     report.results["parts"] = results
 
 
-# A floating base tilting more than this in 1 s of holding home is falling over.
-FALLING_TILT = 0.3
-
-
 def _standing_notes(results: dict) -> list[str]:
-    """A warning when a floating robot does not stand in its home pose."""
-    tilt = (results.get("hold") or {}).get("base_tilt")
-    if tilt is None or tilt <= FALLING_TILT:
+    """A warning when a floating robot cannot stand without a controller (the stand test
+    fails the check of one that could but does not)."""
+    why = results.get("needs_controller")
+    if not why:
         return []
     return [
-        f"the robot falls over from its home pose (its base tilts {tilt:.2g} rad in 1 s of "
-        "holding it): give home: a pose it stands in, such as bent knees"
+        f"the robot cannot stand without a controller: {why}; the stand test was not run, "
+        "and the model holds its joints, not its balance"
     ]

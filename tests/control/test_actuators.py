@@ -112,9 +112,12 @@ def test_default_none_gives_a_passive_model_that_still_passes_the_check(tmp_path
     assert readiness(tmp_path)["passive"] == ["hinge"]
 
 
-def test_a_continuous_joint_gets_a_velocity_servo_by_default(tmp_path):
-    build_two_link(tmp_path, joint_type="continuous")
-    assert readiness(tmp_path)["actuators"][0]["type"] == "velocity"
+def test_a_continuous_joint_that_is_no_wheel_gets_a_position_servo(tmp_path):
+    """Its body is a rod, not round about the axis: a revolving joint, held in position
+    (tests/control/test_standing.py has the wheel that gets a velocity servo)."""
+    model = load(build_two_link(tmp_path, joint_type="continuous"))
+    assert readiness(tmp_path)["actuators"][0]["type"] == "position"
+    assert not model.actuator_ctrllimited[0]
 
 
 def test_the_pendulum_rings_at_the_frequency_and_damping_asked_for(tmp_path):

@@ -1,0 +1,231 @@
+"""Robots a controller author can use: they stand, hold, and are driven by what their joints are.
+
+Each robot is generated (primitives only), built by the real build, compiled and simulated by
+MuJoCo; the stand test is the check's own, and each test reads the model, not the report.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pytest
+
+import mjcfbuild
+from mjcfbuild.control.standing import MARGIN
+from mjcfbuild.errors import BuildFailed
+from tests.conftest import two_link_urdf, write
+from tests.control import robots
+from tests.control.helpers import actuator, readiness
+
+pytestmark = pytest.mark.slow  # each builds and simulates a robot for 5 s
+
+
+def _build(folder: Path, urdf: str, manifest: str = "", free_joint: bool = True):
+    write(folder / "urdf/robot.urdf", urdf)
+    write(
+        folder / "robot.yaml",
+        "name: r\nsource: {urdf: urdf/robot.urdf}\n"
+        f"options: {{free_joint: {'true' if free_joint else 'false'}}}\n" + manifest,
+    )
+    return mjcfbuild.build(folder / "robot.yaml", jobs=1)
+
+
+def _check(folder: Path) -> dict:
+    return json.loads((folder / "mjcf/.mjcfbuild/check.json").read_text())
+
+
+def _scene(folder: Path) -> tuple[mujoco.MjModel, mujoco.MjData]:
+    model = mujoco.MjModel.from_xml_path(str(folder / "mjcf/scene.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, 0)
+    return model, data
+
+
+def _hold(model, data, seconds: float) -> None:
+    for _ in range(round(seconds / model.opt.timestep)):
+        mujoco.mj_step(model, data)
+
+
+def _tilt(data) -> float:
+    return float(np.arccos(np.clip(data.xmat[1].reshape(3, 3)[2, 2], -1, 1)))
+
+
+STANDING_SRDF = """<?xml version="1.0"?>
+<robot name="quad">
+  <virtual_joint name="root_joint" type="floating" parent_frame="world" child_link="trunk"/>
+  <group_state name="straight" group="all">{straight}</group_state>
+  <group_state name="standing" group="all">
+    <joint name="root_joint" value="0 0 0.3 0 0 0 1"/>{bent}
+  </group_state>
+</robot>
+"""
+
+
+def test_a_quadruped_stands_in_the_srdf_pose_shipped_beside_its_description(tmp_path):
+    """The SRDF lists the floating root joint, as MoveIt's do; its 'standing' state wins."""
+    bent = "".join(
+        f'<joint name="{leg}_hip_joint" value="0"/><joint name="{leg}_thigh_joint" value="0.8"/>'
+        f'<joint name="{leg}_calf_joint" value="-1.6"/>'
+        for leg in ("FL", "FR", "RL", "RR")
+    )
+    write(tmp_path / "srdf/quad.srdf", STANDING_SRDF.format(straight="", bent=bent))
+    _build(tmp_path, robots.quadruped())
+    model, data = _scene(tmp_path)
+    thigh = model.jnt_qposadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "FL_thigh_joint")]
+    assert data.qpos[thigh] == pytest.approx(0.8)
+    home = data.qpos[2]
+    _hold(model, data, 5.0)
+    assert _tilt(data) < 0.1
+    assert data.qpos[2] > 0.9 * home
+    assert {v["source"] for v in readiness(tmp_path)["home"]} == {"srdf"}
+    assert _check(tmp_path)["stand"]["max_tilt"] < 0.2
+
+
+def test_an_srdf_state_naming_an_unknown_joint_is_one_line_with_the_file(tmp_path):
+    write(
+        tmp_path / "robot.srdf",
+        '<robot name="q"><group_state name="home" group="all">'
+        '<joint name="elbow" value="1"/></group_state></robot>',
+    )
+    with pytest.raises(BuildFailed) as failed:
+        _build(tmp_path, robots.quadruped(), "self_collision: {srdf: robot.srdf}\n")
+    message = str(failed.value)
+    assert "robot.srdf" in message and "'elbow'" in message and "\n" not in message
+    assert failed.value.exit_code == 4
+
+
+def test_a_humanoid_stands_at_zero_with_weight_bearing_gains(tmp_path):
+    _build(tmp_path, robots.humanoid())
+    model, data = _scene(tmp_path)
+    records = {r["joint"]: r for r in readiness(tmp_path)["actuators"]}
+    ankle = records["left_ankle_pitch"]
+    assert ankle["weight_bearing"]
+    # The carried mass (all but one foot) at its height above the ankle, shared by two feet.
+    mujoco.mj_forward(model, data)
+    joint = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "left_ankle_pitch")
+    foot = model.jnt_bodyid[joint]
+    mass = model.body_subtreemass[0] - model.body_subtreemass[foot]
+    com = (
+        model.body_subtreemass[0] * data.subtree_com[0]
+        - model.body_subtreemass[foot] * data.subtree_com[foot]
+    ) / mass
+    height = com[2] - data.xanchor[joint][2]
+    assert ankle["kp"] == pytest.approx(MARGIN * mass * 9.81 * height / 2, rel=0.05)
+    # Mirror-symmetric joints get the same gains.
+    for name in ("hip_pitch", "hip_roll", "knee", "ankle_pitch", "ankle_roll"):
+        left, right = records[f"left_{name}"], records[f"right_{name}"]
+        assert (left["kp"], left["kv"]) == (right["kp"], right["kv"])
+    _hold(model, data, 5.0)
+    assert _tilt(data) < 0.1
+
+
+def test_the_same_humanoid_falls_with_gains_from_its_own_inertia(tmp_path):
+    """The counterfactual: ankles tuned by frequency alone let it tip, and the check says so
+    in one line with what to write."""
+    with pytest.raises(BuildFailed) as failed:
+        _build(
+            tmp_path,
+            robots.humanoid(),
+            'actuators: {rules: [{joints: ["*ankle*"], frequency: 10}]}\n',
+        )
+    assert failed.value.exit_code == 6
+    assert "does not stand at home" in str(failed.value)
+    assert "home:" in str(failed.value)
+
+
+def test_a_continuous_arm_joint_holds_and_a_real_wheel_gets_a_velocity_servo(tmp_path):
+    _build(tmp_path, robots.rover())
+    records = {r["joint"]: r for r in readiness(tmp_path)["actuators"]}
+    assert (records["left_wheel_joint"]["type"], records["left_wheel_joint"]["source"]) == (
+        "velocity",
+        "wheel",
+    )
+    assert records["right_wheel_joint"]["type"] == "velocity"
+    assert records["shoulder"]["type"] == "position"
+    model, data = _scene(tmp_path)
+    shoulder = model.jnt_qposadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "shoulder")]
+    _hold(model, data, 1.0)
+    assert abs(data.qpos[shoulder]) < 0.05  # the arm holds against gravity
+
+
+def test_a_quadruped_with_continuous_leg_joints_keeps_standing(tmp_path):
+    bent = "".join(
+        f'<joint name="{leg}_thigh_joint" value="0.8"/><joint name="{leg}_calf_joint" value="-1.6"/>'
+        for leg in ("FL", "FR", "RL", "RR")
+    )
+    write(tmp_path / "srdf/quad.srdf", STANDING_SRDF.format(straight="", bent=bent))
+    _build(tmp_path, robots.quadruped(joint_type="continuous"))
+    assert {r["type"] for r in readiness(tmp_path)["actuators"]} == {"position"}
+    model, data = _scene(tmp_path)
+    home = data.qpos[2]
+    _hold(model, data, 5.0)
+    assert data.qpos[2] > 0.9 * home
+
+
+def test_a_floating_joint_never_gets_an_actuator(tmp_path):
+    """A drone whose URDF joins it to the world with a floating joint: no servo on it (the
+    check is off: it compares a URDF floating joint's pose at zero, see the closing note)."""
+    write(tmp_path / "urdf/robot.urdf", robots.drone())
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: urdf/robot.urdf}\n")
+    result = mjcfbuild.build(tmp_path / "robot.yaml", jobs=1, check=False)
+    model = mujoco.MjModel.from_xml_path(str(result.robot))
+    assert model.nu == 0
+    assert model.jnt_type[0] == mujoco.mjtJoint.mjJNT_FREE
+
+
+def test_unknown_effort_and_velocity_are_not_limits(tmp_path):
+    urdf = two_link_urdf().replace('effort="10" velocity="1"', 'effort="-1" velocity="-1"')
+    result = _build(
+        tmp_path, urdf, "actuators: {rules: [{joints: [hinge], type: velocity}]}\n", False
+    )
+    model = mujoco.MjModel.from_xml_path(str(result.robot))
+    hinge = actuator(model, "hinge")
+    assert not model.actuator_ctrllimited[hinge]  # never the inverted [1, -1]
+    assert not model.actuator_forcelimited[hinge]
+    assert not model.jnt_actfrclimited[0]  # never a 1 N m limit
+    assert any('effort="-1"' in w and "unknown" in w for w in result.warnings)
+    assert any('velocity="-1"' in w for w in result.warnings)
+
+
+def test_a_gripper_leader_is_sized_for_its_mimic_followers(tmp_path):
+    """Four heavy fingers follow a light leader: the servo must hold them all."""
+    result = _build(tmp_path, robots.gripper(), free_joint=False)
+    model = mujoco.MjModel.from_xml_path(str(result.robot))
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, 0)
+    lead = model.jnt_qposadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "lead")]
+    home = data.qpos[lead]
+    _hold(model, data, 1.0)
+    assert abs(data.qpos[lead] - home) < 0.002
+    record = readiness(tmp_path)["actuators"][0]
+    alone = _build(tmp_path / "alone", robots.gripper(followers=0), free_joint=False)
+    assert alone.robot.exists()
+    single = readiness(tmp_path / "alone")["actuators"][0]
+    assert record["kp"] > 10 * single["kp"]
+
+
+def test_a_forcerange_rule_sets_the_joint_limit_too(tmp_path):
+    result = _build(
+        tmp_path,
+        two_link_urdf(),
+        "actuators: {rules: [{joints: [hinge], forcerange: [-60, 60]}]}\n",
+        free_joint=False,
+    )
+    model = mujoco.MjModel.from_xml_path(str(result.robot))
+    assert list(model.jnt_actfrcrange[0]) == [-60, 60]
+    assert list(model.actuator_forcerange[0]) == [-60, 60]
+
+
+def test_an_effort_below_the_gravity_load_names_both_numbers_and_the_fixes(tmp_path):
+    heavy = two_link_urdf().replace('effort="10"', 'effort="0.5"')
+    heavy = heavy.replace('rpy="0 0 0.3"/>', 'rpy="0 1.2 0.3"/>')  # the arm leans over
+    arm = heavy.index('<link name="arm">') + len('<link name="arm">')
+    heavy = heavy[:arm] + heavy[arm:].replace("<inertial>", '<inertial><origin xyz="0 0 0.25"/>', 1)
+    with pytest.raises(BuildFailed) as failed:
+        _build(tmp_path, heavy, "", free_joint=False)
+    message = str(failed.value)
+    assert failed.value.exit_code == 6
+    assert "force limit is 0.5" in message and "forcerange" in message and "gravcomp" in message
