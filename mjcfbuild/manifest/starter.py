@@ -95,15 +95,7 @@ def starter_manifest_text(
                 f"{inferred[package].evidence}, found in this folder"
             )
         lines.append(f"  {package}: {_relative(Path(known[package]), manifest_dir)}")
-    legs = _leg_words(data)
-    if legs:
-        free_joint = [
-            f"  # Names like {', '.join(legs)} say this robot walks: its base floats, and the",
-            "  # build stands it on the floor at home.",
-            "  free_joint: true",
-        ]
-    else:
-        free_joint = ["  free_joint: false   # true for a floating base (legged robots, humanoids)"]
+    free_joint = _free_joint_lines(source, is_xacro, known, data)
     lines += [
         "",
         "options:",
@@ -133,6 +125,34 @@ def starter_manifest_text(
         "",
     ]
     return "\n".join(lines)
+
+
+def _free_joint_lines(source: Path, is_xacro: bool, packages: dict[str, str], data: bytes) -> list:
+    """The manifest's free_joint line, decided from the robot's kinematics and geometry
+    (urdf.base); from its names only where the description cannot be read here."""
+    from mjcfbuild.urdf.base import classify_base
+
+    try:
+        from mjcfbuild.sources.expand import expand_source
+        from mjcfbuild.urdf.parse import parse_urdf
+
+        expansion = expand_source(source, is_xacro, {}, packages, dict(os.environ))
+        kind = classify_base(parse_urdf(expansion.urdf, str(source)))
+    except Exception:  # an unreadable description: init still writes a starting manifest
+        legs = _leg_words(data)
+        if legs:
+            return [
+                f"  # Names like {', '.join(legs)} suggest a walking robot (the description",
+                "  # could not be read to tell): its base floats.",
+                "  free_joint: true",
+            ]
+        return ["  free_joint: false   # true for a floating base (legged robots, humanoids)"]
+    if kind.floating:
+        return [
+            f"  # Its base floats: {kind.why}. The build stands it on the floor at home.",
+            "  free_joint: true",
+        ]
+    return [f"  free_joint: false   # {kind.why}; true for a floating base"]
 
 
 _LEG_WORDS = ("hip", "thigh", "knee", "calf", "shank", "ankle", "foot", "HFE", "KFE", "HAA")

@@ -59,22 +59,34 @@ def test_init_writes_commented_actuators_and_home_sections(cli, tmp_path):
     assert "free_joint: false" in text  # an arm: no leg words in its names
 
 
-def test_init_proposes_a_free_joint_for_a_legged_robot_and_says_why(cli, tmp_path):
+def _init_free_joint(cli, folder, urdf: str) -> tuple[bool, str]:
     from mjcfbuild.manifest.loading import load_manifest
-    from tests.conftest import INERTIA, write
+    from tests.conftest import write
 
-    legs = "".join(
-        f'<link name="{leg}_thigh">{INERTIA}</link>'
-        f'<joint name="{leg}_hip_joint" type="revolute"><parent link="body"/>'
-        f'<child link="{leg}_thigh"/><axis xyz="0 1 0"/>'
-        '<limit lower="-1" upper="1" effort="5" velocity="1"/></joint>'
-        for leg in ("FL", "FR", "RL", "RR")
-    )
-    write(
-        tmp_path / "dog.urdf", f'<robot name="dog"><link name="body">{INERTIA}</link>{legs}</robot>'
-    )
-    assert cli("init", "dog.urdf", "-o", "robot.yaml", cwd=tmp_path).code == EXIT_OK
-    text = (tmp_path / "robot.yaml").read_text()
-    assert "free_joint: true" in text
-    assert "say this robot walks" in text and "hip" in text
-    assert load_manifest(tmp_path / "robot.yaml").options.free_joint is True
+    write(folder / "robot.urdf", urdf)
+    assert cli("init", "robot.urdf", "-o", "robot.yaml", cwd=folder).code == EXIT_OK
+    text = (folder / "robot.yaml").read_text()
+    return load_manifest(folder / "robot.yaml").options.free_joint, text
+
+
+def test_init_finds_a_walker_by_its_legs_not_its_names(cli, tmp_path):
+    """TALOS-like names (leg_left_1, ...) say nothing; four limbs reaching the floor below
+    the root do."""
+    from tests.control.robots import quadruped
+
+    renamed = quadruped()
+    for index, part in enumerate(("hip", "thigh", "calf")):
+        renamed = renamed.replace(f"_{part}", f"_link_{index}")
+    floating, text = _init_free_joint(cli, tmp_path, renamed)
+    assert floating
+    assert "4 limbs" in text and "reach" in text
+
+
+def test_init_finds_a_wheeled_base_floats_and_an_arm_named_hip_does_not(cli, tmp_path):
+    from tests.conftest import two_link_urdf
+    from tests.control.robots import rover
+
+    floating, text = _init_free_joint(cli, tmp_path / "rover", rover())
+    assert floating and "left_wheel_joint" in text and "wheels" in text
+    arm = two_link_urdf().replace('name="hinge"', 'name="hip_knee_joint"')
+    assert _init_free_joint(cli, tmp_path / "arm", arm)[0] is False

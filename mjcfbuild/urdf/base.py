@@ -1,0 +1,162 @@
+"""Whether a robot's base floats, decided from its kinematics and geometry, not its names.
+
+For ``mjcfbuild init``: names lie (a humanoid whose joints are called ``leg_left_4_joint``, a
+wheeled base whose casters are called ``*_hip_*``). At the zero pose, with every link placed by
+forward kinematics and each link's shapes reduced to points (their origins, and the corners of
+boxes, cylinders and spheres):
+
+- a robot bolted down says so: its root is a ``world`` link joined by a fixed joint;
+- a wheeled base floats: two or more continuous joints with horizontal axes whose links sit in
+  the lowest quarter of the robot;
+- a legged robot floats: two or more branches leaving the root reach the floor (within 10% of
+  the robot's height of its lowest point) while the root itself stays well above it (more than
+  30% of the robot's height);
+- anything else (an arm on its base plate, a hand) is fixed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from mjcfbuild.urdf.kinematics import link_poses
+from mjcfbuild.urdf.model import Robot, Shape
+from mjcfbuild.urdf.transforms import Transform, apply
+
+_FLOOR = 0.1  # of the height: how close to the lowest point a foot reaches
+_RAISED = 0.3  # of the height: how far above the lowest point a walking root stays
+_WHEEL_ZONE = 0.25  # of the height: where wheels sit
+
+
+@dataclass(frozen=True)
+class BaseKind:
+    """Whether the base floats and why."""
+
+    floating: bool
+    why: str
+
+
+def classify_base(robot: Robot) -> BaseKind:
+    """Decide whether ``robot``'s base floats (see the module's rules)."""
+    if robot.root == "world":
+        kinds = {joint.kind for joint in robot.joints if joint.parent == "world"}
+        if "floating" in kinds:
+            return BaseKind(False, "its URDF joins it to the world with a floating joint")
+        return BaseKind(False, "its root is joined to the world link")
+    poses = link_poses(robot)
+    points = {link.name: _points(link.shapes, poses[link.name]) for link in robot.links}
+    heights = [p[2] for values in points.values() for p in values]
+    if not heights:
+        return BaseKind(False, "it has no geometry to stand on")
+    low, high = min(heights), max(heights)
+    size = max(high - low, 1e-6)
+    wheels = _wheels(robot, poses, low, size)
+    if len(wheels) >= 2:
+        return BaseKind(True, f"its continuous joints {', '.join(wheels[:4])} are wheels")
+    rotors = _rotors(robot, poses)
+    if len(rotors) >= 2:
+        return BaseKind(True, f"its continuous joints {', '.join(rotors[:4])} are rotors")
+    body = _fixed_to(robot, robot.root)
+    feet = _branches_reaching(robot, body, points, low + _FLOOR * size)
+    root_low = min(p[2] for link in body for p in points[link])
+    if len(feet) >= 2 and root_low - low > _RAISED * size:
+        return BaseKind(
+            True,
+            f"{len(feet)} limbs ({', '.join(sorted(feet)[:4])}) reach {root_low - low:.2f} m "
+            "below its root to the floor",
+        )
+    return BaseKind(False, "its root sits at the bottom of the robot")
+
+
+def _points(shapes: list[Shape], pose: Transform) -> list[tuple[float, float, float]]:
+    """World points of a link's shapes: origins, and corners of primitives."""
+    found = [pose.position]
+    for shape in shapes:
+        frame = pose.compose(Transform.from_pose(shape.origin))
+        for offset in _corners(shape):
+            moved = apply(frame.rotation, offset)
+            found.append(
+                (
+                    frame.position[0] + moved[0],
+                    frame.position[1] + moved[1],
+                    frame.position[2] + moved[2],
+                )
+            )
+    return found
+
+
+def _corners(shape: Shape) -> list[tuple[float, float, float]]:
+    geometry = shape.geometry
+    size = geometry.size
+    if geometry.kind == "box" and len(size) == 3:
+        x, y, z = (s / 2 for s in size)
+    elif geometry.kind in ("cylinder", "capsule") and len(size) == 2:
+        x = y = size[0]
+        z = size[1] / 2 + (size[0] if geometry.kind == "capsule" else 0.0)
+    elif geometry.kind == "sphere" and size:
+        x = y = z = size[0]
+    else:
+        return [(0.0, 0.0, 0.0)]
+    return [(a, b, c) for a in (-x, x) for b in (-y, y) for c in (-z, z)]
+
+
+def _wheels(robot: Robot, poses: dict[str, Transform], low: float, size: float) -> list[str]:
+    wheels = []
+    for joint in robot.joints:
+        if joint.kind != "continuous":
+            continue
+        pose = poses[joint.child]
+        axis = apply(pose.rotation, joint.axis)
+        norm = sum(a * a for a in axis) ** 0.5 or 1.0
+        if abs(axis[2] / norm) < 0.3 and pose.position[2] - low <= _WHEEL_ZONE * size:
+            wheels.append(joint.name)
+    return wheels
+
+
+def _rotors(robot: Robot, poses: dict[str, Transform]) -> list[str]:
+    """Continuous joints with vertical axes at leaf links: propellers."""
+    parents = {joint.parent for joint in robot.joints}
+    rotors = []
+    for joint in robot.joints:
+        if joint.kind != "continuous" or joint.child in parents:
+            continue
+        axis = apply(poses[joint.child].rotation, joint.axis)
+        norm = sum(a * a for a in axis) ** 0.5 or 1.0
+        if abs(axis[2] / norm) > 0.9:
+            rotors.append(joint.name)
+    return rotors
+
+
+def _fixed_to(robot: Robot, root: str) -> set[str]:
+    """``root`` and the links fixed to it (one rigid body once fixed joints are merged)."""
+    body = {root}
+    changed = True
+    while changed:
+        changed = False
+        for joint in robot.joints:
+            if joint.kind == "fixed" and joint.parent in body and joint.child not in body:
+                body.add(joint.child)
+                changed = True
+    return body
+
+
+def _branches_reaching(robot: Robot, body: set[str], points: dict, floor: float) -> set[str]:
+    """The links moving joints attach to the root's rigid ``body`` whose subtrees reach down
+    to ``floor``."""
+    children: dict[str, list[str]] = {}
+    for joint in robot.joints:
+        children.setdefault(joint.parent, []).append(joint.child)
+    branches = [
+        joint.child for joint in robot.joints if joint.parent in body and joint.kind != "fixed"
+    ]
+    reaching = set()
+    for branch in branches:
+        pending = [branch]
+        while pending:
+            link = pending.pop()
+            if any(p[2] <= floor for p in points.get(link, [])[1:]) or (
+                len(points.get(link, [])) == 1 and points[link][0][2] <= floor
+            ):
+                reaching.add(branch)
+                break
+            pending += children.get(link, [])
+    return reaching
