@@ -249,7 +249,8 @@ def _control(readiness: dict) -> list[str]:
         lines += ["|---|---|---|---|---:|---:|---|---|"]
         for a in readiness["actuators"]:
             lines.append(
-                f"| {a['name']} | {a['joint']} | {a['type']} | {a['source']} | "
+                f"| {a['name']} | {a['joint']} | {a['type']} | {a['source']}"
+                f"{', weight-bearing' if a.get('weight_bearing') else ''} | "
                 f"{_number(a.get('kp'))} | {_number(a.get('kv'))} | {_range(a.get('ctrlrange'))} "
                 f"| {_range(a.get('forcerange'))}{_replaced(a)} |"
             )
@@ -261,11 +262,26 @@ def _control(readiness: dict) -> list[str]:
     if readiness.get("home"):
         lines += ["| joint | position | from |", "|---|---:|---|"]
         lines += [f"| {h['joint']} | {h['value']:.6g} | {h['source']} |" for h in readiness["home"]]
+    if readiness.get("home_from"):
+        what = "computed" if readiness["home_from"].startswith("crouch") else "srdf"
+        lines += ["", f"The `{what}` values are the {readiness['home_from']}."]
     if readiness.get("base_height") is not None:
         lines += [
             "",
             f"The floating base was raised {readiness['base_height']:.4g} m to stand on the floor.",
         ]
+    stance = readiness.get("stance")
+    if stance:
+        if stance.get("can_stand"):
+            lines += [
+                "",
+                f"At home it stands on {', '.join(stance['feet'])}: they span "
+                f"{stance['area'] * 1e4:.0f} cm2, its centre of mass "
+                f"{stance['com_margin'] * 1000:.0f} mm inside their edge. Weight-bearing "
+                "servos are stiffened to hold it (docs/simulation.md).",
+            ]
+        else:
+            lines += ["", f"It cannot stand on its own: {stance['why_not']}."]
     lines.append("")
     return lines
 

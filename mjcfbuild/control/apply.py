@@ -56,6 +56,7 @@ class Readiness:
     base_height: float | None = None  # how far a floating base was raised to stand
     lowest_point: dict | None = None  # the lowest collision point at home (fixed base)
     stance: dict | None = None  # how a floating robot meets the floor at home
+    home_from: str | None = None  # the SRDF group_state home's "srdf" values come from
     notes: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict:

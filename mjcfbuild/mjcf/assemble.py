@@ -19,6 +19,7 @@ from lxml import etree
 from mjcfbuild.collision.policy import CollisionChoice, choose_collisions
 from mjcfbuild.compose.attach import AttachedPart, attach_parts, part_frames, publish_part_files
 from mjcfbuild.control.apply import ActuatorRecord, Readiness
+from mjcfbuild.control.stand_up import crouched_home, described_nothing, replace_tree, stands
 from mjcfbuild.errors import ModelError
 from mjcfbuild.inputs.model import Inputs
 from mjcfbuild.inputs.ros2_control import Ros2Control
@@ -61,6 +62,7 @@ class AssemblyOptions:
     actuators: ActuatorSettings = field(default_factory=ActuatorSettings)
     home: dict[str, float] = field(default_factory=dict)
     home_state: dict[str, float] | None = None  # an SRDF's group_state named 'home'
+    home_from: str | None = None  # which SRDF group_state that is, for the report
     excludes: list[tuple[str, str]] = field(default_factory=list)
     manifest_label: str = "robot.yaml"
     parts: list[AttachedPart] = field(default_factory=list)  # MJCF parts, in attach order
@@ -201,16 +203,37 @@ def _apply_additions(
         options.manifest_label,
         fallback=parts.fallback,
     )
-    readiness = make_ready(
-        root,
-        parts.actuator_robot,
-        choices,
-        home,
-        options.free_joint,
-        compile_tree,
-        preset_qpos=parts.preset_qpos,
-        preset_ctrl=parts.preset_ctrl,
-    )
+    pristine = deepcopy(root)
+
+    def ready(tree, home_values) -> Readiness:
+        return make_ready(
+            tree,
+            parts.actuator_robot,
+            choices,
+            home_values,
+            options.free_joint,
+            compile_tree,
+            preset_qpos=parts.preset_qpos,
+            preset_ctrl=parts.preset_ctrl,
+        )
+
+    readiness = ready(root, home)
+    if options.free_joint and described_nothing(home) and not stands(root, compile_tree):
+        # The description gives no pose the robot stands in: try a computed crouch.
+        crouched = crouched_home(root, compile_tree, home, readiness)
+        if crouched is not None:
+            trial = deepcopy(pristine)
+            trial_readiness = ready(trial, crouched)
+            if stands(trial, compile_tree):
+                replace_tree(root, trial)
+                readiness = trial_readiness
+                readiness.home_from = (
+                    "crouch mjcfbuild computed: no home pose was given (robot.yaml home:, "
+                    "or an SRDF) and the robot falls from the zero pose; give home: to "
+                    "choose your own"
+                )
+    if options.home_state:
+        readiness.home_from = options.home_from
     chosen = {choice.joint for choice in choices}
     readiness.passive += [joint for joint in parts.undriven if joint not in chosen]
     readiness.actuators += _part_actuators(root, options.parts)

@@ -55,6 +55,17 @@ def validate_masses(
     """Check (and under ``repair``, fix in place) every body's mass properties."""
     repairs: list[Repair] = []
     total = sum(b.mass.mass for b in bodies if b.mass is not None and math.isfinite(b.mass.mass))
+    moving = [body for body in bodies if body.moves]
+    if moving and total <= 0:
+        # Every body would get the smallest placeholder mass: servos sized for 0.1 g links go
+        # unstable and nothing about the model's dynamics is the robot's.
+        raise InputError(
+            f"no link of the robot has a mass (<inertial>), so its {len(moving)} moving "
+            "bodies cannot be simulated",
+            file=source,
+            hint="add each link's <inertial> (mass, centre of mass, inertia) to the "
+            "description: MuJoCo needs them to simulate it",
+        )
     for body in bodies:
         if body.name == "world" and body.parent is None:
             continue

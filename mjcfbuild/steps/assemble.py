@@ -50,12 +50,14 @@ def run(payload: dict) -> dict:
     control = plan.control()
     matrix = _read(request.self_collision)
     srdf = _read(request.srdf)
+    home_state, home_from = _srdf_home(srdf, robot, request)
     options = AssemblyOptions(
         inputs=inputs,
         control=control,
         actuators=ActuatorSettings(**request.actuators),
         home=request.home,
-        home_state=_srdf_home(srdf, robot, request),
+        home_state=home_state,
+        home_from=home_from,
         excludes=[tuple(pair) for pair in (matrix or {}).get("excludes", [])],
         manifest_label=request.manifest_label,
         fuse_static=request.fuse_static,
@@ -148,15 +150,19 @@ def _previous_assets(report_path: Path) -> set[str]:
         return set()
 
 
-def _srdf_home(srdf: dict | None, robot, request: AssemblePayload) -> dict[str, float] | None:
-    """The SRDF pose that is home: the group_state robot.yaml names, else a floating robot's
-    standing pose (see selfcollision.discover)."""
+def _srdf_home(
+    srdf: dict | None, robot, request: AssemblePayload
+) -> tuple[dict[str, float] | None, str | None]:
+    """The SRDF pose that is home (the group_state robot.yaml names, else a floating robot's
+    standing pose; see selfcollision.discover) and where it comes from, for the report."""
     if not srdf:
-        return None
+        return None, None
     from mjcfbuild.selfcollision.srdf import Srdf, home_state
 
+    parsed = Srdf.from_dict(srdf)
     joints = {joint.name for joint in robot.joints}
-    _, state = home_state(
-        Srdf.from_dict(srdf), joints, request.srdf_home or "home", request.free_joint
-    )
-    return state
+    name, state = home_state(parsed, joints, request.srdf_home or "home", request.free_joint)
+    if name is None:
+        return None, None
+    found = ", found beside the description" if parsed.discovered else ""
+    return state, f"group_state '{name}' of {parsed.label}{found}"

@@ -83,7 +83,9 @@ def test_a_massless_floating_root_is_repaired_and_reported(tmp_path):
         tmp_path / "robot.yaml",
         "name: r\nsource: {urdf: robot.urdf}\noptions: {free_joint: true}\n",
     )
-    result = mjcfbuild.build(tmp_path / "robot.yaml")
+    # No check: a 1 kg arm on a base of 1% of the robot's mass does not stand, and the
+    # check's stand test says so; the repair is what this test is about.
+    result = mjcfbuild.build(tmp_path / "robot.yaml", check=False)
     assert any("floating root without mass" in w for w in result.warnings), result.warnings
 
 

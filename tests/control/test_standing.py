@@ -229,3 +229,14 @@ def test_an_effort_below_the_gravity_load_names_both_numbers_and_the_fixes(tmp_p
     message = str(failed.value)
     assert failed.value.exit_code == 6
     assert "force limit is 0.5" in message and "forcerange" in message and "gravcomp" in message
+
+
+def test_a_robot_without_any_mass_is_one_line_not_placeholders(tmp_path):
+    import re
+
+    bare = re.sub(r"<inertial>.*?</inertial>", "", two_link_urdf(), flags=re.S)
+    with pytest.raises(BuildFailed) as failed:
+        _build(tmp_path, bare, free_joint=False)
+    assert failed.value.exit_code == 4
+    assert "no link of the robot has a mass" in str(failed.value)
+    assert "robot.urdf" in str(failed.value)
