@@ -51,6 +51,50 @@ ROBOTS = {
 }
 
 
+# The rest of the wheel's robot descriptions (one URDF each), for bench/robot_suite.py: every
+# robot the wheel carries, built from a bare robot.yaml. ``floating`` is what `mjcfbuild init`
+# decides from the kinematics (mjcfbuild.urdf.base), checked by hand: legs, wheels, rotors.
+# The test suite builds ROBOTS only (CI time); the bench builds them all. cassie_description
+# ships SDF files only, which are not URDF.
+MORE_ROBOTS = {
+    robot.name: robot
+    for robot in [
+        Robot("alex", "robots/alex_description/urdf/alex_nub_hands.urdf", False),
+        Robot(
+            "alexander", "robots/alexander_description/urdf/alexander_v1.lowerBodyOnly.urdf", True
+        ),
+        Robot("anymal_b", "robots/anymal_b_simple_description/robots/anymal.urdf", True),
+        Robot("asr_twodof", "robots/asr_twodof_description/urdf/TwoDofs.urdf", False),
+        Robot("b1", "robots/b1_description/urdf/b1.urdf", True),
+        Robot("baxter", "robots/baxter_description/urdf/baxter.urdf", False),
+        Robot("bolt", "robots/bolt_description/robots/bolt.urdf", True),
+        Robot("borinot", "robots/borinot_description/urdf/borinot_flying_arm_2.urdf", True),
+        Robot("centauro", "robots/centauro_description/urdf/centauro.urdf", True),
+        Robot(
+            "double_pendulum", "robots/double_pendulum_description/urdf/double_pendulum.urdf", False
+        ),
+        Robot("finger_edu", "robots/finger_edu_description/robots/finger_edu.urdf", False),
+        Robot("hector", "robots/hector_description/robots/quadrotor_base.urdf", True),
+        Robot("hextilt", "robots/hextilt_description/urdf/hextilt_flying_arm_5.urdf", True),
+        Robot("human", "robots/human_description/robots/human.urdf", True),
+        Robot("hyq", "robots/hyq_description/robots/hyq_no_sensors.urdf", True),
+        Robot("icub", "robots/icub_description/robots/icub_reduced.urdf", True),
+        Robot("iris", "robots/iris_description/robots/iris.urdf", True),
+        Robot("kinova", "robots/kinova_description/robots/kinova.urdf", False),
+        Robot("laikago", "robots/laikago_description/urdf/laikago.urdf", True),
+        Robot("pr2", "robots/pr2_description/urdf/pr2.urdf", True),
+        Robot("quadruped", "robots/quadruped_description/urdf/quadruped.urdf", True),
+        Robot("romeo", "robots/romeo_description/urdf/romeo_small.urdf", True),
+        Robot(
+            "simple_humanoid", "robots/simple_humanoid_description/urdf/simple_humanoid.urdf", True
+        ),
+        Robot("solo8", "robots/solo_description/robots/solo.urdf", True),
+        Robot("tiago_pro", "robots/tiago_pro_description/robots/tiago_pro.urdf", True),
+    ]
+}
+ALL_ROBOTS = {**ROBOTS, **MORE_ROBOTS}
+
+
 def cache_dir() -> Path:
     """Where the wheel and unpacked robots are kept."""
     explicit = os.environ.get("MJCFBUILD_ROBOT_CACHE")

@@ -26,22 +26,30 @@ import numpy as np
 import mjcfbuild
 from bench import robot_data
 from mjcfbuild.check.kinematics import compare_kinematics
-from mjcfbuild.errors import BuildFailed
+from mjcfbuild.errors import BuildFailed, MjcfbuildError
 from mjcfbuild.urdf.parse import parse_urdf
 
 
 def check(name: str, folder: Path) -> dict:
     """Build and check one robot."""
-    robot = robot_data.ROBOTS[name]
+    robot = robot_data.ALL_ROBOTS[name]
     urdf = robot_data.unpack(robot)
     manifest = robot_data.manifest(robot, folder, urdf, robot_data.package_root())
     started = time.perf_counter()
+    error = ""
     try:
         result = mjcfbuild.build(manifest, jobs=2)
-    except BuildFailed:  # a failed check: the table says which
+    except BuildFailed as failed:  # a failed check: the table says which
         result = None
+        error = str(failed)
+    except MjcfbuildError as failed:  # the description refused: the row says why
+        return {"robot": name, "error": str(failed), "seconds": time.perf_counter() - started}
     seconds = time.perf_counter() - started
-    checked = json.loads((folder / "mjcf/.mjcfbuild/check.json").read_text())
+    check_path = folder / "mjcf/.mjcfbuild/check.json"
+    if not check_path.exists():
+        return {"robot": name, "error": error, "seconds": seconds}
+    checked = json.loads(check_path.read_text())
+    assembly = json.loads((folder / "mjcf/.mjcfbuild/assembly.json").read_text())
     if result is None:
         result = mjcfbuild.build(manifest, jobs=2, check=False)
     model = mujoco.MjModel.from_xml_path(str(result.scene))
@@ -70,12 +78,24 @@ def check(name: str, folder: Path) -> dict:
         "touching": len(checked.get("resting_contacts", {}).get("pairs", [])),
         "failures": checked.get("failures", []),
         "passes": finite and kinematics.passes() and bool(checked.get("passes")),
+        "floating": robot.floating,
+        "driven": not checked.get("actuation", {}).get("problems"),
+        "home_sources": sorted({h["source"] for h in assembly["readiness"].get("home", [])}),
+        "stand": checked.get("stand"),
+        "needs_controller": checked.get("needs_controller", ""),
+        "speed": checked.get("max_joint_speed")
+        or {
+            "joint": checked.get("menagerie_test", {}).get("fastest_joint"),
+            "speed": checked.get("menagerie_test", {}).get("fastest_speed"),
+        },
+        "plausibility": checked.get("plausibility"),
+        "error": error,
     }
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--robots", default=",".join(sorted(robot_data.ROBOTS)))
+    parser.add_argument("--robots", default=",".join(sorted(robot_data.ALL_ROBOTS)))
     args = parser.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as scratch:
@@ -86,28 +106,56 @@ def main() -> None:
     print(
         "| robot | links | moving joints | cold build (s) | 2,000 steps finite "
         "| max link position error (m) | max link rotation error (rad) | inertia repairs "
-        "| actuators | home | bodies touching at home | floor contact at home (mm) "
-        "| hold error (rad/m) | Menagerie test | passes |"
+        "| actuators | every joint driven | home from | stands (5 s) | hold error (rad/m) "
+        "| fastest joint under the model test (rad/s) | Menagerie test | passes |"
     )
-    print("|---|---:|---:|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---|---|")
+    print("|---|---:|---:|---:|---|---:|---:|---:|---:|---|---|---|---:|---|---|---|")
     for r in rows:
-        gap = f"{r['floor_gap'] * 1000:.2f}" if r["floor_gap"] is not None else "fixed base"
-        hold = r["hold"].get("max_deviation")
-        tilt = r["hold"].get("base_tilt")
-        hold_text = f"{hold:.3f}" + (
-            f" (floating; base tilts {tilt:.2f} rad)" if tilt is not None else ""
-        )
-        menagerie = r["menagerie"]
-        test = "pass" if menagerie.get("finite") and not menagerie.get("warnings") else "FAIL"
+        if "links" not in r:
+            print(
+                f"| {r['robot']} | | | {r['seconds']:.1f} | | | | | | | | | | | | "
+                f"refused: {r['error']} |"
+            )
+            continue
         print(
             f"| {r['robot']} | {r['links']} | {r['joints']} | {r['seconds']:.1f} "
             f"| {'yes' if r['finite'] else 'NO'} | {r['position']:.1e} | {r['rotation']:.1e} "
-            f"| {r['repairs']} | {r['actuators']} | {'yes' if r['home'] else 'no'} "
-            f"| {r['touching']} | {gap} | {hold_text} | {test} | {'yes' if r['passes'] else 'NO'} |"
+            f"| {r['repairs']} | {r['actuators']} | {'yes' if r['driven'] else 'NO'} "
+            f"| {', '.join(r['home_sources']) or '-'} | {_stands(r)} "
+            f"| {r['hold'].get('max_deviation', 0):.3f} | {_speed(r['speed'])} "
+            f"| {_menagerie(r['menagerie'])} | {'yes' if r['passes'] else 'NO: ' + _first(r)} |"
         )
     for r in rows:
         for failure in r["failures"]:
             print(f"{r['robot']}: {failure}", file=sys.stderr)
+
+
+def _stands(row: dict) -> str:
+    if not row["floating"]:
+        return "fixed base"
+    if row["needs_controller"]:
+        return f"needs a controller: {row['needs_controller']}"
+    stand = row["stand"] or {}
+    if not stand:
+        return "-"
+    fell = stand["max_tilt"] > 0.2 or stand["max_sink"] > 0.1 * stand["home_height"] + 0.01
+    return f"{'NO' if fell else 'yes'} (tilt {stand['max_tilt']:.2f} rad)"
+
+
+def _speed(speed: dict) -> str:
+    if not speed or speed.get("speed") is None:
+        return "-"
+    limit = f" (limit {speed['limit']:.3g})" if speed.get("limit") else ""
+    return f"{speed['speed']:.3g} {speed.get('joint')}{limit}"
+
+
+def _menagerie(menagerie: dict) -> str:
+    return "pass" if menagerie.get("finite") and not menagerie.get("warnings") else "FAIL"
+
+
+def _first(row: dict) -> str:
+    failures = row.get("failures") or [row.get("error") or "kinematics or simulation"]
+    return failures[0].replace("|", "/")
 
 
 if __name__ == "__main__":
