@@ -240,3 +240,22 @@ def test_a_robot_without_any_mass_is_one_line_not_placeholders(tmp_path):
     assert failed.value.exit_code == 4
     assert "no link of the robot has a mass" in str(failed.value)
     assert "robot.urdf" in str(failed.value)
+
+
+def test_a_quadruped_that_falls_at_zero_gets_a_computed_crouch_that_stands(tmp_path):
+    """Feet 15 cm ahead of the hips, no SRDF, no home: it tips over at zero, so the build
+    crouches each leg under its hip and keeps that only because it stands."""
+    _build(tmp_path, robots.quadruped(foot_offset=0.15))
+    record = readiness(tmp_path)
+    assert record["home_from"].startswith("crouch")
+    values = {h["joint"]: h for h in record["home"]}
+    assert values["FL_thigh_joint"]["source"] == "computed"
+    assert values["FL_thigh_joint"]["value"] > 0.3  # the thigh swings the foot back
+    model, data = _scene(tmp_path)
+    mujoco.mj_forward(model, data)
+    foot = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "FL_calf")
+    hip = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "FL_hip_joint")
+    sphere = [g for g in range(model.ngeom) if model.geom_bodyid[g] == foot][0]
+    assert abs(data.geom_xpos[sphere][0] - data.xanchor[hip][0]) < 0.01  # under the hip
+    _hold(model, data, 5.0)
+    assert _tilt(data) < 0.1
