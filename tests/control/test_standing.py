@@ -255,7 +255,7 @@ def test_a_quadruped_that_falls_at_zero_gets_a_computed_crouch_that_stands(tmp_p
     mujoco.mj_forward(model, data)
     foot = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "FL_calf")
     hip = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "FL_hip_joint")
-    sphere = [g for g in range(model.ngeom) if model.geom_bodyid[g] == foot][0]
+    sphere = next(g for g in range(model.ngeom) if model.geom_bodyid[g] == foot)
     assert abs(data.geom_xpos[sphere][0] - data.xanchor[hip][0]) < 0.01  # under the hip
     _hold(model, data, 5.0)
     assert _tilt(data) < 0.1
