@@ -102,7 +102,7 @@ def starter_manifest_text(
         *free_joint,
         "  fuse_static: true   # merge links on fixed joints into their parent body",
         "",
-        "# Every moving joint gets a position servo (continuous joints a velocity servo) tuned",
+        "# Every moving joint gets a position servo (wheels on the floor a velocity servo) tuned",
         "# from its inertia at home to ring at 10 Hz, critically damped; <ros2_control> command",
         "# interfaces and <transmission>s pick the type where the description has them.",
         "actuators:",
