@@ -22,6 +22,7 @@ from mjcfbuild.mjcf.prepared import Decomposition
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import AssemblePayload
 from mjcfbuild.steps.plan_record import read_plan
+from mjcfbuild.urdf.model import Robot
 
 
 def run(payload: dict) -> dict:
@@ -151,7 +152,7 @@ def _previous_assets(report_path: Path) -> set[str]:
 
 
 def _srdf_home(
-    srdf: dict | None, robot, request: AssemblePayload
+    srdf: dict | None, robot: Robot, request: AssemblePayload
 ) -> tuple[dict[str, float] | None, str | None]:
     """The SRDF pose that is home (the group_state robot.yaml names, else a floating robot's
     standing pose; see selfcollision.discover) and where it comes from, for the report."""
