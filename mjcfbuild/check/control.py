@@ -102,6 +102,7 @@ class StandTest:
     max_deviation: float  # of a watched joint from home
     joint: str | None  # the joint of max_deviation
     needs_controller: str  # why the robot cannot stand without a controller ('' if it can)
+    com_margin: float = 0.0  # m, from the centre of mass to the edge of the feet's area at home
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""
@@ -122,9 +123,11 @@ class StandTest:
             return (
                 f"the robot does not stand at home: holding home's ctrl for "
                 f"{self.seconds:g} s its base tilted {self.max_tilt:.2g} rad and sank "
-                f"{self.max_sink * 1000:.0f} mm (of {self.home_height * 1000:.0f} mm); give "
-                "home: a pose it stands in (feet under the centre of mass, knees bent), or "
-                "name an SRDF group_state with self_collision.srdf and home_state"
+                f"{self.max_sink * 1000:.0f} mm (of {self.home_height * 1000:.0f} mm), its "
+                f"centre of mass {self.com_margin * 1000:.0f} mm inside the edge of the area "
+                "its feet span; give home: a pose it stands in (feet under the centre of mass, "
+                "knees bent), or name an SRDF group_state with self_collision.srdf and "
+                "home_state"
             )
         return (
             f"standing at home for {self.seconds:g} s, joint '{self.joint}' moved "
@@ -166,7 +169,7 @@ def stand_test(model, key: int, passive: set[str], seconds: float = STAND_SECOND
         if not np.all(np.isfinite(data.qpos)):
             tilt = math.pi
             break
-    return StandTest(seconds, tilt, sink, height, worst, worst_joint, "")
+    return StandTest(seconds, tilt, sink, height, worst, worst_joint, "", found.margin)
 
 
 def _hold_advice(model, key: int, joint: str | None) -> str:

@@ -16,7 +16,12 @@ from typing import Any
 
 from lxml import etree
 
-from mjcfbuild.control.choose import ActuatorChoice, limit_notes, positive_velocity
+from mjcfbuild.control.choose import (
+    ActuatorChoice,
+    limit_notes,
+    placeholder_range,
+    positive_velocity,
+)
 from mjcfbuild.control.efforts import EffortCap, describe, placeholder_efforts
 from mjcfbuild.control.floor import lowest_collision_point
 from mjcfbuild.control.home import HomeValue
@@ -430,17 +435,21 @@ def _actuator(
     if choice.type == "position":
         record.kp = choice.kp or inertia * omega**2
         record.kv = choice.kv or 2 * choice.damping_ratio * inertia * omega
-        if choice.stiffen and choice.kp is None and servo.pendulum * MARGIN > record.kp:
-            # Weight-bearing: stiff enough to hold the pendulum the robot forms over its feet,
-            # damped for what the joint moves while standing.
-            record.kp = servo.pendulum * MARGIN
+        # Weight-bearing: stiff enough to hold the pendulum the robot forms over its feet and
+        # to bend at most SAG under its load at home (past the ceiling on omega, which the
+        # damping below, for what the joint moves while standing, keeps stable).
+        bearing = max(servo.pendulum * MARGIN, servo.load / SAG) if servo.pendulum > 0 else 0.0
+        if choice.stiffen and choice.kp is None and bearing > record.kp:
+            record.kp = bearing
             if choice.kv is None:
                 moved = inertia + servo.carried
                 record.kv = 2 * choice.damping_ratio * math.sqrt(record.kp * moved)
             record.weight_bearing = True
         bounds = joint_range(joint)
-        # A locked joint (lower = upper) has no range to command.
-        record.ctrlrange = list(bounds) if bounds and bounds[0] < bounds[1] else None
+        # A locked joint (lower = upper) has no range to command, and a placeholder range
+        # (+-1e16) none worth commanding over.
+        real = bounds is not None and bounds[0] < bounds[1] and not placeholder_range(bounds)
+        record.ctrlrange = list(bounds) if real and bounds else None
     elif choice.type == "velocity":
         record.kv = choice.kv or inertia * omega  # a first-order servo with bandwidth omega
         velocity = positive_velocity(joint)

@@ -79,13 +79,32 @@ def actuated_joints(robot: Robot) -> list[Joint]:
     ]
 
 
+# A joint range wider than this (rad or m) is a placeholder for "unlimited" (+-1e16 is common).
+PLACEHOLDER_RANGE = 1e4
+
+
+def placeholder_range(bounds: tuple[float, float]) -> bool:
+    """Whether a joint range is a stand-in for no range at all."""
+    return max(abs(bounds[0]), abs(bounds[1])) > PLACEHOLDER_RANGE
+
+
 def limit_notes(robot: Robot) -> list[str]:
-    """A warning per actuated joint whose URDF effort or velocity limit is not positive."""
+    """A warning per actuated joint whose URDF effort or velocity limit is not positive, or
+    whose range is a placeholder."""
+    from mjcfbuild.urdf.limits import joint_range
+
     notes = []
     for joint in actuated_joints(robot):
         limit = joint.limit
         if limit is None:
             continue
+        bounds = joint_range(joint)
+        if bounds is not None and placeholder_range(bounds):
+            notes.append(
+                f"joint '{joint.name}' has the range [{bounds[0]:g}, {bounds[1]:g}] in the URDF "
+                f"(line {joint.line}): taken for no range, its servo gets no ctrlrange; give "
+                'the real limits, or type="continuous" for a joint without stops'
+            )
         for name, value in (("effort", limit.effort), ("velocity", limit.velocity)):
             if value is not None and value <= 0:
                 notes.append(

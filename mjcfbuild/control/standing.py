@@ -38,6 +38,7 @@ class Stance:
     area: float  # of the support polygon (m^2)
     com_inside: bool  # whether the centre of mass is over the support polygon
     margin: float  # distance from the centre of mass to the polygon's edge (m; < 0 outside)
+    colliding: bool = True  # whether the robot has collision geometry at all
 
     @property
     def can_stand(self) -> bool:
@@ -46,6 +47,8 @@ class Stance:
 
     def why_not(self) -> str:
         """Why the robot cannot stand passively, for the report ('' if it can)."""
+        if not self.feet and not self.colliding:
+            return "it has no collision geometry to stand on (the URDF has no <collision>)"
         if not self.feet:
             return "none of its collision geometry touches the floor at home"
         if self.area < AREA:
@@ -80,7 +83,11 @@ def stance(model, data) -> Stance:
         points += [p[:2] for p in geom_support_points(model, data, geom, CONTACT)]
     com = np.asarray(data.subtree_com[0][:2])
     if len(points) < 3:
-        return Stance(feet, 0.0, False, -1.0)
+        robot = model.geom_bodyid != 0
+        colliding = bool(
+            np.any(robot & ((model.geom_contype != 0) | (model.geom_conaffinity != 0)))
+        )
+        return Stance(feet, 0.0, False, -1.0, colliding)
     hull = _hull(np.asarray(points))
     area = _area(hull)
     margin = _inside_margin(hull, com) if area >= AREA else -1.0
