@@ -438,9 +438,8 @@ def _actuator(
         # Weight-bearing: stiff enough to hold the pendulum the robot forms over its feet and
         # to bend at most SAG under its load at home (past the ceiling on omega, which the
         # damping below, for what the joint moves while standing, keeps stable).
-        bearing = max(servo.pendulum * MARGIN, servo.load / SAG) if servo.pendulum > 0 else 0.0
-        if choice.stiffen and choice.kp is None and bearing > record.kp:
-            record.kp = bearing
+        if servo.carried > 0 and choice.stiffen and choice.kp is None:
+            record.kp = max(record.kp, servo.pendulum * MARGIN, servo.load / SAG)
             if choice.kv is None:
                 moved = inertia + servo.carried
                 record.kv = 2 * choice.damping_ratio * math.sqrt(record.kp * moved)

@@ -56,7 +56,7 @@ def validate_masses(
     repairs: list[Repair] = []
     total = sum(b.mass.mass for b in bodies if b.mass is not None and math.isfinite(b.mass.mass))
     moving = [body for body in bodies if body.moves]
-    if moving and total <= 0:
+    if moving and all(b.mass is None or b.mass.mass == 0 for b in bodies):
         # Every body would get the smallest placeholder mass: servos sized for 0.1 g links go
         # unstable and nothing about the model's dynamics is the robot's.
         raise InputError(
