@@ -11,11 +11,11 @@ from mjcfbuild import __version__
 STEP_FORMATS = {
     "expand": 1,
     "plan": 3,
-    "mesh": 4,
+    "mesh": 5,
     "decompose": 3,
     "assemble": 8,
     "scene": 3,
-    "check": 5,
+    "check": 6,
     "reference": 1,
     "previews": 4,
     "srdf": 1,

@@ -33,6 +33,7 @@ def run(payload: dict) -> dict:
         readiness=assembly.get("readiness") or {},
         reference=_read_reference(Path(request.reference)),
         sources=sources,
+        part_bodies=_part_bodies(request.mjcf_parts),
     )
     if request.mjcf_parts and report.results.get("loads"):
         _check_parts(report, Path(request.model), request.mjcf_parts, request.options, sources)
@@ -50,7 +51,25 @@ def run(payload: dict) -> dict:
             file=request.model_label,
             hint=f"{more} more failure{'s' if more > 1 else ''} in the report" if more else None,
         )
-    return {"outputs": outputs, "warnings": _standing_notes(report.results)}
+    plausibility = report.results.get("plausibility") or {}
+    return {
+        "outputs": outputs,
+        "warnings": _standing_notes(report.results) + plausibility.get("warnings", []),
+    }
+
+
+def _part_bodies(parts: list[MjcfPartFiles]) -> dict[str, set[str]]:
+    """Each MJCF part's bodies as the model names them, by the part's prefix and file."""
+    from mjcfbuild.compose.mjcf import PartSummary
+
+    found = {}
+    for entry in parts:
+        try:
+            summary = PartSummary.from_dict(json.loads(Path(entry.summary).read_text()))
+        except (OSError, ValueError, KeyError):
+            continue  # the part check reports an unreadable part
+        found[f"{entry.prefix} ({entry.label})"] = {entry.prefix + b for b in summary.bodies}
+    return found
 
 
 def _read_reference(path: Path) -> dict:
