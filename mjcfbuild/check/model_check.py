@@ -170,15 +170,15 @@ def check_model(
     report.results.update(control.results)
     report.failures += control.failures
     report.results["meshes"] = mesh_statistics(model)
-    _check_plausibility(model, report)
+    _check_plausibility(model, report, sources)
     return report
 
 
-def _check_plausibility(model, report: CheckReport) -> None:
+def _check_plausibility(model, report: CheckReport, sources: dict[str, Path] | None) -> None:
     """Centres of mass inside their bodies' geometry, visual and collision overlapping
     (check.plausibility): meshes in mm fail; other findings are warnings in the results."""
     from mjcfbuild.check.plausibility import check_plausibility
 
-    plausibility = check_plausibility(model)
+    plausibility = check_plausibility(model, sources)
     report.results["plausibility"] = plausibility.to_dict()
     report.failures += plausibility.failures

@@ -8,19 +8,23 @@ body with mass and geometry, in the body's frame:
 
 * the bounding box of its geoms (every vertex of a mesh geom; the corners of a primitive's
   bounding box) should hold its centre of mass, within a margin;
-* the box of its visual geoms and the box of its collision geoms should overlap.
+* the box of its visual geoms and the box of its collision geoms should overlap: the larger
+  should cover a good part (a quarter) of the smaller, as a coarse collision shape covers its
+  visual, or a small collision sphere at a foot lies inside the leg's visual.
 
 A body that fails is named with the likely cause: *units in mm* when one of its meshes is
-hundreds of times larger than the rest of its geometry (or than the robot, when it has no
-other); *up axis* when a mesh turned by a quarter turn about x or y (a file's Y_UP or X_UP
-tag applied or not) passes both tests; else *a wrong origin*. Meshes in millimetres fail the
-check (the model is certainly wrong); the other causes are warnings, since a hand-made model
-can have a light shell around a heavy counterweight.
+hundreds of times larger than the rest of its geometry (or than the robot's joint layout, when
+it has no other; such a mesh is a problem in itself, since a robot whose meshes are all in mm
+keeps every centre of mass inside them); *up axis* when its meshes turned a quarter turn about
+x or y (a file's Y_UP or X_UP tag applied or not) pass both tests; else *a wrong origin*.
+Meshes in millimetres fail the check (the model is certainly wrong); the other causes are
+warnings, since a hand-made model can have a light shell around a heavy counterweight.
 """
 
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -31,8 +35,13 @@ if TYPE_CHECKING:
 # absolute slack for small links) is not inside it.
 COM_MARGIN = 0.2
 COM_SLACK = 0.01
-# A mesh this many times larger than its body's other geometry (or than the robot) is in mm.
+# A mesh this many times larger than its body's other geometry (or than the robot), and at
+# least MM_SIZE metres across, is in mm.
 MM_RATIO = 100.0
+MM_SIZE = 2.0
+# Visual and collision boxes sharing less than this fraction of the smaller box do not overlap
+# (real links have collision geometry beside their visual, authored on a neighbouring link).
+MIN_SHARED = 0.02
 # Bodies lighter than this (dummy frames, sensors' placeholders) say nothing.
 MIN_MASS = 1e-3
 
@@ -79,7 +88,7 @@ class Plausibility:
         }
 
 
-@dataclass
+@dataclass(eq=False)  # compared by identity
 class _Geom:
     name: str
     visual: bool
@@ -90,8 +99,14 @@ class _Geom:
     file_points: np.ndarray | None = None  # the vertices in the mesh file's frame
 
 
-def check_plausibility(model: mujoco.MjModel, skip: set[str] | None = None) -> Plausibility:
-    """Test every body of ``model`` with mass and geometry (except those named in ``skip``)."""
+def check_plausibility(
+    model: mujoco.MjModel, sources: dict[str, Path] | None = None, skip: set[str] | None = None
+) -> Plausibility:
+    """Test every body of ``model`` with mass and geometry (except those named in ``skip``).
+
+    ``sources``, the mesh products a build published the model's assets from (by asset file
+    name), say which meshes came from DAE files tagged Y-up or X-up: only those can have a
+    wrong up axis. Without them (a model mjcfbuild did not build) any mesh can."""
     import mujoco
 
     result = Plausibility()
@@ -100,19 +115,50 @@ def check_plausibility(model: mujoco.MjModel, skip: set[str] | None = None) -> P
         if model.geom_type[index] == mujoco.mjtGeom.mjGEOM_PLANE:
             continue
         geoms_of.setdefault(int(model.geom_bodyid[index]), []).append(_geom(model, index))
-    sizes = [_diagonal(g.points) for geoms in geoms_of.values() for g in geoms]
     robot_size = _robot_size(model)
+    tagged = _tagged_meshes(model, sources)
     for body, geoms in sorted(geoms_of.items()):
         name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, body) or f"body {body}"
         if body == 0 or model.body_mass[body] < MIN_MASS or name in (skip or set()):
             continue
         result.bodies += 1
         com = model.body_ipos[body].copy()
-        problems = _problems(geoms, com)
+        problems = _oversized(geoms, robot_size) + _problems(geoms, com)
         if not problems:
             continue
-        result.findings.append(_diagnose(name, geoms, com, problems, sizes, robot_size))
+        turnable = [g for g in geoms if g.is_mesh and (tagged is None or g.name in tagged)]
+        result.findings.append(_diagnose(name, geoms, com, problems, robot_size, turnable))
     return result
+
+
+def _tagged_meshes(model: mujoco.MjModel, sources: dict[str, Path] | None) -> set[str] | None:
+    """The meshes of ``model`` converted from a DAE file tagged Y_UP or X_UP (their product
+    summary records the tag), or None when the model's meshes are not mjcfbuild products."""
+    import json
+
+    if not sources:
+        return None
+    tags: dict[Path, bool] = {}
+    found = set()
+    raw = bytes(model.paths)
+    for mesh in range(model.nmesh):
+        start = int(model.mesh_pathadr[mesh])
+        if start < 0:
+            continue
+        path = Path(raw[start : raw.index(b"\0", start)].decode())
+        for candidate in (path, sources.get(path.name)):
+            if candidate is None:
+                continue
+            summary = candidate.parent.with_suffix(".json")
+            if summary not in tags:
+                try:
+                    decision = json.loads(summary.read_text()).get("up_axis") or {}
+                except (OSError, ValueError, AttributeError):
+                    decision = {}
+                tags[summary] = decision.get("tag") in ("Y_UP", "X_UP")
+            if tags[summary]:
+                found.add(model.mesh(mesh).name)
+    return found
 
 
 def _geom(model: mujoco.MjModel, index: int) -> _Geom:
@@ -160,26 +206,87 @@ def _robot_size(model: mujoco.MjModel) -> float:
     return _diagonal(np.asarray(data.xpos[1:])) if model.nbody > 2 else 0.0
 
 
-def _problems(geoms: list[_Geom], com: np.ndarray) -> list[str]:
+def _reference_size(mesh: _Geom, geoms: list[_Geom], robot_size: float) -> tuple[float, str]:
+    """What ``mesh``'s size is compared with: the largest of its body's other geoms, else the
+    robot's joint layout."""
+    own = [d for g in geoms if g.name != mesh.name and (d := _diagonal(g.points)) > 0]
+    if own:
+        return max(own), "its body's other geometry"
+    return robot_size, "the robot's joint layout"
+
+
+def _millimetre_mesh(geoms: list[_Geom], robot_size: float) -> tuple[_Geom, float, str] | None:
+    """A mesh hundreds of times larger than what it is compared with, and metres across: a
+    mesh in mm (a problem itself: a robot whose meshes are all in mm keeps each centre of mass
+    inside its huge mesh)."""
+    for mesh in geoms:
+        if not mesh.is_mesh:
+            continue
+        reference, what = _reference_size(mesh, geoms, robot_size)
+        size = _diagonal(mesh.points)
+        if reference > 1e-3 and size >= MM_RATIO * reference and size >= MM_SIZE:
+            return mesh, size / reference, what
+    return None
+
+
+def _oversized(geoms: list[_Geom], robot_size: float) -> list[str]:
+    found = _millimetre_mesh(geoms, robot_size)
+    if found is None:
+        return []
+    mesh, ratio, what = found
+    return [
+        f"mesh '{mesh.name}' is {_diagonal(mesh.points):.3g} m across, {ratio:.0f} times {what}"
+    ]
+
+
+def _com_outside(points: list[np.ndarray], com: np.ndarray) -> float:
+    """How far ``com`` lies outside the box of ``points``, beyond the margin (0: inside)."""
     import numpy as np
 
-    problems = []
-    everything = np.concatenate([g.points for g in geoms])
+    everything = np.concatenate(points)
     low, high = everything.min(axis=0), everything.max(axis=0)
     outside = float(np.linalg.norm(np.maximum(low - com, 0) + np.maximum(com - high, 0)))
     allowed = COM_MARGIN * float(np.linalg.norm(high - low)) + COM_SLACK
-    if outside > allowed:
-        problems.append(f"its centre of mass is {outside:.3g} m outside its geometry")
+    return outside if outside > allowed else 0.0
+
+
+def _problems(geoms: list[_Geom], com: np.ndarray | None) -> list[str]:
+    """What is wrong with ``geoms`` and the centre of mass ``com`` (None: the geometry only)."""
+    import numpy as np
+
+    problems = []
     visual = [g.points for g in geoms if g.visual]
     collision = [g.points for g in geoms if not g.visual]
+    if com is not None:
+        outside = _com_outside([g.points for g in geoms], com)
+        if outside:
+            problems.append(f"its centre of mass is {outside:.3g} m outside its geometry")
+        elif visual and (outside := _com_outside(visual, com)):
+            problems.append(f"its centre of mass is {outside:.3g} m outside its visual geometry")
     if visual and collision:
-        a, b = np.concatenate(visual), np.concatenate(collision)
-        pad = 0.05 * max(_diagonal(a), _diagonal(b))
-        gap = np.maximum(a.min(axis=0) - b.max(axis=0), b.min(axis=0) - a.max(axis=0))
-        if np.any(gap > pad):
-            apart = float(np.linalg.norm(np.maximum(gap, 0)))
-            problems.append(f"its visual and collision geometry are {apart:.3g} m apart")
+        shared = _shared_fraction(np.concatenate(visual), np.concatenate(collision))
+        if shared < MIN_SHARED:
+            problems.append(
+                f"its visual and collision geometry barely overlap ({shared:.0%} of the "
+                "smaller one's box)"
+            )
     return problems
+
+
+def _shared_fraction(a: np.ndarray, b: np.ndarray) -> float:
+    """How much of the smaller of the two point sets' boxes the other's box covers (boxes
+    padded a little, so a flat plate still has a volume)."""
+    import numpy as np
+
+    boxes = []
+    for points in (a, b):
+        low, high = points.min(axis=0), points.max(axis=0)
+        pad = 0.05 * float(np.max(high - low)) + 1e-4
+        boxes.append((low - pad, high + pad))
+    (low_a, high_a), (low_b, high_b) = boxes
+    common = np.clip(np.minimum(high_a, high_b) - np.maximum(low_a, low_b), 0, None)
+    smaller = min(float(np.prod(high_a - low_a)), float(np.prod(high_b - low_b)))
+    return float(np.prod(common)) / smaller if smaller > 0 else 1.0
 
 
 def _diagnose(
@@ -187,46 +294,53 @@ def _diagnose(
     geoms: list[_Geom],
     com: np.ndarray,
     problems: list[str],
-    sizes: list[float],
     robot_size: float,
+    turnable: list[_Geom],
 ) -> BodyFinding:
-    import numpy as np
-
-    meshes = [g for g in geoms if g.is_mesh]
-    for mesh in meshes:
-        size = _diagonal(mesh.points)
-        own = [_diagonal(g.points) for g in geoms if g.name != mesh.name]
-        others = [s for s in own if s > 0] or [s for s in sizes if 0 < s < size]
-        reference = float(np.median(others)) if others else robot_size
-        if reference > 0 and size >= MM_RATIO * reference:
-            return BodyFinding(
-                body,
-                problems,
-                "units in mm",
-                f"units in mm: mesh '{mesh.name}' is {size / reference:.0f} times the size of "
-                f"{'its body' if own else 'the robot'}'s other geometry; scale it by 0.001 "
-                "(the URDF's <mesh scale>) or export it in metres",
-                True,
-            )
+    found = _millimetre_mesh(geoms, robot_size)
+    if found is not None:
+        mesh, ratio, what = found
+        return BodyFinding(
+            body,
+            problems,
+            "units in mm",
+            f"units in mm: mesh '{mesh.name}' is about {ratio:.0f} times {what}; scale it by "
+            '0.001 (<mesh scale="0.001 0.001 0.001"/> in the URDF) or export it in metres',
+            True,
+        )
+    visual = [g.points for g in geoms if g.visual]
+    collision = [g.points for g in geoms if not g.visual]
     for label, turn in _QUARTER_TURNS:
-        trial = [_turned(g, turn) if g.is_mesh else g for g in geoms]
-        if meshes and not _problems(trial, com):
-            names = ", ".join(sorted({f"'{m.name}'" for m in meshes}))
+        trial = [_turned(g, turn) if g in turnable else g for g in geoms]
+        if turnable and not _problems(trial, com):
+            names = ", ".join(sorted({f"'{m.name}'" for m in turnable}))
             return BodyFinding(
                 body,
                 problems,
                 "up axis",
-                f"up axis: mesh {names} fits once turned {label}; for a DAE file set "
-                "meshes.collada_up_axis_files for it in robot.yaml (apply or ignore), else "
-                "turn the visual's <origin rpy>",
+                f"up axis: mesh {names} fits once turned {label}; set "
+                "meshes.collada_up_axis_files for its DAE file in robot.yaml (apply or "
+                "ignore)",
                 False,
             )
+    # Visual and collision geometry, authored apart, agree, and the centre of mass is outside
+    # both: the inertial is what is off, not a mesh.
+    agree = bool(visual and collision) and not _problems(geoms, None)
+    if agree and _com_outside(collision, com) and _com_outside(visual, com):
+        return BodyFinding(
+            body,
+            problems,
+            "wrong origin",
+            "a wrong inertial <origin>: the body's visual and collision geometry agree with "
+            "each other, its centre of mass is elsewhere",
+            False,
+        )
     return BodyFinding(
         body,
         problems,
         "wrong origin",
         "a wrong origin: check the <origin> of its visual, collision and inertial elements, "
-        "and the mesh file's own origin",
+        "and the mesh files' own origins",
         False,
     )
 

@@ -35,7 +35,7 @@ if TYPE_CHECKING:
 # FIT_PER_ITEM per point or box): a clear verdict, never a coin toss between two bad fits.
 CLEAR_RATIO = 0.5
 MIN_MISFIT = 0.25
-FIT_PER_ITEM = 0.1
+FIT_PER_ITEM = 0.5
 _PRIMITIVES = ("box", "cylinder", "sphere", "capsule")
 
 
