@@ -109,7 +109,7 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
         tasks.append(srdf)
     matrix = None
     if ctx.manifest.self_collision != "none":
-        matrix = _selfcollision_task(ctx, plan, robot, choices, roles, decomposed, prefix)
+        matrix = _selfcollision_task(ctx, plan, robot, choices, roles, decomposed, prefix, parts)
         tasks.append(matrix)
     tasks.append(_assemble_task(ctx, plan, sorted(roles), choices, decomposed, prefix, parts))
     tasks.append(_scene_task(ctx, plan, prefix))
@@ -225,6 +225,7 @@ def _selfcollision_task(
     roles: dict[str, list[str]],
     decomposed: dict[str, tuple[str, dict]],
     prefix: str,
+    parts: list[MjcfPartFiles] | None = None,
 ) -> dict:
     from mjcfbuild.compose.tasks import urdf_home
     from mjcfbuild.selfcollision.robot import collision_robot
@@ -260,6 +261,7 @@ def _selfcollision_task(
         manifest_label=ctx.manifest_label,
         cache=ctx.cache_settings(),
         output=str(ctx.state(SELF_COLLISION)),
+        mjcf_parts=list(parts or []),
     )
     return _task(
         ctx,
@@ -272,6 +274,7 @@ def _selfcollision_task(
             *(product_summary(ctx, m) for m in meshes),
             *(Path(d.summary) for d in decompositions),
             *([srdf] if srdf else []),
+            *(Path(path) for part in parts or [] for path in (part.xml, part.summary)),
         ],
         targets=[ctx.state(SELF_COLLISION)],
     )

@@ -19,7 +19,7 @@ STEP_FORMATS = {
     "reference": 1,
     "previews": 4,
     "srdf": 1,
-    "selfcollision": 2,
+    "selfcollision": 3,
     "export_urdf": 1,
     "compose": 1,
     "mjcfpart": 1,

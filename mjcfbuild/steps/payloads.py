@@ -282,6 +282,8 @@ class SelfCollisionPayload(Payload):
     manifest_label: MessageLabel
     cache: CacheSettings
     output: Output
+    # attach: MJCF parts, whose geoms the matrix covers against the rest of the model.
+    mjcf_parts: list[MjcfPartFiles] = dataclasses.field(default_factory=list)
 
 
 @dataclass(frozen=True)
