@@ -228,6 +228,7 @@ def _selfcollision_task(
     parts: list[MjcfPartFiles] | None = None,
 ) -> dict:
     from mjcfbuild.compose.tasks import urdf_home
+    from mjcfbuild.selfcollision.parts import collision_digest
     from mjcfbuild.selfcollision.robot import collision_robot
 
     settings = ctx.manifest.self_collision
@@ -262,6 +263,7 @@ def _selfcollision_task(
         cache=ctx.cache_settings(),
         output=str(ctx.state(SELF_COLLISION)),
         mjcf_parts=list(parts or []),
+        part_digests=[collision_digest(Path(part.xml), Path(part.summary)) for part in parts or []],
     )
     return _task(
         ctx,
@@ -274,7 +276,6 @@ def _selfcollision_task(
             *(product_summary(ctx, m) for m in meshes),
             *(Path(d.summary) for d in decompositions),
             *([srdf] if srdf else []),
-            *(Path(path) for part in parts or [] for path in (part.xml, part.summary)),
         ],
         targets=[ctx.state(SELF_COLLISION)],
     )

@@ -282,8 +282,10 @@ class SelfCollisionPayload(Payload):
     manifest_label: MessageLabel
     cache: CacheSettings
     output: Output
-    # attach: MJCF parts, whose geoms the matrix covers against the rest of the model.
+    # attach: MJCF parts, whose geoms the matrix covers against the rest of the model; their
+    # files count through part_digests (selfcollision.parts), not as file dependencies.
     mjcf_parts: list[MjcfPartFiles] = dataclasses.field(default_factory=list)
+    part_digests: list[str] = dataclasses.field(default_factory=list)
 
 
 @dataclass(frozen=True)

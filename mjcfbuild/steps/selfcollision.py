@@ -164,9 +164,9 @@ def _matrix(
         "settings": request.settings,
         "versions": step_versions("selfcollision"),
         "parts": [[p.prefix, p.to, p.pos, p.quat] for p in request.mjcf_parts],
+        "part_digests": request.part_digests,
     }
     inputs = [*request.products.values(), *(d.summary for d in request.decompositions)]
-    inputs += [path for part in request.mjcf_parts for path in (part.xml, part.summary)]
     key = product_key("selfcollision", params, sorted(inputs, key=lambda p: Path(p).name))
     with tempfile.TemporaryDirectory() as scratch:
         if store is not None and store.fetch(key, Path(scratch)) is not None:

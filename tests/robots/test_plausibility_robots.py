@@ -15,9 +15,14 @@ from mjcfbuild.check.plausibility import check_plausibility
 
 pytestmark = [pytest.mark.robots, pytest.mark.slow]
 
-# Bodies the test names on these robots, each a defect of the description: allegro's palm has
-# its inertial origin at z +0.0475 where its collision box and mesh are at -0.0475.
-KNOWN = {"allegro": {"palm_link": "wrong origin"}}
+# Bodies the test names on these robots (warnings), each a defect of the description:
+# allegro's palm has its inertial origin at z +0.0475 where its collision box and mesh are at
+# -0.0475; ur5's wrists have theirs at the joint, 4-5 cm from the wrist's geometry.
+WRISTS = ("wrist_1_link", "wrist_2_link", "wrist_3_link")
+KNOWN = {
+    "allegro": {"palm_link": "wrong origin"},
+    "ur5": dict.fromkeys(WRISTS, "wrong origin"),
+}
 ICUB = robot_data.Robot("icub", "robots/icub_description/robots/icub.urdf", True)
 
 
