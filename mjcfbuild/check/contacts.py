@@ -2,7 +2,13 @@
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from mjcfbuild.steps.payloads import MjcfPartFiles
 
 
 @dataclass
@@ -79,3 +85,17 @@ def split_by_part(
         else:
             inside.append((part, contact))
     return model_pairs, inside
+
+
+def part_bodies(parts: list[MjcfPartFiles]) -> dict[str, set[str]]:
+    """Each MJCF part's bodies as the model names them, by the part's prefix and file."""
+    from mjcfbuild.compose.mjcf import PartSummary
+
+    found = {}
+    for entry in parts:
+        try:
+            summary = PartSummary.from_dict(json.loads(Path(entry.summary).read_text()))
+        except (OSError, ValueError, KeyError):
+            continue  # the part check reports an unreadable part
+        found[f"{entry.prefix} ({entry.label})"] = {entry.prefix + b for b in summary.bodies}
+    return found

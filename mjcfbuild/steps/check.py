@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from mjcfbuild.check.contacts import part_bodies
 from mjcfbuild.check.loading import asset_sources, compile_model
 from mjcfbuild.check.model_check import CheckOptions, CheckReport, check_model
 from mjcfbuild.errors import CheckError
@@ -33,7 +34,7 @@ def run(payload: dict) -> dict:
         readiness=assembly.get("readiness") or {},
         reference=_read_reference(Path(request.reference)),
         sources=sources,
-        part_bodies=_part_bodies(request.mjcf_parts),
+        part_bodies=part_bodies(request.mjcf_parts),
     )
     if request.mjcf_parts and report.results.get("loads"):
         _check_parts(report, Path(request.model), request.mjcf_parts, request.options, sources)
@@ -56,20 +57,6 @@ def run(payload: dict) -> dict:
         "outputs": outputs,
         "warnings": _standing_notes(report.results) + plausibility.get("warnings", []),
     }
-
-
-def _part_bodies(parts: list[MjcfPartFiles]) -> dict[str, set[str]]:
-    """Each MJCF part's bodies as the model names them, by the part's prefix and file."""
-    from mjcfbuild.compose.mjcf import PartSummary
-
-    found = {}
-    for entry in parts:
-        try:
-            summary = PartSummary.from_dict(json.loads(Path(entry.summary).read_text()))
-        except (OSError, ValueError, KeyError):
-            continue  # the part check reports an unreadable part
-        found[f"{entry.prefix} ({entry.label})"] = {entry.prefix + b for b in summary.bodies}
-    return found
 
 
 def _read_reference(path: Path) -> dict:

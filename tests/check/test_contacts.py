@@ -10,7 +10,7 @@ import mujoco
 
 import mjcfbuild
 from mjcfbuild.check.contacts import RestingContact, split_by_part
-from tests.conftest import copy_example
+from tests.conftest import copy_example, run_cli
 
 
 def closed_hand(tmp_path):
@@ -42,6 +42,11 @@ def test_fingers_of_an_mjcf_part_touching_at_rest_pass_and_are_listed(tmp_path):
     assert pair["part"] == "hand_ (hand/hand.xml)"
     page = (folder / "mjcf" / "report" / "report.md").read_text()
     assert "hand_left_finger and hand_right_finger in hand_ (hand/hand.xml)" in page
+    # `mjcfbuild check` reads the build's parts the same way.
+    done = run_cli("check", cwd=folder)
+    assert done.code == 0, done.stdout + done.stderr
+    check = json.loads((folder / "mjcf" / ".mjcfbuild" / "check.json").read_text())
+    assert len(check["resting_contacts"]["inside_parts"]) == 1
 
 
 def test_a_pair_across_a_part_and_the_model_is_not_the_parts_business():
