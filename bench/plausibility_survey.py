@@ -18,9 +18,8 @@ ROBOTS = Path.home() / ".cache/mjcfbuild-dev/erd_full/cmeel.prefix/share/example
 
 
 def main(filters: list[str]) -> int:
-    import mujoco
-
     import mjcfbuild
+    from mjcfbuild.check.loading import asset_sources, compile_model
     from mjcfbuild.check.plausibility import check_plausibility
 
     urdfs = sorted(ROBOTS.glob("*/*/*.urdf"))
@@ -43,8 +42,8 @@ def main(filters: list[str]) -> int:
         if not result.ok:
             print(f"{name}: build failed: {str(result)[:200]}")
             continue
-        model = mujoco.MjModel.from_xml_path(str(result.robot))
-        found = check_plausibility(model)
+        sources = asset_sources(folder / "mjcf" / ".mjcfbuild" / "assembly.json")
+        found = check_plausibility(compile_model(result.robot, sources), sources)
         decisions = []
         for summary in sorted((folder / "mjcf" / ".mjcfbuild" / "products").glob("*.json")):
             data = json.loads(summary.read_text())
