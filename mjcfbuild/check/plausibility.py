@@ -2,23 +2,25 @@
 
 Load, simulation, forward kinematics and masses can all match the URDF while a mesh sits in
 the wrong place: a COLLADA file read with the wrong up axis, a mesh exported in millimetres, a
-mesh with a wrong origin. Two facts of every real link catch those: its centre of mass lies
-inside (or close to) its own geometry, and its visual and collision geometry overlap. For each
-body with mass and geometry, in the body's frame:
+mesh with a wrong origin. Facts of every real link catch those. For each body with mass and
+geometry, in the body's frame:
 
 * the bounding box of its geoms (every vertex of a mesh geom; the corners of a primitive's
-  bounding box) should hold its centre of mass, within a margin;
-* the box of its visual geoms and the box of its collision geoms should overlap: the larger
-  should cover a good part (a quarter) of the smaller, as a coarse collision shape covers its
-  visual, or a small collision sphere at a foot lies inside the leg's visual.
+  bounding box), and that of its visual geoms alone, should hold its centre of mass, within
+  a margin;
+* the box of its visual geoms and the box of its collision geoms should overlap (the larger
+  covering at least a sliver of the smaller: collision geometry may stand beside its visual
+  where a neighbouring link carries it, as on Baxter's elbows);
+* no mesh should be metres across and a hundred times the body's other geometry (or, with none,
+  the robot's joint layout): a robot whose meshes are all in mm keeps every centre of mass
+  inside them, so this is a problem in itself.
 
-A body that fails is named with the likely cause: *units in mm* when one of its meshes is
-hundreds of times larger than the rest of its geometry (or than the robot's joint layout, when
-it has no other; such a mesh is a problem in itself, since a robot whose meshes are all in mm
-keeps every centre of mass inside them); *up axis* when its meshes turned a quarter turn about
-x or y (a file's Y_UP or X_UP tag applied or not) pass both tests; else *a wrong origin*.
-Meshes in millimetres fail the check (the model is certainly wrong); the other causes are
-warnings, since a hand-made model can have a light shell around a heavy counterweight.
+A body that fails is named with the likely cause, tried in order: *units in mm* (the last
+test); *up axis*, when the meshes that came from DAE files tagged Y-up or X-up, turned a quarter
+turn about x or y, pass every test; *a wrong inertial origin*, when visual and collision
+geometry agree and the centre of mass is outside both; else *a wrong origin*. Meshes in
+millimetres fail the check (the model is certainly wrong); the other causes are warnings, since
+a hand-made model can have a light shell around a heavy counterweight.
 """
 
 from __future__ import annotations
