@@ -2,7 +2,13 @@
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from mjcfbuild.steps.payloads import MjcfPartFiles
 
 
 @dataclass
@@ -55,3 +61,41 @@ def exclude_suggestion(contacts: list[RestingContact]) -> str:
     lines += [f'  <exclude body1="{c.body1}" body2="{c.body2}"/>' for c in contacts]
     lines.append("</contact>")
     return "\n".join(lines)
+
+
+def split_by_part(
+    contacts: list[RestingContact], part_bodies: dict[str, set[str]]
+) -> tuple[list[RestingContact], list[tuple[str, RestingContact]]]:
+    """The contacts between bodies of the model, and those inside one MJCF part (with the
+    part's name): a hand-tuned part's own contacts at rest are the part's business, as
+    MuJoCo Menagerie's tests accept a gripper whose fingers touch when closed."""
+    model_pairs: list[RestingContact] = []
+    inside: list[tuple[str, RestingContact]] = []
+    for contact in contacts:
+        part = next(
+            (
+                name
+                for name, bodies in sorted(part_bodies.items())
+                if contact.body1 in bodies and contact.body2 in bodies
+            ),
+            None,
+        )
+        if part is None:
+            model_pairs.append(contact)
+        else:
+            inside.append((part, contact))
+    return model_pairs, inside
+
+
+def part_bodies(parts: list[MjcfPartFiles]) -> dict[str, set[str]]:
+    """Each MJCF part's bodies as the model names them, by the part's prefix and file."""
+    from mjcfbuild.compose.mjcf import PartSummary
+
+    found = {}
+    for entry in parts:
+        try:
+            summary = PartSummary.from_dict(json.loads(Path(entry.summary).read_text()))
+        except (OSError, ValueError, KeyError):
+            continue  # the part check reports an unreadable part
+        found[f"{entry.prefix} ({entry.label})"] = {entry.prefix + b for b in summary.bodies}
+    return found

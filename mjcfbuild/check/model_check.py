@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from mjcfbuild.check.contacts import exclude_suggestion, resting_contacts
+from mjcfbuild.check.contacts import exclude_suggestion, resting_contacts, split_by_part
 from mjcfbuild.check.control import check_control
 from mjcfbuild.check.findings import Problem, structural_first
 from mjcfbuild.check.joints import compare_joints
@@ -63,6 +63,7 @@ def check_model(
     readiness: dict | None = None,
     reference: dict | None = None,
     sources: dict[str, Path] | None = None,
+    part_bodies: dict[str, set[str]] | None = None,
 ) -> CheckReport:
     """Check the model at ``model_path`` against ``robot``; simulate ``simulate_path`` (the
     scene, with its floor) or the model itself. ``readiness`` is what the build recorded about
@@ -70,7 +71,9 @@ def check_model(
     reported, not failures). ``reference``, what an independent reader read from the URDF text
     (:func:`~mjcfbuild.check.reference.read_kinematics`), gives the reference kinematics;
     ``robot`` names links and lines in messages. ``sources``, the
-    products a build published the assets from, make loading faster (see check.loading)."""
+    products a build published the assets from, make loading faster (see check.loading).
+    ``part_bodies``: each MJCF part's bodies, by the part's name; contacts at rest inside one
+    part are reported, not failures."""
 
     from mjcfbuild.mjwarnings import capture_mujoco_warnings
 
@@ -147,10 +150,11 @@ def check_model(
     problems += mass_problems
     report.failures = structural_first(problems)
 
-    contacts = resting_contacts(model)
+    contacts, in_parts = split_by_part(resting_contacts(model), part_bodies or {})
     report.results["resting_contacts"] = {
         "pairs": [c.__dict__ for c in contacts],
         "exclude": exclude_suggestion(contacts),
+        "inside_parts": [{"part": part, **c.__dict__} for part, c in in_parts],
     }
     if contacts:
         listed = ", ".join(f"{c.body1}/{c.body2}" for c in contacts[:5])
@@ -166,4 +170,15 @@ def check_model(
     report.results.update(control.results)
     report.failures += control.failures
     report.results["meshes"] = mesh_statistics(model)
+    _check_plausibility(model, report, sources)
     return report
+
+
+def _check_plausibility(model, report: CheckReport, sources: dict[str, Path] | None) -> None:
+    """Centres of mass inside their bodies' geometry, visual and collision overlapping
+    (check.plausibility): meshes in mm fail; other findings are warnings in the results."""
+    from mjcfbuild.check.plausibility import check_plausibility
+
+    plausibility = check_plausibility(model, sources)
+    report.results["plausibility"] = plausibility.to_dict()
+    report.failures += plausibility.failures

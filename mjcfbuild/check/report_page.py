@@ -21,6 +21,7 @@ def markdown(report: dict) -> str:
     lines += _checks(report.get("check") or {}, report.get("warnings") or [])
     lines += _control(report.get("readiness") or {})
     lines += _self_collision(report.get("self_collision"))
+    lines += _plausibility(report)
     if report["repairs"]:
         lines += [
             "## Inertia repairs",
@@ -322,3 +323,57 @@ def _number(value) -> str:
 
 def _range(values) -> str:
     return f"[{values[0]:.4g}, {values[1]:.4g}]" if values else ""
+
+
+def _plausibility(report: dict) -> list[str]:
+    """Where the meshes are: the plausibility test, COLLADA up axes, MJCF parts' own contacts."""
+    check = report.get("check") or {}
+    found = check.get("plausibility")
+    decisions = report.get("up_axis") or []
+    inside = (check.get("resting_contacts") or {}).get("inside_parts") or []
+    if found is None and not decisions and not inside:
+        return []
+    lines = ["## Mesh plausibility", ""]
+    if found is not None:
+        findings = found.get("findings", [])
+        lines.append(
+            f"{found.get('bodies', 0)} bodies tested (centre of mass inside its own geometry, "
+            f"visual and collision geometry overlapping): {len(findings) or 'none'} named."
+        )
+        lines.append("")
+        if findings:
+            lines += ["| body | result | problems | likely cause |", "|---|---|---|---|"]
+            lines += [
+                f"| {f['body']} | {'fails' if f['fails'] else 'warning'} | "
+                f"{'; '.join(f['problems'])} | {f['detail']} |"
+                for f in findings
+            ]
+            lines.append("")
+    if decisions:
+        turned = [d for d in decisions if d.get("turned")]
+        lines += [
+            f"COLLADA up axis: {len(turned)} of {len(decisions)} DAE files tagged other than "
+            "Z-up were turned.",
+            "",
+            "| mesh | tag | turned | why |",
+            "|---|---|---|---|",
+        ]
+        lines += [
+            f"| {d['mesh']} | {d.get('tag')} | {'yes' if d.get('turned') else 'no'} | "
+            f"{d.get('reason')} |"
+            for d in decisions
+        ]
+        lines.append("")
+    if inside:
+        lines += [
+            "Bodies of one MJCF part touching at home (the part's own contact behaviour; "
+            "not a failure):",
+            "",
+        ]
+        lines += [
+            f"- {p['body1']} and {p['body2']} in {p['part']} ({p['pose']} pose, "
+            f"{p['depth']:.3g} m deep)"
+            for p in inside
+        ]
+        lines.append("")
+    return lines

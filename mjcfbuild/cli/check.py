@@ -190,6 +190,7 @@ def _manifest(ctx, args) -> int:
         _options(args, ctx.manifest.check),
         readiness=assembly.get("readiness") or {},
         reference=read_kinematics(_read_if_present(planned_urdf(ctx))),
+        **_built_parts(ctx, robot),
     )
     data = {"passes": report.passes, "failures": report.failures, **report.results}
     ctx.state(CHECK_RESULTS).write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
@@ -203,6 +204,24 @@ def _manifest(ctx, args) -> int:
         warp = check_in_warp(str(scene))
         print(f"  MuJoCo Warp: {warp.worlds} worlds, {warp.steps} steps, finite")
     return code
+
+
+def _built_parts(ctx, robot) -> dict:
+    """What the build recorded that the check reads as the build's own check does: the mesh
+    products the assets came from (COLLADA up axes) and the MJCF parts' bodies."""
+    from mjcfbuild.check.contacts import part_bodies
+    from mjcfbuild.check.loading import asset_sources
+    from mjcfbuild.compose.tasks import mjcf_parts
+    from mjcfbuild.engine.tasks import ASSEMBLY_REPORT
+
+    try:
+        parts = mjcf_parts(ctx, robot)
+    except (OSError, ValueError):
+        parts = []
+    return {
+        "sources": asset_sources(ctx.state(ASSEMBLY_REPORT)),
+        "part_bodies": part_bodies(parts),
+    }
 
 
 def _read_if_present(path: Path) -> bytes | None:

@@ -57,6 +57,7 @@ def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
         "readiness": assembly.get("readiness") or {},
         "self_collision": assembly.get("self_collision"),
         "decompositions": decompositions(ctx),
+        "up_axis": up_axis_decisions(ctx),
         "times": record_timings(ctx),
         "cache": ctx.session.cache_report,
         "previews": [f"previews/{name}" for name in previews],
@@ -85,6 +86,16 @@ def decompositions(ctx: BuildContext) -> list[dict]:
                 "seconds": summary.get("seconds"),
             }
         )
+    return rows
+
+
+def up_axis_decisions(ctx: BuildContext) -> list[dict]:
+    """Per DAE file tagged other than Z-up: its mesh, whether it was turned, and why."""
+    rows = []
+    for path in sorted(ctx.products_dir.glob("*.json")):
+        decision = _read(path).get("up_axis")
+        if isinstance(decision, dict):
+            rows.append({"mesh": path.stem, **decision})
     return rows
 
 

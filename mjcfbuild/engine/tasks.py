@@ -14,7 +14,7 @@ user's own ``dodo.py`` (see the project's ``dodo.py``), optionally with a name p
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -34,6 +34,7 @@ from mjcfbuild.engine.uptodate import (
 from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
 from mjcfbuild.fsutil import unreadable_file
+from mjcfbuild.meshes.upaxis import mesh_uses
 from mjcfbuild.sources.packages import ENV_VARIABLES
 from mjcfbuild.steps.payloads import (
     AssemblePayload,
@@ -95,7 +96,7 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
     if checks:  # first: it needs only the URDF, and runs beside the meshes instead of after them
         tasks.append(_reference_task(ctx, prefix))
     tasks += [
-        _mesh_task(ctx, mesh_id, paths[mesh_id], roles[mesh_id], prefix)
+        _mesh_task(ctx, mesh_id, paths[mesh_id], roles[mesh_id], prefix, robot)
         for mesh_id in _largest_first(roles, lambda mesh_id: paths[mesh_id])
     ]
     tasks += [
@@ -108,7 +109,7 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
         tasks.append(srdf)
     matrix = None
     if ctx.manifest.self_collision != "none":
-        matrix = _selfcollision_task(ctx, plan, robot, choices, roles, decomposed, prefix)
+        matrix = _selfcollision_task(ctx, plan, robot, choices, roles, decomposed, prefix, parts)
         tasks.append(matrix)
     tasks.append(_assemble_task(ctx, plan, sorted(roles), choices, decomposed, prefix, parts))
     tasks.append(_scene_task(ctx, plan, prefix))
@@ -242,8 +243,10 @@ def _selfcollision_task(
     roles: dict[str, list[str]],
     decomposed: dict[str, tuple[str, dict]],
     prefix: str,
+    parts: list[MjcfPartFiles] | None = None,
 ) -> dict:
     from mjcfbuild.compose.tasks import urdf_home
+    from mjcfbuild.selfcollision.parts import collision_digest
     from mjcfbuild.selfcollision.robot import collision_robot
 
     settings = ctx.manifest.self_collision
@@ -277,6 +280,8 @@ def _selfcollision_task(
         manifest_label=ctx.manifest_label,
         cache=ctx.cache_settings(),
         output=str(ctx.state(SELF_COLLISION)),
+        mjcf_parts=list(parts or []),
+        part_digests=[collision_digest(Path(part.xml), Path(part.summary)) for part in parts or []],
     )
     return _task(
         ctx,
@@ -500,7 +505,9 @@ def product_summary(ctx: BuildContext, mesh_id: str) -> Path:
     return ctx.products_dir / f"{mesh_id}.json"
 
 
-def _mesh_task(ctx: BuildContext, mesh_id: str, path: str, roles: list[str], prefix: str) -> dict:
+def _mesh_task(
+    ctx: BuildContext, mesh_id: str, path: str, roles: list[str], prefix: str, robot: Robot
+) -> dict:
     depfile = Depfile.read(_mesh_depfile(ctx, mesh_id))
     file_dep = [Path(path)]
     extra = []
@@ -510,10 +517,11 @@ def _mesh_task(ctx: BuildContext, mesh_id: str, path: str, roles: list[str], pre
         if stale:
             extra.append(always_stale(stale))
     meshes = ctx.manifest.meshes
+    up_axis = up_axis_mode(meshes.collada_up_axis, meshes.collada_up_axis_files, path)
     options = MeshOptions(
         roles=roles,
         max_faces=meshes.max_faces,
-        collada_up_axis=meshes.collada_up_axis,
+        collada_up_axis=up_axis,
         # Each budget only for the product it shapes, so other products keep their cache keys.
         collision_max_faces=meshes.collision_max_faces if "collision" in roles else None,
         max_hull_vertices=meshes.max_hull_vertices if "hull" in roles else None,
@@ -526,6 +534,7 @@ def _mesh_task(ctx: BuildContext, mesh_id: str, path: str, roles: list[str], pre
         summary=str(product_summary(ctx, mesh_id)),
         depfile=str(_mesh_depfile(ctx, mesh_id)),
         cache=ctx.cache_settings(),
+        evidence=[u.to_dict() for u in mesh_uses(robot, mesh_id)] if up_axis == "auto" else [],
     )
     return _task(
         ctx,
@@ -538,6 +547,21 @@ def _mesh_task(ctx: BuildContext, mesh_id: str, path: str, roles: list[str], pre
         targets=[product_summary(ctx, mesh_id)],
         extra_uptodate=extra,
     )
+
+
+def up_axis_mode(mode: str, files: Mapping[str, str], path: str) -> str:
+    """The up-axis option of one mesh file: a ``collada_up_axis_files`` entry matching the end
+    of its path, else ``mode``; only DAE files are ever ``auto`` (other formats have no tag,
+    and keep the product keys they had before ``auto`` existed)."""
+    from fnmatch import fnmatchcase
+
+    posix = path.replace("\\", "/")
+    for pattern, choice in sorted(files.items()):
+        if fnmatchcase(posix, pattern) or fnmatchcase(posix, "*/" + pattern.lstrip("/")):
+            return choice
+    if mode == "auto" and not posix.lower().endswith(".dae"):
+        return "ignore"
+    return mode
 
 
 def _mesh_depfile(ctx: BuildContext, mesh_id: str) -> Path:

@@ -11,7 +11,7 @@ from mjcfbuild import __version__
 STEP_FORMATS = {
     "expand": 1,
     "plan": 3,
-    "mesh": 4,
+    "mesh": 5,
     "decompose": 3,
     "assemble": 9,
     "scene": 3,

@@ -144,12 +144,22 @@ class MeshSettings(StrictModel):
             "before they are loaded, since loading one can exhaust the memory of a CI machine."
         ),
     )
-    collada_up_axis: Literal["ignore", "apply"] = Field(
-        "ignore",
+    collada_up_axis: Literal["auto", "ignore", "apply"] = Field(
+        "auto",
         description=(
-            "What to do with a DAE file's <up_axis>: 'ignore' uses its coordinates as they are, "
-            "as ROS tools draw them (real files are often tagged Y_UP with Z-up coordinates); "
-            "'apply' rotates them to Z up."
+            "What to do with a DAE file's <up_axis> when it says Y_UP or X_UP: 'auto' decides "
+            "per file from the links that use it (their collision primitives, centre of mass "
+            "and joint origins fit the mesh better turned or as written; the report says which "
+            "files were turned and why); 'ignore' uses the coordinates as they are, as ROS "
+            "tools draw them; 'apply' rotates them to Z up."
+        ),
+    )
+    collada_up_axis_files: dict[str, Literal["ignore", "apply"]] = Field(
+        default_factory=dict,
+        description=(
+            "Per-file choices that win over collada_up_axis: a file name or glob (matched "
+            "against the end of the mesh file's path, e.g. 'torso.dae' or 'meshes/arm_*.dae') "
+            "-> 'ignore' or 'apply'."
         ),
     )
 

@@ -9,9 +9,9 @@ surface and are left out; any other primitive is an error naming it, never silen
 Float arrays are parsed in C by numpy, so a 30 MB file loads in a fraction of the time a
 general reader takes.
 
-Units (``<unit meter=...>``) are applied. The up axis is reported but, by default, not applied:
-ROS tools draw DAE coordinates as they are, and real descriptions tag Z-up coordinates
-``Y_UP`` (go1's trunk), so rotating them would turn the mesh over.
+Units (``<unit meter=...>``) are applied. The up axis is reported, and applied only when asked:
+real descriptions tag Z-up coordinates ``Y_UP`` (go1's trunk), so the tag alone cannot decide
+(:mod:`mjcfbuild.meshes.upaxis` decides from the links that use the file).
 """
 
 from __future__ import annotations
@@ -128,11 +128,10 @@ def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
 
 
 def _up_axis_rotation(up_axis: str) -> np.ndarray:
+    from mjcfbuild.meshes.upaxis import up_rotation
+
     rotation = np.eye(4)
-    if up_axis == "Y_UP":  # Y up -> Z up: x stays, y -> z, z -> -y
-        rotation[:3, :3] = [[1, 0, 0], [0, 0, -1], [0, 1, 0]]
-    elif up_axis == "X_UP":  # X up -> Z up
-        rotation[:3, :3] = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]
+    rotation[:3, :3] = up_rotation(up_axis)
     return rotation
 
 

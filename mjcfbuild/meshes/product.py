@@ -41,6 +41,8 @@ class MeshProduct(Record):
     faces: int
     files: dict[str, str]  # every file of the product -> its MD5
     warnings: list[str]
+    # A DAE file's up axis: meshes.upaxis.UpAxisDecision as a dict (None for other formats).
+    up_axis: dict | None = None
 
     @property
     def collision_is_whole(self) -> bool:

@@ -92,13 +92,13 @@ class ProductSharing:
         assert self._executor is not None
         if kind == "mesh":
             from mjcfbuild.meshes.references import referenced_files
-            from mjcfbuild.steps.mesh import check_size
+            from mjcfbuild.steps.mesh import check_size, conversion_options
 
             request = MeshPayload.from_dict(payload)
             main = Path(request.source)
             check_size(main, request.max_file_bytes)
             inputs = [main, *referenced_files(main)]
-            options = request.options.cache_params()
+            options = conversion_options(request)[0]  # the up axis decided here
         else:
             from mjcfbuild.steps.decompose import collision_mesh
 

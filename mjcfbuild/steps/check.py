@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from mjcfbuild.check.contacts import part_bodies
 from mjcfbuild.check.loading import asset_sources, compile_model
 from mjcfbuild.check.model_check import CheckOptions, CheckReport, check_model
 from mjcfbuild.errors import CheckError
@@ -33,6 +34,7 @@ def run(payload: dict) -> dict:
         readiness=assembly.get("readiness") or {},
         reference=_read_reference(Path(request.reference)),
         sources=sources,
+        part_bodies=part_bodies(request.mjcf_parts),
     )
     if request.mjcf_parts and report.results.get("loads"):
         _check_parts(report, Path(request.model), request.mjcf_parts, request.options, sources)
@@ -50,7 +52,11 @@ def run(payload: dict) -> dict:
             file=request.model_label,
             hint=f"{more} more failure{'s' if more > 1 else ''} in the report" if more else None,
         )
-    return {"outputs": outputs, "warnings": _standing_notes(report.results)}
+    plausibility = report.results.get("plausibility") or {}
+    return {
+        "outputs": outputs,
+        "warnings": _standing_notes(report.results) + plausibility.get("warnings", []),
+    }
 
 
 def _read_reference(path: Path) -> dict:

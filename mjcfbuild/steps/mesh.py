@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
+from typing import Any
 
 from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.engine.store import open_store, product_key
@@ -11,6 +13,7 @@ from mjcfbuild.errors import InputError
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.meshes.references import referenced_files
+from mjcfbuild.meshes.upaxis import UpAxisDecision
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import MeshPayload
 
@@ -20,11 +23,11 @@ def run(payload: dict) -> dict:
     request = MeshPayload.from_dict(payload)
     source = Path(request.source)
     product_dir = Path(request.product_dir)
-    options = request.options
     check_size(source, request.max_file_bytes)
     references = referenced_files(source)
     store = open_store(request.cache)
-    key = cache_key(request, references)
+    params, decision = conversion_options(request)
+    key = _key(params, source, references)
     stored = store.fetch(key, product_dir) if store else None
     cached = stored is not None
     if stored is not None:
@@ -33,9 +36,11 @@ def run(payload: dict) -> dict:
         # numpy and trimesh: only when a conversion is needed
         from mjcfbuild.meshes.convert import convert_with_options
 
-        summary = convert_with_options(source, product_dir, options.cache_params())
+        summary = convert_with_options(source, product_dir, params)
         if store:
             store.store(key, product_dir, summary.to_dict())
+    # The decision's reason follows this build's evidence; the product follows only its verdict.
+    summary = dataclasses.replace(summary, up_axis=decision.to_dict() if decision else None)
     failpoint("mesh")
     Depfile([str(p) for p in references], [], {}).write(Path(request.depfile))
     outputs = {str(product_dir / name): digest for name, digest in summary.files.items()}
@@ -54,8 +59,57 @@ def cache_key(request: MeshPayload, references: list[Path] | None = None) -> str
     source = Path(request.source)
     if references is None:
         references = referenced_files(source)
-    params = {**request.options.cache_params(), "versions": step_versions("mesh")}
-    return product_key("mesh", params, [source, *references])
+    return _key(conversion_options(request)[0], source, references)
+
+
+def _key(params: dict[str, Any], source: Path, references: list[Path]) -> str:
+    return product_key("mesh", {**params, "versions": step_versions("mesh")}, [source, *references])
+
+
+def conversion_options(request: MeshPayload) -> tuple[dict[str, Any], UpAxisDecision | None]:
+    """The options the conversion takes, with ``auto`` up axis decided (``apply`` or
+    ``ignore``), and for a DAE file tagged other than Z-up, what was decided and why."""
+    params = request.options.cache_params()
+    mode = params["collada_up_axis"]
+    source = Path(request.source)
+    if source.suffix.lower() != ".dae":
+        return params, None
+    from mjcfbuild.meshes.upaxis import read_up_axis
+
+    tag = read_up_axis(source)
+    if mode == "auto":
+        decision = _decide(source, tag, request)
+        params["collada_up_axis"] = "apply" if decision.turned else "ignore"
+        return params, decision if tag != "Z_UP" else None
+    if tag == "Z_UP":
+        return params, None
+    said = f"robot.yaml meshes.collada_up_axis (or collada_up_axis_files) says {mode}"
+    if mode == "apply":
+        return params, UpAxisDecision(tag, True, f"tagged {tag}, turned to Z-up: {said}")
+    return params, UpAxisDecision(tag, False, f"tagged {tag}, kept as written: {said}")
+
+
+def _decide(source: Path, tag: str, request: MeshPayload) -> UpAxisDecision:
+    from mjcfbuild.meshes.upaxis import MeshUse, decide
+
+    uses = [MeshUse.from_dict(use) for use in request.evidence]
+    if tag not in ("Y_UP", "X_UP") or not uses:
+        return decide(_no_vertices(), tag, uses)
+    import numpy as np
+
+    from mjcfbuild.meshes.collada import read_collada
+
+    parts = read_collada(source).parts
+    vertices = np.concatenate([part.vertices for part in parts]) if parts else _no_vertices()
+    if len(vertices) == 0:
+        return UpAxisDecision(tag, False, f"tagged {tag}, kept as written: it has no vertices")
+    return decide(vertices, tag, uses)
+
+
+def _no_vertices() -> Any:
+    import numpy as np
+
+    return np.zeros((0, 3))
 
 
 def check_size(source: Path, max_bytes: int) -> None:

@@ -172,7 +172,7 @@ class MeshOptions(Payload):
 
     roles: list[str]
     max_faces: int | None
-    collada_up_axis: str  # ignore or apply
+    collada_up_axis: str  # ignore, apply, or auto (the mesh step decides from the evidence)
     collision_max_faces: int | None = None
     max_hull_vertices: int | None = None
 
@@ -197,6 +197,8 @@ class MeshPayload(Payload):
     summary: Output
     depfile: Output
     cache: CacheSettings
+    # A DAE file's up axis under ``auto``: what the links using it say (meshes.upaxis).
+    evidence: list[dict[str, Any]] = dataclasses.field(default_factory=list)  # MeshUse
 
 
 @dataclass(frozen=True)
@@ -281,6 +283,10 @@ class SelfCollisionPayload(Payload):
     manifest_label: MessageLabel
     cache: CacheSettings
     output: Output
+    # attach: MJCF parts, whose geoms the matrix covers against the rest of the model; their
+    # files count through part_digests (selfcollision.parts), not as file dependencies.
+    mjcf_parts: list[MjcfPartFiles] = dataclasses.field(default_factory=list)
+    part_digests: list[str] = dataclasses.field(default_factory=list)
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,7 @@ from mjcfbuild.errors import InputError, ManifestError
 from mjcfbuild.inputs.ros2_control import ControlJoint, Ros2Control
 from mjcfbuild.meshes.product import read_product
 from mjcfbuild.mjcf.assemble import compile_error, floats
-from mjcfbuild.mjcf.bodies import build_bodies
+from mjcfbuild.mjcf.bodies import Body, build_bodies
 from mjcfbuild.mjcf.prepared import Decomposition, prepare
 from mjcfbuild.selfcollision.matrix import (
     MatrixSettings,
@@ -35,6 +35,8 @@ from mjcfbuild.urdf.model import robot_from_dict
 if TYPE_CHECKING:
     import mujoco  # untyped: its classes are Any to mypy, named here for the reader
     import numpy as np
+
+    from mjcfbuild.compose.attach import AttachedPart
 
 
 def run(payload: dict) -> dict:
@@ -68,6 +70,7 @@ def run(payload: dict) -> dict:
             if floats(body):
                 body.floating = True
                 spec.body(body.name).add_freejoint()
+    parts = _attach_parts(spec, bodies, request)
     try:
         model = _compile(spec)
     except Exception as exc:
@@ -89,8 +92,21 @@ def run(payload: dict) -> dict:
         index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, value.joint)
         if index >= 0:
             qpos[model.jnt_qposadr[index]] = value.value
+    for part in parts:  # a part's joints at the part's own home (or its qpos0)
+        for joint, values in part.summary.home_qpos.items():
+            index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, part.prefix + joint)
+            if index >= 0:
+                start = model.jnt_qposadr[index]
+                qpos[start : start + len(values)] = values
     settings = MatrixSettings(**request.settings)
     verdicts, cached = _matrix(model, qpos, settings, request)
+    # Pairs inside one MJCF part are the part's business: its author decided its contacts.
+    part_bodies = [{part.prefix + b for b in part.summary.bodies} for part in parts]
+    verdicts = [
+        v
+        for v in verdicts
+        if not any(v["body1"] in inside and v["body2"] in inside for inside in part_bodies)
+    ]
 
     by_pair = {frozenset((v["body1"], v["body2"])): v for v in verdicts}
     if srdf is not None and not srdf.discovered:
@@ -153,6 +169,8 @@ def _matrix(
         "home": [float(v) for v in qpos],
         "settings": request.settings,
         "versions": step_versions("selfcollision"),
+        "parts": [[p.prefix, p.to, p.pos, p.quat] for p in request.mjcf_parts],
+        "part_digests": request.part_digests,
     }
     inputs = [*request.products.values(), *(d.summary for d in request.decompositions)]
     key = product_key("selfcollision", params, sorted(inputs, key=lambda p: Path(p).name))
@@ -165,6 +183,22 @@ def _matrix(
             matrix.write_text(json.dumps(verdicts, sort_keys=True))
             store.store(key, Path(scratch), {"files": {"matrix.json": md5_file(matrix)}})
     return verdicts, False
+
+
+def _attach_parts(
+    spec: mujoco.MjSpec, bodies: list[Body], request: SelfCollisionPayload
+) -> list[AttachedPart]:
+    """The ``attach:`` MJCF parts attached as the assembly attaches them, so the matrix covers
+    their geoms against the rest of the model."""
+    if not request.mjcf_parts:
+        return []
+    from mjcfbuild.compose.attach import AttachedPart, attach_parts
+
+    parts: list[AttachedPart] = [
+        AttachedPart.from_dict(entry.to_dict()) for entry in request.mjcf_parts
+    ]
+    attach_parts(spec, bodies, parts)
+    return parts
 
 
 def _compile(spec: mujoco.MjSpec) -> mujoco.MjModel:
