@@ -94,15 +94,23 @@ def _start_workers(manifest: str, args: argparse.Namespace) -> WorkerPool | None
 
 def _nothing_changed(manifest: str, args: argparse.Namespace) -> bool:
     """Whether the no-op fast path found nothing to do (and said so, as a build would)."""
-    import time
-
     from mjcfbuild.engine import stamp
 
+    return report_nothing_to_do(
+        lambda: stamp.nothing_to_do(manifest, run_check=not args.no_check), args.quiet
+    )
+
+
+def report_nothing_to_do(check: Callable[[], dict | None], quiet: bool) -> bool:
+    """Run the no-op fast path's ``check`` (a stamp lookup); when it finds nothing to do,
+    print the line a build would and return True."""
+    import time
+
     started = time.perf_counter()
-    summary = stamp.nothing_to_do(manifest, run_check=not args.no_check)
+    summary = check()
     if summary is None:
         return False
-    if not args.quiet:
+    if not quiet:
         seconds = time.perf_counter() - started
         print(
             f"mjcfbuild: built {summary['robot']}: 0 run, {summary['tasks']} up to date "

@@ -109,8 +109,8 @@ def run_build(
     try:
         _ = ctx.sharing_choice  # a bad remote or executor address stops the build before it starts
         with build_lock(ctx, progress):
-            if ctx.manifest_file is not None:  # whichever way it was started
-                stamp.discard(ctx.manifest_file, ctx.run_check)
+            if ctx.stamp_key is not None:  # whichever way it was started
+                stamp.discard(ctx.stamp_key, ctx.run_check)
             prepare_state(ctx)
             # Workers start while this process plans, importing until their first step comes.
             ctx.session.warm_workers(first_build=not ctx.state(DATABASE).exists())
@@ -138,7 +138,7 @@ def run_build(
     result.slowest = progress.slowest()
     result.seconds = time.perf_counter() - started
     result.engine_log = doit_output if result.errors else ""
-    if ctx.noop_stamp and tasks and result.ok and not result.warnings:
+    if ctx.noop_stamp and ctx.stamp_key and tasks and result.ok and not result.warnings:
         stamp.record_build(ctx, tasks, len(result.ran) + len(result.up_to_date))
     return result
 

@@ -44,8 +44,11 @@ _RACY_SECONDS = 2.0
 STATE_NOT_CHECKED = ("lock", "logs")  # in the state folder: bookkeeping no step reads
 
 
-def stamp_path(manifest: Path, run_check: bool) -> Path:
-    """Where the stamp of a build of ``manifest`` (with or without its check) is kept."""
+def stamp_path(manifest: Path | str, run_check: bool) -> Path:
+    """Where the stamp of a build of ``manifest`` (with or without its check) is kept.
+
+    ``manifest`` is the manifest file, or for a build without one (``convert``) the key that
+    :func:`command_key` makes of its command line."""
     from mjcfbuild.cachedir import user_cache_dir
 
     key = hashlib.sha256(f"{manifest}\0{run_check}".encode()).hexdigest()[:32]
@@ -87,15 +90,27 @@ def _record(path: str, stat: os.stat_result, digest: str, now: float) -> list:
     return [stat.st_size, stat.st_mtime_ns, digest, racy]
 
 
+def command_key(command: str, cwd: str, options: dict) -> str:
+    """The stamp key of a build described by a command line rather than a manifest file:
+    the command, the folder it ran in and its options (only those that change the build)."""
+    return f"{command}\0{cwd}\0{json.dumps(options, sort_keys=True)}"
+
+
 def nothing_to_do(manifest: str | os.PathLike, run_check: bool) -> dict | None:
     """The stamp's summary if nothing changed since the last successful build, else None.
 
     ``{"robot": <model file name>, "tasks": <tasks of that build>}``. Never raises: any
     problem reading the stamp means the full build decides.
     """
+    return nothing_to_do_for(Path(os.path.normpath(os.path.abspath(manifest))), run_check)
+
+
+def nothing_to_do_for(key: Path | str, run_check: bool) -> dict | None:
+    """:func:`nothing_to_do` for the build whose stamp key is ``key`` (a normalised manifest
+    path, or a :func:`command_key`)."""
     if os.environ.get(DISABLE_VARIABLE):
         return None
-    path = stamp_path(Path(os.path.normpath(os.path.abspath(manifest))), run_check)
+    path = stamp_path(key, run_check)
     stamp = _read(path)
     if stamp is None:
         return None
@@ -185,14 +200,14 @@ def _write(path: Path, stamp: dict) -> None:
         pass  # without a stamp the next build takes the full path: slower, never wrong
 
 
-def discard(manifest: Path, run_check: bool) -> None:
+def discard(manifest: Path | str, run_check: bool) -> None:
     """Remove the stamp: called when a build starts, so only a finished one leaves a stamp."""
     with contextlib.suppress(OSError):
         stamp_path(manifest, run_check).unlink()
 
 
 def write(
-    manifest: Path,
+    manifest: Path | str,
     run_check: bool,
     summary: dict,
     inputs: Iterable[Path | str],
@@ -259,9 +274,11 @@ def record_build(ctx: BuildContext, tasks: list[dict], task_count: int) -> None:
     from mjcfbuild.engine.depfile import Depfile
     from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, SOURCE_DEPS
 
-    manifest = ctx.manifest_file
-    assert manifest is not None, "a stamp is kept only for the build of a manifest file"
-    inputs: list[Path | str] = [manifest, *mjcfbuild_sources()]
+    manifest = ctx.stamp_key
+    assert manifest is not None, "a stamp is kept only for a build with a stamp key"
+    inputs: list[Path | str] = [*mjcfbuild_sources()]
+    if ctx.manifest_file is not None:
+        inputs.append(ctx.manifest_file)
     outputs: list[Path | str] = [ctx.robot_path, ctx.scene_path]
     absent: list[str] = []
     variables: list[str] = []
