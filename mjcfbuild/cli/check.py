@@ -32,6 +32,14 @@ def add_parser(commands) -> None:
     parser.add_argument("--urdf", help="check this URDF against --mjcf, without a manifest")
     parser.add_argument("--mjcf", help="the MuJoCo model to check against --urdf")
     parser.add_argument(
+        "--package",
+        action="append",
+        default=[],
+        metavar="NAME=DIR",
+        help="with --urdf: where a ROS package is, for $(find) in a xacro file and package:// "
+        "(repeatable; others come from ROS_PACKAGE_PATH / AMENT_PREFIX_PATH)",
+    )
+    parser.add_argument(
         "--up-to-date",
         action="store_true",
         help="exit with 6, naming what is stale, when the outputs no longer match their inputs",
@@ -60,6 +68,8 @@ def run(args: argparse.Namespace) -> int:
         if not (args.urdf and args.mjcf):
             raise UsageError("--urdf and --mjcf go together")
         return _pair(args)
+    if args.package:
+        raise UsageError("--package goes with --urdf", hint="a manifest lists its packages")
     code = EXIT_OK
     for manifest in args.manifests:
         try:
@@ -142,15 +152,17 @@ def _pair(args) -> int:
         problem = unreadable_file(path)
         if problem:
             raise InputError(f"file {problem}", file=path)
-    text = _urdf_bytes(urdf)
+    from mjcfbuild.cli.convert import parse_packages
+
+    text = _urdf_bytes(urdf, parse_packages(args.package))
     robot = parse_urdf(text, str(urdf))
     report = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))
     return _print(report, f"{mjcf} against {urdf}")
 
 
-def _urdf_bytes(path: Path) -> bytes:
+def _urdf_bytes(path: Path, packages: dict[str, str]) -> bytes:
     """The URDF text of ``path``; a xacro file is expanded first (default arguments, packages
-    from ROS_PACKAGE_PATH / AMENT_PREFIX_PATH), as ``convert -u`` does."""
+    from ``packages``, else ROS_PACKAGE_PATH / AMENT_PREFIX_PATH), as ``convert -u`` does."""
     import os
 
     from mjcfbuild.cli.convert import is_xacro
@@ -159,7 +171,8 @@ def _urdf_bytes(path: Path) -> bytes:
 
     if not is_xacro(path):
         return path.read_bytes()
-    return expand_xacro(path, {}, PackageResolver({}, os.environ)).urdf
+    folders = {name: Path(folder) for name, folder in packages.items()}
+    return expand_xacro(path, {}, PackageResolver(folders, os.environ)).urdf
 
 
 def _manifest(ctx, args) -> int:

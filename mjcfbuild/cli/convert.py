@@ -94,7 +94,6 @@ def add_parser(commands) -> None:
     )
     jobs_argument(parser)
     timeout_argument(parser)
-    parser.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
     parser.add_argument(
         "xacro_args", nargs="*", metavar="NAME:=VALUE", help="xacro arguments, when -u is xacro"
     )

@@ -296,7 +296,13 @@ def record_build(ctx: BuildContext, tasks: list[dict], task_count: int) -> None:
             outputs += files_under(folder)
     if ctx.urdf_path is not None:
         outputs.append(ctx.urdf_path)
-    summary = {"robot": ctx.robot_path.name, "tasks": task_count}
+    from mjcfbuild.engine.published import published_files
+
+    summary = {
+        "robot": ctx.robot_path.name,
+        "tasks": task_count,
+        "outputs": [str(path) for path in published_files(ctx)],  # for --fail-on-change
+    }
     write(
         manifest,
         ctx.run_check,

@@ -176,3 +176,27 @@ def test_structural_findings_come_first(tmp_path):
     assert "0.085 in the model" in failures[1]
     assert any("joint 'elbow': axis" in f for f in failures[2:])
     assert not any("shoulder" in f or "inertia" in f for f in failures)
+
+
+def test_check_urdf_takes_package_for_a_xacro_that_finds_one(tmp_path):
+    # The xacro includes a file of a package that only --package says where to find.
+    write(
+        tmp_path / "pkgs" / "pendulum_description" / "urdf" / "arm.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        + URDF[URDF.index('<link name="arm">') : URDF.index("</robot>")]
+        + "</robot>",
+    )
+    write(
+        tmp_path / "p.urdf.xacro",
+        '<robot name="pendulum" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="base"/>'
+        '<xacro:include filename="$(find pendulum_description)/urdf/arm.xacro"/></robot>',
+    )
+    write(tmp_path / "p.xml", MJCF)
+    argv = ["check", "--urdf", "p.urdf.xacro", "--mjcf", "p.xml"]
+    missing = run_cli(*argv, cwd=tmp_path, env={"ROS_PACKAGE_PATH": "", "AMENT_PREFIX_PATH": ""})
+    assert missing.code == 4 and "pendulum_description" in missing.stderr
+    result = run_cli(
+        *argv, "--package", "pendulum_description=pkgs/pendulum_description", cwd=tmp_path
+    )
+    assert result.code == EXIT_OK, result.stdout + result.stderr
+    assert "check passed" in result.stdout
