@@ -35,13 +35,15 @@ if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext
     from mjcfbuild.engine.hashes import HashCache
 
-FORMAT = 1
+FORMAT = 2
 # Set to any value to skip the fast path (benchmarks of the full path, debugging).
 DISABLE_VARIABLE = "MJCFBUILD_FULL_BUILD"
 # Variables read by the build besides those a depfile records; every MJCFBUILD_* counts too.
 _VARIABLES = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH", "XDG_CACHE_HOME", "HOME")
 _RACY_SECONDS = 2.0
-STATE_NOT_CHECKED = ("lock", "logs")  # in the state folder: bookkeeping no step reads
+# In the state folder: bookkeeping no step reads (the lock, workers' logs, the database of a
+# user's doit, which doit writes after the build it ran).
+STATE_NOT_CHECKED = ("lock", "logs", "dodo")
 
 
 def stamp_path(manifest: Path | str, run_check: bool) -> Path:
@@ -68,13 +70,25 @@ def _same_environment(recorded: dict[str, str | None]) -> bool:
 
 
 def _python_folders() -> dict[str, int | None]:
-    """The mtimes of the folders packages are imported from (not the current folder)."""
+    """The mtimes of the folders packages are installed in: the standard library's, every
+    site-packages and the PYTHONPATH entries. Not the folder of the script that runs (the
+    ``mjcfbuild`` command's, doit's dodo.py's) nor the current one, so that ``mjcfbuild``,
+    ``python -m mjcfbuild`` and doit agree on one stamp."""
     folders: dict[str, int | None] = {}
-    here = os.getcwd()
+    explicit = set(filter(None, os.environ.get("PYTHONPATH", "").split(os.pathsep)))
+    prefixes = tuple(os.path.join(p, "lib") for p in {sys.prefix, sys.base_prefix})
     for entry in sys.path:
-        if entry and entry != here and os.path.isdir(entry):
+        installed = os.path.basename(entry) in ("site-packages", "dist-packages")
+        chosen = entry in explicit or installed or entry.startswith(prefixes)
+        if chosen and os.path.isdir(entry):
             folders[entry] = os.stat(entry).st_mtime_ns
     return folders
+
+
+def _interpreter() -> str:
+    """Which Python runs: its environment and its real executable (``python`` and
+    ``python3`` in one environment, the ``mjcfbuild`` script's and ``python -m``'s, agree)."""
+    return f"{sys.prefix}|{os.path.realpath(sys.executable)}"
 
 
 def _md5(path: str) -> str:
@@ -170,7 +184,7 @@ def _read(path: Path) -> dict | None:
         return None
     if not isinstance(stamp, dict):
         return None
-    if stamp.get("format") != FORMAT or stamp.get("python") != sys.executable:
+    if stamp.get("format") != FORMAT or stamp.get("python") != _interpreter():
         return None
     return stamp
 
@@ -237,7 +251,7 @@ def write(
         environment.setdefault(name, os.environ.get(name))
     stamp = {
         "format": FORMAT,
-        "python": sys.executable,
+        "python": _interpreter(),
         "summary": summary,
         "environment": environment,
         "python_folders": _python_folders(),

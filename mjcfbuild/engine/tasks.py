@@ -754,7 +754,10 @@ def _scene_task(ctx: BuildContext, plan: Plan, prefix: str) -> dict:
         _require_file(ctx, source, "scene file", "scene.file")
     block = None
     if scene.mjcf:
-        block = {"xml": scene.mjcf, "origin": f"{ctx.manifest_label} scene.mjcf"}
+        # The manifest relative to its own folder: the same parameter whichever folder the
+        # build runs in (errors are shown relative to the current folder when reported).
+        where = ctx.portable_label(ctx.manifest_file) if ctx.manifest_file else ctx.manifest_label
+        block = {"xml": scene.mjcf, "origin": f"{where} scene.mjcf"}
     elif source is None:
         for where in ("file", "urdf"):
             found = (plan.inputs.get(where) or {}).get("scene")
