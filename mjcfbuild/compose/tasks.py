@@ -59,6 +59,7 @@ def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
                 packages,
                 output,
                 output.with_suffix(".deps.json"),
+                args_key=f"{ctx.manifest_label} attach[{index}].source.args",
             )
         )
         entries.append(

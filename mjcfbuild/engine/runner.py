@@ -18,10 +18,11 @@ from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.loader import DATABASE, run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.report import write_report
-from mjcfbuild.engine.tasks import build_tasks, planning_tasks
+from mjcfbuild.engine.tasks import SOURCE_URDF, build_tasks, planning_tasks
 from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError
 from mjcfbuild.fsutil import remove_stale_temp_files, write_if_changed
 from mjcfbuild.manifest.pinpoint import pinpoint
+from mjcfbuild.sources.origins import point_at_source
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.workers import WorkerPool
@@ -156,6 +157,9 @@ def _run_stage(
             ctx.session.failures[name] = error
         if ctx.manifest_file is not None:
             error = pinpoint(error, ctx.manifest_label, ctx.manifest_file)
+        if ctx.source_kind == "xacro":
+            urdf = ctx.state(SOURCE_URDF)
+            point_at_source(error, urdf, ctx.label(urdf), ctx.base_dir)
         if error not in result.errors:
             result.errors.append(error)
     if code != 0 and not result.errors:

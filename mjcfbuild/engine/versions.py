@@ -9,7 +9,7 @@ from mjcfbuild import __version__
 
 # Bump a step's number when its output for the same inputs changes.
 STEP_FORMATS = {
-    "expand": 1,
+    "expand": 2,  # 2: the origins of the expanded lines
     "plan": 3,
     "mesh": 4,
     "decompose": 3,

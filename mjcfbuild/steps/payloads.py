@@ -121,6 +121,8 @@ class ExpandPayload(Payload):
     environment: dict[str, str]  # the ROS variables package lookup reads
     output: Output
     depfile: Output
+    origins: Output  # where each expanded line's element was written (xacro)
+    args_key: MessageLabel | None  # where args were given: a manifest key, or the command line
 
 
 @dataclass(frozen=True)
