@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -154,25 +155,37 @@ def _pair(args) -> int:
             raise InputError(f"file {problem}", file=path)
     from mjcfbuild.cli.convert import parse_packages
 
-    text = _urdf_bytes(urdf, parse_packages(args.package))
-    robot = parse_urdf(text, str(urdf))
+    text, origins = _urdf_bytes(urdf, parse_packages(args.package))
+    try:
+        robot = parse_urdf(text, str(urdf))
+    except InputError as error:
+        # A line of the expanded text: point at the xacro line that wrote its element.
+        where = error.location
+        lines = [line for line in origins if where and where.line and line <= where.line]
+        if where is not None and where.line is not None and lines:
+            expanded = where.line
+            file, where.line = origins[max(lines)]
+            relative = os.path.relpath(file)
+            where.file = file if relative.startswith("..") else relative
+            error.message += f" [line {expanded} of its expansion]"
+        raise
     report = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))
     return _print(report, f"{mjcf} against {urdf}")
 
 
-def _urdf_bytes(path: Path, packages: dict[str, str]) -> bytes:
-    """The URDF text of ``path``; a xacro file is expanded first (default arguments, packages
-    from ``packages``, else ROS_PACKAGE_PATH / AMENT_PREFIX_PATH), as ``convert -u`` does."""
-    import os
-
+def _urdf_bytes(path: Path, packages: dict[str, str]) -> tuple[bytes, dict[int, tuple[str, int]]]:
+    """The URDF text of ``path`` and, for xacro, where each line's element was written; a
+    xacro file is expanded first (default arguments, packages from ``packages``, else
+    ROS_PACKAGE_PATH / AMENT_PREFIX_PATH), as ``convert -u`` does."""
     from mjcfbuild.cli.convert import is_xacro
     from mjcfbuild.sources.expand import expand_xacro
     from mjcfbuild.sources.packages import PackageResolver
 
     if not is_xacro(path):
-        return path.read_bytes()
+        return path.read_bytes(), {}
     folders = {name: Path(folder) for name, folder in packages.items()}
-    return expand_xacro(path, {}, PackageResolver(folders, os.environ)).urdf
+    expansion = expand_xacro(path.resolve(), {}, PackageResolver(folders, os.environ))
+    return expansion.urdf, expansion.origins
 
 
 def _manifest(ctx, args) -> int:

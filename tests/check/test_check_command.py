@@ -200,3 +200,24 @@ def test_check_urdf_takes_package_for_a_xacro_that_finds_one(tmp_path):
     )
     assert result.code == EXIT_OK, result.stdout + result.stderr
     assert "check passed" in result.stdout
+
+
+def test_check_urdf_points_a_xacro_mistake_at_the_included_file_and_line(tmp_path):
+    write(
+        tmp_path / "urdf" / "arm.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <link name="arm"/>\n'
+        '  <joint name="swing" type="revolute"><parent link="bsae"/><child link="arm"/>\n'
+        '    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>\n'
+        "</robot>\n",
+    )
+    write(
+        tmp_path / "urdf" / "p.urdf.xacro",
+        '<robot name="pendulum" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <link name="base"/>\n  <xacro:include filename="arm.xacro"/>\n</robot>\n',
+    )
+    write(tmp_path / "p.xml", MJCF)
+    result = run_cli("check", "--urdf", "urdf/p.urdf.xacro", "--mjcf", "p.xml", cwd=tmp_path)
+    assert result.code == 4, result.stderr
+    assert "error: urdf/arm.xacro:3:" in result.stderr and "'bsae'" in result.stderr
+    assert "of its expansion]" in result.stderr
