@@ -18,7 +18,7 @@ from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.loader import DATABASE, run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.report import write_report
-from mjcfbuild.engine.tasks import SOURCE_URDF, build_tasks, planning_tasks
+from mjcfbuild.engine.tasks import SOURCE_URDF, build_tasks, planned_urdf, planning_tasks
 from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError
 from mjcfbuild.fsutil import remove_stale_temp_files, write_if_changed
 from mjcfbuild.manifest.pinpoint import pinpoint
@@ -157,8 +157,7 @@ def _run_stage(
             ctx.session.failures[name] = error
         if ctx.manifest_file is not None:
             error = pinpoint(error, ctx.manifest_label, ctx.manifest_file)
-        if ctx.source_kind == "xacro":
-            urdf = ctx.state(SOURCE_URDF)
+        for urdf in _expanded_urdfs(ctx):  # where their elements were written (xacro)
             point_at_source(error, urdf, ctx.label(urdf), ctx.base_dir)
         if error not in result.errors:
             result.errors.append(error)
@@ -168,6 +167,15 @@ def _run_stage(
         )
         result.errors.append(MjcfbuildError(f"build engine error: {_first_line(message)}"))
     return output
+
+
+def _expanded_urdfs(ctx: BuildContext) -> list[Path]:
+    """The URDFs a build makes that errors may point at: the expanded source, the parts'
+    and the composed one."""
+    from mjcfbuild.compose.tasks import part_urdf
+
+    parts = [part_urdf(ctx, index) for index in range(len(ctx.manifest.attach))]
+    return [ctx.state(SOURCE_URDF), planned_urdf(ctx), *parts]
 
 
 def _first_line(text: str) -> str:

@@ -438,7 +438,7 @@ def expand_file_task(
         output=str(output),
         depfile=str(deps),
         origins=str(origins_file(output)),
-        args_key=args_key,
+        args_key=args_key or "",
     )
     return _task(
         ctx,

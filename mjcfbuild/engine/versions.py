@@ -21,7 +21,7 @@ STEP_FORMATS = {
     "srdf": 1,
     "selfcollision": 2,
     "export_urdf": 1,
-    "compose": 1,
+    "compose": 2,  # 2: the origins of the composed lines
     "mjcfpart": 1,
 }
 

@@ -21,7 +21,7 @@ def run(payload: dict) -> dict:
         request.args,
         request.packages,
         request.environment,
-        request.args_key,
+        request.args_key or None,
     )
     outputs: dict[str, str] = {}
     write_output(Path(request.output), expansion.urdf, outputs)

@@ -122,7 +122,7 @@ class ExpandPayload(Payload):
     output: Output
     depfile: Output
     origins: Output  # where each expanded line's element was written (xacro)
-    args_key: MessageLabel | None  # where args were given: a manifest key, or the command line
+    args_key: MessageLabel  # where args were given: a manifest key, the command line, or ""
 
 
 @dataclass(frozen=True)
@@ -150,6 +150,7 @@ class ComposePayload(Payload):
     parts: list[PartEntry]
     environment: dict[str, str]
     output: Output
+    origins: Output  # where each line's element was written (through the inputs' own)
 
 
 @dataclass(frozen=True)

@@ -355,6 +355,41 @@ CASES: list[Case] = [
         ["robot.yaml:8:9:", "attach[0].source.args.with_cmaera", "did you mean 'with_camera'?"],
     ),
     Case(
+        "mesh of an attached xacro part with a misspelt package",
+        {
+            "robot.yaml": MANIFEST
+            + "packages:\n  gripper_description: .\n"
+            + "attach:\n  - {source: {xacro: gripper.urdf.xacro}, to: arm, prefix: g_}\n",
+            "robot.urdf": two_link_urdf(),
+            "gripper.urdf.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="g">\n'
+            '  <xacro:macro name="palm">\n'
+            '    <link name="palm"><visual><geometry>\n'
+            '      <mesh filename="package://gripper_descripton/palm.stl"/>\n'
+            "    </geometry></visual></link>\n"
+            "  </xacro:macro>\n  <xacro:palm/>\n</robot>\n",
+        },
+        EXIT_INPUT,
+        [
+            "error: gripper.urdf.xacro:4:",
+            "did you mean 'gripper_description'?",
+            "[expanded: mjcf/.mjcfbuild/attach/0.urdf:",
+        ],
+    ),
+    Case(
+        "joint of an attached xacro part with a misspelt type",
+        {
+            "robot.yaml": MANIFEST
+            + "attach:\n  - {source: {xacro: gripper.urdf.xacro}, to: arm, prefix: g_}\n",
+            "robot.urdf": two_link_urdf(),
+            "gripper.urdf.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="g">\n'
+            '  <link name="palm"/>\n  <link name="jaw"/>\n'
+            '  <joint name="slide" type="prismatc">\n'
+            '    <parent link="palm"/><child link="jaw"/></joint>\n</robot>\n',
+        },
+        EXIT_INPUT,
+        ["error: gripper.urdf.xacro:4:", "prismatc", "[expanded: mjcf/.mjcfbuild/composed.urdf:"],
+    ),
+    Case(
         "xacro argument misspelt on convert",
         {"robot.urdf.xacro": ARG_XACRO},
         EXIT_USAGE,
