@@ -22,7 +22,7 @@ from mjcfbuild.engine.tasks import SOURCE_URDF, build_tasks, planned_urdf, plann
 from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError
 from mjcfbuild.fsutil import remove_stale_temp_files, write_if_changed
 from mjcfbuild.manifest.pinpoint import pinpoint
-from mjcfbuild.sources.origins import point_at_source
+from mjcfbuild.sources.origins import point_at_source, point_warning_at_source
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.workers import WorkerPool
@@ -135,7 +135,11 @@ def run_build(
     result.ran = progress.names(RAN)
     result.up_to_date = progress.names(UP_TO_DATE)
     result.blocked = progress.names(BLOCKED)
-    result.warnings = list(dict.fromkeys(ctx.session.warnings))
+    warnings = list(dict.fromkeys(ctx.session.warnings))
+    for urdf in _expanded_urdfs(ctx):
+        label = ctx.label(urdf)
+        warnings = [point_warning_at_source(w, urdf, label, ctx.base_dir) for w in warnings]
+    result.warnings = warnings
     result.slowest = progress.slowest()
     result.seconds = time.perf_counter() - started
     result.engine_log = doit_output if result.errors else ""

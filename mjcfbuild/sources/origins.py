@@ -66,3 +66,19 @@ def point_at_source(error: MjcfbuildError, urdf: Path, label: str, base_dir: Pat
     location.line, location.column = line, None
     if error.hint and error.hint.startswith("the line is in the expansion of"):
         error.hint = None
+
+
+def point_warning_at_source(text: str, urdf: Path, label: str, base_dir: Path) -> str:
+    """A warning that starts ``label:line:`` (a line of the expanded URDF ``urdf``), started
+    instead with where that element was written; others unchanged."""
+    head = f"{label}:"
+    if not text.startswith(head):
+        return text
+    number, sep, rest = text[len(head) :].partition(":")
+    if not sep or not number.isdigit():
+        return text
+    error = MjcfbuildError(rest.strip(), file=label, line=int(number))
+    point_at_source(error, urdf, label, base_dir)
+    if error.location is None or error.location.file == label:
+        return text
+    return f"{error.location}: {error.message}"

@@ -3,7 +3,13 @@
 from __future__ import annotations
 
 from mjcfbuild.errors import InputError
-from mjcfbuild.sources.origins import origins_file, point_at_source, write_origins, written_at
+from mjcfbuild.sources.origins import (
+    origins_file,
+    point_at_source,
+    point_warning_at_source,
+    write_origins,
+    written_at,
+)
 
 
 def test_an_error_inside_an_element_moves_to_where_the_element_was_written(tmp_path):
@@ -29,3 +35,19 @@ def test_an_error_inside_an_element_moves_to_where_the_element_was_written(tmp_p
     other = InputError("elsewhere", file="robot.urdf", line=3)
     point_at_source(other, urdf, "mjcf/.mjcfbuild/source.urdf", tmp_path)
     assert (other.location.file, other.message) == ("robot.urdf", "elsewhere")
+
+
+def test_a_warning_about_an_expanded_line_names_the_written_one(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    urdf = tmp_path / "mjcf" / ".mjcfbuild" / "source.urdf"
+    urdf.parent.mkdir(parents=True)
+    write_origins(origins_file(urdf), {5: (str(tmp_path / "urdf" / "arm.xacro"), 12)}, {})
+    label = "mjcf/.mjcfbuild/source.urdf"
+    warning = f'{label}:5: <origin rpy="1, 0, 0"> uses commas between numbers; read them as spaces'
+    assert point_warning_at_source(warning, urdf, label, tmp_path) == (
+        'urdf/arm.xacro:12: <origin rpy="1, 0, 0"> uses commas between numbers; read them as '
+        "spaces [expanded: mjcf/.mjcfbuild/source.urdf:5]"
+    )
+    assert (
+        point_warning_at_source("robot.yaml: other", urdf, label, tmp_path) == "robot.yaml: other"
+    )
