@@ -72,12 +72,10 @@ def run(args: argparse.Namespace) -> int:
         if not args.dry_run:
             summary = _nothing_changed(manifest, args)
             if summary is not None:
-                if args.fail_on_change and "outputs" not in summary:
-                    pass  # a stamp from before --fail-on-change: the full path lists outputs
-                else:
-                    if args.fail_on_change:
-                        code = code or _report_unadded([], [], summary["outputs"], args.debug)
-                    continue
+                if args.fail_on_change:  # nothing created or changed; all of it added?
+                    published = summary.get("outputs", [])
+                    code = code or _report_unadded([], [], published, args.debug)
+                continue
         workers = None if args.dry_run else _start_workers(manifest, args)
         try:
             ctx = load_context(manifest, args)

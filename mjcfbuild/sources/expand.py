@@ -133,10 +133,12 @@ def expand_xacro(
             undefined = re.search(r"(?i)undefined substitution argument (\S+)", message)
             if undefined:
                 name = undefined.group(1).strip("'\"")
-                _check_args(mappings, reading.declared, path, args_key)  # a misspelt one?
+                # Given under a misspelt name? (Only then: files not read yet may declare
+                # the other unknown ones.)
+                if did_you_mean(name, set(mappings) - reading.declared):
+                    _check_args(mappings, reading.declared, path, args_key)
                 line = _line_of(current, rf"\$\(arg\s+{re.escape(name)}\s*\)")
-                given = set(mappings) | reading.declared - {name}
-                message += did_you_mean(name, given)
+                message += did_you_mean(name, set(mappings) | (reading.declared - {name}))
                 hint = (
                     "pass it under 'source.args' in robot.yaml, or give its <xacro:arg> a default"
                 )
