@@ -46,5 +46,6 @@ def run(args: argparse.Namespace) -> int:
         removed.append(ctx.label(ctx.state_dir) + "/")
         if not any(ctx.out_dir.iterdir()):
             ctx.out_dir.rmdir()
-    print(f"mjcfbuild: removed {', '.join(removed) if removed else 'nothing'}")
+    if not args.quiet:
+        print(f"mjcfbuild: removed {', '.join(removed) if removed else 'nothing'}")
     return EXIT_OK

@@ -15,13 +15,15 @@ def add_parser(commands) -> None:
         help="say why tasks would run: which input, parameter or output changed",
         description="Say, for every task (or one), whether it is up to date and if not, why.",
     )
+    # Two optional positionals, told apart by what they look like, not by their order.
     parser.add_argument(
-        "words",
-        nargs="*",
-        metavar="[MANIFEST] [TASK]",
-        help="the manifest (default: robot.yaml) and a task name, like mesh:base or assemble, "
-        "in either order: a word ending in .yaml or .yml, or naming a file, is the manifest",
+        "first",
+        nargs="?",
+        metavar="MANIFEST",
+        help="the manifest (default: robot.yaml): a word ending in .yaml or .yml, or naming "
+        "a file; it may come after the task",
     )
+    parser.add_argument("second", nargs="?", metavar="TASK", help="a task, like mesh:base")
     manifest_argument(parser, positional=False)
     parser.set_defaults(handler=run)
 
@@ -30,7 +32,8 @@ def run(args: argparse.Namespace) -> int:
     """Print the statuses."""
     from mjcfbuild.engine.status import build_statuses
 
-    manifest, args.task = _manifest_and_task(args.words)
+    words = [word for word in (args.first, args.second) if word is not None]
+    manifest, args.task = _manifest_and_task(words)
     ctx = load_context(chosen_manifest(args, manifest), args)
     statuses, complete = build_statuses(ctx)
     if args.task:
