@@ -1,45 +1,28 @@
 """doit tasks of the mjcfbuild project: `doit list` shows them, `doit` builds the examples.
 
-* ``plan_examples`` / ``examples`` - build every ``examples/*/robot.yaml`` through the same
-  task generators as ``mjcfbuild build`` (see :mod:`mjcfbuild.engine.dodo`);
+* ``examples`` - build every ``examples/*/robot.yaml``, as ``mjcfbuild build`` does and with
+  its state (see :mod:`mjcfbuild.engine.dodo`): a model built by either is up to date for both;
 * ``schema`` - regenerate ``schemas/robot.schema.json`` from the manifest models;
 * ``example_meshes`` - regenerate the example arm's meshes;
 * ``bench`` - run the build-time benchmark (downloads example-robot-data once).
+
+doit's database is kept in the first example's state folder (``examples/*/mjcf/.mjcfbuild``).
 """
 
 from pathlib import Path
 
-from doit import create_after
-
 from mjcfbuild.engine.dodo import RobotTasks
-
-DOIT_CONFIG = {
-    "default_tasks": ["plan_examples", "examples", "schema"],
-    "backend": "sqlite3",
-    "dep_file": ".doit.db",
-}
 
 ROOT = Path(__file__).parent
 EXAMPLES = sorted(str(p) for p in (ROOT / "examples").glob("*/robot.yaml"))
-_robots = None
+ROBOTS = RobotTasks(EXAMPLES)
+
+DOIT_CONFIG = {"default_tasks": ["examples", "schema"], **ROBOTS.doit_config()}
 
 
-def _examples() -> RobotTasks:
-    global _robots
-    if _robots is None:
-        _robots = RobotTasks(EXAMPLES)
-    return _robots
-
-
-def task_plan_examples():
-    """Expand and plan every example robot."""
-    yield from _examples().planning("plan_examples")
-
-
-@create_after(executed="plan_examples")
 def task_examples():
     """Build every example robot."""
-    yield from _examples().building("examples")
+    yield from ROBOTS.tasks()
 
 
 def _write_schema(targets):

@@ -71,6 +71,8 @@ class MjcfbuildError(Exception):
         self.message = message
         self.location = Location(str(file), line, column) if file is not None else None
         self.hint = hint
+        # The traceback where the error was raised in another process (a worker), for --debug.
+        self.details = ""
 
     def one_line(self) -> str:
         """The error as the single line the command line prints."""
@@ -102,19 +104,35 @@ class MjcfbuildError(Exception):
             "line": loc.line if loc else None,
             "column": loc.column if loc else None,
             "hint": self.hint,
+            "details": self.details or _traceback_of(self),
         }
 
     @staticmethod
     def from_dict(data: dict) -> MjcfbuildError:
         """Rebuild an error sent by :meth:`to_dict`, keeping its class."""
         cls = _ERROR_CLASSES.get(data.get("type", ""), MjcfbuildError)
-        return cls(
+        error = cls(
             data["message"],
             file=data.get("file"),
             line=data.get("line"),
             column=data.get("column"),
             hint=data.get("hint"),
         )
+        error.details = data.get("details") or ""
+        return error
+
+    def traceback_text(self) -> str:
+        """The traceback to show with ``--debug``: where the error was raised (in a worker
+        process, or in this one), or empty when it was made without being raised."""
+        return self.details or _traceback_of(self)
+
+
+def _traceback_of(error: BaseException) -> str:
+    if error.__traceback__ is None:
+        return ""
+    import traceback
+
+    return "".join(traceback.format_exception(error))
 
 
 class UsageError(MjcfbuildError):

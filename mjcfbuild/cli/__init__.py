@@ -41,15 +41,33 @@ def build_parser() -> argparse.ArgumentParser:
         epilog="exit codes: " + "; ".join(f"{code} {text}" for code, text in EXIT_CODES.items()),
     )
     parser.add_argument("--version", action="version", version=f"mjcfbuild {__version__}")
-    parser.add_argument(
-        "--debug", action="store_true", help="show tracebacks and build engine output on errors"
-    )
+    global_flags(parser, default=False)
     commands = parser.add_subparsers(title="commands", dest="command", metavar="COMMAND")
     commands.required = True
     commands_in_order = (build, check, explain, graph, clean, convert, export_urdf, init, schema)
     for module in (*commands_in_order, cache, workers):
         module.add_parser(commands)
+    for command in commands.choices.values():
+        # After the command too; unset there, so the value given before it stands.
+        global_flags(command, default=argparse.SUPPRESS)
     return parser
+
+
+def global_flags(parser: argparse.ArgumentParser, default: object) -> None:
+    """The flags every command takes, before or after its name: ``--debug`` and ``-q``."""
+    parser.add_argument(
+        "--debug",
+        action="store_true",
+        default=default,
+        help="show the traceback of an error, and the build engine's output",
+    )
+    parser.add_argument(
+        "-q",
+        "--quiet",
+        action="store_true",
+        default=default,
+        help="print only warnings and errors (build, convert, clean)",
+    )
 
 
 def main(argv: Sequence[str] | None = None) -> None:
@@ -93,8 +111,10 @@ def report_error(error: MjcfbuildError, debug: bool, base_dir: Path | None = Non
     if isinstance(error, InternalError) and not debug:
         text += " (an internal error: run again with --debug and report the output)"
     print(f"mjcfbuild: error: {text}", file=sys.stderr)
-    if debug and isinstance(error, InternalError) and error.details:
-        print(error.details, file=sys.stderr)
+    if debug:
+        details = error.traceback_text()
+        if details:
+            print(details.rstrip(), file=sys.stderr)
 
 
 def report_warning(text: str) -> None:
@@ -171,11 +191,47 @@ def load_context(path: str | Path, args: argparse.Namespace):
         raise error.relocate(path.resolve().parent, Path.cwd()) from None
 
 
-def manifest_option(parser: argparse.ArgumentParser) -> None:
-    """Add ``-m/--manifest``."""
+DEFAULT_MANIFEST = "robot.yaml"
+MANIFEST_SUFFIXES = (".yaml", ".yml")
+
+
+def manifest_argument(parser: argparse.ArgumentParser, positional: bool = True) -> None:
+    """Add the manifest as an optional positional argument (unless ``positional`` is False,
+    for a command that sorts its positionals itself) and as ``-m/--manifest``, the older form;
+    :func:`chosen_manifest` reads them."""
+    if positional:
+        parser.add_argument(
+            "manifest",
+            nargs="?",
+            default=None,
+            metavar="MANIFEST",
+            help=f"the manifest (default: {DEFAULT_MANIFEST})",
+        )
     parser.add_argument(
-        "-m", "--manifest", default="robot.yaml", help="the manifest (default: robot.yaml)"
+        "-m",
+        "--manifest",
+        dest="manifest_flag",
+        default=None,
+        metavar="MANIFEST",
+        help="the manifest, as a flag (the same as the positional argument)",
     )
+
+
+def chosen_manifest(args: argparse.Namespace, positional: str | None = None) -> str:
+    """The manifest named by the positional argument or ``-m`` (not both), else robot.yaml."""
+    from mjcfbuild.errors import UsageError
+
+    given = positional if positional is not None else getattr(args, "manifest", None)
+    flag = getattr(args, "manifest_flag", None)
+    if given is not None and flag is not None and given != flag:
+        raise UsageError(f"two manifests: '{given}' and -m '{flag}'", hint="name one, without -m")
+    return given or flag or DEFAULT_MANIFEST
+
+
+def looks_like_manifest(word: str) -> bool:
+    """Whether a positional word is a manifest rather than something else (a task name): it
+    ends in .yaml or .yml, or names an existing file."""
+    return word.endswith(MANIFEST_SUFFIXES) or os.path.isfile(word)
 
 
 def environment_jobs() -> int | None:

@@ -38,7 +38,6 @@ def add_parser(commands) -> None:
     )
     jobs_argument(parser)
     timeout_argument(parser)
-    parser.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
     parser.add_argument(
         "--no-check", action="store_true", help="skip the check against the URDF (and previews)"
     )
@@ -56,6 +55,13 @@ def add_parser(commands) -> None:
     parser.add_argument(
         "-n", "--dry-run", action="store_true", help="say what would run, and why; run nothing"
     )
+    parser.add_argument(
+        "--fail-on-change",
+        action="store_true",
+        help="exit 6 when the build created or changed a published file (model, scene, "
+        "assets, report), or one is not tracked by git: the pre-commit hook's way to make "
+        "you git add them",
+    )
     parser.set_defaults(handler=run)
 
 
@@ -63,14 +69,21 @@ def run(args: argparse.Namespace) -> int:
     """Build every manifest; the exit code of the first that failed."""
     code = EXIT_OK
     for manifest in args.manifests:
-        if not args.dry_run and _nothing_changed(manifest, args):
-            continue
+        if not args.dry_run:
+            summary = _nothing_changed(manifest, args)
+            if summary is not None:
+                if args.fail_on_change:  # nothing created or changed; all of it added?
+                    published = summary.get("outputs", [])
+                    code = code or _report_unadded([], [], published, args.debug)
+                continue
         workers = None if args.dry_run else _start_workers(manifest, args)
         try:
             ctx = load_context(manifest, args)
             ctx = replace(ctx, noop_stamp=ctx.manifest.source.description != "-")
             if args.dry_run:
                 result = dry_run(ctx)
+            elif args.fail_on_change:
+                result = _build_and_compare(ctx, args, workers)
             else:
                 result = execute(ctx, args.quiet, args.debug, workers=workers)
         except MjcfbuildError as error:
@@ -92,23 +105,76 @@ def _start_workers(manifest: str, args: argparse.Namespace) -> WorkerPool | None
     return start_workers(manifest, run_check=not args.no_check, jobs=jobs)
 
 
-def _nothing_changed(manifest: str, args: argparse.Namespace) -> bool:
-    """Whether the no-op fast path found nothing to do (and said so, as a build would)."""
-    import time
-
+def _nothing_changed(manifest: str, args: argparse.Namespace) -> dict | None:
+    """The stamp's summary when the no-op fast path found nothing to do (and said so, as a
+    build would), else None."""
     from mjcfbuild.engine import stamp
 
+    found: list[dict] = []
+
+    def check() -> dict | None:
+        summary = stamp.nothing_to_do(manifest, run_check=not args.no_check)
+        found.extend([summary] if summary is not None else [])
+        return summary
+
+    return found[0] if report_nothing_to_do(check, args.quiet) else None
+
+
+def report_nothing_to_do(check: Callable[[], dict | None], quiet: bool) -> bool:
+    """Run the no-op fast path's ``check`` (a stamp lookup); when it finds nothing to do,
+    print the line a build would and return True."""
+    import time
+
     started = time.perf_counter()
-    summary = stamp.nothing_to_do(manifest, run_check=not args.no_check)
+    summary = check()
     if summary is None:
         return False
-    if not args.quiet:
+    if not quiet:
         seconds = time.perf_counter() - started
         print(
             f"mjcfbuild: built {summary['robot']}: 0 run, {summary['tasks']} up to date "
             f"in {seconds:.2f} s"
         )
     return True
+
+
+def _build_and_compare(ctx, args: argparse.Namespace, workers: WorkerPool | None) -> int:
+    """Build ``ctx``; exit 6 if that created or changed a published file, or one is not
+    tracked by git (``--fail-on-change``)."""
+    from mjcfbuild.engine.published import changes, published_files, snapshot
+
+    before = snapshot(published_files(ctx))
+    code = execute(ctx, args.quiet, args.debug, workers=workers)
+    after = snapshot(published_files(ctx))
+    created, changed = changes(before, after)
+    return code or _report_unadded(created, changed, list(after), args.debug)
+
+
+def _report_unadded(
+    created: list[str], changed: list[str], published: list[str], debug: bool
+) -> int:
+    """Report files the build created or changed, and published files git does not track;
+    the exit code (6 if there are any)."""
+    import os
+
+    from mjcfbuild.engine.published import git_status
+    from mjcfbuild.errors import CheckError
+
+    untracked, ignored = git_status(published)
+    # The model and scene first: files at the top of the output folder, then those below.
+    created = sorted({*created, *untracked} - ignored, key=_top_first)
+    changed = sorted(set(changed) - ignored, key=_top_first)
+    if not created and not changed:
+        return EXIT_OK
+    parts = []
+    for verb, names in (("created", created), ("changed", changed)):
+        if names:
+            shown = [os.path.relpath(name) for name in names[:5]]
+            more = f" and {len(names) - 5} more" if len(names) > 5 else ""
+            parts.append(f"files were {verb}: {', '.join(shown)}{more}")
+    error = CheckError("; ".join(parts), hint="git add them, then commit again")
+    report_error(error, debug)
+    return error.exit_code
 
 
 def execute(
@@ -165,3 +231,9 @@ def dry_run(ctx) -> int:
         f"{len(statuses) - len(running)} up to date (dry run)"
     )
     return EXIT_OK
+
+
+def _top_first(name: str) -> tuple[int, str]:
+    import os
+
+    return name.count(os.sep), name

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -32,6 +33,14 @@ def add_parser(commands) -> None:
     parser.add_argument("--urdf", help="check this URDF against --mjcf, without a manifest")
     parser.add_argument("--mjcf", help="the MuJoCo model to check against --urdf")
     parser.add_argument(
+        "--package",
+        action="append",
+        default=[],
+        metavar="NAME=DIR",
+        help="with --urdf: where a ROS package is, for $(find) in a xacro file and package:// "
+        "(repeatable; others come from ROS_PACKAGE_PATH / AMENT_PREFIX_PATH)",
+    )
+    parser.add_argument(
         "--up-to-date",
         action="store_true",
         help="exit with 6, naming what is stale, when the outputs no longer match their inputs",
@@ -60,6 +69,8 @@ def run(args: argparse.Namespace) -> int:
         if not (args.urdf and args.mjcf):
             raise UsageError("--urdf and --mjcf go together")
         return _pair(args)
+    if args.package:
+        raise UsageError("--package goes with --urdf", hint="a manifest lists its packages")
     code = EXIT_OK
     for manifest in args.manifests:
         try:
@@ -142,24 +153,39 @@ def _pair(args) -> int:
         problem = unreadable_file(path)
         if problem:
             raise InputError(f"file {problem}", file=path)
-    text = _urdf_bytes(urdf)
-    robot = parse_urdf(text, str(urdf))
+    from mjcfbuild.cli.convert import parse_packages
+
+    text, origins = _urdf_bytes(urdf, parse_packages(args.package))
+    try:
+        robot = parse_urdf(text, str(urdf))
+    except InputError as error:
+        # A line of the expanded text: point at the xacro line that wrote its element.
+        where = error.location
+        lines = [line for line in origins if where and where.line and line <= where.line]
+        if where is not None and where.line is not None and lines:
+            expanded = where.line
+            file, where.line = origins[max(lines)]
+            relative = os.path.relpath(file)
+            where.file = file if relative.startswith("..") else relative
+            error.message += f" [line {expanded} of its expansion]"
+        raise
     report = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))
     return _print(report, f"{mjcf} against {urdf}")
 
 
-def _urdf_bytes(path: Path) -> bytes:
-    """The URDF text of ``path``; a xacro file is expanded first (default arguments, packages
-    from ROS_PACKAGE_PATH / AMENT_PREFIX_PATH), as ``convert -u`` does."""
-    import os
-
+def _urdf_bytes(path: Path, packages: dict[str, str]) -> tuple[bytes, dict[int, tuple[str, int]]]:
+    """The URDF text of ``path`` and, for xacro, where each line's element was written; a
+    xacro file is expanded first (default arguments, packages from ``packages``, else
+    ROS_PACKAGE_PATH / AMENT_PREFIX_PATH), as ``convert -u`` does."""
     from mjcfbuild.cli.convert import is_xacro
     from mjcfbuild.sources.expand import expand_xacro
     from mjcfbuild.sources.packages import PackageResolver
 
     if not is_xacro(path):
-        return path.read_bytes()
-    return expand_xacro(path, {}, PackageResolver({}, os.environ)).urdf
+        return path.read_bytes(), {}
+    folders = {name: Path(folder) for name, folder in packages.items()}
+    expansion = expand_xacro(path.resolve(), {}, PackageResolver(folders, os.environ))
+    return expansion.urdf, expansion.origins
 
 
 def _manifest(ctx, args) -> int:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import shutil
 
-from mjcfbuild.cli import load_context, manifest_option
+from mjcfbuild.cli import chosen_manifest, load_context, manifest_argument
 from mjcfbuild.errors import EXIT_OK
 
 
@@ -20,7 +20,7 @@ def add_parser(commands) -> None:
             "so is the shared cache (see mjcfbuild cache)."
         ),
     )
-    manifest_option(parser)
+    manifest_argument(parser)
     parser.set_defaults(handler=run)
 
 
@@ -30,7 +30,7 @@ def run(args: argparse.Namespace) -> int:
     from mjcfbuild.engine.runner import build_lock
     from mjcfbuild.engine.tasks import report_dir
 
-    ctx = load_context(args.manifest, args)
+    ctx = load_context(chosen_manifest(args), args)
     removed = []
     if ctx.out_dir.is_dir():
         with build_lock(ctx, Progress(quiet=True)):
@@ -46,5 +46,6 @@ def run(args: argparse.Namespace) -> int:
         removed.append(ctx.label(ctx.state_dir) + "/")
         if not any(ctx.out_dir.iterdir()):
             ctx.out_dir.rmdir()
-    print(f"mjcfbuild: removed {', '.join(removed) if removed else 'nothing'}")
+    if not args.quiet:
+        print(f"mjcfbuild: removed {', '.join(removed) if removed else 'nothing'}")
     return EXIT_OK

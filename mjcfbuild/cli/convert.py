@@ -8,10 +8,11 @@ again into the same folder only redoes what changed.
 from __future__ import annotations
 
 import argparse
+import os
 from pathlib import Path
 
 from mjcfbuild.cli import environment_jobs, jobs_argument, step_timeout, timeout_argument
-from mjcfbuild.errors import UsageError
+from mjcfbuild.errors import EXIT_OK, UsageError
 
 REFERENCE_ROBOT_FILE = "mujoco_description_formatted.xml"
 
@@ -93,7 +94,6 @@ def add_parser(commands) -> None:
     )
     jobs_argument(parser)
     timeout_argument(parser)
-    parser.add_argument("-q", "--quiet", action="store_true", help="print only warnings and errors")
     parser.add_argument(
         "xacro_args", nargs="*", metavar="NAME:=VALUE", help="xacro arguments, when -u is xacro"
     )
@@ -111,17 +111,55 @@ def parse_packages(values: list[str]) -> dict[str, str]:
     return packages
 
 
+def stamp_key(args: argparse.Namespace) -> str | None:
+    """The no-op stamp's key of this conversion: the folder it runs in and every option that
+    changes what it builds. None when the description comes from stdin (never the same)."""
+    from mjcfbuild.engine.stamp import command_key
+
+    if args.robot_description == "-":
+        return None
+    options = {
+        name: getattr(args, name)
+        for name in (
+            "urdf",
+            "robot_description",
+            "mujoco_inputs",
+            "output",
+            "add_free_joint",
+            "fuse",
+            "asset_dir",
+            "scene",
+            "package",
+            "xacro_args",
+        )
+    }
+    return command_key("convert", os.getcwd(), options)
+
+
 def run(args: argparse.Namespace) -> int:
-    """Convert."""
-    from mjcfbuild.cli.build import execute
-    from mjcfbuild.engine.context import BuildContext, default_jobs
-    from mjcfbuild.manifest.models import Manifest
+    """Convert; nothing is imported or read beyond the stamp when nothing changed."""
+    from mjcfbuild.cli.build import report_nothing_to_do
+    from mjcfbuild.engine import stamp
 
     if args.publish_topic:
         raise UsageError(
             "-p/--publish_topic needs ROS, which mjcfbuild does not use",
             hint="write the model with -o DIR and load DIR/scene.xml",
         )
+    key = stamp_key(args)
+    if key is not None and report_nothing_to_do(
+        lambda: stamp.nothing_to_do_for(key, run_check=True), args.quiet
+    ):
+        return EXIT_OK
+    return _convert(args, key)
+
+
+def _convert(args: argparse.Namespace, key: str | None) -> int:
+    """The full build of a conversion; its no-op stamp is filed under ``key``."""
+    from mjcfbuild.cli.build import execute
+    from mjcfbuild.engine.context import BuildContext, default_jobs
+    from mjcfbuild.manifest.models import Manifest
+
     cwd = Path.cwd()
     output = Path(args.output)
     xacro_args = parse_xacro_args(args.xacro_args)
@@ -170,6 +208,8 @@ def run(args: argparse.Namespace) -> int:
         jobs=jobs,
         step_timeout=step_timeout(args),
         prebuilt_mesh_dir=prebuilt,
+        noop_stamp=key is not None,
+        command_stamp_key=key,
     )
     return execute(ctx, quiet=args.quiet, debug=args.debug, hints=command_line_hint)
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from mjcfbuild.cli import load_context, manifest_option
+from mjcfbuild.cli import chosen_manifest, load_context, looks_like_manifest, manifest_argument
 from mjcfbuild.errors import EXIT_OK, UsageError
 
 
@@ -15,8 +15,16 @@ def add_parser(commands) -> None:
         help="say why tasks would run: which input, parameter or output changed",
         description="Say, for every task (or one), whether it is up to date and if not, why.",
     )
-    parser.add_argument("task", nargs="?", help="a task name, like mesh:base or assemble")
-    manifest_option(parser)
+    # Two optional positionals, told apart by what they look like, not by their order.
+    parser.add_argument(
+        "first",
+        nargs="?",
+        metavar="MANIFEST",
+        help="the manifest (default: robot.yaml): a word ending in .yaml or .yml, or naming "
+        "a file; it may come after the task",
+    )
+    parser.add_argument("second", nargs="?", metavar="TASK", help="a task, like mesh:base")
+    manifest_argument(parser, positional=False)
     parser.set_defaults(handler=run)
 
 
@@ -24,7 +32,9 @@ def run(args: argparse.Namespace) -> int:
     """Print the statuses."""
     from mjcfbuild.engine.status import build_statuses
 
-    ctx = load_context(args.manifest, args)
+    words = [word for word in (args.first, args.second) if word is not None]
+    manifest, args.task = _manifest_and_task(words)
+    ctx = load_context(chosen_manifest(args, manifest), args)
     statuses, complete = build_statuses(ctx)
     if args.task:
         chosen = [s for s in statuses if s.name == args.task or s.title == args.task]
@@ -43,3 +53,15 @@ def run(args: argparse.Namespace) -> int:
     if not complete and not args.task:
         print("(later tasks are known once the plan is made again: run mjcfbuild build)")
     return EXIT_OK
+
+
+def _manifest_and_task(words: list[str]) -> tuple[str | None, str | None]:
+    """Sort ``explain``'s positional words into the manifest and the task name."""
+    manifests = [word for word in words if looks_like_manifest(word)]
+    tasks = [word for word in words if not looks_like_manifest(word)]
+    if len(manifests) > 1 or len(tasks) > 1:
+        raise UsageError(
+            f"explain takes one manifest and one task at most, not {' '.join(words)}",
+            hint="a word ending in .yaml or .yml, or naming a file, is the manifest",
+        )
+    return (manifests[0] if manifests else None), (tasks[0] if tasks else None)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from mjcfbuild.cli import load_context, manifest_option
+from mjcfbuild.cli import chosen_manifest, load_context, manifest_argument
 from mjcfbuild.errors import EXIT_OK
 
 
@@ -16,7 +16,7 @@ def add_parser(commands) -> None:
         help="print the task graph (text, or --dot for Graphviz)",
         description="Print the tasks of a build, what each reads and which tasks it waits for.",
     )
-    manifest_option(parser)
+    manifest_argument(parser)
     parser.add_argument("--dot", action="store_true", help="Graphviz DOT, for `dot -Tsvg`")
     parser.set_defaults(handler=run)
 
@@ -25,7 +25,7 @@ def run(args: argparse.Namespace) -> int:
     """Print the graph."""
     from mjcfbuild.engine.tasks import PLAN, build_tasks, planning_tasks
 
-    ctx = load_context(args.manifest, args)
+    ctx = load_context(chosen_manifest(args), args)
     tasks = build_tasks(ctx) if ctx.state(PLAN).exists() else planning_tasks(ctx)
     producer = {target: task["name"] for task in tasks for target in task["targets"]}
     edges = []

@@ -35,6 +35,7 @@ def has_urdf_parts(manifest: Manifest) -> bool:
 def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
     """The part tasks and the ``compose`` task; none without ``attach:``."""
     from mjcfbuild.engine.tasks import COMPOSED_URDF, SOURCE_URDF, _task, expand_file_task
+    from mjcfbuild.sources.origins import origins_file
 
     tasks = [
         _mjcf_part_task(ctx, prefix, index, part)
@@ -59,6 +60,7 @@ def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
                 packages,
                 output,
                 output.with_suffix(".deps.json"),
+                args_key=f"{ctx.manifest_label} attach[{index}].source.args",
             )
         )
         entries.append(
@@ -83,7 +85,9 @@ def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
         parts=entries,
         environment={key: ctx.environ.get(key, "") for key in ENV_VARIABLES},
         output=str(ctx.state(COMPOSED_URDF)),
+        origins=str(origins_file(ctx.state(COMPOSED_URDF))),
     )
+    inputs = [ctx.state(SOURCE_URDF), *(Path(e.urdf) for e in entries)]
     tasks.append(
         _task(
             ctx,
@@ -92,8 +96,11 @@ def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
             "compose",
             payload,
             in_worker=False,
-            file_dep=[ctx.state(SOURCE_URDF), *(Path(e.urdf) for e in entries)],
-            targets=[ctx.state(COMPOSED_URDF)],
+            # The inputs' origins too: a xacro line that moved moves the composed origins.
+            file_dep=[
+                *(p for e in inputs for p in (e, origins_file(e))),
+            ],
+            targets=[ctx.state(COMPOSED_URDF), origins_file(ctx.state(COMPOSED_URDF))],
         )
     )
     return tasks

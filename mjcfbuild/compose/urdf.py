@@ -35,16 +35,26 @@ class Part:
     resolve: Callable[[str], Path]  # a file reference of the part -> an absolute path
 
 
+_ORIGIN = "mjcfbuild-origin"  # while joining: which input (0 main, n part n) and line
+
+
 def compose(
-    main: bytes, main_label: str, parts: list[Part], base_dir: Path
+    main: bytes,
+    main_label: str,
+    parts: list[Part],
+    base_dir: Path,
+    origins: dict[int, tuple[int, int]] | None = None,
 ) -> tuple[bytes, list[str]]:
     """The main URDF with every part joined to it, and warnings.
 
     File references of the parts become paths relative to ``base_dir`` (the main source's
     folder, against which the plan resolves relative paths). Parts are joined in the order
-    their ``to`` links exist, so a part may attach to another part's link.
+    their ``to`` links exist, so a part may attach to another part's link. ``origins``, if
+    given, receives for each line of the result whose element came from an input the input
+    (0 the main URDF, n the n-th part) and its line there.
     """
     root = _parse(main, main_label)
+    _mark(root, 0)
     warnings: list[str] = []
     pending = list(parts)
     while pending:
@@ -53,10 +63,27 @@ def compose(
         if not ready:
             raise _unplaceable(pending, links)
         for part in ready:
-            warnings += _join(root, part, base_dir)
+            warnings += _join(root, part, base_dir, parts.index(part) + 1)
             pending.remove(part)
-    text = etree.tostring(root, encoding="utf-8", xml_declaration=True)
-    return text + b"\n", warnings
+    marks = []
+    for element in root.iter():
+        if isinstance(element.tag, str):
+            marks.append(element.attrib.pop(_ORIGIN, ""))
+    text = etree.tostring(root, encoding="utf-8", xml_declaration=True) + b"\n"
+    if origins is not None:
+        lines = [e.sourceline for e in _parse(text, main_label).iter() if isinstance(e.tag, str)]
+        for line, mark in zip(lines, marks, strict=True):
+            if mark and line is not None:
+                source, _, written = mark.partition(":")
+                origins.setdefault(line, (int(source), int(written)))
+    return text, warnings
+
+
+def _mark(tree: etree._Element, source: int) -> None:
+    """Tag every element of ``tree`` with the input it comes from and its line there."""
+    for element in tree.iter():
+        if isinstance(element.tag, str) and element.sourceline is not None:
+            element.set(_ORIGIN, f"{source}:{element.sourceline}")
 
 
 def _parse(data: bytes, label: str) -> etree._Element:
@@ -102,9 +129,11 @@ def _unplaceable(pending: list[Part], links: list[str]) -> ManifestError:
     )
 
 
-def _join(root: etree._Element, part: Part, base_dir: Path) -> list[str]:
-    """Append ``part`` to ``root``, prefixed, with a fixed joint to its ``to`` link."""
+def _join(root: etree._Element, part: Part, base_dir: Path, source: int) -> list[str]:
+    """Append ``part`` (input number ``source``) to ``root``, prefixed, with a fixed joint to
+    its ``to`` link."""
     tree = _parse(part.xml, part.label)
+    _mark(tree, source)
     warnings = []
     part_links = _names(tree, "link")
     children = {

@@ -46,6 +46,7 @@ class BuildContext:
     prebuilt_mesh_dir: Path | None = None  # convert -a: a folder of meshes converted before
     run_check: bool = True
     noop_stamp: bool = False  # keep a stamp for the no-op fast path (mjcfbuild build)
+    command_stamp_key: str | None = None  # the stamp's key without a manifest file (convert)
     use_remote: bool = True
     executor_override: str | None = None
     session: BuildSession = field(init=False, repr=False, compare=False)
@@ -95,6 +96,12 @@ class BuildContext:
             if self.manifest_file is not None:
                 pinpoint(error, self.manifest_label, self.manifest_file)
             raise error
+
+    @property
+    def stamp_key(self) -> Path | str | None:
+        """What the no-op stamp of this build is filed under: the command line's key
+        (``convert``), else the manifest file; None when neither exists."""
+        return self.command_stamp_key or self.manifest_file
 
     # Paths ------------------------------------------------------------------------------
 

@@ -1,106 +1,113 @@
-"""mjcfbuild's build tasks for your own ``dodo.py``.
+"""mjcfbuild's builds as tasks of your own ``dodo.py``.
 
-The command line runs these same task generators. In a ``dodo.py``, planning and building are
-two task groups, the second created after the first ran (doit's ``create_after``); each
-generator is told the name of the group it yields into, since doit names a group's tasks
-``<group>:<task>`` and the tasks refer to one another by those names::
+One doit task per manifest runs the same build as ``mjcfbuild build``, with the same state: a
+model built by either is up to date for the other. doit asks the build's no-op stamp (and,
+where a build left none, the build's own task statuses) whether anything changed; when
+something did, the build runs its own task graph in the output folder's state, so only what
+changed runs, outputs are checked by content (a hand-edited model is rebuilt), the output
+folder is locked while it runs and products the plan no longer uses are removed. doit's own
+database holds nothing a build needs; :meth:`RobotTasks.doit_config` keeps it in the first
+output folder's state folder, not beside ``dodo.py``::
 
-    from doit import create_after
     from mjcfbuild.engine.dodo import RobotTasks
 
     robots = RobotTasks(["robots/arm/robot.yaml", "robots/dog/robot.yaml"])
+    DOIT_CONFIG = {"default_tasks": ["robots"], **robots.doit_config()}
 
-    def task_plan():
-        yield from robots.planning("plan")
-
-    @create_after(executed="plan")
     def task_robots():
-        yield from robots.building("robots")
+        yield from robots.tasks()
 
-Task names carry the manifest's folder name (``robots:arm/mesh:base``). As in ``mjcfbuild
-build``, outputs are checked by content (a hand-edited model is rebuilt), each output folder is
-locked while doit runs (a second build of it waits), and converted meshes and decompositions the
-plan no longer uses are removed (the ``<folder>/tidy`` task).
+Each task is named after its robot (``robots:example_arm``) and every line a build prints
+starts with the robot's name.
 """
 
 from __future__ import annotations
 
-import atexit
-import contextlib
+import sys
 from collections.abc import Iterable, Iterator
+from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.tasks import PLAN, build_tasks, planning_tasks
+
+DATABASE = "dodo/doit.sqlite3"  # in the state folder; the no-op stamp ignores it
 
 
 class RobotTasks:
-    """Task generators for several manifests, sharing nothing but the process."""
+    """doit tasks building several manifests, one task each."""
 
     def __init__(self, manifests: Iterable[str | Path], jobs: int | None = None) -> None:
-        kwargs = {"jobs": jobs} if jobs else {}
-        self.contexts = [BuildContext.from_manifest_file(m, **kwargs) for m in manifests]
-        self._locks = contextlib.ExitStack()
-        self._locked: set[int] = set()
-        atexit.register(self._close)
+        kwargs: dict[str, Any] = {"jobs": jobs} if jobs else {}
+        self.contexts = [
+            replace(BuildContext.from_manifest_file(m, **kwargs), noop_stamp=True)
+            for m in manifests
+        ]
 
-    def planning(self, group: str) -> Iterator[dict]:
-        """The expand and plan tasks of every manifest, for the task group named ``group``."""
-        for ctx in self.contexts:
-            self._lock(ctx)
-            yield from _in_group(planning_tasks(ctx, prefix=self._prefix(ctx)), group)
+    def doit_config(self) -> dict[str, str]:
+        """``dep_file`` and ``backend`` for ``DOIT_CONFIG``: doit's database in the first
+        manifest's state folder (created now: doit opens it before it loads tasks)."""
+        if not self.contexts:
+            return {}
+        database = self.contexts[0].state(DATABASE)
+        database.parent.mkdir(parents=True, exist_ok=True)
+        return {"dep_file": str(database), "backend": "sqlite3"}
 
-    def building(self, group: str) -> Iterator[dict]:
-        """Mesh, assembly, scene, check and tidy tasks of every manifest (after planning ran),
-        for the task group named ``group``.
-
-        A manifest not planned yet has none (``doit list`` asks before anything ran).
-        """
-        for ctx in self.contexts:
-            if not ctx.state(PLAN).is_file():
-                continue
-            self._lock(ctx)
-            prefix = self._prefix(ctx)
-            tasks = build_tasks(ctx, prefix=prefix, with_planning=False)
-            yield from _in_group(tasks, group)
-            yield _tidy_task(ctx, tasks, group, prefix)
-
-    def _lock(self, ctx: BuildContext) -> None:
-        """Hold ``ctx``'s output folder lock until the process ends, as a CLI build does."""
-        from mjcfbuild.engine.progress import Progress
-        from mjcfbuild.engine.runner import build_lock, prepare_state
-
-        if id(ctx) in self._locked:
-            return
-        self._locks.enter_context(build_lock(ctx, Progress()))
-        self._locked.add(id(ctx))
-        prepare_state(ctx)
-
-    def _close(self) -> None:
-        for ctx in self.contexts:
-            ctx.session.close()
-        self._locks.close()
-
-    @staticmethod
-    def _prefix(ctx: BuildContext) -> str:
-        return f"{ctx.base_dir.name}/"
+    def tasks(self) -> Iterator[dict]:
+        """One task per manifest, named after its robot."""
+        names = [ctx.manifest.name for ctx in self.contexts]
+        for ctx, name in zip(self.contexts, names, strict=True):
+            label = _shown(ctx.manifest_file or ctx.base_dir)
+            if names.count(name) > 1:  # two manifests build robots of one name
+                name = f"{name}@{_shown(ctx.base_dir)}"
+            yield {
+                "name": name,
+                "doc": f"build {ctx.robot_path.name} from {label}",
+                "title": lambda task, label=label: f"{task.name} ({label})",
+                "actions": [(build, [ctx])],
+                "uptodate": [(up_to_date, [ctx])],
+                "verbosity": 2,
+            }
 
 
-def _in_group(tasks: list[dict], group: str) -> Iterator[dict]:
-    """``tasks`` as subtasks of ``group``: references between them get the group's name."""
-    for task in tasks:
-        yield {**task, "task_dep": [f"{group}:{name}" for name in task.get("task_dep", [])]}
+def up_to_date(ctx: BuildContext) -> bool:
+    """Whether a build of ``ctx`` would run nothing: the no-op stamp says so, or, where the
+    last build left no stamp (it warned), every task of its graph is up to date."""
+    from mjcfbuild.engine import stamp
+    from mjcfbuild.engine.status import build_statuses
+
+    assert ctx.manifest_file is not None
+    if stamp.nothing_to_do(ctx.manifest_file, ctx.run_check) is not None:
+        return True
+    statuses, complete = build_statuses(ctx)
+    return complete and all(status.up_to_date for status in statuses)
 
 
-def _tidy_task(ctx: BuildContext, tasks: list[dict], group: str, prefix: str) -> dict:
-    """Removes products no task of this plan uses, after every other task of the manifest."""
-    from mjcfbuild.engine.runner import remove_stale_products, stale_products
+def build(ctx: BuildContext) -> bool:
+    """Build ``ctx`` as ``mjcfbuild build`` does, each line naming the robot; False when it
+    failed (doit then reports the task failed)."""
+    from mjcfbuild.cli import report_error, report_warning
+    from mjcfbuild.engine.progress import Progress
+    from mjcfbuild.engine.runner import run_build
+    from mjcfbuild.errors import MjcfbuildError
 
-    return {
-        "name": f"{prefix}tidy",
-        "doc": f"remove stale products of {ctx.label(ctx.out_dir)}",
-        "task_dep": [f"{group}:{task['name']}" for task in tasks],
-        "actions": [(remove_stale_products, [ctx, tasks])],
-        "uptodate": [lambda: not stale_products(ctx, tasks)],
-        "verbosity": 0,
-    }
+    robot = ctx.manifest.name
+    try:
+        result = run_build(ctx, Progress(stream=sys.stdout, live=False, prefix=f"{robot}: "))
+    except MjcfbuildError as error:
+        report_error(error, debug=False, base_dir=ctx.base_dir)
+        return False
+    for warning in result.warnings:
+        report_warning(f"{robot}: {warning}")
+    for failure in result.errors:
+        report_error(failure, debug=False, base_dir=ctx.base_dir)
+    print(result.summary())
+    return not result.errors
+
+
+def _shown(path: Path) -> str:
+    """``path`` relative to the current folder when inside it, else absolute."""
+    import os
+
+    relative = os.path.relpath(path)
+    return str(path) if relative.startswith("..") else relative

@@ -33,6 +33,7 @@ class Progress:
     failure_messages: dict[str, str] = field(default_factory=dict)
     notes: dict[str, str] = field(default_factory=dict)
     total: int = 0
+    prefix: str = ""  # before each printed line: which robot, where several share an output
 
     def __post_init__(self) -> None:
         if self.live is None:
@@ -73,7 +74,9 @@ class Progress:
         if name in self.notes:
             details.append(self.notes[name])
         mark = "" if outcome == RAN else f" {outcome.upper()}"
-        self.stream.write(f"[{done}/{self.total}] {title} ({', '.join(details)}){mark}\n")
+        self.stream.write(
+            f"{self.prefix}[{done}/{self.total}] {title} ({', '.join(details)}){mark}\n"
+        )
         self.stream.flush()
 
     def _redraw(self) -> None:

@@ -18,10 +18,11 @@ from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.loader import DATABASE, run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.report import write_report
-from mjcfbuild.engine.tasks import build_tasks, planning_tasks
+from mjcfbuild.engine.tasks import SOURCE_URDF, build_tasks, planned_urdf, planning_tasks
 from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError
 from mjcfbuild.fsutil import remove_stale_temp_files, write_if_changed
 from mjcfbuild.manifest.pinpoint import pinpoint
+from mjcfbuild.sources.origins import point_at_source, point_warning_at_source
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.workers import WorkerPool
@@ -109,8 +110,8 @@ def run_build(
     try:
         _ = ctx.sharing_choice  # a bad remote or executor address stops the build before it starts
         with build_lock(ctx, progress):
-            if ctx.manifest_file is not None:  # whichever way it was started
-                stamp.discard(ctx.manifest_file, ctx.run_check)
+            if ctx.stamp_key is not None:  # whichever way it was started
+                stamp.discard(ctx.stamp_key, ctx.run_check)
             prepare_state(ctx)
             # Workers start while this process plans, importing until their first step comes.
             ctx.session.warm_workers(first_build=not ctx.state(DATABASE).exists())
@@ -134,11 +135,15 @@ def run_build(
     result.ran = progress.names(RAN)
     result.up_to_date = progress.names(UP_TO_DATE)
     result.blocked = progress.names(BLOCKED)
-    result.warnings = list(dict.fromkeys(ctx.session.warnings))
+    warnings = list(dict.fromkeys(ctx.session.warnings))
+    for urdf in _expanded_urdfs(ctx):
+        label = ctx.label(urdf)
+        warnings = [point_warning_at_source(w, urdf, label, ctx.base_dir) for w in warnings]
+    result.warnings = warnings
     result.slowest = progress.slowest()
     result.seconds = time.perf_counter() - started
     result.engine_log = doit_output if result.errors else ""
-    if ctx.noop_stamp and tasks and result.ok and not result.warnings:
+    if ctx.noop_stamp and ctx.stamp_key and tasks and result.ok and not result.warnings:
         stamp.record_build(ctx, tasks, len(result.ran) + len(result.up_to_date))
     return result
 
@@ -156,6 +161,8 @@ def _run_stage(
             ctx.session.failures[name] = error
         if ctx.manifest_file is not None:
             error = pinpoint(error, ctx.manifest_label, ctx.manifest_file)
+        for urdf in _expanded_urdfs(ctx):  # where their elements were written (xacro)
+            point_at_source(error, urdf, ctx.label(urdf), ctx.base_dir)
         if error not in result.errors:
             result.errors.append(error)
     if code != 0 and not result.errors:
@@ -164,6 +171,15 @@ def _run_stage(
         )
         result.errors.append(MjcfbuildError(f"build engine error: {_first_line(message)}"))
     return output
+
+
+def _expanded_urdfs(ctx: BuildContext) -> list[Path]:
+    """The URDFs a build makes that errors may point at: the expanded source, the parts'
+    and the composed one."""
+    from mjcfbuild.compose.tasks import part_urdf
+
+    parts = [part_urdf(ctx, index) for index in range(len(ctx.manifest.attach))]
+    return [ctx.state(SOURCE_URDF), planned_urdf(ctx), *parts]
 
 
 def _first_line(text: str) -> str:

@@ -35,17 +35,22 @@ if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext
     from mjcfbuild.engine.hashes import HashCache
 
-FORMAT = 1
+FORMAT = 2
 # Set to any value to skip the fast path (benchmarks of the full path, debugging).
 DISABLE_VARIABLE = "MJCFBUILD_FULL_BUILD"
 # Variables read by the build besides those a depfile records; every MJCFBUILD_* counts too.
 _VARIABLES = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH", "XDG_CACHE_HOME", "HOME")
 _RACY_SECONDS = 2.0
-STATE_NOT_CHECKED = ("lock", "logs")  # in the state folder: bookkeeping no step reads
+# In the state folder: bookkeeping no step reads (the lock, workers' logs, the database of a
+# user's doit, which doit writes after the build it ran).
+STATE_NOT_CHECKED = ("lock", "logs", "dodo")
 
 
-def stamp_path(manifest: Path, run_check: bool) -> Path:
-    """Where the stamp of a build of ``manifest`` (with or without its check) is kept."""
+def stamp_path(manifest: Path | str, run_check: bool) -> Path:
+    """Where the stamp of a build of ``manifest`` (with or without its check) is kept.
+
+    ``manifest`` is the manifest file, or for a build without one (``convert``) the key that
+    :func:`command_key` makes of its command line."""
     from mjcfbuild.cachedir import user_cache_dir
 
     key = hashlib.sha256(f"{manifest}\0{run_check}".encode()).hexdigest()[:32]
@@ -65,13 +70,25 @@ def _same_environment(recorded: dict[str, str | None]) -> bool:
 
 
 def _python_folders() -> dict[str, int | None]:
-    """The mtimes of the folders packages are imported from (not the current folder)."""
+    """The mtimes of the folders packages are installed in: the standard library's, every
+    site-packages and the PYTHONPATH entries. Not the folder of the script that runs (the
+    ``mjcfbuild`` command's, doit's dodo.py's) nor the current one, so that ``mjcfbuild``,
+    ``python -m mjcfbuild`` and doit agree on one stamp."""
     folders: dict[str, int | None] = {}
-    here = os.getcwd()
+    explicit = set(filter(None, os.environ.get("PYTHONPATH", "").split(os.pathsep)))
+    prefixes = tuple(os.path.join(p, "lib") for p in {sys.prefix, sys.base_prefix})
     for entry in sys.path:
-        if entry and entry != here and os.path.isdir(entry):
+        installed = os.path.basename(entry) in ("site-packages", "dist-packages")
+        chosen = entry in explicit or installed or entry.startswith(prefixes)
+        if chosen and os.path.isdir(entry):
             folders[entry] = os.stat(entry).st_mtime_ns
     return folders
+
+
+def _interpreter() -> str:
+    """Which Python runs: its environment and its real executable (``python`` and
+    ``python3`` in one environment, the ``mjcfbuild`` script's and ``python -m``'s, agree)."""
+    return f"{sys.prefix}|{os.path.realpath(sys.executable)}"
 
 
 def _md5(path: str) -> str:
@@ -87,15 +104,27 @@ def _record(path: str, stat: os.stat_result, digest: str, now: float) -> list:
     return [stat.st_size, stat.st_mtime_ns, digest, racy]
 
 
+def command_key(command: str, cwd: str, options: dict) -> str:
+    """The stamp key of a build described by a command line rather than a manifest file:
+    the command, the folder it ran in and its options (only those that change the build)."""
+    return f"{command}\0{cwd}\0{json.dumps(options, sort_keys=True)}"
+
+
 def nothing_to_do(manifest: str | os.PathLike, run_check: bool) -> dict | None:
     """The stamp's summary if nothing changed since the last successful build, else None.
 
     ``{"robot": <model file name>, "tasks": <tasks of that build>}``. Never raises: any
     problem reading the stamp means the full build decides.
     """
+    return nothing_to_do_for(Path(os.path.normpath(os.path.abspath(manifest))), run_check)
+
+
+def nothing_to_do_for(key: Path | str, run_check: bool) -> dict | None:
+    """:func:`nothing_to_do` for the build whose stamp key is ``key`` (a normalised manifest
+    path, or a :func:`command_key`)."""
     if os.environ.get(DISABLE_VARIABLE):
         return None
-    path = stamp_path(Path(os.path.normpath(os.path.abspath(manifest))), run_check)
+    path = stamp_path(key, run_check)
     stamp = _read(path)
     if stamp is None:
         return None
@@ -155,7 +184,7 @@ def _read(path: Path) -> dict | None:
         return None
     if not isinstance(stamp, dict):
         return None
-    if stamp.get("format") != FORMAT or stamp.get("python") != sys.executable:
+    if stamp.get("format") != FORMAT or stamp.get("python") != _interpreter():
         return None
     return stamp
 
@@ -185,14 +214,14 @@ def _write(path: Path, stamp: dict) -> None:
         pass  # without a stamp the next build takes the full path: slower, never wrong
 
 
-def discard(manifest: Path, run_check: bool) -> None:
+def discard(manifest: Path | str, run_check: bool) -> None:
     """Remove the stamp: called when a build starts, so only a finished one leaves a stamp."""
     with contextlib.suppress(OSError):
         stamp_path(manifest, run_check).unlink()
 
 
 def write(
-    manifest: Path,
+    manifest: Path | str,
     run_check: bool,
     summary: dict,
     inputs: Iterable[Path | str],
@@ -222,7 +251,7 @@ def write(
         environment.setdefault(name, os.environ.get(name))
     stamp = {
         "format": FORMAT,
-        "python": sys.executable,
+        "python": _interpreter(),
         "summary": summary,
         "environment": environment,
         "python_folders": _python_folders(),
@@ -259,9 +288,11 @@ def record_build(ctx: BuildContext, tasks: list[dict], task_count: int) -> None:
     from mjcfbuild.engine.depfile import Depfile
     from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, SOURCE_DEPS
 
-    manifest = ctx.manifest_file
-    assert manifest is not None, "a stamp is kept only for the build of a manifest file"
-    inputs: list[Path | str] = [manifest, *mjcfbuild_sources()]
+    manifest = ctx.stamp_key
+    assert manifest is not None, "a stamp is kept only for a build with a stamp key"
+    inputs: list[Path | str] = [*mjcfbuild_sources()]
+    if ctx.manifest_file is not None:
+        inputs.append(ctx.manifest_file)
     outputs: list[Path | str] = [ctx.robot_path, ctx.scene_path]
     absent: list[str] = []
     variables: list[str] = []
@@ -279,7 +310,13 @@ def record_build(ctx: BuildContext, tasks: list[dict], task_count: int) -> None:
             outputs += files_under(folder)
     if ctx.urdf_path is not None:
         outputs.append(ctx.urdf_path)
-    summary = {"robot": ctx.robot_path.name, "tasks": task_count}
+    from mjcfbuild.engine.published import published_files
+
+    summary = {
+        "robot": ctx.robot_path.name,
+        "tasks": task_count,
+        "outputs": [str(path) for path in published_files(ctx)],  # for --fail-on-change
+    }
     write(
         manifest,
         ctx.run_check,

@@ -414,7 +414,17 @@ def _expand_task(ctx: BuildContext, prefix: str) -> dict:
         ctx.resolver.explicit,
         ctx.state(SOURCE_URDF),
         ctx.state(SOURCE_DEPS),
+        args_key=_args_key(ctx, "source.args"),
     )
+
+
+def _args_key(ctx: BuildContext, key: str) -> str:
+    """Where xacro arguments were given, for the error about one no file declares."""
+    from mjcfbuild.sources.expand import COMMAND_LINE
+
+    if ctx.manifest_file is None and ctx.manifest_label == COMMAND_LINE:
+        return COMMAND_LINE  # convert's NAME:=VALUE
+    return f"{ctx.manifest_label} {key}"
 
 
 def expand_file_task(
@@ -426,9 +436,14 @@ def expand_file_task(
     packages: dict[str, Path],
     output: Path,
     deps: Path,
+    args_key: str | None = None,
 ) -> dict:
     """The task expanding (xacro) or reading (URDF) ``source`` into ``output``; the files it
-    read are listed in ``deps`` and checked from the next build on."""
+    read are listed in ``deps`` and checked from the next build on, where each line's element
+    was written in :func:`~mjcfbuild.sources.origins.origins_file`. ``args_key`` is where
+    ``args`` were given (:func:`~mjcfbuild.sources.expand.expand_xacro`)."""
+    from mjcfbuild.sources.origins import origins_file
+
     depfile = Depfile.read(deps)
     file_dep = [source]
     extra = []
@@ -445,6 +460,8 @@ def expand_file_task(
         environment=_environment(ctx),
         output=str(output),
         depfile=str(deps),
+        origins=str(origins_file(output)),
+        args_key=args_key or "",
     )
     return _task(
         ctx,
@@ -454,7 +471,7 @@ def expand_file_task(
         payload,
         in_worker=kind == "xacro",
         file_dep=file_dep,
-        targets=[output, deps],
+        targets=[output, deps, origins_file(output)],
         extra_uptodate=extra,
     )
 
@@ -796,7 +813,10 @@ def _scene_task(ctx: BuildContext, plan: Plan, prefix: str) -> dict:
         _require_file(ctx, source, "scene file", "scene.file")
     block = None
     if scene.mjcf:
-        block = {"xml": scene.mjcf, "origin": f"{ctx.manifest_label} scene.mjcf"}
+        # The manifest relative to its own folder: the same parameter whichever folder the
+        # build runs in (errors are shown relative to the current folder when reported).
+        where = ctx.portable_label(ctx.manifest_file) if ctx.manifest_file else ctx.manifest_label
+        block = {"xml": scene.mjcf, "origin": f"{where} scene.mjcf"}
     elif source is None:
         for where in ("file", "urdf"):
             found = (plan.inputs.get(where) or {}).get("scene")

@@ -9,7 +9,7 @@ from mjcfbuild import __version__
 
 # Bump a step's number when its output for the same inputs changes.
 STEP_FORMATS = {
-    "expand": 1,
+    "expand": 2,  # 2: the origins of the expanded lines
     "plan": 3,
     "mesh": 5,
     "decompose": 3,
@@ -21,7 +21,7 @@ STEP_FORMATS = {
     "srdf": 2,
     "selfcollision": 3,
     "export_urdf": 1,
-    "compose": 1,
+    "compose": 2,  # 2: the origins of the composed lines
     "mjcfpart": 1,
 }
 

@@ -277,7 +277,7 @@ class WorkerPool:
             return reply["result"]
         error = MjcfbuildError.from_dict(reply["error"])
         if isinstance(error, InternalError):
-            error.details = reply.get("traceback", "")
+            error.details = reply.get("traceback", "") or error.details
         raise error
 
     def warm(

@@ -23,23 +23,25 @@ def load_manifest(path: str | Path) -> Manifest:
     errors and every kind of validation error.
     """
     path = Path(path)
+    # Like every other error about the manifest, these name it relative to its own folder;
+    # callers show it relative to the current one (ManifestError.relocate).
     try:
         data = path.read_bytes()
         text = data.decode("utf-8")
     except FileNotFoundError:
         raise ManifestError(
-            "manifest not found", file=path, hint="run 'mjcfbuild init SOURCE' to create one"
+            "manifest not found", file=path.name, hint="run 'mjcfbuild init SOURCE' to create one"
         ) from None
     except IsADirectoryError:
         raise ManifestError(
-            "this is a folder, not a manifest", file=path, hint="pass the path of robot.yaml"
+            "this is a folder, not a manifest", file=path.name, hint="pass the path of robot.yaml"
         ) from None
     except UnicodeDecodeError as exc:
         raise ManifestError(
-            f"not UTF-8 text (byte {exc.start})", file=path, hint="save the file as UTF-8"
+            f"not UTF-8 text (byte {exc.start})", file=path.name, hint="save the file as UTF-8"
         ) from None
     except OSError as exc:
-        raise ManifestError(f"cannot read: {exc.strerror}", file=path) from None
+        raise ManifestError(f"cannot read: {exc.strerror}", file=path.name) from None
     # Errors name the manifest relative to its own folder, like every other file of a build.
     return parse_manifest(text, display_name=path.name)
 

@@ -10,16 +10,24 @@ from __future__ import annotations
 
 import io
 import os
+import re
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import IO, Any
 
-from mjcfbuild.errors import InputError
+from mjcfbuild.errors import InputError, ManifestError, UsageError
 from mjcfbuild.fsutil import normalise, unreadable_file
-from mjcfbuild.sources.packages import PackageResolver
+from mjcfbuild.sources.packages import PackageResolver, did_you_mean
 from mjcfbuild.xmlguard import refuse_entities
+
+# ``args_key`` of arguments given as NAME:=VALUE on the command line (``convert``).
+COMMAND_LINE = "the command line"
+XACRO_NAMESPACES = ("http://www.ros.org/wiki/xacro", "http://ros.org/wiki/xacro")
+# Carried by every element through xacro's expansion: where it was written ("file:line").
+_ORIGIN = "mjcfbuild-origin"
+_ARG_USE = re.compile(r"\$\(arg\s+([^\s)]+)\s*\)")
 
 
 @dataclass
@@ -30,6 +38,16 @@ class Expansion:
     files: list[str] = field(default_factory=list)
     missing: list[str] = field(default_factory=list)
     environment: dict[str, str | None] = field(default_factory=dict)
+    # For xacro: line of the expanded URDF -> the file and line where its element was written.
+    origins: dict[int, tuple[str, int]] = field(default_factory=dict)
+
+
+@dataclass
+class _Reading:
+    """What the expansion saw in the files xacro parsed."""
+
+    files: list[str] = field(default_factory=list)  # origins name files by index in this
+    declared: set[str] = field(default_factory=set)  # <xacro:arg> names and $(arg) uses
 
 
 def expand_source(
@@ -38,15 +56,17 @@ def expand_source(
     args: Mapping[str, str],
     packages: Mapping[str, str],
     environment: Mapping[str, str],
+    args_key: str | None = None,
 ) -> Expansion:
     """A source as URDF (or SRDF) text: expanded with xacro, or read as it is. ``packages`` maps
-    package names to folders; ``environment`` holds the ROS variables that find the others."""
+    package names to folders; ``environment`` holds the ROS variables that find the others;
+    ``args_key`` says where ``args`` were given (see :func:`expand_xacro`)."""
     if not xacro:
         return read_urdf_file(source)
     from mjcfbuild.sources.packages import PackageResolver
 
     resolver = PackageResolver({name: Path(f) for name, f in packages.items()}, environment)
-    return expand_xacro(source, args, resolver)
+    return expand_xacro(source, args, resolver, args_key)
 
 
 def read_urdf_file(path: Path) -> Expansion:
@@ -64,8 +84,18 @@ def read_urdf_file(path: Path) -> Expansion:
     return Expansion(urdf=data, files=[str(normalise(path))])
 
 
-def expand_xacro(path: Path, mappings: Mapping[str, str], packages: PackageResolver) -> Expansion:
-    """Expand a xacro file in-process; :class:`InputError` names the failing file."""
+def expand_xacro(
+    path: Path,
+    mappings: Mapping[str, str],
+    packages: PackageResolver,
+    args_key: str | None = None,
+) -> Expansion:
+    """Expand a xacro file in-process; :class:`InputError` names the failing file.
+
+    ``args_key`` is where ``mappings`` were given: a manifest key (``robot.yaml source.args``:
+    an argument the files neither declare nor use is a :class:`ManifestError` at that key's
+    line), :data:`COMMAND_LINE` (a :class:`UsageError`), or None (not checked).
+    """
     problem = unreadable_file(path)
     if problem:
         raise InputError(
@@ -77,7 +107,8 @@ def expand_xacro(path: Path, mappings: Mapping[str, str], packages: PackageResol
 
     reads: dict[str, str | None] = {}
     raised: list[InputError] = []
-    with _xacro_hooks(xacro, packages, reads, raised):
+    reading = _Reading()
+    with _xacro_hooks(xacro, packages, reads, raised, reading):
         try:
             document = xacro.process_file(str(path), mappings=dict(mappings))
         except xml.parsers.expat.ExpatError as exc:
@@ -88,24 +119,35 @@ def expand_xacro(path: Path, mappings: Mapping[str, str], packages: PackageResol
                 column=exc.offset + 1 if exc.offset is not None else None,
             ) from None
         except Exception as exc:  # xacro raises many kinds; all mean "this input is wrong"
+            current = _current_file(xacro, path)
             if raised:  # our own $(find)/$(env) error, which xacro wraps in its own
                 first = raised[0]
-                raise InputError(
-                    first.message,
-                    file=_current_file(xacro, path),
-                    line=first.location.line if first.location else None,
-                    hint=first.hint,
-                ) from None
+                line = first.location.line if first.location else None
+                package = re.match(r"unknown package '([^']+)'", first.message)
+                if line is None and package:
+                    line = _line_of(current, re.escape(f"$(find {package.group(1)})"))
+                raise InputError(first.message, file=current, line=line, hint=first.hint) from None
             message = _xacro_message(exc)
             hint = "the same error appears with the 'xacro' command; fix the file or its args"
-            if "substitution argument" in message:
+            line = None
+            undefined = re.search(r"(?i)undefined substitution argument (\S+)", message)
+            if undefined:
+                name = undefined.group(1).strip("'\"")
+                # Given under a misspelt name? (Only then: files not read yet may declare
+                # the other unknown ones.)
+                if did_you_mean(name, set(mappings) - reading.declared):
+                    _check_args(mappings, reading.declared, path, args_key)
+                line = _line_of(current, rf"\$\(arg\s+{re.escape(name)}\s*\)")
+                message += did_you_mean(name, set(mappings) | (reading.declared - {name}))
                 hint = (
                     "pass it under 'source.args' in robot.yaml, or give its <xacro:arg> a default"
                 )
             raise InputError(
-                f"xacro failed: {message}", file=_current_file(xacro, path), hint=hint
+                f"xacro failed: {message}", file=current, line=line, hint=hint
             ) from None
         included = list(xacro.all_includes)
+    _check_args(mappings, reading.declared, path, args_key)
+    marks = _take_origins(document)
     text = document.toprettyxml(indent="  ", encoding="utf-8")
     files = {str(normalise(path))}
     missing: set[str] = set()
@@ -117,7 +159,101 @@ def expand_xacro(path: Path, mappings: Mapping[str, str], packages: PackageResol
         files=sorted(files),
         missing=sorted(missing),
         environment=dict(sorted(reads.items())),
+        origins=_origins(text, marks, reading.files),
     )
+
+
+def _check_args(
+    mappings: Mapping[str, str], declared: set[str], source: Path, args_key: str | None
+) -> None:
+    """Refuse an argument that no file of the expansion declares or uses: a misspelt name
+    would otherwise be ignored, and the file's default used instead."""
+    unknown = sorted(set(mappings) - declared)
+    if args_key is None or not unknown:
+        return
+    name = unknown[0]
+    listing = ", ".join(sorted(declared)) or "none"
+    message = (
+        f"xacro argument '{name}' is not declared in {source.name} or the files it includes"
+        f"{did_you_mean(name, declared)} (declared: {listing})"
+    )
+    if args_key == COMMAND_LINE:
+        raise UsageError(
+            f"{name}:={mappings[name]}: {message}",
+            hint="fix the argument's name, or declare it with <xacro:arg name=...>",
+        )
+    raise ManifestError(
+        message,
+        file=f"{args_key}.{name}",
+        hint="fix its name, or declare it in the xacro file with <xacro:arg name=...>",
+    )
+
+
+def _line_of(file: str, pattern: str) -> int | None:
+    """The first line of ``file`` matching ``pattern``, if any."""
+    try:
+        with open(file, encoding="utf-8", errors="replace") as handle:
+            for number, line in enumerate(handle, 1):
+                if re.search(pattern, line):
+                    return number
+    except OSError:
+        pass
+    return None
+
+
+def _mark_origins(document: Any, data: bytes, file: str, reading: _Reading) -> None:
+    """Give each non-xacro element of a freshly parsed file (a minidom document) an attribute
+    saying where it is written, which xacro copies along wherever the element ends up; record
+    the arguments the file declares or uses."""
+    from lxml import etree
+
+    reading.declared.update(_ARG_USE.findall(data.decode("utf-8", "replace")))
+    try:
+        parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=True)
+        root = etree.fromstring(data, parser)
+    except etree.XMLSyntaxError:
+        return  # xacro reports it
+    elements = [element for element in root.iter() if isinstance(element.tag, str)]
+    nodes = document.getElementsByTagName("*")
+    if len(elements) != len(nodes):
+        return  # never seen; without the same elements, no origin is better than a wrong one
+    index = len(reading.files)
+    reading.files.append(file)
+    for element, node in zip(elements, nodes, strict=True):
+        name = etree.QName(element)
+        if name.namespace in XACRO_NAMESPACES:
+            if name.localname == "arg" and element.get("name"):
+                reading.declared.add(element.get("name"))
+            continue
+        node.setAttribute(_ORIGIN, f"{index}:{element.sourceline}")
+
+
+def _take_origins(document: Any) -> list[str]:
+    """Remove the origin attributes from the expanded document: each element's, in order."""
+    marks = []
+    for node in document.getElementsByTagName("*"):
+        marks.append(node.getAttribute(_ORIGIN))
+        if node.hasAttribute(_ORIGIN):
+            node.removeAttribute(_ORIGIN)
+    return marks
+
+
+def _origins(text: bytes, marks: list[str], files: list[str]) -> dict[int, tuple[str, int]]:
+    """Line of the expanded text -> (file, line) where the element starting there was
+    written."""
+    from lxml import etree
+
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=True)
+    root = etree.fromstring(text, parser)
+    lines = [element.sourceline for element in root.iter() if isinstance(element.tag, str)]
+    if len(lines) != len(marks):
+        return {}
+    origins: dict[int, tuple[str, int]] = {}
+    for line, mark in zip(lines, marks, strict=True):
+        if mark:
+            index, _, written = mark.partition(":")
+            origins.setdefault(line, (str(normalise(files[int(index)])), int(written)))
+    return origins
 
 
 def _xacro_message(exc: Exception) -> str:
@@ -141,6 +277,7 @@ def _xacro_hooks(
     packages: PackageResolver,
     reads: dict[str, str | None],
     raised: list[InputError],
+    reading: _Reading,
 ) -> Iterator[None]:
     """Answer $(find) from ``packages`` and record $(env)/$(optenv) reads, then restore.
 
@@ -188,7 +325,9 @@ def _xacro_hooks(
             except InputError as exc:
                 raised.append(exc)
                 raise
-            return original_parse(io.BytesIO(data), filename)
+            document = original_parse(io.BytesIO(data), filename)
+            _mark_origins(document, data, os.path.join(xacro_module.root_dir, filename), reading)
+            return document
         return original_parse(inp, filename)
 
     replacements: dict[str, Callable] = {

@@ -52,7 +52,7 @@ class PackageResolver:
         known = sorted(set(self.explicit) | set(self._crawl()))
         listing = ", ".join(known) if known else "none"
         raise InputError(
-            f"unknown package '{name}' (known packages: {listing})",
+            f"unknown package '{name}'{did_you_mean(name, known)} (known packages: {listing})",
             hint=f"add '{name}: <folder>' under 'packages' in robot.yaml, "
             "or set ROS_PACKAGE_PATH / AMENT_PREFIX_PATH",
         )
@@ -114,3 +114,11 @@ def find_enclosing_package(path: Path) -> tuple[str, Path] | None:
         if manifest.is_file():
             return package_name(manifest) or folder.name, folder
     return None
+
+
+def did_you_mean(name: str, candidates: list[str] | set[str]) -> str:
+    """``; did you mean 'x'?`` for the candidate closest to ``name``, or nothing."""
+    import difflib
+
+    match = difflib.get_close_matches(name, sorted(candidates), n=1)
+    return f"; did you mean '{match[0]}'?" if match else ""

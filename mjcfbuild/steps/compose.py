@@ -6,6 +6,7 @@ from functools import partial
 from pathlib import Path
 
 from mjcfbuild.compose.urdf import Part, compose
+from mjcfbuild.sources.origins import write_origins, written_at
 from mjcfbuild.sources.packages import PackageResolver
 from mjcfbuild.sources.uris import resolve_uri
 from mjcfbuild.steps.outputs import write_output
@@ -35,9 +36,18 @@ def run(payload: dict) -> dict:
             )
         )
     main = Path(request.main).read_bytes()
-    text, warnings = compose(main, request.main_label, parts, Path(request.base_dir))
+    joined: dict[int, tuple[int, int]] = {}
+    text, warnings = compose(main, request.main_label, parts, Path(request.base_dir), joined)
     outputs: dict[str, str] = {}
     write_output(Path(request.output), text, outputs)
+    inputs = [(request.main, request.main_label)]
+    inputs += [(entry.urdf, entry.label) for entry in request.parts]
+    origins = {}
+    for line, (source, written) in joined.items():
+        urdf, label = inputs[source]
+        # Through the input's own origins (a xacro), else its line as it is shown.
+        origins[line] = written_at(Path(urdf), written) or (label, written)
+    write_origins(Path(request.origins), origins, outputs)
     return {"outputs": outputs, "warnings": warnings}
 
 

@@ -6,6 +6,7 @@ from pathlib import Path
 
 from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.sources.expand import expand_source
+from mjcfbuild.sources.origins import write_origins
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import ExpandPayload
 
@@ -20,9 +21,11 @@ def run(payload: dict) -> dict:
         request.args,
         request.packages,
         request.environment,
+        request.args_key or None,
     )
     outputs: dict[str, str] = {}
     write_output(Path(request.output), expansion.urdf, outputs)
+    write_origins(Path(request.origins), expansion.origins, outputs)
     depfile = Path(request.depfile)
     Depfile(expansion.files, expansion.missing, expansion.environment).write(depfile)
     return {"outputs": outputs, "discovered": [f for f in expansion.files if f != str(source)]}

@@ -121,6 +121,8 @@ class ExpandPayload(Payload):
     environment: dict[str, str]  # the ROS variables package lookup reads
     output: Output
     depfile: Output
+    origins: Output  # where each expanded line's element was written (xacro)
+    args_key: MessageLabel  # where args were given: a manifest key, the command line, or ""
 
 
 @dataclass(frozen=True)
@@ -148,6 +150,7 @@ class ComposePayload(Payload):
     parts: list[PartEntry]
     environment: dict[str, str]
     output: Output
+    origins: Output  # where each line's element was written (through the inputs' own)
 
 
 @dataclass(frozen=True)

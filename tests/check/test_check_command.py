@@ -176,3 +176,48 @@ def test_structural_findings_come_first(tmp_path):
     assert "0.085 in the model" in failures[1]
     assert any("joint 'elbow': axis" in f for f in failures[2:])
     assert not any("shoulder" in f or "inertia" in f for f in failures)
+
+
+def test_check_urdf_takes_package_for_a_xacro_that_finds_one(tmp_path):
+    # The xacro includes a file of a package that only --package says where to find.
+    write(
+        tmp_path / "pkgs" / "pendulum_description" / "urdf" / "arm.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        + URDF[URDF.index('<link name="arm">') : URDF.index("</robot>")]
+        + "</robot>",
+    )
+    write(
+        tmp_path / "p.urdf.xacro",
+        '<robot name="pendulum" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="base"/>'
+        '<xacro:include filename="$(find pendulum_description)/urdf/arm.xacro"/></robot>',
+    )
+    write(tmp_path / "p.xml", MJCF)
+    argv = ["check", "--urdf", "p.urdf.xacro", "--mjcf", "p.xml"]
+    missing = run_cli(*argv, cwd=tmp_path, env={"ROS_PACKAGE_PATH": "", "AMENT_PREFIX_PATH": ""})
+    assert missing.code == 4 and "pendulum_description" in missing.stderr
+    result = run_cli(
+        *argv, "--package", "pendulum_description=pkgs/pendulum_description", cwd=tmp_path
+    )
+    assert result.code == EXIT_OK, result.stdout + result.stderr
+    assert "check passed" in result.stdout
+
+
+def test_check_urdf_points_a_xacro_mistake_at_the_included_file_and_line(tmp_path):
+    write(
+        tmp_path / "urdf" / "arm.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <link name="arm"/>\n'
+        '  <joint name="swing" type="revolute"><parent link="bsae"/><child link="arm"/>\n'
+        '    <axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>\n'
+        "</robot>\n",
+    )
+    write(
+        tmp_path / "urdf" / "p.urdf.xacro",
+        '<robot name="pendulum" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <link name="base"/>\n  <xacro:include filename="arm.xacro"/>\n</robot>\n',
+    )
+    write(tmp_path / "p.xml", MJCF)
+    result = run_cli("check", "--urdf", "urdf/p.urdf.xacro", "--mjcf", "p.xml", cwd=tmp_path)
+    assert result.code == 4, result.stderr
+    assert "error: urdf/arm.xacro:3:" in result.stderr and "'bsae'" in result.stderr
+    assert "of its expansion]" in result.stderr

@@ -23,6 +23,12 @@ from tests.conftest import two_link_urdf
 FileContent = str | bytes | Callable[[Path], None]
 
 MANIFEST = "name: robot\nsource:\n  urdf: robot.urdf\n"
+ARG_XACRO = (
+    '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
+    '  <xacro:arg name="with_camera" default="true"/>\n'
+    '  <link name="base"/><xacro:if value="$(arg with_camera)"><link name="camera"/></xacro:if>\n'
+    "</robot>\n"
+)
 XACRO_MANIFEST = "name: robot\nsource:\n  xacro: robot.urdf.xacro\n"
 TETRAHEDRON_STL = """solid t
 facet normal 0 0 -1
@@ -179,6 +185,13 @@ CASES: list[Case] = [
         ["robot.yaml:1:", "mapping"],
     ),
     Case("manifest not found", {}, EXIT_MANIFEST, ["robot.yaml", "not found", "init"]),
+    Case(
+        "manifest in a folder, with another extension",
+        {"robots/arm/robot.yaml": MANIFEST},
+        EXIT_MANIFEST,
+        ["error: robots/arm/robot.yml: manifest not found"],
+        args=["build", "robots/arm/robot.yml"],
+    ),
     Case("manifest is a folder", {"robot.yaml/keep": ""}, EXIT_MANIFEST, ["robot.yaml", "folder"]),
     Case(
         "manifest not UTF-8",
@@ -293,7 +306,7 @@ CASES: list[Case] = [
             "</robot>\n",
         },
         EXIT_INPUT,
-        ["robot.urdf.xacro", "ghost_description", "packages"],
+        ["robot.urdf.xacro:2:", "ghost_description", "packages"],
     ),
     Case(
         "xacro include missing",
@@ -313,7 +326,105 @@ CASES: list[Case] = [
             '<link name="$(arg prefix)base"/>\n</robot>\n',
         },
         EXIT_INPUT,
-        ["robot.urdf.xacro", "substitution argument prefix", "source.args"],
+        ["robot.urdf.xacro:2:", "substitution argument prefix", "source.args"],
+    ),
+    Case(
+        "xacro argument misspelt in robot.yaml",
+        {
+            "robot.yaml": XACRO_MANIFEST + "  args:\n    with_cmaera: false\n",
+            "robot.urdf.xacro": ARG_XACRO,
+        },
+        EXIT_MANIFEST,
+        [
+            "robot.yaml:5:5:",
+            "'with_cmaera' is not declared",
+            "did you mean 'with_camera'?",
+            "declared: with_camera",
+        ],
+    ),
+    Case(
+        "xacro argument misspelt in an attached part",
+        {
+            "robot.yaml": MANIFEST
+            + "attach:\n  - source:\n      xacro: part.urdf.xacro\n      args:\n"
+            "        with_cmaera: false\n    to: arm\n    prefix: p_\n",
+            "robot.urdf": two_link_urdf(),
+            "part.urdf.xacro": ARG_XACRO,
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:8:9:", "attach[0].source.args.with_cmaera", "did you mean 'with_camera'?"],
+    ),
+    Case(
+        "mesh of an attached xacro part with a misspelt package",
+        {
+            "robot.yaml": MANIFEST
+            + "packages:\n  gripper_description: .\n"
+            + "attach:\n  - {source: {xacro: gripper.urdf.xacro}, to: arm, prefix: g_}\n",
+            "robot.urdf": two_link_urdf(),
+            "gripper.urdf.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="g">\n'
+            '  <xacro:macro name="palm">\n'
+            '    <link name="palm"><visual><geometry>\n'
+            '      <mesh filename="package://gripper_descripton/palm.stl"/>\n'
+            "    </geometry></visual></link>\n"
+            "  </xacro:macro>\n  <xacro:palm/>\n</robot>\n",
+        },
+        EXIT_INPUT,
+        [
+            "error: gripper.urdf.xacro:4:",
+            "did you mean 'gripper_description'?",
+            "[expanded: mjcf/.mjcfbuild/attach/0.urdf:",
+        ],
+    ),
+    Case(
+        "joint of an attached xacro part with a misspelt type",
+        {
+            "robot.yaml": MANIFEST
+            + "attach:\n  - {source: {xacro: gripper.urdf.xacro}, to: arm, prefix: g_}\n",
+            "robot.urdf": two_link_urdf(),
+            "gripper.urdf.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="g">\n'
+            '  <link name="palm"/>\n  <link name="jaw"/>\n'
+            '  <joint name="slide" type="prismatc">\n'
+            '    <parent link="palm"/><child link="jaw"/></joint>\n</robot>\n',
+        },
+        EXIT_INPUT,
+        ["error: gripper.urdf.xacro:4:", "prismatc", "[expanded: mjcf/.mjcfbuild/composed.urdf:"],
+    ),
+    Case(
+        "xacro argument misspelt on convert",
+        {"robot.urdf.xacro": ARG_XACRO},
+        EXIT_USAGE,
+        ["with_cmaera:=false:", "did you mean 'with_camera'?", "declared: with_camera"],
+        args=["convert", "-u", "robot.urdf.xacro", "-o", "mjcf", "with_cmaera:=false"],
+    ),
+    Case(
+        "xacro argument misspelt in the file",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": ARG_XACRO.replace("$(arg with_camera)", "$(arg with_camra)"),
+        },
+        EXIT_INPUT,
+        ["robot.urdf.xacro:3:", "argument with_camra", "did you mean 'with_camera'?"],
+    ),
+    Case(
+        "package misspelt in an included xacro's mesh",
+        {
+            "robot.yaml": XACRO_MANIFEST + "packages:\n  arm_description: .\n",
+            "robot.urdf.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
+            '  <xacro:include filename="$(find arm_description)/parts/arm.xacro"/>\n'
+            "  <xacro:arm/>\n</robot>\n",
+            "parts/arm.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+            '  <xacro:macro name="arm">\n'
+            '    <link name="base"><visual><geometry>\n'
+            '      <mesh filename="package://arm_descripton/base.stl"/>\n'
+            "    </geometry></visual></link>\n"
+            "  </xacro:macro>\n</robot>\n",
+        },
+        EXIT_INPUT,
+        [
+            "error: parts/arm.xacro:3:",
+            "unknown package 'arm_descripton'; did you mean 'arm_description'?",
+            "[expanded: mjcf/.mjcfbuild/source.urdf:",
+        ],
     ),
     Case(
         "xacro entity expansion",

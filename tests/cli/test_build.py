@@ -78,3 +78,27 @@ def test_version_and_help(cli):
     for command in ("build", "convert", "init", "schema"):
         assert command in help_text
     assert "exit codes:" in help_text
+
+
+def test_fail_on_change_fails_until_created_and_changed_files_are_added(cli, arm):
+    import subprocess
+
+    def git(*args):
+        subprocess.run(["git", *args], cwd=arm, check=True, capture_output=True)
+
+    git("init", "-q")
+    created = cli("build", "--no-check", "--fail-on-change", cwd=arm)
+    assert created.code == 6, created.stderr
+    assert "files were created: mjcf/example_arm.xml, mjcf/scene.xml" in created.stderr
+    assert "git add them" in created.stderr
+    # Nothing rebuilt, but the model is still not added: the no-op fails too.
+    again = cli("build", "--no-check", "--fail-on-change", cwd=arm)
+    assert again.code == 6 and "0 run" in again.stdout and "files were created" in again.stderr
+    git("add", "-A")
+    assert cli("build", "--no-check", "--fail-on-change", cwd=arm).code == 0
+    limits = arm / "config" / "joint_limits.yaml"
+    limits.write_text(limits.read_text().replace("upper: 2.5", "upper: 2.4"))
+    changed = cli("build", "--no-check", "--fail-on-change", "-q", cwd=arm)
+    assert changed.code == 6
+    assert "files were changed: mjcf/example_arm.xml" in changed.stderr
+    assert "created" not in changed.stderr

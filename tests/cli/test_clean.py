@@ -20,3 +20,18 @@ def test_clean_removes_outputs_and_state_and_keeps_other_files(arm):
 def test_clean_with_nothing_built(arm):
     result = run_cli("clean", cwd=arm)
     assert result.code == 0 and result.stdout.strip() == "mjcfbuild: removed nothing"
+
+
+def test_the_manifest_is_a_positional_argument(arm, tmp_path):
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    result = run_cli("clean", str(arm / "robot.yaml"), cwd=tmp_path)
+    assert result.code == 0, result.stderr
+    assert not (arm / "mjcf").exists()
+
+
+def test_quiet_before_or_after_the_command_prints_nothing(arm):
+    for argv in (["-q", "clean"], ["clean", "-q"]):
+        assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+        result = run_cli(*argv, cwd=arm)
+        assert result.code == 0 and result.stdout == "", result.stdout
+        assert not (arm / "mjcf").exists()

@@ -94,3 +94,45 @@ def test_help_says_what_each_reference_flag_does(cli):
         after = text.split(flag, 1)[1][:200]
         assert "no effect" in after and "always" in after, flag
     assert "pre-generated OBJ meshes" in text.split("--asset_dir", 1)[1][:200]
+
+
+_PROBE = (
+    "import sys\n"
+    "from mjcfbuild.cli import run\n"
+    "code = run(sys.argv[1:])\n"
+    "print('imported:', ','.join(sorted(m for m in sys.modules if m.split('.')[0] in "
+    "('doit', 'pydantic', 'yaml', 'numpy', 'mujoco', 'trimesh', 'lxml', 'xacro', 'fsspec')"
+    " or m.startswith(('mjcfbuild.engine.', 'mjcfbuild.manifest')) "
+    "and m != 'mjcfbuild.engine.stamp')))\n"
+    "sys.exit(code)\n"
+)
+
+
+def _convert_in_probe(cwd, *argv):
+    import subprocess
+    import sys
+
+    done = subprocess.run(
+        [sys.executable, "-c", _PROBE, "convert", *argv], cwd=cwd, capture_output=True, text=True
+    )
+    [imported] = [line for line in done.stdout.splitlines() if line.startswith("imported:")]
+    return done, imported.removeprefix("imported:").strip()
+
+
+def test_a_convert_no_op_takes_builds_fast_path_and_imports_nothing_heavy(cli, arm, tmp_path):
+    argv = ["-u", str(arm / "urdf" / "arm.urdf.xacro"), "--package", f"arm_description={arm}"]
+    argv += ["-o", "out", "with_camera:=true"]
+    first = cli("convert", *argv, cwd=tmp_path)
+    assert first.code == EXIT_OK, first.stderr
+    done, imported = _convert_in_probe(tmp_path, *argv)
+    assert done.returncode == 0, done.stderr
+    assert "0 run," in done.stdout and imported == ""
+    # Another argument, or an edited input, is another build: the full path decides.
+    done, imported = _convert_in_probe(tmp_path, *argv[:-1], "with_camera:=false")
+    assert done.returncode == 0, done.stderr
+    assert "doit" in imported and "up to date" in done.stdout
+    finger = arm / "urdf" / "finger.xacro"
+    finger.write_text(finger.read_text() + "\n<!-- edited -->\n")
+    done, imported = _convert_in_probe(tmp_path, *argv)
+    assert done.returncode == 0, done.stderr
+    assert "doit" in imported

@@ -52,3 +52,23 @@ def test_dry_run_lists_what_would_run_and_runs_nothing(arm):
     assert result.stdout.strip().endswith("(dry run)")
     assert (arm / "mjcf" / "example_arm.xml").read_bytes() == model
     assert "expand: would run" in run_cli("explain", "expand", cwd=arm).stdout
+
+
+def test_the_manifest_is_a_positional_argument_in_either_order_with_the_task(arm, tmp_path):
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    manifest = str(arm / "robot.yaml")
+    whole = run_cli("explain", manifest, cwd=tmp_path)
+    assert whole.code == 0, whole.stderr
+    assert "mesh:base: up to date" in whole.stdout
+    for argv in ([manifest, "mesh:base"], ["mesh:base", manifest], ["mesh:base", "-m", manifest]):
+        one = run_cli("explain", *argv, cwd=tmp_path)
+        assert one.code == 0, one.stderr
+        assert one.stdout.splitlines() == ["mesh:base: up to date"]
+    # A manifest with another name is recognised because the file exists.
+    renamed = arm / "arm.manifest"
+    renamed.write_text((arm / "robot.yaml").read_text())
+    assert run_cli("explain", "arm.manifest", "mesh:base", cwd=arm).code == 0
+    two = run_cli("explain", "robot.yaml", "arm.manifest", cwd=arm)
+    assert two.code == 2 and "one manifest" in two.stderr
+    both = run_cli("explain", "robot.yaml", "-m", "arm.manifest", cwd=arm)
+    assert both.code == 2 and "two manifests" in both.stderr

@@ -57,3 +57,11 @@ def test_dot_into_a_closed_pipe_ends_quietly(arm):
         os.close(write_end)
     assert process.returncode == 0, process.stderr
     assert process.stderr == ""
+
+
+def test_the_manifest_is_a_positional_argument_and_m_still_works(arm, tmp_path):
+    manifest = str(arm / "robot.yaml")
+    positional = run_cli("graph", manifest, cwd=tmp_path)
+    flag = run_cli("graph", "-m", manifest, cwd=tmp_path)
+    assert positional.code == flag.code == 0, positional.stderr
+    assert positional.stdout == flag.stdout and "expand" in positional.stdout

@@ -1,4 +1,5 @@
-"""Real doit on this repository's dodo.py and on a user's own dodo.py built from the README."""
+"""Real doit on this repository's dodo.py and on a user's own dodo.py built from the README:
+one state with the command line, doit's database in the state folder, lines naming robots."""
 
 from __future__ import annotations
 
@@ -13,17 +14,45 @@ from tests.conftest import ROOT, copy_example
 
 DOIT = [sys.executable, "-m", "doit"]
 
+# `mjcfbuild build` in a process that says what it imported: nothing of the engine when the
+# no-op stamp answered.
+_PROBE = (
+    "import sys\n"
+    "from mjcfbuild.cli import run\n"
+    "code = run(sys.argv[1:])\n"
+    "print('doit imported:', 'doit' in sys.modules)\n"
+    "sys.exit(code)\n"
+)
+
+
+def _env(cache: Path) -> dict[str, str]:
+    return {**os.environ, "MJCFBUILD_CACHE_DIR": str(cache)}
+
 
 def _doit(folder: Path, *args: str, cache: Path) -> subprocess.CompletedProcess:
-    env = {**os.environ, "MJCFBUILD_CACHE_DIR": str(cache)}
     return subprocess.run(
-        [*DOIT, *args], cwd=folder, capture_output=True, text=True, env=env, timeout=600
+        [*DOIT, *args], cwd=folder, capture_output=True, text=True, env=_env(cache), timeout=600
+    )
+
+
+def _build(folder: Path, manifest: str, cache: Path) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-c", _PROBE, "build", manifest],
+        cwd=folder,
+        capture_output=True,
+        text=True,
+        env=_env(cache),
+        timeout=600,
     )
 
 
 def _ran(output: str) -> list[str]:
     """The tasks doit ran (``.  title``), not those it found up to date (``-- title``)."""
     return [line[3:] for line in output.splitlines() if line.startswith(".  ")]
+
+
+def _up_to_date(output: str) -> list[str]:
+    return [line[3:] for line in output.splitlines() if line.startswith("-- ")]
 
 
 def _repository_copy(tmp_path: Path) -> Path:
@@ -38,16 +67,48 @@ def _repository_copy(tmp_path: Path) -> Path:
     return root
 
 
-def test_doit_and_doit_examples_in_this_repository(tmp_path):
+def test_doit_in_this_repository_shares_state_with_the_command_line(tmp_path):
     root = _repository_copy(tmp_path)
-    first = _doit(root, cache=tmp_path / "cache")
+    cache = tmp_path / "cache"
+    arm = "examples/arm/robot.yaml"
+    # Built by the command line first: doit finds the arm up to date and builds the others.
+    assert _build(root, arm, cache).returncode == 0
+    first = _doit(root, cache=cache)
     assert first.returncode == 0, first.stdout + first.stderr
-    assert "assemble example_arm.xml" in _ran(first.stdout)
+    assert f"examples:example_arm ({arm})" in _up_to_date(first.stdout)
+    ran = _ran(first.stdout)
+    assert "examples:arm_with_gripper (examples/arm_gripper/robot.yaml)" in ran
+    assert (
+        "examples:two_dof_robot@examples/reference_demo (examples/reference_demo/robot.yaml)" in ran
+    )
+    # Each line a build prints names its robot.
+    assert "arm_with_gripper: [4/4] plan (" in first.stdout, first.stdout
     for example in ("arm", "reference_demo", "reference_demo_native"):
         assert (root / "examples" / example / "mjcf" / "scene.xml").is_file()
-    again = _doit(root, "examples", cache=tmp_path / "cache")
+    # doit's database is in the first example's state folder, not beside dodo.py.
+    assert not list(root.glob(".doit.db*"))
+    assert list((root / "examples").glob("*/mjcf/.mjcfbuild/dodo/doit.sqlite3"))
+    again = _doit(root, "examples", cache=cache)
     assert again.returncode == 0, again.stdout + again.stderr
     assert _ran(again.stdout) == []
+    # What doit built is up to date for the command line; where it built without warnings,
+    # the no-op stamp answers (a build that warned leaves none, as on the command line).
+    summaries = re.findall(r"^mjcfbuild: built (\S+)\.xml: .*$", first.stdout, re.M)
+    quiet = [
+        name
+        for name, line in zip(
+            summaries, re.findall(r"^mjcfbuild: built .*$", first.stdout, re.M), strict=True
+        )
+        if "warning" not in line
+    ]
+    assert "arm_with_mjcf_hand" in quiet, first.stdout
+    for example in ("arm_gripper", "arm_mjcf_gripper", "reference_demo", "reference_demo_native"):
+        manifest = f"examples/{example}/robot.yaml"
+        built = _build(root, manifest, cache)
+        assert built.returncode == 0, built.stderr
+        assert " 0 run," in built.stdout
+        if any(f"{name}.xml" in built.stdout for name in quiet):
+            assert "doit imported: False" in built.stdout, (manifest, built.stdout)
 
 
 def _readme_dodo() -> str:
@@ -57,29 +118,36 @@ def _readme_dodo() -> str:
     return re.search(r"```python\n(.*?)```", section, re.S).group(1)
 
 
-def test_a_users_dodo_checks_content_tidies_and_locks(tmp_path):
+def test_a_users_dodo_checks_content_shares_state_and_locks(tmp_path):
     robots = tmp_path / "robots"
     shutil.copytree(copy_example("arm", tmp_path / "src"), robots / "arm")
     (tmp_path / "dodo.py").write_text(_readme_dodo())
     cache = tmp_path / "cache"
     first = _doit(tmp_path, cache=cache)
     assert first.returncode == 0, first.stdout + first.stderr
+    assert "robots:example_arm (robots/arm/robot.yaml)" in _ran(first.stdout)
+    assert "mjcfbuild: built example_arm.xml: 12 run" in first.stdout
+    assert not list(tmp_path.glob(".doit.db*"))
+    built_by_doit = _build(tmp_path, "robots/arm/robot.yaml", cache)
+    assert "doit imported: False" in built_by_doit.stdout, built_by_doit.stdout
     model = robots / "arm" / "mjcf" / "example_arm.xml"
     built = model.read_bytes()
     # A hand-edited model is rebuilt, as by `mjcfbuild build`.
     model.write_bytes(built.replace(b"<worldbody>", b"<worldbody><!-- edited -->"))
     again = _doit(tmp_path, cache=cache)
     assert again.returncode == 0, again.stdout + again.stderr
-    assert "assemble example_arm.xml" in _ran(again.stdout)
+    assert "example_arm: [9/12] assemble example_arm.xml" in again.stdout, again.stdout
     assert model.read_bytes() == built
-    # Products the plan no longer uses are removed.
-    stale = robots / "arm" / "mjcf" / ".mjcfbuild" / "products" / "gone.json"
-    stale.write_text("{}")
-    tidy = _doit(tmp_path, cache=cache)
-    assert tidy.returncode == 0 and not stale.exists(), tidy.stdout + tidy.stderr
+    # An edit the command line built is up to date for doit.
+    limits = robots / "arm" / "config" / "joint_limits.yaml"
+    limits.write_text(limits.read_text().replace("upper: 2.5", "upper: 2.4"))
+    assert _build(tmp_path, "robots/arm/robot.yaml", cache).returncode == 0
+    after_cli = _doit(tmp_path, cache=cache)
+    assert _ran(after_cli.stdout) == [], after_cli.stdout
     # While another build holds the output folder, doit waits for it.
     import fcntl
 
+    model.write_bytes(built.replace(b"<worldbody>", b"<worldbody><!-- edited -->"))
     with open(robots / "arm" / "mjcf" / ".mjcfbuild" / "lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         waiting = subprocess.Popen(
@@ -88,10 +156,10 @@ def test_a_users_dodo_checks_content_tidies_and_locks(tmp_path):
             stdout=subprocess.PIPE,
             stderr=subprocess.STDOUT,
             text=True,
-            env={**os.environ, "MJCFBUILD_CACHE_DIR": str(cache)},
+            env=_env(cache),
         )
-        first_line = waiting.stdout.readline()
-        assert "waiting for another build of" in first_line, first_line
+        lines = [waiting.stdout.readline(), waiting.stdout.readline()]
+        assert "waiting for another build of" in lines[1], lines
         fcntl.flock(lock, fcntl.LOCK_UN)
     rest = waiting.communicate(timeout=600)[0]
     assert waiting.returncode == 0, rest

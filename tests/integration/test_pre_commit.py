@@ -123,3 +123,60 @@ def test_readme_config_with_repo_local(tmp_path, monkeypatch):
     env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
     output = install_and_commit_an_edit(description_repo(tmp_path), config, env)
     assert "mjcfbuild build" in output
+
+
+def repo_without_model(tmp_path: Path) -> Path:
+    """A git repository holding the example arm under robots/arm, never built."""
+    repo = tmp_path / "description"
+    shutil.copytree(
+        EXAMPLES / "arm", repo / "robots" / "arm", ignore=shutil.ignore_patterns("mjcf")
+    )
+    git("init", "-q", cwd=repo)
+    git("add", "-A", cwd=repo)
+    git("commit", "-q", "-m", "the arm's description", cwd=repo)
+    return repo
+
+
+def first_commit_fails_until_the_model_is_added(repo: Path, config: str, env: dict | None) -> None:
+    """Install ``config``'s hooks in a repo with no model; the first commit builds it and fails
+    (so does a second one without `git add`); after `git add` the commit passes."""
+    (repo / ".pre-commit-config.yaml").write_text(config)
+    git("add", ".pre-commit-config.yaml", cwd=repo)
+    install = subprocess.run(
+        [pre_commit_executable(), "install", "--install-hooks"],
+        cwd=repo,
+        capture_output=True,
+        text=True,
+        env=env,
+    )
+    assert install.returncode == 0, install.stdout + install.stderr
+    for _ in range(2):
+        first = git("commit", "-m", "hooks", cwd=repo, check=False, env=env)
+        output = first.stdout + first.stderr
+        assert first.returncode != 0, output
+        assert "files were created: robots/arm/mjcf/example_arm.xml" in output, output
+        assert "git add them" in output and "Failed" in output
+    assert (repo / "robots" / "arm" / "mjcf" / "example_arm.xml").is_file()
+    git("add", "-A", cwd=repo)
+    tracked = git("ls-files", cwd=repo).stdout.splitlines()
+    assert "robots/arm/mjcf/scene.xml" in tracked
+    assert not [name for name in tracked if "/.mjcfbuild/" in name or "/report/" in name]
+    passed = git("commit", "-m", "hooks and the model", cwd=repo, check=False, env=env)
+    assert passed.returncode == 0, passed.stdout + passed.stderr
+    assert git("status", "--porcelain", cwd=repo).stdout.strip() == ""
+
+
+def test_the_first_run_fails_when_it_creates_the_model_repo_local(tmp_path, monkeypatch):
+    monkeypatch.setenv("PRE_COMMIT_HOME", str(tmp_path / "pre-commit-home"))
+    config = readme_configs()[1]
+    env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    first_commit_fails_until_the_model_is_added(repo_without_model(tmp_path), config, env)
+
+
+def test_the_first_run_fails_when_it_creates_the_model_hook_repository(
+    tmp_path, project_commit, monkeypatch
+):
+    monkeypatch.setenv("PRE_COMMIT_HOME", str(tmp_path / "pre-commit-home"))
+    config = readme_configs()[0].replace("https://github.com/<owner>/mjcfbuild", str(ROOT))
+    config = config.replace("<tag or commit>", project_commit)
+    first_commit_fails_until_the_model_is_added(repo_without_model(tmp_path), config, None)

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from mjcfbuild.errors import InputError
-from mjcfbuild.sources.expand import expand_xacro, read_urdf_file
+from mjcfbuild.errors import InputError, ManifestError, UsageError
+from mjcfbuild.sources.expand import COMMAND_LINE, expand_xacro, read_urdf_file
 from mjcfbuild.sources.packages import PackageResolver
 from tests.conftest import write
 
@@ -92,3 +92,47 @@ def test_plain_urdf_is_read_as_bytes(tmp_path):
     assert read_urdf_file(path).urdf.startswith(b"<?xml")
     with pytest.raises(InputError, match="not found"):
         read_urdf_file(tmp_path / "missing.urdf")
+
+
+def test_every_element_knows_the_file_and_line_it_was_written_at(pkg, monkeypatch):
+    monkeypatch.delenv("PART_SUFFIX", raising=False)
+    expansion = expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({"pkg": pkg}, {}))
+    lines = expansion.urdf.decode().splitlines()
+    where = {lines[n - 1].strip(): origin for n, origin in expansion.origins.items()}
+    main, part = str(pkg / "urdf" / "main.xacro"), str(pkg / "urdf" / "part.xacro")
+    assert where['<link name="base">'] == (main, 7)
+    assert where['<box size="0.1 0.25 0.1"/>'] == (main, 7)
+    # Written in the macro's body, in the included file, called from main.xacro.
+    assert where['<link name="part_x"/>'] == (part, 2)
+    assert "mjcfbuild-origin" not in expansion.urdf.decode()
+
+
+def test_an_argument_no_file_declares_or_uses_is_refused_with_the_closest_one(pkg):
+    resolver = PackageResolver({"pkg": pkg}, {})
+    source = pkg / "urdf" / "main.xacro"
+    with pytest.raises(ManifestError) as info:
+        expand_xacro(source, {"sise": "1"}, resolver, args_key="robot.yaml source.args")
+    assert info.value.location.file == "robot.yaml source.args.sise"
+    assert "did you mean 'size'?" in info.value.message
+    assert "(declared: size)" in info.value.message
+    with pytest.raises(UsageError) as info:
+        expand_xacro(source, {"sise": "1"}, resolver, args_key=COMMAND_LINE)
+    assert info.value.message.startswith("sise:=1: ")
+    # Without a key (an SRDF given the source's arguments) nothing is checked.
+    assert expand_xacro(source, {"sise": "1"}, resolver).urdf
+
+
+def test_an_undefined_argument_names_the_line_that_uses_it(pkg):
+    main = pkg / "urdf" / "main.xacro"
+    main.write_text(MAIN.replace('<xacro:arg name="size" default="0.1"/>', ""))
+    with pytest.raises(InputError) as info:
+        expand_xacro(main, {}, PackageResolver({"pkg": pkg}, {}))
+    assert (info.value.location.file, info.value.location.line) == (str(main), 7)
+    assert "argument size" in info.value.message
+
+
+def test_an_unknown_package_in_find_has_its_line_and_the_closest_name(pkg):
+    with pytest.raises(InputError) as info:
+        expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({"pgk": pkg}, {}))
+    assert info.value.location.line == 4
+    assert "unknown package 'pkg'; did you mean 'pgk'?" in info.value.message

@@ -1,0 +1,84 @@
+"""Where the elements of an expanded URDF were written: errors about them point there.
+
+The ``expand`` step of a xacro source writes, beside the expanded URDF, the file and line
+where each line's element was written (through includes and macros: the line of the element
+inside the macro's body). An error that points at a line of the expanded URDF is moved to
+that place, and keeps the expanded line as a second reference.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+from mjcfbuild.errors import MjcfbuildError
+
+
+def origins_file(urdf: Path) -> Path:
+    """The origins of the expanded URDF ``urdf``."""
+    return urdf.with_name(urdf.name.removesuffix(".urdf") + ".origins.json")
+
+
+def write_origins(path: Path, origins: dict[int, tuple[str, int]], outputs: dict) -> None:
+    """Write ``origins`` (line -> file, line) as JSON; an empty map for a plain URDF."""
+    from mjcfbuild.steps.outputs import write_output
+
+    data = {str(line): [file, written] for line, (file, written) in sorted(origins.items())}
+    write_output(
+        path, (json.dumps(data, sort_keys=True, separators=(",", ":")) + "\n").encode(), outputs
+    )
+
+
+def written_at(urdf: Path, line: int) -> tuple[str, int] | None:
+    """Where the element at (or, inside it, before) ``line`` of ``urdf`` was written."""
+    try:
+        data = json.loads(origins_file(urdf).read_text())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(data, dict):
+        return None
+    before = [int(key) for key in data if key.isdigit() and int(key) <= line]
+    if not before:
+        return None
+    file, written = data[str(max(before))]
+    return str(file), int(written)
+
+
+def point_at_source(error: MjcfbuildError, urdf: Path, label: str, base_dir: Path) -> None:
+    """If ``error`` points at a line of the expanded URDF ``urdf`` (shown as ``label``,
+    relative to ``base_dir``), point it where that element was written, and name the
+    expanded line in its message."""
+    location = error.location
+    if location is None or location.line is None or location.file != label:
+        return
+    found = written_at(urdf, location.line)
+    if found is None:
+        return
+    expanded = os.path.relpath(urdf)
+    expanded = str(urdf) if expanded.startswith("..") else expanded
+    error.message += f" [expanded: {expanded}:{location.line}]"
+    file, line = found
+    try:
+        location.file = str(Path(file).relative_to(base_dir))
+    except ValueError:
+        location.file = file
+    location.line, location.column = line, None
+    if error.hint and error.hint.startswith("the line is in the expansion of"):
+        error.hint = None
+
+
+def point_warning_at_source(text: str, urdf: Path, label: str, base_dir: Path) -> str:
+    """A warning that starts ``label:line:`` (a line of the expanded URDF ``urdf``), started
+    instead with where that element was written; others unchanged."""
+    head = f"{label}:"
+    if not text.startswith(head):
+        return text
+    number, sep, rest = text[len(head) :].partition(":")
+    if not sep or not number.isdigit():
+        return text
+    error = MjcfbuildError(rest.strip(), file=label, line=int(number))
+    point_at_source(error, urdf, label, base_dir)
+    if error.location is None or error.location.file == label:
+        return text
+    return f"{error.location}: {error.message}"

@@ -1,0 +1,53 @@
+"""Errors about an expanded URDF's lines, pointed where their elements were written."""
+
+from __future__ import annotations
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.sources.origins import (
+    origins_file,
+    point_at_source,
+    point_warning_at_source,
+    write_origins,
+    written_at,
+)
+
+
+def test_an_error_inside_an_element_moves_to_where_the_element_was_written(tmp_path):
+    urdf = tmp_path / "mjcf" / ".mjcfbuild" / "source.urdf"
+    urdf.parent.mkdir(parents=True)
+    urdf.write_text("<robot>\n<link>\n<visual/>\n</link>\n</robot>\n")
+    xacro = tmp_path / "urdf" / "arm.xacro"
+    write_origins(origins_file(urdf), {1: (str(xacro), 3), 2: (str(xacro), 10)}, {})
+    assert origins_file(urdf).name == "source.origins.json"
+    assert written_at(urdf, 3) == (str(xacro), 10)  # line 3 has no element of its own
+    error = InputError(
+        "bad mesh",
+        file="mjcf/.mjcfbuild/source.urdf",
+        line=3,
+        hint="the line is in the expansion of x",
+    )
+    point_at_source(error, urdf, "mjcf/.mjcfbuild/source.urdf", tmp_path)
+    assert (error.location.file, error.location.line) == ("urdf/arm.xacro", 10)
+    assert error.message.startswith("bad mesh [expanded: ") and error.message.endswith(
+        "source.urdf:3]"
+    )
+    assert error.hint is None
+    other = InputError("elsewhere", file="robot.urdf", line=3)
+    point_at_source(other, urdf, "mjcf/.mjcfbuild/source.urdf", tmp_path)
+    assert (other.location.file, other.message) == ("robot.urdf", "elsewhere")
+
+
+def test_a_warning_about_an_expanded_line_names_the_written_one(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    urdf = tmp_path / "mjcf" / ".mjcfbuild" / "source.urdf"
+    urdf.parent.mkdir(parents=True)
+    write_origins(origins_file(urdf), {5: (str(tmp_path / "urdf" / "arm.xacro"), 12)}, {})
+    label = "mjcf/.mjcfbuild/source.urdf"
+    warning = f'{label}:5: <origin rpy="1, 0, 0"> uses commas between numbers; read them as spaces'
+    assert point_warning_at_source(warning, urdf, label, tmp_path) == (
+        'urdf/arm.xacro:12: <origin rpy="1, 0, 0"> uses commas between numbers; read them as '
+        "spaces [expanded: mjcf/.mjcfbuild/source.urdf:5]"
+    )
+    assert (
+        point_warning_at_source("robot.yaml: other", urdf, label, tmp_path) == "robot.yaml: other"
+    )
