@@ -251,7 +251,8 @@ def _control(readiness: dict) -> list[str]:
         for a in readiness["actuators"]:
             lines.append(
                 f"| {a['name']} | {a['joint']} | {a['type']} | {a['source']}"
-                f"{', weight-bearing' if a.get('weight_bearing') else ''} | "
+                f"{', weight-bearing' if a.get('weight_bearing') else ''}"
+                f"{_armature(a)} | "
                 f"{_number(a.get('kp'))} | {_number(a.get('kv'))} | {_range(a.get('ctrlrange'))} "
                 f"| {_range(a.get('forcerange'))}{_replaced(a)} |"
             )
@@ -377,3 +378,9 @@ def _plausibility(report: dict) -> list[str]:
         ]
         lines.append("")
     return lines
+
+
+def _armature(actuator: dict) -> str:
+    """The armature the build gave a weight-bearing joint, if it did."""
+    armature = actuator.get("armature")
+    return f" (armature {armature:.3g} added)" if armature else ""

@@ -48,6 +48,7 @@ class ActuatorRecord:
     forcerange: list[float] | None = None
     placeholder_effort: float | None = None  # the URDF effort the forcerange replaced
     weight_bearing: bool = False  # kp raised to hold the standing robot (control.standing)
+    armature: float | None = None  # added to the joint so the stiff servo stays stable
 
 
 @dataclass
@@ -129,6 +130,7 @@ def make_ready(
         option.set("integrator", "implicitfast")
 
     model = compile_tree(root)
+    _planar_joints(model, robot, readiness)
     data = mujoco.MjData(model)
     qpos = _home_qpos(model, home, preset_qpos)
     if floating:
@@ -165,6 +167,7 @@ def make_ready(
             abs(float(motion @ bias)),
             model.opt.timestep,
             *(_carried(pendulum, motion) if pendulum is not None else (0.0, 0.0)),
+            reach=max(1.0, float(np.abs(motion).max())),
         )
         record = _actuator(choice, urdf_joints[choice.joint], servo, taken, caps.get(choice.joint))
         taken.add(record.name)
@@ -173,6 +176,8 @@ def make_ready(
     for record in readiness.actuators:
         if record.source != "user":
             etree.SubElement(section, record.type, _attributes(record))
+        if record.armature is not None and record.joint in joints:
+            joints[record.joint].set("armature", output_list([record.armature]))
     _fill_user_records(readiness, root)
 
     if _has_key(root, HOME):
@@ -220,6 +225,25 @@ def standing_torques(model, data, tolerance: float = 2e-3):
         mujoco.mj_jac(model, data, jacobian, None, point, body)
         torques -= jacobian.T @ np.array([0.0, 0.0, weight / len(feet)])
     return torques
+
+
+def _planar_joints(model, robot: Robot, readiness: Readiness) -> None:
+    """A URDF planar joint is three MuJoCo joints (<name>_TX, _TY, _RZ): no generated servo
+    drives them (like a free joint), so they are passive, and the build says so."""
+    import mujoco
+
+    for joint in robot.joints:
+        if joint.kind != "planar":
+            continue
+        parts = [f"{joint.name}_{suffix}" for suffix in ("TX", "TY", "RZ")]
+        found = [n for n in parts if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, n) >= 0]
+        readiness.passive += found
+        readiness.notes.append(
+            f"planar joint '{joint.name}' (URDF line {joint.line}) is {', '.join(found)} in "
+            "the model: no actuator is generated for them (a base moved by a controller); "
+            "drive them with actuators of your own in mujoco_inputs.raw, e.g. "
+            f'<velocity joint="{found[0] if found else joint.name}" kv="100"/>'
+        )
 
 
 def _set_force_limit(element, choice: ActuatorChoice, joint) -> None:
@@ -312,7 +336,7 @@ def _match_mirrored(model, data, records: list[ActuatorRecord]) -> None:
     generated = {r.joint: r for r in records if r.source != "user" and r.type == "position"}
     for left, right in mirror_pairs(model, data, sorted(generated)):
         first, second = generated[left], generated[right]
-        for attribute in ("kp", "kv"):
+        for attribute in ("kp", "kv", "armature"):
             values = [getattr(first, attribute), getattr(second, attribute)]
             if None in values:
                 continue
@@ -373,6 +397,10 @@ def _stand_on_floor(root, model, data, qpos) -> float | None:
     return lift
 
 
+# A weight-bearing servo's natural frequency times the time step at most (with armature added
+# where the joint's own inertia is too small): above about 1 a biped's ankles ring and it falls.
+STEP_RATIO = 0.5
+
 # Default gains are stiffened until gravity at home bends a joint by at most this much (rad or
 # m): a servo tuned by frequency alone lets a light link on a short lever sag by g / (r w^2).
 SAG = 0.01
@@ -388,6 +416,12 @@ class Servo:
     timestep: float
     pendulum: float = 0.0  # gravity stiffness of what the joint carries standing (N m/rad)
     carried: float = 0.0  # inertia of what the joint carries standing (kg m^2)
+    reach: float = 1.0  # the largest mimic multiplier: a follower moves this much more
+
+    @property
+    def sag(self) -> float:
+        """The sag allowed at this joint, so that no follower sags more than SAG."""
+        return SAG / self.reach
 
     def omega(self, frequency: float, stiffen: bool) -> float:
         """The natural frequency (rad/s) of the servo."""
@@ -395,7 +429,7 @@ class Servo:
         if stiffen and self.inertia > 0:
             # Never above a quarter of the step rate, where the implicit integrator stays accurate.
             ceiling = 0.5 / self.timestep
-            omega = max(omega, min(math.sqrt(self.load / (SAG * self.inertia)), ceiling))
+            omega = max(omega, min(math.sqrt(self.load / (self.sag * self.inertia)), ceiling))
         return omega
 
 
@@ -439,9 +473,15 @@ def _actuator(
         # to bend at most SAG under its load at home (past the ceiling on omega, which the
         # damping below, for what the joint moves while standing, keeps stable).
         if servo.carried > 0 and choice.stiffen and choice.kp is None:
-            record.kp = max(record.kp, servo.pendulum * MARGIN, servo.load / SAG)
+            record.kp = max(record.kp, servo.pendulum * MARGIN, servo.load / servo.sag)
+            # A stiff servo on a light foot rings faster than the time step can follow once
+            # the foot leaves the floor: the rotor inertia a real drive has (armature) keeps
+            # sqrt(kp / I) dt at STEP_RATIO.
+            floor = record.kp * (servo.timestep / STEP_RATIO) ** 2
+            if choice.armature is None and floor > inertia:
+                record.armature = floor - inertia
             if choice.kv is None:
-                moved = inertia + servo.carried
+                moved = inertia + (record.armature or 0.0) + servo.carried
                 record.kv = 2 * choice.damping_ratio * math.sqrt(record.kp * moved)
             record.weight_bearing = True
         bounds = joint_range(joint)
