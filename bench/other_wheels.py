@@ -15,8 +15,8 @@ revolute joints. armar4, armar6, dingo_kinova and mobile_panda stay fixed: their
 to a ``world`` link (the mobile bases move by planar or prismatic joints).
 
 Left out: wheels with no URDF (fourierassets: code only; ir-support-extra-robots: meshes for
-its own Python models), and example-robot-data's older copies (example-robot-data-jnrh2023,
-example-robot-data-loaders).
+its own Python models; example-robot-data-loaders: the loaders without the robots), and
+example-robot-data-jnrh2023 (an older release of example-robot-data).
 """
 
 from __future__ import annotations
