@@ -146,7 +146,7 @@ def main() -> None:
             f"| {_menagerie(r['menagerie'])} | {'yes' if r['passes'] else 'NO: ' + _first(r)} |"
         )
     for r in rows:
-        for failure in r["failures"]:
+        for failure in r.get("failures", []):
             print(f"{r['robot']}: {failure}", file=sys.stderr)
 
 
