@@ -246,6 +246,12 @@ ROBOTS = {
             "dexmate_urdf/robots/hands/dexd_gripper/dexd_gripper.urdf",
             False,
         ),
+        WheelRobot(
+            "dexs_gripper",
+            DEXMATE,
+            "dexmate_urdf/robots/hands/dexs_gripper/dexs_gripper.urdf",
+            False,
+        ),
         WheelRobot("ur3e", AIRO, "airo_models/arms/ur3e/ur3e.urdf", False),
         WheelRobot(
             "schunk_egk40", AIRO, "airo_models/grippers/schunk_egk40/urdf/schunk_egk40.urdf", False
@@ -309,6 +315,7 @@ ROBOTS = {
             "alicia_m", SYNRIA, "synriard/urdf/Alicia_M_v1_2/Alicia_M_v1_2_follower.urdf", False
         ),
         WheelRobot("pendulum", GYM_IGNITION, "gym_ignition_models/pendulum/pendulum.urdf", False),
+        WheelRobot("character", GYM_IGNITION, "gym_ignition_models/character/character.urdf", True),
         WheelRobot(
             "icub_gym",
             GYM_IGNITION,
