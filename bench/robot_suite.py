@@ -1,6 +1,9 @@
 """The real-robot suite as a table: every robot of example-robot-data the project promises.
 
-    python bench/robot_suite.py [--robots panda,go1,...]
+    python bench/robot_suite.py [--robots panda,go1,...] [--wheels]
+
+``--wheels`` adds the robots of the other description wheels on PyPI (bench/other_wheels.py);
+``--robots`` takes names from either registry.
 
 For each robot: build with default settings (a fresh cache), load the scene, simulate 2,000
 steps with zero control, and compare every URDF link's pose with forward kinematics computed
@@ -24,7 +27,7 @@ import mujoco
 import numpy as np
 
 import mjcfbuild
-from bench import robot_data
+from bench import other_wheels, robot_data
 from mjcfbuild.check.kinematics import compare_kinematics
 from mjcfbuild.errors import BuildFailed, MjcfbuildError
 from mjcfbuild.urdf.parse import parse_urdf
@@ -32,9 +35,17 @@ from mjcfbuild.urdf.parse import parse_urdf
 
 def check(name: str, folder: Path) -> dict:
     """Build and check one robot."""
-    robot = robot_data.ALL_ROBOTS[name]
-    urdf = robot_data.unpack(robot)
-    manifest = robot_data.manifest(robot, folder, urdf, robot_data.package_root())
+    robot: robot_data.Robot | other_wheels.WheelRobot
+    if name in other_wheels.ROBOTS:
+        robot = other_wheels.ROBOTS[name]
+        urdf = other_wheels.unpack(robot)
+        manifest = other_wheels.manifest(robot, folder, urdf)
+        text = other_wheels.urdf_text(robot)
+    else:
+        robot = robot_data.ALL_ROBOTS[name]
+        urdf = robot_data.unpack(robot)
+        manifest = robot_data.manifest(robot, folder, urdf, robot_data.package_root())
+        text = urdf.read_bytes()
     started = time.perf_counter()
     error = ""
     try:
@@ -57,7 +68,7 @@ def check(name: str, folder: Path) -> dict:
     for _ in range(2000):
         mujoco.mj_step(model, data)
     finite = bool(np.all(np.isfinite(data.qpos)) and np.all(np.isfinite(data.qvel)))
-    source = parse_urdf(urdf.read_bytes(), str(urdf))
+    source = parse_urdf(text, str(urdf))
     kinematics = compare_kinematics(source, mujoco.MjModel.from_xml_path(str(result.robot)))
     repairs = sum(1 for w in result.warnings if w.startswith("body '"))
     return {
@@ -95,12 +106,21 @@ def check(name: str, folder: Path) -> dict:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--robots", default=",".join(sorted(robot_data.ALL_ROBOTS)))
+    parser.add_argument("--robots", help="comma-separated names (default: all of the wheel)")
+    parser.add_argument(
+        "--wheels", action="store_true", help="add the robots of bench/other_wheels.py"
+    )
     args = parser.parse_args()
+    names = args.robots.split(",") if args.robots else sorted(robot_data.ALL_ROBOTS)
+    if args.wheels:
+        names += [name for name in other_wheels.ROBOTS if name not in names]
+    unknown = [n for n in names if n not in robot_data.ALL_ROBOTS and n not in other_wheels.ROBOTS]
+    if unknown:
+        parser.error(f"unknown robots: {', '.join(unknown)}")
     rows = []
     with tempfile.TemporaryDirectory() as scratch:
         os.environ["MJCFBUILD_CACHE_DIR"] = str(Path(scratch) / "cache")
-        for name in args.robots.split(","):
+        for name in names:
             rows.append(check(name, Path(scratch) / name))
             print(f"checked {name}", file=sys.stderr)
     print(
@@ -126,7 +146,7 @@ def main() -> None:
             f"| {_menagerie(r['menagerie'])} | {'yes' if r['passes'] else 'NO: ' + _first(r)} |"
         )
     for r in rows:
-        for failure in r["failures"]:
+        for failure in r.get("failures", []):
             print(f"{r['robot']}: {failure}", file=sys.stderr)
 
 

