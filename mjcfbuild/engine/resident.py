@@ -316,6 +316,9 @@ def claim(folder: Path, key: str, hello: dict, seconds: float | None = None) -> 
             connection = _connect(path, seconds)
         except _Stale:
             continue
+        except TimeoutError:  # its queue is full and it takes nobody off it: stopped
+            _reap(path, folder)
+            continue
         except OSError:
             continue
         try:

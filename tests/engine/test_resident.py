@@ -350,7 +350,7 @@ def test_a_stale_socket_naming_another_process_is_removed_never_signalled(reside
         key = "0" * 20
         _stale_socket(residents / f"{key}-{unrelated.pid}.sock")
         _stale_socket(residents / f"{key}-1.sock")
-        (residents / f"{key}-{os.getpid()}.sock").write_text("junk")
+        (residents / f"{'1' * 20}-{unrelated.pid}.sock").write_text("junk")
         shown = run_cli("workers")
         assert shown.code == EXIT_OK and "waiting: 0" in shown.stdout, shown.stdout
         assert f"pid {unrelated.pid}" not in shown.stdout
@@ -521,20 +521,20 @@ def test_a_build_runs_its_steps_at_its_own_nice_level(residents, tmp_path):
 def test_a_socket_path_longer_than_a_socket_may_have_is_refused_with_the_reason(tmp_path):
     base = Path(tempfile.mkdtemp(prefix="mjr-", dir="/tmp"))
     try:
+        # 78-80 characters passed the old check, and then workers failed to bind.
+        too_long = base / ("t" * (79 - len(str(base)) - 1))
+        assert len(str(too_long)) == 79
+        assert resident.resident_dir({resident.DIR_VARIABLE: str(too_long)}) is None
+        problem = resident.folder_problem(too_long)
+        assert problem is not None and "too long for a socket path" in problem
+        # The longest folder allowed holds the longest name a worker may use.
         room = resident._SUN_PATH - resident._NAME_LENGTH - 1
         fits = base / ("f" * (room - len(str(base)) - 1))
         assert len(str(fits)) == room
         assert resident.folder_problem(fits) is None
-        longest = fits / ("k" * 20 + "-9999999.sock")
         listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
-        listener.bind(str(longest))  # the longest name a worker may use binds
+        listener.bind(str(fits / ("k" * 20 + "-9999999.sock")))
         listener.close()
-        # 78-80 characters passed the old check and then failed to bind.
-        too_long = base / ("t" * (79 - len(str(base)) - 1))
-        assert len(str(too_long)) == 79
-        problem = resident.folder_problem(too_long)
-        assert problem is not None and "too long for a socket path" in problem
-        assert resident.resident_dir({resident.DIR_VARIABLE: str(too_long)}) is None
     finally:
         shutil.rmtree(base, ignore_errors=True)
 
@@ -576,7 +576,7 @@ def test_junk_files_do_not_use_up_the_cap_and_the_cap_counts_every_key(
     key = _socket_of(residents, first).name.rpartition("-")[0]
     for number in range(2, 40):
         (residents / f"{key}-{number}.sock").write_text("not a worker")
-    monkeypatch.setenv(resident.MAX_VARIABLE, "2")
+    monkeypatch.setenv("MJCFBUILD_RESIDENT_MAX", "2")
     build()  # served by the first, which waits again: junk counts for nothing
     assert _waiting(residents, 1) == [first]
     build(OMP_NUM_THREADS="2")  # another key: a worker of its own, which waits too
