@@ -7,20 +7,33 @@ of that in memory, and the next build of the same robot, typically seconds or mi
 an edit-and-rebuild loop, starts at its first step.
 
 A resident worker waits on a Unix socket in a private folder (mode 0700) for the next build,
-up to ``MJCFBUILD_RESIDENT_WORKERS`` seconds (default 900; ``0`` turns resident workers off,
-and so does a set ``CI`` variable: a CI job builds once). A build claims it by connecting and
-sending its environment and folder; the worker closes its socket while it serves that build,
-so no second build can claim it, and listens again when the build lets go. Workers are found
-by a *key*: the interpreter, the code of mjcfbuild and the installed packages, and the
-environment variables read only when a process starts (``MUJOCO_GL``, ``PYTHONHASHSEED``,
-library paths...). A build whose key differs never sees them, so code or packages that changed
-start new workers; the old ones leave when their time runs out.
+up to ``MJCFBUILD_RESIDENT_WORKERS`` seconds (default 900 where a person builds at a terminal;
+``0`` turns resident workers off; without the variable they are off in CI, in git hooks and
+without a terminal: see :func:`why_off`). A build claims one by connecting and sending its
+environment, folder and process state; the worker closes its socket while it serves that
+build, so no second build can claim it, and listens again when the build lets go. Workers are
+found by a *key*: the installation (interpreter and mjcfbuild's folder), its code version
+(mjcfbuild's code and the installed packages) and the environment variables read only when a
+process starts (``MUJOCO_GL``, ``PYTHONHASHSEED``, library paths...). A build whose key differs
+never uses them; one of the same installation with newer code asks those of older code to exit.
+
+Nothing here waits without a limit or signals a process it has not identified: a worker that
+does not answer a claim within ``MJCFBUILD_WORKER_ANSWER_SECONDS`` (stopped, or in a debugger)
+is killed once its command line shows it is that worker (:func:`is_worker`), its socket is
+removed and the build goes on with another; a socket nobody listens on is removed, whatever
+process its name's number now belongs to. One user has at most ``MJCFBUILD_RESIDENT_MAX``
+waiting workers, of every key together; a worker whose socket file is removed (its folder
+deleted) exits within a second.
 
 What makes a worker that outlived a build safe to reuse (mjcfbuild.engine.worker_main):
-each build's environment and folder are set anew; MuJoCo's mesh cache, which tells files
-apart by name and modification time in whole seconds, is emptied if the new build comes
-within the same second the last one ended (a product rewritten in that second would look
-unchanged); and a worker whose build goes away while it runs a step stops at once, as a
+each build's environment, folder, file mode mask, nice level and resource limits are set
+anew (a worker that cannot take them on leaves, and the build starts one that inherits them);
+a worker whose imported modules changed on disk since (an editable install, a patched
+package) leaves instead of serving; MuJoCo's mesh cache, which tells files apart by name and
+modification time in whole seconds, is emptied if the new build comes within the same second
+the last one ended, or if a mesh product it processed was replaced by another file with the
+same whole-second time (a product linked from the shared cache keeps the time another build
+made it at); and a worker whose build goes away while it runs a step stops at once, as a
 worker of its own would.
 """
 

@@ -120,9 +120,8 @@ def run_build(
             _summarise(result, progress, ctx, started)
             if ctx.noop_stamp and tasks and result.ok and not result.warnings:
                 stamp.record_build(ctx, tasks, len(result.ran) + len(result.up_to_date))
-                ctx.session.close()  # the stamp hashed files: their hashes are kept too
     finally:
-        ctx.session.close()  # idempotent: for a build stopped before it took the lock
+        ctx.session.close()  # for a build stopped before it took the lock; else it did nothing
         progress.clear()
     if not result.seconds:
         _summarise(result, progress, ctx, started)

@@ -144,31 +144,32 @@ def forget_changed_meshes() -> None:
         _warmed.clear()
 
 
-_ASSEMBLE = "mjcfbuild.steps.assemble:run"
-_WARM = "mjcfbuild.steps.warm:run"
-
-
 def note_products(request: dict) -> None:
-    """After a step that had MuJoCo process a model's mesh products (assembly, warm-up),
-    remember what identified each product file then, as for meshes processed while idle: a
-    product published again at the same path (linked from the shared cache, where its time
-    is that of another build) may keep the whole-second time MuJoCo's cache compares."""
-    payload = request.get("payload") or {}
-    if request.get("step") == _WARM:
-        folders = list(payload.get("folders") or [])
-    elif request.get("step") == _ASSEMBLE:
-        folders = list((payload.get("product_dirs") or {}).values())
-        folders += [d.get("folder") for d in payload.get("decompositions") or []]
-    else:
+    """After a step that had MuJoCo process a model's mesh products (assembly, self-collision,
+    check, previews, warm-up), remember what identified each product file then, as for meshes
+    processed while idle: a product published again at the same path (linked from the shared
+    cache, where its time is that of another build) may keep the whole-second time MuJoCo's
+    cache compares."""
+    payload = request.get("payload")
+    if not isinstance(payload, dict):
         return
+    folders = list(payload.get("folders") or [])
+    folders += list((payload.get("product_dirs") or {}).values())
+    folders += [d.get("folder") for d in payload.get("decompositions") or [] if isinstance(d, dict)]
+    files: list[str] = []
     for folder in folders:
-        if not isinstance(folder, str):
-            continue
-        with contextlib.suppress(OSError):
-            for entry in os.scandir(folder):
-                identity = _identity(entry.path)
-                if identity is not None and entry.is_file():
-                    _warmed[entry.path] = identity
+        if isinstance(folder, str):
+            with contextlib.suppress(OSError):
+                files += [entry.path for entry in os.scandir(folder) if entry.is_file()]
+    report = payload.get("assembly_report")
+    if isinstance(report, str) and report:
+        from mjcfbuild.check.loading import asset_sources
+
+        files += [str(path) for path in asset_sources(Path(report)).values()]
+    for name in files:
+        identity = _identity(name)
+        if identity is not None:
+            _warmed[name] = identity
 
 
 def _unseen_change(path: str, warmed: tuple[int, int, int]) -> bool:
