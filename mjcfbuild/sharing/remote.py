@@ -167,7 +167,7 @@ class RemoteCache:
         self._secret = signing_key(self._environ)
         # Uploads run in daemon threads: one stuck on a remote that stopped answering must
         # not keep the build's process from exiting once the build gave up waiting.
-        self._queue: queue.Queue[tuple[str, ProductStore]] = queue.Queue()
+        self._queue: queue.Queue[tuple[str, ProductStore] | None] = queue.Queue()
         self._threads = 0
         self._unfinished = 0
         self._idle = threading.Condition(self._lock)
@@ -225,7 +225,10 @@ class RemoteCache:
 
     def _uploader(self) -> None:
         while True:
-            key, store = self._queue.get()
+            item = self._queue.get()
+            if item is None:  # the build is done with uploads (see wait)
+                return
+            key, store = item
             try:
                 self._upload(key, store)
             except Exception as exc:  # a bug here must not leave the build waiting
@@ -270,6 +273,9 @@ class RemoteCache:
             if unfinished:
                 first = not self._disabled
                 self._disabled = True  # uploads still queued are dropped
+            threads, self._threads = self._threads, 0
+        for _ in range(threads):  # each ends once its upload returned (or was given up)
+            self._queue.put(None)
         if unfinished:
             self.stats.count("remote_errors")
             if first:
