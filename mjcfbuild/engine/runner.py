@@ -95,9 +95,12 @@ def run_build(
 
     ``workers`` (mjcfbuild.engine.early) are used if they suit the build, else stopped.
     """
-    from mjcfbuild.engine.resident import idle_seconds
+    from mjcfbuild.engine.resident import answer_seconds, idle_seconds, most_workers
 
-    idle_seconds(os.environ)  # a bad value stops the build before it starts, not in a step
+    # A bad value stops the build before it starts, not in a step.
+    if idle_seconds(os.environ) > 0:
+        answer_seconds(os.environ)
+        most_workers(os.environ)
     session = ctx.new_session()  # a context built twice reports each build's own findings
     if workers is not None and not session.adopt(workers):
         workers.close()  # importing and processing meshes for nothing: free the CPU

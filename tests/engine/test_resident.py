@@ -235,6 +235,14 @@ def test_a_bad_wait_is_a_one_line_usage_error(value, arm):
     assert result.stderr.count("\n") == 1 and resident.VARIABLE in result.stderr
 
 
+@pytest.mark.parametrize("variable", ["MJCFBUILD_WORKER_ANSWER_SECONDS", "MJCFBUILD_RESIDENT_MAX"])
+def test_a_bad_deadline_or_cap_is_a_one_line_usage_error(variable, arm):
+    env = {resident.VARIABLE: "60", variable: "-3"}
+    result = run_cli("build", "--no-check", cwd=arm, env=env)
+    assert result.code == 2 and "Traceback" not in result.stderr, result.stderr
+    assert variable in result.stderr and result.stderr.count("\n") <= 2
+
+
 def test_off_by_zero_or_in_ci():
     assert resident.idle_seconds({resident.VARIABLE: "0"}, interactive=True) == 0
     assert resident.idle_seconds({"CI": "true"}, interactive=True) == 0
@@ -302,7 +310,7 @@ def _gone(pid: int) -> bool:
 def test_a_stopped_worker_is_killed_and_the_build_goes_on_with_a_fresh_one(
     residents, tmp_path, monkeypatch
 ):
-    monkeypatch.setenv(resident.ANSWER_VARIABLE, "1")
+    monkeypatch.setenv("MJCFBUILD_WORKER_ANSWER_SECONDS", "1")
     arm = copy_example("arm", tmp_path)
     assert run_cli("build", "-q", "--no-check", "-j", "1", cwd=arm).code == EXIT_OK
     [stopped] = _waiting(residents, 1)
