@@ -303,22 +303,32 @@ def _serve_resident(connection: socket.socket, limits: _Limits) -> None:
 class _CodeWatch:
     """The size and time of every module file this process imported, when first seen: a
     module edited in place since (an editable install, a patch to site-packages) would not
-    be imported again here, so such a worker must not serve another build."""
+    be imported again here, so such a worker must not serve another build. A module first
+    seen with a time later than the last look may have changed after it was imported: that
+    counts as a change too (slower, never wrong)."""
 
     def __init__(self) -> None:
         self._seen: dict[str, tuple[int, int]] = {}
+        self._since = time.time_ns()  # the last look (at first, this process's start)
+        self._suspect: str | None = None
 
     def note(self) -> None:
         """Record the module files imported since the last call."""
+        now = time.time_ns()
         for module in list(sys.modules.values()):
             name = getattr(module, "__file__", None)
             if isinstance(name, str) and name not in self._seen:
                 identity = _file_identity(name)
                 if identity is not None:
                     self._seen[name] = identity
+                    if identity[1] >= self._since and self._suspect is None:
+                        self._suspect = name
+        self._since = now
 
     def changed(self) -> str | None:
-        """A module file that changed since it was recorded, if any."""
+        """A module file that changed since it was recorded (or may have), if any."""
+        if self._suspect is not None:
+            return self._suspect
         for name, identity in self._seen.items():
             if _file_identity(name) != identity:
                 return name
