@@ -85,9 +85,11 @@ _START_VARIABLES = (
 
 
 # Seconds a waiting worker has to answer a build that claims it (a new one gets three times
-# as long: it starts an interpreter first). A worker that does not answer in time is killed.
+# as long, and at least SPAWN_SECONDS: it starts an interpreter first). A worker that does not
+# answer in time is killed.
 ANSWER_VARIABLE = "MJCFBUILD_WORKER_ANSWER_SECONDS"
 DEFAULT_ANSWER_SECONDS = 10.0
+SPAWN_SECONDS = 30.0
 # How many resident workers one user may have waiting, of every code version and key together.
 MAX_VARIABLE = "MJCFBUILD_RESIDENT_MAX"
 # Variables continuous integration services set: a CI job builds once, and nobody waits at a
@@ -441,7 +443,8 @@ def spawn(
     folder: Path, key: str, hello: dict, env: dict[str, str], seconds: float | None = None
 ) -> Resident:
     """Start a resident worker of ``key`` serving this build first; raises OSError if it
-    does not answer within three times ``seconds`` (it is killed then)."""
+    does not answer within three times ``seconds``, and at least 30 s (it starts an
+    interpreter, on a machine that may be busy; it is killed then)."""
     import socket
 
     seconds = answer_seconds(os.environ) if seconds is None else seconds
@@ -471,7 +474,7 @@ def spawn(
         theirs.close()
     _spawned.add(pid)
     try:  # the hello sets its folder and process state, as for a waiting worker
-        reply = _handshake(ours, hello, 3 * seconds)
+        reply = _handshake(ours, hello, max(3 * seconds, SPAWN_SECONDS))
     except NoAnswer:
         reply = None
     if reply is None or reply.get("pid") != pid:

@@ -216,14 +216,14 @@ def test_a_server_that_stops_answering_at_upload_is_given_up_after_the_deadline(
     store.store(KEY, made, product(made))
     warnings: list[str] = []
     environ = {**os.environ, "MJCFBUILD_REMOTE_TIMEOUT": "1"}
-    remote = RemoteCache(parse_remote(s3_process.remote), ShareStats(), warnings.append, environ)
-    assert not remote.fetch_into(KEY, ProductStore(tmp_path / "other"))  # answered: a miss
+    stats = ShareStats()
+    remote = RemoteCache(parse_remote(s3_process.remote), stats, warnings.append, environ)
     os.kill(s3_process.process.pid, signal.SIGSTOP)
     remote.upload_later(KEY, store)
     remote.wait()  # before: waited as long as the server stayed stopped
     assert len(warnings) == 1, warnings
     assert "did not answer in time" in warnings[0] or "did not take 1 upload" in warnings[0]
-    assert not remote.enabled
+    assert not remote.enabled and stats.as_dict()["uploaded"] == 0
 
 
 def _forge(data: bytes, key: str, folder, secret: bytes | None) -> bytes:
