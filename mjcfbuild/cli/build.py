@@ -43,7 +43,7 @@ def add_parser(commands) -> None:
         "-v",
         "--verbose",
         action="store_true",
-        help="also say why resident workers are off, where they are",
+        help="also say why resident workers are off, when they are",
     )
     parser.add_argument(
         "--no-check", action="store_true", help="skip the check against the URDF (and previews)"
