@@ -335,7 +335,7 @@ def test_workers_stop_ends_a_stopped_worker(residents, tmp_path, monkeypatch):
     [stopped] = _waiting(residents, 1)
     os.kill(stopped, signal.SIGSTOP)
     try:
-        result = run_cli("workers", "stop", env={resident.ANSWER_VARIABLE: "1"})
+        result = run_cli("workers", "stop", env={"MJCFBUILD_WORKER_ANSWER_SECONDS": "1"})
         assert result.code == EXIT_OK and "stopped 1 waiting worker" in result.stdout
         _wait_for(lambda: _gone(stopped))
     finally:
