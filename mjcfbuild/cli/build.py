@@ -39,6 +39,12 @@ def add_parser(commands) -> None:
     jobs_argument(parser)
     timeout_argument(parser)
     parser.add_argument(
+        "-v",
+        "--verbose",
+        action="store_true",
+        help="also say why resident workers are off, when they are",
+    )
+    parser.add_argument(
         "--no-check", action="store_true", help="skip the check against the URDF (and previews)"
     )
     parser.add_argument(
@@ -68,6 +74,8 @@ def add_parser(commands) -> None:
 def run(args: argparse.Namespace) -> int:
     """Build every manifest; the exit code of the first that failed."""
     code = EXIT_OK
+    if args.verbose and not args.quiet:
+        _say_why_workers_are_off()
     for manifest in args.manifests:
         if not args.dry_run:
             summary = _nothing_changed(manifest, args)
@@ -94,6 +102,17 @@ def run(args: argparse.Namespace) -> int:
                 workers.close()  # the build closed them already, unless it never started
         code = code or result
     return code
+
+
+def _say_why_workers_are_off() -> None:
+    """Print, once, why builds here start their own workers instead of resident ones."""
+    import os
+
+    from mjcfbuild.engine.resident import off_reason
+
+    reason = off_reason(os.environ)
+    if reason is not None:
+        print(f"mjcfbuild: resident workers are off: {reason}")
 
 
 def _start_workers(manifest: str, args: argparse.Namespace) -> WorkerPool | None:

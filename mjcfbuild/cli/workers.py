@@ -3,9 +3,7 @@
 from __future__ import annotations
 
 import argparse
-import contextlib
 import os
-import signal
 from pathlib import Path
 
 
@@ -17,9 +15,10 @@ def add_parser(commands) -> None:
         description=(
             "A build leaves its worker processes running, with MuJoCo loaded and the model's "
             "meshes processed, for the next build to use. They wait "
-            "$MJCFBUILD_RESIDENT_WORKERS seconds (default 900; 0 turns them off, as does a "
-            "set CI variable) and then exit. Folder: $MJCFBUILD_RESIDENT_DIR, else "
-            "$XDG_RUNTIME_DIR/mjcfbuild-<uid>, else the temporary folder's."
+            "$MJCFBUILD_RESIDENT_WORKERS seconds (default 900 where a build runs at a "
+            "terminal; 0 turns them off; off by default in CI and git hooks) and then exit. "
+            "Folder: $MJCFBUILD_RESIDENT_DIR, else $XDG_RUNTIME_DIR/mjcfbuild-<uid>, else the "
+            "temporary folder's."
         ),
     )
     parser.add_argument(
@@ -35,29 +34,27 @@ def add_parser(commands) -> None:
 def run(args: argparse.Namespace) -> int:
     """Show or stop the waiting workers."""
     from mjcfbuild.engine.resident import (
+        answer_seconds,
+        folder_problem,
         idle_seconds,
-        resident_dir,
         resident_dir_path,
         resident_pids,
+        shut_down,
     )
 
-    folder = resident_dir(os.environ)
-    if folder is None:
-        print(
-            f"mjcfbuild: resident workers are off: {resident_dir_path(os.environ)} is not a "
-            "folder only this user can open (mode 0700), or its path is too long for a socket; "
-            "every build starts its own workers"
-        )
+    folder = resident_dir_path(os.environ)
+    problem = folder_problem(folder)
+    if problem is not None:
+        print(f"mjcfbuild: resident workers are off: {problem}; every build starts its own workers")
+        return 0
+    if args.action == "stop":
+        # Each is asked over its own socket; one that takes the request and does not confirm
+        # (stopped, or in a debugger) is killed only once its command line shows it is one.
+        seconds = min(answer_seconds(os.environ), 2.0)
+        stopped = sum(shut_down(path, folder, seconds) for path in sorted(folder.glob("*-*.sock")))
+        print(f"mjcfbuild: stopped {stopped} waiting worker{'' if stopped == 1 else 's'}")
         return 0
     pids = resident_pids(folder)
-    if args.action == "stop":
-        for pid in pids:
-            with contextlib.suppress(ProcessLookupError):
-                os.kill(pid, signal.SIGTERM)
-            for socket_file in folder.glob(f"*-{pid}.sock"):
-                socket_file.unlink(missing_ok=True)
-        print(f"mjcfbuild: stopped {len(pids)} waiting worker{'' if len(pids) == 1 else 's'}")
-        return 0
     seconds = idle_seconds(os.environ)
     print(f"folder: {folder}")
     print(f"wait: {seconds:g} s" + (" (resident workers are off)" if seconds == 0 else ""))

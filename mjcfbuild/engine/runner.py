@@ -96,9 +96,12 @@ def run_build(
 
     ``workers`` (mjcfbuild.engine.early) are used if they suit the build, else stopped.
     """
-    from mjcfbuild.engine.resident import idle_seconds
+    from mjcfbuild.engine.resident import answer_seconds, idle_seconds, most_workers
 
-    idle_seconds(os.environ)  # a bad value stops the build before it starts, not in a step
+    # A bad value stops the build before it starts, not in a step.
+    if idle_seconds(os.environ) > 0:
+        answer_seconds(os.environ)
+        most_workers(os.environ)
     session = ctx.new_session()  # a context built twice reports each build's own findings
     if workers is not None and not session.adopt(workers):
         workers.close()  # importing and processing meshes for nothing: free the CPU
@@ -110,28 +113,52 @@ def run_build(
     try:
         _ = ctx.sharing_choice  # a bad remote or executor address stops the build before it starts
         with build_lock(ctx, progress):
-            if ctx.stamp_key is not None:  # whichever way it was started
-                stamp.discard(ctx.stamp_key, ctx.run_check)
-            prepare_state(ctx)
-            # Workers start while this process plans, importing until their first step comes.
-            ctx.session.warm_workers(first_build=not ctx.state(DATABASE).exists())
-            doit_output = _run_stage(ctx, planning_tasks(ctx), progress, result)
-            if not result.errors:
-                tasks = build_tasks(ctx)
-                doit_output += _run_stage(ctx, tasks, progress, result)
-                if not result.errors:
-                    remove_stale_products(ctx, tasks)
-                # A failed check is what the report is for; any other failure means the model
-                # on disk is an earlier one, which the report must not claim to describe.
-                model_built = all(isinstance(e, CheckError) for e in result.errors)
-                ctx.session.finish_sharing()  # uploads are done before the build returns
-                if model_built and ctx.robot_path.exists():
-                    write_report(ctx, list(dict.fromkeys(ctx.session.warnings)))
-            if ctx.session.cache_grew:
-                _prune_cache(ctx)
+            # Everything this build writes in the folder, its hash cache, stamp and report
+            # included, is written while it holds the lock: a build that waited for it
+            # removes what looks like a killed build's temporary files.
+            try:
+                tasks = _build_locked(ctx, progress, result)
+            finally:
+                ctx.session.close()
+                progress.clear()
+            _summarise(result, progress, ctx, started)
+            if ctx.noop_stamp and ctx.stamp_key and tasks and result.ok and not result.warnings:
+                stamp.record_build(ctx, tasks, len(result.ran) + len(result.up_to_date))
     finally:
-        ctx.session.close()
+        ctx.session.close()  # for a build stopped before it took the lock; else it did nothing
         progress.clear()
+    if not result.seconds:
+        _summarise(result, progress, ctx, started)
+    return result
+
+
+def _build_locked(ctx: BuildContext, progress: Progress, result: BuildResult) -> list[dict]:
+    """The build itself, under the folder's lock; the tasks of its second stage."""
+    tasks: list[dict] = []
+    if ctx.stamp_key is not None:  # whichever way it was started
+        stamp.discard(ctx.stamp_key, ctx.run_check)
+    prepare_state(ctx)
+    # Workers start while this process plans, importing until their first step comes.
+    ctx.session.warm_workers(first_build=not ctx.state(DATABASE).exists())
+    doit_output = _run_stage(ctx, planning_tasks(ctx), progress, result)
+    if not result.errors:
+        tasks = build_tasks(ctx)
+        doit_output += _run_stage(ctx, tasks, progress, result)
+        if not result.errors:
+            remove_stale_products(ctx, tasks)
+        # A failed check is what the report is for; any other failure means the model
+        # on disk is an earlier one, which the report must not claim to describe.
+        model_built = all(isinstance(e, CheckError) for e in result.errors)
+        ctx.session.finish_sharing()  # uploads are done (or given up) before the build returns
+        if model_built and ctx.robot_path.exists():
+            write_report(ctx, list(dict.fromkeys(ctx.session.warnings)))
+    if ctx.session.cache_grew:
+        _prune_cache(ctx)
+    result.engine_log = doit_output if result.errors else ""
+    return tasks
+
+
+def _summarise(result: BuildResult, progress: Progress, ctx: BuildContext, started: float) -> None:
     result.ran = progress.names(RAN)
     result.up_to_date = progress.names(UP_TO_DATE)
     result.blocked = progress.names(BLOCKED)
@@ -141,11 +168,7 @@ def run_build(
         warnings = [point_warning_at_source(w, urdf, label, ctx.base_dir) for w in warnings]
     result.warnings = warnings
     result.slowest = progress.slowest()
-    result.seconds = time.perf_counter() - started
-    result.engine_log = doit_output if result.errors else ""
-    if ctx.noop_stamp and ctx.stamp_key and tasks and result.ok and not result.warnings:
-        stamp.record_build(ctx, tasks, len(result.ran) + len(result.up_to_date))
-    return result
+    result.seconds = max(time.perf_counter() - started, 1e-9)
 
 
 def _run_stage(

@@ -50,6 +50,7 @@ class BuildSession:
         self._sharing: ProductSharing | None = None
         self._sharing_lock = threading.Lock()
         self._pool_lock = threading.Lock()
+        self._closed = False
 
     @property
     def hashes(self) -> HashCache:
@@ -191,7 +192,11 @@ class BuildSession:
         return error
 
     def close(self) -> None:
-        """Stop workers, finish uploads and save the hash cache."""
+        """Stop workers, finish uploads and save the hash cache; once (the build calls it
+        under its folder's lock; a later call must not write the hash cache unlocked)."""
+        if self._closed:
+            return
+        self._closed = True
         self.finish_sharing()
         if self._pool is not None:
             self._pool.close()

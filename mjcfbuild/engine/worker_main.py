@@ -144,6 +144,34 @@ def forget_changed_meshes() -> None:
         _warmed.clear()
 
 
+def note_products(request: dict) -> None:
+    """After a step that had MuJoCo process a model's mesh products (assembly, self-collision,
+    check, previews, warm-up), remember what identified each product file then, as for meshes
+    processed while idle: a product published again at the same path (linked from the shared
+    cache, where its time is that of another build) may keep the whole-second time MuJoCo's
+    cache compares."""
+    payload = request.get("payload")
+    if not isinstance(payload, dict):
+        return
+    folders = list(payload.get("folders") or [])
+    folders += list((payload.get("product_dirs") or {}).values())
+    folders += [d.get("folder") for d in payload.get("decompositions") or [] if isinstance(d, dict)]
+    files: list[str] = []
+    for folder in folders:
+        if isinstance(folder, str):
+            with contextlib.suppress(OSError):
+                files += [entry.path for entry in os.scandir(folder) if entry.is_file()]
+    report = payload.get("assembly_report")
+    if isinstance(report, str) and report:
+        from mjcfbuild.check.loading import asset_sources
+
+        files += [str(path) for path in asset_sources(Path(report)).values()]
+    for name in files:
+        identity = _identity(name)
+        if identity is not None:
+            _warmed[name] = identity
+
+
 def _unseen_change(path: str, warmed: tuple[int, int, int]) -> bool:
     """Whether the file at ``path`` differs from when it was processed (``warmed``) while
     keeping the whole-second time MuJoCo's cache compares."""
@@ -187,6 +215,8 @@ def serve(
         request = json.loads(line)
         with watch.step() if watch is not None else contextlib.nullcontext():
             answer = _run(request)
+        if answer["ok"]:
+            note_products(request)
         reply((json.dumps(answer) + "\n").encode())
         request["ok"] = answer["ok"]
         yield request
@@ -200,8 +230,9 @@ def main() -> None:
     if sys.argv[1:2] == ["--resident"]:
         os.dup2(devnull, 1)
         os.close(devnull)
-        fd, folder, key, seconds = sys.argv[2:6]
-        _serve_resident(socket.socket(fileno=int(fd)), Path(folder), key, float(seconds))
+        fd, folder, key, seconds, most = sys.argv[2:7]
+        limits = _Limits(Path(folder), key, float(seconds), int(most))
+        _serve_resident(socket.socket(fileno=int(fd)), limits)
         os._exit(0)
     threading.Thread(target=_watch_parent, args=(os.getppid(),), daemon=True).start()
     protocol = os.dup(1)
@@ -231,23 +262,88 @@ class _Between:
         self.last_end: float | None = None  # when the last build let go (time.time())
 
 
-def _serve_resident(connection: socket.socket, folder: Path, key: str, seconds: float) -> None:
-    """Serve the build on ``connection``, then wait up to ``seconds`` for the next one on a
-    socket in ``folder``, again and again; return when none came in time."""
+class _Limits:
+    """Where a resident worker waits, for which builds, how long and with how many others."""
+
+    def __init__(self, folder: Path, key: str, seconds: float, most: int) -> None:
+        self.folder = folder
+        self.key = key
+        self.seconds = seconds
+        self.most = most
+
+
+def _serve_resident(connection: socket.socket, limits: _Limits) -> None:
+    """Serve the build on ``connection``, then wait up to ``limits.seconds`` for the next one
+    on a socket in ``limits.folder``, again and again; return when none came in time, when
+    the folder is gone, when the build asked it to stop or when it cannot serve a build."""
+    from mjcfbuild.engine.resident import resident_pids
+
     between = _Between()
     idle: IdleWork = []
     while True:
-        _serve_build(connection, key, between, idle)
+        served = _serve_build(connection, limits.key, between, idle)
         connection.close()
-        between.last_end = time.time()
+        if served is None:
+            return  # asked to stop, or cannot serve a build like this one
+        if served:
+            between.last_end = time.time()
+            _code.note()  # what this build imported, as it is now
         drop_mesh_work(idle)  # processing a mesh after the build let go could miss its rewrite
-        if len(list(folder.glob(f"{key}-*.sock"))) >= max(2, os.cpu_count() or 2):
-            return  # as many wait already as a build can use
+        # Every waiting worker of this user counts, of whatever key: one cap per user.
+        if len(resident_pids(limits.folder)) >= limits.most:
+            return
         idle.insert(0, _give_back_memory)  # once listening: the next build may come at once
-        waiting = _wait_for_build(folder / f"{key}-{os.getpid()}.sock", seconds, idle)
+        path = limits.folder / f"{limits.key}-{os.getpid()}.sock"
+        waiting = _wait_for_build(path, limits.seconds, idle)
         if waiting is None:
             return
         connection = waiting
+
+
+class _CodeWatch:
+    """The size and time of every module file this process imported, when first seen: a
+    module edited in place since (an editable install, a patch to site-packages) would not
+    be imported again here, so such a worker must not serve another build. A module first
+    seen with a time later than the last look may have changed after it was imported: that
+    counts as a change too (slower, never wrong)."""
+
+    def __init__(self) -> None:
+        self._seen: dict[str, tuple[int, int]] = {}
+        self._since = time.time_ns()  # the last look (at first, this process's start)
+        self._suspect: str | None = None
+
+    def note(self) -> None:
+        """Record the module files imported since the last call."""
+        now = time.time_ns()
+        for module in list(sys.modules.values()):
+            name = getattr(module, "__file__", None)
+            if isinstance(name, str) and name not in self._seen:
+                identity = _file_identity(name)
+                if identity is not None:
+                    self._seen[name] = identity
+                    if identity[1] >= self._since and self._suspect is None:
+                        self._suspect = name
+        self._since = now
+
+    def changed(self) -> str | None:
+        """A module file that changed since it was recorded (or may have), if any."""
+        if self._suspect is not None:
+            return self._suspect
+        for name, identity in self._seen.items():
+            if _file_identity(name) != identity:
+                return name
+        return None
+
+
+def _file_identity(name: str) -> tuple[int, int] | None:
+    try:
+        info = os.stat(name)
+    except OSError:
+        return None
+    return info.st_size, info.st_mtime_ns
+
+
+_code = _CodeWatch()
 
 
 def _give_back_memory() -> None:
@@ -262,16 +358,31 @@ def _give_back_memory() -> None:
         ctypes.CDLL("libc.so.6").malloc_trim(0)
 
 
-def _serve_build(connection: socket.socket, key: str, between: _Between, idle: IdleWork) -> None:
+def _serve_build(
+    connection: socket.socket, key: str, between: _Between, idle: IdleWork
+) -> bool | None:
+    """Serve the build that connected: True once it let go; False if it went before asking
+    anything (the worker waits on); None if this worker is to end (the build asked it to stop,
+    its code changed, or it cannot take on the build's process state)."""
     from mjcfbuild.engine.resident import receive_line
 
     hello = receive_line(connection)
-    if hello is None or hello.get("key") != key:
-        return
+    if hello is None:
+        return False
+    if hello.get("stop"):
+        with contextlib.suppress(OSError):
+            connection.sendall((json.dumps({"stopping": os.getpid()}) + "\n").encode())
+        return None
+    if hello.get("key") != key:
+        return False
+    if _code.changed() is not None:
+        return None  # the build finds another worker, or starts one with the new code
+    if not adopt_process_state(hello):
+        return None
     try:
         os.chdir(hello["cwd"])
     except OSError:
-        return  # the build's folder is gone: the build starts a worker of its own
+        return False  # the build's folder is gone: the build starts a worker of its own
     os.environ.clear()
     os.environ.update(hello["env"])
     if between.last_end is not None:
@@ -281,7 +392,7 @@ def _serve_build(connection: socket.socket, key: str, between: _Between, idle: I
             (json.dumps({"pid": os.getpid(), "holds": between.holds}) + "\n").encode()
         )
     except OSError:
-        return
+        return True
     idle[:] = idle_work(hello.get("preload", []), hello.get("meshes_from"))
     watch = _ClientWatch(connection)
     try:
@@ -292,6 +403,53 @@ def _serve_build(connection: socket.socket, key: str, between: _Between, idle: I
         pass  # the build let go while the reply was sent
     finally:
         watch.stop()
+    return True
+
+
+# Resource limits a build's workers share with the build (resource.RLIMIT_<name>).
+RLIMITS = ("CORE", "CPU", "DATA", "FSIZE", "NOFILE", "AS", "STACK", "MEMLOCK", "NPROC", "RSS")
+
+
+def process_state() -> dict:
+    """What a worker takes on from the build it serves besides the environment: the file
+    mode mask, the nice level and the resource limits."""
+    import resource
+
+    umask = os.umask(0)
+    os.umask(umask)
+    limits = {}
+    for name in RLIMITS:
+        number = getattr(resource, f"RLIMIT_{name}", None)
+        if number is not None:
+            limits[name] = list(resource.getrlimit(number))
+    return {"umask": umask, "nice": os.getpriority(os.PRIO_PROCESS, 0), "rlimits": limits}
+
+
+def adopt_process_state(hello: dict) -> bool:
+    """Take on the build's file mode mask, nice level and resource limits (``hello``'s
+    ``state``, from :func:`process_state`); False when this process cannot (its nice level is
+    higher or a hard limit lower than the build's, and an unprivileged process cannot undo
+    either): the build then starts a worker that inherits them."""
+    import resource
+
+    state = hello.get("state")
+    if not isinstance(state, dict):
+        return False
+    try:
+        nice = int(state["nice"])
+        if os.getpriority(os.PRIO_PROCESS, 0) != nice:
+            os.setpriority(os.PRIO_PROCESS, 0, nice)
+        for name, (soft, hard) in dict(state["rlimits"]).items():
+            number = getattr(resource, f"RLIMIT_{name}", None)
+            if number is None or resource.getrlimit(number) == (soft, hard):
+                continue
+            if name == "CPU":
+                return False  # counts this process's CPU time over every build it served
+            resource.setrlimit(number, (int(soft), int(hard)))
+        os.umask(int(state["umask"]))
+    except (OSError, ValueError, TypeError, KeyError):
+        return False
+    return True
 
 
 def _keep_or_forget_meshes(between: _Between) -> None:
@@ -315,13 +473,16 @@ def _keep_or_forget_meshes(between: _Between) -> None:
 
 def _wait_for_build(path: Path, seconds: float, idle: IdleWork) -> socket.socket | None:
     """Listen on ``path`` until a build connects (doing ``idle`` work meanwhile) or
-    ``seconds`` pass; the socket file is gone again either way, so no second build finds it."""
+    ``seconds`` pass; the socket file is gone again either way, so no second build finds it.
+    A worker whose socket file was removed (its folder deleted, or ``workers stop``) can
+    never be found again: it ends within a second."""
     listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     try:
         with contextlib.suppress(FileNotFoundError):
             path.unlink()
         listener.bind(str(path))
         listener.listen(4)
+        bound = path.lstat()
     except OSError:  # the folder went away: no build could find this worker
         listener.close()
         return None
@@ -333,14 +494,30 @@ def _wait_for_build(path: Path, seconds: float, idle: IdleWork) -> socket.socket
                     idle.pop(0)()
                 continue
             remaining = deadline - time.monotonic()
-            if remaining <= 0 or not select.select([listener], [], [], remaining)[0]:
+            if remaining <= 0:
                 return None
-            connection, _ = listener.accept()
-            return connection
+            if select.select([listener], [], [], min(remaining, ORPHAN_CHECK_SECONDS))[0]:
+                connection, _ = listener.accept()
+                return connection
+            if not _still_there(path, bound):
+                return None
     finally:
         with contextlib.suppress(OSError):
-            path.unlink()
+            if _still_there(path, bound):
+                path.unlink()
         listener.close()  # builds still queued on it see their connection reset
+
+
+ORPHAN_CHECK_SECONDS = 1.0
+
+
+def _still_there(path: Path, bound: os.stat_result) -> bool:
+    """Whether ``path`` is still the socket file this worker made."""
+    try:
+        now = path.lstat()
+    except OSError:
+        return False
+    return (now.st_ino, now.st_dev) == (bound.st_ino, bound.st_dev)
 
 
 class _ClientWatch:

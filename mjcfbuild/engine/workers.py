@@ -36,7 +36,7 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.worker_main import MESHES_VARIABLE, PRELOAD_VARIABLE
+from mjcfbuild.engine.worker_main import MESHES_VARIABLE, PRELOAD_VARIABLE, process_state
 from mjcfbuild.errors import InternalError, MjcfbuildError, TaskCrashed
 from mjcfbuild.failpoints import BUILD_PID
 
@@ -324,6 +324,7 @@ class WorkerPool:
             "cwd": str(self.cwd),
             "preload": list(preload),
             "meshes_from": str(meshes_from) if meshes_from is not None else None,
+            "state": process_state(),
         }
         resident = claim(folder, self._key, hello)
         if resident is None:

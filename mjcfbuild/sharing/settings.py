@@ -14,6 +14,11 @@ from dataclasses import dataclass
 from urllib.parse import urlsplit
 
 REMOTE_VARIABLE = "MJCFBUILD_CACHE_REMOTE"
+KEY_VARIABLE = "MJCFBUILD_CACHE_KEY"
+KEY_FILE_VARIABLE = "MJCFBUILD_CACHE_KEY_FILE"
+TIMEOUT_VARIABLE = "MJCFBUILD_REMOTE_TIMEOUT"
+DEFAULT_TIMEOUT = 30.0
+_SHORTEST_KEY = 16
 EXECUTOR_VARIABLE = "MJCFBUILD_EXECUTOR"
 DEFAULT_DASK_PORT = 8786
 
@@ -156,6 +161,47 @@ def parse_executor(text: str) -> ExecutorSpec:
     return ExecutorSpec("dask", f"{host}:{port}")
 
 
+def signing_key(environ: dict[str, str]) -> bytes | None:
+    """The secret remote products are signed and checked with: ``$MJCFBUILD_CACHE_KEY``, else
+    the contents of the file ``$MJCFBUILD_CACHE_KEY_FILE`` (surrounding whitespace removed);
+    None when neither is set. Raises :class:`AddressError` for a file that cannot be read or
+    a key shorter than 16 characters (too easy to guess)."""
+    text = environ.get(KEY_VARIABLE, "").strip()
+    origin = f"${KEY_VARIABLE}"
+    if not text and environ.get(KEY_FILE_VARIABLE, "").strip():
+        name = environ[KEY_FILE_VARIABLE].strip()
+        origin = f"${KEY_FILE_VARIABLE} ({name})"
+        try:
+            with open(name, "rb") as handle:
+                text = handle.read(1 << 16).decode("utf-8", "surrogateescape").strip()
+        except OSError as exc:
+            raise AddressError(f"the signing key file cannot be read ({exc.strerror})") from None
+    if not text:
+        return None
+    if len(text) < _SHORTEST_KEY:
+        raise AddressError(
+            f"{origin}: the signing key is shorter than {_SHORTEST_KEY} characters; "
+            "use a random one, e.g. from `openssl rand -hex 32`"
+        )
+    return text.encode("utf-8", "surrogateescape")
+
+
+def remote_timeout(environ: dict[str, str]) -> float:
+    """Seconds each call to the remote cache, and the wait for a build's last uploads, may
+    take (``$MJCFBUILD_REMOTE_TIMEOUT``, default 30); raises :class:`AddressError` for a value
+    that is not a positive number."""
+    text = environ.get(TIMEOUT_VARIABLE, "").strip()
+    if not text:
+        return DEFAULT_TIMEOUT
+    try:
+        seconds = float(text)
+    except ValueError:
+        seconds = -1.0
+    if not 0 < seconds < float("inf"):
+        raise AddressError(f"{TIMEOUT_VARIABLE}={text}: not a positive number of seconds")
+    return seconds
+
+
 def dask_missing() -> str | None:
     """The pip command that installs Dask's distributed scheduler client, if it is missing."""
     if importlib.util.find_spec("distributed") is None:
@@ -210,6 +256,11 @@ def choose(
             except AddressError as exc:
                 fail(remote_origin, str(exc))
             assert remote is not None
+            for check in (signing_key, remote_timeout):
+                try:
+                    check(environ)
+                except AddressError as exc:
+                    raise UsageError(str(exc), hint="fix it, or build with --no-remote") from None
             install = missing_package(remote)
             if install:
                 fail(

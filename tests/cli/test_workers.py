@@ -37,4 +37,4 @@ def test_a_folder_others_can_open_is_not_used_and_it_says_why(tmp_path):
     shared.chmod(0o755)
     shown = run_cli("workers", env={resident.DIR_VARIABLE: str(shared), resident.VARIABLE: "60"})
     assert shown.code == EXIT_OK
-    assert f"resident workers are off: {shared} is not a folder only this user" in shown.stdout
+    assert f"resident workers are off: {shared} may be opened by other users" in shown.stdout

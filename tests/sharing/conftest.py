@@ -118,3 +118,52 @@ def s3_objects(remote: str) -> dict[str, bytes]:
         item["Key"]: client.get_object(Bucket=bucket, Key=item["Key"])["Body"].read()
         for item in listing
     }
+
+
+@dataclass
+class Server:
+    """An S3 API server (moto) in a process of its own, which a test may stop with a signal."""
+
+    process: object  # subprocess.Popen
+    endpoint: str
+    remote: str  # s3://<a fresh bucket>/team
+
+
+@pytest.fixture
+def s3_process(monkeypatch, tmp_path):
+    """A real S3 API server in its own process, a fresh bucket on it, and the environment
+    pointing the AWS tools at it."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    import boto3
+
+    port = free_port()
+    process = subprocess.Popen(
+        [sys.executable, "-m", "moto.server", "-H", "127.0.0.1", "-p", str(port)],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
+    endpoint = f"http://127.0.0.1:{port}"
+    deadline = time.monotonic() + 60
+    while True:
+        with socket.socket() as probe:
+            if probe.connect_ex(("127.0.0.1", port)) == 0:
+                break
+        assert time.monotonic() < deadline and process.poll() is None, "moto did not start"
+        time.sleep(0.05)
+    monkeypatch.setenv("AWS_ENDPOINT_URL", endpoint)
+    monkeypatch.setenv("AWS_ACCESS_KEY_ID", "mjcfbuild-test")
+    monkeypatch.setenv("AWS_SECRET_ACCESS_KEY", SECRET)
+    monkeypatch.setenv("AWS_DEFAULT_REGION", "us-east-1")
+    monkeypatch.setenv("AWS_CONFIG_FILE", str(tmp_path / "no-aws-config"))
+    monkeypatch.setenv("AWS_SHARED_CREDENTIALS_FILE", str(tmp_path / "no-aws-credentials"))
+    bucket = f"products-{uuid.uuid4().hex[:12]}"
+    boto3.client("s3", endpoint_url=endpoint).create_bucket(Bucket=bucket)
+    yield Server(process, endpoint, f"s3://{bucket}/team")
+    os.kill(process.pid, signal.SIGCONT)
+    process.kill()
+    process.wait()

@@ -58,3 +58,27 @@ def test_a_local_file_that_no_longer_matches_its_summary_is_never_shared(tmp_pat
     (tmp_path / "made" / "mesh.obj").write_bytes(b"edited by hand\n")
     with pytest.raises(BadObject, match=r"mesh\.obj does not match"):
         verify(KEY, pack(KEY, tmp_path / "made", summary))
+
+
+SIGNING = b"team-signing-key-" + b"x" * 16
+
+
+def test_a_signed_object_is_used_only_with_a_valid_signature(tmp_path):
+    summary = product(tmp_path / "made")
+    signed = pack(KEY, tmp_path / "made", summary, SIGNING)
+    assert signed.partition(b"\n")[0].count(b" hmac-sha256=") == 1
+    assert signed == pack(KEY, tmp_path / "made", summary, SIGNING)  # still the same bytes
+    assert unpack(KEY, signed, tmp_path / "back", SIGNING) == summary
+    assert verify(KEY, signed)[0] == summary  # without a key the checksum alone decides
+    with pytest.raises(BadObject, match="unsigned"):
+        verify(KEY, pack(KEY, tmp_path / "made", summary), SIGNING)
+    with pytest.raises(BadObject, match="not signed with this signing key"):
+        verify(KEY, pack(KEY, tmp_path / "made", summary, b"another-key-" + b"y" * 16), SIGNING)
+    # A signature covers the key: an object's signature on the product of another key fails.
+    other = "cd" * 32
+    signature_line = signed.partition(b"\n")[0]
+    moved = pack(other, tmp_path / "made", summary, SIGNING).partition(b"\n")[2]
+    moved_line = pack(other, tmp_path / "made", summary).partition(b"\n")[0]
+    forged = moved_line + b" " + signature_line.rpartition(b" ")[2] + b"\n" + moved
+    with pytest.raises(BadObject, match="not signed with this signing key"):
+        verify(other, forged, SIGNING)

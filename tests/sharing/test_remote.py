@@ -171,3 +171,127 @@ def test_no_remote_flag_turns_it_off_for_one_build(machines, tmp_path, cli):
     assert done.code == 0, done.stderr
     assert first.report()["remote"] is None
     assert not (tmp_path / "shared").exists()
+
+
+# --- Issue 32: deadlines and signatures -----------------------------------------------------
+
+
+def test_a_server_that_stops_answering_at_lookup_costs_one_deadline(
+    machines, s3_process, monkeypatch
+):
+    import os
+    import signal
+
+    first, _ = machines
+    os.kill(s3_process.process.pid, signal.SIGSTOP)
+    env = {
+        "MJCFBUILD_CACHE_REMOTE": s3_process.remote,
+        "MJCFBUILD_REMOTE_TIMEOUT": "1",
+        "MJCFBUILD_CACHE_DIR": str(first.cache),
+        "MJCFBUILD_RESIDENT_WORKERS": "0",
+    }
+    # Before: 910 s of silence (run_cli gives up after 600 s).
+    result = run_cli("build", "--no-check", "-j", "2", cwd=first.folder, env=env)
+    assert result.code == 0, result.stderr
+    warnings = [line for line in result.stderr.splitlines() if "remote cache" in line]
+    assert len(warnings) == 1 and "did not answer in time" in warnings[0], result.stderr
+    made = first.report()
+    assert made["computed_here"] == PRODUCTS and made["remote_hits"] == 0
+
+
+def test_a_server_that_stops_answering_at_upload_is_given_up_after_the_deadline(
+    s3_process, tmp_path
+):
+    import os
+    import signal
+
+    from mjcfbuild.engine.store import ProductStore
+    from mjcfbuild.sharing.remote import RemoteCache
+    from mjcfbuild.sharing.settings import parse_remote
+    from mjcfbuild.sharing.stats import ShareStats
+    from tests.sharing.test_blob import KEY, product
+
+    store = ProductStore(tmp_path / "store")
+    made = store.temporary_folder(KEY)
+    store.store(KEY, made, product(made))
+    warnings: list[str] = []
+    environ = {**os.environ, "MJCFBUILD_REMOTE_TIMEOUT": "1"}
+    stats = ShareStats()
+    remote = RemoteCache(parse_remote(s3_process.remote), stats, warnings.append, environ)
+    os.kill(s3_process.process.pid, signal.SIGSTOP)
+    remote.upload_later(KEY, store)
+    remote.wait()  # before: waited as long as the server stayed stopped
+    assert len(warnings) == 1, warnings
+    assert "did not answer in time" in warnings[0] or "did not take 1 upload" in warnings[0]
+    assert not remote.enabled and stats.as_dict()["uploaded"] == 0
+
+
+def _forge(data: bytes, key: str, folder, secret: bytes | None) -> bytes:
+    """The product ``data`` with one of its files changed and every checksum recomputed, as
+    anyone who may write to the bucket can do; signed with ``secret`` if given."""
+    import hashlib
+    import hmac
+
+    from mjcfbuild.sharing.blob import pack
+
+    summary, files = verify(key, data)
+    folder.mkdir(parents=True)
+    name = sorted(n for n in files if n.endswith(".obj"))[0]
+    files[name] += b"v 9 9 9\n"
+    for file, content in files.items():
+        (folder / file).write_bytes(content)
+    summary["files"][name] = hashlib.md5(files[name], usedforsecurity=False).hexdigest()
+    forged = pack(key, folder, summary)
+    if secret is None:
+        return forged
+    first, _, rest = forged.partition(b"\n")
+    signed = hmac.new(secret, key.encode() + b"\n" + rest, hashlib.sha256).hexdigest()
+    return first + f" hmac-sha256={signed}\n".encode() + rest
+
+
+def test_with_a_signing_key_forged_products_are_ignored_and_rebuilt(
+    machines, s3_remote, monkeypatch, tmp_path
+):
+    import os
+
+    import boto3
+
+    signing = "team-key-" + "k" * 32
+    first, second = machines
+    monkeypatch.setenv("MJCFBUILD_CACHE_REMOTE", s3_remote)
+    monkeypatch.setenv("MJCFBUILD_CACHE_KEY", signing)
+    first.build(monkeypatch)
+    objects = s3_objects(s3_remote)
+    assert len(objects) == PRODUCTS
+    # Someone who may write to the bucket replaces two mesh products: one unsigned, one
+    # signed with a key of their own; both pass every checksum.
+    bucket = s3_remote.removeprefix("s3://").partition("/")[0]
+    client = boto3.client("s3", endpoint_url=os.environ["AWS_ENDPOINT_URL"])
+    meshes = [n for n, d in sorted(objects.items()) if b'.obj"' in d.partition(b"\n")[2][:2000]]
+    secrets = [None, b"attacker-" + b"a" * 20]
+    for index, (name, secret) in enumerate(zip(meshes[:2], secrets, strict=True)):
+        key = name.rsplit("/", 1)[1]
+        forged = _forge(objects[name], key, tmp_path / f"forged{index}", secret)
+        client.put_object(Bucket=bucket, Key=name, Body=forged)
+
+    result = second.build(monkeypatch)
+    assert second.outputs() == first.outputs()  # before: the forged meshes were used
+    got = second.report()
+    assert got["remote_rejected"] == 2 and got["remote_hits"] == PRODUCTS - 2
+    assert any("ignored object" in w for w in only_remote_warnings(result)), result.warnings
+    # Rebuilt and uploaded again, signed.
+    for name, data in s3_objects(s3_remote).items():
+        verify(name.rsplit("/", 1)[1], data, signing.encode())
+
+
+def test_a_short_or_unreadable_signing_key_is_a_one_line_usage_error(arm, tmp_path):
+    env = {"MJCFBUILD_CACHE_REMOTE": str(tmp_path / "shared"), "MJCFBUILD_CACHE_KEY": "short"}
+    result = run_cli("build", "--no-check", cwd=arm, env=env)
+    assert result.code == 2 and result.stderr.count("\n") <= 2, result.stderr
+    assert "shorter than 16 characters" in result.stderr and "Traceback" not in result.stderr
+    env = {
+        "MJCFBUILD_CACHE_REMOTE": str(tmp_path / "shared"),
+        "MJCFBUILD_CACHE_KEY_FILE": str(tmp_path / "missing-key"),
+    }
+    result = run_cli("build", "--no-check", cwd=arm, env=env)
+    assert result.code == 2 and "signing key file cannot be read" in result.stderr
