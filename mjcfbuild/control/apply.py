@@ -274,9 +274,9 @@ def _drive_wheels(model, data, choices: list[ActuatorChoice]) -> list[ActuatorCh
 def _pendulum(model, data, readiness: Readiness):
     """The gravity stiffness and carried inertia per DOF of a floating robot at home (see
     control.standing); records how it stands."""
-    from mjcfbuild.control.standing import pendulum_loads, stance
+    from mjcfbuild.control.standing import pendulum_loads, rolling_bodies, stance
 
-    found = stance(model, data)
+    found = stance(model, data, rolling_bodies(model, data))
     readiness.stance = {
         "feet": sorted(mujoco_name(model, "body", body) for body in found.feet),
         "area": found.area,

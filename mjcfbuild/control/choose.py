@@ -146,11 +146,7 @@ def choose_actuators(
         else:
             kind, source = _default_type(joint, settings), "default"
         choice = _choice(joint, kind, source, settings, index, rule)
-        if (
-            source in ("default", "transmission")
-            and joint.kind == "continuous"
-            and kind == "position"
-        ):
+        if source in ("default", "transmission") and kind == "position" and _revolves(joint):
             choice = replace(choice, wheel_candidate=True)
         choices.append(choice)
     return choices
@@ -216,6 +212,17 @@ def _first_rule(name: str, rules: list[ActuatorRule]) -> tuple[int | None, Actua
 
 def _preference(command: str) -> int:
     return _COMMAND_PREFERENCE.index(command) if command in _COMMAND_PREFERENCE else 99
+
+
+def _revolves(joint: Joint) -> bool:
+    """A continuous joint, or a revolute one without bounds (some descriptions draw wheels
+    so), or with placeholder bounds (+-1e16)."""
+    from mjcfbuild.urdf.limits import joint_range
+
+    if joint.kind == "continuous":
+        return True
+    bounds = joint_range(joint)
+    return joint.kind == "revolute" and (bounds is None or placeholder_range(bounds))
 
 
 def _default_type(joint: Joint, settings: ActuatorSettings) -> str:

@@ -66,9 +66,10 @@ class Stance:
         return ""
 
 
-def stance(model, data) -> Stance:
+def stance(model, data, rolling: frozenset[int] = frozenset()) -> Stance:
     """The feet and support polygon of ``data``'s pose (kinematics and centre of mass
-    computed, the robot standing on z = 0)."""
+    computed, the robot standing on z = 0). ``rolling`` bodies (wheels) touch the floor at
+    their lowest point only: a tyre's flat band is no foot."""
     import numpy as np
 
     from mjcfbuild.control.floor import geom_lowest_points, geom_support_points
@@ -80,7 +81,10 @@ def stance(model, data) -> Stance:
             continue
         body = int(model.geom_bodyid[geom])
         feet.setdefault(body, [float(v) for v in point])
-        points += [p[:2] for p in geom_support_points(model, data, geom, CONTACT)]
+        if body in rolling:
+            points.append(point[:2])
+        else:
+            points += [p[:2] for p in geom_support_points(model, data, geom, CONTACT)]
     com = np.asarray(data.subtree_com[0][:2])
     if len(points) < 3:
         robot = model.geom_bodyid != 0
@@ -130,6 +134,24 @@ def pendulum_loads(model, data, feet: dict[int, list[float]]):
         perpendicular = lever - (lever @ axis) * axis
         carried[dof] = mass * float(perpendicular @ perpendicular) / share
     return stiffness, carried
+
+
+def rolling_bodies(model, data) -> frozenset[int]:
+    """The bodies of unlimited hinge joints that are wheels on the floor (control.wheels)."""
+    import mujoco
+
+    from mjcfbuild.control.wheels import wheel_joints
+
+    hinges = [
+        mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, joint) or ""
+        for joint in range(model.njnt)
+        if model.jnt_type[joint] == mujoco.mjtJoint.mjJNT_HINGE and not model.jnt_limited[joint]
+    ]
+    wheels = wheel_joints(model, data, [name for name in hinges if name])
+    return frozenset(
+        int(model.jnt_bodyid[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)])
+        for name in wheels
+    )
 
 
 def mirror_pairs(model, data, joints: list[str], tolerance: float = 0.01) -> list[tuple[str, str]]:
