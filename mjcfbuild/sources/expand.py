@@ -81,7 +81,22 @@ def read_urdf_file(path: Path) -> Expansion:
         raise InputError("source is a folder, not a file", file=path) from None
     except OSError as exc:
         raise InputError(f"cannot read source: {exc.strerror}", file=path) from None
+    macro = _XACRO_ELEMENT.search(data)
+    if macro is not None:
+        # Read as URDF, a xacro file loses every macro and include silently (a one-link model
+        # that passes every check): it must be expanded.
+        line = data.count(b"\n", 0, macro.start()) + 1
+        raise InputError(
+            f"this file is xacro (<{macro.group(1).decode()}> at line {line}), not a URDF",
+            file=path,
+            line=line,
+            hint=f"name it with source: {{xacro: {path.name}}} in robot.yaml",
+        )
     return Expansion(urdf=data, files=[str(normalise(path))])
+
+
+# A xacro element (not just the namespace declaration, which expanded URDFs often keep).
+_XACRO_ELEMENT = re.compile(rb"<(xacro:(?:include|macro|property|arg|if|unless|call)\b)")
 
 
 def expand_xacro(

@@ -136,3 +136,27 @@ def test_an_unknown_package_in_find_has_its_line_and_the_closest_name(pkg):
         expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({"pgk": pkg}, {}))
     assert info.value.location.line == 4
     assert "unknown package 'pkg'; did you mean 'pgk'?" in info.value.message
+
+
+def test_a_xacro_file_named_as_a_urdf_is_refused_not_built_as_one_link(tmp_path):
+    """Read as URDF, its includes and macros would vanish and a one-link model pass every
+    check (roboplan's fr3.urdf is xacro)."""
+    from mjcfbuild.errors import InputError
+    from mjcfbuild.sources.expand import read_urdf_file
+
+    source = tmp_path / "arm.urdf"
+    source.write_text(
+        '<?xml version="1.0"?>\n<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="parts.xacro"/>\n  <link name="base"/>\n</robot>\n'
+    )
+    with pytest.raises(InputError) as refused:
+        read_urdf_file(source)
+    assert refused.value.location is not None and refused.value.location.line == 3
+    assert "xacro:include" in str(refused.value) and "source: {xacro: arm.urdf}" in str(
+        refused.value.hint
+    )
+    expanded = tmp_path / "expanded.urdf"  # the namespace alone, as expanded URDFs keep it
+    expanded.write_text(
+        '<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="b"/></robot>'
+    )
+    assert read_urdf_file(expanded).urdf.startswith(b"<robot")
