@@ -8,9 +8,11 @@ boxes, cylinders and spheres):
 - a robot bolted down says so: its root is a ``world`` link joined by a fixed joint;
 - a wheeled base floats: two or more continuous joints with horizontal axes whose links sit in
   the lowest quarter of the robot;
-- a legged robot floats: two or more branches leaving the root reach the floor (within 10% of
-  the robot's height of its lowest point) while the root itself stays well above it (more than
-  30% of the robot's height);
+- a legged robot floats: a link branches into two or more limbs that reach the floor (within
+  10% of the robot's height of its lowest point) while the root itself stays well above it
+  (more than 30% of the robot's height);
+- a flying robot floats: two or more joints without stops, with vertical axes, at leaf links
+  (rotors);
 - anything else (an arm on its base plate, a hand) is fixed.
 """
 
@@ -19,7 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from mjcfbuild.urdf.kinematics import link_poses
-from mjcfbuild.urdf.model import Robot, Shape
+from mjcfbuild.urdf.model import Joint, Robot, Shape
 from mjcfbuild.urdf.transforms import Transform, apply
 
 _FLOOR = 0.1  # of the height: how close to the lowest point a foot reaches
@@ -56,7 +58,7 @@ def classify_base(robot: Robot) -> BaseKind:
     if len(rotors) >= 2:
         return BaseKind(True, f"its continuous joints {', '.join(rotors[:4])} are rotors")
     body = _fixed_to(robot, robot.root)
-    feet = _branches_reaching(robot, body, points, low + _FLOOR * size)
+    feet = _branches_reaching(robot, points, low + _FLOOR * size)
     root_low = min(p[2] for link in body for p in points[link])
     if len(feet) >= 2 and root_low - low > _RAISED * size:
         return BaseKind(
@@ -113,17 +115,27 @@ def _wheels(robot: Robot, poses: dict[str, Transform], low: float, size: float) 
 
 
 def _rotors(robot: Robot, poses: dict[str, Transform]) -> list[str]:
-    """Continuous joints with vertical axes at leaf links: propellers."""
+    """Joints that turn without stops, with vertical axes, at leaf links: propellers."""
     parents = {joint.parent for joint in robot.joints}
     rotors = []
     for joint in robot.joints:
-        if joint.kind != "continuous" or joint.child in parents:
+        if not _unbounded(joint) or joint.child in parents:
             continue
         axis = apply(poses[joint.child].rotation, joint.axis)
         norm = sum(a * a for a in axis) ** 0.5 or 1.0
         if abs(axis[2] / norm) > 0.9:
             rotors.append(joint.name)
     return rotors
+
+
+def _unbounded(joint: Joint) -> bool:
+    """Continuous, or revolute without a range or with a placeholder one (+-1e16)."""
+    from mjcfbuild.urdf.limits import joint_range
+
+    if joint.kind == "continuous":
+        return True
+    bounds = joint_range(joint)
+    return joint.kind == "revolute" and (bounds is None or max(map(abs, bounds)) > 1e4)
 
 
 def _fixed_to(robot: Robot, root: str) -> set[str]:
@@ -139,24 +151,23 @@ def _fixed_to(robot: Robot, root: str) -> set[str]:
     return body
 
 
-def _branches_reaching(robot: Robot, body: set[str], points: dict, floor: float) -> set[str]:
-    """The links moving joints attach to the root's rigid ``body`` whose subtrees reach down
-    to ``floor``."""
+def _branches_reaching(robot: Robot, points: dict, floor: float) -> set[str]:
+    """The most links one link branches into whose subtrees reach down to ``floor``: a
+    pelvis's two legs, a trunk's four, even where the legs hang from a waist below the root."""
     children: dict[str, list[str]] = {}
     for joint in robot.joints:
         children.setdefault(joint.parent, []).append(joint.child)
-    branches = [
-        joint.child for joint in robot.joints if joint.parent in body and joint.kind != "fixed"
-    ]
-    reaching = set()
-    for branch in branches:
-        pending = [branch]
-        while pending:
-            link = pending.pop()
-            if any(p[2] <= floor for p in points.get(link, [])[1:]) or (
-                len(points.get(link, [])) == 1 and points[link][0][2] <= floor
-            ):
-                reaching.add(branch)
-                break
-            pending += children.get(link, [])
-    return reaching
+    reaches: dict[str, bool] = {}
+
+    def reach(link: str) -> bool:
+        if link not in reaches:
+            own = any(p[2] <= floor for p in points.get(link, []))
+            reaches[link] = own or any([reach(child) for child in children.get(link, [])])
+        return reaches[link]
+
+    best: set[str] = set()
+    for link in [robot.root, *(joint.child for joint in robot.joints)]:
+        legs = {child for child in children.get(link, []) if reach(child)}
+        if len(legs) > len(best):
+            best = legs
+    return best
