@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from mjcfbuild.check.tuning_table import tuning_lines
+
 
 def markdown(report: dict) -> str:
     """The human report."""
@@ -20,6 +22,7 @@ def markdown(report: dict) -> str:
     lines.append("")
     lines += _checks(report.get("check") or {})
     lines += _control(report.get("readiness") or {})
+    lines += tuning_lines(report.get("tuning") or {})  # issue 33
     lines += _self_collision(report.get("self_collision"))
     if report["repairs"]:
         lines += [

@@ -43,6 +43,7 @@ class ActuatorChoice:
     gravcomp: bool = False
     rule: int | None = None  # index of the matching actuators.rules entry
     stiffen: bool = True  # default gains: stiffened where gravity at home would bend the joint
+    motor: dict | None = None  # issue 33: the rule's drive at the output (control.motors.Drive)
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""

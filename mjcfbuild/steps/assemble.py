@@ -54,6 +54,7 @@ def run(payload: dict) -> dict:
         inputs=inputs,
         control=control,
         actuators=ActuatorSettings(**request.actuators),
+        motors=request.motors,
         home=request.home,
         home_state=(srdf or {}).get("states", {}).get(request.srdf_home or "home"),
         excludes=[tuple(pair) for pair in (matrix or {}).get("excludes", [])],

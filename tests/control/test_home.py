@@ -83,7 +83,9 @@ def test_a_massless_floating_root_is_repaired_and_reported(tmp_path):
         tmp_path / "robot.yaml",
         "name: r\nsource: {urdf: robot.urdf}\noptions: {free_joint: true}\n",
     )
-    result = mjcfbuild.build(tmp_path / "robot.yaml")
+    # Not checked: the repaired root is so light that the hinge's servo spins it past the
+    # speed bound (check.speeds), which is right for such a model but not this test's subject.
+    result = mjcfbuild.build(tmp_path / "robot.yaml", check=False)
     assert any("floating root without mass" in w for w in result.warnings), result.warnings
 
 
