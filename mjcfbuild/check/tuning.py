@@ -106,7 +106,7 @@ def groups_of(actuators: list[dict], rules: list[dict]) -> dict[str, tuple[str, 
     return dict(sorted(groups.items()))
 
 
-def test_stand(spec) -> None:
+def stand_spec(spec) -> None:
     """Make ``spec`` (a copy of the built model) the test stand: contacts off, every free
     joint removed (its body held where it is), keyframes dropped."""
     import mujoco

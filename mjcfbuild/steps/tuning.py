@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from mjcfbuild.check.loading import asset_sources, compile_model, spec_reading_sources
-from mjcfbuild.check.tuning import groups_of, measure, test_stand
+from mjcfbuild.check.tuning import groups_of, measure, stand_spec
 from mjcfbuild.check.tuning_plot import plot_group
 from mjcfbuild.errors import ModelError
 from mjcfbuild.steps.outputs import write_output
@@ -39,7 +39,7 @@ def run(payload: dict) -> dict:
                 if sources
                 else mujoco.MjSpec.from_file(request.model)
             )
-            test_stand(spec)
+            stand_spec(spec)
             model = spec.compile()
         except (ModelError, ValueError):
             return {"outputs": {}}
