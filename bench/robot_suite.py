@@ -67,6 +67,7 @@ def check(name: str, folder: Path) -> dict:
         "floor_gap": checked.get("floor_gap"),
         "hold": checked.get("hold", {}),
         "menagerie": checked.get("menagerie_test", {}),
+        "fastest": checked.get("max_joint_speed"),
         "touching": len(checked.get("resting_contacts", {}).get("pairs", [])),
         "failures": checked.get("failures", []),
         "passes": finite and kinematics.passes() and bool(checked.get("passes")),
@@ -87,9 +88,9 @@ def main() -> None:
         "| robot | links | moving joints | cold build (s) | 2,000 steps finite "
         "| max link position error (m) | max link rotation error (rad) | inertia repairs "
         "| actuators | home | bodies touching at home | floor contact at home (mm) "
-        "| hold error (rad/m) | Menagerie test | passes |"
+        "| hold error (rad/m) | Menagerie test | fastest joint under it (speed / limit) | passes |"
     )
-    print("|---|---:|---:|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---|---|")
+    print("|---|---:|---:|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---|---|---|")
     for r in rows:
         gap = f"{r['floor_gap'] * 1000:.2f}" if r["floor_gap"] is not None else "fixed base"
         hold = r["hold"].get("max_deviation")
@@ -99,11 +100,16 @@ def main() -> None:
         )
         menagerie = r["menagerie"]
         test = "pass" if menagerie.get("finite") and not menagerie.get("warnings") else "FAIL"
+        fastest = r["fastest"]
+        speed = (
+            f"{fastest['joint']} {fastest['speed']:.3g} / {fastest['limit']:g}" if fastest else "-"
+        )
         print(
             f"| {r['robot']} | {r['links']} | {r['joints']} | {r['seconds']:.1f} "
             f"| {'yes' if r['finite'] else 'NO'} | {r['position']:.1e} | {r['rotation']:.1e} "
             f"| {r['repairs']} | {r['actuators']} | {'yes' if r['home'] else 'no'} "
-            f"| {r['touching']} | {gap} | {hold_text} | {test} | {'yes' if r['passes'] else 'NO'} |"
+            f"| {r['touching']} | {gap} | {hold_text} | {test} | {speed} "
+            f"| {'yes' if r['passes'] else 'NO'} |"
         )
     for r in rows:
         for failure in r["failures"]:

@@ -9,9 +9,11 @@ m/s for a slide). How far past it a joint may go depends on what the model knows
   line's no-load speed; only what moves it from outside (its neighbours, a falling base) can,
   so it fails past :data:`DRIVEN_MULTIPLE` times its limit;
 - a joint whose servo has no speed limit (no motor data) fails past :data:`FREE_MULTIPLE` times
-  its limit: a 10 Hz servo thrown across its range by the test's pseudorandom commands reaches
-  about 10-15 times a typical arm's velocity limit, while a placeholder effort or a runaway
-  servo reaches hundreds of rad/s. Past 1 time its limit it is listed (report.md), not failed.
+  its limit: the default 10 Hz servos, thrown across their range by the test's pseudorandom
+  commands, reach 3-11 times the velocity limits of the real arms and legs of docs/robots.md
+  and up to 37 times those of grippers and lifts (talos's fingers: 1 rad/s), while a runaway
+  servo (a placeholder effort, a nearly massless body) reaches hundreds of times its limit.
+  Past 1 time its limit a joint is listed in check.json's ``speed_bound``, not failed.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 DRIVEN_MULTIPLE = 1.5
-FREE_MULTIPLE = 20.0
+FREE_MULTIPLE = 50.0
 DEFAULT_LIMIT = {"hinge": 100.0, "slide": 10.0}  # rad/s, m/s: joints with no limit anywhere
 
 
