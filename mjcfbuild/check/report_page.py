@@ -207,6 +207,12 @@ def _checks(check: dict) -> list[str]:
     return lines
 
 
+def _motor(actuator: dict) -> str:
+    """The motor behind an actuator (issue 33), if a rule named one."""
+    motor = actuator.get("motor")
+    return f", motor {motor['motor']}" if motor else ""
+
+
 def _replaced(actuator: dict) -> str:
     """The placeholder effort an actuator's force range replaced, if any."""
     effort = actuator.get("placeholder_effort")
@@ -223,7 +229,7 @@ def _control(readiness: dict) -> list[str]:
         lines += ["|---|---|---|---|---:|---:|---|---|"]
         for a in readiness["actuators"]:
             lines.append(
-                f"| {a['name']} | {a['joint']} | {a['type']} | {a['source']} | "
+                f"| {a['name']} | {a['joint']} | {a['type']} | {a['source']}{_motor(a)} | "
                 f"{_number(a.get('kp'))} | {_number(a.get('kv'))} | {_range(a.get('ctrlrange'))} "
                 f"| {_range(a.get('forcerange'))}{_replaced(a)} |"
             )

@@ -204,3 +204,24 @@ def test_bad_motor_setting(tmp_path, case):
     assert len(lines) == 1 and "Traceback" not in result.stderr
     assert where in lines[0] and message in lines[0], lines[0]
     assert not (tmp_path / "mjcf" / "r.xml").exists()
+
+
+def test_a_bad_motor_file_names_its_own_line(tmp_path):
+    write(tmp_path / "robot.urdf", two_link_urdf())
+    write(tmp_path / "drives.yaml", "m:\n  rotor_inertia: 1.0e-5\n  peak_torque: 3\n  gear: 5\n")
+    write(
+        tmp_path / "robot.yaml",
+        "name: r\nsource: {urdf: robot.urdf}\nmotors: {files: [drives.yaml]}\n"
+        "actuators:\n  rules:\n    - {joints: [hinge], motor: m}\n",
+    )
+    result = run_cli("build", str(tmp_path / "robot.yaml"))
+    assert result.code == 3, result.stderr
+    [line] = result.stderr.strip().splitlines()
+    assert "drives.yaml:4" in line and "unknown key 'gear'" in line, line
+    assert not (tmp_path / "mjcf" / "r.xml").exists()
+
+
+def test_the_report_names_each_actuators_motor(tmp_path):
+    _build(tmp_path)
+    page = (tmp_path / "mjcf/report/report.md").read_text()
+    assert "| FL_calf_joint | FL_calf_joint | dcmotor | default, motor go1_knee |" in page
