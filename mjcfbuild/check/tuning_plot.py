@@ -32,28 +32,35 @@ def plot_group(group) -> bytes:
     draw.text((MARGIN, 6), f"{group.label} ({group.kind})", fill=(0, 0, 0), font=font)
     joints = list(group.step_traces)[:SHOWN]
     unit = "rad/s" if group.kind == "velocity" else "rad or m"
-    step_values = [v for j in joints for v in group.step_traces[j]] + [0.0, 1.2]
+    # The step panel spans three settling times (the whole window where a joint never settles),
+    # so a fast servo's response is not a vertical line at the left edge.
+    settling = [j.settling_time for j in group.joints]
+    span = group.times[-1] if None in settling or not settling else 3 * max(settling)
+    shown = [k for k, t in enumerate(group.times) if t <= max(span, 0.05)]
+    times = [0.0] + [group.times[k] for k in shown]  # from the moment of the step
+    steps = [[0.0] + [group.step_traces[j][k] for k in shown] for j in joints]
+    step_values = [v for trace in steps for v in trace] + [0.0, 1.2]
     _panel(
         draw,
         font,
         0,
         "step (share of the step made)",
-        group.times,
-        [group.step_traces[j] for j in joints],
+        times,
+        steps,
         (min(step_values), max(step_values)),
-        reference=[1.0] * len(group.times),
+        reference=[1.0] * len(times),
     )
     sine_values = [v for j in joints for v in group.sine_traces[j]] + group.sine_reference
-    span = max((abs(v) for v in sine_values), default=1.0) or 1.0
+    extent = max((abs(v) for v in sine_values), default=1.0) or 1.0
     _panel(
         draw,
         font,
         1,
         f"sine, {unit} from the settled pose (dashed: command)",
-        group.times,
-        [group.sine_traces[j] for j in joints],
-        (-1.1 * span, 1.1 * span),
-        reference=group.sine_reference,
+        [0.0, *group.times],
+        [[0.0, *group.sine_traces[j]] for j in joints],
+        (-1.1 * extent, 1.1 * extent),
+        reference=[0.0, *group.sine_reference],
     )
     for k, joint in enumerate(joints):
         x = MARGIN + k * (WIDTH - 2 * MARGIN) // max(1, len(joints))
@@ -81,7 +88,7 @@ def _panel(draw, font, column, title, times, traces, bounds, reference) -> None:
     draw.text((left, top - 14), title, fill=(0, 0, 0), font=font)
     draw.text((left - 40, top - 4), f"{high:.3g}", fill=(0, 0, 0), font=font)
     draw.text((left - 40, bottom - 8), f"{low:.3g}", fill=(0, 0, 0), font=font)
-    draw.text((right - 30, bottom + 4), f"{end:g} s", fill=(0, 0, 0), font=font)
+    draw.text((right - 40, bottom + 4), f"{end:.3g} s", fill=(0, 0, 0), font=font)
     if low < 0 < high:
         draw.line([point(0, 0), point(end, 0)], fill=(200, 200, 200))
     dashes = [point(t, y) for t, y in zip(times, reference, strict=False)]

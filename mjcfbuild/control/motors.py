@@ -141,7 +141,7 @@ def apply_motors(
             if own is not None and abs(float(own) - drive.ratio) > 1e-9 * drive.ratio:
                 warnings.append(
                     f"joint '{choice.joint}': the <transmission> reduction {drive.ratio:g} "
-                    f"({transmission.origin}) replaces motor '{rule.motor}''s ratio {own:g}"
+                    f"({transmission.origin}) replaces the ratio {own:g} of motor '{rule.motor}'"
                 )
         result.append(_driven(choice, rule, drive))
     for joint, transmission in sorted(geared.items()):

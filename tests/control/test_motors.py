@@ -118,7 +118,7 @@ def test_a_transmission_reduction_is_the_gear_ratio_of_the_named_motor(tmp_path)
     model = mujoco.MjModel.from_xml_path(str(result.robot))
     dof, _ = _ids(model, "RR_calf_joint")
     assert model.dof_armature[dof] == pytest.approx(GO1_ROTOR * 12**2, abs=1e-9)
-    notes = [w for w in result.warnings if "replaces motor 'go1_knee''s ratio 9" in w]
+    notes = [w for w in result.warnings if "replaces the ratio 9 of motor 'go1_knee'" in w]
     assert len(notes) == 4 and "reduction 12" in notes[0], result.warnings
 
 
