@@ -634,6 +634,8 @@ def _assemble_task(
             *([matrix] if matrix else []),
             *([srdf] if srdf else []),
             *(Path(path) for part in parts for path in (part.xml, part.summary)),
+            # motor files: their values are in the payload; listed so the no-op path sees edits
+            *(ctx.resolve(name) for name in ctx.manifest.motors.files),
         ],
         targets=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT), ctx.state(FLOOR_RECORD)],
     )

@@ -225,3 +225,21 @@ def test_the_report_names_each_actuators_motor(tmp_path):
     _build(tmp_path)
     page = (tmp_path / "mjcf/report/report.md").read_text()
     assert "| FL_calf_joint | FL_calf_joint | dcmotor | default, motor go1_knee |" in page
+
+
+def test_an_edited_motor_file_rebuilds_the_model(tmp_path):
+    write(tmp_path / "robot.urdf", two_link_urdf())
+    drives = write(
+        tmp_path / "drives.yaml", "m: {rotor_inertia: 1.0e-4, ratio: 10, peak_torque: 5}\n"
+    )
+    write(
+        tmp_path / "robot.yaml",
+        "name: r\nsource: {urdf: robot.urdf}\nmotors: {files: [drives.yaml]}\n"
+        "actuators:\n  rules:\n    - {joints: [hinge], motor: m}\n",
+    )
+    for ratio in (10, 20):
+        drives.write_text(f"m: {{rotor_inertia: 1.0e-4, ratio: {ratio}, peak_torque: 5}}\n")
+        result = run_cli("build", "-q", "--no-check", str(tmp_path / "robot.yaml"))
+        assert result.code == 0, result.stderr
+        model = mujoco.MjModel.from_xml_path(str(tmp_path / "mjcf" / "r.xml"))
+        assert model.dof_armature[0] == pytest.approx(1.0e-4 * ratio**2)
