@@ -183,6 +183,11 @@ BAD = {
         "robot.yaml:5",
         "motors.define.m.rotor_inertia: -1 should be greater than 0",
     ),
+    "a misspelt motor key": (
+        "motors:\n  define:\n    m: {rotor_inertia: 1.0e-5, peak_torque: 3, ration: 5}\n",
+        "robot.yaml:5",
+        "motors.define.m.ration: unknown key 'ration'; did you mean 'ratio'?",
+    ),
     "a peak torque below the continuous torque": (
         "motors:\n  define:\n    m: {rotor_inertia: 1.0e-5, peak_torque: 3, continuous_torque: 5}"
         "\n",
