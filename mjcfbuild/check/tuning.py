@@ -22,7 +22,8 @@ from the same settled state, a sine of that amplitude at :data:`SINE_HZ` Hz for
 - steady-state error: final value against the command (what gravity leaves, torque / kp);
 
 and from the sine the largest tracking error; over both, saturation: the share of time the
-actuator's force was at its force limit (a drive's peak torque). A group's row shows its worst
+actuator's force was at its limit (its force range: a drive's peak torque; and, in the direction
+of motion, a drive's torque-speed line). A group's row shows its worst
 joint for each figure. Crossing times are interpolated between steps.
 """
 
@@ -153,7 +154,7 @@ def _group(model, settled, ctrl, name: str, label: str, records: list[dict]) -> 
 
     velocity = records[0]["type"] == "velocity"
     group = GroupResponse(name, label, "velocity" if velocity else "position")
-    actuators, dofs, addresses, steps, limits = [], [], [], [], []
+    actuators, dofs, addresses, steps, limits, lines = [], [], [], [], [], []
     for record in records:
         actuator = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, record["name"])
         joint = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, record["joint"])
@@ -166,12 +167,23 @@ def _group(model, settled, ctrl, name: str, label: str, records: list[dict]) -> 
         forcerange = model.actuator_forcerange[actuator]
         limited = bool(model.actuator_forcelimited[actuator])
         limits.append(float(max(abs(forcerange[0]), abs(forcerange[1]))) if limited else math.inf)
+        motor = record.get("motor") or {}
+        speed_line = motor.get("no_load_speed") and record["type"] == "dcmotor"
+        # A drive's torque-speed line: stall torque and no-load speed (inf: none).
+        lines.append(
+            (float(motor["stall_torque"]), float(motor["no_load_speed"]))
+            if speed_line
+            else (math.inf, math.inf)
+        )
     count = round(WINDOW / model.opt.timestep)
     times = [(i + 1) * model.opt.timestep for i in range(count)]
     index = np.array(actuators, dtype=int)
     watched = np.array(dofs if velocity else addresses, dtype=int)
     step_array = np.array(steps)
     bounds = np.array(limits)
+    stall = np.array([line[0] for line in lines])
+    no_load = np.array([line[1] for line in lines])
+    dof_index = np.array(dofs, dtype=int)
 
     def run(command):
         data = mujoco.MjData(model)
@@ -182,9 +194,16 @@ def _group(model, settled, ctrl, name: str, label: str, records: list[dict]) -> 
         for i in range(count):
             data.ctrl[:] = ctrl
             data.ctrl[index] = ctrl[index] + command(i)
+            speed = data.qvel[dof_index].copy()  # the speed the step's forces are computed at
             mujoco.mj_step(model, data)
             trace[i] = (data.qvel if velocity else data.qpos)[watched]
-            saturated += np.abs(data.actuator_force[index]) >= SATURATED * bounds
+            force = data.actuator_force[index]
+            # The limit: the force range, and in the direction of motion the torque-speed line.
+            with np.errstate(invalid="ignore"):
+                line = np.where(
+                    force * speed > 0, stall * np.maximum(0.0, 1 - np.abs(speed) / no_load), np.inf
+                )
+            saturated += np.abs(force) >= SATURATED * np.minimum(bounds, line)
         return start, trace, saturated / count
 
     start, step_trace, step_saturation = run(lambda i: step_array)

@@ -26,7 +26,7 @@ def tuning_lines(tuning: dict) -> list[str]:
             f"| {group['overshoot']:.1%} "
             f"| {'not settled' if settling is None else _seconds(settling)} "
             f"| {group['steady_state_error']:.3g} | {group['tracking_error']:.3g} "
-            f"| {group['saturation']:.0%} |"
+            f"| {group['saturation']:.1%} |"
         )
     lines.append("")
     for name, path in sorted((tuning.get("plots") or {}).items()):

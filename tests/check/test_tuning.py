@@ -97,3 +97,20 @@ def test_a_gain_change_reruns_the_model_and_its_reports_not_the_rest(tmp_path):
     assert sorted(p.name for p in (tmp_path / "mjcf/report/tuning").iterdir()) == [
         "default_position.png"
     ]
+
+
+def test_a_weak_drive_shows_as_saturation(tmp_path):
+    weak = (
+        "motors:\n  define:\n    weak: {rotor_inertia: 1.0e-6, ratio: 10, peak_torque: 3,"
+        " no_load_speed: 2}\n"
+        "actuators:\n  rules:\n    - {joints: [hinge], motor: weak}\n"
+        "home: {hinge: 0.5}\n"
+    )
+    _build(tmp_path, weak)
+    [group] = _tuning(tmp_path)["groups"]
+    # The 10 Hz servo asks ~10 times the 3 N m the drive has for a 0.1 rad step, and the
+    # 2 rad/s line caps it further while it moves.
+    assert group["saturation"] > 0.01
+    _build(tmp_path / "strong", "home: {hinge: 0.5}\n")
+    [strong] = _tuning(tmp_path / "strong")["groups"]
+    assert strong["saturation"] < group["saturation"] / 2
