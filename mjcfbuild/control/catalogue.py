@@ -54,9 +54,10 @@ def resolve_motors(
     manifest_label: str,
 ) -> dict[str, dict]:
     """Every motor a rule names, as JSON-ready datasheet values (name -> values). An unknown
-    name is a :class:`ManifestError` at the rule's ``motor`` key, listing the known names."""
+    name is a :class:`ManifestError` at the rule's ``motor`` key, listing the known names; every
+    file of ``motors.files`` is read and checked, named by a rule or not."""
     wanted = [(index, rule.motor) for index, rule in enumerate(rules) if rule.motor]
-    if not wanted:
+    if not wanted and not settings.files:
         return {}
     sources: list[dict[str, Motor]] = [dict(settings.define)]
     for index, name in enumerate(settings.files):

@@ -53,14 +53,6 @@ class Drive:
         """A JSON-friendly form."""
         return asdict(self)
 
-    def line_torque(self, speed: float) -> float:
-        """The most torque the drive gives at ``speed`` (rad/s): its torque-speed line, capped
-        at the peak torque."""
-        if self.no_load_speed is None or self.stall_torque is None:
-            return self.peak_torque
-        line = self.stall_torque * (1 - abs(speed) / self.no_load_speed)
-        return max(0.0, min(self.peak_torque, line))
-
 
 def output_drive(name: str, motor: dict, reduction: float | None) -> Drive:
     """The drive of motor ``name`` (its datasheet values, as ``resolve_motors`` gives them) at
