@@ -67,7 +67,7 @@ class GroupResponse:
     joints: list[JointResponse] = field(default_factory=list)
     times: list[float] = field(default_factory=list)
     step_traces: dict[str, list[float]] = field(default_factory=dict)  # share of the step
-    sine_traces: dict[str, list[float]] = field(default_factory=dict)  # offset from start
+    sine_traces: dict[str, list[float]] = field(default_factory=dict)  # share of the amplitude
     sine_reference: list[float] = field(default_factory=list)
 
     def summary(self) -> dict:
@@ -233,8 +233,10 @@ def _group(model, settled, ctrl, name: str, label: str, records: list[dict]) -> 
         group.step_traces[record["joint"]] = [
             float(v - start[k]) / made if made else 0.0 for v in values
         ]
-        group.sine_traces[record["joint"]] = [float(v - sine_start[k]) for v in sine_trace[:, k]]
-    group.sine_reference = [float(step_array[0]) * s for s in sine] if len(steps) else []
+        group.sine_traces[record["joint"]] = [
+            float(v - sine_start[k]) / steps[k] for v in sine_trace[:, k]
+        ]
+    group.sine_reference = list(sine)
     return group
 
 

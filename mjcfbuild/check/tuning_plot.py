@@ -1,10 +1,12 @@
 """The tuning report's plot of one actuator group, drawn with Pillow: the step response (a share
-of the step, against time) beside the sine response (offset from the settled pose, with the
-command dashed). Same traces, same bytes."""
+of the step made, against time) beside the sine response (from the settled pose, a share of the
+commanded amplitude, with the command dashed). Same traces, same bytes."""
 
 from __future__ import annotations
 
 import io
+
+from mjcfbuild.check.tuning import SINE_HZ
 
 WIDTH, HEIGHT = 900, 340
 PANEL = 420  # each panel's width
@@ -31,7 +33,6 @@ def plot_group(group) -> bytes:
     font = ImageFont.load_default()
     draw.text((MARGIN, 6), f"{group.label} ({group.kind})", fill=(0, 0, 0), font=font)
     joints = list(group.step_traces)[:SHOWN]
-    unit = "rad/s" if group.kind == "velocity" else "rad or m"
     # The step panel spans three settling times (the whole window where a joint never settles),
     # so a fast servo's response is not a vertical line at the left edge.
     settling = [j.settling_time for j in group.joints]
@@ -56,7 +57,7 @@ def plot_group(group) -> bytes:
         draw,
         font,
         1,
-        f"sine, {unit} from the settled pose (dashed: command)",
+        f"sine at {SINE_HZ:g} Hz (share of the amplitude; dashed: command)",
         [0.0, *group.times],
         [[0.0, *group.sine_traces[j]] for j in joints],
         (-1.1 * extent, 1.1 * extent),

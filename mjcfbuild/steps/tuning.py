@@ -45,6 +45,8 @@ def run(payload: dict) -> dict:
             return {"outputs": {}}
         home_qpos, home_ctrl = _home(built)
         for group in measure(model, home_qpos, home_ctrl, groups):
+            if not group.joints:  # none of its actuators is in the model any more
+                continue
             summaries.append(group.summary())
             name = f"{group.name}.png"
             write_output(folder / name, plot_group(group), outputs)
