@@ -85,6 +85,7 @@ def check_control(model, passive: set[str], hold_tolerance: float, strict: bool)
         "fastest_joint": test.fastest_joint,
         "fastest_speed": test.fastest_speed,
         "unstable_joint": test.unstable_joint,
+        "top_speeds": test.top_speeds,  # issue 33: taken out by the speed bound (check.speeds)
     }
     advice = _unstable_advice(model, test) if test.warnings or not test.finite else ""
     if not test.finite:
@@ -384,6 +385,7 @@ class MenagerieTest:
     fastest_joint: str | None
     fastest_speed: float
     unstable_joint: str | None  # where MuJoCo found an unstable acceleration, if it did
+    top_speeds: dict[str, float] = field(default_factory=dict)  # issue 33: joint -> top speed
 
 
 def menagerie_test(model) -> MenagerieTest:
@@ -437,7 +439,8 @@ def menagerie_test(model) -> MenagerieTest:
     dof = int(unstable.lastinfo)
     own = unstable.number and 0 <= dof < model.nv and jointed[dof]
     unstable_joint = _dof_joint(model, dof) if own else None
-    return MenagerieTest(warnings, finite, fastest_joint, fastest_speed, unstable_joint)
+    tops = {_dof_joint(model, int(d)) or f"#{d}": float(top[d]) for d in np.flatnonzero(jointed)}
+    return MenagerieTest(warnings, finite, fastest_joint, fastest_speed, unstable_joint, tops)
 
 
 def _dof_joint(model, dof: int) -> str | None:

@@ -169,6 +169,7 @@ def check_model(
     control = check_control(model, passive, options.hold_tolerance, strict=readiness is not None)
     report.results.update(control.results)
     report.failures += control.failures
+    _speed_bound(report, robot, model, readiness)  # issue 33
     report.results["meshes"] = mesh_statistics(model)
     _check_plausibility(model, report, sources)
     return report
@@ -182,3 +183,26 @@ def _check_plausibility(model, report: CheckReport, sources: dict[str, Path] | N
     plausibility = check_plausibility(model, sources)
     report.results["plausibility"] = plausibility.to_dict()
     report.failures += plausibility.failures
+
+
+def _speed_bound(report: CheckReport, robot: Robot, model, readiness: dict | None) -> None:
+    """The Menagerie test's speed bound (check.speeds): the joint fastest against its velocity
+    limit, and a failure for every joint past its bound."""
+    import mujoco
+
+    from mjcfbuild.check.speeds import joint_speeds, speed_results
+
+    tops = (report.results.get("menagerie_test") or {}).pop("top_speeds", None) or {}
+    limits = {
+        joint.name: (joint.limit.velocity if joint.limit is not None else None)
+        for joint in robot.joints
+    }
+    kinds = {}
+    for index in range(model.njnt):
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, index)
+        slide = model.jnt_type[index] == mujoco.mjtJoint.mjJNT_SLIDE
+        kinds[name] = "slide" if slide else "hinge"
+    speeds = joint_speeds(tops, limits, kinds, (readiness or {}).get("actuators", []))
+    results, failures = speed_results(speeds)
+    report.results.update(results)
+    report.failures += failures

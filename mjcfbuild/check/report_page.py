@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from mjcfbuild.check.tuning_table import tuning_lines
+
 
 def markdown(report: dict) -> str:
     """The human report."""
@@ -20,6 +22,7 @@ def markdown(report: dict) -> str:
     lines.append("")
     lines += _checks(report.get("check") or {}, report.get("warnings") or [])
     lines += _control(report.get("readiness") or {})
+    lines += tuning_lines(report.get("tuning") or {})  # issue 33
     lines += _self_collision(report.get("self_collision"))
     lines += _plausibility(report)
     if report["repairs"]:
@@ -234,6 +237,12 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
     return lines
 
 
+def _motor(actuator: dict) -> str:
+    """The motor behind an actuator (issue 33), if a rule named one."""
+    motor = actuator.get("motor")
+    return f", motor {motor['motor']}" if motor else ""
+
+
 def _replaced(actuator: dict) -> str:
     """The placeholder effort an actuator's force range replaced, if any."""
     effort = actuator.get("placeholder_effort")
@@ -250,7 +259,7 @@ def _control(readiness: dict) -> list[str]:
         lines += ["|---|---|---|---|---:|---:|---|---|"]
         for a in readiness["actuators"]:
             lines.append(
-                f"| {a['name']} | {a['joint']} | {a['type']} | {a['source']}"
+                f"| {a['name']} | {a['joint']} | {a['type']} | {a['source']}{_motor(a)}"
                 f"{', weight-bearing' if a.get('weight_bearing') else ''}"
                 f"{_armature(a)} | "
                 f"{_number(a.get('kp'))} | {_number(a.get('kv'))} | {_range(a.get('ctrlrange'))} "

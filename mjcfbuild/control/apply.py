@@ -25,6 +25,7 @@ from mjcfbuild.control.choose import (
 from mjcfbuild.control.efforts import EffortCap, describe, placeholder_efforts
 from mjcfbuild.control.floor import lowest_collision_point
 from mjcfbuild.control.home import HomeValue
+from mjcfbuild.control.motors import dcmotor_attributes, has_speed_line
 from mjcfbuild.control.standing import MARGIN
 from mjcfbuild.inputs.apply import ACTUATOR_TAGS
 from mjcfbuild.numbers import output_list
@@ -49,6 +50,8 @@ class ActuatorRecord:
     placeholder_effort: float | None = None  # the URDF effort the forcerange replaced
     weight_bearing: bool = False  # kp raised to hold the standing robot (control.standing)
     armature: float | None = None  # added to the joint so the stiff servo stays stable
+    motor: dict | None = None  # issue 33: the drive (control.motors.Drive) behind the actuator
+    rule: int | None = None  # issue 33: the actuators.rules entry it came from (tuning groups)
 
 
 @dataclass
@@ -495,10 +498,25 @@ def _actuator(
         record.ctrlrange = [-velocity, velocity] if velocity else None
     else:  # motor
         record.ctrlrange, record.forcerange = record.forcerange, None
+    # issue 33: a drive with a torque-speed line makes a position servo a <dcmotor>
+    record.motor, record.rule = choice.motor, choice.rule
+    if choice.type == "position" and has_speed_line(choice.motor):
+        record.type = "dcmotor"
     return record
 
 
 def _attributes(record: ActuatorRecord) -> dict[str, str]:
+    if record.type == "dcmotor" and record.motor is not None:  # issue 33
+        assert record.kp is not None and record.kv is not None
+        return dcmotor_attributes(
+            record.name,
+            record.joint,
+            record.kp,
+            record.kv,
+            record.ctrlrange,
+            record.forcerange,
+            record.motor,
+        )
     attributes = {"name": record.name, "joint": record.joint}
     if record.kp is not None:
         attributes["kp"] = output_list([record.kp])
@@ -564,6 +582,8 @@ def _home_ctrl(model, data, torques):
         affine = model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_AFFINE
         if affine and bias[1] != 0:  # a position servo: force = kp (ctrl - length) ...
             ctrl[actuator] = gear * data.qpos[address]
+        elif model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_DCMOTOR:  # issue 33
+            ctrl[actuator] = gear * data.qpos[address]  # a drive's position servo
         elif not affine and model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_FIXED:
             ctrl[actuator] = torques[dof] / (gear * model.actuator_gainprm[actuator, 0])
         if model.actuator_ctrllimited[actuator]:

@@ -54,6 +54,7 @@ class ActuatorChoice:
     stiffen: bool = True  # default gains: stiffened where gravity at home would bend the joint
     wheel_candidate: bool = False  # continuous, default type: a wheel if its geometry says so
     rule_forcerange: bool = False  # forcerange from a rule: it also sets the joint's own limit
+    motor: dict | None = None  # issue 33: the rule's drive at the output (control.motors.Drive)
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""

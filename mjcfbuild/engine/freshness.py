@@ -17,7 +17,7 @@ from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.loader import DATABASE
 from mjcfbuild.engine.tasks import PLAN
 
-REPORT_TASKS = ("check", "previews")
+REPORT_TASKS = ("check", "previews", "tuning")
 
 
 def stale_outputs(ctx: BuildContext) -> list[str]:

@@ -14,7 +14,13 @@ from pathlib import Path
 
 from mjcfbuild.check.report_page import markdown
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, decomposition_dir, report_dir
+from mjcfbuild.engine.tasks import (
+    ASSEMBLY_REPORT,
+    CHECK_RESULTS,
+    TUNING_RECORD,
+    decomposition_dir,
+    report_dir,
+)
 from mjcfbuild.fsutil import write_if_changed
 
 TIMINGS = "timings.json"
@@ -61,6 +67,7 @@ def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
         "times": record_timings(ctx),
         "cache": ctx.session.cache_report,
         "previews": [f"previews/{name}" for name in previews],
+        "tuning": _read(ctx.state(TUNING_RECORD)) if ctx.manifest.check.tuning else {},
     }
     write_if_changed(
         folder / "report.json", (json.dumps(report, indent=1, sort_keys=True) + "\n").encode()

@@ -25,6 +25,7 @@ COMPILES_MODEL = {
     ASSEMBLE,
     "mjcfbuild.steps.check:run",
     "mjcfbuild.steps.previews:run",
+    "mjcfbuild.steps.tuning:run",
 }
 
 if TYPE_CHECKING:

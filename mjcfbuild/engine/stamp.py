@@ -278,9 +278,10 @@ def files_under(folder: Path, skip: Iterable[str] = ()) -> list[Path]:
 
 
 def mjcfbuild_sources() -> list[Path]:
-    """mjcfbuild's own Python files: a changed step or model falls through to the full path."""
+    """mjcfbuild's own Python files and data (the motor catalogue): a changed step, model or
+    catalogue falls through to the full path."""
     package = Path(__file__).resolve().parents[1]
-    return sorted(package.rglob("*.py"))
+    return sorted([*package.rglob("*.py"), *package.rglob("*.yaml")])
 
 
 def record_build(ctx: BuildContext, tasks: list[dict], task_count: int) -> None:

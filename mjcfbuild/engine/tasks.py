@@ -53,6 +53,7 @@ from mjcfbuild.steps.payloads import (
     ScenePayload,
     SelfCollisionPayload,
     SrdfPayload,
+    TuningPayload,
 )
 from mjcfbuild.steps.plan_record import Plan, read_plan
 
@@ -70,6 +71,7 @@ ASSEMBLY_REPORT = "assembly.json"
 FLOOR_RECORD = "floor.json"
 URDF_EXPORT_RECORD = "urdf_export.json"
 PREVIEWS_RECORD = "previews.json"
+TUNING_RECORD = "tuning.json"
 
 
 def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
@@ -119,6 +121,8 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
         tasks.append(_check_task(ctx, prefix, parts))
         if ctx.manifest.check.previews:
             tasks.append(_previews_task(ctx, prefix))
+        if ctx.manifest.check.tuning:
+            tasks.append(_tuning_task(ctx, prefix))
     return tasks
 
 
@@ -149,6 +153,7 @@ def _check_simulation_settings(ctx: BuildContext, robot: Robot, plan: Plan) -> N
 
     try:
         check_rules(robot, ctx.manifest.actuators, ctx.manifest_label)
+        _motors(ctx)  # an unknown motor or a bad motor file, before anything is built
         control = plan.control()
         home_values(robot, control, ctx.manifest.home, None, ctx.manifest_label)
         _check_kept_pairs(robot, ctx)
@@ -156,6 +161,18 @@ def _check_simulation_settings(ctx: BuildContext, robot: Robot, plan: Plan) -> N
         if ctx.manifest_file is not None:
             pinpoint(error, ctx.manifest_label, ctx.manifest_file)
         raise
+
+
+def _motors(ctx: BuildContext) -> dict[str, dict]:
+    """The motors the actuator rules name (control.catalogue), their datasheet values."""
+    from mjcfbuild.control.catalogue import resolve_motors
+
+    return resolve_motors(
+        ctx.manifest.motors,
+        ctx.manifest.actuators.rules,
+        ctx.base_dir,
+        ctx.manifest_label,
+    )
 
 
 def _check_kept_pairs(robot: Robot, ctx: BuildContext) -> None:
@@ -636,6 +653,7 @@ def _assemble_task(
             "native": ctx.manifest.mujoco_inputs.model_dump(mode="json"),
         },
         actuators=ctx.manifest.actuators.model_dump(mode="json"),
+        motors=_motors(ctx),
         home=dict(ctx.manifest.home),
         floor=ctx.manifest.placement.floor,
         srdf_home=_srdf_home_state(ctx),
@@ -675,6 +693,8 @@ def _assemble_task(
             *([matrix] if matrix else []),
             *([srdf] if srdf else []),
             *(Path(path) for part in parts for path in (part.xml, part.summary)),
+            # motor files: their values are in the payload; listed so the no-op path sees edits
+            *(ctx.resolve(name) for name in ctx.manifest.motors.files),
         ],
         targets=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT), ctx.state(FLOOR_RECORD)],
     )
@@ -772,6 +792,29 @@ def _previews_task(ctx: BuildContext, prefix: str) -> dict:
         file_dep=[ctx.scene_path],
         targets=[ctx.state(PREVIEWS_RECORD)],
         extra_uptodate=[RenderInputsUnchanged(ctx.robot_path, ctx.assets_dir, ctx.session.hashes)],
+        after=[f"{prefix}assemble"],
+    )
+
+
+def _tuning_task(ctx: BuildContext, prefix: str) -> dict:
+    """The tuning report (check.tuning): reruns when the model or its actuators change, and
+    alone: neither the check nor the previews wait for it."""
+    payload = TuningPayload(
+        folder=str(report_dir(ctx) / "tuning"),
+        rules=[rule.model_dump(mode="json") for rule in ctx.manifest.actuators.rules],
+        model=str(ctx.robot_path),
+        assembly_report=str(ctx.state(ASSEMBLY_REPORT)),
+        record=str(ctx.state(TUNING_RECORD)),
+    )
+    return _task(
+        ctx,
+        f"{prefix}tuning",
+        "tuning report",
+        "tuning",
+        payload,
+        in_worker=True,
+        file_dep=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT)],
+        targets=[ctx.state(TUNING_RECORD)],
         after=[f"{prefix}assemble"],
     )
 

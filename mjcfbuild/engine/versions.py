@@ -10,7 +10,7 @@ from mjcfbuild import __version__
 # Bump a step's number when its output for the same inputs changes.
 STEP_FORMATS = {
     "expand": 2,  # 2: the origins of the expanded lines
-    "plan": 3,
+    "plan": 4,
     "mesh": 5,
     "decompose": 3,
     "assemble": 9,
@@ -18,6 +18,7 @@ STEP_FORMATS = {
     "check": 6,
     "reference": 1,
     "previews": 4,
+    "tuning": 1,
     "srdf": 2,
     "selfcollision": 3,
     "export_urdf": 1,
@@ -37,6 +38,7 @@ STEP_TOOLS = {
     "check": ("mujoco", "numpy"),
     "reference": ("yourdfpy", "numpy", "lxml"),
     "previews": ("mujoco", "numpy", "pillow"),
+    "tuning": ("mujoco", "numpy", "pillow"),
     "export_urdf": ("mujoco", "numpy"),
     "compose": ("lxml",),
     "mjcfpart": ("mujoco", "lxml"),

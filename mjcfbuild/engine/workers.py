@@ -49,7 +49,7 @@ if TYPE_CHECKING:
 MESH_MODULES = ("numpy", "lxml.etree", "mjcfbuild.steps.mesh")
 MODEL_MODULES = ("mujoco", "mjcfbuild.steps.selfcollision", "mjcfbuild.steps.assemble")
 BUILD_MODULES = MESH_MODULES + MODEL_MODULES
-CHECK_MODULES = ("mjcfbuild.steps.check", "mjcfbuild.steps.previews")
+CHECK_MODULES = ("mjcfbuild.steps.check", "mjcfbuild.steps.previews", "mjcfbuild.steps.tuning")
 # The check's reader of the URDF (yourdfpy, with trimesh and scipy: a second of CPU) runs only
 # when the URDF's kinematics change: a first build preloads it, a rebuild imports it if needed.
 REFERENCE_MODULES = ("yourdfpy", "mjcfbuild.steps.reference")

@@ -53,6 +53,7 @@ class Transmission:
     joint: str
     interfaces: list[str]
     origin: str
+    reduction: float | None = None  # mechanicalReduction (ROS 1) or mechanical_reduction
 
 
 @dataclass
@@ -124,9 +125,49 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                     joint.get("name", ""),
                     [i for i in interfaces if i],
                     f"{label}:{joint.sourceline}",
+                    _reduction(transmission, joint),
                 )
             )
+    # ros2_control's own <transmission> (transmission_interface plugins): no hardware
+    # interface, but the joint's mechanical_reduction.
+    for block in root.findall("ros2_control"):
+        for transmission in block.findall("transmission"):
+            for joint in transmission.findall("joint"):
+                result.transmissions.append(
+                    Transmission(
+                        joint.get("name", ""),
+                        [],
+                        f"{label}:{joint.sourceline}",
+                        _reduction(transmission, joint),
+                    )
+                )
     return result
+
+
+_REDUCTION_TAGS = ("mechanicalReduction", "mechanical_reduction")
+
+
+def _reduction(transmission: etree._Element, joint: etree._Element) -> float | None:
+    """The gear ratio a transmission gives ``joint``: its own reduction element, else the
+    actuator's (ROS 1 puts it there), else a ``<param name="mechanical_reduction">``; None
+    where none is given, it is 1 or it is not a number."""
+    candidates = [
+        *(joint.find(tag) for tag in _REDUCTION_TAGS),
+        *(a.find(tag) for a in transmission.findall("actuator") for tag in _REDUCTION_TAGS),
+        *(p for p in transmission.iter("param") if p.get("name") in _REDUCTION_TAGS),
+    ]
+    for element in candidates:
+        if element is None:
+            continue
+        try:
+            value = abs(float((element.text or "").strip()))
+        except ValueError:
+            continue
+        # A negative reduction only flips the direction, which the URDF's axis already says;
+        # 1, which most descriptions write as a placeholder, is no gearbox.
+        if value > 0 and value != 1:
+            return value
+    return None
 
 
 def sensor_warnings(

@@ -194,15 +194,24 @@ def _show(value: object) -> str:
 
 def _allowed_keys(loc: tuple) -> list[str]:
     """The keys the model at ``loc`` accepts, walking the manifest models."""
+    import typing
+
     from mjcfbuild.manifest.models import Manifest
 
     model: type[BaseModel] | None = Manifest
+    keyed = False  # the part before was a mapping of names to models (motors.define)
     for part in loc:
-        if model is None or isinstance(part, int):
+        if keyed:
+            keyed = False
+            continue
+        if isinstance(part, int):  # an item of a list of models: the model itself
+            continue
+        if model is None:
             return []
         field = model.model_fields.get(str(part))
         if field is None:
             return []
+        keyed = typing.get_origin(field.annotation) is dict
         model = _model_of(field.annotation)
     if model is None:
         return []

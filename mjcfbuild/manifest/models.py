@@ -21,6 +21,7 @@ from pydantic import (
 )
 
 from mjcfbuild.manifest.composition import Attachment, check_prefixes
+from mjcfbuild.manifest.motors import MotorSettings
 from mjcfbuild.manifest.simulation import (
     ActuatorSettings,
     Placement,
@@ -434,6 +435,11 @@ class CheckSettings(StrictModel):
 
     enabled: bool = Field(True, description="Check the model against the URDF after building.")
     previews: bool = Field(True, description="Render preview pictures for the report.")
+    tuning: bool = Field(
+        True,
+        description="Measure each actuator group's step and sine response for the report "
+        "(docs/simulation.md, the tuning report).",
+    )
     configurations: int = Field(
         20, ge=1, description="Random joint configurations for the kinematics check."
     )
@@ -569,6 +575,7 @@ class Manifest(StrictModel):
     cache: CacheSettings = Field(default_factory=CacheSettings)
     mujoco_inputs: MujocoInputs = Field(default_factory=MujocoInputs)
     actuators: ActuatorSettings = Field(default_factory=ActuatorSettings)
+    motors: MotorSettings = Field(default_factory=MotorSettings)
     home: dict[str, float] = Field(
         default_factory=dict,
         description=(

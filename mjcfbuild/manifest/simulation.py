@@ -67,6 +67,14 @@ class ActuatorRule(_Strict):
     gravcomp: bool | None = Field(
         None, description="Compensate gravity on the bodies the joints move (body gravcomp)."
     )
+    # issue 33: a real drive (mjcfbuild.control.motors)
+    motor: str | None = Field(
+        None,
+        min_length=1,
+        description="A motor (motors.define, motors.files or the shipped catalogue) that drives "
+        "the joints: its armature, force limits, torque-speed line, friction and damping, "
+        "unless this rule sets them.",
+    )
 
     @model_validator(mode="after")
     def _ordered_range(self) -> ActuatorRule:

@@ -60,6 +60,7 @@ class AssemblyOptions:
     inputs: Inputs | None = None
     control: Ros2Control | None = None
     actuators: ActuatorSettings = field(default_factory=ActuatorSettings)
+    motors: dict[str, dict] = field(default_factory=dict)  # rules' motors: name -> datasheet
     home: dict[str, float] = field(default_factory=dict)
     home_state: dict[str, float] | None = None  # an SRDF's group_state named 'home'
     home_from: str | None = None  # which SRDF group_state that is, for the report
@@ -158,6 +159,7 @@ def _apply_additions(
     from mjcfbuild.control.apply import make_ready, user_driven_joints
     from mjcfbuild.control.choose import choose_actuators
     from mjcfbuild.control.home import home_values
+    from mjcfbuild.control.motors import apply_motors
     from mjcfbuild.inputs.apply import LinkPlace, apply_inputs
     from mjcfbuild.inputs.ros2_control import sensor_warnings
     from mjcfbuild.selfcollision.excludes import write_excludes
@@ -195,6 +197,12 @@ def _apply_additions(
     choices = choose_actuators(
         parts.actuator_robot, control, options.actuators, user_driven_joints(root)
     )
+    # issue 33: rules' motors (armature, force limits, torque-speed line); gear ratios from
+    # the transmissions
+    choices, motor_warnings = apply_motors(
+        choices, options.actuators.rules, options.motors, control.transmissions
+    )
+    warnings += motor_warnings
     home = home_values(
         parts.home_robot,
         control,

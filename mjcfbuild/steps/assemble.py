@@ -56,6 +56,7 @@ def run(payload: dict) -> dict:
         inputs=inputs,
         control=control,
         actuators=ActuatorSettings(**request.actuators),
+        motors=request.motors,
         home=request.home,
         home_state=home_state,
         home_from=home_from,

@@ -300,6 +300,7 @@ class AssemblePayload(Payload):
     decompositions: list[DecompositionFiles]
     inputs: dict[str, Any]  # the MuJoCo inputs from the URDF, the inputs file and robot.yaml
     actuators: dict[str, Any]  # manifest.simulation.ActuatorSettings
+    motors: dict[str, Any]  # the motors actuators.rules name: name -> datasheet values
     home: dict[str, float]
     floor: float | str
     srdf_home: str | None
@@ -376,6 +377,17 @@ class PreviewsPayload(Payload):
         str, NotCounted("names the products the assets were published from: speed, not content")
     ]
     record: Output  # each picture in ``folder`` with what it shows, to keep those unchanged
+
+
+@dataclass(frozen=True)
+class TuningPayload(Payload):
+    """``tuning``: each actuator group's step and sine response in the built model."""
+
+    folder: str  # the plots (counted: the record names them relative to the report)
+    rules: list[dict[str, Any]]  # actuators.rules: the groups' labels
+    model: FileDependency
+    assembly_report: FileDependency  # the actuators (with their rules) and the asset sources
+    record: Output
 
 
 @dataclass(frozen=True)

@@ -13,9 +13,9 @@ def test_build_prints_progress_then_summary(cli, arm):
     lines = result.stdout.strip().splitlines()
     if lines[-1].startswith("  slowest: "):  # only builds longer than two seconds say it
         lines.pop()
-    assert lines[-1].startswith("mjcfbuild: built example_arm.xml: 12 run, 0 up to date")
+    assert lines[-1].startswith("mjcfbuild: built example_arm.xml: 13 run, 0 up to date")
     again = cli("build", cwd=arm)
-    assert "0 run, 12 up to date" in again.stdout
+    assert "0 run, 13 up to date" in again.stdout
     assert again.stdout.count("\n") == 1
 
 

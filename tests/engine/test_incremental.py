@@ -165,6 +165,7 @@ def test_check_follows_the_model(arm):
         "check",
         "mesh:finger",
         "previews",
+        "tuning",
     ]
 
 

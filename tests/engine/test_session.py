@@ -40,6 +40,7 @@ def test_model_steps_carry_the_model_and_a_second_worker_is_warmed(tmp_path, mon
         "assemble",
         "check",
         "previews",
+        "tuning",
     }
     assert all(affinities[label] is None for label in affinities if label.startswith("mesh:"))
     [(affinity, step, payload)] = warmed

@@ -31,3 +31,33 @@ def test_cameras_and_sensors_without_partners_are_warned_both_ways(tmp_path):
         "ros2_control camera sensor 'front_camera' has no MuJoCo camera of its name" in w
         for w in result.warnings
     )
+
+
+def test_transmission_reductions_are_read_from_ros1_and_ros2_control():
+    from lxml import etree
+
+    from mjcfbuild.inputs.ros2_control import read_ros2_control
+
+    urdf = b"""<robot name="r">
+  <transmission name="t1"><type>transmission_interface/SimpleTransmission</type>
+    <joint name="knee"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m1"><mechanicalReduction>-9</mechanicalReduction></actuator></transmission>
+  <transmission name="t2">
+    <joint name="hip"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+    <actuator name="m2"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>
+  <ros2_control name="hw" type="system">
+    <joint name="elbow"><command_interface name="position"/></joint>
+    <transmission name="t3"><plugin>transmission_interface/SimpleTransmission</plugin>
+      <actuator name="m3" role="actuator1"/>
+      <joint name="elbow" role="joint1"><mechanical_reduction>50</mechanical_reduction></joint>
+    </transmission>
+    <transmission name="t4"><plugin>transmission_interface/SimpleTransmission</plugin>
+      <param name="mechanical_reduction">100</param><joint name="wrist" role="joint1"/>
+    </transmission>
+  </ros2_control>
+</robot>"""
+    control = read_ros2_control(etree.fromstring(urdf), "robot.urdf")
+    reductions = {t.joint: t.reduction for t in control.transmissions}
+    # A negative reduction only flips the direction; 1 is the usual placeholder: no gearbox.
+    assert reductions == {"knee": 9.0, "hip": None, "elbow": 50.0, "wrist": 100.0}
+    assert next(t for t in control.transmissions if t.joint == "elbow").origin == "robot.urdf:12"

@@ -28,3 +28,23 @@ def test_starter_for_urdf_mentions_unresolved_packages(tmp_path):
     manifest = parse_manifest(text)
     assert manifest.source.urdf == "r.urdf"
     assert "#   dog_meshes: path/to/dog_meshes" in text
+
+
+def test_starter_shows_motors_as_a_commented_example(tmp_path):
+    import yaml
+
+    source = EXAMPLES / "arm" / "urdf" / "arm.urdf.xacro"
+    text = starter_manifest_text(source, {}, tmp_path)
+    assert "# motors:" in text and "motor: go1_knee" in text
+    # Uncommented, the example is a valid manifest section.
+    block = [
+        line[2:]
+        for line in text.splitlines()
+        if line.startswith("# motors:")
+        or (
+            line.startswith("#   ") and ("files:" in line or "define:" in line or "my_knee" in line)
+        )
+    ]
+    settings = yaml.safe_load("\n".join(block))
+    manifest = parse_manifest(text + "\n" + yaml.safe_dump(settings))
+    assert "my_knee" in manifest.motors.define

@@ -36,6 +36,7 @@ def test_robot_builds_simulates_and_matches_urdf_kinematics(name, tmp_path):
     assert check["passes"] and check["actuation"]["problems"] == []
     assert check["resting_contacts"]["pairs"] == []
     assert check["home"] and check["menagerie_test"]["warnings"] == []
+    assert set(check["max_joint_speed"]) == {"joint", "speed", "limit"}  # for docs/robots.md
     if robot.floating:
         assert abs(check["floor_gap"]) <= 1e-3
     # solo12's URDF gives every joint 1000 N m, 125-255 times what holds the robot up.

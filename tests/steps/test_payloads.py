@@ -65,6 +65,7 @@ def test_an_optional_file_dependency_counts_by_being_given():
             decompositions=[DecompositionFiles("m", {"threshold": 0.05}, "/d/m", "/d/m.json")],
             inputs={},
             actuators={},
+            motors={},
             home={},
             floor="auto",
             srdf_home=None,

@@ -1,0 +1,111 @@
+"""The speed bound of the model test: how fast each joint went under MuJoCo Menagerie's
+pseudorandom control, against the speed the real joint can reach.
+
+A joint's limit is its URDF ``<limit velocity>``; where the URDF gives none (or a placeholder
+0 or -1), the no-load speed of the motor that drives it, else :data:`DEFAULT_LIMIT` (rad/s, or
+m/s for a slide). How far past it a joint may go depends on what the model knows:
+
+- a joint driven by a motor with a torque-speed line (``motors:``) cannot drive itself past the
+  line's no-load speed; only what moves it from outside (its neighbours, a falling base) can,
+  so it fails past :data:`DRIVEN_MULTIPLE` times its limit;
+- a joint whose servo has no speed limit (no motor data) fails past :data:`FREE_MULTIPLE` times
+  its limit: the default 10 Hz servos, thrown across their range by the test's pseudorandom
+  commands, reach 3-11 times the velocity limits of the real arms and legs of docs/robots.md
+  and up to 37 times those of grippers and lifts (talos's fingers: 1 rad/s), while a runaway
+  servo (a placeholder effort, a nearly massless body) reaches hundreds of times its limit.
+  Past 1 time its limit a joint is listed in check.json's ``speed_bound``, not failed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+DRIVEN_MULTIPLE = 1.5
+FREE_MULTIPLE = 50.0
+DEFAULT_LIMIT = {"hinge": 100.0, "slide": 10.0}  # rad/s, m/s: joints with no limit anywhere
+
+
+@dataclass(frozen=True)
+class JointSpeed:
+    """One joint's top speed under the test and the bound it is held to."""
+
+    joint: str
+    speed: float
+    limit: float
+    limit_from: str  # urdf, motor or default
+    multiple: float  # how many times the limit it may reach before the check fails
+    unit: str = "rad/s"  # m/s for a slide
+
+    @property
+    def exceeds_limit(self) -> bool:
+        """Faster than the real joint's limit."""
+        return self.speed > self.limit
+
+    @property
+    def fails(self) -> bool:
+        """Past the bound."""
+        return self.speed > self.multiple * self.limit
+
+    def to_dict(self) -> dict:
+        """A JSON-friendly form."""
+        return asdict(self)
+
+
+def joint_speeds(
+    top_speeds: dict[str, float],
+    urdf_limits: dict[str, float | None],
+    kinds: dict[str, str],
+    actuators: list[dict],
+) -> list[JointSpeed]:
+    """The bound of every joint in ``top_speeds`` (joint -> top speed): ``urdf_limits`` are the
+    URDF's velocity limits, ``kinds`` the joints' types (hinge or slide), ``actuators`` the
+    assembly's actuator records (with their ``motor``)."""
+    drives = {
+        record["joint"]: record["motor"]
+        for record in actuators
+        if record.get("motor") and record["motor"].get("no_load_speed")
+    }
+    result = []
+    for joint, speed in sorted(top_speeds.items()):
+        limit = urdf_limits.get(joint)
+        source = "urdf"
+        if not limit or limit <= 0:
+            if joint in drives:
+                limit, source = float(drives[joint]["no_load_speed"]), "motor"
+            else:
+                limit, source = DEFAULT_LIMIT.get(kinds.get(joint, "hinge"), 100.0), "default"
+        multiple = DRIVEN_MULTIPLE if joint in drives else FREE_MULTIPLE
+        unit = "m/s" if kinds.get(joint) == "slide" else "rad/s"
+        result.append(JointSpeed(joint, speed, float(limit), source, multiple, unit))
+    return result
+
+
+def speed_results(speeds: list[JointSpeed]) -> tuple[dict, list[str]]:
+    """check.json's ``max_joint_speed`` (the fastest joint, with its limit) and
+    ``speed_bound`` entries, and the failures."""
+    failures = [
+        f"joint '{s.joint}' reached {s.speed:.3g} {s.unit} under pseudorandom control, more "
+        f"than {s.multiple:g} times its velocity limit {s.limit:g} {s.unit} ({s.limit_from}); "
+        + (
+            "something outside its drive throws it: check its neighbours' gains and force ranges"
+            if s.multiple == DRIVEN_MULTIPLE
+            else "give it its real drive (a rule's motor: in actuators:) or its real effort "
+            "(a rule's forcerange), or lower actuators.frequency"
+        )
+        for s in speeds
+        if s.fails
+    ]
+    worst = max(speeds, key=lambda s: (s.speed, s.joint), default=None)
+    results = {
+        "max_joint_speed": (
+            {"joint": worst.joint, "speed": worst.speed, "limit": worst.limit}
+            if worst is not None
+            else None
+        ),
+        "speed_bound": {
+            "driven_multiple": DRIVEN_MULTIPLE,
+            "free_multiple": FREE_MULTIPLE,
+            "over_limit": [s.to_dict() for s in speeds if s.exceeds_limit],
+        },
+    }
+    return results, failures

@@ -1,0 +1,192 @@
+"""Real drives: what a motor's datasheet values make of the joint it moves.
+
+From a motor (see :mod:`mjcfbuild.manifest.motors`), with gear ratio N:
+
+- joint ``armature`` = rotor inertia x N^2 (the rotor's inertia reflected through the gearbox);
+- the force limit = the peak torque at the output (rotor-side torques x N);
+- a torque-speed line: at speed w the drive gives at most stall x (1 - |w| / w0), w0 the no-load
+  speed at the output (rotor-side speeds / N). A position servo with such a line is MuJoCo 4.0's
+  ``<dcmotor input="pos">``: its controller computes kp (u - q) - kd q' like ``<position>``,
+  drives the voltage that delivers that torque (compensating back-EMF, as a current-controlled
+  driver does) and clamps it to the supply voltage, so the torque falls along the motor's line
+  as speed rises; ``saturation`` clamps it to the peak torque;
+- joint ``frictionloss`` and ``damping`` from the motor's friction and damping.
+
+The gear ratio is the joint's ``<transmission>`` mechanicalReduction (ROS 1) or
+``mechanical_reduction`` (ros2_control) where the URDF gives one, else the motor's ``ratio``,
+else 1. A reduction on a joint no motor drives is reported, never dropped silently.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import asdict, dataclass
+
+from mjcfbuild.control.choose import ActuatorChoice
+from mjcfbuild.inputs.ros2_control import Transmission
+from mjcfbuild.manifest.simulation import ActuatorRule
+from mjcfbuild.numbers import output_list
+
+# The supply voltage written into a <dcmotor> whose datasheet gives none: only the torque-speed
+# line (stall torque and no-load speed) matters to the model, and MuJoCo derives the motor
+# constant and resistance from the voltage in proportion.
+UNIT_VOLTAGE = 1.0
+
+
+@dataclass(frozen=True)
+class Drive:
+    """A motor as seen from the joint it moves: every value at the output."""
+
+    motor: str
+    ratio: float
+    ratio_from: str  # transmission, motor, or default (1)
+    armature: float
+    peak_torque: float
+    continuous_torque: float | None
+    stall_torque: float | None  # the torque-speed line's torque at zero speed
+    no_load_speed: float | None  # rad/s; None: no torque-speed line
+    voltage: float
+    friction: float | None
+    damping: float | None
+
+    def to_dict(self) -> dict:
+        """A JSON-friendly form."""
+        return asdict(self)
+
+
+def output_drive(name: str, motor: dict, reduction: float | None) -> Drive:
+    """The drive of motor ``name`` (its datasheet values, as ``resolve_motors`` gives them) at
+    the output of a gearbox of ``reduction`` (a transmission's), else of its own ratio."""
+    if reduction is not None:
+        ratio, source = reduction, "transmission"
+    elif motor.get("ratio") is not None:
+        ratio, source = float(motor["ratio"]), "motor"
+    else:
+        ratio, source = 1.0, "default"
+    # Torques grow and speeds shrink through the gearbox when they are given at the rotor.
+    torque = ratio if motor.get("at") == "rotor" else 1.0
+    speed = 1 / ratio if motor.get("at") == "rotor" else 1.0
+    stall, no_load = motor.get("stall_torque"), motor.get("no_load_speed")
+    constant, resistance, voltage = (
+        motor.get("torque_constant"),
+        motor.get("resistance"),
+        motor.get("voltage"),
+    )
+    if constant is not None and resistance is not None and voltage is not None:
+        stall = stall if stall is not None else constant * voltage / resistance
+        no_load = no_load if no_load is not None else voltage / constant
+    if no_load is not None and stall is None:
+        stall = motor["peak_torque"]
+    return Drive(
+        motor=name,
+        ratio=ratio,
+        ratio_from=source,
+        armature=float(motor["rotor_inertia"]) * ratio**2,
+        peak_torque=float(motor["peak_torque"]) * torque,
+        continuous_torque=_scaled(motor.get("continuous_torque"), torque),
+        stall_torque=_scaled(stall, torque),
+        no_load_speed=_scaled(no_load, speed),
+        voltage=float(voltage) if voltage is not None else UNIT_VOLTAGE,
+        friction=motor.get("friction"),
+        damping=motor.get("damping"),
+    )
+
+
+def _scaled(value: float | None, factor: float) -> float | None:
+    return None if value is None else float(value) * factor
+
+
+def reductions(transmissions: list[Transmission]) -> dict[str, Transmission]:
+    """Joint -> the transmission that gives its gear ratio (the first one that does)."""
+    found: dict[str, Transmission] = {}
+    for transmission in transmissions:
+        if transmission.reduction is not None and transmission.joint not in found:
+            found[transmission.joint] = transmission
+    return found
+
+
+def apply_motors(
+    choices: list[ActuatorChoice],
+    rules: list[ActuatorRule],
+    motors: dict[str, dict],
+    transmissions: list[Transmission],
+) -> tuple[list[ActuatorChoice], list[str]]:
+    """``choices`` with their rules' motors applied (armature, force limits, torque-speed
+    line, friction, damping; what the rule itself sets wins), and the build's warnings: a
+    transmission's reduction that no motor uses, and a reduction that overrides a motor's own
+    ratio."""
+    geared = reductions(transmissions)
+    warnings: list[str] = []
+    result = []
+    used: set[str] = set()
+    for choice in choices:
+        rule = rules[choice.rule] if choice.rule is not None else None
+        if rule is None or rule.motor is None or choice.type in ("none", "user"):
+            result.append(choice)
+            continue
+        transmission = geared.get(choice.joint)
+        reduction = transmission.reduction if transmission else None
+        drive = output_drive(rule.motor, motors[rule.motor], reduction)
+        if transmission is not None:
+            used.add(choice.joint)
+            own = motors[rule.motor].get("ratio")
+            if own is not None and abs(float(own) - drive.ratio) > 1e-9 * drive.ratio:
+                warnings.append(
+                    f"joint '{choice.joint}': the <transmission> reduction {drive.ratio:g} "
+                    f"({transmission.origin}) replaces the ratio {own:g} of motor '{rule.motor}'"
+                )
+        result.append(_driven(choice, rule, drive))
+    for joint, transmission in sorted(geared.items()):
+        if joint not in used:
+            warnings.append(
+                f"{transmission.origin}: joint '{joint}' has a <transmission> reduction of "
+                f"{transmission.reduction:g} but no motor, so it sets nothing; name the drive "
+                f'in a rule (actuators: {{rules: [{{joints: ["{joint}"], motor: NAME}}]}})'
+            )
+    return result, warnings
+
+
+def _driven(choice: ActuatorChoice, rule: ActuatorRule, drive: Drive) -> ActuatorChoice:
+    peak = drive.peak_torque
+    return dataclasses.replace(
+        choice,
+        armature=rule.armature if rule.armature is not None else drive.armature,
+        forcerange=rule.forcerange or (-peak, peak),
+        effort_limited=False,
+        damping=rule.damping if rule.damping is not None else drive.damping,
+        frictionloss=rule.frictionloss if rule.frictionloss is not None else drive.friction,
+        motor=drive.to_dict(),
+    )
+
+
+def has_speed_line(motor: dict | None) -> bool:
+    """Whether a drive (:meth:`Drive.to_dict`) has a torque-speed line."""
+    return bool(motor) and motor.get("no_load_speed") is not None  # type: ignore[union-attr]
+
+
+def dcmotor_attributes(
+    name: str,
+    joint: str,
+    kp: float,
+    kv: float,
+    ctrlrange: list[float] | None,
+    forcerange: list[float] | None,
+    motor: dict,
+) -> dict[str, str]:
+    """The attributes of the ``<dcmotor input="pos">`` position servo of a drive with a
+    torque-speed line: gains in torque space, the line as MuJoCo's ``nominal`` operating point
+    (voltage, stall torque, no-load speed), the controller's voltage clamp at the supply, and the
+    force limit as ``saturation``."""
+    voltage = float(motor["voltage"])
+    peak = max(abs(v) for v in forcerange) if forcerange else float(motor["peak_torque"])
+    attributes = {
+        "name": name,
+        "joint": joint,
+        "input": "pos",
+        "nominal": output_list([voltage, motor["stall_torque"], motor["no_load_speed"]]),
+        "controller": output_list([kp, 0, kv, 0, 0, voltage]),
+        "saturation": output_list([peak, 0, 0]),
+    }
+    if ctrlrange is not None:
+        attributes["ctrlrange"] = output_list(ctrlrange)
+    return attributes

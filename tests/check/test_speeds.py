@@ -1,0 +1,68 @@
+"""The Menagerie test's speed bound: each joint's top speed against its URDF velocity limit,
+the fastest joint in check.json, and a failure that names the joint and its limit."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from mjcfbuild.check.speeds import DRIVEN_MULTIPLE, FREE_MULTIPLE, joint_speeds, speed_results
+from tests.conftest import run_cli, write
+from tests.control.test_home import _urdf
+
+DRIVE = {"joint": "knee", "motor": {"motor": "go1_knee", "no_load_speed": 20.0}}
+
+
+def test_a_driven_joint_is_held_to_its_limit_and_a_free_one_to_a_multiple():
+    speeds = joint_speeds(
+        {"knee": 1.4 * 20.0, "elbow": 10 * 2.0, "wrist": 60 * 2.0},
+        {"knee": 20.0, "elbow": 2.0, "wrist": 2.0},
+        {"knee": "hinge", "elbow": "hinge", "wrist": "hinge"},
+        [DRIVE],
+    )
+    results, failures = speed_results(speeds)
+    assert results["max_joint_speed"] == {"joint": "wrist", "speed": 120.0, "limit": 2.0}
+    assert [s["joint"] for s in results["speed_bound"]["over_limit"]] == ["elbow", "knee", "wrist"]
+    assert len(failures) == 1 and failures[0].startswith(
+        f"joint 'wrist' reached 120 rad/s under pseudorandom control, more than {FREE_MULTIPLE:g} "
+        "times its velocity limit 2 rad/s (urdf)"
+    )
+    _, failures = speed_results(joint_speeds({"knee": 1.6 * 20.0}, {"knee": 20.0}, {}, [DRIVE]))
+    assert len(failures) == 1 and f"more than {DRIVEN_MULTIPLE:g} times" in failures[0]
+
+
+@pytest.mark.parametrize("placeholder", [None, 0.0, -1.0])
+def test_a_joint_without_a_limit_takes_its_motors_no_load_speed_else_the_default(placeholder):
+    (driven,) = joint_speeds({"knee": 1.0}, {"knee": placeholder}, {}, [DRIVE])
+    assert (driven.limit, driven.limit_from) == (20.0, "motor")
+    (slide,) = joint_speeds({"rail": 1.0}, {"rail": placeholder}, {"rail": "slide"}, [])
+    assert (slide.limit, slide.limit_from, slide.unit) == (10.0, "default", "m/s")
+
+
+def test_a_runaway_joint_fails_the_build_naming_it_and_its_limit(tmp_path):
+    # A floating base with a massless root (repaired to a tiny mass): the hinge's servo spins
+    # the root around at hundreds of rad/s, where its URDF says 1 rad/s.
+    write(tmp_path / "robot.urdf", _urdf(massless_root=True))
+    write(
+        tmp_path / "robot.yaml",
+        "name: r\nsource: {urdf: robot.urdf}\noptions: {free_joint: true}\n",
+    )
+    result = run_cli("build", str(tmp_path / "robot.yaml"))
+    assert result.code == 6, result.stderr
+    assert "check: joint 'hinge' reached" in result.stderr
+    assert "times its velocity limit 1 rad/s (urdf)" in result.stderr
+    check = json.loads((tmp_path / "mjcf/.mjcfbuild/check.json").read_text())
+    fastest = check["max_joint_speed"]
+    assert fastest["joint"] == "hinge" and fastest["limit"] == 1 and fastest["speed"] > 20
+
+
+def test_the_quadruped_with_motors_stays_within_its_drives(tmp_path):
+    from tests.control.test_motors import _build
+
+    _build(tmp_path)
+    check = json.loads((tmp_path / "mjcf/.mjcfbuild/check.json").read_text())
+    assert check["passes"], check["failures"]
+    fastest = check["max_joint_speed"]
+    assert set(fastest) == {"joint", "speed", "limit"}
+    assert fastest["speed"] <= DRIVEN_MULTIPLE * fastest["limit"]
