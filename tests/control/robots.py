@@ -151,3 +151,37 @@ def gripper(followers: int = 4, finger_mass: float = 0.4) -> str:
   {"".join(fingers)}
 </robot>
 """
+
+
+def balancer() -> str:
+    """A tall body on two wheels drawn as revolute joints without limits, and no caster:
+    it balances only under a controller (Upkie and Cookie are drawn so)."""
+    wheels = []
+    for side, y in (("left", 0.12), ("right", -0.12)):
+        wheels.append(
+            f"""
+  <link name="{side}_wheel">{inertial(0.3)}
+    <collision><origin rpy="1.5707963267948966 0 0"/><geometry><cylinder radius="0.06" length="0.03"/></geometry></collision></link>
+  <joint name="{side}_wheel_joint" type="revolute"><parent link="body"/><child link="{side}_wheel"/>
+    <origin xyz="0 {y} 0"/><axis xyz="0 1 0"/><limit effort="5" velocity="20"/></joint>"""
+        )
+    return f"""<?xml version="1.0"?>
+<robot name="balancer">
+  <link name="body">{inertial(3.0, "0 0 0.25", 0.03)}
+    <collision><origin xyz="0 0 0.25"/><geometry><box size="0.1 0.2 0.4"/></geometry></collision></link>
+  {"".join(wheels)}
+</robot>
+"""
+
+
+def planar_base() -> str:
+    """A box moved in the plane by a URDF planar joint (three joints in MuJoCo)."""
+    return f"""<?xml version="1.0"?>
+<robot name="planar">
+  <link name="base_footprint"/>
+  <joint name="base_joint" type="planar"><parent link="base_footprint"/><child link="base_link"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 0 1"/></joint>
+  <link name="base_link">{inertial(5.0, moment=0.1)}
+    <collision><geometry><box size="0.4 0.3 0.2"/></geometry></collision></link>
+</robot>
+"""

@@ -259,3 +259,37 @@ def test_a_quadruped_that_falls_at_zero_gets_a_computed_crouch_that_stands(tmp_p
     assert abs(data.geom_xpos[sphere][0] - data.xanchor[hip][0]) < 0.01  # under the hip
     _hold(model, data, 5.0)
     assert _tilt(data) < 0.1
+
+
+def test_two_wheels_on_one_axle_need_a_controller_and_do_not_fail(tmp_path):
+    """Wheels drawn as unlimited revolute joints are wheels; a tyre touches the floor at a
+    point, so two on an axle span a line: the report says a controller is needed."""
+    result = _build(tmp_path, robots.balancer())
+    records = {r["joint"]: r for r in readiness(tmp_path)["actuators"]}
+    assert records["left_wheel_joint"]["type"] == "velocity"
+    check = _check(tmp_path)
+    assert "a line" in check["needs_controller"]
+    assert "stand test was not run" in " ".join(result.warnings)
+
+
+def test_a_planar_base_joint_is_passive_and_said_so(tmp_path):
+    result = _build(tmp_path, robots.planar_base(), free_joint=False)
+    model = mujoco.MjModel.from_xml_path(str(result.robot))
+    assert model.nu == 0
+    assert readiness(tmp_path)["passive"] == ["base_joint_TX", "base_joint_TY", "base_joint_RZ"]
+    assert any("planar joint 'base_joint'" in w for w in result.warnings)
+
+
+def test_a_leader_is_sized_so_a_follower_with_a_large_multiplier_holds(tmp_path):
+    """A follower moving 2.5 times its leader sags 2.5 times as far: the leader's servo is
+    stiffened for the follower's sag, not its own."""
+    urdf = robots.gripper(followers=1).replace('multiplier="1"', 'multiplier="2.5"')
+    urdf = urdf.replace('upper="0.04" effort="40"', 'upper="0.1" effort="40"')
+    _build(tmp_path, urdf, free_joint=False)
+    model, data = _scene(tmp_path)
+    follower = model.jnt_qposadr[
+        mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "finger0_joint")
+    ]
+    home = data.qpos[follower]
+    _hold(model, data, 1.0)
+    assert abs(data.qpos[follower] - home) < 0.01 + 1e-4
