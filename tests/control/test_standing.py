@@ -293,3 +293,23 @@ def test_a_leader_is_sized_so_a_follower_with_a_large_multiplier_holds(tmp_path)
     home = data.qpos[follower]
     _hold(model, data, 1.0)
     assert abs(data.qpos[follower] - home) < 0.01 + 1e-4
+
+
+def test_a_humanoid_takes_its_half_sitting_pose_from_an_srdf_naming_the_floating_joint(tmp_path):
+    """MoveIt style: the root joint has a whole pose as its value and no virtual_joint says
+    so; the state is still the robot's, and half_sitting is a standing pose."""
+    bent = "".join(
+        f'<joint name="{side}_hip_pitch" value="-0.3"/><joint name="{side}_knee" value="0.6"/>'
+        f'<joint name="{side}_ankle_pitch" value="-0.3"/>'
+        for side in ("left", "right")
+    )
+    write(
+        tmp_path / "urdf/robot.srdf",
+        '<robot name="biped"><group_state name="half_sitting" group="all">'
+        f'<joint name="root_joint" value="0 0 0.9 0 0 0 1"/>{bent}</group_state></robot>',
+    )
+    _build(tmp_path, robots.humanoid())
+    values = {h["joint"]: h for h in readiness(tmp_path)["home"]}
+    assert (values["left_knee"]["value"], values["left_knee"]["source"]) == (0.6, "srdf")
+    assert "half_sitting" in readiness(tmp_path)["home_from"]
+    assert _check(tmp_path)["stand"]["max_tilt"] < 0.2
