@@ -27,6 +27,7 @@ def build_parser() -> argparse.ArgumentParser:
         check,
         clean,
         convert,
+        diff,
         explain,
         export_urdf,
         graph,
@@ -47,7 +48,7 @@ def build_parser() -> argparse.ArgumentParser:
     commands = parser.add_subparsers(title="commands", dest="command", metavar="COMMAND")
     commands.required = True
     commands_in_order = (build, check, explain, graph, clean, convert, export_urdf, init, schema)
-    for module in (*commands_in_order, cache, workers):
+    for module in (*commands_in_order, diff, cache, workers):
         module.add_parser(commands)
     return parser
 
