@@ -40,7 +40,8 @@ def value_text(value: Any) -> str:
     return str(value)
 
 
-def _line(change: Change, group: str) -> str:
+def change_line(change: Change, group: str) -> str:
+    """One change as a line of text (``subject: what before -> after; note``)."""
     if group == "previews":
         return f"{change.subject}: {change.what}"
     if change.what in ("added", "removed"):
@@ -64,7 +65,7 @@ def text(diff: ModelDiff, sides: Sides) -> str:
         if not changes:
             continue
         lines.append(f"{title} ({len(changes)})")
-        lines.extend(f"  {_line(change, key)}" for change in changes)
+        lines.extend(f"  {change_line(change, key)}" for change in changes)
     return "\n".join(lines) + "\n"
 
 

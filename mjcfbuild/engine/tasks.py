@@ -45,6 +45,7 @@ from mjcfbuild.steps.payloads import (
     MeshOptions,
     MeshPayload,
     MjcfPartFiles,
+    PackagePayload,
     Payload,
     PlanPayload,
     PreviewsPayload,
@@ -69,6 +70,8 @@ ASSEMBLY_REPORT = "assembly.json"
 FLOOR_RECORD = "floor.json"
 URDF_EXPORT_RECORD = "urdf_export.json"
 PREVIEWS_RECORD = "previews.json"
+PACKAGE_RECORD = "package.json"
+PACKAGE_FOLDER = "package"  # the Menagerie-grade folder, inside the output folder
 
 
 def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
@@ -118,6 +121,8 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
         tasks.append(_check_task(ctx, prefix, parts))
         if ctx.manifest.check.previews:
             tasks.append(_previews_task(ctx, prefix))
+    if ctx.manifest.output.package:
+        tasks.append(_package_task(ctx, prefix, checks))
     return tasks
 
 
@@ -733,6 +738,76 @@ def _previews_task(ctx: BuildContext, prefix: str) -> dict:
         extra_uptodate=[RenderInputsUnchanged(ctx.robot_path, ctx.assets_dir, ctx.session.hashes)],
         after=[f"{prefix}assemble"],
     )
+
+
+def _package_task(ctx: BuildContext, prefix: str, checked: bool) -> dict:
+    from mjcfbuild.engine.versions import tool_version
+    from mjcfbuild.package.documents import find_license, git_revision
+
+    folder = ctx.out_dir / PACKAGE_FOLDER
+    revision, remote = git_revision(ctx.base_dir)
+    top = _git_top(ctx.base_dir) if revision else None
+    package_folders = [ctx.resolve(path) for path in ctx.manifest.packages.values()]
+    license_file = find_license([ctx.source_base_dir, *package_folders, ctx.base_dir], top)
+    picture = report_dir(ctx) / "previews" / "front_visual.png"
+    with_picture = checked and ctx.manifest.check.previews
+    payload = PackagePayload(
+        name=ctx.manifest.name,
+        provenance={
+            "source": ctx.portable_label(ctx.source_path),
+            "manifest_text": ctx.manifest_file.read_text() if ctx.manifest_file else "",
+            "revision": revision,
+            "remote": remote,
+            "mujoco_version": tool_version("mujoco"),
+            "license_from": ctx.portable_label(license_file) if license_file else "",
+        },
+        model=str(ctx.robot_path),
+        scene=str(ctx.scene_path),
+        assembly_report=str(ctx.state(ASSEMBLY_REPORT)),
+        assets=str(ctx.assets_dir),
+        check=str(ctx.state(CHECK_RESULTS)) if checked else None,
+        picture=str(picture) if with_picture else None,
+        license=str(license_file) if license_file else None,
+        folder=str(folder),
+        record=str(ctx.state(PACKAGE_RECORD)),
+    )
+    optional = [payload.check, payload.picture, payload.license]
+    after = [f"{prefix}assemble", f"{prefix}scene"]
+    after += [f"{prefix}check"] if checked else []
+    after += [f"{prefix}previews"] if with_picture else []
+    return _task(
+        ctx,
+        f"{prefix}package",
+        f"package {PACKAGE_FOLDER}/",
+        "package",
+        payload,
+        in_worker=True,
+        file_dep=[
+            ctx.robot_path,
+            ctx.scene_path,
+            ctx.state(ASSEMBLY_REPORT),
+            *(Path(path) for path in optional if path),
+        ],
+        targets=[
+            ctx.state(PACKAGE_RECORD),
+            folder / "README.md",
+            folder / ctx.manifest.robot_file,
+            folder / "scene.xml",
+        ],
+        after=after,
+    )
+
+
+def _git_top(folder: Path) -> Path | None:
+    import subprocess
+
+    result = subprocess.run(
+        ["git", "-C", str(folder), "rev-parse", "--show-toplevel"],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    return Path(result.stdout.strip()).resolve() if result.returncode == 0 else None
 
 
 def _export_urdf_task(ctx: BuildContext, prefix: str) -> dict:
