@@ -749,7 +749,7 @@ def _package_task(ctx: BuildContext, prefix: str, checked: bool) -> dict:
     top = _git_top(ctx.base_dir) if revision else None
     package_folders = [ctx.resolve(path) for path in ctx.manifest.packages.values()]
     license_file = find_license([ctx.source_base_dir, *package_folders, ctx.base_dir], top)
-    picture = report_dir(ctx) / "previews" / "front_visual.png"
+    picture = report_dir(ctx) / "previews" / "three_quarter_visual.png"
     with_picture = checked and ctx.manifest.check.previews
     payload = PackagePayload(
         name=ctx.manifest.name,

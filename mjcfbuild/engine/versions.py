@@ -17,7 +17,7 @@ STEP_FORMATS = {
     "scene": 3,
     "check": 6,
     "reference": 1,
-    "previews": 4,
+    "previews": 5,
     "srdf": 2,
     "selfcollision": 3,
     "export_urdf": 1,
