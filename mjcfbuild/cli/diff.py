@@ -95,8 +95,8 @@ def _sides(args: argparse.Namespace):
         if args.base or args.head:
             raise UsageError("--folders compares two build folders: leave out --base and --head")
         old, new = (Path(folder) for folder in args.folders)
-        model = find_model(new).name
         find_model(old)
+        model = find_model(new).name
         return Sides(str(old), str(new), old, new, model)
     if not args.base:
         raise UsageError(

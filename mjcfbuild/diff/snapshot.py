@@ -26,7 +26,7 @@ def find_model(folder: Path) -> Path:
         raise InputError(
             "no mjcfbuild build in this folder",
             file=str(folder),
-            hint="give an output folder that mjcfbuild build wrote (it holds .mjcfbuild/)",
+            hint="give an output folder that mjcfbuild build wrote, with its .mjcfbuild folder",
         )
     try:
         name = json.loads(report.read_text())["model"]
