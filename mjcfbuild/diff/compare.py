@@ -295,10 +295,18 @@ def _home(diff: ModelDiff, before: Snapshot, after: Snapshot) -> None:
         if (old is None) != (new is None):
             diff.add("home", Change("keyframe home", "present", old is not None, new is not None))
         return
+    sources_before = before.get("home_sources", {})
+    sources_after = after.get("home_sources", {})
     for part, kind in (("qpos", "joint"), ("ctrl", "actuator")):
         for name in sorted(set(old[part]) & set(new[part])):
             if not same(old[part][name], new[part][name], 1e-12):
-                diff.add("home", Change(f"{kind} {name}", part, old[part][name], new[part][name]))
+                note = ""
+                if part == "qpos" and name in sources_after:
+                    source = sources_before.get(name, "?")
+                    changed = source != sources_after[name]
+                    note = f"set by {source + ' -> ' if changed else ''}{sources_after[name]}"
+                change = Change(f"{kind} {name}", part, old[part][name], new[part][name], note)
+                diff.add("home", change)
 
 
 def _checks(diff: ModelDiff, old: dict | None, new: dict | None) -> None:

@@ -47,6 +47,7 @@ def read_snapshot(folder: Path) -> Snapshot:
     model_path = find_model(folder)
     snapshot = model_snapshot(model_path)
     snapshot["collision_reasons"] = _collision_reasons(folder / STATE_DIR / "self_collision.json")
+    snapshot["home_sources"] = _home_sources(folder / STATE_DIR / "assembly.json")
     snapshot["checks"] = _checks(folder / STATE_DIR / "check.json")
     snapshot["previews"] = _previews(folder / "report" / "previews")
     return snapshot
@@ -280,6 +281,16 @@ def _collision_reasons(path: Path) -> dict[str, str]:
         reason = str(pair.get("reason", ""))
         reasons[key] = reason + (", excluded" if pair.get("exclude") else "")
     return reasons
+
+
+def _home_sources(path: Path) -> dict[str, str]:
+    """Where each joint's home value came from (robot.yaml, an SRDF state, zero, mimic...), as
+    the assembly recorded it."""
+    try:
+        readiness = json.loads(path.read_text()).get("readiness") or {}
+        return {str(h["joint"]): str(h["source"]) for h in readiness.get("home") or []}
+    except (OSError, ValueError, AttributeError, KeyError, TypeError):
+        return {}
 
 
 def _checks(path: Path) -> dict[str, Any] | None:

@@ -77,6 +77,7 @@ def edited(tmp_path_factory):
     edit(arm / "config" / "joint_limits.yaml", "elbow: {lower: -2.5,", "elbow: {lower: -2.0,")
     scale_mesh(arm / "meshes" / "upper_arm.dae", 1.1)
     edit(arm / "robot.yaml", "frequency: 5", "frequency: 8")
+    edit(arm / "robot.yaml", "  elbow: 1.2\n", "  elbow: 1.1\n  shoulder_pan: 0.2\n")
     edit(arm / "robot.yaml", "output:\n", "check:\n  hold_tolerance: 0.001\noutput:\n")
     git(folder, "commit", "-qam", "five edits")
     scratch, written = folder / "scratch", folder / "written"
@@ -127,6 +128,15 @@ def test_actuator_rule_change_is_in_actuators(edited):
     kp_before, kp_after = actuators[("actuator left_finger_joint", "kp")]
     # kp grows with the square of the frequency: 5 Hz -> 8 Hz
     assert kp_after / kp_before == pytest.approx((8 / 5) ** 2, rel=1e-6)
+
+
+def test_home_edits_are_in_home_with_where_they_came_from(edited):
+    home = {(c["subject"], c["what"]): c for c in edited["diff"]["groups"]["home"]}
+    elbow = home[("joint elbow", "qpos")]
+    assert (elbow["before"], elbow["after"], elbow["note"]) == (1.2, 1.1, "set by robot.yaml")
+    pan = home[("joint shoulder_pan", "qpos")]
+    assert (pan["before"], pan["after"], pan["note"]) == (0.0, 0.2, "set by zero -> robot.yaml")
+    assert home[("actuator elbow", "ctrl")]["after"] == 1.1
 
 
 def test_a_check_that_now_fails_is_in_checks(edited):
