@@ -227,3 +227,30 @@ def test_outside_a_git_repo_is_an_input_error(arm):
 def test_nothing_to_compare_is_a_usage_error(arm):
     result = run_cli("diff", cwd=arm)
     assert result.code == 2 and "--base REF" in result.stderr
+
+
+def test_a_robot_that_stood_and_now_falls(tmp_path):
+    """The quadruped stands at home; servos too weak to carry it make it fall: the diff says
+    so in its checks, beside the gains that did it."""
+    shutil.copytree(
+        EXAMPLES / "quadruped", tmp_path / "quadruped", ignore=shutil.ignore_patterns("mjcf")
+    )
+    git(tmp_path, "init", "-q", "-b", "main")
+    git(tmp_path, "add", ".")
+    git(tmp_path, "commit", "-qm", "quadruped")
+    robot = tmp_path / "quadruped"
+    weak = '  rules:\n    - {joints: ["*knee*", "*thigh*"], kp: 2, kv: 0.1}\n'
+    (robot / "robot.yaml").write_text((robot / "robot.yaml").read_text() + "actuators:\n" + weak)
+    git(tmp_path, "commit", "-qam", "weak servos")
+    result = run_cli(
+        "diff", "--base", "main~1", "--head", "main", "--format", "json",
+        "--scratch", str(tmp_path / "scratch"), cwd=robot,
+    )  # fmt: skip
+    assert result.code == 0, result.stderr
+    groups = json.loads(result.stdout)["groups"]
+    checks = {(c["subject"], c["what"]): c for c in groups["checks"]}
+    stand = checks[("stand test", "robot")]
+    assert (stand["before"], stand["after"]) == ("stands", "falls")
+    assert checks[("check", "result")]["after"] == "failed"
+    kp = {c["subject"]: c["after"] for c in groups["actuators"] if c["what"] == "kp"}
+    assert kp["actuator front_left_knee_joint"] == 2.0
