@@ -125,8 +125,11 @@ def _actuator_classes(root: etree._Element) -> None:
         default = etree.Element("default")
         root.insert(next(i for i, c in enumerate(root) if _rank(c) > _rank(default)), default)
     taken = {d.get("class") for d in root.iter("default")}
-    for members in shared:
-        name = _class_name([m.get("name") or m.tag for m in members], taken)
+    names = _class_names([[m.get("name") or m.tag for m in members] for members in shared])
+    for members, wanted in zip(shared, names, strict=True):
+        name, index = wanted, 2
+        while name in taken:
+            name, index = f"{wanted}{index}", index + 1
         taken.add(name)
         holder = etree.SubElement(default, "default", {"class": name})
         item = etree.SubElement(holder, members[0].tag)
@@ -151,17 +154,23 @@ def _set_first(element: etree._Element, name: str, value: str) -> None:
         element.set(key, item)
 
 
-def _class_name(names: list[str], taken: set[str | None]) -> str:
-    """What the names share: their common ``_``-separated suffix (``hip_joint`` for
-    ``FL_hip_joint`` and ``FR_hip_joint``), else their prefix, else ``actuator``."""
-    parts = [re.split(r"[_\-.]", name) for name in names]
-    suffix = _common_start([p[::-1] for p in parts])[::-1]
-    prefix = _common_start(parts)
-    base = "_".join(suffix) or "_".join(prefix) or "actuator"
-    name, index = base, 2
-    while name in taken:
-        name, index = f"{base}{index}", index + 1
-    return name
+def _class_names(groups: list[list[str]]) -> list[str]:
+    """A class name per group of actuator names: what the names share, their common
+    ``_``-separated suffix (``thigh_joint`` for ``FL_thigh_joint`` and ``FR_thigh_joint``),
+    else their prefix, else ``actuator``; where two groups would get the same name, each is
+    told apart by the letters its names start with (``F_thigh_joint``, ``R_thigh_joint``)."""
+    bases = []
+    for names in groups:
+        parts = [re.split(r"[_\-.]", name) for name in names]
+        suffix = _common_start([p[::-1] for p in parts])[::-1]
+        bases.append("_".join(suffix) or "_".join(_common_start(parts)) or "actuator")
+    named = []
+    for base, names in zip(bases, groups, strict=True):
+        start = "".join(_common_start([list(name) for name in names])).rstrip("_-.")
+        if bases.count(base) > 1 and start and not base.startswith(start):
+            base = f"{start}_{base}"
+        named.append(base)
+    return named
 
 
 def _common_start(lists: list[list[str]]) -> list[str]:

@@ -82,3 +82,12 @@ def test_the_formatted_model_compiles_to_the_same_kinematics_bit_for_bit(tmp_pat
     assert np.allclose(b.actuator_gainprm[:, 0], [603.9, 603.9, 181.9])
     assert np.array_equal(b.actuator_forcerange[:2], a.actuator_forcerange[:2])
     assert b.actuator_forcelimited[0] == 1
+
+
+def test_two_groups_with_the_same_suffix_are_told_apart_by_their_start():
+    from mjcfbuild.package.format import _class_names
+
+    assert _class_names(
+        [["FL_thigh_joint", "FR_thigh_joint"], ["RL_thigh_joint", "RR_thigh_joint"], ["a_x", "b_y"]]
+    ) == ["F_thigh_joint", "R_thigh_joint", "actuator"]
+    assert _class_names([["FL_hip", "FR_hip", "RL_hip", "RR_hip"]]) == ["hip"]
