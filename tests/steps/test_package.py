@@ -119,3 +119,15 @@ def test_without_a_license_file_the_build_warns_and_the_readme_says_so(tmp_path)
     folder = arm / "mjcf" / "package"
     assert not (folder / "LICENSE").exists()
     assert "No license file was found" in (folder / "README.md").read_text()
+
+
+def test_the_packaged_model_passes_the_check_against_its_urdf_to_1e12(packaged):
+    import re
+
+    result = run_cli(
+        "check", "--urdf", "mjcf/.mjcfbuild/source.urdf",
+        "--mjcf", "mjcf/package/example_arm.xml", cwd=packaged,
+    )  # fmt: skip
+    assert result.code == 0, result.stdout + result.stderr
+    found = re.search(r"link poses\s+max (\S+) m, (\S+) rad", result.stdout)
+    assert found and float(found.group(1)) < 1e-12 and float(found.group(2)) < 1e-11
