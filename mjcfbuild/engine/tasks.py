@@ -759,7 +759,7 @@ def _package_task(ctx: BuildContext, prefix: str, checked: bool) -> dict:
             "revision": revision,
             "remote": remote,
             "mujoco_version": tool_version("mujoco"),
-            "license_from": ctx.portable_label(license_file) if license_file else "",
+            "license_from": _license_label(ctx, license_file),
         },
         model=str(ctx.robot_path),
         scene=str(ctx.scene_path),
@@ -796,6 +796,17 @@ def _package_task(ctx: BuildContext, prefix: str, checked: bool) -> dict:
         ],
         after=after,
     )
+
+
+def _license_label(ctx: BuildContext, license_file: Path | None) -> str:
+    """How the README names the license file: relative to robot.yaml when inside its folder,
+    else by its folder and name (``panda_description/LICENSE``), the same on every machine."""
+    if license_file is None:
+        return ""
+    label = ctx.portable_label(license_file)
+    if label.startswith("../"):
+        return f"{license_file.parent.name}/{license_file.name}"
+    return label
 
 
 def _git_top(folder: Path) -> Path | None:

@@ -46,18 +46,18 @@ def git_revision(folder: Path) -> tuple[str, str]:
     return commit, git("remote", "get-url", "origin")
 
 
-def find_license(folders: list[Path], top: Path | None) -> Path | None:
-    """The first license file in ``folders`` or their parents up to ``top`` (the repo's top,
-    or the folders themselves when there is no repo)."""
+def find_license(folders: list[Path], top: Path | None, levels: int = 3) -> Path | None:
+    """The first license file in ``folders`` or the folders above them: up to the description
+    package's root (the folder with its ``package.xml``), the repo's ``top``, or, outside a
+    repo, ``levels`` folders up."""
     for folder in folders:
         current = folder.resolve()
-        while True:
+        for _ in range(64 if top is not None else levels + 1):
             for name in LICENSE_NAMES:
                 if (current / name).is_file():
                     return current / name
-            if top is None or current == top or current.parent == current:
-                break
-            if top not in current.parents:
+            at_top = top is not None and (current == top or top not in current.parents)
+            if at_top or (current / "package.xml").is_file() or current.parent == current:
                 break
             current = current.parent
     return None
