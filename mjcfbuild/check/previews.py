@@ -13,9 +13,11 @@ MuJoCo renders through OpenGL; on a machine without a display this needs EGL (se
 background is a sky gradient, the same in every picture: each picture is drawn once without
 the skybox, and the pixels that kept the cleared depth are the background.
 
-Each picture comes with a digest of what it shows (:func:`_kind_digests`), and a picture whose
-digest is unchanged is not drawn again: a collision mesh edited redraws the two collision
-pictures, not the visual ones, which are most of the drawing time (panda: 0.3 of 0.6 s).
+Each picture comes with a digest of what it shows (its kind's content, :func:`_kind_digests`,
+and its camera), and a picture whose digest is unchanged is not drawn again: a collision mesh
+edited inside the robot's extent redraws the collision pictures, not the visual ones, which are
+most of the drawing time (panda: 0.3 of 0.6 s); one that changes the extent moves the cameras
+and redraws every picture.
 """
 
 from __future__ import annotations
