@@ -1,14 +1,23 @@
-"""Preview pictures of a built model at home on its floor, rendered offscreen: front and side,
-visual and collision.
+"""Preview pictures of a built model at home on its floor, rendered offscreen: a three-quarter
+front view and a side view (visual and collision), a top view, and a close-up of the hand (the
+end of an arm) or a foot (of a floating robot), where the robot has one.
+
+The views are chosen from the robot's extent: the side view looks across the robot's longest
+horizontal direction (a quadruped's body, an arm's reach), the three-quarter view half-way
+between it and the front (+x), from higher up for a robot that is wide rather than tall. Each
+view's camera is fitted to the robot's points as that view projects them, so the robot fills
+the frame.
 
 MuJoCo renders through OpenGL; on a machine without a display this needs EGL (set
 ``MUJOCO_GL=egl``, which mjcfbuild does when nothing else is set) and Mesa's EGL packages. The
-background is made light grey, so the pictures read on any page: each picture is drawn once
-without the skybox, and the pixels that kept the cleared depth are the background.
+background is a sky gradient, the same in every picture: each picture is drawn once without
+the skybox, and the pixels that kept the cleared depth are the background.
 
-Each picture comes with a digest of what it shows (:func:`_kind_digests`), and a picture whose
-digest is unchanged is not drawn again: a collision mesh edited redraws the two collision
-pictures, not the visual ones, which are most of the drawing time (panda: 0.3 of 0.6 s).
+Each picture comes with a digest of what it shows (its kind's content, :func:`_kind_digests`,
+and its camera), and a picture whose digest is unchanged is not drawn again: a collision mesh
+edited inside the robot's extent redraws the collision pictures, not the visual ones, which are
+most of the drawing time (panda: 0.3 of 0.6 s); one that changes the extent moves the cameras
+and redraws every picture.
 """
 
 from __future__ import annotations
@@ -17,6 +26,7 @@ import hashlib
 import math
 import os
 from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -25,21 +35,28 @@ from mjcfbuild.check.loading import spec_reading_sources
 from mjcfbuild.errors import ModelError
 from mjcfbuild.fsutil import md5_file
 
-VIEWS = {"front": 180.0, "side": -90.0}
-ELEVATION = -15.0
 KINDS = ("visual", "collision")
-BACKGROUND = (235, 235, 235)
+SKY_TOP = (150, 190, 232)
+SKY_BOTTOM = (236, 242, 250)
 COLLISION_RGBA = (0.9, 0.45, 0.15, 1.0)
 SHADOW_MAP_SIZE = 1024
 # Each picture is drawn at twice its width and height and reduced, four samples a pixel.
 SUPERSAMPLING = 2
+MARGIN = 1.15  # the robot fills the frame, less this
 # Everything above that decides how a picture looks; a change to the drawing code that
 # changes the pictures changes this too (a new first element), so they are drawn again.
-DRAWING = (2, VIEWS, ELEVATION, BACKGROUND, COLLISION_RGBA, SHADOW_MAP_SIZE, SUPERSAMPLING)
-# File name -> the view's azimuth and the kind of geometry shown, in the order drawn.
-PICTURES = {
-    f"{view}_{kind}.png": (azimuth, kind) for view, azimuth in VIEWS.items() for kind in KINDS
-}
+DRAWING = (3, SKY_TOP, SKY_BOTTOM, COLLISION_RGBA, SHADOW_MAP_SIZE, SUPERSAMPLING, MARGIN)
+
+
+@dataclass(frozen=True)
+class View:
+    """A camera: where it looks from (degrees), at what, from how far; the kinds it shows."""
+
+    azimuth: float
+    elevation: float
+    lookat: tuple[float, float, float]
+    distance: float
+    kinds: tuple[str, ...]
 
 
 def render_previews(
@@ -79,12 +96,17 @@ def render_previews(
     mujoco.mj_forward(model, data)
     planes = model.geom_type == mujoco.mjtGeom.mjGEOM_PLANE
     collides = ((model.geom_contype != 0) | (model.geom_conaffinity != 0)) & ~planes
-    center, distance = _framing(model, data)
-    framing = (tuple(float(x) for x in center), float(distance), width, height)
-    digests = _kind_digests(model_path, spec, model, collides, framing)
-    shown = {name: digests[kind] if digests else None for name, (_, kind) in PICTURES.items()}
+    views = choose_views(model, data, width / height)
+    pictures = {
+        f"{name}_{kind}.png": (name, kind) for name, view in views.items() for kind in view.kinds
+    }
+    digests = _kind_digests(model_path, spec, model, collides, (width, height))
+    shown = {
+        name: _picture_digest(digests[kind], views[view]) if digests else None
+        for name, (view, kind) in pictures.items()
+    }
     to_draw = [
-        name for name in PICTURES if shown[name] is None or (drawn or {}).get(name) != shown[name]
+        name for name in pictures if shown[name] is None or (drawn or {}).get(name) != shown[name]
     ]
     if not to_draw:
         return shown
@@ -93,21 +115,23 @@ def render_previews(
     model.geom_rgba[collides] = COLLISION_RGBA
     model.geom_matid[collides] = -1
     folder.mkdir(parents=True, exist_ok=True)
+    sky = _sky(height * SUPERSAMPLING, width * SUPERSAMPLING)
     with _Offscreen(model, width * SUPERSAMPLING, height * SUPERSAMPLING) as offscreen:
         for name in to_draw:
-            azimuth, kind = PICTURES[name]
+            view_name, kind = pictures[name]
+            view = views[view_name]
             camera = mujoco.MjvCamera()
-            camera.lookat[:] = center
-            camera.distance = distance
-            camera.azimuth = azimuth
-            camera.elevation = ELEVATION
+            camera.lookat[:] = view.lookat
+            camera.distance = view.distance
+            camera.azimuth = view.azimuth
+            camera.elevation = view.elevation
             option = mujoco.MjvOption()
             option.geomgroup[:] = 0
             option.geomgroup[0] = 1
             option.geomgroup[2 if kind == "visual" else 3] = 1
             option.sitegroup[:] = 0
             pixels, background = offscreen.draw(data, camera, option)
-            pixels[background] = BACKGROUND
+            pixels[background] = sky[background]
             picture = Image.fromarray(pixels).reduce(SUPERSAMPLING)  # the mean of each square
             picture.save(folder / name, optimize=False)
     return shown
@@ -129,12 +153,12 @@ def _model_to_draw(model_path: Path, sources: dict[str, Path]) -> tuple[Any, Any
 
 
 def _kind_digests(
-    model_path: Path, spec: Any, model: Any, collides: Any, framing: tuple
+    model_path: Path, spec: Any, model: Any, collides: Any, size: tuple[int, int]
 ) -> dict[str, str] | None:
     """Per kind of picture, the digest of what it shows; None if that cannot be told.
 
     Both kinds show the model's XML as drawn (check.drawn), the textures and height fields,
-    and are framed to fit every geom (``framing``: centre, distance and picture size). The
+    at the picture ``size``; each picture adds its view's camera (:func:`_picture_digest`). The
     mesh files are the difference: a visual picture shows the meshes of the geoms that do
     not collide, a collision picture those of the geoms that do.
     """
@@ -143,7 +167,7 @@ def _kind_digests(
     xml = drawn_model_xml(model_path)
     if xml is None or model.nskin or model.nflex:
         return None  # skins and flexes read files this does not follow: always draw
-    common = hashlib.sha256(repr((DRAWING, mujoco.__version__, framing)).encode())
+    common = hashlib.sha256(repr((DRAWING, mujoco.__version__, size)).encode())
     common.update(xml)
     for array in (model.tex_data, model.tex_height, model.tex_width):
         common.update(array.tobytes())
@@ -233,16 +257,31 @@ def _gl_context(width: int, height: int) -> Any:
     return _contexts[(width, height)]
 
 
-def _framing(model, data):
-    """A point to look at and a distance that fits every geom in the view: each mesh by its
-    vertices, each other geom by its bounding box. Vertices and not a mesh's box, which
-    MuJoCo aligns with the mesh's axes of inertia: any edit of the mesh turns those axes
-    and would move the camera, and redraw every picture, however small the edit."""
+def _picture_digest(kind_digest: str, view: View) -> str:
+    """What one picture shows: its kind's content and its camera."""
+    return hashlib.sha256(f"{kind_digest}\0{view!r}".encode()).hexdigest()
+
+
+def _sky(height: int, width: int) -> Any:
+    """The background: a vertical gradient from :data:`SKY_TOP` to :data:`SKY_BOTTOM`."""
+    import numpy as np
+
+    rows = np.linspace(0.0, 1.0, height)[:, None]
+    colours = (1 - rows) * np.array(SKY_TOP) + rows * np.array(SKY_BOTTOM)
+    line = np.round(colours).astype(np.uint8)
+    return np.repeat(line[:, None, :], width, axis=1)
+
+
+def geom_points(model, data) -> tuple[Any, Any]:
+    """Points that bound every geom but the floor, in the world (each mesh by its vertices,
+    each other geom by its bounding box's corners), and the body of each point. Vertices and
+    not a mesh's box, which MuJoCo aligns with the mesh's axes of inertia: any edit of the
+    mesh turns those axes and would move the camera, and redraw every picture."""
     import mujoco
     import numpy as np
 
     signs = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], dtype=float)
-    corners = []
+    points, bodies = [], []
     for geom in range(model.ngeom):
         if model.geom_type[geom] == mujoco.mjtGeom.mjGEOM_PLANE:
             continue  # infinite: the robot is what the picture frames
@@ -254,14 +293,137 @@ def _framing(model, data):
             center, half = model.geom_aabb[geom][:3], model.geom_aabb[geom][3:]
             local = center + signs * half
         rotation = data.geom_xmat[geom].reshape(3, 3)
-        corners.append(local @ rotation.T + data.geom_xpos[geom])
-    if not corners:
-        return np.zeros(3), 1.0
-    points = np.concatenate(corners)
-    low, high = points.min(axis=0), points.max(axis=0)
-    center = (low + high) / 2
-    radius = max(float(np.linalg.norm(high - low)) / 2, 0.05)
-    fovy = math.radians(model.vis.global_.fovy)
+        points.append(local @ rotation.T + data.geom_xpos[geom])
+        bodies.append(np.full(len(local), model.geom_bodyid[geom]))
+    if not points:
+        return np.zeros((1, 3)), np.zeros(1, dtype=int)
+    return np.concatenate(points), np.concatenate(bodies)
+
+
+def choose_views(model, data, aspect: float) -> dict[str, View]:
+    """The views of the robot, each fitted to fill the frame: ``three_quarter`` and ``side``
+    (visual and collision), ``top`` (visual) and ``closeup`` (of a hand or a foot, both kinds)
+    where the robot has one."""
+    import numpy as np
+
+    points, bodies = geom_points(model, data)
+    fovy = float(model.vis.global_.fovy)
+    along = _long_axis(points)
+    left = np.array([-along[1], along[0]])  # the side view's camera is on the robot's left
+    side = math.degrees(math.atan2(-left[1], -left[0]))
+    quarter_from = along + left
+    three_quarter = math.degrees(math.atan2(-quarter_from[1], -quarter_from[0]))
+    extent = points.max(axis=0) - points.min(axis=0)
+    wide = extent[2] < 0.8 * max(extent[0], extent[1])
+    views = {
+        "three_quarter": _fit(points, three_quarter, -30.0 if wide else -20.0, fovy, aspect, KINDS),
+        "side": _fit(points, side, -12.0, fovy, aspect, KINDS),
+        # From above, the long direction across the picture, which is wider than high.
+        "top": _fit(points, side, -89.0, fovy, aspect, ("visual",)),
+    }
+    end = closeup_bodies(model, data)
+    if end:
+        near = np.isin(bodies, sorted(end))
+        if near.any():
+            views["closeup"] = _fit(points[near], three_quarter, -25.0, fovy, aspect, KINDS)
+    return views
+
+
+def _long_axis(points) -> Any:
+    """The robot's longest horizontal direction, pointing forward (+x); +x for a round one."""
+    import numpy as np
+
+    flat = points[:, :2] - points[:, :2].mean(axis=0)
+    values, vectors = np.linalg.eigh(flat.T @ flat)
+    if values[1] < 1.5 * values[0] or values[1] <= 0:
+        return np.array([1.0, 0.0])
+    axis = vectors[:, 1]
+    axis = axis if axis[0] >= 0 else -axis
+    # Rounded, so that a change at the far end of a mesh does not turn every view.
+    return np.round(axis / np.linalg.norm(axis), 3)
+
+
+def closeup_bodies(model, data) -> set[int]:
+    """The bodies of a hand or a foot: for a floating robot, the end body that reaches lowest
+    (a foot, or a quadruped's shank); for a fixed one, every body under the deepest end bodies'
+    nearest common ancestor (a gripper). End bodies: bodies with geometry and none below them.
+    Empty when that would be the whole robot."""
+    import mujoco
+    import numpy as np
+
+    points, owners = geom_points(model, data)
+    drawn = {int(b) for b in np.unique(owners)} - {0}
+    ends = [
+        body
+        for body in sorted(drawn)
+        if not any(_under(model, other, body) for other in drawn if other != body)
+    ]
+    if not ends:
+        return set()
+
+    def depth(body: int) -> int:
+        count = 0
+        while body:
+            body, count = int(model.body_parentid[body]), count + 1
+        return count
+
+    floating = any(model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE for j in range(model.njnt))
+    if floating:
+        lowest = {body: round(float(points[owners == body][:, 2].min()), 6) for body in ends}
+        chosen = {min(ends, key=lambda body: (lowest[body], body))}
+    else:
+        deepest = max(depth(body) for body in ends)
+        tips = [body for body in ends if depth(body) == deepest]
+        ancestor = tips[0]
+        while not all(_under(model, tip, ancestor) for tip in tips):
+            ancestor = int(model.body_parentid[ancestor])
+        chosen = {b for b in range(1, model.nbody) if _under(model, b, ancestor)}
+    roots = {b for b in range(1, model.nbody) if model.body_parentid[b] == 0}
+    return set() if chosen & roots else chosen
+
+
+def _under(model, body: int, ancestor: int) -> bool:
+    while body:
+        if body == ancestor:
+            return True
+        body = int(model.body_parentid[body])
+    return False
+
+
+def _fit(points, azimuth: float, elevation: float, fovy: float, aspect: float, kinds) -> View:
+    """The camera at ``azimuth`` and ``elevation`` (degrees) that sees every point, the nearest
+    edge of the robot's picture :data:`MARGIN` from the frame's edge."""
+    import numpy as np
+
+    a, e = math.radians(azimuth), math.radians(elevation)
+    forward = np.array([math.cos(e) * math.cos(a), math.cos(e) * math.sin(a), math.sin(e)])
+    right = np.cross(forward, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    across, upward, depth = points @ right, points @ up, points @ forward
+    tan_v = math.tan(math.radians(fovy) / 2) / MARGIN
+    tan_h = tan_v * aspect
+    # The camera at depth s along ``forward`` and (c_r, c_u) across sees point i when
+    # |across_i - c_r| <= tan_h (depth_i - s), and likewise upward. Across, that holds for
+    # max(across - tan_h depth) + tan_h s <= c_r <= min(across + tan_h depth) - tan_h s: the
+    # nearest camera is in the middle of the two bounds, where they meet.
+    position = []
+    nearest = []
+    for values, tangent in ((across, tan_h), (upward, tan_v)):
+        low = float(np.max(values - tangent * depth))
+        high = float(np.min(values + tangent * depth))
+        position.append((low + high) / 2)
+        nearest.append((high - low) / (2 * tangent))
+    camera_depth = min(*nearest, float(depth.min()) - 0.05)  # and out of the robot
+    distance = max((float(depth.min()) + float(depth.max())) / 2 - camera_depth, 0.05)
+    camera = position[0] * right + position[1] * up + camera_depth * forward
+    lookat = camera + distance * forward
     # To the micrometre: MuJoCo stores a mesh about its centre of mass, so a vertex that did
     # not move can come back a rounding error away after an edit elsewhere in the mesh.
-    return np.round(center, 6), round(radius / math.sin(fovy / 2) * 1.1, 6)
+    return View(
+        round(azimuth, 3),
+        elevation,
+        tuple(round(float(x), 6) for x in lookat),  # type: ignore[arg-type]
+        round(distance, 6),
+        tuple(kinds),
+    )

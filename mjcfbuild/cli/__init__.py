@@ -27,6 +27,7 @@ def build_parser() -> argparse.ArgumentParser:
         check,
         clean,
         convert,
+        diff,
         explain,
         export_urdf,
         graph,
@@ -45,7 +46,7 @@ def build_parser() -> argparse.ArgumentParser:
     commands = parser.add_subparsers(title="commands", dest="command", metavar="COMMAND")
     commands.required = True
     commands_in_order = (build, check, explain, graph, clean, convert, export_urdf, init, schema)
-    for module in (*commands_in_order, cache, workers):
+    for module in (*commands_in_order, diff, cache, workers):
         module.add_parser(commands)
     for command in commands.choices.values():
         # After the command too; unset there, so the value given before it stands.

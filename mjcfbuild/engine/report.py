@@ -24,7 +24,15 @@ from mjcfbuild.engine.tasks import (
 from mjcfbuild.fsutil import write_if_changed
 
 TIMINGS = "timings.json"
-PREVIEW_ORDER = ("front_visual", "side_visual", "front_collision", "side_collision")
+PREVIEW_ORDER = (
+    "three_quarter_visual",
+    "side_visual",
+    "top_visual",
+    "closeup_visual",
+    "three_quarter_collision",
+    "side_collision",
+    "closeup_collision",
+)
 
 
 def record_timings(ctx: BuildContext) -> dict[str, float]:

@@ -46,6 +46,7 @@ from mjcfbuild.steps.payloads import (
     MeshOptions,
     MeshPayload,
     MjcfPartFiles,
+    PackagePayload,
     Payload,
     PlanPayload,
     PreviewsPayload,
@@ -72,6 +73,8 @@ FLOOR_RECORD = "floor.json"
 URDF_EXPORT_RECORD = "urdf_export.json"
 PREVIEWS_RECORD = "previews.json"
 TUNING_RECORD = "tuning.json"
+PACKAGE_RECORD = "package.json"
+PACKAGE_FOLDER = "package"  # the Menagerie-grade folder, inside the output folder
 
 
 def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
@@ -123,6 +126,8 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
             tasks.append(_previews_task(ctx, prefix))
         if ctx.manifest.check.tuning:
             tasks.append(_tuning_task(ctx, prefix))
+    if ctx.manifest.output.package:
+        tasks.append(_package_task(ctx, prefix, checks))
     return tasks
 
 
@@ -817,6 +822,87 @@ def _tuning_task(ctx: BuildContext, prefix: str) -> dict:
         targets=[ctx.state(TUNING_RECORD)],
         after=[f"{prefix}assemble"],
     )
+
+
+def _package_task(ctx: BuildContext, prefix: str, checked: bool) -> dict:
+    from mjcfbuild.engine.versions import tool_version
+    from mjcfbuild.package.documents import find_license, git_revision
+
+    folder = ctx.out_dir / PACKAGE_FOLDER
+    revision, remote = git_revision(ctx.base_dir)
+    top = _git_top(ctx.base_dir) if revision else None
+    package_folders = [ctx.resolve(path) for path in ctx.manifest.packages.values()]
+    license_file = find_license([ctx.source_base_dir, *package_folders, ctx.base_dir], top)
+    picture = report_dir(ctx) / "previews" / "three_quarter_visual.png"
+    with_picture = checked and ctx.manifest.check.previews
+    payload = PackagePayload(
+        name=ctx.manifest.name,
+        provenance={
+            "source": ctx.portable_label(ctx.source_path),
+            "manifest_text": ctx.manifest_file.read_text() if ctx.manifest_file else "",
+            "revision": revision,
+            "remote": remote,
+            "mujoco_version": tool_version("mujoco"),
+            "license_from": _license_label(ctx, license_file),
+        },
+        model=str(ctx.robot_path),
+        scene=str(ctx.scene_path),
+        assembly_report=str(ctx.state(ASSEMBLY_REPORT)),
+        assets=str(ctx.assets_dir),
+        check=str(ctx.state(CHECK_RESULTS)) if checked else None,
+        picture=str(picture) if with_picture else None,
+        license=str(license_file) if license_file else None,
+        folder=str(folder),
+        record=str(ctx.state(PACKAGE_RECORD)),
+    )
+    optional = [payload.check, payload.picture, payload.license]
+    after = [f"{prefix}assemble", f"{prefix}scene"]
+    after += [f"{prefix}check"] if checked else []
+    after += [f"{prefix}previews"] if with_picture else []
+    return _task(
+        ctx,
+        f"{prefix}package",
+        f"package {PACKAGE_FOLDER}/",
+        "package",
+        payload,
+        in_worker=True,
+        file_dep=[
+            ctx.robot_path,
+            ctx.scene_path,
+            ctx.state(ASSEMBLY_REPORT),
+            *(Path(path) for path in optional if path),
+        ],
+        targets=[
+            ctx.state(PACKAGE_RECORD),
+            folder / "README.md",
+            folder / ctx.manifest.robot_file,
+            folder / "scene.xml",
+        ],
+        after=after,
+    )
+
+
+def _license_label(ctx: BuildContext, license_file: Path | None) -> str:
+    """How the README names the license file: relative to robot.yaml when inside its folder,
+    else by its folder and name (``panda_description/LICENSE``), the same on every machine."""
+    if license_file is None:
+        return ""
+    label = ctx.portable_label(license_file)
+    if label.startswith("../"):
+        return f"{license_file.parent.name}/{license_file.name}"
+    return label
+
+
+def _git_top(folder: Path) -> Path | None:
+    import subprocess
+
+    result = subprocess.run(
+        ["git", "-C", str(folder), "rev-parse", "--show-toplevel"],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    return Path(result.stdout.strip()).resolve() if result.returncode == 0 else None
 
 
 def _export_urdf_task(ctx: BuildContext, prefix: str) -> dict:

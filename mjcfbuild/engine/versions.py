@@ -17,13 +17,14 @@ STEP_FORMATS = {
     "scene": 3,
     "check": 6,
     "reference": 1,
-    "previews": 4,
+    "previews": 5,
     "tuning": 1,
     "srdf": 2,
     "selfcollision": 3,
     "export_urdf": 1,
     "compose": 2,  # 2: the origins of the composed lines
     "mjcfpart": 1,
+    "package": 1,
 }
 
 STEP_TOOLS = {
@@ -42,6 +43,7 @@ STEP_TOOLS = {
     "export_urdf": ("mujoco", "numpy"),
     "compose": ("lxml",),
     "mjcfpart": ("mujoco", "lxml"),
+    "package": ("mujoco", "numpy", "lxml"),
 }
 
 

@@ -525,6 +525,14 @@ class Output(StrictModel):
         None, description="File name of the robot model. Default: '<name>.xml'."
     )
     scene: FileName = Field("scene.xml", description="File name of the scene.")
+    package: bool = Field(
+        False,
+        description=(
+            "Also write a MuJoCo Menagerie-grade folder of the model in '<folder>/package': "
+            "the model formatted the Menagerie way, scene, assets, README, the description's "
+            "LICENSE, a CHANGELOG kept across builds and '<name>.png'."
+        ),
+    )
     urdf: UrdfExport | FileName | None = Field(
         None,
         description=(

@@ -399,3 +399,20 @@ class ExportUrdfPayload(Payload):
     urdf: Output
     mesh_dir: Annotated[str, NotCounted("named by options.mesh_folder")]
     record: Output
+
+
+@dataclass(frozen=True)
+class PackagePayload(Payload):
+    """``package``: a Menagerie-grade folder of the model (``output.package: true``)."""
+
+    name: str
+    provenance: dict[str, str]  # source, revision, remote, robot.yaml's text, versions
+    model: FileDependency
+    scene: FileDependency
+    assembly_report: FileDependency  # lists each asset with its MD5: the assets count through it
+    assets: Annotated[str, NotCounted("the assets' bytes count through the assembly report")]
+    check: OptionalFileDependency
+    picture: OptionalFileDependency
+    license: OptionalFileDependency
+    folder: Output
+    record: Output  # the packaged model's snapshot: what the next CHANGELOG entry compares with

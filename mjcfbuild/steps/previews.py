@@ -40,6 +40,9 @@ def run(payload: dict) -> dict:
                 "on Linux install libegl1 and libegl-mesa0, or set check.previews: false"
             ],
         }
+    for stale in folder.glob("*.png"):  # pictures of views no longer drawn
+        if stale.name not in shown:
+            stale.unlink()
     outputs: dict[str, str] = {}
     entries = {}
     for name, digest in shown.items():

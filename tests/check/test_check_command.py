@@ -47,16 +47,32 @@ def test_build_ends_with_the_check_and_a_report_with_pictures(tmp_path):
     assert "check" in result.ran and "previews" in result.ran
     report = arm / "mjcf" / "report"
     text = (report / "report.md").read_text()
-    assert (
-        "Result: all checks pass." in text and "![front visual](previews/front_visual.png)" in text
-    )
+    assert "Result: all checks pass." in text
+    assert "![three quarter visual](previews/three_quarter_visual.png)" in text
     images = {p.stem: np.asarray(Image.open(p)) for p in (report / "previews").glob("*.png")}
-    assert sorted(images) == ["front_collision", "front_visual", "side_collision", "side_visual"]
+    assert sorted(images) == [
+        "closeup_collision",
+        "closeup_visual",
+        "side_collision",
+        "side_visual",
+        "three_quarter_collision",
+        "three_quarter_visual",
+        "top_visual",
+    ]
     for name, pixels in images.items():
-        background = np.all(pixels == [235, 235, 235], axis=-1)
-        assert 0.02 < 1 - background.mean() < 0.9, name  # the robot is there, not everywhere
-    assert not np.array_equal(images["front_visual"], images["side_visual"])
-    assert not np.array_equal(images["front_visual"], images["front_collision"])
+        if "collision" not in name:
+            continue
+        # collision geometry is drawn orange; floor and sky are blue
+        robot = pixels[..., 0].astype(int) > pixels[..., 2].astype(int) + 60
+        assert 0.05 < robot.mean() < 0.9, name  # the robot is there, not everywhere
+        rows, columns = np.nonzero(robot)
+        spans = ((rows.max() - rows.min() + 1) / robot.shape[0],
+                 (columns.max() - columns.min() + 1) / robot.shape[1])  # fmt: skip
+        if name != "closeup_collision":  # a close-up crops the arm it looks along
+            assert max(spans) > 0.8, (name, spans)  # the robot fills the frame
+            assert rows.min() > 0 and columns.min() > 0, name  # and is inside it
+    assert not np.array_equal(images["three_quarter_visual"], images["side_visual"])
+    assert not np.array_equal(images["three_quarter_visual"], images["three_quarter_collision"])
     assert (report / ".gitignore").read_text().endswith("*\n")
 
 

@@ -10,6 +10,7 @@ import sys
 from pathlib import Path
 
 import mujoco
+import pytest
 from PIL import Image
 
 from mjcfbuild.check.previews import _model_to_draw
@@ -72,7 +73,7 @@ def test_the_skybox_is_left_out_and_the_pictures_stay_the_same(tmp_path):
 
     names = sorted(_render(with_sky))
     assert names == sorted(_render(without))
-    assert len(names) == 4
+    assert len(names) == 5  # three-quarter and side, each kind; top; a box has no hand
     for name in names:
         drawn = (tmp_path / "sky" / "previews" / name).read_bytes()
         assert drawn == (tmp_path / "plain" / "previews" / name).read_bytes()
@@ -85,10 +86,11 @@ def test_a_skybox_texture_a_material_uses_is_kept(tmp_path):
 
 
 def _two_meshes(folder: Path) -> Path:
-    """A scene with a robot of two mesh geoms, one only seen and one that collides."""
+    """A scene with a robot of two mesh geoms, one only seen and one that collides, inside a
+    box that collides: the box decides how the views are framed, until a mesh grows out of it."""
     folder.mkdir(parents=True, exist_ok=True)
     _tetrahedron(folder / "shell.obj", 0.2)
-    _tetrahedron(folder / "hull.obj", 0.15)
+    _tetrahedron(folder / "hull.obj", 0.1)
     scene = folder / "scene.xml"
     scene.write_text("""<mujoco>
   <include file="robot.xml"/>
@@ -106,7 +108,8 @@ def _two_meshes(folder: Path) -> Path:
     <body name="link" pos="0 0 0.3">
       <joint name="hinge" damping="1"/>
       <geom type="mesh" mesh="shell" contype="0" conaffinity="0" rgba="0.2 0.6 0.9 1"/>
-      <geom type="mesh" mesh="hull" pos="0.1 0 0"/>
+      <geom type="mesh" mesh="hull" pos="0.02 0.02 0.02"/>
+      <geom type="box" size="0.16 0.16 0.16" pos="0.05 0.05 0.1"/>
     </body>
   </worldbody>
 </mujoco>""")
@@ -133,25 +136,28 @@ def test_only_the_pictures_of_what_changed_are_drawn_again(tmp_path):
     scene = _two_meshes(tmp_path)
     first = _render(scene)
     assert _pictures(tmp_path) == set(first) and None not in first.values()
-    with Image.open(tmp_path / "previews" / "front_visual.png") as picture:
+    with Image.open(tmp_path / "previews" / "three_quarter_visual.png") as picture:
         assert picture.size == (160, 120)  # drawn larger, reduced to the size asked for
-    assert first["front_visual.png"] == first["side_visual.png"] != first["front_collision.png"]
+    assert len(set(first.values())) == len(first)  # each picture shows its own view and kind
 
     _forget_pictures(tmp_path)  # a picture not drawn again is not written again
     assert _render(scene, first) == first
     assert _pictures(tmp_path) == set()
 
-    _tetrahedron(tmp_path / "hull.obj", 0.15, tip=0.9)  # lower, inside the frame
+    _tetrahedron(tmp_path / "hull.obj", 0.1, tip=0.9)  # lower, inside the box
     hull_changed = _render(scene, first)
-    assert _pictures(tmp_path) == {"front_collision.png", "side_collision.png"}
-    assert hull_changed["front_visual.png"] == first["front_visual.png"]
-    assert hull_changed["front_collision.png"] != first["front_collision.png"]
+    assert _pictures(tmp_path) == {"three_quarter_collision.png", "side_collision.png"}
+    assert hull_changed["three_quarter_visual.png"] == first["three_quarter_visual.png"]
+    assert hull_changed["three_quarter_collision.png"] != first["three_quarter_collision.png"]
 
     _forget_pictures(tmp_path)
-    _tetrahedron(tmp_path / "shell.obj", 0.2, lean=0.05)  # inside the frame too
+    _tetrahedron(tmp_path / "shell.obj", 0.2, lean=0.05)  # inside the box too
     shell_changed = _render(scene, hull_changed)
-    assert _pictures(tmp_path) == {"front_visual.png", "side_visual.png"}
-    assert shell_changed["front_collision.png"] == hull_changed["front_collision.png"]
+    shown_by_the_shell = {"three_quarter_visual.png", "side_visual.png", "top_visual.png"}
+    assert _pictures(tmp_path) == shown_by_the_shell
+    assert (
+        shell_changed["three_quarter_collision.png"] == hull_changed["three_quarter_collision.png"]
+    )
 
 
 def test_what_both_kinds_show_draws_both_again(tmp_path):
@@ -166,12 +172,12 @@ def test_what_both_kinds_show_draws_both_again(tmp_path):
     for change, edit in changes.items():
         _forget_pictures(tmp_path)
         if edit is None:
-            _tetrahedron(tmp_path / "hull.obj", 0.15, tip=3.0)
+            _tetrahedron(tmp_path / "hull.obj", 0.1, tip=4.0)  # out of the box
         else:
             path = scene if change == "the floor" else robot
             path.write_text(path.read_text().replace(*edit))
         redrawn = _render(scene, first)
-        assert len(_pictures(tmp_path)) == 4, change
+        assert len(_pictures(tmp_path)) == 5, change
         assert not set(redrawn.values()) & set(first.values()), change
         first = redrawn
 
@@ -200,6 +206,98 @@ def test_a_process_that_draws_twice_draws_what_a_new_process_draws(tmp_path):
     assert done.returncode == 0, done.stderr
     _render(second)  # alone, in a process of its own
     pictures = sorted((tmp_path / "two" / "previews").glob("*.png"))
-    assert len(pictures) == 4
+    assert len(pictures) == 5
     for picture in pictures:
         assert picture.read_bytes() == (tmp_path / "two" / "again" / picture.name).read_bytes()
+
+
+def _compiled(body_xml: str):
+    """A model of ``body_xml`` in the world, at its zero pose, with its data."""
+    model = mujoco.MjModel.from_xml_string(f"<mujoco><worldbody>{body_xml}</worldbody></mujoco>")
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    return model, data
+
+
+ARM = """<body name="base"><geom size="0.05"/>
+  <body name="link" pos="0 0 0.1"><joint/><geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.03"/>
+    <body name="hand" pos="0.5 0 0"><joint/><geom size="0.04"/>
+      <body name="left" pos="0.05 0.02 0"><joint type="slide" axis="0 1 0"/><geom type="box" size="0.03 0.005 0.01"/></body>
+      <body name="right" pos="0.05 -0.02 0"><joint type="slide" axis="0 1 0"/><geom type="box" size="0.03 0.005 0.01"/></body>
+    </body>
+  </body>
+</body>"""
+
+FLOATING = """<body name="trunk" pos="0 0 0.5"><freejoint/><geom type="box" size="0.3 0.1 0.05"/>
+  <body name="front" pos="0.25 0 -0.05"><joint/><geom type="capsule" fromto="0 0 0 0 0 -0.4" size="0.02"/></body>
+  <body name="rear" pos="-0.25 0 -0.05"><joint/><geom type="capsule" fromto="0 0 0 0 0 -0.42" size="0.02"/></body>
+</body>"""
+
+
+def test_the_closeup_is_the_arms_hand_or_the_lowest_foot():
+    from mjcfbuild.check.previews import closeup_bodies
+
+    model, data = _compiled(ARM)
+    names = {model.body(b).name for b in closeup_bodies(model, data)}
+    assert names == {"hand", "left", "right"}
+    model, data = _compiled(FLOATING)
+    assert {model.body(b).name for b in closeup_bodies(model, data)} == {"rear"}  # the lowest
+    model, data = _compiled('<body name="box"><freejoint/><geom size="0.1"/></body>')
+    assert closeup_bodies(model, data) == set()  # no hand, no foot: the robot itself
+
+
+def test_the_side_view_looks_across_the_robots_long_direction():
+    from mjcfbuild.check.previews import choose_views
+
+    model, data = _compiled(ARM)  # reaches along +x
+    views = choose_views(model, data, 4 / 3)
+    assert views["side"].azimuth == -90.0 and views["three_quarter"].azimuth == -135.0
+    assert set(views) == {"three_quarter", "side", "top", "closeup"}
+    turned = ARM.replace('<body name="base">', '<body name="base" euler="0 0 90">')
+    model, data = _compiled(turned)  # the same arm reaching along +y
+    assert choose_views(model, data, 4 / 3)["side"].azimuth in (0.0, 180.0, -180.0)
+
+
+def test_the_view_fits_the_robot_in_the_frame():
+    import math
+
+    import numpy as np
+
+    from mjcfbuild.check.previews import MARGIN, choose_views, geom_points
+
+    model, data = _compiled(FLOATING)
+    points, _ = geom_points(model, data)
+    for name, view in choose_views(model, data, 4 / 3).items():
+        if name == "closeup":
+            continue
+        a, e = math.radians(view.azimuth), math.radians(view.elevation)
+        forward = np.array([math.cos(e) * math.cos(a), math.cos(e) * math.sin(a), math.sin(e)])
+        right = np.cross(forward, [0, 0, 1])
+        right /= np.linalg.norm(right)
+        up = np.cross(right, forward)
+        relative = points - (np.array(view.lookat) - view.distance * forward)
+        depth = relative @ forward
+        tangent = math.tan(math.radians(model.vis.global_.fovy) / 2)
+        across = relative @ right / depth / (tangent * 4 / 3)
+        upward = relative @ up / depth / tangent
+        assert max(np.abs(across).max(), np.abs(upward).max()) == pytest.approx(
+            1 / MARGIN, rel=1e-3
+        )
+        # centred: as much room on either side of the binding direction
+        for values in (across, upward):
+            if np.abs(values).max() > 0.99 / MARGIN:
+                assert values.max() == pytest.approx(-values.min(), rel=1e-3), name
+
+
+def test_the_background_is_a_sky_gradient(tmp_path):
+    from mjcfbuild.check.previews import SKY_BOTTOM, SKY_TOP
+
+    scene = _two_meshes(tmp_path)
+    _render(scene)
+    with Image.open(tmp_path / "previews" / "side_visual.png") as picture:
+        top = picture.getpixel((2, 0))
+        lower = picture.getpixel((2, 20))
+    assert all(abs(a - b) <= 2 for a, b in zip(top, SKY_TOP, strict=True))
+    assert top != lower and all(
+        min(a, b) <= c <= max(a, b) for a, b, c in zip(SKY_TOP, SKY_BOTTOM, lower, strict=True)
+    )

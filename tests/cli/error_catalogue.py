@@ -793,6 +793,28 @@ CASES: list[Case] = [
         args=["explain", "mesh:nothing"],
     ),
     Case("convert without input", {}, EXIT_USAGE, ["-u", "-r"], args=["convert", "-o", "out"]),
+    # ---- diff (more in tests/cli/test_diff.py, with git) -----------------------------------------
+    Case(
+        "diff of a folder with no build",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf(), "empty/.keep": ""},
+        EXIT_INPUT,
+        ["empty", "no mjcfbuild build", "mjcfbuild build wrote"],
+        args=["diff", "--folders", "empty", "mjcf"],
+    ),
+    Case(
+        "diff with nothing to compare",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+        EXIT_USAGE,
+        ["--base REF", "--folders OLD NEW"],
+        args=["diff"],
+    ),
+    Case(
+        "diff outside a git repository",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+        EXIT_INPUT,
+        ["robot.yaml", "not inside a git repository", "--folders"],
+        args=["diff", "--base", "main"],
+    ),
     # ---- the remote cache and the executor (more in tests/sharing/test_settings.py) ------------
     Case(
         "malformed remote cache URL",

@@ -70,10 +70,13 @@ def test_a_visual_mesh_edit_redraws_the_visual_pictures_only(arm):
     record = arm / "mjcf" / ".mjcfbuild" / "previews.json"
     before = json.loads(record.read_text())
     assert sorted(before) == [
-        "front_collision.png",
-        "front_visual.png",
+        "closeup_collision.png",
+        "closeup_visual.png",
         "side_collision.png",
         "side_visual.png",
+        "three_quarter_collision.png",
+        "three_quarter_visual.png",
+        "top_visual.png",
     ]
     mesh = arm / "meshes" / "base.stl"  # the base's collision geometry is a cylinder
     data = bytearray(mesh.read_bytes())

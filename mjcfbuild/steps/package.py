@@ -1,0 +1,103 @@
+"""Step ``package``: the model's Menagerie-grade folder (``output.package: true``).
+
+The folder holds the model formatted the Menagerie way, the scene, the assets, ``<name>.png``,
+the description's LICENSE, a README and a CHANGELOG. The CHANGELOG is kept across builds: each
+time the packaged model changes, an entry on top says what changed (the groups of
+``mjcfbuild diff``), compared with the snapshot of the model packaged last time.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+from mjcfbuild import __version__
+from mjcfbuild.diff.compare import compare
+from mjcfbuild.diff.render import change_line
+from mjcfbuild.diff.snapshot import model_snapshot
+from mjcfbuild.fsutil import write_if_changed
+from mjcfbuild.package.documents import Provenance, changelog, readme
+from mjcfbuild.package.format import format_model
+from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.steps.payloads import PackagePayload
+
+CHANGELOG = "CHANGELOG.md"
+
+
+def run(payload: dict) -> dict:
+    """Write the folder; warn when the description has no license file."""
+    request = PackagePayload.from_dict(payload)
+    folder = Path(request.folder)
+    outputs: dict[str, str] = {}
+    warnings: list[str] = []
+    model = folder / f"{request.name}.xml"
+    write_output(model, format_model(Path(request.model).read_bytes()), outputs)
+    write_output(folder / "scene.xml", Path(request.scene).read_bytes(), outputs)
+    _copy_assets(Path(request.assets), folder / "assets", outputs)
+    if request.picture and Path(request.picture).is_file():
+        write_output(folder / f"{request.name}.png", Path(request.picture).read_bytes(), outputs)
+    if request.license:
+        write_output(folder / "LICENSE", Path(request.license).read_bytes(), outputs)
+    else:
+        (folder / "LICENSE").unlink(missing_ok=True)
+        warnings.append(
+            "package: no LICENSE found in the description package (or its repository): the "
+            "packaged folder has none; add the description's license before sharing it"
+        )
+    info = Provenance(
+        name=request.name,
+        mjcfbuild_version=__version__,
+        **{key: request.provenance[key] for key in _PROVENANCE},
+    )
+    check = _read(Path(request.check)) if request.check else {}
+    assembly = _read(Path(request.assembly_report))
+    write_output(folder / "README.md", readme(info, check, assembly).encode(), outputs)
+    _changelog(folder, model, info, Path(request.record))
+    return {"outputs": outputs, "warnings": warnings}
+
+
+_PROVENANCE = ("source", "manifest_text", "revision", "remote", "mujoco_version", "license_from")
+
+
+def _copy_assets(source: Path, target: Path, outputs: dict[str, str]) -> None:
+    """The output folder's assets, and no others."""
+    files = source.iterdir() if source.is_dir() else iter(())
+    wanted = {path.name for path in files if path.is_file()}
+    for name in sorted(wanted):
+        write_output(target / name, (source / name).read_bytes(), outputs)
+    if target.is_dir():
+        for path in target.iterdir():
+            if path.name not in wanted:
+                shutil.rmtree(path) if path.is_dir() else path.unlink()
+
+
+def _changelog(folder: Path, model: Path, info: Provenance, record: Path) -> None:
+    """Add an entry on top of CHANGELOG.md when the packaged model changed (or on the first
+    package); the snapshot compared next time goes to ``record``."""
+    snapshot = model_snapshot(model)
+    previous = _read(record).get("snapshot")
+    path = folder / CHANGELOG
+    text = path.read_text() if path.is_file() else ""
+    title = info.revision[:12] + info.revision[40:] if info.revision else "unversioned sources"
+    if previous is None or not text:
+        lines = [f"packaged by mjcfbuild {info.mjcfbuild_version} from `{info.source}`"]
+    else:
+        diff = compare(previous, snapshot)
+        lines = [
+            change_line(change, group)
+            for group, changes in diff.groups.items()
+            for change in changes
+        ]
+    if lines:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        write_if_changed(path, changelog(text, title, lines).encode())
+    write_output(record, (json.dumps({"snapshot": snapshot}, sort_keys=True) + "\n").encode(), {})
+
+
+def _read(path: Path) -> dict:
+    try:
+        data = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return {}
+    return data if isinstance(data, dict) else {}

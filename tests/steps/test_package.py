@@ -1,0 +1,133 @@
+"""``output.package: true`` on the example arm, in a git repo: the Menagerie-grade folder."""
+
+from __future__ import annotations
+
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mjcfbuild.package.format import format_problems
+from tests.conftest import EXAMPLES, run_cli
+
+
+def git(repo: Path, *args: str) -> str:
+    command = ["git", "-c", "user.email=t@example.com", "-c", "user.name=t", *args]
+    return subprocess.run(command, cwd=repo, check=True, capture_output=True, text=True).stdout
+
+
+@pytest.fixture(scope="module")
+def packaged(tmp_path_factory):
+    """The arm with output.package on, committed and built; its folder."""
+    import shutil
+
+    top = tmp_path_factory.mktemp("repo")
+    arm = top / "arm"
+    shutil.copytree(EXAMPLES / "arm", arm, ignore=shutil.ignore_patterns("mjcf"))
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "  package: true\n")
+    (top / ".gitignore").write_text("mjcf/\n")
+    git(top, "init", "-q", "-b", "main")
+    git(top, "remote", "add", "origin", "https://example.com/arm_description.git")
+    git(top, "add", ".")
+    git(top, "commit", "-qm", "arm")
+    result = run_cli("build", cwd=arm)
+    assert result.code == 0, result.stderr
+    return arm
+
+
+def test_the_folder_has_what_menageries_folder_test_asks(packaged):
+    folder = packaged / "mjcf" / "package"
+    names = {path.name for path in folder.iterdir()}
+    assert {"README.md", "LICENSE", "CHANGELOG.md", "scene.xml", "example_arm.xml"} <= names
+    assert {"example_arm.png", "assets"} <= names
+    assert (folder / "LICENSE").read_bytes() == (EXAMPLES / "arm" / "LICENSE").read_bytes()
+    assert (folder / "example_arm.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_every_scene_loads_and_steps_from_the_folder(packaged):
+    import mujoco
+
+    folder = packaged / "mjcf" / "package"
+    scenes = sorted(folder.glob("scene*.xml"))
+    assert scenes
+    for scene in scenes:
+        model = mujoco.MjModel.from_xml_path(str(scene))
+        data = mujoco.MjData(model)
+        mujoco.mj_resetDataKeyframe(model, data, 0)
+        for _ in range(200):
+            mujoco.mj_step(model, data)
+        assert not any(data.warning[k].number for k in range(len(data.warning)))
+
+
+def test_the_model_passes_the_format_check_with_kinematics_exact(packaged):
+    import mujoco
+
+    packaged_model = packaged / "mjcf" / "package" / "example_arm.xml"
+    assert format_problems(packaged_model.read_bytes()) == []
+    built = mujoco.MjModel.from_xml_path(str(packaged / "mjcf" / "example_arm.xml"))
+    model = mujoco.MjModel.from_xml_path(str(packaged_model))
+    for name in ("body_pos", "body_quat", "body_ipos", "body_mass", "jnt_axis", "jnt_range"):
+        assert np.array_equal(getattr(built, name), getattr(model, name)), name
+    for name in ("site_pos", "site_quat", "geom_pos", "geom_quat", "key_qpos"):
+        assert np.array_equal(getattr(built, name), getattr(model, name)), name
+    # gains carry 4 digits
+    assert np.allclose(model.actuator_gainprm[:, 0], built.actuator_gainprm[:, 0], rtol=1e-3)
+    assert 'kp="603.9"' in packaged_model.read_text()
+
+
+def test_readme_says_where_the_model_comes_from(packaged):
+    import mujoco
+
+    readme = (packaged / "mjcf" / "package" / "README.md").read_text()
+    commit = git(packaged, "rev-parse", "HEAD").strip()
+    assert f"- revision: `{commit}` of https://example.com/arm_description.git" in readme
+    assert f"MuJoCo {mujoco.__version__}" in readme and "mjcfbuild 0." in readme
+    assert "```yaml\n# yaml-language-server" in readme and "  package: true\n```" in readme
+    assert "- MuJoCo Menagerie's model test: no warnings" in readme
+    assert "5 actuators (position)" in readme
+
+
+def test_changelog_grows_when_the_model_changes_and_not_otherwise(packaged):
+    changelog = packaged / "mjcf" / "package" / "CHANGELOG.md"
+    first = changelog.read_text()
+    assert first.startswith("# Changelog\n\n## ") and "packaged by mjcfbuild" in first
+    assert run_cli("build", cwd=packaged).code == 0
+    assert changelog.read_text() == first  # nothing changed: no entry
+    limits = packaged / "config" / "joint_limits.yaml"
+    limits.write_text(limits.read_text().replace("elbow: {lower: -2.5,", "elbow: {lower: -2.0,"))
+    result = run_cli("build", cwd=packaged)
+    assert result.code == 0, result.stderr
+    text = changelog.read_text()
+    assert text.endswith(first[len("# Changelog\n\n") :])  # the old entries stay, below
+    newest = text.split("\n## ")[1]
+    assert "+ local changes" in newest.splitlines()[0]
+    assert "- joint elbow: range [-2.5 2.5] -> [-2 2.5]" in newest
+
+
+def test_without_a_license_file_the_build_warns_and_the_readme_says_so(tmp_path):
+    import shutil
+
+    arm = tmp_path / "arm"
+    shutil.copytree(EXAMPLES / "arm", arm, ignore=shutil.ignore_patterns("mjcf", "LICENSE"))
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "  package: true\ncheck:\n  enabled: false\n")
+    result = run_cli("build", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert "no LICENSE found in the description package" in result.stderr
+    folder = arm / "mjcf" / "package"
+    assert not (folder / "LICENSE").exists()
+    assert "No license file was found" in (folder / "README.md").read_text()
+
+
+def test_the_packaged_model_passes_the_check_against_its_urdf_to_1e12(packaged):
+    import re
+
+    result = run_cli(
+        "check", "--urdf", "mjcf/.mjcfbuild/source.urdf",
+        "--mjcf", "mjcf/package/example_arm.xml", cwd=packaged,
+    )  # fmt: skip
+    assert result.code == 0, result.stdout + result.stderr
+    found = re.search(r"link poses\s+max (\S+) m, (\S+) rad", result.stdout)
+    assert found and float(found.group(1)) < 1e-12 and float(found.group(2)) < 1e-11
