@@ -475,7 +475,9 @@ def _actuator(
         # Weight-bearing: stiff enough to hold the pendulum the robot forms over its feet and
         # to bend at most SAG under its load at home (past the ceiling on omega, which the
         # damping below, for what the joint moves while standing, keeps stable).
-        if servo.carried > 0 and choice.stiffen and choice.kp is None:
+        # A named drive (motors:) keeps the servo its datasheet sizes: its armature and
+        # torque-speed line are the robot's, not a repair.
+        if servo.carried > 0 and choice.stiffen and choice.kp is None and choice.motor is None:
             record.kp = max(record.kp, servo.pendulum * MARGIN, servo.load / servo.sag)
             # A stiff servo on a light foot rings faster than the time step can follow once
             # the foot leaves the floor: the rotor inertia a real drive has (armature) keeps

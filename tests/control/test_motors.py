@@ -97,7 +97,13 @@ def test_a_knee_at_full_torque_stays_under_its_no_load_speed(tmp_path):
 
 
 def test_gains_are_sized_from_the_inertia_with_armature(tmp_path):
-    result = _build(tmp_path, RULES.replace("motor: go1_knee}", "motor: go1_knee, frequency: 10}"))
+    # Not checked: 10 Hz calves are too soft to hold the standing robot, which the stand test
+    # says; the gains are this test's subject.
+    result = _build(
+        tmp_path,
+        RULES.replace("motor: go1_knee}", "motor: go1_knee, frequency: 10}")
+        + "check: {enabled: false}\n",
+    )
     model = mujoco.MjModel.from_xml_path(str(result.robot))
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, 0)

@@ -11,9 +11,13 @@ from mjcfbuild.mjcf.inertia import InertiaPolicy, validate_masses
 from mjcfbuild.urdf.parse import parse_urdf
 
 
+BASE_MASS = '<inertial><mass value="2"/><inertia ixx="0.1" iyy="0.1" izz="0.1"/></inertial>'
+
+
 def robot(inertial: str):
+    # The base has a mass: a robot with none anywhere is refused whole (test_no_mass_anywhere).
     return parse_urdf(
-        f"""<robot name="r"><link name="base"/>
+        f"""<robot name="r"><link name="base">{BASE_MASS}</link>
         <link name="arm">{inertial}</link>
         <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
           <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
@@ -85,3 +89,18 @@ def test_a_flat_plate_survives_rounding_without_a_reported_repair(tmp_path, mode
     assert assembly.repairs == []
     a, b, c = sorted(model.body_inertia[1])
     assert a + b >= c
+
+
+def test_no_mass_anywhere_is_refused_in_one_line():
+    """0.1 g placeholders on every link would simulate nothing of the robot."""
+    bodies = build_bodies(
+        parse_urdf(
+            b"""<robot name="r"><link name="base"/><link name="arm"/>
+            <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+            <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+            </robot>"""
+        ),
+        fuse_static=True,
+    )
+    with pytest.raises(InputError, match="no link of the robot has a mass"):
+        validate_masses(bodies, InertiaPolicy(), "r.urdf", {})
