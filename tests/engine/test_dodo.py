@@ -126,7 +126,7 @@ def test_a_users_dodo_checks_content_shares_state_and_locks(tmp_path):
     first = _doit(tmp_path, cache=cache)
     assert first.returncode == 0, first.stdout + first.stderr
     assert "robots:example_arm (robots/arm/robot.yaml)" in _ran(first.stdout)
-    assert "mjcfbuild: built example_arm.xml: 12 run" in first.stdout
+    assert "mjcfbuild: built example_arm.xml: 13 run" in first.stdout
     assert not list(tmp_path.glob(".doit.db*"))
     built_by_doit = _build(tmp_path, "robots/arm/robot.yaml", cache)
     assert "doit imported: False" in built_by_doit.stdout, built_by_doit.stdout

@@ -73,7 +73,7 @@ def test_the_next_build_uses_the_workers_the_last_left_and_builds_the_same_bytes
     assert run_cli("build", "-q", "-j", "2", cwd=fresh, env=env).code == EXIT_OK
     _assert_identical(arm / "mjcf", fresh / "mjcf")
     pictures = sorted((arm / "mjcf" / "report" / "previews").glob("*.png"))
-    assert len(pictures) == 4
+    assert len(pictures) == 7  # previews: three-quarter, side, close-up (two kinds each), top
     fresh_pictures = fresh / "mjcf" / "report" / "previews"
     for picture in pictures:
         assert picture.read_bytes() == (fresh_pictures / picture.name).read_bytes()
