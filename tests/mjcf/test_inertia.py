@@ -10,7 +10,6 @@ from mjcfbuild.mjcf.bodies import build_bodies
 from mjcfbuild.mjcf.inertia import InertiaPolicy, validate_masses
 from mjcfbuild.urdf.parse import parse_urdf
 
-
 BASE_MASS = '<inertial><mass value="2"/><inertia ixx="0.1" iyy="0.1" izz="0.1"/></inertial>'
 
 
