@@ -81,7 +81,9 @@ def read_urdf_file(path: Path) -> Expansion:
         raise InputError("source is a folder, not a file", file=path) from None
     except OSError as exc:
         raise InputError(f"cannot read source: {exc.strerror}", file=path) from None
-    macro = _XACRO_ELEMENT.search(data)
+    macro = next(
+        (m for m in _XACRO_ELEMENT.finditer(data) if not _in_comment(data, m.start())), None
+    )
     if macro is not None:
         # Read as URDF, a xacro file loses every macro and include silently (a one-link model
         # that passes every check): it must be expanded.
@@ -97,6 +99,12 @@ def read_urdf_file(path: Path) -> Expansion:
 
 # A xacro element (not just the namespace declaration, which expanded URDFs often keep).
 _XACRO_ELEMENT = re.compile(rb"<(xacro:(?:include|macro|property|arg|if|unless|call)\b)")
+
+
+def _in_comment(data: bytes, position: int) -> bool:
+    """Whether ``position`` lies inside an XML comment (talos's URDF comments out a property)."""
+    opened = data.rfind(b"<!--", 0, position)
+    return opened >= 0 and data.find(b"-->", opened, position) < 0
 
 
 def expand_xacro(

@@ -155,6 +155,11 @@ def test_a_xacro_file_named_as_a_urdf_is_refused_not_built_as_one_link(tmp_path)
     assert "xacro:include" in str(refused.value) and "source: {xacro: arm.urdf}" in str(
         refused.value.hint
     )
+    commented = tmp_path / "commented.urdf"  # talos comments a property out
+    commented.write_text(
+        '<robot name="a"><!-- <xacro:property name="p" value="1"/> --><link name="b"/></robot>'
+    )
+    assert read_urdf_file(commented).urdf.startswith(b"<robot")
     expanded = tmp_path / "expanded.urdf"  # the namespace alone, as expanded URDFs keep it
     expanded.write_text(
         '<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="b"/></robot>'
