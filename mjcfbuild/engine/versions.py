@@ -23,6 +23,7 @@ STEP_FORMATS = {
     "export_urdf": 1,
     "compose": 1,
     "mjcfpart": 1,
+    "training": 1,
 }
 
 STEP_TOOLS = {
@@ -40,6 +41,7 @@ STEP_TOOLS = {
     "export_urdf": ("mujoco", "numpy"),
     "compose": ("lxml",),
     "mjcfpart": ("mujoco", "lxml"),
+    "training": ("mujoco", "numpy", "scipy", "trimesh", "lxml"),
 }
 
 

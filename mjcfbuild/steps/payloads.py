@@ -378,3 +378,17 @@ class ExportUrdfPayload(Payload):
     urdf: Output
     mesh_dir: Annotated[str, NotCounted("named by options.mesh_folder")]
     record: Output
+
+
+@dataclass(frozen=True)
+class TrainingPayload(Payload):
+    """``training``: the training variant for batched simulation, and its scene."""
+
+    settings: dict[str, Any]  # training.variant.VariantSettings
+    header: str
+    model: FileDependency  # the full model, which the variant is made from
+    self_collision: OptionalFileDependency  # the collision matrix, for the self pairs
+    robot_file: str  # the full model's file name, which a user's scene file includes
+    scene: ScenePayload  # the variant's scene (robot_file: the variant's)
+    output: Output
+    record: Output
