@@ -75,7 +75,7 @@ def _warp():
         raise UsageError(
             "MuJoCo Warp is not installed", hint="pip install 'mjcfbuild[warp]'"
         ) from None
-    wp.config.quiet = True  # not a line per kernel module loaded
+    wp.config.quiet = True  # type: ignore[attr-defined]  # no line per kernel module loaded
     return mjw, wp
 
 
