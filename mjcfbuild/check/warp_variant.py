@@ -10,7 +10,11 @@ sinking past the check's limits, a fixed robot holds home for 1 s within the hol
 
 from __future__ import annotations
 
+import contextlib
+import os
+import sys
 import time
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 from mjcfbuild.errors import CheckError, UsageError
@@ -79,6 +83,26 @@ def _warp():
     return mjw, wp
 
 
+@contextlib.contextmanager
+def quiet_stdout() -> Iterator[None]:
+    """Standard output (the file descriptor) sent nowhere: MuJoCo Warp's kernels print a line
+    per world whenever a step stops at the solver's iteration cap, which the variant's bound
+    makes routine, and printing them would be what is timed."""
+    import ctypes
+
+    sys.stdout.flush()
+    libc = ctypes.CDLL(None)
+    saved = os.dup(1)
+    with open(os.devnull, "wb") as null:
+        os.dup2(null.fileno(), 1)
+        try:
+            yield
+        finally:
+            libc.fflush(None)
+            os.dup2(saved, 1)
+            os.close(saved)
+
+
 def collision_geoms(model) -> int:
     """Geoms that take part in contacts: by contype/conaffinity or an explicit pair."""
     import numpy as np
@@ -119,13 +143,14 @@ def measure(
             ctrl = data.ctrl + noise * half * rng.uniform(-1, 1, size=(worlds, model.nu))
             ctrl = np.where(limited, np.clip(ctrl, low, high), ctrl)
             warp_data.ctrl.assign(wp.array(ctrl.astype(np.float32), dtype=float))
-        mjw.step(warp_model, warp_data)
-        wp.synchronize()
-        started = time.perf_counter()
-        for _ in range(steps):
+        with quiet_stdout():
             mjw.step(warp_model, warp_data)
-        wp.synchronize()
-        seconds = time.perf_counter() - started
+            wp.synchronize()
+            started = time.perf_counter()
+            for _ in range(steps):
+                mjw.step(warp_model, warp_data)
+            wp.synchronize()
+            seconds = time.perf_counter() - started
         qpos = warp_data.qpos.numpy()
         pairs = int(warp_model.nxn_geom_pair_filtered.shape[0])
     return WarpFigures(
@@ -175,7 +200,7 @@ def behaviour(scene_path: str, hold_tolerance: float, device: str = "cpu") -> tu
     tilt = sink = worst = 0.0
     root = model.jnt_bodyid[roots[0]] if floating else 0
     height = float(data.xpos[root][2])
-    with wp.ScopedDevice(device):
+    with wp.ScopedDevice(device), quiet_stdout():
         warp_model = mjw.put_model(model)
         warp_data = mjw.put_data(model, data, nworld=1)
         for step in range(1, steps + 1):

@@ -23,7 +23,7 @@ STEP_FORMATS = {
     "export_urdf": 1,
     "compose": 1,
     "mjcfpart": 1,
-    "training": 1,
+    "training": 4,
 }
 
 STEP_TOOLS = {

@@ -549,6 +549,13 @@ class TrainingVariant(StrictModel):
     timestep: float | None = Field(
         None, gt=0, le=1, description="Simulation timestep (s). Default: the model's."
     )
+    frictionloss: bool = Field(
+        False,
+        description=(
+            "Keep the joints' dry friction (frictionloss): one solver constraint per joint "
+            "at every step, about as costly as the rest of a quadruped's step in MuJoCo Warp."
+        ),
+    )
 
 
 def _also_boolean(schema: dict[str, Any]) -> None:

@@ -1,20 +1,25 @@
 """The training variant of a built model, made with MjSpec from the model file.
 
 Each link's collision geometry becomes one primitive fitted to it (the ``primitive`` policy's
-fit, :func:`mjcfbuild.collision.primitives.fit_primitive`): the smallest enclosing box, capsule
-or sphere, and only a sphere or capsule for the links that meet the floor (round feet roll and
-slide the way real feet do, and sphere- or capsule-plane contacts are the cheapest). Where the
-best primitive is more than ``primitive_fit`` times the volume of the geometry's convex hull
-(an L-shaped bracket, say), the hull itself is used, cut down to ``max_hull_vertices``
-vertices. Links whose collision geometry is already primitive keep it, except that cylinders
-become capsules: cylinder collisions go through the general convex solver in MuJoCo Warp
-(and cylinder-mesh pairs are what MJX cannot do at all).
+fit, :func:`mjcfbuild.collision.primitives.fit_primitive`): the smallest enclosing capsule or
+sphere, or box where a box is less than 70% of that (a flat trunk), and only a sphere or capsule
+for the links that meet the floor (sphere- and capsule-plane contacts are the cheapest). Where
+the shape is more than ``primitive_fit`` times the volume of the geometry's convex hull (an
+L-shaped bracket), the hull itself is used, cut down to ``max_hull_vertices`` vertices. A link
+whose geometry is already one sphere or capsule, or any primitives on a link that meets the
+floor (a foot's spheres), keeps it; other primitives are refitted like meshes. Cylinders
+become capsules: MuJoCo Warp collides cylinders (and box against box) through its general
+convex solver, and MJX has no cylinder-mesh collision; capsules, spheres and box-capsule
+pairs have closed-form collisions.
 
 Visual meshes stay, with contype and conaffinity 0. Contacts follow
 :mod:`mjcfbuild.training.contacts`: floor links get ``contype=0 conaffinity=1`` (they meet the
 floor, whose contype is 1, and never each other), every other geom 0/0, and self pairs are
 explicit ``<pair>``s. Bit masks cannot express an arbitrary set of pairs; explicit pairs are
 exactly the set, and MuJoCo Warp checks each listed pair without a broad phase over the others.
+
+Joints lose their ``frictionloss`` unless told to keep it: dry friction is a constraint row
+per joint that the solver iterates on in every world at every step.
 
 Fitted primitives enclose the geometry, so they reach a little lower than it: a floating robot
 is raised by that much (its body and its keyframes) so it starts on the floor, not in it.
@@ -29,6 +34,7 @@ from mjcfbuild.errors import ManifestError
 from mjcfbuild.training.contacts import floor_bodies, self_pairs
 
 FLOOR_CONTACT = 2e-3  # m: collision geometry this close to the floor at home touches it
+BOX_PREFERENCE = 0.7  # a box replaces a capsule only when it is less than this share of it
 
 
 @dataclass(frozen=True)
@@ -43,6 +49,7 @@ class VariantSettings:
     iterations: int = 4
     ls_iterations: int = 8
     timestep: float | None = None
+    frictionloss: bool = False
     label: str = "robot.yaml output.training"  # where the settings are, for messages
 
 
@@ -119,7 +126,10 @@ def build_variant(model_path: str, verdicts: list[dict], settings: VariantSettin
         for geom1 in new_names[first]:
             for geom2 in new_names[second]:
                 spec.add_pair(name=f"{geom1}-{geom2}", geomname1=geom1, geomname2=geom2)
+    variant.pairs = _apart_at_home(spec, pairs, variant)
     _drop_unused_meshes(spec)
+    if not settings.frictionloss:
+        _drop_frictionloss(spec, variant)
     spec.option.iterations = settings.iterations
     spec.option.ls_iterations = settings.ls_iterations
     if settings.timestep is not None:
@@ -197,16 +207,26 @@ def _shapes(model, geoms: list[int], on_floor: bool, settings: VariantSettings, 
     from mjcfbuild.collision.primitives import fit_primitive
 
     types = mujoco.mjtGeom
-    if all(model.geom_type[g] != types.mjGEOM_MESH for g in geoms):
+    authored = all(model.geom_type[g] != types.mjGEOM_MESH for g in geoms)
+    round_ = (types.mjGEOM_SPHERE, types.mjGEOM_CAPSULE)
+    if authored and (on_floor or (len(geoms) == 1 and model.geom_type[geoms[0]] in round_)):
+        # A foot's own spheres or boxes are what it stands on; a sphere or capsule is already
+        # the cheapest shape. A box elsewhere is refitted: a capsule where it is slender.
         return [_kept(model, g, variant) for g in geoms]
     points = _points(model, geoms)
-    kinds = ("sphere", "capsule") if on_floor else ("box", "capsule", "sphere")
-    primitive = fit_primitive(points, kinds)
+    primitive = fit_primitive(points, ("sphere", "capsule"))
+    if not on_floor:
+        box = fit_primitive(points, ("box",))
+        if box.volume < BOX_PREFERENCE * primitive.volume:
+            primitive = box
     hull_volume, hull_points = _hull(points, settings.max_hull_vertices)
     if primitive.volume <= settings.primitive_fit * hull_volume:
         quat = _quat(primitive.transform[:3, :3])
         pos = tuple(float(v) for v in primitive.transform[:3, 3])
-        return [Shape(primitive.kind, tuple(float(s) for s in primitive.size), pos, quat)]  # type: ignore[arg-type]
+        size = tuple(float(s) for s in primitive.size)
+        return [Shape(primitive.kind, size, pos, quat)]  # type: ignore[arg-type]
+    if authored:  # several primitives no single one fits: they stay (cylinders as capsules)
+        return [_kept(model, g, variant) for g in geoms]
     return [Shape("mesh", vertices=tuple(float(v) for v in hull_points.ravel()))]
 
 
@@ -335,6 +355,51 @@ def _add_geom(spec, body, template, shape: Shape, name: str, on_floor: bool) -> 
     geom.rgba = template.rgba
     geom.contype = 0
     geom.conaffinity = 1 if on_floor else 0
+
+
+def _apart_at_home(spec, pairs: list[tuple[str, str]], variant: Variant) -> list[tuple[str, str]]:
+    """The body pairs whose new geoms do not touch at home; the others' ``<pair>``s go.
+
+    Enclosing shapes are larger than the geometry they replace, so two links that were apart
+    at home can overlap in the variant (go1's trunk capsule and its thighs): a contact held
+    from the first step fights the servos, which is why the matrix excludes pairs touching at
+    home in the first place.
+    """
+    model = spec.compile()
+    data = _at_home(model)
+    names = _body_names(model)
+    touching = set()
+    for contact in data.contact[: data.ncon]:
+        if contact.dist < 0:
+            pair = sorted(
+                (names[model.geom_bodyid[contact.geom1]], names[model.geom_bodyid[contact.geom2]])
+            )
+            touching.add((pair[0], pair[1]))
+    kept = [pair for pair in pairs if pair not in touching]
+    dropped = set(pairs) - set(kept)
+    if not dropped:
+        return pairs
+    for element in list(spec.pairs):
+        first = spec.geom(element.geomname1).parent.name
+        second = spec.geom(element.geomname2).parent.name
+        if tuple(sorted((first, second))) in dropped:
+            spec.delete(element)
+    for first, second in sorted(dropped):
+        variant.notes.append(f"{first} and {second} overlap at home in the variant: no pair")
+    return kept
+
+
+def _drop_frictionloss(spec, variant: Variant) -> None:
+    """Joints without dry friction: each joint with frictionloss is a constraint row the
+    solver works on at every step of every world (on go1 in MuJoCo Warp, 12 of them cost
+    as much as the rest of the step)."""
+    joints = [joint for joint in spec.joints if joint.frictionloss > 0]
+    for joint in joints:
+        joint.frictionloss = 0.0
+    if joints:
+        variant.notes.append(
+            f"frictionloss removed from {len(joints)} joints (output.training.frictionloss)"
+        )
 
 
 def _drop_unused_meshes(spec) -> None:

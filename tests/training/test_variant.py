@@ -169,3 +169,78 @@ def test_bad_settings_are_one_line_with_the_robot_yaml_line_and_exit_3(tmp_path,
     assert result.code == 3, result.stderr
     lines = result.stderr.strip().splitlines()
     assert len(lines) <= 2 and where in lines[0], result.stderr
+
+
+SMALL = """<mujoco>
+  <worldbody>
+    <body name="base" pos="0 0 0.1">
+      <freejoint/>
+      <geom type="box" size="0.1 0.1 0.05"/>
+      <body name="leg" pos="0 0 -0.05">
+        <joint name="knee" axis="0 1 0" frictionloss="0.3"/>
+        <geom type="cylinder" size="0.01 0.02" pos="0 0 -0.02"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def test_frictionloss_goes_unless_kept_and_cylinders_become_capsules(tmp_path):
+    from mjcfbuild.training.variant import VariantSettings, build_variant
+
+    path = tmp_path / "small.xml"
+    path.write_text(SMALL)
+    variant = build_variant(str(path), [], VariantSettings())
+    model = mujoco.MjModel.from_xml_string(variant.xml)
+    assert model.dof_frictionloss.max() == 0
+    assert variant.geoms == {"base": ["box"], "leg": ["capsule"]}
+    assert variant.floor == ["leg"]
+    assert any("frictionloss removed from 1 joints" in note for note in variant.notes)
+    kept = build_variant(str(path), [], VariantSettings(frictionloss=True))
+    assert mujoco.MjModel.from_xml_string(kept.xml).dof_frictionloss.max() == pytest.approx(0.3)
+
+
+OVERLAP = """<mujoco>
+  <worldbody>
+    <body name="base" pos="0 0 0.5">
+      <freejoint/>
+      <geom type="sphere" size="0.1"/>
+      <body name="upper" pos="0.3 0 0">
+        <joint axis="0 1 0"/>
+        <geom type="capsule" size="0.02 0.05" pos="0.1 0 0"/>
+        <body name="hand" pos="0.2 0 0">
+          <joint axis="0 1 0"/>
+          <geom type="sphere" size="0.03"/>
+        </body>
+      </body>
+      <body name="tail" pos="-0.12 0 0">
+        <joint axis="0 1 0"/>
+        <geom type="sphere" size="0.03"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def test_self_pairs_that_overlap_at_home_in_the_variant_are_left_out(tmp_path):
+    from mjcfbuild.training.variant import VariantSettings, build_variant
+
+    path = tmp_path / "overlap.xml"
+    path.write_text(OVERLAP)
+    verdicts = [
+        {"body1": "base", "body2": "hand", "reason": "sometimes", "exclude": False},
+        {"body1": "base", "body2": "tail", "reason": "sometimes", "exclude": False},  # adjacent
+        {"body1": "hand", "body2": "tail", "reason": "sometimes", "exclude": False},
+    ]
+    variant = build_variant(str(path), verdicts, VariantSettings())
+    assert variant.pairs == [("base", "hand"), ("hand", "tail")]
+    # The tail overlaps the base at home, but they are parent and child: no pair at all. Move
+    # the tail into the hand at home, and that pair goes, with a note.
+    path.write_text(OVERLAP.replace('name="tail" pos="-0.12 0 0"', 'name="tail" pos="0.5 0 0"'))
+    variant = build_variant(str(path), verdicts, VariantSettings())
+    assert variant.pairs == [("base", "hand")]
+    assert "hand and tail overlap at home in the variant: no pair" in variant.notes
+    model = mujoco.MjModel.from_xml_string(variant.xml)
+    assert model.npair == 1
