@@ -23,7 +23,7 @@ STEP_FORMATS = {
     "export_urdf": 1,
     "compose": 1,
     "mjcfpart": 1,
-    "training": 4,
+    "training": 5,
 }
 
 STEP_TOOLS = {
