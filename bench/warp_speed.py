@@ -1,12 +1,13 @@
 """MuJoCo Warp throughput of the full model, the training variant and a hand-tuned model.
 
-    python bench/warp_speed.py [--robots go1,g1,panda] [--worlds 64] [--steps 100] [--device cpu]
+    python bench/warp_speed.py [--robots go1,g1,panda] [--worlds 512] [--steps 50] [--device cpu]
 
 Each robot is built from a bare robot.yaml with ``output.training: true``. The hand-tuned
 training models are mjlab's asset zoo (go1, g1; from the mjlab wheel on PyPI, unpacked into
 the robot cache, never into this repository). mjlab's XML files have no actuators and no
 keyframe (mjlab adds them from Python), so they are given here what its constants say: the
-home pose (``HOME_KEYFRAME`` / ``INIT_STATE``), a position actuator on every hinge, and two
+home pose (``HOME_KEYFRAME`` / ``INIT_STATE``), a position actuator and the reflected rotor
+inertia (armature) on every hinge, the implicitfast integrator, and two
 collision set-ups from its constants, as shipped (every capsule against every other) and
 ``FEET_ONLY_COLLISION``; they run with the variant's solver settings, so what differs is the
 model. Every scene is stepped the same way (``mjcfbuild.check.warp_variant.measure``): the
@@ -58,6 +59,10 @@ MJLAB_HOME = {
     ),
 }
 MJLAB_KP = {"go1": 40.0, "g1": 100.0}
+# Rotor inertia reflected through the gearbox, which mjlab sets per actuator from Python
+# (go1: 0.000111842 x 6^2 to x 9^2; g1's motors 0.01 to 0.03): without it the light joints
+# under these gains go unstable within 0.02 s, and a diverged simulation is no benchmark.
+MJLAB_ARMATURE = {"go1": 0.005, "g1": 0.02}
 MJLAB_FEET = {"go1": r"^[FR][LR]_foot_collision$", "g1": r"^(left|right)_foot[1-7]_collision$"}
 
 
@@ -88,6 +93,7 @@ def mjlab_scene(name: str, scratch: Path, feet_only: bool, iterations: int, ls: 
             continue
         angle = next((a for p, a in angles.items() if re.fullmatch(p, joint.name)), 0.0)
         qpos[model.joint(joint.name).qposadr[0]] = angle
+        joint.armature = MJLAB_ARMATURE[name]
         actuator = spec.add_actuator(name=joint.name, target=joint.name)
         actuator.trntype = mujoco.mjtTrn.mjTRN_JOINT
         actuator.set_to_position(kp=MJLAB_KP[name], kv=MJLAB_KP[name] / 20)
@@ -99,6 +105,7 @@ def mjlab_scene(name: str, scratch: Path, feet_only: bool, iterations: int, ls: 
             if geom.name != "floor" and (geom.contype or geom.conaffinity):
                 on_floor = bool(re.match(MJLAB_FEET[name], geom.name or ""))
                 geom.contype, geom.conaffinity = 0, int(on_floor)
+    spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST  # mjlab's, and ours
     spec.option.iterations = iterations
     spec.option.ls_iterations = ls
     path = model_file.parent / f"bench_warp_{name}_{'feet' if feet_only else 'shipped'}.xml"
@@ -109,10 +116,10 @@ def mjlab_scene(name: str, scratch: Path, feet_only: bool, iterations: int, ls: 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--robots", default="go1,g1,panda")
-    parser.add_argument("--worlds", type=int, default=64)
-    parser.add_argument("--steps", type=int, default=100)
+    parser.add_argument("--worlds", type=int, default=512)
+    parser.add_argument("--steps", type=int, default=50)
     parser.add_argument("--device", default="cpu")
-    parser.add_argument("--rounds", type=int, default=3, help="best of this many runs each")
+    parser.add_argument("--rounds", type=int, default=2, help="best of this many runs each")
     args = parser.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as scratch:
@@ -142,15 +149,16 @@ def main() -> None:
     print(
         f"MuJoCo Warp on {args.device}: {args.worlds} worlds, {args.steps} steps, noise on ctrl\n"
     )
-    print("| robot | model | collision geoms | contact pairs | steps/s | vs full |")
-    print("|---|---|---:|---:|---:|---:|")
+    print("| robot | model | collision geoms | contact pairs | finite | steps/s | vs full |")
+    print("|---|---|---:|---:|---|---:|---:|")
     for name, figures, _ in rows:
         base = figures["full model"].steps_per_second
         for label, result in figures.items():
             ratio = result.steps_per_second / base if base else 0.0
             print(
                 f"| {name} | {label} | {result.collision_geoms} | {result.contact_pairs} "
-                f"| {result.steps_per_second:.0f} | {ratio:.2f}x |"
+                f"| {'yes' if result.finite else 'NO'} | {result.steps_per_second:.0f} "
+                f"| {ratio:.2f}x |"
             )
     print()
     for name, _, line in rows:

@@ -39,7 +39,8 @@ def add_parser(commands) -> None:
     parser.add_argument(
         "--warp",
         action="store_true",
-        help="also load the model in MuJoCo Warp (on the CPU) and step several worlds "
+        help="also load the model in MuJoCo Warp (on the CPU) and step several worlds, and "
+        "prove the training variant where robot.yaml asks for one (output.training) "
         "(pip install 'mjcfbuild[warp]'; the first run compiles kernels for about a minute)",
     )
     parser.add_argument("--configurations", type=int, default=None, help="default: 20")
