@@ -43,3 +43,18 @@ def test_the_arm_variant_holds_home_and_the_hold_can_fail(tmp_path):
     # The same run judged by a tolerance no servo meets: the check does fail.
     _, failure = behaviour(scene, hold_tolerance=1e-9)
     assert failure.startswith("the training variant does not hold home")
+
+
+@pytest.mark.robots
+def test_the_go1_variant_stands_for_5_s_in_warp(tmp_path):
+    import mjcfbuild
+    from bench import robot_data
+
+    robot = robot_data.ROBOTS["go1"]
+    urdf = robot_data.unpack(robot)
+    manifest = robot_data.manifest(
+        robot, tmp_path, urdf, robot_data.package_root(), "output:\n  training: true\n"
+    )
+    result = mjcfbuild.build(manifest, check=False)
+    line, failure = behaviour(str(result.scene.parent / "scene_mjx.xml"), hold_tolerance=0.05)
+    assert line.startswith("stands at home for 5 s") and failure == "", line

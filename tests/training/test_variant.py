@@ -263,3 +263,14 @@ def test_self_pairs_that_overlap_at_home_in_the_variant_are_left_out(tmp_path):
     assert "hand and tail overlap at home in the variant: no pair" in variant.notes
     model = mujoco.MjModel.from_xml_string(variant.xml)
     assert self_contacts(model) == {("base", "hand")}
+
+
+def test_the_variant_is_the_same_bytes_in_another_folder_and_holds_no_paths(tmp_path):
+    first = quadruped(tmp_path / "a", "  training: true\n", "collision:\n  default: visual\n")
+    second = quadruped(tmp_path / "b", "  training: true\n", "collision:\n  default: visual\n")
+    build(first)
+    build(second)
+    for name in ("example_quadruped_mjx.xml", "scene_mjx.xml"):
+        data = (first / "mjcf" / name).read_bytes()
+        assert data == (second / "mjcf" / name).read_bytes()
+        assert str(tmp_path).encode() not in data
