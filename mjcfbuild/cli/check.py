@@ -213,9 +213,11 @@ def _prove_training_variant(ctx) -> int:
     import json
 
     from mjcfbuild.check.warp_variant import prove_variant
+    from mjcfbuild.engine.report import TRAINING_WARP, write_report
     from mjcfbuild.engine.tasks import training_paths
+    from mjcfbuild.fsutil import md5_file
 
-    _, scene = training_paths(ctx)
+    variant, scene = training_paths(ctx)
     if not scene.exists():
         raise CheckError(
             "the training variant has not been built",
@@ -229,8 +231,10 @@ def _prove_training_variant(ctx) -> int:
         "variant": proof.variant.to_dict(),
         "behaviour": proof.behaviour,
         "failures": proof.failures,
+        "variant_md5": md5_file(variant),
     }
-    ctx.state("training_warp.json").write_text(json.dumps(record, indent=1, sort_keys=True) + "\n")
+    ctx.state(TRAINING_WARP).write_text(json.dumps(record, indent=1, sort_keys=True) + "\n")
+    write_report(ctx, [])
     for failure in proof.failures:
         print(f"mjcfbuild: check failed: {ctx.label(scene)}: {failure}", file=sys.stderr)
     return EXIT_CHECK if proof.failures else EXIT_OK

@@ -14,8 +14,15 @@ from pathlib import Path
 
 from mjcfbuild.check.report_page import markdown
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, decomposition_dir, report_dir
-from mjcfbuild.fsutil import write_if_changed
+from mjcfbuild.engine.tasks import (
+    ASSEMBLY_REPORT,
+    CHECK_RESULTS,
+    TRAINING_RECORD,
+    decomposition_dir,
+    report_dir,
+    training_paths,
+)
+from mjcfbuild.fsutil import md5_file, write_if_changed
 
 TIMINGS = "timings.json"
 PREVIEW_ORDER = ("front_visual", "side_visual", "front_collision", "side_collision")
@@ -60,6 +67,7 @@ def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
         "times": record_timings(ctx),
         "cache": ctx.session.cache_report,
         "previews": [f"previews/{name}" for name in previews],
+        "training": training_summary(ctx),
     }
     write_if_changed(
         folder / "report.json", (json.dumps(report, indent=1, sort_keys=True) + "\n").encode()
@@ -86,6 +94,30 @@ def decompositions(ctx: BuildContext) -> list[dict]:
             }
         )
     return rows
+
+
+TRAINING_WARP = "training_warp.json"  # what check --warp measured of the variant
+
+
+def training_summary(ctx: BuildContext) -> dict | None:
+    """The training variant's record, with what ``check --warp`` measured of it while the
+    variant is the one it measured (by content)."""
+    if ctx.manifest.training is None:
+        return None
+    record = _read(ctx.state(TRAINING_RECORD))
+    if not record:
+        return None
+    variant, _ = training_paths(ctx)
+    warp = _read(ctx.state(TRAINING_WARP))
+    try:
+        current = md5_file(variant)
+    except OSError:
+        current = None
+    return {
+        **record,
+        "file": variant.name,
+        "warp": warp if warp and warp.get("variant_md5") == current else None,
+    }
 
 
 def _read(path: Path) -> dict:

@@ -17,7 +17,7 @@ pytestmark = pytest.mark.slow
 def with_training(tmp_path, example):
     folder = copy_example(example, tmp_path)
     manifest = folder / "robot.yaml"
-    manifest.write_text(manifest.read_text() + "  training: true\n")
+    manifest.write_text(manifest.read_text() + "  training:\n    self_contacts: true\n")
     assert run_cli("build", "--no-check", str(manifest)).code == 0
     return folder
 
@@ -33,6 +33,14 @@ def test_check_warp_proves_the_quadruped_variant_against_the_full_model(tmp_path
     assert variant["finite"] and full["finite"] and record["failures"] == []
     assert variant["contact_pairs"] < full["contact_pairs"]
     assert variant["steps_per_second"] > 0 and full["steps_per_second"] > 0
+    # The build report shows the variant and these figures, while they are the variant's.
+    report = (folder / "mjcf" / "report" / "report.md").read_text()
+    assert "## Training variant" in report and "| variant | 10 |" in report
+    manifest = folder / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "    iterations: 5\n")
+    assert run_cli("build", "--no-check", str(manifest)).code == 0
+    report = (folder / "mjcf" / "report" / "report.md").read_text()
+    assert "Not yet measured in MuJoCo Warp" in report and "| variant |" not in report
 
 
 def test_the_arm_variant_holds_home_and_the_hold_can_fail(tmp_path):
