@@ -274,3 +274,26 @@ def test_the_variant_is_the_same_bytes_in_another_folder_and_holds_no_paths(tmp_
         data = (first / "mjcf" / name).read_bytes()
         assert data == (second / "mjcf" / name).read_bytes()
         assert str(tmp_path).encode() not in data
+
+
+USER_SCENE = """<mujoco model="my scene">
+  <include file="example_quadruped.xml"/>
+  <worldbody><geom name="ground" type="plane" size="0 0 0.05"/></worldbody>
+</mujoco>
+"""
+
+
+def test_a_user_scene_file_includes_the_variant_in_its_scene(tmp_path):
+    folder = quadruped(tmp_path, "  training: true\n", "scene:\n  file: my_scene.xml\n")
+    (folder / "my_scene.xml").write_text(USER_SCENE)
+    build(folder)
+    scene = (folder / "mjcf" / "scene_mjx.xml").read_text()
+    assert scene == USER_SCENE.replace("example_quadruped.xml", "example_quadruped_mjx.xml")
+    assert mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "scene_mjx.xml")).opt.iterations == 4
+    # A scene file that does not include the model by its file name: one line, exit 4.
+    (folder / "my_scene.xml").write_text(USER_SCENE.replace("example_quadruped.xml", "robot.xml"))
+    result = run_cli("build", "--no-check", str(folder / "robot.yaml"))
+    assert result.code == 4, result.stderr
+    assert "my_scene.xml" in result.stderr and "does not include example_quadruped.xml" in (
+        result.stderr
+    )
