@@ -25,6 +25,7 @@ COMPILES_MODEL = {
     ASSEMBLE,
     "mjcfbuild.steps.check:run",
     "mjcfbuild.steps.previews:run",
+    "mjcfbuild.steps.training:run",  # compiles the full model before making the variant
 }
 
 if TYPE_CHECKING:
