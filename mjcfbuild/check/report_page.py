@@ -25,6 +25,7 @@ def markdown(report: dict) -> str:
     lines += tuning_lines(report.get("tuning") or {})  # issue 33
     lines += _self_collision(report.get("self_collision"))
     lines += _plausibility(report)
+    lines += _training(report.get("training"))
     if report["repairs"]:
         lines += [
             "## Inertia repairs",
@@ -293,6 +294,47 @@ def _control(readiness: dict) -> list[str]:
             ]
         else:
             lines += ["", f"It cannot stand on its own: {stance['why_not']}."]
+    lines.append("")
+    return lines
+
+
+def _training(training: dict | None) -> list[str]:
+    """The training variant: its collision shapes, contacts, notes and Warp figures."""
+    if not training:
+        return []
+    kinds: dict[str, int] = {}
+    for shapes in training.get("geoms", {}).values():
+        for kind in shapes:
+            kinds[kind] = kinds.get(kind, 0) + 1
+    shapes = ", ".join(f"{count} {kind}" for kind, count in sorted(kinds.items()))
+    floor = ", ".join(training.get("floor", [])) or "none"
+    lines = [
+        "## Training variant",
+        "",
+        f"`{training['file']}`: collision shapes {shapes or 'none'}; floor contacts: {floor}; "
+        f"{len(training.get('pairs', []))} self-collision body pairs.",
+        "",
+    ]
+    lines += [f"- {note}" for note in training.get("notes", [])]
+    warp = training.get("warp")
+    if warp:
+        full, variant = warp["full"], warp["variant"]
+        lines += [
+            "",
+            f"In MuJoCo Warp ({variant['worlds']} worlds, {variant['steps']} steps with noise "
+            f"on ctrl, `check --warp`): {warp['behaviour']}.",
+            "",
+            "| model | collision geoms | contact pairs | steps/s |",
+            "|---|---:|---:|---:|",
+        ]
+        for name, row in (("full", full), ("variant", variant)):
+            lines.append(
+                f"| {name} | {row['collision_geoms']} | {row['contact_pairs']} "
+                f"| {row['steps_per_second']:.0f} |"
+            )
+        lines += [f"- check failed: {failure}" for failure in warp.get("failures", [])]
+    else:
+        lines += ["", "Not yet measured in MuJoCo Warp: run `mjcfbuild check --warp`."]
     lines.append("")
     return lines
 

@@ -48,7 +48,8 @@ def add_parser(commands) -> None:
     parser.add_argument(
         "--warp",
         action="store_true",
-        help="also load the model in MuJoCo Warp (on the CPU) and step several worlds "
+        help="also load the model in MuJoCo Warp (on the CPU) and step several worlds, and "
+        "prove the training variant where robot.yaml asks for one (output.training) "
         "(pip install 'mjcfbuild[warp]'; the first run compiles kernels for about a minute)",
     )
     parser.add_argument("--configurations", type=int, default=None, help="default: 20")
@@ -229,6 +230,8 @@ def _manifest(ctx, args) -> int:
         scene = ctx.scene_path if ctx.scene_path.exists() else ctx.robot_path
         warp = check_in_warp(str(scene))
         print(f"  MuJoCo Warp: {warp.worlds} worlds, {warp.steps} steps, finite")
+        if ctx.manifest.training is not None:
+            code = _prove_training_variant(ctx) or code
     return code
 
 
@@ -248,6 +251,38 @@ def _built_parts(ctx, robot) -> dict:
         "sources": asset_sources(ctx.state(ASSEMBLY_REPORT)),
         "part_bodies": part_bodies(parts),
     }
+
+
+def _prove_training_variant(ctx) -> int:
+    """The training variant against the full model in MuJoCo Warp; EXIT_CHECK if it fails."""
+    import json
+
+    from mjcfbuild.check.warp_variant import prove_variant
+    from mjcfbuild.engine.report import TRAINING_WARP, write_report
+    from mjcfbuild.engine.tasks import training_paths
+    from mjcfbuild.fsutil import md5_file
+
+    variant, scene = training_paths(ctx)
+    if not scene.exists():
+        raise CheckError(
+            "the training variant has not been built",
+            file=ctx.label(scene),
+            hint=f"run mjcfbuild build {ctx.manifest_label}",
+        )
+    proof = prove_variant(str(ctx.scene_path), str(scene), ctx.manifest.check.hold_tolerance)
+    print("\n".join(proof.lines()))
+    record = {
+        "full": proof.full.to_dict(),
+        "variant": proof.variant.to_dict(),
+        "behaviour": proof.behaviour,
+        "failures": proof.failures,
+        "variant_md5": md5_file(variant),
+    }
+    ctx.state(TRAINING_WARP).write_text(json.dumps(record, indent=1, sort_keys=True) + "\n")
+    write_report(ctx, [])
+    for failure in proof.failures:
+        print(f"mjcfbuild: check failed: {ctx.label(scene)}: {failure}", file=sys.stderr)
+    return EXIT_CHECK if proof.failures else EXIT_OK
 
 
 def _read_if_present(path: Path) -> bytes | None:

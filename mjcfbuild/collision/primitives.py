@@ -23,8 +23,9 @@ class Primitive:
     volume: float
 
 
-def fit_primitive(points: np.ndarray) -> Primitive:
-    """The smallest of the enclosing box, sphere, cylinders and capsules of ``points``."""
+def fit_primitive(points: np.ndarray, kinds: tuple[str, ...] | None = None) -> Primitive:
+    """The smallest of the enclosing box, sphere, cylinders and capsules of ``points``
+    (only those of ``kinds``, when given)."""
     import trimesh
 
     points = np.asarray(points, dtype=np.float64)
@@ -48,6 +49,8 @@ def fit_primitive(points: np.ndarray) -> Primitive:
         frame = _frame_with_z(axis)
         candidates.append(_cylinder_along(points, frame))
         candidates.append(_capsule_along(points, frame))
+    if kinds is not None:
+        candidates = [c for c in candidates if c.kind in kinds]
     return min(candidates, key=lambda p: (round(p.volume, 15), p.kind))
 
 

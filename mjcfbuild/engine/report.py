@@ -17,11 +17,13 @@ from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.tasks import (
     ASSEMBLY_REPORT,
     CHECK_RESULTS,
+    TRAINING_RECORD,
     TUNING_RECORD,
     decomposition_dir,
     report_dir,
+    training_paths,
 )
-from mjcfbuild.fsutil import write_if_changed
+from mjcfbuild.fsutil import md5_file, write_if_changed
 
 TIMINGS = "timings.json"
 PREVIEW_ORDER = (
@@ -76,6 +78,7 @@ def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
         "cache": ctx.session.cache_report,
         "previews": [f"previews/{name}" for name in previews],
         "tuning": _read(ctx.state(TUNING_RECORD)) if ctx.manifest.check.tuning else {},
+        "training": training_summary(ctx),
     }
     write_if_changed(
         folder / "report.json", (json.dumps(report, indent=1, sort_keys=True) + "\n").encode()
@@ -112,6 +115,30 @@ def up_axis_decisions(ctx: BuildContext) -> list[dict]:
         if isinstance(decision, dict):
             rows.append({"mesh": path.stem, **decision})
     return rows
+
+
+TRAINING_WARP = "training_warp.json"  # what check --warp measured of the variant
+
+
+def training_summary(ctx: BuildContext) -> dict | None:
+    """The training variant's record, with what ``check --warp`` measured of it while the
+    variant is the one it measured (by content)."""
+    if ctx.manifest.training is None:
+        return None
+    record = _read(ctx.state(TRAINING_RECORD))
+    if not record:
+        return None
+    variant, _ = training_paths(ctx)
+    warp = _read(ctx.state(TRAINING_WARP))
+    try:
+        current = md5_file(variant)
+    except OSError:
+        current = None
+    return {
+        **record,
+        "file": variant.name,
+        "warp": warp if warp and warp.get("variant_md5") == current else None,
+    }
 
 
 def _read(path: Path) -> dict:

@@ -26,6 +26,7 @@ COMPILES_MODEL = {
     "mjcfbuild.steps.check:run",
     "mjcfbuild.steps.previews:run",
     "mjcfbuild.steps.tuning:run",
+    "mjcfbuild.steps.training:run",  # compiles the full model before making the variant
 }
 
 if TYPE_CHECKING:

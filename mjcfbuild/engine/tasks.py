@@ -54,6 +54,7 @@ from mjcfbuild.steps.payloads import (
     ScenePayload,
     SelfCollisionPayload,
     SrdfPayload,
+    TrainingPayload,
     TuningPayload,
 )
 from mjcfbuild.steps.plan_record import Plan, read_plan
@@ -120,6 +121,9 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
     tasks.append(_scene_task(ctx, plan, prefix))
     if ctx.manifest.output.urdf is not None:
         tasks.append(_export_urdf_task(ctx, prefix))
+    if ctx.manifest.training is not None:
+        colliding = [m for m, r in roles.items() if "collision" in r or "hull" in r]
+        tasks.append(_training_task(ctx, plan, colliding, decomposed, prefix))
     if checks:
         tasks.append(_check_task(ctx, prefix, parts))
         if ctx.manifest.check.previews:
@@ -162,6 +166,7 @@ def _check_simulation_settings(ctx: BuildContext, robot: Robot, plan: Plan) -> N
         control = plan.control()
         home_values(robot, control, ctx.manifest.home, None, ctx.manifest_label)
         _check_kept_pairs(robot, ctx)
+        _check_floor_contacts(robot, ctx)
     except MjcfbuildError as error:
         if ctx.manifest_file is not None:
             pinpoint(error, ctx.manifest_label, ctx.manifest_file)
@@ -194,6 +199,24 @@ def _check_kept_pairs(robot: Robot, ctx: BuildContext) -> None:
                 raise ManifestError(
                     f"link '{link}' is not a link of the robot",
                     file=f"{ctx.manifest_label} self_collision.keep[{index}]",
+                    hint=f"links: {listing(links)}",
+                )
+
+
+def _check_floor_contacts(robot: Robot, ctx: BuildContext) -> None:
+    from mjcfbuild.control.choose import listing
+    from mjcfbuild.errors import ManifestError
+
+    settings = ctx.manifest.training
+    if settings is None:
+        return
+    links = [link.name for link in robot.links]
+    for key in ("add", "remove"):
+        for index, link in enumerate(getattr(settings.floor_contacts, key)):
+            if link not in links:
+                raise ManifestError(
+                    f"link '{link}' is not a link of the robot",
+                    file=f"{ctx.manifest_label} output.training.floor_contacts.{key}[{index}]",
                     hint=f"links: {listing(links)}",
                 )
 
@@ -935,7 +958,8 @@ def _export_urdf_task(ctx: BuildContext, prefix: str) -> dict:
     )
 
 
-def _scene_task(ctx: BuildContext, plan: Plan, prefix: str) -> dict:
+def _scene_payload(ctx: BuildContext, plan: Plan, robot_file: str, output: Path) -> ScenePayload:
+    """The scene around ``robot_file`` (the model, or the training variant)."""
     scene = ctx.manifest.scene
     source = ctx.resolve(scene.file) if scene.file else None
     if source is not None:
@@ -952,15 +976,20 @@ def _scene_task(ctx: BuildContext, plan: Plan, prefix: str) -> dict:
             if found:
                 block = found
                 break
-    payload = ScenePayload(
+    return ScenePayload(
         scene_file=str(source) if source else None,
         scene_block=block,
         model=ctx.manifest.name,
-        robot_file=ctx.manifest.robot_file,
+        robot_file=robot_file,
         floor=ctx.manifest.placement.floor,
         floor_record=str(ctx.state(FLOOR_RECORD)),
-        output=str(ctx.scene_path),
+        output=str(output),
     )
+
+
+def _scene_task(ctx: BuildContext, plan: Plan, prefix: str) -> dict:
+    payload = _scene_payload(ctx, plan, ctx.manifest.robot_file, ctx.scene_path)
+    source = Path(payload.scene_file) if payload.scene_file else None
     auto_floor = ctx.manifest.placement.floor == "auto"
     return _task(
         ctx,
@@ -972,5 +1001,72 @@ def _scene_task(ctx: BuildContext, plan: Plan, prefix: str) -> dict:
         file_dep=([source] if source else []) + ([ctx.state(FLOOR_RECORD)] if auto_floor else []),
         targets=[ctx.scene_path],
         # Outputs change together: a build whose model fails leaves the scene alone too.
+        after=[f"{prefix}assemble"],
+    )
+
+
+TRAINING_RECORD = "training.json"
+
+
+def training_paths(ctx: BuildContext) -> tuple[Path, Path]:
+    """The training variant's file and its scene's."""
+    files = ctx.manifest.training_files
+    assert files is not None, "asked only when robot.yaml sets output.training"
+    return ctx.out_dir / files[0], ctx.out_dir / files[1]
+
+
+def _training_task(
+    ctx: BuildContext, plan: Plan, colliding: list[str], decomposed: dict, prefix: str
+) -> dict:
+    """The training variant: made from the assembled model (so it shares the mesh products,
+    the matrix, actuators and home), rerun when the model, the matrix, its settings or the
+    products of meshes that collide change (the model names its assets by file, so a changed
+    collision mesh leaves the model's text alone); an edit to a mesh that is only drawn
+    leaves the variant as it is, since it refers to the same asset file."""
+    settings = ctx.manifest.training
+    assert settings is not None
+    variant, scene_path = training_paths(ctx)
+    matrix = ctx.state(SELF_COLLISION) if ctx.manifest.self_collision != "none" else None
+    scene_payload = _scene_payload(ctx, plan, variant.name, scene_path)
+    source = scene_payload.scene_file
+    auto_floor = ctx.manifest.placement.floor == "auto"
+    payload = TrainingPayload(
+        settings={
+            "floor_add": list(settings.floor_contacts.add),
+            "floor_remove": list(settings.floor_contacts.remove),
+            "self_contacts": settings.self_contacts,
+            "max_hull_vertices": settings.max_hull_vertices,
+            "primitive_fit": settings.primitive_fit,
+            "iterations": settings.iterations,
+            "ls_iterations": settings.ls_iterations,
+            "timestep": settings.timestep,
+            "frictionloss": settings.frictionloss,
+            "label": f"{ctx.manifest_label} output.training",
+        },
+        header=f"Training variant generated by mjcfbuild from {ctx.manifest.robot_file}; "
+        "edit the sources, not this file.",
+        model=str(ctx.robot_path),
+        self_collision=str(matrix) if matrix else None,
+        robot_file=ctx.manifest.robot_file,
+        scene=scene_payload,
+        output=str(variant),
+        record=str(ctx.state(TRAINING_RECORD)),
+    )
+    return _task(
+        ctx,
+        f"{prefix}training",
+        f"training variant {variant.name}",
+        "training",
+        payload,
+        in_worker=True,
+        file_dep=[
+            ctx.robot_path,
+            *(product_summary(ctx, mesh_id) for mesh_id in colliding),
+            *(Path(d.summary) for d in _decomposition_files(ctx, decomposed)),
+            *([matrix] if matrix else []),
+            *([Path(source)] if source else []),
+            *([ctx.state(FLOOR_RECORD)] if auto_floor else []),
+        ],
+        targets=[variant, scene_path, ctx.state(TRAINING_RECORD)],
         after=[f"{prefix}assemble"],
     )

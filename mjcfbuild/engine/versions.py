@@ -25,6 +25,7 @@ STEP_FORMATS = {
     "compose": 2,  # 2: the origins of the composed lines
     "mjcfpart": 1,
     "package": 1,
+    "training": 5,
 }
 
 STEP_TOOLS = {
@@ -44,6 +45,7 @@ STEP_TOOLS = {
     "compose": ("lxml",),
     "mjcfpart": ("mujoco", "lxml"),
     "package": ("mujoco", "numpy", "lxml"),
+    "training": ("mujoco", "numpy", "scipy", "trimesh", "lxml"),
 }
 
 

@@ -8,7 +8,7 @@ manifest's folder and resolved by :class:`mjcfbuild.engine.context.BuildContext`
 from __future__ import annotations
 
 import re
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
 from pydantic import (
     BaseModel,
@@ -517,6 +517,68 @@ class UrdfExport(StrictModel):
         return self.meshes or f"{self.file.rsplit('.', 1)[0]}_meshes"
 
 
+class FloorContacts(StrictModel):
+    """Which links of the training variant touch the floor, beyond the default."""
+
+    add: list[str] = Field(
+        default_factory=list, description="Links that also collide with the floor."
+    )
+    remove: list[str] = Field(
+        default_factory=list, description="Links that do not collide with the floor."
+    )
+
+
+class TrainingVariant(StrictModel):
+    """The training variant for batched simulation (MuJoCo Warp, MJX): primitive collision
+    geometry, contacts limited to the floor and the self pairs that matter, bounded solver work.
+    See docs/simulation.md."""
+
+    file: FileName | None = Field(
+        None, description="File name of the variant. Default: '<name>_mjx.xml'."
+    )
+    scene: FileName = Field("scene_mjx.xml", description="File name of the variant's scene.")
+    floor_contacts: FloorContacts = Field(
+        default_factory=FloorContacts,
+        description=(
+            "Links added to or removed from the default floor contacts (links touching the "
+            "floor at home, and end effectors)."
+        ),
+    )
+    self_contacts: bool = Field(
+        True,
+        description="Keep the self-collision pairs the matrix finds touching sometimes.",
+    )
+    max_hull_vertices: int = Field(
+        16, ge=4, le=256, description="Most vertices of a hull, where no primitive fits a link."
+    )
+    primitive_fit: float = Field(
+        2.0,
+        ge=1.0,
+        le=100.0,
+        description=(
+            "A primitive replaces a link's collision geometry when its volume is at most this "
+            "many times the geometry's convex hull; otherwise a capped hull does."
+        ),
+    )
+    iterations: int = Field(4, ge=1, le=1000, description="Constraint solver iterations.")
+    ls_iterations: int = Field(8, ge=1, le=1000, description="Line search iterations.")
+    timestep: float | None = Field(
+        None, gt=0, le=1, description="Simulation timestep (s). Default: the model's."
+    )
+    frictionloss: bool = Field(
+        False,
+        description=(
+            "Keep the joints' dry friction (frictionloss): one solver constraint per joint "
+            "at every step, about as costly as the rest of a quadruped's step in MuJoCo Warp."
+        ),
+    )
+
+
+def _also_boolean(schema: dict[str, Any]) -> None:
+    """A setting that also takes true or false (turned into its settings before validation)."""
+    schema["anyOf"] = [*schema.get("anyOf", []), {"type": "boolean"}]
+
+
 class Output(StrictModel):
     """Where the model is written."""
 
@@ -540,6 +602,22 @@ class Output(StrictModel):
             "meshes, asset_prefix and sites."
         ),
     )
+    training: TrainingVariant | None = Field(
+        None,
+        description=(
+            "Also write a training variant for MuJoCo Warp / MJX ('<name>_mjx.xml' and "
+            "'scene_mjx.xml'): true, or a mapping of its settings."
+        ),
+        json_schema_extra=_also_boolean,
+    )
+
+    @field_validator("training", mode="before")
+    @classmethod
+    def _training_switch(cls, value: object) -> object:
+        # true: the defaults; false: no variant (a mapping's errors keep their key path)
+        if value is True:
+            return {}
+        return None if value is False else value
 
     @field_validator("urdf")
     @classmethod
@@ -638,6 +716,12 @@ class Manifest(StrictModel):
                 f"the robot file and the scene file are both '{self.output.scene}'; "
                 "set output.robot or output.scene"
             )
+        files = self.training_files
+        if files and (len(set(files)) < 2 or set(files) & {self.robot_file, self.output.scene}):
+            raise ValueError(
+                "the training variant and its scene need file names of their own; "
+                "set output.training.file and output.training.scene"
+            )
         return self
 
     # pydantic's documented form; mypy rejects any decorator above @property
@@ -646,3 +730,16 @@ class Manifest(StrictModel):
     def robot_file(self) -> str:
         """File name of the robot model inside the output folder."""
         return self.output.robot or f"{self.name}.xml"
+
+    @property
+    def training(self) -> TrainingVariant | None:
+        """The training variant's settings, when one is written."""
+        return self.output.training
+
+    @property
+    def training_files(self) -> tuple[str, str] | None:
+        """File names of the training variant and its scene, when one is written."""
+        variant = self.training
+        if variant is None:
+            return None
+        return variant.file or f"{self.name}_mjx.xml", variant.scene

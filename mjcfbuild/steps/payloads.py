@@ -416,3 +416,17 @@ class PackagePayload(Payload):
     license: OptionalFileDependency
     folder: Output
     record: Output  # the packaged model's snapshot: what the next CHANGELOG entry compares with
+
+
+@dataclass(frozen=True)
+class TrainingPayload(Payload):
+    """``training``: the training variant for batched simulation, and its scene."""
+
+    settings: dict[str, Any]  # training.variant.VariantSettings
+    header: str
+    model: FileDependency  # the full model, which the variant is made from
+    self_collision: OptionalFileDependency  # the collision matrix, for the self pairs
+    robot_file: str  # the full model's file name, which a user's scene file includes
+    scene: ScenePayload  # the variant's scene (robot_file: the variant's)
+    output: Output
+    record: Output

@@ -13,6 +13,13 @@ from mjcfbuild.steps.payloads import ScenePayload
 def run(payload: dict) -> dict:
     """Write the scene: the user's scene file verbatim, or the default scene."""
     request = ScenePayload.from_dict(payload)
+    outputs: dict[str, str] = {}
+    write_output(Path(request.output), scene_bytes(request), outputs)
+    return {"outputs": outputs}
+
+
+def scene_bytes(request: ScenePayload) -> bytes:
+    """The scene's content: the user's scene file verbatim, a scene block, or the default."""
     if request.scene_file:
         data = Path(request.scene_file).read_bytes()
     elif request.scene_block:
@@ -22,9 +29,7 @@ def run(payload: dict) -> dict:
         )
     else:
         data = default_scene(request.model, request.robot_file, _floor(request)).encode()
-    outputs: dict[str, str] = {}
-    write_output(Path(request.output), data, outputs)
-    return {"outputs": outputs}
+    return data
 
 
 def _floor(request: ScenePayload) -> float:

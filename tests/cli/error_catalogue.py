@@ -163,6 +163,22 @@ CASES: list[Case] = [
         ["robot.yaml:5:3", "free_joint"],
     ),
     Case(
+        "training variant: floor contact names no link",
+        {
+            "robot.yaml": MANIFEST
+            + "output:\n  training:\n    floor_contacts:\n      remove: [foot]\n",
+            "robot.urdf": two_link_urdf(),
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:7:16", "floor_contacts.remove[0]", "'foot'", "not a link"],
+    ),
+    Case(
+        "training variant: solver setting out of range",
+        {"robot.yaml": MANIFEST + "output:\n  training:\n    ls_iterations: 0\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:6:", "ls_iterations", "greater than or equal to 1"],
+    ),
+    Case(
         "wrong type",
         {"robot.yaml": MANIFEST + "options:\n  free_joint: maybe\n"},
         EXIT_MANIFEST,

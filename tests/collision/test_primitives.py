@@ -34,3 +34,15 @@ def test_fits_the_shape_it_is_given_wherever_it_is(kind):
     else:
         radial = np.hypot(local[:, 0], local[:, 1])
         assert np.all(radial <= fit.size[0] + 1e-9)
+
+
+def test_kinds_limit_the_candidates_and_the_fit_still_encloses():
+    box = trimesh.creation.box(extents=(0.3, 0.1, 0.05))
+    points = box.vertices
+    assert fit_primitive(points).kind == "box"
+    fit = fit_primitive(points, ("sphere", "capsule"))
+    assert fit.kind == "capsule"
+    local = (np.c_[points, np.ones(len(points))] @ np.linalg.inv(fit.transform).T)[:, :3]
+    radial = np.hypot(local[:, 0], local[:, 1])
+    capped = np.maximum(np.abs(local[:, 2]) - fit.size[1], 0)
+    assert np.all(np.hypot(radial, capped) <= fit.size[0] + 1e-9)

@@ -1,0 +1,253 @@
+"""The training variant proven in MuJoCo Warp, against the full model.
+
+Both scenes are loaded in MuJoCo Warp (on the CPU unless told otherwise) and a batch of worlds
+is stepped from home with noise on ``ctrl``: the state must stay finite. The figures a training
+user chooses by - collision geoms, the geom pairs Warp's collision pass checks, and steps per
+second of the batch - are measured for both. Then the variant must do what the full model is
+built to do: a floating robot that can stand holds home's ``ctrl`` for 5 s without tilting or
+sinking past the check's limits, a fixed robot holds home for 1 s within the hold tolerance.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+
+from mjcfbuild.errors import CheckError, UsageError
+
+
+@dataclass(frozen=True)
+class WarpFigures:
+    """One scene in MuJoCo Warp: its size, and its throughput on a batch."""
+
+    collision_geoms: int
+    contact_pairs: int  # geom pairs Warp's collision pass checks (after filtering)
+    worlds: int
+    steps: int
+    seconds: float
+    finite: bool
+
+    @property
+    def steps_per_second(self) -> float:
+        """World-steps per second of wall time."""
+        return self.worlds * self.steps / self.seconds if self.seconds > 0 else 0.0
+
+    def to_dict(self) -> dict:
+        """A JSON-friendly form."""
+        return {**self.__dict__, "steps_per_second": self.steps_per_second}
+
+
+@dataclass
+class VariantProof:
+    """The variant against the full model in MuJoCo Warp."""
+
+    full: WarpFigures
+    variant: WarpFigures
+    behaviour: str  # what the variant did at home, in words
+    failures: list[str] = field(default_factory=list)
+
+    @property
+    def passes(self) -> bool:
+        """Whether the variant ran finite and did what the full model does."""
+        return not self.failures
+
+    def lines(self, device: str = "cpu") -> list[str]:
+        """The report's lines."""
+        rows = [
+            f"  training variant in MuJoCo Warp ({device}, {self.variant.worlds} worlds, "
+            f"{self.variant.steps} steps with noise on ctrl):",
+            f"    {'':8} {'collision geoms':>16} {'contact pairs':>14} {'steps/s':>10}",
+        ]
+        for name, figures in (("full", self.full), ("variant", self.variant)):
+            rows.append(
+                f"    {name:8} {figures.collision_geoms:>16} {figures.contact_pairs:>14} "
+                f"{figures.steps_per_second:>10.0f}"
+            )
+        rows.append(f"    {self.behaviour}")
+        return rows
+
+
+def _warp():
+    try:
+        import mujoco_warp as mjw
+        import warp as wp
+    except ImportError:
+        raise UsageError(
+            "MuJoCo Warp is not installed", hint="pip install 'mjcfbuild[warp]'"
+        ) from None
+    wp.config.quiet = True  # type: ignore[attr-defined]  # no line per kernel module loaded
+    return mjw, wp
+
+
+@contextlib.contextmanager
+def quiet_stdout() -> Iterator[None]:
+    """Standard output (the file descriptor) sent nowhere: MuJoCo Warp's kernels print a line
+    per world whenever a step stops at the solver's iteration cap, which the variant's bound
+    makes routine, and printing them would be what is timed."""
+    import ctypes
+
+    sys.stdout.flush()
+    libc = ctypes.CDLL(None)
+    saved = os.dup(1)
+    with open(os.devnull, "wb") as null:
+        os.dup2(null.fileno(), 1)
+        try:
+            yield
+        finally:
+            libc.fflush(None)
+            os.dup2(saved, 1)
+            os.close(saved)
+
+
+def collision_geoms(model) -> int:
+    """Geoms that take part in contacts: by contype/conaffinity or an explicit pair."""
+    import numpy as np
+
+    masks = (model.geom_contype != 0) | (model.geom_conaffinity != 0)
+    paired = np.zeros(model.ngeom, dtype=bool)
+    paired[model.pair_geom1] = True
+    paired[model.pair_geom2] = True
+    return int(np.count_nonzero(masks | paired))
+
+
+def measure(
+    scene_path: str, worlds: int = 64, steps: int = 100, noise: float = 0.1, device: str = "cpu"
+) -> WarpFigures:
+    """Step ``worlds`` copies of the scene from home for ``steps`` steps, each world's ctrl
+    home's plus uniform noise of ``noise`` times the half range, and time the steps (after
+    one step that compiles or loads Warp's kernels)."""
+    import mujoco
+    import numpy as np
+
+    mjw, wp = _warp()
+    model = mujoco.MjModel.from_xml_path(scene_path)
+    data = _home(model)
+    with wp.ScopedDevice(device):
+        try:
+            warp_model = mjw.put_model(model)
+        except Exception as exc:  # Warp names the unsupported feature
+            raise CheckError(
+                f"MuJoCo Warp refuses the model: {str(exc).strip().splitlines()[0]}",
+                file=scene_path,
+            ) from None
+        warp_data = mjw.put_data(model, data, nworld=worlds)
+        if model.nu:
+            low, high = model.actuator_ctrlrange[:, 0], model.actuator_ctrlrange[:, 1]
+            limited = model.actuator_ctrllimited.astype(bool)
+            half = np.where(limited, (high - low) / 2, 1.0)
+            rng = np.random.default_rng(0)
+            ctrl = data.ctrl + noise * half * rng.uniform(-1, 1, size=(worlds, model.nu))
+            ctrl = np.where(limited, np.clip(ctrl, low, high), ctrl)
+            warp_data.ctrl.assign(wp.array(ctrl.astype(np.float32), dtype=float))
+        with quiet_stdout():
+            mjw.step(warp_model, warp_data)
+            wp.synchronize()
+            started = time.perf_counter()
+            for _ in range(steps):
+                mjw.step(warp_model, warp_data)
+            wp.synchronize()
+            seconds = time.perf_counter() - started
+        qpos = warp_data.qpos.numpy()
+        pairs = int(warp_model.nxn_geom_pair_filtered.shape[0])
+    return WarpFigures(
+        collision_geoms(model), pairs, worlds, steps, seconds, bool(np.all(np.isfinite(qpos)))
+    )
+
+
+def _home(model):
+    import mujoco
+
+    data = mujoco.MjData(model)
+    key = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home")
+    if key >= 0:
+        mujoco.mj_resetDataKeyframe(model, data, key)
+    mujoco.mj_forward(model, data)
+    return data
+
+
+def behaviour(scene_path: str, hold_tolerance: float, device: str = "cpu") -> tuple[str, str]:
+    """What the scene's robot does in MuJoCo Warp holding home's ctrl from home: (a line for
+    the report, a failure or '')."""
+    import math
+
+    import mujoco
+    import numpy as np
+
+    from mjcfbuild.check.control import STAND_SECONDS, STAND_SINK, STAND_TILT, TEST_SECONDS
+    from mjcfbuild.control.standing import stance
+
+    mjw, wp = _warp()
+    model = mujoco.MjModel.from_xml_path(scene_path)
+    data = _home(model)
+    roots = [j for j in range(model.njnt) if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE]
+    floating = bool(roots)
+    if floating and not stance(model, data).can_stand:
+        return f"stands only under a controller: {stance(model, data).why_not()}", ""
+    seconds = STAND_SECONDS if floating else TEST_SECONDS
+    hinges = [
+        model.jnt_qposadr[j]
+        for j in range(model.njnt)
+        if int(model.jnt_type[j])
+        in (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
+    ]
+    home = data.qpos.copy()
+    steps = round(seconds / model.opt.timestep)
+    every = max(1, round(0.02 / model.opt.timestep))  # look every 20 ms of simulated time
+    tilt = sink = worst = 0.0
+    root = model.jnt_bodyid[roots[0]] if floating else 0
+    height = float(data.xpos[root][2])
+    with wp.ScopedDevice(device), quiet_stdout():
+        warp_model = mjw.put_model(model)
+        warp_data = mjw.put_data(model, data, nworld=1)
+        for step in range(1, steps + 1):
+            mjw.step(warp_model, warp_data)
+            if step % every and step != steps:
+                continue
+            qpos = warp_data.qpos.numpy()[0]
+            if not np.all(np.isfinite(qpos)):
+                return "the state became not finite", "the state became not finite at home"
+            if hinges:
+                worst = max(worst, float(np.max(np.abs(qpos[hinges] - home[hinges]))))
+            if floating:
+                address = model.jnt_qposadr[roots[0]]
+                quat = qpos[address + 3 : address + 7]
+                up = 1 - 2 * (quat[1] ** 2 + quat[2] ** 2) / float(np.dot(quat, quat))
+                tilt = max(tilt, math.acos(max(-1.0, min(1.0, up))))
+                sink = max(sink, height - float(qpos[address + 2]))
+    if floating:
+        line = (
+            f"stands at home for {seconds:g} s: base tilted {tilt:.3f} rad, sank "
+            f"{sink * 1000:.1f} mm, joints within {worst:.3g} of home"
+        )
+        fails = tilt > STAND_TILT or sink > STAND_SINK * max(height, 0.0) + 0.01
+        return line, (f"the training variant does not stand: {line}" if fails else "")
+    line = f"holds home for {seconds:g} s: joints within {worst:.3g} of home"
+    fails = worst > hold_tolerance
+    return line, (f"the training variant does not hold home: {line}" if fails else "")
+
+
+def prove_variant(
+    full_scene: str,
+    variant_scene: str,
+    hold_tolerance: float,
+    worlds: int = 64,
+    steps: int = 100,
+    device: str = "cpu",
+) -> VariantProof:
+    """The variant against the full model: both measured, the variant's behaviour checked."""
+    full = measure(full_scene, worlds, steps, device=device)
+    variant = measure(variant_scene, worlds, steps, device=device)
+    line, failure = behaviour(variant_scene, hold_tolerance, device)
+    proof = VariantProof(full, variant, line)
+    if not variant.finite:
+        proof.failures.append(
+            f"the training variant's state is not finite after {steps} steps of {worlds} "
+            "worlds with noise on ctrl"
+        )
+    if failure:
+        proof.failures.append(failure)
+    return proof

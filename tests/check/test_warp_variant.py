@@ -1,0 +1,68 @@
+"""The training variant proven in MuJoCo Warp on the CPU (slow: Warp loads its kernels for
+each model, and compiles them on first use)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from mjcfbuild.check.warp_variant import behaviour
+from tests.conftest import copy_example, run_cli
+
+pytest.importorskip("mujoco_warp")
+pytestmark = pytest.mark.slow
+
+
+def with_training(tmp_path, example):
+    folder = copy_example(example, tmp_path)
+    manifest = folder / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "  training:\n    self_contacts: true\n")
+    assert run_cli("build", "--no-check", str(manifest)).code == 0
+    return folder
+
+
+def test_check_warp_proves_the_quadruped_variant_against_the_full_model(tmp_path):
+    folder = with_training(tmp_path, "quadruped")
+    result = run_cli("check", "--warp", str(folder / "robot.yaml"))
+    assert result.code == 0, result.stderr
+    assert "training variant in MuJoCo Warp (cpu, 64 worlds, 100 steps" in result.stdout
+    assert "stands at home for 5 s" in result.stdout
+    record = json.loads((folder / "mjcf" / ".mjcfbuild" / "training_warp.json").read_text())
+    full, variant = record["full"], record["variant"]
+    assert variant["finite"] and full["finite"] and record["failures"] == []
+    assert variant["contact_pairs"] < full["contact_pairs"]
+    assert variant["steps_per_second"] > 0 and full["steps_per_second"] > 0
+    # The build report shows the variant and these figures, while they are the variant's.
+    report = (folder / "mjcf" / "report" / "report.md").read_text()
+    assert "## Training variant" in report and "| variant | 10 |" in report
+    manifest = folder / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "    iterations: 5\n")
+    assert run_cli("build", "--no-check", str(manifest)).code == 0
+    report = (folder / "mjcf" / "report" / "report.md").read_text()
+    assert "Not yet measured in MuJoCo Warp" in report and "| variant |" not in report
+
+
+def test_the_arm_variant_holds_home_and_the_hold_can_fail(tmp_path):
+    folder = with_training(tmp_path, "arm")
+    scene = str(folder / "mjcf" / "scene_mjx.xml")
+    line, failure = behaviour(scene, hold_tolerance=0.05)
+    assert line.startswith("holds home for 1 s") and failure == ""
+    # The same run judged by a tolerance no servo meets: the check does fail.
+    _, failure = behaviour(scene, hold_tolerance=1e-9)
+    assert failure.startswith("the training variant does not hold home")
+
+
+@pytest.mark.robots
+def test_the_go1_variant_stands_for_5_s_in_warp(tmp_path):
+    import mjcfbuild
+    from bench import robot_data
+
+    robot = robot_data.ROBOTS["go1"]
+    urdf = robot_data.unpack(robot)
+    manifest = robot_data.manifest(
+        robot, tmp_path, urdf, robot_data.package_root(), "output:\n  training: true\n"
+    )
+    result = mjcfbuild.build(manifest, check=False)
+    line, failure = behaviour(str(result.scene.parent / "scene_mjx.xml"), hold_tolerance=0.05)
+    assert line.startswith("stands at home for 5 s") and failure == "", line
