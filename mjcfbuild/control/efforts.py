@@ -40,7 +40,7 @@ def holding_load(model, data, joint: int) -> float:
         return weight
     if kind != mujoco.mjtJoint.mjJNT_HINGE:
         return 0.0
-    moving = _subtree(model, int(model.jnt_bodyid[joint]))
+    moving = subtree(model, int(model.jnt_bodyid[joint]))
     points = [data.xipos[body] for body in moving]
     points += [
         data.geom_xpos[geom] for geom in range(model.ngeom) if model.geom_bodyid[geom] in moving
@@ -84,7 +84,7 @@ def _span(values: list[float], style: str) -> str:
     return low if low == high else f"{low}-{high}"
 
 
-def _subtree(model, root: int) -> set[int]:
+def subtree(model, root: int) -> set[int]:
     """``root`` and every body below it."""
     bodies = {root}
     for body in range(root + 1, model.nbody):

@@ -105,6 +105,8 @@ def pendulum_loads(model, data, feet: dict[int, list[float]]):
     import mujoco
     import numpy as np
 
+    from mjcfbuild.control.efforts import subtree
+
     stiffness = np.zeros(model.nv)
     carried = np.zeros(model.nv)
     if not feet:
@@ -116,7 +118,7 @@ def pendulum_loads(model, data, feet: dict[int, list[float]]):
         if model.jnt_type[joint] != mujoco.mjtJoint.mjJNT_HINGE:
             continue
         body = int(model.jnt_bodyid[joint])
-        below = _subtree(model, body)
+        below = subtree(model, body)
         if not any(foot in below for foot in feet):
             continue
         mass = total - float(model.body_subtreemass[body])
@@ -198,14 +200,6 @@ def _root_body(model) -> int:
         if model.jnt_type[joint] == mujoco.mjtJoint.mjJNT_FREE:
             return int(model.jnt_bodyid[joint])
     return 1 if model.nbody > 1 else 0
-
-
-def _subtree(model, root: int) -> set[int]:
-    bodies = {root}
-    for body in range(root + 1, model.nbody):
-        if int(model.body_parentid[body]) in bodies:
-            bodies.add(body)
-    return bodies
 
 
 def _hull(points):
