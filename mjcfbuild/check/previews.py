@@ -383,6 +383,8 @@ def closeup_bodies(model, data) -> set[int]:
 
 
 def _under(model, body: int, ancestor: int) -> bool:
+    if ancestor == 0:  # the world holds every body (two arms on it share no other ancestor)
+        return True
     while body:
         if body == ancestor:
             return True

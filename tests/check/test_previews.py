@@ -301,3 +301,22 @@ def test_the_background_is_a_sky_gradient(tmp_path):
     assert top != lower and all(
         min(a, b) <= c <= max(a, b) for a, b, c in zip(SKY_TOP, SKY_BOTTOM, lower, strict=True)
     )
+
+
+def test_a_closeup_of_two_arms_on_the_world_ends_and_draws_no_closeup():
+    """Two arms fixed to the world share no ancestor but the world: the search for the hand's
+    common ancestor must end there (it once looped for ever on a dual-arm robot)."""
+    import mujoco
+
+    from mjcfbuild.check.previews import closeup_bodies
+
+    arm = (
+        '<body name="{n}0" pos="{y} 0 0"><joint axis="0 1 0"/><geom size="0.02 0.2" pos="0 0 0.2" type="capsule"/>'
+        '<body name="{n}1" pos="0 0 0.4"><joint axis="0 1 0"/><geom size="0.02 0.1" pos="0 0 0.1" type="capsule"/></body></body>'
+    )
+    model = mujoco.MjModel.from_xml_string(
+        f"<mujoco><worldbody>{arm.format(n='left', y=0.3)}{arm.format(n='right', y=-0.3)}</worldbody></mujoco>"
+    )
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    assert closeup_bodies(model, data) == set()
