@@ -22,13 +22,11 @@ example-robot-data-jnrh2023 (an older release of example-robot-data).
 from __future__ import annotations
 
 import shutil
-import subprocess
-import sys
 import zipfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from bench.robot_data import cache_dir
+from bench.robot_data import cache_dir, download_wheel
 
 
 @dataclass(frozen=True)
@@ -331,28 +329,7 @@ ROBOTS = {
 
 def wheel_file(wheel: Wheel) -> Path:
     """The wheel file, downloaded into the cache on first use."""
-    folder = cache_dir()
-    pattern = f"{wheel.stem}-{wheel.version}-*.whl"
-    found = sorted(folder.glob(pattern))
-    if found:
-        return found[0]
-    folder.mkdir(parents=True, exist_ok=True)
-    subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "pip",
-            "download",
-            "--no-deps",
-            "--only-binary=:all:",
-            "--quiet",
-            f"{wheel.name}=={wheel.version}",
-            "-d",
-            str(folder),
-        ],
-        check=True,
-    )
-    return sorted(folder.glob(pattern))[0]
+    return download_wheel(wheel.name, wheel.version, wheel.stem)
 
 
 def wheel_root(wheel: Wheel) -> Path:

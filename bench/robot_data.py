@@ -104,28 +104,23 @@ def cache_dir() -> Path:
     return Path(base) / "mjcfbuild-dev"
 
 
-def wheel() -> Path:
-    """The example-robot-data wheel, downloaded on first use."""
+def download_wheel(name: str, version: str, stem: str) -> Path:
+    """The wheel of ``name`` ``version`` (file names start ``stem``), downloaded into the cache
+    with ``pip download`` on first use."""
     folder = cache_dir()
-    found = sorted(folder.glob(f"example_robot_data-{VERSION}-*.whl"))
+    pattern = f"{stem}-{version}-*.whl"
+    found = sorted(folder.glob(pattern))
     if found:
         return found[0]
     folder.mkdir(parents=True, exist_ok=True)
-    subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "pip",
-            "download",
-            "--no-deps",
-            "--quiet",
-            f"{PACKAGE}=={VERSION}",
-            "-d",
-            str(folder),
-        ],
-        check=True,
-    )
-    return sorted(folder.glob(f"example_robot_data-{VERSION}-*.whl"))[0]
+    command = [sys.executable, "-m", "pip", "download", "--no-deps", "--only-binary=:all:"]
+    subprocess.run([*command, "--quiet", f"{name}=={version}", "-d", str(folder)], check=True)
+    return sorted(folder.glob(pattern))[0]
+
+
+def wheel() -> Path:
+    """The example-robot-data wheel, downloaded on first use."""
+    return download_wheel(PACKAGE, VERSION, "example_robot_data")
 
 
 def package_root() -> Path:
