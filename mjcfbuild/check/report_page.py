@@ -9,6 +9,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from mjcfbuild.check.tuning_table import tuning_lines
+from mjcfbuild.control.motors import URDF_LIMITS
 
 
 def markdown(report: dict) -> str:
@@ -241,7 +242,11 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
 def _motor(actuator: dict) -> str:
     """The motor behind an actuator (issue 33), if a rule named one."""
     motor = actuator.get("motor")
-    return f", motor {motor['motor']}" if motor else ""
+    if not motor:
+        return ""
+    if motor["motor"] == URDF_LIMITS:
+        return ", speed line from URDF limits"
+    return f", motor {motor['motor']}"
 
 
 def _replaced(actuator: dict) -> str:

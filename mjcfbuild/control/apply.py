@@ -25,7 +25,12 @@ from mjcfbuild.control.choose import (
 from mjcfbuild.control.efforts import EffortCap, describe, placeholder_efforts
 from mjcfbuild.control.floor import lowest_collision_point
 from mjcfbuild.control.home import HomeValue
-from mjcfbuild.control.motors import dcmotor_attributes, has_speed_line
+from mjcfbuild.control.motors import (
+    dcmotor_attributes,
+    has_speed_line,
+    line_inertia,
+    urdf_drive,
+)
 from mjcfbuild.control.standing import MARGIN
 from mjcfbuild.inputs.apply import ACTUATOR_TAGS
 from mjcfbuild.numbers import output_list
@@ -336,7 +341,9 @@ def _match_mirrored(model, data, records: list[ActuatorRecord]) -> None:
     (the larger of the two), so a left-right symmetric robot gets symmetric servos."""
     from mjcfbuild.control.standing import mirror_pairs
 
-    generated = {r.joint: r for r in records if r.source != "user" and r.type == "position"}
+    generated = {
+        r.joint: r for r in records if r.source != "user" and r.type in ("position", "dcmotor")
+    }
     for left, right in mirror_pairs(model, data, sorted(generated)):
         first, second = generated[left], generated[right]
         for attribute in ("kp", "kv", "armature"):
@@ -461,14 +468,24 @@ def _actuator(
 ) -> ActuatorRecord:
     """The actuator of a choice, its gains worked out from the joint's effective inertia; a
     ``cap`` replaces a placeholder effort."""
-    inertia = servo.inertia
-    omega = servo.omega(choice.frequency, choice.stiffen)
     name = choice.joint if choice.joint not in taken else f"{choice.joint}_actuator"
     forcerange = list(choice.forcerange) if choice.forcerange else None
     record = ActuatorRecord(name, choice.joint, choice.type, choice.source, forcerange=forcerange)
     if cap is not None:
         record.forcerange = [-cap.holding, cap.holding]
         record.placeholder_effort = cap.effort
+    record.motor, record.rule = choice.motor, choice.rule
+    added = 0.0  # armature this servo adds to the joint
+    line = _urdf_line(choice, record, cap)
+    if line is not None:
+        record.motor = line.to_dict()
+        # The rotor inertia a drive with this line has (control.motors.line_inertia), in every
+        # pose: the joint's own inertia at home says nothing of a folded arm's.
+        if choice.armature is None:
+            added = line_inertia(line, servo.timestep)
+            servo = replace(servo, inertia=servo.inertia + added)
+    inertia = servo.inertia
+    omega = servo.omega(choice.frequency, choice.stiffen)
     if choice.type == "position":
         record.kp = choice.kp or inertia * omega**2
         record.kv = choice.kv or 2 * choice.damping_ratio * inertia * omega
@@ -484,9 +501,10 @@ def _actuator(
             # sqrt(kp / I) dt at STEP_RATIO.
             floor = record.kp * (servo.timestep / STEP_RATIO) ** 2
             if choice.armature is None and floor > inertia:
-                record.armature = floor - inertia
+                added += floor - inertia
+                inertia = floor
             if choice.kv is None:
-                moved = inertia + (record.armature or 0.0) + servo.carried
+                moved = inertia + servo.carried
                 record.kv = 2 * choice.damping_ratio * math.sqrt(record.kp * moved)
             record.weight_bearing = True
         bounds = joint_range(joint)
@@ -500,11 +518,22 @@ def _actuator(
         record.ctrlrange = [-velocity, velocity] if velocity else None
     else:  # motor
         record.ctrlrange, record.forcerange = record.forcerange, None
+    record.armature = added or None
     # issue 33: a drive with a torque-speed line makes a position servo a <dcmotor>
-    record.motor, record.rule = choice.motor, choice.rule
-    if choice.type == "position" and has_speed_line(choice.motor):
+    if choice.type == "position" and has_speed_line(record.motor):
         record.type = "dcmotor"
     return record
+
+
+def _urdf_line(choice: ActuatorChoice, record: ActuatorRecord, cap: EffortCap | None):
+    """The drive the URDF's effort and velocity limits make of a position servo that no motor
+    names (None where a limit is missing or a placeholder replaced the effort)."""
+    if choice.type != "position" or choice.motor is not None or choice.speed_limit is None:
+        return None
+    if cap is not None or record.forcerange is None:
+        return None
+    effort = max(abs(value) for value in record.forcerange)
+    return urdf_drive(effort, choice.speed_limit)
 
 
 def _attributes(record: ActuatorRecord) -> dict[str, str]:

@@ -55,6 +55,7 @@ class ActuatorChoice:
     wheel_candidate: bool = False  # continuous, default type: a wheel if its geometry says so
     rule_forcerange: bool = False  # forcerange from a rule: it also sets the joint's own limit
     motor: dict | None = None  # issue 33: the rule's drive at the output (control.motors.Drive)
+    speed_limit: float | None = None  # the URDF velocity a position servo's speed line ends at
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""
@@ -171,6 +172,7 @@ def _choice(
             damping_ratio=settings.damping_ratio,
             forcerange=_effort_range(joint),
             effort_limited=_effort_range(joint) is not None,
+            speed_limit=positive_velocity(joint) if settings.speed_limits else None,
         )
     return ActuatorChoice(
         joint.name,
@@ -189,6 +191,7 @@ def _choice(
         gravcomp=bool(rule.gravcomp),
         rule=index,
         stiffen=rule.kp is None and rule.frequency is None,
+        speed_limit=positive_velocity(joint) if settings.speed_limits else None,
     )
 
 

@@ -159,6 +159,46 @@ def _driven(choice: ActuatorChoice, rule: ActuatorRule, drive: Drive) -> Actuato
     )
 
 
+# The name a drive made from the URDF's own limits goes by in the report and check.json.
+URDF_LIMITS = "URDF limits"
+
+
+def urdf_drive(effort: float, velocity: float) -> Drive:
+    """The drive a joint's URDF limits describe when no motor is named: the torque-speed line
+    from its effort (at standing still) to its velocity limit (at no load). A URDF gives the
+    joint's top speed and torque, and a DC drive's torque falls along such a line between
+    them; with it a default servo moves no faster than the real joint."""
+    return Drive(
+        motor=URDF_LIMITS,
+        ratio=1.0,
+        ratio_from="default",
+        armature=0.0,
+        peak_torque=effort,
+        continuous_torque=None,
+        stall_torque=effort,
+        no_load_speed=velocity,
+        voltage=UNIT_VOLTAGE,
+        friction=None,
+        damping=None,
+    )
+
+
+# A DC drive's mechanical time constant (rotor inertia x no-load speed / stall torque, the time
+# its line takes to brake the rotor) in time steps at least. MuJoCo applies the line's torque at
+# the speed the step starts with: at 1 step the rotor's speed settles in one step, past 1 it
+# rings and past 2 it diverges. Real gearmotors take 5-30 ms (2.5-15 steps of 2 ms).
+LINE_STEPS = 1.0
+
+
+def line_inertia(drive: Drive, timestep: float) -> float:
+    """The least inertia at the joint (link, rotor and what it carries) that keeps ``drive``'s
+    torque-speed line stable at ``timestep``: the line brakes like a damper of stall torque /
+    no-load speed, which the step applies explicitly."""
+    if drive.stall_torque is None or not drive.no_load_speed:
+        return 0.0
+    return LINE_STEPS * timestep * drive.stall_torque / drive.no_load_speed
+
+
 def has_speed_line(motor: dict | None) -> bool:
     """Whether a drive (:meth:`Drive.to_dict`) has a torque-speed line."""
     return bool(motor) and motor.get("no_load_speed") is not None  # type: ignore[union-attr]

@@ -13,9 +13,9 @@ STEP_FORMATS = {
     "plan": 4,
     "mesh": 5,
     "decompose": 3,
-    "assemble": 9,
+    "assemble": 10,  # 10: default servos get the URDF limits' torque-speed line
     "scene": 3,
-    "check": 6,
+    "check": 7,  # 7: the report names a speed line from URDF limits
     "reference": 1,
     "previews": 5,
     "tuning": 1,
@@ -24,7 +24,7 @@ STEP_FORMATS = {
     "export_urdf": 1,
     "compose": 2,  # 2: the origins of the composed lines
     "mjcfpart": 1,
-    "package": 1,
+    "package": 2,  # 2: <dcmotor> gains rounded and shared in classes
     "training": 5,
 }
 

@@ -100,6 +100,15 @@ class ActuatorSettings(_Strict):
     damping_ratio: float = Field(
         DEFAULT_DAMPING_RATIO, gt=0, description="Default damping ratio (1: critically damped)."
     )
+    speed_limits: bool = Field(
+        True,
+        description=(
+            "Position servos of joints whose URDF gives an effort and a velocity limit get the "
+            "torque-speed line through them (a <dcmotor>: full effort standing still, none at "
+            "the velocity limit), so a joint moves no faster than the real one; false: plain "
+            "<position> servos limited by effort alone."
+        ),
+    )
     rules: list[ActuatorRule] = Field(
         default_factory=list, description="Rules in order; the first whose pattern matches wins."
     )

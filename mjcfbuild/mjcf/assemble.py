@@ -28,7 +28,7 @@ from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies
 from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
 from mjcfbuild.mjcf.precise import precise_xml
-from mjcfbuild.mjcf.prepared import Decomposition, GeomRecord, Prepared, prepare
+from mjcfbuild.mjcf.prepared import Decomposition, GeomRecord, MeshAsset, Prepared, prepare
 from mjcfbuild.mjwarnings import capture_mujoco_warnings, take_mujoco_warnings
 from mjcfbuild.urdf.model import Robot
 
@@ -340,7 +340,8 @@ def _write_with_shell_retries(spec, prepared: Prepared, source: str):
             name = too_thin_mesh(text)
             mesh = spec.mesh(name) if name else None
             if mesh is None or mesh.inertia == mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL:
-                raise compile_error(exc, source) from None
+                named = prepared.meshes + spec_meshes(spec, prepared)
+                raise compile_error(exc, source, named) from None
             mesh.inertia = mujoco.mjtMeshInertia.mjMESH_INERTIA_SHELL
             prepared.warnings.append(f"mesh '{name}' encloses no volume; it uses shell inertia")
     raise ModelError("MuJoCo: too many meshes without volume")
@@ -369,13 +370,19 @@ _COMPILE_HINTS = {
 }
 
 
-def compile_error(exc: Exception, source: str) -> ModelError:
+def compile_error(exc: Exception, source: str, meshes: list[MeshAsset] | None = None) -> ModelError:
     """A MuJoCo compile error as one line, pointing at the URDF line in the element's info
-    (or at the URDF itself when MuJoCo names no element)."""
+    (or at the URDF itself when MuJoCo names no element). A mesh MuJoCo names by its internal
+    asset name (``mesh4``) is named by its file and URDF line from ``meshes``."""
     text = str(exc).strip().replace("Error: ", "", 1)
     lines = text.splitlines()
     message = lines[0] if lines else "compile failed"
     hint = next((h for phrase, h in _COMPILE_HINTS.items() if phrase in message), None)
+    asset = _named_mesh(message, meshes or [])
+    if asset is not None:
+        message = message.replace(f"mesh '{asset.name}'", f"mesh '{asset.uri or asset.file}'")
+        if asset.line is not None:
+            return ModelError(f"MuJoCo: {message}", file=source, line=asset.line, hint=hint)
     for line in lines[1:]:
         if "Element" in line and ", " in line:
             origin = line.split(", ")[-1]
@@ -391,6 +398,28 @@ def compile_error(exc: Exception, source: str) -> ModelError:
                     )
             message = f"{message} ({line.strip()})"
     return ModelError(f"MuJoCo: {message}", file=source, hint=hint)
+
+
+def spec_meshes(spec, prepared: Prepared) -> list[MeshAsset]:
+    """The prepared mesh assets under the names MuJoCo's URDF import gave them (``mesh4``),
+    matched by file, so that its errors can name the description's file."""
+    from dataclasses import replace
+
+    by_file = {Path(asset.product_file).name: asset for asset in prepared.meshes}
+    named = []
+    for mesh in spec.meshes:
+        asset = by_file.get(Path(mesh.file).name)
+        if asset is not None:
+            named.append(replace(asset, name=mesh.name))
+    return named
+
+
+def _named_mesh(message: str, meshes: list[MeshAsset]) -> MeshAsset | None:
+    """The mesh asset a MuJoCo message names (``mesh 'mesh4' ...``), if one."""
+    for asset in meshes:
+        if f"mesh '{asset.name}'" in message:
+            return asset
+    return None
 
 
 def _finish(

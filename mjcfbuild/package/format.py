@@ -32,10 +32,21 @@ ORDER = (
     "sensor",
     "keyframe",
 )
-ACTUATORS = ("position", "velocity", "motor", "general", "intvelocity", "damper", "cylinder")
-GAINS = ("kp", "kv", "dampratio", "gainprm", "biasprm")
+ACTUATORS = (
+    "position",
+    "velocity",
+    "motor",
+    "general",
+    "intvelocity",
+    "damper",
+    "cylinder",
+    "dcmotor",
+)
+GAINS = ("kp", "kv", "dampratio", "gainprm", "biasprm", "controller", "nominal", "saturation")
 RANGES = ("ctrlrange", "forcerange")
-SHARED = ("kp", "kv", "forcerange")  # what actuators of one class have in common
+# What actuators of one class have in common: gains and force limits (a <dcmotor>'s controller
+# gains, torque-speed line and torque limit).
+SHARED = ("kp", "kv", "forcerange", "input", "nominal", "controller", "saturation")
 INDENT = "  "
 
 

@@ -17,7 +17,7 @@ from mjcfbuild.control.home import home_values
 from mjcfbuild.errors import InputError, ManifestError
 from mjcfbuild.inputs.ros2_control import ControlJoint, Ros2Control
 from mjcfbuild.meshes.product import read_product
-from mjcfbuild.mjcf.assemble import compile_error, floats
+from mjcfbuild.mjcf.assemble import compile_error, floats, spec_meshes
 from mjcfbuild.mjcf.bodies import Body, build_bodies
 from mjcfbuild.mjcf.prepared import Decomposition, prepare
 from mjcfbuild.selfcollision.matrix import (
@@ -64,7 +64,7 @@ def run(payload: dict) -> dict:
     try:
         spec = mujoco.MjSpec.from_string(prepared.urdf)
     except Exception as exc:
-        raise compile_error(exc, robot.source) from None
+        raise compile_error(exc, robot.source, prepared.meshes) from None
     if request.free_joint:
         for body in bodies:
             if floats(body):
@@ -74,7 +74,7 @@ def run(payload: dict) -> dict:
     try:
         model = _compile(spec)
     except Exception as exc:
-        raise compile_error(exc, robot.source) from None
+        raise compile_error(exc, robot.source, spec_meshes(spec, prepared)) from None
 
     srdf = Srdf.from_dict(json.loads(Path(request.srdf).read_text())) if request.srdf else None
     control = Ros2Control(

@@ -48,8 +48,8 @@ def test_the_built_model_passes(arm):
 def test_a_flipped_joint_axis(arm):
     corrupt(
         arm,
-        '<joint name="elbow" range="-2.5 2.5" actuatorfrcrange="-30 30" damping="0.5" frictionloss="0.05" axis="0 1 0"/>',
-        '<joint name="elbow" range="-2.5 2.5" actuatorfrcrange="-30 30" damping="0.5" frictionloss="0.05" axis="0 -1 0"/>',
+        'frictionloss="0.05" axis="0 1 0" armature="0.024"/>',
+        'frictionloss="0.05" axis="0 -1 0" armature="0.024"/>',
     )
     result = check(arm)
     assert result.code == EXIT_CHECK

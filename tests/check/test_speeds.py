@@ -41,12 +41,13 @@ def test_a_joint_without_a_limit_takes_its_motors_no_load_speed_else_the_default
 
 
 def test_a_runaway_joint_fails_the_build_naming_it_and_its_limit(tmp_path):
-    # A floating base with a massless root (repaired to a tiny mass): the hinge's servo spins
-    # the root around at hundreds of rad/s, where its URDF says 1 rad/s.
+    # A floating base with a massless root (repaired to a tiny mass): a servo without the URDF's
+    # speed line spins the root around at hundreds of rad/s, where its URDF says 1 rad/s.
     write(tmp_path / "robot.urdf", _urdf(massless_root=True))
     write(
         tmp_path / "robot.yaml",
-        "name: r\nsource: {urdf: robot.urdf}\noptions: {free_joint: true}\n",
+        "name: r\nsource: {urdf: robot.urdf}\noptions: {free_joint: true}\n"
+        "actuators: {speed_limits: false}\n",
     )
     result = run_cli("build", str(tmp_path / "robot.yaml"))
     assert result.code == 6, result.stderr
@@ -67,3 +68,20 @@ def test_the_quadruped_with_motors_stays_within_its_drives(tmp_path):
     fastest = check["max_joint_speed"]
     assert set(fastest) == {"joint", "speed", "limit"}
     assert fastest["speed"] <= DRIVEN_MULTIPLE * fastest["limit"]
+
+
+def test_the_urdf_speed_line_keeps_the_same_joint_near_its_limit(tmp_path):
+    # The same robot with default settings: the servo is a <dcmotor> whose torque falls to zero
+    # at the URDF's 1 rad/s, with the rotor inertia that keeps the line stable.
+    write(tmp_path / "robot.urdf", _urdf(massless_root=True))
+    write(
+        tmp_path / "robot.yaml",
+        "name: r\nsource: {urdf: robot.urdf}\noptions: {free_joint: true}\n",
+    )
+    run_cli("build", str(tmp_path / "robot.yaml"))
+    check = json.loads((tmp_path / "mjcf/.mjcfbuild/check.json").read_text())
+    assert not [f for f in check["failures"] if "joint 'hinge' reached" in f]
+    fastest = check["max_joint_speed"]
+    assert fastest["joint"] == "hinge" and fastest["speed"] < DRIVEN_MULTIPLE * fastest["limit"]
+    model = (tmp_path / "mjcf/r.xml").read_text()
+    assert '<dcmotor name="hinge" joint="hinge" input="pos"' in model

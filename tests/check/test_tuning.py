@@ -111,6 +111,7 @@ def test_a_weak_drive_shows_as_saturation(tmp_path):
     # The 10 Hz servo asks ~10 times the 3 N m the drive has for a 0.1 rad step, and the
     # 2 rad/s line caps it further while it moves.
     assert group["saturation"] > 0.01
-    _build(tmp_path / "strong", "home: {hinge: 0.5}\n")
+    # The default servo without the URDF's own speed line (which would cap it too).
+    _build(tmp_path / "strong", "home: {hinge: 0.5}\nactuators: {speed_limits: false}\n")
     [strong] = _tuning(tmp_path / "strong")["groups"]
     assert strong["saturation"] < group["saturation"] / 2

@@ -22,17 +22,38 @@ def _inertia_at_home(model, joint: str) -> float:
 
 
 def test_a_bare_manifest_drives_every_moving_joint_with_a_position_servo(tmp_path):
+    """A <dcmotor input="pos">: a position servo whose torque falls from the URDF effort at
+    rest to zero at the URDF velocity, on the rotor inertia that keeps that line stable."""
     model = load(build_two_link(tmp_path))
     assert model.nu == 1
     hinge = actuator(model, "hinge")
-    inertia = _inertia_at_home(model, "hinge")
+    assert model.actuator_gaintype[hinge] == mujoco.mjtGain.mjGAIN_DCMOTOR
+    joint = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "hinge")
+    # effort 10 N m, velocity 1 rad/s: stall torque / no-load speed x one 2 ms step
+    assert model.dof_armature[model.jnt_dofadr[joint]] == pytest.approx(10 / 1 * 0.002)
+    inertia = _inertia_at_home(model, "hinge")  # the rotor's included
     omega = 2 * math.pi * 10  # the documented default frequency, critically damped
-    assert model.actuator_gainprm[hinge][0] == pytest.approx(inertia * omega**2, rel=1e-9)
-    assert -model.actuator_biasprm[hinge][2] == pytest.approx(2 * inertia * omega, rel=1e-9)
+    kp, kv = model.actuator_gainprm[hinge][4], model.actuator_gainprm[hinge][6]
+    assert kp == pytest.approx(inertia * omega**2, rel=1e-9)
+    assert kv == pytest.approx(2 * inertia * omega, rel=1e-9)
     assert list(model.actuator_ctrlrange[hinge]) == [-1.5, 1.5]
     assert list(model.actuator_forcerange[hinge]) == [-10, 10]  # the URDF effort
     record = readiness(tmp_path)["actuators"][0]
-    assert (record["name"], record["type"], record["source"]) == ("hinge", "position", "default")
+    assert (record["name"], record["type"], record["source"]) == ("hinge", "dcmotor", "default")
+    assert (record["motor"]["stall_torque"], record["motor"]["no_load_speed"]) == (10, 1)
+
+
+def test_speed_limits_off_gives_a_plain_position_servo(tmp_path):
+    model = load(build_two_link(tmp_path, "actuators: {speed_limits: false}\n"))
+    hinge = actuator(model, "hinge")
+    inertia = _inertia_at_home(model, "hinge")
+    omega = 2 * math.pi * 10
+    assert model.actuator_gainprm[hinge][0] == pytest.approx(inertia * omega**2, rel=1e-9)
+    assert -model.actuator_biasprm[hinge][2] == pytest.approx(2 * inertia * omega, rel=1e-9)
+    joint = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "hinge")
+    assert model.dof_armature[model.jnt_dofadr[joint]] == 0
+    record = readiness(tmp_path)["actuators"][0]
+    assert (record["type"], record["motor"]) == ("position", None)
 
 
 def test_a_rule_sets_type_gains_and_joint_dynamics(tmp_path):
@@ -57,7 +78,7 @@ def test_a_rule_sets_type_gains_and_joint_dynamics(tmp_path):
 def test_a_rule_without_a_type_only_tunes_the_gains(tmp_path):
     model = load(build_two_link(tmp_path, "actuators:\n  rules: [{joints: [hinge], kp: 321}]\n"))
     hinge = actuator(model, "hinge")
-    assert model.actuator_gainprm[hinge][0] == 321
+    assert model.actuator_gainprm[hinge][4] == 321  # a <dcmotor>'s kp
     assert readiness(tmp_path)["actuators"][0]["source"] == "default"
 
 
@@ -76,7 +97,11 @@ def test_ros2_control_command_interfaces_decide_the_type(tmp_path, interfaces, k
     model = load(build_two_link(tmp_path, urdf_extra=control))
     assert model.nu == 1  # never two actuators on one joint
     record = readiness(tmp_path)["actuators"][0]
-    assert (record["type"], record["source"]) == (kind, "ros2_control")
+    # A position servo with the URDF's speed line is a <dcmotor input="pos">.
+    assert (record["type"], record["source"]) == (
+        "dcmotor" if kind == "position" else kind,
+        "ros2_control",
+    )
     if kind == "motor":
         assert list(model.actuator_ctrlrange[0]) == [-10, 10]
 
@@ -89,8 +114,8 @@ def test_a_ros1_transmission_names_an_actuated_joint(tmp_path):
       <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>"""
     model = load(build_two_link(tmp_path, urdf_extra=transmission))
     record = readiness(tmp_path)["actuators"][0]
-    assert (record["type"], record["source"]) == ("position", "transmission")
-    assert model.actuator_biastype[0] == mujoco.mjtBias.mjBIAS_AFFINE
+    assert (record["type"], record["source"]) == ("dcmotor", "transmission")
+    assert model.actuator_gaintype[0] == mujoco.mjtGain.mjGAIN_DCMOTOR
 
 
 def test_an_actuator_the_user_wrote_replaces_the_generated_one(tmp_path):
@@ -116,7 +141,7 @@ def test_a_continuous_joint_that_is_no_wheel_gets_a_position_servo(tmp_path):
     """Its body is a rod, not round about the axis: a revolving joint, held in position
     (tests/control/test_standing.py has the wheel that gets a velocity servo)."""
     model = load(build_two_link(tmp_path, joint_type="continuous"))
-    assert readiness(tmp_path)["actuators"][0]["type"] == "position"
+    assert readiness(tmp_path)["actuators"][0]["type"] == "dcmotor"  # input="pos"
     assert not model.actuator_ctrllimited[0]
 
 

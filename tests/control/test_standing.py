@@ -144,7 +144,7 @@ def test_a_continuous_arm_joint_holds_and_a_real_wheel_gets_a_velocity_servo(tmp
         "wheel",
     )
     assert records["right_wheel_joint"]["type"] == "velocity"
-    assert records["shoulder"]["type"] == "position"
+    assert records["shoulder"]["type"] == "dcmotor"  # a position servo with the URDF's line
     model, data = _scene(tmp_path)
     shoulder = model.jnt_qposadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "shoulder")]
     _hold(model, data, 1.0)
@@ -158,7 +158,8 @@ def test_a_quadruped_with_continuous_leg_joints_keeps_standing(tmp_path):
     )
     write(tmp_path / "srdf/quad.srdf", STANDING_SRDF.format(straight="", bent=bent))
     _build(tmp_path, robots.quadruped(joint_type="continuous"))
-    assert {r["type"] for r in readiness(tmp_path)["actuators"]} == {"position"}
+    # position servos (with the URDF's speed line), no wheel among them
+    assert {r["type"] for r in readiness(tmp_path)["actuators"]} == {"dcmotor"}
     model, data = _scene(tmp_path)
     home = data.qpos[2]
     _hold(model, data, 5.0)
@@ -192,7 +193,10 @@ def test_unknown_effort_and_velocity_are_not_limits(tmp_path):
 
 def test_a_gripper_leader_is_sized_for_its_mimic_followers(tmp_path):
     """Four heavy fingers follow a light leader: the servo must hold them all."""
-    result = _build(tmp_path, robots.gripper(), free_joint=False)
+    # Plain servos: the URDF speed line's rotor inertia, the same with or without followers,
+    # would blur the comparison of gains below.
+    plain = "actuators: {speed_limits: false}\n"
+    result = _build(tmp_path, robots.gripper(), plain, free_joint=False)
     model = mujoco.MjModel.from_xml_path(str(result.robot))
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, 0)
@@ -201,7 +205,7 @@ def test_a_gripper_leader_is_sized_for_its_mimic_followers(tmp_path):
     _hold(model, data, 1.0)
     assert abs(data.qpos[lead] - home) < 0.002
     record = readiness(tmp_path)["actuators"][0]
-    alone = _build(tmp_path / "alone", robots.gripper(followers=0), free_joint=False)
+    alone = _build(tmp_path / "alone", robots.gripper(followers=0), plain, free_joint=False)
     assert alone.robot.exists()
     single = readiness(tmp_path / "alone")["actuators"][0]
     assert record["kp"] > 10 * single["kp"]

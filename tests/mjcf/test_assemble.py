@@ -158,3 +158,21 @@ def test_compiles_before_the_last_skip_only_meshes_that_draw():
         root = etree.fromstring(edited)
         _drop_drawing_meshes(root)
         assert _meshes_and_geoms(root) == _meshes_and_geoms(etree.fromstring(edited))
+
+
+def test_a_mesh_mujoco_cannot_hull_is_named_by_its_file_not_its_asset_name(tmp_path):
+    """MuJoCo names the mesh by the asset name its URDF import made up ('mesh1'): the build's
+    error names the description's file and line instead (stretch_re1's flat STL)."""
+    from tests.conftest import run_cli, write
+
+    flat = tmp_path / "urdf/flat.obj"
+    write(flat, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n")
+    urdf = two_link_urdf().replace('<box size="0.2 0.2 0.1"/>', '<mesh filename="flat.obj"/>', 1)
+    write(tmp_path / "urdf/robot.urdf", urdf)
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: urdf/robot.urdf}\n")
+    result = run_cli("build", str(tmp_path / "robot.yaml"))
+    assert result.code != 0
+    line = next(n for n, text in enumerate(urdf.splitlines(), 1) if "flat.obj" in text)
+    error = next(e for e in result.stderr.splitlines() if "error:" in e)
+    assert f"robot.urdf:{line}:" in error and "mesh 'flat.obj'" in error, error
+    assert "'mesh" not in error.replace("mesh 'flat.obj'", ""), error
