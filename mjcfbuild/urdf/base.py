@@ -10,7 +10,9 @@ boxes, cylinders and spheres):
   the lowest quarter of the robot;
 - a legged robot floats: a link branches into two or more limbs that reach the floor (within
   10% of the robot's height of its lowest point) while the root itself stays well above it
-  (more than 30% of the robot's height);
+  (more than 30% of the robot's height); but three or more such limbs hanging from a root at
+  the top of the robot whose ends lie in a row (no support area between them) are a hand's
+  fingers, not legs;
 - a flying robot floats: two or more joints without stops, with vertical axes, at leaf links
   (rotors);
 - anything else (an arm on its base plate, a hand) is fixed.
@@ -27,6 +29,9 @@ from mjcfbuild.urdf.transforms import Transform, apply
 _FLOOR = 0.1  # of the height: how close to the lowest point a foot reaches
 _RAISED = 0.3  # of the height: how far above the lowest point a walking root stays
 _WHEEL_ZONE = 0.25  # of the height: where wheels sit
+# Width over length of the ends of three or more limbs, below which they lie in a row: real
+# quadrupeds' and hexapods' feet 0.5-0.9, hands' hanging fingertips 0.05-0.2.
+_ROW = 0.25
 
 
 @dataclass(frozen=True)
@@ -60,6 +65,14 @@ def classify_base(robot: Robot) -> BaseKind:
     body = _fixed_to(robot, robot.root)
     feet = _branches_reaching(robot, points, low + _FLOOR * size)
     root_low = min(p[2] for link in body for p in points[link])
+    root_high = max(p[2] for link in body for p in points[link])
+    hanging = root_high > high - _FLOOR * size  # nothing of the robot above its root
+    if hanging and len(feet) >= 3 and _in_a_row(_feet(robot, points, feet)):
+        return BaseKind(
+            False,
+            f"its {len(feet)} limbs that reach down ({', '.join(sorted(feet)[:4])}) end in a "
+            "row, as a hand's fingers hang, not spread as legs stand",
+        )
     if len(feet) >= 2 and root_low - low > _RAISED * size:
         return BaseKind(
             True,
@@ -171,3 +184,29 @@ def _branches_reaching(robot: Robot, points: dict, floor: float) -> set[str]:
         if len(legs) > len(best):
             best = legs
     return best
+
+
+def _feet(robot: Robot, points: dict, limbs: set[str]) -> list[tuple[float, float, float]]:
+    """The lowest point of each of ``limbs``' subtrees."""
+    children: dict[str, list[str]] = {}
+    for joint in robot.joints:
+        children.setdefault(joint.parent, []).append(joint.child)
+
+    def lowest(link: str) -> tuple[float, float, float]:
+        candidates = list(points.get(link, [])) + [lowest(c) for c in children.get(link, [])]
+        return min(candidates, key=lambda p: p[2])
+
+    return [lowest(limb) for limb in sorted(limbs)]
+
+
+def _in_a_row(feet: list[tuple[float, float, float]]) -> bool:
+    """Whether points lie in a row seen from above: their narrowest extent (over directions 5
+    degrees apart) is under :data:`_ROW` times their widest."""
+    import math
+
+    extents = []
+    for step in range(36):
+        angle = math.pi * step / 36
+        along = [p[0] * math.cos(angle) + p[1] * math.sin(angle) for p in feet]
+        extents.append(max(along) - min(along))
+    return min(extents) < _ROW * max(extents)
