@@ -39,6 +39,7 @@ class JointSpeed:
     limit_from: str  # urdf, motor or default
     multiple: float  # how many times the limit it may reach before the check fails
     unit: str = "rad/s"  # m/s for a slide
+    unlimited: bool = False  # its servo has no force limit (the URDF gives no effort)
 
     @property
     def exceeds_limit(self) -> bool:
@@ -73,6 +74,11 @@ def joint_speeds(
     # starts the test at qpos0, which may lie outside a joint's range (a knee bent one way):
     # the limit throws such a joint back faster than its line allows, so it keeps the free bound.
     named = {joint for joint, motor in drives.items() if motor.get("motor") != URDF_LIMITS}
+    unlimited = {
+        record["joint"]
+        for record in actuators
+        if record.get("type") == "position" and not record.get("forcerange")
+    }
     result = []
     for joint, speed in sorted(top_speeds.items()):
         limit = urdf_limits.get(joint)
@@ -84,8 +90,26 @@ def joint_speeds(
                 limit, source = DEFAULT_LIMIT.get(kinds.get(joint, "hinge"), 100.0), "default"
         multiple = DRIVEN_MULTIPLE if joint in named else FREE_MULTIPLE
         unit = "m/s" if kinds.get(joint) == "slide" else "rad/s"
-        result.append(JointSpeed(joint, speed, float(limit), source, multiple, unit))
+        result.append(
+            JointSpeed(joint, speed, float(limit), source, multiple, unit, joint in unlimited)
+        )
     return result
+
+
+def _advice(speed: JointSpeed) -> str:
+    """What to give a joint that went past its bound."""
+    if speed.multiple == DRIVEN_MULTIPLE:
+        return "something outside its drive throws it: check its neighbours' gains and force ranges"
+    if speed.unlimited:
+        return (
+            "its servo has no force limit (the URDF gives no effort), so no torque-speed line "
+            "holds it to its velocity: give it its real effort (a rule's forcerange) or its "
+            "drive (a rule's motor: in actuators:)"
+        )
+    return (
+        "give it its real drive (a rule's motor: in actuators:) or its real effort "
+        "(a rule's forcerange), or lower actuators.frequency"
+    )
 
 
 def speed_results(speeds: list[JointSpeed]) -> tuple[dict, list[str]]:
@@ -94,12 +118,7 @@ def speed_results(speeds: list[JointSpeed]) -> tuple[dict, list[str]]:
     failures = [
         f"joint '{s.joint}' reached {s.speed:.3g} {s.unit} under pseudorandom control, more "
         f"than {s.multiple:g} times its velocity limit {s.limit:g} {s.unit} ({s.limit_from}); "
-        + (
-            "something outside its drive throws it: check its neighbours' gains and force ranges"
-            if s.multiple == DRIVEN_MULTIPLE
-            else "give it its real drive (a rule's motor: in actuators:) or its real effort "
-            "(a rule's forcerange), or lower actuators.frequency"
-        )
+        + _advice(s)
         for s in speeds
         if s.fails
     ]

@@ -85,3 +85,13 @@ def test_the_urdf_speed_line_keeps_the_same_joint_near_its_limit(tmp_path):
     assert fastest["joint"] == "hinge" and fastest["speed"] < DRIVEN_MULTIPLE * fastest["limit"]
     model = (tmp_path / "mjcf/r.xml").read_text()
     assert '<dcmotor name="hinge" joint="hinge" input="pos"' in model
+
+
+def test_a_joint_without_an_effort_is_told_its_servo_has_no_line():
+    (speed,) = joint_speeds(
+        {"lift": 6.0}, {"lift": 0.05}, {"lift": "slide"}, [{"joint": "lift", "type": "position"}]
+    )
+    _, failures = speed_results([speed])
+    assert len(failures) == 1
+    assert "no force limit (the URDF gives no effort)" in failures[0]
+    assert "forcerange" in failures[0]
