@@ -47,6 +47,7 @@ from mjcfbuild.steps.payloads import (
     MeshPayload,
     MjcfPartFiles,
     PackagePayload,
+    PagePayload,
     Payload,
     PlanPayload,
     PreviewsPayload,
@@ -76,6 +77,15 @@ PREVIEWS_RECORD = "previews.json"
 TUNING_RECORD = "tuning.json"
 PACKAGE_RECORD = "package.json"
 PACKAGE_FOLDER = "package"  # the Menagerie-grade folder, inside the output folder
+# The report page's files, inside the report folder (mjcfbuild.steps.page writes them).
+PAGE_FILES = (
+    "index.html",
+    "page/mujoco.js",
+    "page/mujoco-wasm.js",
+    "page/model.js",
+    "page/viewer.js",
+    "page/page.css",
+)
 
 
 def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
@@ -132,6 +142,8 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
             tasks.append(_tuning_task(ctx, prefix))
     if ctx.manifest.output.package:
         tasks.append(_package_task(ctx, prefix, checks))
+    if ctx.manifest.output.page:
+        tasks.append(_page_task(ctx, prefix, checks))
     return tasks
 
 
@@ -901,6 +913,48 @@ def _package_task(ctx: BuildContext, prefix: str, checked: bool) -> dict:
             folder / ctx.manifest.robot_file,
             folder / "scene.xml",
         ],
+        after=after,
+    )
+
+
+def _page_task(ctx: BuildContext, prefix: str, checked: bool) -> dict:
+    """The interactive report page (output.page): the model's files and MuJoCo's WebAssembly
+    build bundled beside the report, with the check's tables."""
+    from mjcfbuild.page import web_files
+    from mjcfbuild.page.vendor import INTEGRITY, VERSION
+
+    folder = report_dir(ctx)
+    tuning = checked and ctx.manifest.check.tuning
+    payload = PagePayload(
+        name=ctx.manifest.name,
+        mujoco_js=f"{VERSION} {INTEGRITY}",
+        model=str(ctx.robot_path),
+        scene=str(ctx.scene_path),
+        assembly_report=str(ctx.state(ASSEMBLY_REPORT)),
+        assets=str(ctx.assets_dir),
+        check=str(ctx.state(CHECK_RESULTS)) if checked else None,
+        tuning=str(ctx.state(TUNING_RECORD)) if tuning else None,
+        hold_tolerance=ctx.manifest.check.hold_tolerance,
+        folder=str(folder),
+    )
+    after = [f"{prefix}assemble", f"{prefix}scene"]
+    after += [f"{prefix}check"] if checked else []
+    after += [f"{prefix}tuning"] if tuning else []
+    return _task(
+        ctx,
+        f"{prefix}page",
+        "report page report/index.html",
+        "page",
+        payload,
+        in_worker=False,  # no MuJoCo, no native code: files read, encoded and written
+        file_dep=[
+            ctx.robot_path,
+            ctx.scene_path,
+            ctx.state(ASSEMBLY_REPORT),
+            *(Path(path) for path in (payload.check, payload.tuning) if path),
+            *web_files(),  # the page's template, script and style
+        ],
+        targets=[folder / name for name in PAGE_FILES],
         after=after,
     )
 

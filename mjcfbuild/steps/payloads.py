@@ -419,6 +419,22 @@ class PackagePayload(Payload):
 
 
 @dataclass(frozen=True)
+class PagePayload(Payload):
+    """``page``: the interactive report page (``output.page: true``)."""
+
+    name: str
+    mujoco_js: str  # the pinned @mujoco/mujoco version and its integrity: the page embeds it
+    model: FileDependency
+    scene: FileDependency
+    assembly_report: FileDependency  # lists each asset with its MD5: the assets count through it
+    assets: Annotated[str, NotCounted("the assets' bytes count through the assembly report")]
+    check: OptionalFileDependency  # the check's results, for the tables
+    tuning: OptionalFileDependency  # the tuning report, for its table
+    hold_tolerance: float
+    folder: Output  # the report folder: index.html and page/
+
+
+@dataclass(frozen=True)
 class TrainingPayload(Payload):
     """``training``: the training variant for batched simulation, and its scene."""
 

@@ -1,0 +1,94 @@
+"""Step ``page``: the interactive report page, ``report/index.html`` (``output.page: true``).
+
+The page and the scripts beside it in ``report/page/`` hold everything it needs: MuJoCo's
+WebAssembly build (mjcfbuild.page.vendor), the model's files (scene, model, assets) and the
+report's tables, so it opens from a CI artifact or a local folder with no server or network.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+from pathlib import Path
+
+from mjcfbuild.check.report_page import markdown
+from mjcfbuild.page import WEB
+from mjcfbuild.page.bundle import model_script, mujoco_script, wasm_script
+from mjcfbuild.page.tables import markdown_html
+from mjcfbuild.page.vendor import mujoco_js
+from mjcfbuild.steps.outputs import write_output
+from mjcfbuild.steps.payloads import PagePayload
+
+
+def run(payload: dict) -> dict:
+    """Write ``index.html`` and ``page/`` in the report folder."""
+    request = PagePayload.from_dict(payload)
+    folder = Path(request.folder)
+    web = WEB
+    vendored = mujoco_js()
+    check = _read(request.check)
+    assembly = _read(request.assembly_report)
+    outputs: dict[str, str] = {}
+    tables = markdown_html(markdown(_report(request, check, assembly)))
+    index = (web / "index.html").read_text(encoding="utf-8")
+    index = index.replace("@TITLE@", html.escape(request.name)).replace("@TABLES@", tables)
+    write_output(folder / "index.html", index.encode(), outputs)
+    write_output(folder / "page" / "mujoco.js", mujoco_script(vendored.script), outputs)
+    write_output(folder / "page" / "mujoco-wasm.js", wasm_script(vendored.wasm), outputs)
+    config = {
+        "name": request.name,
+        "hold_tolerance": request.hold_tolerance,
+        "passive": sorted((assembly.get("readiness") or {}).get("passive") or []),
+    }
+    files = _model_files(Path(request.scene), Path(request.model), Path(request.assets))
+    scene = Path(request.scene).name
+    write_output(folder / "page" / "model.js", model_script(files, scene, config), outputs)
+    for name in ("viewer.js", "page.css"):
+        write_output(folder / "page" / name, (web / name).read_bytes(), outputs)
+    return {"outputs": outputs}
+
+
+def _model_files(scene: Path, model: Path, assets: Path) -> dict[str, bytes]:
+    """The scene, the model and every asset, by their paths relative to the output folder."""
+    base = scene.parent
+    files = {scene.name: scene.read_bytes(), model.relative_to(base).as_posix(): model.read_bytes()}
+    if assets.is_dir():
+        for path in sorted(p for p in assets.rglob("*") if p.is_file()):
+            files[path.relative_to(base).as_posix()] = path.read_bytes()
+    return files
+
+
+def _report(request: PagePayload, check: dict, assembly: dict) -> dict:
+    """What ``report_page.markdown`` needs, from this task's inputs only: the tables that
+    describe the model (no build times, cache figures or session warnings, which change from
+    build to build, nor the preview pictures the 3D view replaces)."""
+    return {
+        "robot": request.name,
+        "model": Path(request.model).name,
+        "scene": Path(request.scene).name,
+        "check": check,
+        "repairs": assembly.get("repairs", []),
+        "warnings": [],
+        "bodies": assembly.get("bodies"),
+        "geoms": assembly.get("geoms"),
+        "assets": assembly.get("assets", []),
+        "readiness": assembly.get("readiness") or {},
+        "self_collision": assembly.get("self_collision"),
+        "decompositions": [],
+        "up_axis": [],
+        "times": {},
+        "cache": None,
+        "previews": [],
+        "tuning": _read(request.tuning),
+        "training": None,
+    }
+
+
+def _read(path: str | None) -> dict:
+    if not path:
+        return {}
+    try:
+        data = json.loads(Path(path).read_text())
+    except (OSError, ValueError):
+        return {}
+    return data if isinstance(data, dict) else {}
