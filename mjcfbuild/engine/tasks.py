@@ -143,7 +143,7 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
     if ctx.manifest.output.package:
         tasks.append(_package_task(ctx, prefix, checks))
     if ctx.manifest.output.page:
-        tasks.append(_page_task(ctx, prefix, checks))
+        tasks.append(_page_task(ctx, prefix))
     return tasks
 
 
@@ -917,14 +917,15 @@ def _package_task(ctx: BuildContext, prefix: str, checked: bool) -> dict:
     )
 
 
-def _page_task(ctx: BuildContext, prefix: str, checked: bool) -> dict:
+def _page_task(ctx: BuildContext, prefix: str) -> dict:
     """The interactive report page (output.page): the model's files and MuJoCo's WebAssembly
-    build bundled beside the report, with the check's tables."""
+    build bundled beside the report. The report's tables are not its input: the build writes
+    them with the report (engine/report.py), failed checks included, which a failed check task
+    would stop a task after it from doing."""
     from mjcfbuild.page import web_files
     from mjcfbuild.page.vendor import INTEGRITY, VERSION
 
     folder = report_dir(ctx)
-    tuning = checked and ctx.manifest.check.tuning
     payload = PagePayload(
         name=ctx.manifest.name,
         mujoco_js=f"{VERSION} {INTEGRITY}",
@@ -932,14 +933,9 @@ def _page_task(ctx: BuildContext, prefix: str, checked: bool) -> dict:
         scene=str(ctx.scene_path),
         assembly_report=str(ctx.state(ASSEMBLY_REPORT)),
         assets=str(ctx.assets_dir),
-        check=str(ctx.state(CHECK_RESULTS)) if checked else None,
-        tuning=str(ctx.state(TUNING_RECORD)) if tuning else None,
         hold_tolerance=ctx.manifest.check.hold_tolerance,
         folder=str(folder),
     )
-    after = [f"{prefix}assemble", f"{prefix}scene"]
-    after += [f"{prefix}check"] if checked else []
-    after += [f"{prefix}tuning"] if tuning else []
     return _task(
         ctx,
         f"{prefix}page",
@@ -951,11 +947,10 @@ def _page_task(ctx: BuildContext, prefix: str, checked: bool) -> dict:
             ctx.robot_path,
             ctx.scene_path,
             ctx.state(ASSEMBLY_REPORT),
-            *(Path(path) for path in (payload.check, payload.tuning) if path),
             *web_files(),  # the page's template, script and style
         ],
         targets=[folder / name for name in PAGE_FILES],
-        after=after,
+        after=[f"{prefix}assemble", f"{prefix}scene"],
     )
 
 

@@ -35,7 +35,7 @@ def mujoco_script(module: bytes) -> bytes:
 
 def wasm_script(wasm: bytes) -> bytes:
     """The WebAssembly, gzipped and base64-encoded, as ``window.MJCFBUILD_WASM``."""
-    packed = base64.b64encode(gzip.compress(wasm, compresslevel=9, mtime=0))
+    packed = base64.b64encode(gzip.compress(wasm, compresslevel=6, mtime=0))
     return b'window.MJCFBUILD_WASM = "' + packed + b'";\n'
 
 

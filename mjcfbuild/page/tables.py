@@ -6,6 +6,7 @@ lists, pictures, paragraphs, and inline code.
 from __future__ import annotations
 
 import html
+import json
 import re
 
 _IMAGE = re.compile(r"^!\[([^\]]*)\]\(([^)]+)\)$")
@@ -75,3 +76,12 @@ def _table(rows: list[str]) -> str:
 
 def _inline(text: str) -> str:
     return _CODE.sub(r"<code>\1</code>", html.escape(text, quote=False))
+
+
+def tables_script(report: dict) -> bytes:
+    """The report's tables as ``window.MJCFBUILD_TABLES`` (HTML), for the page. Build times
+    and cache figures are left out: they differ from run to run, the model's tables do not."""
+    from mjcfbuild.check.report_page import markdown
+
+    text = markdown({**report, "times": {}, "cache": None})
+    return f"window.MJCFBUILD_TABLES = {json.dumps(markdown_html(text))};\n".encode()

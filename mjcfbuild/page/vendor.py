@@ -1,8 +1,9 @@
 """MuJoCo's WebAssembly build (``@mujoco/mujoco`` on npm), fetched once into the user cache.
 
 The version is pinned and the tarball is checked against the registry's sha512 ``integrity``
-before it is used, wherever it came from: the registry, the cache, or a copy named by
-``$MJCFBUILD_MUJOCO_JS`` for machines without access to the registry.
+before it is used, wherever it came from: the registry (or the mirror
+``$MJCFBUILD_NPM_REGISTRY`` names), the cache, or a copy named by ``$MJCFBUILD_MUJOCO_JS`` for
+machines without access to a registry.
 """
 
 from __future__ import annotations
@@ -21,8 +22,11 @@ from mjcfbuild.errors import InputError, MjcfbuildError
 
 PACKAGE = "@mujoco/mujoco"
 VERSION = "3.14.0"
-INTEGRITY = "sha512-WPUYidu4Fx8+uM4hQv80SOA0ifpWGrsNJguKs8JBV8SCTxjKQ2/rqsh880nUH0/Vwa8vuefghvCQkkoed3bkUg=="
+INTEGRITY = (  # the registry's `dist.integrity` for VERSION
+    "sha512-WPUYidu4Fx8+uM4hQv80SOA0ifpWGrsNJguKs8JBV8SCTxjKQ2/rqsh880nUH0/Vwa8vuefghvCQkkoed3bkUg=="
+)
 REGISTRY = "https://registry.npmjs.org"
+REGISTRY_SETTING = "MJCFBUILD_NPM_REGISTRY"  # a mirror of the npm registry
 TARBALL = f"mujoco-{VERSION}.tgz"
 LOCAL_COPY = "MJCFBUILD_MUJOCO_JS"  # a path to the tarball, for offline machines
 TIMEOUT = 60.0  # seconds without an answer before the download is given up
@@ -83,8 +87,12 @@ def _tarball() -> Path:
     return cached
 
 
+def _registry() -> str:
+    return (os.environ.get(REGISTRY_SETTING) or REGISTRY).rstrip("/")
+
+
 def _url() -> str:
-    return f"{REGISTRY}/{PACKAGE}/-/{TARBALL}"
+    return f"{_registry()}/{PACKAGE}/-/{TARBALL}"
 
 
 def _download() -> bytes:
@@ -94,7 +102,7 @@ def _download() -> bytes:
     except (urllib.error.URLError, OSError, ValueError) as exc:
         reason = getattr(exc, "reason", None) or exc
         raise MjcfbuildError(
-            f"output.page: cannot download {PACKAGE} {VERSION} from {REGISTRY} ({reason}); "
+            f"output.page: cannot download {PACKAGE} {VERSION} from {_registry()} ({reason}); "
             f"connect to the registry once (the copy is cached), or set {LOCAL_COPY} to a "
             f"copy of {TARBALL} (`npm pack {PACKAGE}@{VERSION}`), or set output.page: false"
         ) from exc

@@ -1,8 +1,9 @@
 """Step ``page``: the interactive report page, ``report/index.html`` (``output.page: true``).
 
 The page and the scripts beside it in ``report/page/`` hold everything it needs: MuJoCo's
-WebAssembly build (mjcfbuild.page.vendor), the model's files (scene, model, assets) and the
-report's tables, so it opens from a CI artifact or a local folder with no server or network.
+WebAssembly build (mjcfbuild.page.vendor) and the model's files (scene, model, assets), so it
+opens from a CI artifact or a local folder with no server or network. The report's tables come
+with the report itself (``page/tables.js``, engine/report.py).
 """
 
 from __future__ import annotations
@@ -11,10 +12,8 @@ import html
 import json
 from pathlib import Path
 
-from mjcfbuild.check.report_page import markdown
 from mjcfbuild.page import WEB
 from mjcfbuild.page.bundle import model_script, mujoco_script, wasm_script
-from mjcfbuild.page.tables import markdown_html
 from mjcfbuild.page.vendor import mujoco_js
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import PagePayload
@@ -24,15 +23,13 @@ def run(payload: dict) -> dict:
     """Write ``index.html`` and ``page/`` in the report folder."""
     request = PagePayload.from_dict(payload)
     folder = Path(request.folder)
-    web = WEB
     vendored = mujoco_js()
-    check = _read(request.check)
     assembly = _read(request.assembly_report)
     outputs: dict[str, str] = {}
-    tables = markdown_html(markdown(_report(request, check, assembly)))
-    index = (web / "index.html").read_text(encoding="utf-8")
-    index = index.replace("@TITLE@", html.escape(request.name)).replace("@TABLES@", tables)
-    write_output(folder / "index.html", index.encode(), outputs)
+    index = (WEB / "index.html").read_text(encoding="utf-8")
+    write_output(
+        folder / "index.html", index.replace("@TITLE@", html.escape(request.name)).encode(), outputs
+    )
     write_output(folder / "page" / "mujoco.js", mujoco_script(vendored.script), outputs)
     write_output(folder / "page" / "mujoco-wasm.js", wasm_script(vendored.wasm), outputs)
     config = {
@@ -44,7 +41,7 @@ def run(payload: dict) -> dict:
     scene = Path(request.scene).name
     write_output(folder / "page" / "model.js", model_script(files, scene, config), outputs)
     for name in ("viewer.js", "page.css"):
-        write_output(folder / "page" / name, (web / name).read_bytes(), outputs)
+        write_output(folder / "page" / name, (WEB / name).read_bytes(), outputs)
     return {"outputs": outputs}
 
 
@@ -58,35 +55,7 @@ def _model_files(scene: Path, model: Path, assets: Path) -> dict[str, bytes]:
     return files
 
 
-def _report(request: PagePayload, check: dict, assembly: dict) -> dict:
-    """What ``report_page.markdown`` needs, from this task's inputs only: the tables that
-    describe the model (no build times, cache figures or session warnings, which change from
-    build to build, nor the preview pictures the 3D view replaces)."""
-    return {
-        "robot": request.name,
-        "model": Path(request.model).name,
-        "scene": Path(request.scene).name,
-        "check": check,
-        "repairs": assembly.get("repairs", []),
-        "warnings": [],
-        "bodies": assembly.get("bodies"),
-        "geoms": assembly.get("geoms"),
-        "assets": assembly.get("assets", []),
-        "readiness": assembly.get("readiness") or {},
-        "self_collision": assembly.get("self_collision"),
-        "decompositions": [],
-        "up_axis": [],
-        "times": {},
-        "cache": None,
-        "previews": [],
-        "tuning": _read(request.tuning),
-        "training": None,
-    }
-
-
-def _read(path: str | None) -> dict:
-    if not path:
-        return {}
+def _read(path: str) -> dict:
     try:
         data = json.loads(Path(path).read_text())
     except (OSError, ValueError):

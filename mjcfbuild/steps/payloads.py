@@ -428,9 +428,7 @@ class PagePayload(Payload):
     scene: FileDependency
     assembly_report: FileDependency  # lists each asset with its MD5: the assets count through it
     assets: Annotated[str, NotCounted("the assets' bytes count through the assembly report")]
-    check: OptionalFileDependency  # the check's results, for the tables
-    tuning: OptionalFileDependency  # the tuning report, for its table
-    hold_tolerance: float
+    hold_tolerance: float  # what the page's hold and stand tests allow
     folder: Output  # the report folder: index.html and page/
 
 

@@ -278,7 +278,7 @@
       joints.push({ id: j, name: name(JOINT, j), adr: model.jnt_qposadr[j], range });
     }
     const { centre, extent } = bounds(model, data);
-    const camera = { target: centre, distance: extent * 3.2 + 0.2, azimuth: -2.4, elevation: 0.4 };
+    const camera = { target: centre, distance: extent * 2.8 + 0.1, azimuth: -0.75, elevation: 0.35 };
     const show = { visual: true, collision: false };
     const draw = makeRenderer($('view'), model, extent);
     let frame = 0;
@@ -461,6 +461,7 @@
   }
 
   async function start() {
+    if (typeof window.MJCFBUILD_TABLES === 'string') $('report').innerHTML = window.MJCFBUILD_TABLES;
     try {
       setState('loading', 'loading MuJoCo...');
       const wasm = await gunzip(bytes(window.MJCFBUILD_WASM));
