@@ -345,11 +345,12 @@
       $('result').textContent = test + ': running...';
       const tick = () => {
         if (running !== state) return;
-        const due = Math.min(total, Math.ceil((performance.now() - state.started) / 1000 / model.opt.timestep));
-        while (state.step < Math.max(due, state.step + 1) && !state.stopped) {
+        // Real time: the steps simulated time has fallen behind the clock by, at least one.
+        const elapsed = (performance.now() - state.started) / 1000;
+        const due = Math.min(total, Math.max(Math.ceil(elapsed / model.opt.timestep), state.step + 1));
+        while (state.step < due && !state.stopped) {
           state.stopped = stepOnce(state.step) === false;
           state.step++;
-          if (state.step >= total) break;
         }
         draw(data, camera, show);
         syncSliders();
