@@ -167,3 +167,54 @@ def test_the_quadruped_stands_in_the_browser(tmp_path, browser):
     result = browser.evaluate(f"Object.assign({{}}, {RESULT})")
     assert (status, result["test"]) == ("pass", "stand"), result
     assert float(result["tilt"]) < 0.2
+
+
+def page_bytes(output: Path) -> dict[str, bytes]:
+    report = output / "report"
+    names = [*PAGE_FILES, "page/tables.js"]
+    return {name: (report / name).read_bytes() for name in names}
+
+
+def test_the_page_is_the_same_bytes_in_another_folder_and_a_rebuild_does_nothing(arm, tmp_path):
+    other = build_with_page(tmp_path, "arm")
+    assert page_bytes(other) == page_bytes(arm)
+    again = run_cli("build", "-v", cwd=other.parent)
+    assert again.code == 0, again.stderr
+    assert " 0 run" in again.stdout + again.stderr
+
+
+def test_a_new_home_pose_rebuilds_the_page_and_turning_it_off_removes_it(tmp_path):
+    output = build_with_page(tmp_path, "arm")
+    before = page_bytes(output)
+    manifest = output.parent / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace("elbow: 1.2", "elbow: 1.0"))
+    result = run_cli("build", cwd=output.parent)
+    assert result.code == 0, result.stderr
+    assert "report page" in result.stdout + result.stderr
+    after = page_bytes(output)
+    changed = {name for name in before if before[name] != after[name]}
+    assert changed == {"page/model.js", "page/tables.js"}  # the model and its home table
+    manifest.write_text(manifest.read_text().replace("  page: true\n", ""))
+    result = run_cli("build", cwd=output.parent)
+    assert result.code == 0, result.stderr
+    assert not (output / "report" / "index.html").exists()
+    assert not (output / "report" / "page").exists()
+    assert (output / "report" / "report.md").is_file()
+
+
+def test_a_registry_out_of_reach_fails_the_build_in_one_line(tmp_path):
+    folder = tmp_path / "arm"
+    shutil.copytree(EXAMPLES / "arm", folder, ignore=shutil.ignore_patterns("mjcf"))
+    manifest = folder / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace("\noutput:\n", "\noutput:\n  page: true\n"))
+    environment = {
+        "MJCFBUILD_CACHE_DIR": str(tmp_path / "empty-cache"),
+        "MJCFBUILD_NPM_REGISTRY": "http://127.0.0.1:9",
+    }
+    result = run_cli("build", cwd=folder, env=environment)
+    assert result.code == 1, result.stderr
+    errors = [line for line in result.stderr.splitlines() if "error" in line]
+    assert len(errors) == 1, result.stderr
+    assert "cannot download @mujoco/mujoco 3.14.0 from http://127.0.0.1:9" in errors[0]
+    assert "MJCFBUILD_MUJOCO_JS" in errors[0]
+    assert "Traceback" not in result.stderr
