@@ -157,7 +157,8 @@ class Browser:
 
 
 def main(argv: list[str]) -> int:
-    """Screenshot a built report page: ``python -m tests.page.chromium OUTPUT_FOLDER PNG``."""
+    """Screenshot a built report page: ``python -m tests.page.chromium OUTPUT_FOLDER PNG
+    [CHECK]``, after playing CHECK (the id of its button: hold, stand, menagerie) if given."""
     folder, picture = Path(argv[0]), Path(argv[1])
     executable = find_chromium()
     if executable is None:
@@ -168,6 +169,11 @@ def main(argv: list[str]) -> int:
         if browser.open(folder / "report" / "index.html") != "ready":
             print(browser.evaluate("window.mjcfbuildPage.error"), file=sys.stderr)
             return 1
+        if len(argv) > 2:
+            browser.evaluate(f"document.getElementById({json.dumps(argv[2])}).click()")
+            browser.wait_for(
+                "['pass', 'fail'].includes(document.getElementById('result').className)"
+            )
         picture.write_bytes(browser.screenshot())
     finally:
         browser.close()
