@@ -84,4 +84,10 @@ def tables_script(report: dict) -> bytes:
     from mjcfbuild.check.report_page import markdown
 
     text = markdown({**report, "times": {}, "cache": None})
-    return f"window.MJCFBUILD_TABLES = {json.dumps(markdown_html(text))};\n".encode()
+    check = report.get("check") or {}
+    # What the build's check measured, which the page shows beside what the browser measures.
+    measured = {key: check[key] for key in ("hold", "stand", "needs_controller") if key in check}
+    return (
+        f"window.MJCFBUILD_TABLES = {json.dumps(markdown_html(text))};\n"
+        f"window.MJCFBUILD_CHECKED = {json.dumps(measured, sort_keys=True)};\n"
+    ).encode()

@@ -49,8 +49,12 @@ def test_the_script_leaves_out_what_changes_from_run_to_run():
         "cache": {"computed": {}, "local_hits": 4},
         "previews": [],
     }
-    script = tables_script(report).decode()
-    assert script.startswith("window.MJCFBUILD_TABLES = ") and script.endswith(";\n")
-    html = json.loads(script.removeprefix("window.MJCFBUILD_TABLES = ").rstrip(";\n"))
+    report["check"] = {"hold": {"max_deviation": 0.01, "joint": "elbow"}, "loads": True}
+    tables, checked = tables_script(report).decode().splitlines()
+    assert tables.startswith("window.MJCFBUILD_TABLES = ") and tables.endswith(";")
+    html = json.loads(tables.removeprefix("window.MJCFBUILD_TABLES = ").rstrip(";"))
+    assert checked == (
+        'window.MJCFBUILD_CHECKED = {"hold": {"joint": "elbow", "max_deviation": 0.01}};'
+    )
     assert "<h2>arm: build report</h2>" in html
     assert "Build times" not in html and "Local cache hits" not in html

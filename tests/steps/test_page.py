@@ -89,14 +89,14 @@ def test_the_page_draws_the_robot(page):
         " return [r.left, r.top, r.right, r.bottom].map(Math.round); })()"
     )
     shown = view()
-    page.evaluate("mjcfbuildPage.show.visual = false; mjcfbuildPage.draw()")
+    page.evaluate("document.getElementById('show-visual').click(); mjcfbuildPage.draw()")
     floor_only = view()
     assert len(np.unique(shown.reshape(-1, 3), axis=0)) > 100  # shaded, not blank
     robot = np.abs(shown - floor_only).sum(axis=2) > 30
     assert robot.mean() > 0.03  # the robot covers a fair part of the view
     height, width = robot.shape
     assert robot[height // 4 : 3 * height // 4, width // 4 : 3 * width // 4].mean() > 0.05
-    page.evaluate("mjcfbuildPage.show.collision = true; mjcfbuildPage.draw()")
+    page.evaluate("document.getElementById('show-collision').click(); mjcfbuildPage.draw()")
     collision = np.abs(view() - floor_only).sum(axis=2) > 30
     assert collision.mean() > 0.03  # the collision geometry, drawn alone
 
@@ -128,6 +128,7 @@ def test_playing_the_hold_test_keeps_the_arm_at_home(page, arm):
     result = page.evaluate(f"Object.assign({{}}, {RESULT})")
     assert status == "pass", result
     assert result["test"] == "hold"
+    assert "the build measured 0.00996" in result["summary"]
     assert float(result["tolerance"]) == 0.05  # check.hold_tolerance's default
     assert float(result["deviation"]) <= 0.05
     # The browser's MuJoCo (3.14, WebAssembly) agrees with the build's check (Python).

@@ -326,8 +326,13 @@
       return found;
     };
     const tilt = () => Math.acos(Math.max(-1, Math.min(1, data.xmat[9 * freeBody + 8])));
+    // What the build's check measured (page/tables.js, written with the report).
+    const checked = window.MJCFBUILD_CHECKED || {};
     function report(test, passed, details) {
       const box = $('result');
+      if (test === 'hold' && checked.hold) details.summary += `; the build measured ${checked.hold.max_deviation.toPrecision(3)}`;
+      if (test === 'stand' && checked.stand && !checked.needs_controller) details.summary += `; the build measured a tilt of ${checked.stand.max_tilt.toFixed(3)} rad`;
+      if (test === 'stand' && checked.needs_controller) details.summary += ` (the build's check: ${checked.needs_controller})`;
       box.dataset.test = test;
       box.dataset.status = passed ? 'pass' : 'fail';
       for (const key of Object.keys(details)) box.dataset[key] = details[key];
