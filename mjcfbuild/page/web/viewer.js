@@ -246,10 +246,10 @@
         high[k] = Math.max(high[k], data.geom_xpos[3 * g + k] + r);
       }
     }
-    if (!isFinite(low[0])) return { centre: [0, 0, 0.5], extent: 1 };
+    if (!isFinite(low[0])) return { centre: [0, 0, 0.5], extent: 1, radius: 1 };
     const centre = [0, 1, 2].map((k) => (low[k] + high[k]) / 2);
-    const extent = Math.max(...[0, 1, 2].map((k) => (high[k] - low[k]) / 2), 0.05);
-    return { centre, extent };
+    const half = [0, 1, 2].map((k) => Math.max((high[k] - low[k]) / 2, 0.02));
+    return { centre, extent: Math.max(...half), radius: Math.hypot(...half) };
   }
 
   function boot(mujoco) {
@@ -277,8 +277,10 @@
         : type === HINGE ? [-Math.PI, Math.PI] : [-0.5, 0.5];
       joints.push({ id: j, name: name(JOINT, j), adr: model.jnt_qposadr[j], range });
     }
-    const { centre, extent } = bounds(model, data);
-    const camera = { target: centre, distance: extent * 2.8 + 0.1, azimuth: -0.75, elevation: 0.35 };
+    const { centre, extent, radius } = bounds(model, data);
+    // About as far as the sphere around the robot (geoms by their bounding spheres, which
+    // overestimate) needs to fit the view's height (45 degrees).
+    const camera = { target: centre, distance: 0.8 * radius / Math.sin(Math.PI / 8), azimuth: -0.75, elevation: 0.35 };
     const show = { visual: true, collision: false };
     const draw = makeRenderer($('view'), model, extent);
     let frame = 0;
