@@ -59,8 +59,9 @@ class Browser:
             "--remote-debugging-port=0",
             "about:blank",
         ]
-        if hasattr(os, "geteuid") and os.geteuid() == 0:
-            args.insert(1, "--no-sandbox")  # Chromium refuses to run its sandbox as root
+        # The pages are our own local files. Chromium's sandbox refuses to run as root, and
+        # where unprivileged user namespaces are off (Ubuntu 24.04's AppArmor) it cannot start.
+        args.insert(1, "--no-sandbox")
         self.process = subprocess.Popen(
             args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True
         )
