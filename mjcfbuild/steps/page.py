@@ -14,6 +14,7 @@ from pathlib import Path
 
 from mjcfbuild.page import WEB
 from mjcfbuild.page.bundle import model_script, mujoco_script, wasm_script
+from mjcfbuild.page.compat import for_wasm
 from mjcfbuild.page.vendor import mujoco_js
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import PagePayload
@@ -46,9 +47,13 @@ def run(payload: dict) -> dict:
 
 
 def _model_files(scene: Path, model: Path, assets: Path) -> dict[str, bytes]:
-    """The scene, the model and every asset, by their paths relative to the output folder."""
+    """The scene, the model (as the page's MuJoCo reads it) and every asset, by their paths
+    relative to the output folder."""
     base = scene.parent
-    files = {scene.name: scene.read_bytes(), model.relative_to(base).as_posix(): model.read_bytes()}
+    files = {
+        scene.name: for_wasm(scene.read_bytes()),
+        model.relative_to(base).as_posix(): for_wasm(model.read_bytes()),
+    }
     if assets.is_dir():
         for path in sorted(p for p in assets.rglob("*") if p.is_file()):
             files[path.relative_to(base).as_posix()] = path.read_bytes()

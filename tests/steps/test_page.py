@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from mjcfbuild.engine.tasks import PAGE_FILES
-from tests.conftest import EXAMPLES, run_cli
+from tests.conftest import EXAMPLES, copy_example, run_cli
 from tests.page.chromium import Browser, find_chromium
 
 RESULT = "document.getElementById('result').dataset"
@@ -25,8 +25,7 @@ RESULT = "document.getElementById('result').dataset"
 
 def build_with_page(top: Path, name: str) -> Path:
     """A copy of ``examples/<name>`` with output.page on, built; its output folder."""
-    folder = top / name
-    shutil.copytree(EXAMPLES / name, folder, ignore=shutil.ignore_patterns("mjcf"))
+    folder = copy_example(name, top)  # with its siblings, which some examples refer to
     manifest = folder / "robot.yaml"
     text = manifest.read_text()
     assert "\noutput:\n  folder: mjcf\n" in text  # where the switch goes
@@ -219,3 +218,20 @@ def test_a_registry_out_of_reach_fails_the_build_in_one_line(tmp_path):
     assert "cannot download @mujoco/mujoco 3.14.0 from http://127.0.0.1:9" in errors[0]
     assert "MJCFBUILD_MUJOCO_JS" in errors[0]
     assert "Traceback" not in result.stderr
+
+
+def test_a_servo_from_an_mjcf_part_loads_in_the_browsers_older_mujoco(tmp_path, browser):
+    # MuJoCo 4.0 writes input="pos" on the part's <position> servo, which 3.14 refuses
+    # (mjcfbuild.page.compat); the hold test agrees with the build's check.
+    folder = build_with_page(tmp_path, "arm_mjcf_gripper")
+    assert b'input="pos"' in (folder / "arm_with_mjcf_hand.xml").read_bytes()
+    state = browser.open(folder / "report" / "index.html")
+    assert state == "ready", browser.evaluate("window.mjcfbuildPage.error")
+    browser.evaluate("document.getElementById('hold').click()")
+    status = browser.wait_for(f"['pass', 'fail'].includes({RESULT}.status) && {RESULT}.status")
+    result = browser.evaluate(f"Object.assign({{}}, {RESULT})")
+    report = json.loads((folder / "report" / "report.json").read_text())
+    assert status == "pass", result
+    assert float(result["deviation"]) == pytest.approx(
+        report["check"]["hold"]["max_deviation"], rel=0.02
+    )
