@@ -45,5 +45,5 @@ def test_the_model_files_are_in_order_whatever_order_they_come_in():
     assert script == model_script(reordered, "scene.xml", {"hold_tolerance": 0.05})
     data = json.loads(script.decode().removeprefix("window.MJCFBUILD_MODEL = ").rstrip(";\n"))
     assert list(data["files"]) == ["assets/a.obj", "assets/b.obj", "scene.xml"]
-    assert base64.b64decode(data["files"]["assets/a.obj"]) == b"v 1 1 1"
+    assert gzip.decompress(base64.b64decode(data["files"]["assets/a.obj"])) == b"v 1 1 1"
     assert (data["scene"], data["config"]) == ("scene.xml", {"hold_tolerance": 0.05})

@@ -29,7 +29,7 @@
     return new Uint8Array(await new Response(stream).arrayBuffer());
   }
 
-  function writeFiles(FS) {
+  async function writeFiles(FS) {
     for (const path of Object.keys(MODEL.files)) {
       const parts = ('model/' + path).split('/');
       let folder = '';
@@ -37,7 +37,7 @@
         folder += '/' + part;
         if (!FS.analyzePath(folder).exists) FS.mkdir(folder);
       }
-      FS.writeFile('/model/' + path, bytes(MODEL.files[path]));
+      FS.writeFile('/model/' + path, await gunzip(bytes(MODEL.files[path])));
     }
   }
 
@@ -253,7 +253,6 @@
   }
 
   function boot(mujoco) {
-    writeFiles(mujoco.FS);
     const model = mujoco.MjModel.from_xml_path('/model/' + MODEL.scene);
     const data = new mujoco.MjData(model);
     const name = (type, id) => mujoco.mj_id2name(model, type, id);
@@ -474,6 +473,7 @@
       setState('loading', 'loading MuJoCo...');
       const wasm = await gunzip(bytes(window.MJCFBUILD_WASM));
       const mujoco = await window.loadMujoco({ wasmBinary: wasm });
+      await writeFiles(mujoco.FS);
       boot(mujoco);
     } catch (error) {
       console.error(error);
