@@ -78,8 +78,10 @@ class Browser:
         except BaseException:
             self._stop()
             raise
+        self.requests: list[str] = []  # every URL the page asked for, in order
         self.send("Page.enable")
         self.send("Runtime.enable")
+        self.send("Network.enable")
 
     def _port(self) -> int:
         """The debugging port Chromium chose, from the file it writes in its profile."""
@@ -95,11 +97,14 @@ class Browser:
         raise RuntimeError("chromium did not open its debugging port")
 
     def send(self, method: str, **params: Any) -> dict:
-        """Call a DevTools method and return its result (events in between are dropped)."""
+        """Call a DevTools method and return its result (of the events in between, only the
+        requests' URLs are kept)."""
         ident = next(self._ids)
         self.socket.send(json.dumps({"id": ident, "method": method, "params": params}))
         while True:
             message = json.loads(self.socket.recv(timeout=WAIT))
+            if message.get("method") == "Network.requestWillBeSent":
+                self.requests.append(message["params"]["request"]["url"])
             if message.get("id") == ident:
                 if "error" in message:
                     raise RuntimeError(f"{method}: {message['error']}")
@@ -128,6 +133,7 @@ class Browser:
 
     def open(self, path: Path) -> str:
         """Load a local file and wait until the page says it is ready (or failed); its state."""
+        self.requests.clear()
         self.send("Page.navigate", url=path.resolve().as_uri())
         state: str = self.wait_for(
             "document.readyState === 'complete' && document.body"

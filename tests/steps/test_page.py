@@ -63,6 +63,17 @@ def page(arm, browser):
     return browser
 
 
+def test_the_page_asks_for_its_own_files_only(page, arm):
+    report = (arm / "report").resolve().as_uri()
+    expected = {f"{report}/index.html"}
+    expected |= {f"{report}/page/{name}" for name in ("page.css", "viewer.js", "tables.js")}
+    expected |= {f"{report}/page/{name}" for name in ("mujoco.js", "mujoco-wasm.js", "model.js")}
+    assert expected <= set(page.requests)
+    assert all(url.startswith((f"{report}/", "data:", "blob:")) for url in page.requests), (
+        page.requests
+    )
+
+
 def test_the_build_writes_the_page_beside_the_report(arm):
     report = arm / "report"
     for name in PAGE_FILES:
