@@ -322,8 +322,14 @@
     const watched = joints.filter((joint) => !passive.has(joint.name));
     const finite = () => data.qpos.every(Number.isFinite) && data.qvel.every(Number.isFinite);
     const warnings = () => {
+      // The vector is MjData's own (deleting it aborts the next read); each element read is a
+      // copy on the WebAssembly heap, deleted here.
       const stats = data.warning, found = [];
-      for (let i = 0; i < stats.size(); i++) if (stats.get(i).number) found.push(i);
+      for (let i = 0; i < stats.size(); i++) {
+        const stat = stats.get(i);
+        if (stat.number) found.push(i);
+        stat.delete();
+      }
       return found;
     };
     const tilt = () => Math.acos(Math.max(-1, Math.min(1, data.xmat[9 * freeBody + 8])));
@@ -351,6 +357,12 @@
       $('result').textContent = test + ': running...';
       const tick = () => {
         if (running !== state) return;
+        try { advance(); } catch (error) {
+          running = null;
+          report(test, false, { summary: `${test} stopped: ${error && error.message ? error.message : error}` });
+        }
+      };
+      const advance = () => {
         // Real time: the steps simulated time has fallen behind the clock by, at least one.
         const elapsed = (performance.now() - state.started) / 1000;
         const due = Math.min(total, Math.max(Math.ceil(elapsed / model.opt.timestep), state.step + 1));
@@ -368,7 +380,7 @@
     const tolerance = CFG.hold_tolerance;
     function holdTest() {
       let worst = 0, worstJoint = '', homeQpos;
-      play('hold home', 1.0, () => { reset(); homeQpos = Array.from(data.qpos); }, () => {
+      play('hold', 1.0, () => { reset(); homeQpos = Array.from(data.qpos); }, () => {
         mujoco.mj_step(model, data);
         for (const joint of watched) {
           const deviation = Math.abs(data.qpos[joint.adr] - homeQpos[joint.adr]);
