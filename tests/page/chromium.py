@@ -40,8 +40,22 @@ def find_chromium() -> str | None:
     """The browser: ``$MJCFBUILD_CHROMIUM``, else the first of NAMES on PATH."""
     explicit = os.environ.get("MJCFBUILD_CHROMIUM")
     if explicit:
-        return explicit
+        return shutil.which(explicit)
     return next((path for name in NAMES if (path := shutil.which(name))), None)
+
+
+def require_chromium() -> str:
+    """The browser for a test; without one the test is skipped, or fails in CI (``CI=true``,
+    where .ci/run installs it)."""
+    import pytest
+
+    executable = find_chromium()
+    if executable is None:
+        reason = "no chromium on PATH (apt-get install chromium, or set MJCFBUILD_CHROMIUM)"
+        if os.environ.get("CI") == "true":
+            pytest.fail(f"CI: {reason}")
+        pytest.skip(reason)
+    return executable
 
 
 class Browser:

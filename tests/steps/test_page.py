@@ -10,7 +10,6 @@ from __future__ import annotations
 import io
 import json
 import math
-import os
 import shutil
 from pathlib import Path
 
@@ -18,7 +17,7 @@ import pytest
 
 from mjcfbuild.engine.tasks import PAGE_FILES
 from tests.conftest import EXAMPLES, copy_example, run_cli
-from tests.page.chromium import Browser, find_chromium
+from tests.page.chromium import Browser, require_chromium
 
 RESULT = "document.getElementById('result').dataset"
 
@@ -44,13 +43,7 @@ def arm(tmp_path_factory) -> Path:
 @pytest.fixture(scope="module")
 def browser():
     """One headless Chromium for the module's tests."""
-    executable = find_chromium()
-    if executable is None:
-        reason = "no chromium on PATH (apt-get install chromium; set MJCFBUILD_CHROMIUM)"
-        if os.environ.get("CI") == "true":
-            pytest.fail(f"CI: {reason}")
-        pytest.skip(reason)
-    running = Browser(executable)
+    running = Browser(require_chromium())
     yield running
     running.close()
 
