@@ -114,7 +114,13 @@
     for (let axis = 0; axis < 3; axis++) for (const sign of [-1, 1]) {
       const u = (axis + 1) % 3, v = (axis + 2) % 3, half = [x, y, z], n = [0, 0, 0];
       n[axis] = sign;
-      const corner = (du, dv) => { const p = [0, 0, 0]; p[axis] = sign * half[axis]; p[u] = du * half[u]; p[v] = dv * half[v]; return p; };
+      const corner = (du, dv) => {
+        const p = [0, 0, 0];
+        p[axis] = sign * half[axis];
+        p[u] = du * half[u];
+        p[v] = dv * half[v];
+        return p;
+      };
       const a = corner(-1, -1), b = corner(1, -1), c = corner(1, 1), d = corner(-1, 1);
       if (sign > 0) { pushTri(out, a, b, c, n, n, n); pushTri(out, a, c, d, n, n, n); }
       else { pushTri(out, a, c, b, n, n, n); pushTri(out, a, d, c, n, n, n); }
@@ -337,8 +343,12 @@
     const checked = window.MJCFBUILD_CHECKED || {};
     function report(test, passed, details) {
       const box = $('result');
-      if (test === 'hold' && checked.hold) details.summary += `; the build measured ${checked.hold.max_deviation.toPrecision(3)}`;
-      if (test === 'stand' && checked.stand && !checked.needs_controller) details.summary += `; the build measured a tilt of ${checked.stand.max_tilt.toFixed(3)} rad`;
+      if (test === 'hold' && checked.hold) {
+        details.summary += `; the build measured ${checked.hold.max_deviation.toPrecision(3)}`;
+      }
+      if (test === 'stand' && checked.stand && !checked.needs_controller) {
+        details.summary += `; the build measured a tilt of ${checked.stand.max_tilt.toFixed(3)} rad`;
+      }
       if (test === 'stand' && checked.needs_controller) details.summary += ` (the build's check: ${checked.needs_controller})`;
       box.dataset.test = test;
       box.dataset.status = passed ? 'pass' : 'fail';
@@ -388,16 +398,24 @@
         }
       }, () => report('hold', worst <= tolerance, {
         deviation: worst, tolerance, joint: worstJoint,
-        summary: `holding home's ctrl for 1 s, the largest joint deviation is ${worst.toPrecision(3)} (${worstJoint}); tolerance ${tolerance}`,
+        summary: `holding home's ctrl for 1 s, the largest joint deviation is `
+          + `${worst.toPrecision(3)} (${worstJoint}); tolerance ${tolerance}`,
       }));
     }
     function floorHeight() {
-      for (let g = 0; g < model.ngeom; g++) if (model.geom_bodyid[g] === 0 && model.geom_type[g] === PLANE) return data.geom_xpos[3 * g + 2];
+      for (let g = 0; g < model.ngeom; g++) {
+        if (model.geom_bodyid[g] === 0 && model.geom_type[g] === PLANE) return data.geom_xpos[3 * g + 2];
+      }
       return 0;
     }
     function standTest() {
       let worst = 0, worstJoint = '', maxTilt = 0, sink = 0, height = 0, homeQpos;
-      play('stand', 5.0, () => { reset(); homeQpos = Array.from(data.qpos); height = data.xpos[3 * freeBody + 2] - floorHeight(); }, () => {
+      const begin = () => {
+        reset();
+        homeQpos = Array.from(data.qpos);
+        height = data.xpos[3 * freeBody + 2] - floorHeight();
+      };
+      play('stand', 5.0, begin, () => {
         mujoco.mj_step(model, data);
         maxTilt = Math.max(maxTilt, tilt());
         sink = Math.max(sink, height - (data.xpos[3 * freeBody + 2] - floorHeight()));
@@ -410,7 +428,9 @@
         const stands = maxTilt <= 0.2 && sink <= 0.1 * Math.max(height, 0) + 0.01 && worst <= tolerance;
         report('stand', stands, {
           deviation: worst, tolerance, tilt: maxTilt, sink, joint: worstJoint,
-          summary: `standing at home for 5 s: base tilted ${maxTilt.toFixed(3)} rad, sank ${(sink * 1000).toFixed(0)} mm; largest joint deviation ${worst.toPrecision(3)} (${worstJoint}); tolerance ${tolerance}`,
+          summary: `standing at home for 5 s: base tilted ${maxTilt.toFixed(3)} rad, `
+            + `sank ${(sink * 1000).toFixed(0)} mm; largest joint deviation `
+            + `${worst.toPrecision(3)} (${worstJoint}); tolerance ${tolerance}`,
         });
       });
     }
@@ -448,7 +468,10 @@
     $('menagerie').hidden = model.nu === 0;
     const canvas = $('view');
     let drag = null;
-    canvas.addEventListener('pointerdown', (e) => { drag = { x: e.clientX, y: e.clientY, pan: e.button !== 0 || e.shiftKey }; canvas.setPointerCapture(e.pointerId); });
+    canvas.addEventListener('pointerdown', (e) => {
+      drag = { x: e.clientX, y: e.clientY, pan: e.button !== 0 || e.shiftKey };
+      canvas.setPointerCapture(e.pointerId);
+    });
     canvas.addEventListener('pointerup', () => { drag = null; });
     canvas.addEventListener('contextmenu', (e) => e.preventDefault());
     canvas.addEventListener('pointermove', (e) => {
@@ -466,17 +489,26 @@
       }
       redraw();
     });
-    canvas.addEventListener('wheel', (e) => { e.preventDefault(); camera.distance *= Math.exp(e.deltaY * 0.001); redraw(); }, { passive: false });
+    canvas.addEventListener('wheel', (e) => {
+      e.preventDefault();
+      camera.distance *= Math.exp(e.deltaY * 0.001);
+      redraw();
+    }, { passive: false });
     window.addEventListener('resize', redraw);
 
     Object.assign(page, {
       mujoco, model, data, camera, show, joints: joints.map((j) => j.name),
       qpos: (joint) => data.qpos[joints.find((j) => j.name === joint).adr],
-      bodyPosition: (body) => { const b = mujoco.mj_name2id(model, 1, body); return Array.from(data.xpos.slice(3 * b, 3 * b + 3)); },
+      bodyPosition: (body) => {
+        const b = mujoco.mj_name2id(model, 1, body);
+        return Array.from(data.xpos.slice(3 * b, 3 * b + 3));
+      },
       draw: () => draw(data, camera, show),
     });
     draw(data, camera, show);
-    setState('ready', `MuJoCo ${mujoco.mj_versionString ? mujoco.mj_versionString() : ''} (WebAssembly): ${model.nbody - 1} bodies, ${joints.length} joints, ${model.nu} actuators`);
+    const version = mujoco.mj_versionString ? mujoco.mj_versionString() : '';
+    setState('ready', `MuJoCo ${version} (WebAssembly): ${model.nbody - 1} bodies, `
+      + `${joints.length} joints, ${model.nu} actuators`);
   }
 
   async function start() {
