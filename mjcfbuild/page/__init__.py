@@ -1,8 +1,9 @@
 """The interactive report page (``report/index.html``, ``output.page: true``).
 
-``vendor`` fetches MuJoCo's WebAssembly build from npm into the user cache, ``bundle`` turns it
-and the model's files into scripts a page opened from ``file://`` can load, ``tables`` renders
-the report's tables, and ``web/`` holds the page's HTML, script and style.
+``vendor`` fetches MuJoCo's WebAssembly build from npm into the user cache, ``compat`` adapts
+the model to that older MuJoCo, ``bundle`` turns both into scripts a page opened from
+``file://`` can load, ``tables`` renders the report's tables, and ``web/`` holds the page's
+HTML, script and style. The step is mjcfbuild.steps.page; docs/page.md describes the page.
 """
 
 from __future__ import annotations
