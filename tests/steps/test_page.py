@@ -239,3 +239,12 @@ def test_a_servo_from_an_mjcf_part_loads_in_the_browsers_older_mujoco(tmp_path, 
     assert float(result["deviation"]) == pytest.approx(
         report["check"]["hold"]["max_deviation"], rel=0.02
     )
+
+
+def test_the_check_command_names_the_page_and_keeps_its_tables(arm):
+    tables = arm / "report" / "page" / "tables.js"
+    before = tables.read_bytes()
+    result = run_cli("check", cwd=arm.parent)
+    assert result.code == 0, result.stderr
+    assert "  page: mjcf/report/index.html" in result.stdout
+    assert tables.read_bytes() == before  # the same checks, the same tables
