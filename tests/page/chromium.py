@@ -18,6 +18,7 @@ import sys
 import tempfile
 import time
 import urllib.request
+import weakref
 from pathlib import Path
 from typing import Any
 
@@ -79,6 +80,8 @@ class Browser:
         self.process = subprocess.Popen(
             args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True
         )
+        # Ended when this Python exits even if nobody called close (a script that failed).
+        weakref.finalize(self, _end, self.process)
         self._ids = itertools.count(1)
         self._stack = contextlib.ExitStack()
         try:
@@ -168,13 +171,20 @@ class Browser:
             self._stop()
 
     def _stop(self) -> None:
-        self.process.terminate()
-        try:
-            self.process.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            self.process.kill()
-            self.process.wait()
+        _end(self.process)
         self.profile.cleanup()
+
+
+def _end(process: subprocess.Popen) -> None:
+    """Terminate the browser (and wait for it), killing it if it does not go."""
+    if process.poll() is not None:
+        return
+    process.terminate()
+    try:
+        process.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        process.wait()
 
 
 def main(argv: list[str]) -> int:
