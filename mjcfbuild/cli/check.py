@@ -224,6 +224,8 @@ def _manifest(ctx, args) -> int:
     folder = write_report(ctx, [])
     code = _print(report, ctx.label(ctx.robot_path))
     print(f"  report: {ctx.label(folder / 'report.md')}")
+    if (folder / "index.html").is_file():  # output.page: its tables are the report's
+        print(f"  page: {ctx.label(folder / 'index.html')}")
     if args.warp:
         from mjcfbuild.check.warp import check_in_warp
 

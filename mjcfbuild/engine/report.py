@@ -10,6 +10,7 @@ so its folder ignores itself in git.
 from __future__ import annotations
 
 import json
+import shutil
 from pathlib import Path
 
 from mjcfbuild.check.report_page import markdown
@@ -84,7 +85,22 @@ def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
         folder / "report.json", (json.dumps(report, indent=1, sort_keys=True) + "\n").encode()
     )
     write_if_changed(folder / "report.md", markdown(report).encode())
+    _page_tables(ctx, folder, report)
     return folder
+
+
+def _page_tables(ctx: BuildContext, folder: Path, report: dict) -> None:
+    """The report page's tables (output.page), written with the report so that a failed
+    check shows there too; without output.page, the page a build left earlier goes."""
+    if ctx.manifest.output.page:
+        from mjcfbuild.page.tables import tables_script
+
+        (folder / "page").mkdir(exist_ok=True)
+        write_if_changed(folder / "page" / "tables.js", tables_script(report))
+        return
+    (folder / "index.html").unlink(missing_ok=True)
+    if (folder / "page").is_dir():
+        shutil.rmtree(folder / "page")
 
 
 def decompositions(ctx: BuildContext) -> list[dict]:

@@ -47,6 +47,7 @@ from mjcfbuild.steps.payloads import (
     MeshPayload,
     MjcfPartFiles,
     PackagePayload,
+    PagePayload,
     Payload,
     PlanPayload,
     PreviewsPayload,
@@ -76,6 +77,15 @@ PREVIEWS_RECORD = "previews.json"
 TUNING_RECORD = "tuning.json"
 PACKAGE_RECORD = "package.json"
 PACKAGE_FOLDER = "package"  # the Menagerie-grade folder, inside the output folder
+# The report page's files, inside the report folder (mjcfbuild.steps.page writes them).
+PAGE_FILES = (
+    "index.html",
+    "page/mujoco.js",
+    "page/mujoco-wasm.js",
+    "page/model.js",
+    "page/viewer.js",
+    "page/page.css",
+)
 
 
 def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
@@ -132,6 +142,8 @@ def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True)
             tasks.append(_tuning_task(ctx, prefix))
     if ctx.manifest.output.package:
         tasks.append(_package_task(ctx, prefix, checks))
+    if ctx.manifest.output.page:
+        tasks.append(_page_task(ctx, prefix))
     return tasks
 
 
@@ -902,6 +914,43 @@ def _package_task(ctx: BuildContext, prefix: str, checked: bool) -> dict:
             folder / "scene.xml",
         ],
         after=after,
+    )
+
+
+def _page_task(ctx: BuildContext, prefix: str) -> dict:
+    """The interactive report page (output.page): the model's files and MuJoCo's WebAssembly
+    build bundled beside the report. The report's tables are not its input: the build writes
+    them with the report (engine/report.py), failed checks included, which a failed check task
+    would stop a task after it from doing."""
+    from mjcfbuild.page import web_files
+    from mjcfbuild.page.vendor import INTEGRITY, VERSION
+
+    folder = report_dir(ctx)
+    payload = PagePayload(
+        name=ctx.manifest.name,
+        mujoco_js=f"{VERSION} {INTEGRITY}",
+        model=str(ctx.robot_path),
+        scene=str(ctx.scene_path),
+        assembly_report=str(ctx.state(ASSEMBLY_REPORT)),
+        assets=str(ctx.assets_dir),
+        hold_tolerance=ctx.manifest.check.hold_tolerance,
+        folder=str(folder),
+    )
+    return _task(
+        ctx,
+        f"{prefix}page",
+        "report page report/index.html",
+        "page",
+        payload,
+        in_worker=False,  # no MuJoCo, no native code: files read, encoded and written
+        file_dep=[
+            ctx.robot_path,
+            ctx.scene_path,
+            ctx.state(ASSEMBLY_REPORT),
+            *web_files(),  # the page's template, script and style
+        ],
+        targets=[folder / name for name in PAGE_FILES],
+        after=[f"{prefix}assemble", f"{prefix}scene"],
     )
 
 

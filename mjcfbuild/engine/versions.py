@@ -26,6 +26,7 @@ STEP_FORMATS = {
     "mjcfpart": 1,
     "package": 2,  # 2: <dcmotor> gains rounded and shared in classes
     "training": 5,
+    "page": 1,
 }
 
 STEP_TOOLS = {
@@ -46,6 +47,7 @@ STEP_TOOLS = {
     "mjcfpart": ("mujoco", "lxml"),
     "package": ("mujoco", "numpy", "lxml"),
     "training": ("mujoco", "numpy", "scipy", "trimesh", "lxml"),
+    "page": (),
 }
 
 

@@ -595,6 +595,15 @@ class Output(StrictModel):
             "LICENSE, a CHANGELOG kept across builds and '<name>.png'."
         ),
     )
+    page: bool = Field(
+        False,
+        description=(
+            "Also write the interactive report page, '<folder>/report/index.html': the robot in "
+            "3D with joint sliders and the checks played in MuJoCo's WebAssembly build, which "
+            "the first build downloads from npm (about 5.5 MB, cached); it opens from file:// "
+            "with no server or network. docs/review.md says more."
+        ),
+    )
     urdf: UrdfExport | FileName | None = Field(
         None,
         description=(

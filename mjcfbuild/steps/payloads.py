@@ -419,6 +419,20 @@ class PackagePayload(Payload):
 
 
 @dataclass(frozen=True)
+class PagePayload(Payload):
+    """``page``: the interactive report page (``output.page: true``)."""
+
+    name: str
+    mujoco_js: str  # the pinned @mujoco/mujoco version and its integrity: the page embeds it
+    model: FileDependency
+    scene: FileDependency
+    assembly_report: FileDependency  # lists each asset with its MD5: the assets count through it
+    assets: Annotated[str, NotCounted("the assets' bytes count through the assembly report")]
+    hold_tolerance: float  # what the page's hold and stand tests allow
+    folder: Output  # the report folder: index.html and page/
+
+
+@dataclass(frozen=True)
 class TrainingPayload(Payload):
     """``training``: the training variant for batched simulation, and its scene."""
 
