@@ -245,7 +245,7 @@ def _motor(actuator: dict) -> str:
     if not motor:
         return ""
     if motor["motor"] == URDF_LIMITS:
-        return ", speed line from URDF limits"
+        return ", URDF speed line"
     return f", motor {motor['motor']}"
 
 
