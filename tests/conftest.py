@@ -22,12 +22,20 @@ def pytest_configure(config):
 
     if "MJCFBUILD_CACHE_DIR" not in os.environ:
         os.environ["MJCFBUILD_CACHE_DIR"] = tempfile.mkdtemp(prefix="mjcfbuild-test-cache-")
+        config._mjcfbuild_cache = os.environ["MJCFBUILD_CACHE_DIR"]
     # Every build starts its own workers: a worker that stayed after one test's build would
     # serve the next test's. tests/engine/test_resident.py turns them on where it tests them.
     os.environ["MJCFBUILD_RESIDENT_WORKERS"] = "0"
     from tests.fuzzing import load_profile
 
     load_profile()  # property tests: deterministic unless MJCFBUILD_FUZZ asks for a long run
+
+
+def pytest_unconfigure(config):
+    """Remove the cache this session made (a session of the page tests leaves 5 MB in it)."""
+    made = getattr(config, "_mjcfbuild_cache", None)
+    if made:
+        shutil.rmtree(made, ignore_errors=True)
 
 
 @dataclass
