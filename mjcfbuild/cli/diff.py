@@ -59,7 +59,8 @@ def add_parser(commands) -> None:
     parser.add_argument(
         "--write",
         metavar="FOLDER",
-        help="also write diff.md, diff.json and the changed pictures side by side there",
+        help="also write diff.md, diff.json and the changed pictures side by side there, and "
+        "(where the new side has output.page) its report page with the changes, index.html",
     )
     parser.add_argument(
         "--scratch",
@@ -170,12 +171,16 @@ def _print(diff, sides, form: str) -> None:
 
 def _write(diff, sides, folder: Path) -> None:
     from mjcfbuild.diff import render
+    from mjcfbuild.diff.page import write_page
     from mjcfbuild.errors import OutputError
 
     try:
         folder.mkdir(parents=True, exist_ok=True)
         pictures = render.side_by_side(diff, sides, folder)
-        (folder / "diff.md").write_text(render.markdown(diff, sides, pictures))
+        text = render.markdown(diff, sides, pictures)
+        (folder / "diff.md").write_text(text)
         (folder / "diff.json").write_text(render.as_json(diff, sides))
+        if write_page(folder, sides, text):
+            print(f"mjcfbuild diff: page {folder / 'index.html'}", file=sys.stderr)
     except OSError as error:
         raise OutputError(f"cannot write the diff: {error.strerror}", file=str(folder)) from None

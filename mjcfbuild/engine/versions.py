@@ -26,7 +26,7 @@ STEP_FORMATS = {
     "mjcfpart": 1,
     "package": 2,  # 2: <dcmotor> gains rounded and shared in classes
     "training": 5,
-    "page": 1,
+    "page": 2,  # 2: bold, pictures and quotes in the tables; the diff's changes section
 }
 
 STEP_TOOLS = {

@@ -1,6 +1,6 @@
 """The report's tables for the page: ``report.md``'s Markdown (mjcfbuild.check.report_page)
-turned into HTML. Only what that page writes is understood: headings, pipe tables, bullet
-lists, pictures, paragraphs, and inline code.
+turned into HTML, and ``mjcfbuild diff``'s (mjcfbuild.diff.render). Only what those write is
+understood: headings, pipe tables, bullet lists, pictures, paragraphs, bold and inline code.
 """
 
 from __future__ import annotations
@@ -11,6 +11,8 @@ import re
 
 _IMAGE = re.compile(r"^!\[([^\]]*)\]\(([^)]+)\)$")
 _CODE = re.compile(r"`([^`]+)`")
+_BOLD = re.compile(r"\*\*([^*]+)\*\*")
+_INLINE_IMAGE = re.compile(r"!\[([^\]]*)\]\(([^)\s]+)\)")
 
 
 def markdown_html(text: str) -> str:
@@ -75,7 +77,9 @@ def _table(rows: list[str]) -> str:
 
 
 def _inline(text: str) -> str:
-    return _CODE.sub(r"<code>\1</code>", html.escape(text, quote=False))
+    escaped = _CODE.sub(r"<code>\1</code>", html.escape(text, quote=True))
+    escaped = _BOLD.sub(r"<strong>\1</strong>", escaped)
+    return _INLINE_IMAGE.sub(r'<img alt="\1" src="\2">', escaped)
 
 
 def tables_script(report: dict) -> bytes:

@@ -513,6 +513,10 @@
 
   async function start() {
     if (typeof window.MJCFBUILD_TABLES === 'string') $('report').innerHTML = window.MJCFBUILD_TABLES;
+    // mjcfbuild diff --write puts what changed since the base revision above the tables.
+    if (typeof window.MJCFBUILD_CHANGES === 'string') {
+      $('report').insertAdjacentHTML('afterbegin', '<section id="changes">' + window.MJCFBUILD_CHANGES + '</section>');
+    }
     try {
       setState('loading', 'loading MuJoCo...');
       const wasm = await gunzip(bytes(window.MJCFBUILD_WASM));
