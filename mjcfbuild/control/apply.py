@@ -185,7 +185,10 @@ def make_ready(
         if record.source != "user":
             etree.SubElement(section, record.type, _attributes(record))
         if record.armature is not None and record.joint in joints:
-            joints[record.joint].set("armature", output_list([record.armature]))
+            # Added to what the joint has (its URDF's or a default class's), which the inertia
+            # the gains were sized for already holds.
+            own = _joint_armature(model, record.joint)
+            joints[record.joint].set("armature", output_list([own + record.armature]))
     _fill_user_records(readiness, root)
 
     if _has_key(root, HOME):
@@ -352,6 +355,14 @@ def _match_mirrored(model, data, records: list[ActuatorRecord]) -> None:
                 continue
             setattr(first, attribute, max(values))
             setattr(second, attribute, max(values))
+
+
+def _joint_armature(model, joint: str) -> float:
+    """The armature ``joint`` has in the compiled model (0 if it is not there)."""
+    import mujoco
+
+    index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint)
+    return float(model.dof_armature[model.jnt_dofadr[index]]) if index >= 0 else 0.0
 
 
 def _set_dynamics(element, choice: ActuatorChoice) -> None:

@@ -171,3 +171,13 @@ def test_the_pendulum_rings_at_the_frequency_and_damping_asked_for(tmp_path):
     measured_frequency = 1 / period / math.sqrt(1 - measured_ratio**2)
     assert measured_frequency == pytest.approx(frequency, rel=0.1)
     assert measured_ratio == pytest.approx(ratio, rel=0.1)
+
+
+def test_the_speed_lines_rotor_adds_to_the_armature_the_joint_has(tmp_path):
+    model = load(
+        build_two_link(
+            tmp_path, "mujoco_inputs:\n  raw: '<default><joint armature=\"0.05\"/></default>'\n"
+        )
+    )
+    joint = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "hinge")
+    assert model.dof_armature[model.jnt_dofadr[joint]] == pytest.approx(0.05 + 10 / 1 * 0.002)
