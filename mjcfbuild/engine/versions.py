@@ -25,7 +25,7 @@ STEP_FORMATS = {
     "compose": 2,  # 2: the origins of the composed lines
     "mjcfpart": 1,
     "package": 1,
-    "training": 5,
+    "training": 6,
 }
 
 STEP_TOOLS = {
