@@ -285,13 +285,13 @@ def main() -> None:
     parser.add_argument("--worlds", type=int, help="default 512 (or the exported folder's)")
     parser.add_argument("--steps", type=int, help="default 50 (or the exported folder's)")
     parser.add_argument("--device", default="cpu")
-    parser.add_argument("--rounds", type=int, help="best of this many runs each (default 2)")
+    parser.add_argument("--rounds", type=int, help="best of this many runs each (default 3)")
     where = parser.add_mutually_exclusive_group()
     where.add_argument("--export", metavar="DIR", help="write the scenes to measure to DIR")
     where.add_argument("--from", dest="source", metavar="DIR", help="measure an exported DIR")
     args = parser.parse_args()
     given = {"worlds": args.worlds, "steps": args.steps, "rounds": args.rounds}
-    settings = {"worlds": 512, "steps": 50, "rounds": 2}
+    settings = {"worlds": 512, "steps": 50, "rounds": 3}
     with tempfile.TemporaryDirectory() as scratch:
         if args.source:
             exported, plan = unpacked(Path(args.source), Path(scratch))

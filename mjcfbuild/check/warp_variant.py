@@ -177,7 +177,7 @@ SIZING_MARGIN = 2  # buffers this many times the most seen
 def sizes(model, data, ctrl, steps: int) -> tuple[int, int]:
     """Contacts and constraint rows to allocate per world in Warp: twice the most that
     the first SIZING_WORLDS worlds reach in MuJoCo (C) over the same steps with the same
-    ctrl, and at least Warp's own floor at home. Warp launches its contact and solver
+    ctrl, and at least 8 contacts and 16 rows. Warp launches its contact and solver
     kernels over the whole allocation (its defaults, 48 contacts and 64 rows for these
     robots, are sized for any model), so every scene measured is sized by this one rule:
     the figures compare the models, not the allocations."""

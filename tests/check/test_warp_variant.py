@@ -117,3 +117,26 @@ def test_the_bench_measures_an_exported_folder_without_the_build_dependencies(tm
     assert "MuJoCo Warp on cpu (" in result.stdout and "4 worlds, 3 steps" in result.stdout
     assert "| arm | full model |" in result.stdout and "| arm | training variant |" in result.stdout
     assert "- arm variant in Warp: holds home for 1 s" in result.stdout
+
+
+def test_warp_buffers_are_sized_from_what_the_scene_reaches(tmp_path):
+    import mujoco
+
+    from mjcfbuild.check.warp_variant import _home, measure, noisy_ctrl, sizes
+
+    folder = with_training(tmp_path, "quadruped")
+    scene = str(folder / "mjcf" / "scene.xml")
+    model = mujoco.MjModel.from_xml_path(scene)
+    data = _home(model)
+    ctrl = noisy_ctrl(model, data, 4, 0.1)
+    nconmax, njmax = sizes(model, data, ctrl, 20)
+    # Each of the worlds, stepped the same way, stays within half of each buffer.
+    for row in ctrl:
+        rollout = _home(model)
+        rollout.ctrl[:] = row
+        for _ in range(20):
+            mujoco.mj_step(model, rollout)
+            assert 2 * rollout.ncon <= nconmax and 2 * rollout.nefc <= njmax
+    assert nconmax >= max(8, 2 * data.ncon) and njmax >= max(16, 2 * data.nefc)
+    figures = measure(scene, worlds=4, steps=19)
+    assert (figures.nconmax, figures.njmax) == (nconmax, njmax) and figures.finite
