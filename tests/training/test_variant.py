@@ -231,6 +231,7 @@ def test_meshes_become_primitives_or_hulls_under_the_cap(tmp_path):
         ("  training:\n    floor_contacts:\n      add: [no_such_link]\n", "robot.yaml:18:"),
         ("  training:\n    iterations: 0\n", "robot.yaml:17:"),
         ("  training:\n    timestep: -0.001\n", "robot.yaml:17:"),
+        ("  training:\n    solver: pgs\n", "robot.yaml:17:"),
     ],
 )
 def test_bad_settings_are_one_line_with_the_robot_yaml_line_and_exit_3(tmp_path, settings, where):
