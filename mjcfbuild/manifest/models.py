@@ -563,8 +563,8 @@ class TrainingVariant(StrictModel):
             "many times the geometry's convex hull; otherwise a capped hull does."
         ),
     )
-    iterations: int = Field(4, ge=1, le=1000, description="Constraint solver iterations.")
-    ls_iterations: int = Field(8, ge=1, le=1000, description="Line search iterations.")
+    iterations: int = Field(2, ge=1, le=1000, description="Constraint solver iterations.")
+    ls_iterations: int = Field(4, ge=1, le=1000, description="Line search iterations.")
     solver: Literal["cg", "newton"] = Field(
         "cg",
         description=(

@@ -51,8 +51,8 @@ class VariantSettings:
     self_contacts: bool = False
     max_hull_vertices: int = 16
     primitive_fit: float = 2.0
-    iterations: int = 4
-    ls_iterations: int = 8
+    iterations: int = 2
+    ls_iterations: int = 4
     solver: str = "cg"  # MuJoCo's name, lower case: cg or newton
     timestep: float | None = None
     frictionloss: bool = False

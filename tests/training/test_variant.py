@@ -68,7 +68,7 @@ def test_variant_and_scene_beside_the_model_and_only_its_task_reruns(tmp_path):
     out = folder / "mjcf"
     scene = mujoco.MjModel.from_xml_path(str(out / "scene_mjx.xml"))
     assert b'file="example_quadruped_mjx.xml"' in (out / "scene_mjx.xml").read_bytes()
-    assert scene.opt.iterations == 4 and scene.opt.ls_iterations == 8
+    assert scene.opt.iterations == 2 and scene.opt.ls_iterations == 4
     # The shin mesh is only drawn (the legs collide with authored primitives): an edit to it
     # leaves the variant, which refers to the same asset file, as it is.
     nudge(folder / "meshes" / "shin.stl")
@@ -342,7 +342,7 @@ def test_a_user_scene_file_includes_the_variant_in_its_scene(tmp_path):
     build(folder)
     scene = (folder / "mjcf" / "scene_mjx.xml").read_text()
     assert scene == USER_SCENE.replace("example_quadruped.xml", "example_quadruped_mjx.xml")
-    assert mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "scene_mjx.xml")).opt.iterations == 4
+    assert mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "scene_mjx.xml")).opt.iterations == 2
     # A scene file that does not include the model by its file name: one line, exit 4.
     (folder / "my_scene.xml").write_text(USER_SCENE.replace("example_quadruped.xml", "robot.xml"))
     result = run_cli("build", "--no-check", str(folder / "robot.yaml"))
