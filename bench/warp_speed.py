@@ -1,6 +1,8 @@
 """MuJoCo Warp throughput of the full model, the training variant and a hand-tuned model.
 
     python bench/warp_speed.py [--robots go1,g1,panda] [--worlds 512] [--steps 50] [--device cpu]
+    python bench/warp_speed.py --export DIR     # build here; write the scenes to measure to DIR
+    python bench/warp_speed.py --from DIR --device cuda   # measure them on another machine
 
 Each robot is built from a bare robot.yaml with ``output.training: true``. The hand-tuned
 training models are mjlab's asset zoo (go1, g1; from the mjlab wheel on PyPI, unpacked into
@@ -14,23 +16,30 @@ model. Every scene is stepped the same way (``mjcfbuild.check.warp_variant.measu
 same worlds, steps and noise on ``ctrl``, in one run, best of ``--rounds`` with the models
 taking turns (the machine is shared); the variant's behaviour at home (5 s
 standing, or 1 s holding) is checked in Warp too.
+
+``--export DIR`` writes every scene, the files it reads (model, meshes) and ``bench.json``
+(what to measure, and how) to ``DIR``, the files packed in ``scenes.tar.xz`` (about 15 MB for
+the three robots); ``--from DIR`` measures them on a machine that has only mujoco,
+mujoco_warp, warp-lang and numpy (no build dependencies, no network) and prints the same
+table with the device's name.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import re
 import sys
+import tarfile
 import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-import mjcfbuild
-from bench import robot_data
-from bench.sim_speed import hand_tuned_model
-from mjcfbuild.check.warp_variant import behaviour, measure
+PLAN = "bench.json"
+ARCHIVE = "scenes.tar.xz"
+HOLD_TOLERANCE = 0.05  # rad: a fixed robot's joints from home in the 1 s hold
 
 # mjlab 1.6.0's constants (asset_zoo/robots/unitree_*/..._constants.py): base height, joint
 # angles by pattern, and position gains (go1's from its rotor inertia at 10 Hz; g1's a
@@ -68,6 +77,9 @@ MJLAB_FEET = {"go1": r"^[FR][LR]_foot_collision$", "g1": r"^(left|right)_foot[1-
 
 def built(name: str, scratch: Path) -> tuple[Path, Path]:
     """The full scene and the variant's scene of ``name`` built from a bare robot.yaml."""
+    import mjcfbuild
+    from bench import robot_data
+
     robot = robot_data.ROBOTS[name]
     urdf = robot_data.unpack(robot)
     extra = "output:\n  training: true\n"
@@ -76,9 +88,11 @@ def built(name: str, scratch: Path) -> tuple[Path, Path]:
     return result.scene, result.scene.parent / "scene_mjx.xml"
 
 
-def mjlab_scene(name: str, scratch: Path, feet_only: bool, iterations: int, ls: int) -> Path:
+def mjlab_scene(name: str, scratch: Path, feet_only: bool, solver) -> Path:
     """mjlab's model of ``name`` on a floor, with home, actuators and solver settings."""
     import mujoco
+
+    from bench.sim_speed import hand_tuned_model
 
     shipped = hand_tuned_model(name, scratch)  # a scene that includes the zoo's XML
     model_file = shipped.parent / f"{name}.xml"
@@ -106,63 +120,197 @@ def mjlab_scene(name: str, scratch: Path, feet_only: bool, iterations: int, ls: 
                 on_floor = bool(re.match(MJLAB_FEET[name], geom.name or ""))
                 geom.contype, geom.conaffinity = 0, int(on_floor)
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST  # mjlab's, and ours
-    spec.option.iterations = iterations
-    spec.option.ls_iterations = ls
+    spec.option.solver = solver.solver  # the variant's solver settings: what differs is the model
+    spec.option.iterations = solver.iterations
+    spec.option.ls_iterations = solver.ls_iterations
     path = model_file.parent / f"bench_warp_{name}_{'feet' if feet_only else 'shipped'}.xml"
     path.write_text(spec.to_xml())
     return path
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--robots", default="go1,g1,panda")
-    parser.add_argument("--worlds", type=int, default=512)
-    parser.add_argument("--steps", type=int, default=50)
-    parser.add_argument("--device", default="cpu")
-    parser.add_argument("--rounds", type=int, default=2, help="best of this many runs each")
-    args = parser.parse_args()
-    rows = []
-    with tempfile.TemporaryDirectory() as scratch:
-        os.environ.setdefault("MJCFBUILD_CACHE_DIR", str(Path(scratch) / "cache"))
-        for name in args.robots.split(","):
-            full, variant = built(name, Path(scratch))
-            import mujoco
+def planned(names: list[str], scratch: Path) -> list[dict]:
+    """Build each robot and write mjlab's scenes: for each robot, the scenes to measure
+    (label, path) and the variant's scene, whose behaviour is checked."""
+    import mujoco
 
-            solver = mujoco.MjModel.from_xml_path(str(variant)).opt
-            scenes = [("full model", full), ("training variant", variant)]
-            if name in MJLAB_HOME:
-                for feet_only, label in ((False, "mjlab, as shipped"), (True, "mjlab, feet only")):
-                    path = mjlab_scene(
-                        name, Path(scratch), feet_only, solver.iterations, solver.ls_iterations
-                    )
-                    scenes.append((label, path))
-            figures: dict = {}
-            for _ in range(args.rounds):  # best of rounds, the models taking turns
-                for label, path in scenes:
-                    result = measure(str(path), args.worlds, args.steps, device=args.device)
-                    best = figures.get(label)
-                    if best is None or result.steps_per_second > best.steps_per_second:
-                        figures[label] = result
-            line, failure = behaviour(str(variant), 0.05, args.device)
-            rows.append((name, figures, line + (f" (FAILS: {failure})" if failure else "")))
-            print(f"measured {name}", file=sys.stderr)
-    print(
-        f"MuJoCo Warp on {args.device}: {args.worlds} worlds, {args.steps} steps, noise on ctrl\n"
-    )
-    print("| robot | model | collision geoms | contact pairs | finite | steps/s | vs full |")
-    print("|---|---|---:|---:|---|---:|---:|")
+    plan = []
+    for name in names:
+        full, variant = built(name, scratch)
+        solver = mujoco.MjModel.from_xml_path(str(variant)).opt
+        scenes = [("full model", full), ("training variant", variant)]
+        if name in MJLAB_HOME:
+            for feet_only, label in ((False, "mjlab, as shipped"), (True, "mjlab, feet only")):
+                scenes.append((label, mjlab_scene(name, scratch, feet_only, solver)))
+        listed = [[label, str(path)] for label, path in scenes]
+        plan.append({"robot": name, "scenes": listed, "variant": str(variant)})
+    return plan
+
+
+def read_files(scene: Path) -> set[Path]:
+    """The files loading ``scene`` reads: itself, the files it includes, and the meshes,
+    textures and height fields of the model they make."""
+    import mujoco
+
+    found = {scene.resolve()}
+    for included in re.findall(r'<include\s+file="([^"]+)"', scene.read_text()):
+        found |= read_files(scene.parent / included)
+    spec = mujoco.MjSpec.from_file(str(scene))
+    for assets, folder in (
+        (spec.meshes, spec.meshdir),
+        (spec.hfields, ""),
+        (spec.textures, spec.texturedir),
+    ):
+        for asset in assets:
+            if asset.file:
+                found.add((scene.parent / (folder or "") / asset.file).resolve())
+    return found
+
+
+def _packed(robot: str, scene: str, names: dict, members: dict) -> str:
+    """``scene``'s path in the archive (``<robot>/<its folder's name>/<file>``), its folder
+    named in ``names`` and the files it reads added to ``members`` (archive name -> path)."""
+    path = Path(scene).resolve()
+    if path.parent not in names:
+        name = f"{robot}/{path.parent.name}"
+        while name in names.values():
+            name += "_"
+        names[path.parent] = name
+    root = names[path.parent]
+    for read in read_files(path):
+        members[f"{root}/{read.relative_to(path.parent)}"] = read
+    return f"{root}/{path.name}"
+
+
+def export(plan: list[dict], folder: Path, settings: dict) -> Path:
+    """Write ``plan``'s scenes and every file they read to ``folder``, packed in ARCHIVE,
+    with PLAN naming them by their path in the archive; the archive's path."""
+    members: dict[str, Path] = {}
+    moved = []
+    for robot in plan:
+        names: dict[Path, str] = {}
+        name = robot["robot"]
+        scenes = [[label, _packed(name, scene, names, members)] for label, scene in robot["scenes"]]
+        variant = _packed(name, robot["variant"], names, members)
+        moved.append({"robot": name, "scenes": scenes, "variant": variant})
+    folder.mkdir(parents=True, exist_ok=True)
+    archive = folder / ARCHIVE
+    with tarfile.open(archive, "w:xz") as packed:
+        for member, path in sorted(members.items()):
+            packed.add(path, arcname=member, recursive=False)
+    document = {**settings, "hold_tolerance": HOLD_TOLERANCE, "robots": moved}
+    (folder / PLAN).write_text(json.dumps(document, indent=1) + "\n")
+    return archive
+
+
+def unpacked(folder: Path, into: Path) -> tuple[dict, list[dict]]:
+    """An exported folder's settings and plan, its scenes unpacked under ``into``."""
+    document = json.loads((folder / PLAN).read_text())
+    with tarfile.open(folder / ARCHIVE) as packed:
+        if hasattr(tarfile, "data_filter"):  # Python 3.12, and 3.8.17+ / 3.11.4+ backports
+            packed.extractall(into, filter="data")
+        else:
+            packed.extractall(into)
+    plan = [
+        {
+            "robot": robot["robot"],
+            "scenes": [[label, str(into / scene)] for label, scene in robot["scenes"]],
+            "variant": str(into / robot["variant"]),
+        }
+        for robot in document.pop("robots")
+    ]
+    return document, plan
+
+
+def measured(plan: list[dict], worlds: int, steps: int, rounds: int, device: str, hold: float):
+    """Every scene of ``plan`` measured (best of ``rounds``, the scenes taking turns) and each
+    variant's behaviour: rows of (robot, {label: figures}, behaviour line)."""
+    from mjcfbuild.check.warp_variant import behaviour, measure
+
+    rows = []
+    for robot in plan:
+        figures: dict = {}
+        for _ in range(rounds):
+            for label, path in robot["scenes"]:
+                result = measure(path, worlds, steps, device=device)
+                best = figures.get(label)
+                if best is None or result.steps_per_second > best.steps_per_second:
+                    figures[label] = result
+        line, failure = behaviour(robot["variant"], hold, device)
+        rows.append((robot["robot"], figures, line + (f" (FAILS: {failure})" if failure else "")))
+        print(f"measured {robot['robot']}", file=sys.stderr)
+    return rows
+
+
+def device_name(device: str) -> str:
+    """The device in words: the GPU's name, or the CPU's model and core count."""
+    import warp as wp
+
+    found = wp.get_device(device)
+    if found.is_cuda:
+        return f"{device} ({found.name})"
+    model = ""
+    with open("/proc/cpuinfo") as info:
+        for line in info:
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    return f"{device} ({model or 'CPU'}, {os.cpu_count()} cores)"
+
+
+def table(rows, worlds: int, steps: int, device: str) -> str:
+    """The benchmark's table and behaviour lines, as Markdown."""
+    lines = [
+        f"MuJoCo Warp on {device_name(device)}: {worlds} worlds, {steps} steps, noise on ctrl",
+        "",
+        "| robot | model | collision geoms | contact pairs | finite | steps/s | vs full |",
+        "|---|---|---:|---:|---|---:|---:|",
+    ]
     for name, figures, _ in rows:
         base = figures["full model"].steps_per_second
         for label, result in figures.items():
             ratio = result.steps_per_second / base if base else 0.0
-            print(
+            lines.append(
                 f"| {name} | {label} | {result.collision_geoms} | {result.contact_pairs} "
                 f"| {'yes' if result.finite else 'NO'} | {result.steps_per_second:.0f} "
                 f"| {ratio:.2f}x |"
             )
-    print()
-    for name, _, line in rows:
-        print(f"- {name} variant in Warp: {line}")
+    lines.append("")
+    lines += [f"- {name} variant in Warp: {line}" for name, _, line in rows]
+    return "\n".join(lines)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--robots", default="go1,g1,panda")
+    parser.add_argument("--worlds", type=int, help="default 512 (or the exported folder's)")
+    parser.add_argument("--steps", type=int, help="default 50 (or the exported folder's)")
+    parser.add_argument("--device", default="cpu")
+    parser.add_argument("--rounds", type=int, help="best of this many runs each (default 3)")
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--export", metavar="DIR", help="write the scenes to measure to DIR")
+    where.add_argument("--from", dest="source", metavar="DIR", help="measure an exported DIR")
+    args = parser.parse_args()
+    given = {"worlds": args.worlds, "steps": args.steps, "rounds": args.rounds}
+    settings = {"worlds": 512, "steps": 50, "rounds": 3}
+    with tempfile.TemporaryDirectory() as scratch:
+        if args.source:
+            exported, plan = unpacked(Path(args.source), Path(scratch))
+            hold = exported.pop("hold_tolerance", HOLD_TOLERANCE)
+            settings.update(exported)
+        else:
+            os.environ.setdefault("MJCFBUILD_CACHE_DIR", str(Path(scratch) / "cache"))
+            plan = planned(args.robots.split(","), Path(scratch))
+            hold = HOLD_TOLERANCE
+        settings.update({key: value for key, value in given.items() if value is not None})
+        if args.export:
+            archive = export(plan, Path(args.export), settings)
+            size = archive.stat().st_size
+            print(f"wrote {args.export}: {PLAN} and {archive.name} ({size} bytes)")
+            return
+        rows = measured(
+            plan, settings["worlds"], settings["steps"], settings["rounds"], args.device, hold
+        )
+        print(table(rows, settings["worlds"], settings["steps"], args.device))
 
 
 if __name__ == "__main__":

@@ -30,6 +30,8 @@ class WarpFigures:
     steps: int
     seconds: float
     finite: bool
+    nconmax: int = 0  # contacts allocated per world (Warp's put_data)
+    njmax: int = 0  # constraint rows allocated per world
 
     @property
     def steps_per_second(self) -> float:
@@ -126,6 +128,8 @@ def measure(
     mjw, wp = _warp()
     model = mujoco.MjModel.from_xml_path(scene_path)
     data = _home(model)
+    ctrl = noisy_ctrl(model, data, worlds, noise)
+    nconmax, njmax = sizes(model, data, ctrl, steps + 1)
     with wp.ScopedDevice(device):
         try:
             warp_model = mjw.put_model(model)
@@ -134,14 +138,8 @@ def measure(
                 f"MuJoCo Warp refuses the model: {str(exc).strip().splitlines()[0]}",
                 file=scene_path,
             ) from None
-        warp_data = mjw.put_data(model, data, nworld=worlds)
+        warp_data = mjw.put_data(model, data, nworld=worlds, nconmax=nconmax, njmax=njmax)
         if model.nu:
-            low, high = model.actuator_ctrlrange[:, 0], model.actuator_ctrlrange[:, 1]
-            limited = model.actuator_ctrllimited.astype(bool)
-            half = np.where(limited, (high - low) / 2, 1.0)
-            rng = np.random.default_rng(0)
-            ctrl = data.ctrl + noise * half * rng.uniform(-1, 1, size=(worlds, model.nu))
-            ctrl = np.where(limited, np.clip(ctrl, low, high), ctrl)
             warp_data.ctrl.assign(wp.array(ctrl.astype(np.float32), dtype=float))
         with quiet_stdout():
             mjw.step(warp_model, warp_data)
@@ -153,9 +151,49 @@ def measure(
             seconds = time.perf_counter() - started
         qpos = warp_data.qpos.numpy()
         pairs = int(warp_model.nxn_geom_pair_filtered.shape[0])
+    finite = bool(np.all(np.isfinite(qpos)))
     return WarpFigures(
-        collision_geoms(model), pairs, worlds, steps, seconds, bool(np.all(np.isfinite(qpos)))
+        collision_geoms(model), pairs, worlds, steps, seconds, finite, nconmax, njmax
     )
+
+
+def noisy_ctrl(model, data, worlds: int, noise: float):
+    """Each world's ctrl: home's plus uniform noise of ``noise`` times the half range
+    (seeded, so every run and every model draws the same)."""
+    import numpy as np
+
+    low, high = model.actuator_ctrlrange[:, 0], model.actuator_ctrlrange[:, 1]
+    limited = model.actuator_ctrllimited.astype(bool)
+    half = np.where(limited, (high - low) / 2, 1.0)
+    rng = np.random.default_rng(0)
+    ctrl = data.ctrl + noise * half * rng.uniform(-1, 1, size=(worlds, model.nu))
+    return np.where(limited, np.clip(ctrl, low, high), ctrl)
+
+
+SIZING_WORLDS = 4  # worlds rolled out in MuJoCo (C) to size Warp's contact and row buffers
+SIZING_MARGIN = 2  # buffers this many times the most seen
+
+
+def sizes(model, data, ctrl, steps: int) -> tuple[int, int]:
+    """Contacts and constraint rows to allocate per world in Warp: twice the most that
+    the first SIZING_WORLDS worlds reach in MuJoCo (C) over the same steps with the same
+    ctrl, and at least 8 contacts and 16 rows. Warp launches its contact and solver
+    kernels over the whole allocation (its defaults, 48 contacts and 64 rows for these
+    robots, are sized for any model), so every scene measured is sized by this one rule:
+    the figures compare the models, not the allocations."""
+    import mujoco
+
+    most_contacts, most_rows = data.ncon, data.nefc
+    for world in range(min(SIZING_WORLDS, len(ctrl))):
+        rollout = mujoco.MjData(model)
+        rollout.qpos[:], rollout.qvel[:], rollout.act[:] = data.qpos, data.qvel, data.act
+        rollout.mocap_pos[:], rollout.mocap_quat[:] = data.mocap_pos, data.mocap_quat
+        rollout.ctrl[:] = ctrl[world]
+        for _ in range(steps):
+            mujoco.mj_step(model, rollout)
+            most_contacts = max(most_contacts, rollout.ncon)
+            most_rows = max(most_rows, rollout.nefc)
+    return max(8, SIZING_MARGIN * most_contacts), max(16, SIZING_MARGIN * most_rows)
 
 
 def _home(model):

@@ -19,6 +19,7 @@ from mjcfbuild.engine.loader import DATABASE, run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.report import write_report
 from mjcfbuild.engine.tasks import SOURCE_URDF, build_tasks, planned_urdf, planning_tasks
+from mjcfbuild.engine.training_files import remove_stale_variant
 from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError
 from mjcfbuild.fsutil import remove_stale_temp_files, write_if_changed
 from mjcfbuild.manifest.pinpoint import pinpoint
@@ -138,6 +139,7 @@ def _build_locked(ctx: BuildContext, progress: Progress, result: BuildResult) ->
     if ctx.stamp_key is not None:  # whichever way it was started
         stamp.discard(ctx.stamp_key, ctx.run_check)
     prepare_state(ctx)
+    remove_stale_variant(ctx)
     # Workers start while this process plans, importing until their first step comes.
     ctx.session.warm_workers(first_build=not ctx.state(DATABASE).exists())
     doit_output = _run_stage(ctx, planning_tasks(ctx), progress, result)

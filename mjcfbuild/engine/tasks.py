@@ -1088,6 +1088,7 @@ def _training_task(
             "primitive_fit": settings.primitive_fit,
             "iterations": settings.iterations,
             "ls_iterations": settings.ls_iterations,
+            "solver": settings.solver,
             "timestep": settings.timestep,
             "frictionloss": settings.frictionloss,
             "label": f"{ctx.manifest_label} output.training",

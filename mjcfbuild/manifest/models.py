@@ -545,8 +545,11 @@ class TrainingVariant(StrictModel):
         ),
     )
     self_contacts: bool = Field(
-        True,
-        description="Keep the self-collision pairs the matrix finds touching sometimes.",
+        False,
+        description=(
+            "Keep the self-collision pairs the matrix finds touching sometimes (off by "
+            "default: the floor contacts alone, as trainers' feet-only set-ups have)."
+        ),
     )
     max_hull_vertices: int = Field(
         16, ge=4, le=256, description="Most vertices of a hull, where no primitive fits a link."
@@ -560,8 +563,15 @@ class TrainingVariant(StrictModel):
             "many times the geometry's convex hull; otherwise a capped hull does."
         ),
     )
-    iterations: int = Field(4, ge=1, le=1000, description="Constraint solver iterations.")
-    ls_iterations: int = Field(8, ge=1, le=1000, description="Line search iterations.")
+    iterations: int = Field(2, ge=1, le=1000, description="Constraint solver iterations.")
+    ls_iterations: int = Field(4, ge=1, le=1000, description="Line search iterations.")
+    solver: Literal["cg", "newton"] = Field(
+        "cg",
+        description=(
+            "Constraint solver: cg (no Hessian to factorize at each iteration, the cheaper "
+            "per step in MuJoCo Warp) or newton (fewer iterations to converge)."
+        ),
+    )
     timestep: float | None = Field(
         None, gt=0, le=1, description="Simulation timestep (s). Default: the model's."
     )

@@ -30,7 +30,10 @@ def run(payload: dict) -> dict:
     if request.scene.scene_file:
         scene = _include_variant(scene, request.robot_file, request.scene.robot_file, request)
     write_output(Path(request.scene.output), scene, outputs)
-    record = json.dumps(variant.to_dict(), indent=1, sort_keys=True).encode()
+    # The files it wrote, by name in the output folder: a build without output.training, or
+    # with other names, removes them (engine.training_files).
+    files = [Path(request.output).name, Path(request.scene.output).name]
+    record = json.dumps({**variant.to_dict(), "files": files}, indent=1, sort_keys=True).encode()
     write_output(Path(request.record), record, outputs)
     return {"outputs": outputs, "note": "; ".join(variant.notes)}
 

@@ -37,6 +37,7 @@ from mjcfbuild.errors import ManifestError
 from mjcfbuild.training.contacts import floor_bodies, self_pairs
 
 FLOOR_CONTACT = 2e-3  # m: collision geometry this close to the floor at home touches it
+SOLE = 5e-3  # m: a touching link's geoms this close to its lowest point at home are its sole
 SELF_BIT = 2  # contype/conaffinity bit of the geoms in self pairs (the floor's is 1)
 BOX_PREFERENCE = 0.7  # a box replaces a capsule only when it is less than this share of it
 
@@ -47,11 +48,12 @@ class VariantSettings:
 
     floor_add: tuple[str, ...] = ()
     floor_remove: tuple[str, ...] = ()
-    self_contacts: bool = True
+    self_contacts: bool = False
     max_hull_vertices: int = 16
     primitive_fit: float = 2.0
-    iterations: int = 4
-    ls_iterations: int = 8
+    iterations: int = 2
+    ls_iterations: int = 4
+    solver: str = "cg"  # MuJoCo's name, lower case: cg or newton
     timestep: float | None = None
     frictionloss: bool = False
     label: str = "robot.yaml output.training"  # where the settings are, for messages
@@ -132,6 +134,7 @@ def build_variant(model_path: str, verdicts: list[dict], settings: VariantSettin
             geom = spec.geom(name)
             geom.contype |= SELF_BIT
             geom.conaffinity |= SELF_BIT
+    _soles_only(spec, sorted(set(floor) & touching), new_names)
     variant.pairs = _apart_at_home(spec, pairs, variant)
     wanted = set(variant.pairs)
     for index, first in enumerate(colliding_bodies):
@@ -143,6 +146,7 @@ def build_variant(model_path: str, verdicts: list[dict], settings: VariantSettin
         _drop_frictionloss(spec, variant)
     spec.option.iterations = settings.iterations
     spec.option.ls_iterations = settings.ls_iterations
+    spec.option.solver = getattr(mujoco.mjtSolver, f"mjSOL_{settings.solver.upper()}")
     if settings.timestep is not None:
         spec.option.timestep = settings.timestep
     variant.raised = _onto_floor(spec, lowest_full)
@@ -366,6 +370,30 @@ def _add_geom(spec, body, template, shape: Shape, name: str, on_floor: bool) -> 
     geom.rgba = template.rgba
     geom.contype = 0
     geom.conaffinity = 1 if on_floor else 0
+
+
+def _soles_only(spec, touching: list[str], new_names: dict[str, list[str]]) -> None:
+    """Of a link that stands on the floor at home, only the geoms that reach within SOLE of
+    its lowest point keep the floor: go1's foot sphere does, the box along its shin (13 mm
+    higher) does not; each floor geom is one more contact the solver works on when the leg
+    tilts."""
+    from mjcfbuild.control.floor import geom_lowest_points
+
+    model = spec.compile()
+    data = _at_home(model)
+    points = geom_lowest_points(model, data)
+    for body in touching:
+        heights = {}
+        for name in new_names.get(body, []):
+            geom = model.geom(name).id
+            if geom in points:
+                heights[name] = float(points[geom][2])
+        if not heights:
+            continue
+        lowest = min(heights.values())
+        for name, height in heights.items():
+            if height > lowest + SOLE:
+                spec.geom(name).conaffinity &= ~1
 
 
 def _apart_at_home(spec, pairs: list[tuple[str, str]], variant: Variant) -> list[tuple[str, str]]:

@@ -66,3 +66,77 @@ def test_the_go1_variant_stands_for_5_s_in_warp(tmp_path):
     result = mjcfbuild.build(manifest, check=False)
     line, failure = behaviour(str(result.scene.parent / "scene_mjx.xml"), hold_tolerance=0.05)
     assert line.startswith("stands at home for 5 s") and failure == "", line
+
+
+BLOCKING_RUNNER = """import runpy, sys
+BLOCKED = {"trimesh", "pydantic", "doit", "coacd", "yaml", "scipy", "fsspec", "dask", "lxml"}
+class Block:
+    def find_spec(self, name, path=None, target=None):
+        if name.split(".")[0] in BLOCKED:
+            raise ImportError("not on the GPU machine: " + name)
+sys.meta_path.insert(0, Block())
+sys.argv = sys.argv[1:]
+runpy.run_path(sys.argv[0], run_name="__main__")
+"""
+
+
+def test_the_bench_measures_an_exported_folder_without_the_build_dependencies(tmp_path):
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from bench import warp_speed
+
+    folder = with_training(tmp_path, "arm")
+    out = folder / "mjcf"
+    plan = [
+        {
+            "robot": "arm",
+            "scenes": [
+                ["full model", str(out / "scene.xml")],
+                ["training variant", str(out / "scene_mjx.xml")],
+            ],
+            "variant": str(out / "scene_mjx.xml"),
+        }
+    ]
+    exported = tmp_path / "exported"
+    archive = warp_speed.export(plan, exported, {"worlds": 4, "steps": 3, "rounds": 1})
+    assert sorted(p.name for p in exported.iterdir()) == ["bench.json", archive.name]
+    (folder / "mjcf").rename(tmp_path / "gone")  # the export stands on its own
+    runner = tmp_path / "runner.py"
+    runner.write_text(BLOCKING_RUNNER)
+    script = Path(warp_speed.__file__)
+    result = subprocess.run(
+        [sys.executable, str(runner), str(script), "--from", str(exported), "--device", "cpu"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        env={"PATH": "/usr/bin:/bin", "HOME": str(Path.home())},
+    )
+    assert result.returncode == 0, result.stderr
+    assert "MuJoCo Warp on cpu (" in result.stdout and "4 worlds, 3 steps" in result.stdout
+    assert "| arm | full model |" in result.stdout and "| arm | training variant |" in result.stdout
+    assert "- arm variant in Warp: holds home for 1 s" in result.stdout
+
+
+def test_warp_buffers_are_sized_from_what_the_scene_reaches(tmp_path):
+    import mujoco
+
+    from mjcfbuild.check.warp_variant import _home, measure, noisy_ctrl, sizes
+
+    folder = with_training(tmp_path, "quadruped")
+    scene = str(folder / "mjcf" / "scene.xml")
+    model = mujoco.MjModel.from_xml_path(scene)
+    data = _home(model)
+    ctrl = noisy_ctrl(model, data, 4, 0.1)
+    nconmax, njmax = sizes(model, data, ctrl, 20)
+    # Each of the worlds, stepped the same way, stays within half of each buffer.
+    for row in ctrl:
+        rollout = _home(model)
+        rollout.ctrl[:] = row
+        for _ in range(20):
+            mujoco.mj_step(model, rollout)
+            assert 2 * rollout.ncon <= nconmax and 2 * rollout.nefc <= njmax
+    assert nconmax >= max(8, 2 * data.ncon) and njmax >= max(16, 2 * data.nefc)
+    figures = measure(scene, worlds=4, steps=19)
+    assert (figures.nconmax, figures.njmax) == (nconmax, njmax) and figures.finite

@@ -68,7 +68,7 @@ def test_variant_and_scene_beside_the_model_and_only_its_task_reruns(tmp_path):
     out = folder / "mjcf"
     scene = mujoco.MjModel.from_xml_path(str(out / "scene_mjx.xml"))
     assert b'file="example_quadruped_mjx.xml"' in (out / "scene_mjx.xml").read_bytes()
-    assert scene.opt.iterations == 4 and scene.opt.ls_iterations == 8
+    assert scene.opt.iterations == 2 and scene.opt.ls_iterations == 4
     # The shin mesh is only drawn (the legs collide with authored primitives): an edit to it
     # leaves the variant, which refers to the same asset file, as it is.
     nudge(folder / "meshes" / "shin.stl")
@@ -109,7 +109,7 @@ def nudge(mesh, scale=None):
 
 
 def test_geoms_are_primitives_and_contacts_are_what_the_rules_say(tmp_path):
-    folder = quadruped(tmp_path, "  training: true\n")
+    folder = quadruped(tmp_path, "  training:\n    self_contacts: true\n")
     build(folder)
     out = folder / "mjcf"
     model = mujoco.MjModel.from_xml_path(str(out / "example_quadruped_mjx.xml"))
@@ -137,6 +137,57 @@ def test_geoms_are_primitives_and_contacts_are_what_the_rules_say(tmp_path):
         and parents[v["body2"]] != v["body1"]
     }
     assert expected and self_contacts(model) == expected and model.npair == 0
+
+
+def test_by_default_only_the_floor_and_only_through_the_soles(tmp_path):
+    folder = quadruped(tmp_path, "  training: true\n")
+    build(folder)
+    model = mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "example_quadruped_mjx.xml"))
+    assert self_contacts(model) == set() and model.nexclude == 0
+    assert scene_solver(folder) == int(mujoco.mjtSolver.mjSOL_CG)
+    manifest = folder / "robot.yaml"
+    text = manifest.read_text().replace("training: true", "training:\n    solver: newton")
+    manifest.write_text(text)
+    build(folder)
+    assert scene_solver(folder) == int(mujoco.mjtSolver.mjSOL_NEWTON)
+
+
+def scene_solver(folder):
+    return int(mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "scene_mjx.xml")).opt.solver)
+
+
+LEG = """<mujoco>
+  <worldbody>
+    <body name="base" pos="0 0 0.28">
+      <freejoint/>
+      <geom type="box" size="0.1 0.1 0.05"/>
+      <body name="shin" pos="0 0 -0.05">
+        <joint axis="0 1 0"/>
+        <geom name="shin" type="box" size="0.01 0.01 0.1" pos="0 0 -0.1"/>
+        <geom name="foot" type="sphere" size="0.03" pos="0 0 -0.2"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>
+"""
+
+
+def test_a_link_on_the_floor_meets_it_only_through_its_sole(tmp_path):
+    from mjcfbuild.training.variant import VariantSettings, build_variant
+
+    path = tmp_path / "leg.xml"
+    path.write_text(LEG)
+    variant = build_variant(str(path), [], VariantSettings())
+    model = mujoco.MjModel.from_xml_string(variant.xml)
+    floor = {model.geom(g).name for g in range(model.ngeom) if model.geom_conaffinity[g] & 1}
+    # The foot sphere reaches the floor at home; the box along the shin ends 30 mm above it.
+    assert variant.floor == ["shin"] and floor == {"shin_collision_1"}
+    assert model.geom("shin_collision_1").type == mujoco.mjtGeom.mjGEOM_SPHERE
+    # A link added to the floor that does not touch it at home keeps all of its geoms.
+    added = build_variant(str(path), [], VariantSettings(floor_add=("base",)))
+    model = mujoco.MjModel.from_xml_string(added.xml)
+    floor = {model.geom(g).name for g in range(model.ngeom) if model.geom_conaffinity[g] & 1}
+    assert floor == {"shin_collision_1", "base_collision"}
 
 
 def test_floor_rules_add_and_remove_links(tmp_path):
@@ -180,6 +231,7 @@ def test_meshes_become_primitives_or_hulls_under_the_cap(tmp_path):
         ("  training:\n    floor_contacts:\n      add: [no_such_link]\n", "robot.yaml:18:"),
         ("  training:\n    iterations: 0\n", "robot.yaml:17:"),
         ("  training:\n    timestep: -0.001\n", "robot.yaml:17:"),
+        ("  training:\n    solver: pgs\n", "robot.yaml:17:"),
     ],
 )
 def test_bad_settings_are_one_line_with_the_robot_yaml_line_and_exit_3(tmp_path, settings, where):
@@ -253,12 +305,13 @@ def test_self_pairs_that_overlap_at_home_in_the_variant_are_left_out(tmp_path):
         {"body1": "base", "body2": "tail", "reason": "sometimes", "exclude": False},  # adjacent
         {"body1": "hand", "body2": "tail", "reason": "sometimes", "exclude": False},
     ]
-    variant = build_variant(str(path), verdicts, VariantSettings())
+    with_pairs = VariantSettings(self_contacts=True)
+    variant = build_variant(str(path), verdicts, with_pairs)
     assert variant.pairs == [("base", "hand"), ("hand", "tail")]
     # The tail overlaps the base at home, but they are parent and child: no pair at all. Move
     # the tail into the hand at home, and that pair goes, with a note.
     path.write_text(OVERLAP.replace('name="tail" pos="-0.12 0 0"', 'name="tail" pos="0.5 0 0"'))
-    variant = build_variant(str(path), verdicts, VariantSettings())
+    variant = build_variant(str(path), verdicts, with_pairs)
     assert variant.pairs == [("base", "hand")]
     assert "hand and tail overlap at home in the variant: no pair" in variant.notes
     model = mujoco.MjModel.from_xml_string(variant.xml)
@@ -289,7 +342,7 @@ def test_a_user_scene_file_includes_the_variant_in_its_scene(tmp_path):
     build(folder)
     scene = (folder / "mjcf" / "scene_mjx.xml").read_text()
     assert scene == USER_SCENE.replace("example_quadruped.xml", "example_quadruped_mjx.xml")
-    assert mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "scene_mjx.xml")).opt.iterations == 4
+    assert mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "scene_mjx.xml")).opt.iterations == 2
     # A scene file that does not include the model by its file name: one line, exit 4.
     (folder / "my_scene.xml").write_text(USER_SCENE.replace("example_quadruped.xml", "robot.xml"))
     result = run_cli("build", "--no-check", str(folder / "robot.yaml"))

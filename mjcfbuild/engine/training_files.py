@@ -1,0 +1,41 @@
+"""The training variant's files, removed when robot.yaml no longer asks for them.
+
+The ``training`` task records the files it wrote (``.mjcfbuild/training.json``). Before a
+build's tasks run, the recorded files that this build will not write are removed from the
+output folder: all of them, with the record and what ``check --warp`` measured, when
+``output.training`` is off; the old names when ``file`` or ``scene`` changed. Only files the
+record names are touched, so a user's own file of the same name in another build's folder
+is never at risk.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from mjcfbuild.engine.context import BuildContext
+from mjcfbuild.engine.report import TRAINING_WARP
+from mjcfbuild.engine.tasks import TRAINING_RECORD, training_paths
+
+
+def remove_stale_variant(ctx: BuildContext) -> list[Path]:
+    """Remove the variant files an earlier build wrote that this one will not; the paths
+    removed."""
+    record = ctx.state(TRAINING_RECORD)
+    if not record.exists():
+        return []
+    try:
+        files = json.loads(record.read_text()).get("files", [])
+    except (OSError, ValueError):
+        files = []
+    keep = set(training_paths(ctx)) if ctx.manifest.training else set()
+    removed = []
+    for name in files:
+        path = ctx.out_dir / Path(name).name  # names in the output folder, nothing above it
+        if path not in keep and path.is_file():
+            path.unlink()
+            removed.append(path)
+    if not ctx.manifest.training:
+        record.unlink()
+        ctx.state(TRAINING_WARP).unlink(missing_ok=True)
+    return removed

@@ -1,0 +1,49 @@
+"""The training variant's files go when robot.yaml stops asking for them (real builds)."""
+
+from __future__ import annotations
+
+import mjcfbuild
+from tests.conftest import copy_example
+
+
+def build(folder):
+    return mjcfbuild.build(folder / "robot.yaml", jobs=1, check=False)
+
+
+def test_turning_training_off_removes_the_variant_and_its_scene(tmp_path):
+    folder = copy_example("arm", tmp_path)
+    manifest = folder / "robot.yaml"
+    plain = manifest.read_text()
+    manifest.write_text(plain + "  training: true\n")
+    build(folder)
+    out = folder / "mjcf"
+    variant, scene = sorted(out.glob("*_mjx.xml"))
+    assert variant.name != "scene_mjx.xml" and scene.name == "scene_mjx.xml"
+    (out / "notes_mjx.xml").write_text("<mujoco/>")  # the user's: no build wrote it
+    manifest.write_text(plain)
+    build(folder)
+    assert not variant.exists() and not scene.exists()
+    assert not (out / ".mjcfbuild" / "training.json").exists()
+    assert (out / "notes_mjx.xml").exists() and (out / "scene.xml").exists()
+    report = (out / "report" / "report.md").read_text()
+    assert "## Training variant" not in report
+    # On again: the variant is back (its task's outputs are missing, so it reruns).
+    manifest.write_text(plain + "  training: true\n")
+    assert "training" in build(folder).ran
+    assert variant.exists() and scene.exists()
+
+
+def test_a_new_name_for_the_variant_removes_the_old_files(tmp_path):
+    folder = copy_example("arm", tmp_path)
+    manifest = folder / "robot.yaml"
+    plain = manifest.read_text()
+    manifest.write_text(plain + "  training: true\n")
+    build(folder)
+    out = folder / "mjcf"
+    old = sorted(out.glob("*_mjx.xml"))
+    manifest.write_text(
+        plain + "  training:\n    file: trainer.xml\n    scene: trainer_scene.xml\n"
+    )
+    build(folder)
+    assert not any(path.exists() for path in old)
+    assert (out / "trainer.xml").exists() and (out / "trainer_scene.xml").exists()
