@@ -7,7 +7,8 @@ boxes, cylinders and spheres):
 
 - a robot bolted down says so: its root is a ``world`` link joined by a fixed joint;
 - a wheeled base floats: two or more continuous joints with horizontal axes whose links sit in
-  the lowest quarter of the robot;
+  the lowest quarter of the robot (or in its lower half, below every other moving joint: a
+  low-slung base);
 - a legged robot floats: a link branches into two or more limbs that reach the floor (within
   10% of the robot's height of its lowest point) while the root itself stays well above it
   (more than 30% of the robot's height); but three or more such limbs hanging from a root at
@@ -115,16 +116,29 @@ def _corners(shape: Shape) -> list[tuple[float, float, float]]:
 
 
 def _wheels(robot: Robot, poses: dict[str, Transform], low: float, size: float) -> list[str]:
-    wheels = []
+    """Continuous joints with about horizontal axes that sit low: in the lowest quarter of the
+    robot, or (a low-slung base, whose wheels are a large share of its height) in its lower
+    half with no other moving joint below them."""
+    candidates = {}
     for joint in robot.joints:
         if joint.kind != "continuous":
             continue
         pose = poses[joint.child]
         axis = apply(pose.rotation, joint.axis)
         norm = sum(a * a for a in axis) ** 0.5 or 1.0
-        if abs(axis[2] / norm) < 0.3 and pose.position[2] - low <= _WHEEL_ZONE * size:
-            wheels.append(joint.name)
-    return wheels
+        if abs(axis[2] / norm) < 0.3:
+            candidates[joint.name] = pose.position[2] - low
+    others = [
+        poses[joint.child].position[2] - low
+        for joint in robot.joints
+        if joint.kind != "fixed" and joint.name not in candidates
+    ]
+    lowest_other = min(others, default=float("inf"))
+    return [
+        name
+        for name, height in candidates.items()
+        if height <= _WHEEL_ZONE * size or (height <= 0.5 * size and height < lowest_other)
+    ]
 
 
 def _rotors(robot: Robot, poses: dict[str, Transform]) -> list[str]:

@@ -60,3 +60,26 @@ def test_the_same_chains_at_the_corners_of_a_square_are_legs():
     # The rule is the row the fingertips end in: the same chains standing apart span an area.
     kind = classify_base(parse_urdf(hand(square=True).encode(), "hand.urdf"))
     assert kind.floating, kind.why
+
+
+def test_a_low_slung_base_on_large_wheels_floats():
+    """Jackal's shape: the wheels' axles at half the robot's height, below every other moving
+    joint (the lowest-quarter rule alone calls it fixed)."""
+    inertial = robots.inertial
+    wheels = "".join(
+        f"""<link name="{side}_wheel">{inertial(0.5)}
+  <collision><origin rpy="1.5708 0 0"/><geometry><cylinder radius="0.1" length="0.05"/></geometry></collision></link>
+<joint name="{side}_wheel_joint" type="continuous"><parent link="base"/><child link="{side}_wheel"/>
+  <origin xyz="{x} {y} -0.05"/><axis xyz="0 1 0"/><limit effort="5" velocity="10"/></joint>"""
+        for side, x, y in (
+            ("fl", 0.15, 0.2),
+            ("fr", 0.15, -0.2),
+            ("rl", -0.15, 0.2),
+            ("rr", -0.15, -0.2),
+        )
+    )
+    urdf = f"""<robot name="rover"><link name="base">{inertial(10.0)}
+  <collision><geometry><box size="0.4 0.3 0.12"/></geometry></collision></link>{wheels}</robot>"""
+    kind = classify_base(parse_urdf(urdf.encode(), "rover.urdf"))
+    assert kind.floating, kind.why
+    assert "wheels" in kind.why
