@@ -9,7 +9,6 @@ from __future__ import annotations
 from pathlib import Path
 
 from mjcfbuild.check.tuning_table import tuning_lines
-from mjcfbuild.control.motors import URDF_LIMITS
 
 
 def markdown(report: dict) -> str:
@@ -241,6 +240,8 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
 
 def _motor(actuator: dict) -> str:
     """The motor behind an actuator (issue 33), if a rule named one."""
+    from mjcfbuild.control.motors import URDF_LIMITS
+
     motor = actuator.get("motor")
     if not motor:
         return ""

@@ -22,8 +22,6 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass
 
-from mjcfbuild.control.motors import URDF_LIMITS
-
 DRIVEN_MULTIPLE = 1.5
 FREE_MULTIPLE = 50.0
 DEFAULT_LIMIT = {"hinge": 100.0, "slide": 10.0}  # rad/s, m/s: joints with no limit anywhere
@@ -65,6 +63,8 @@ def joint_speeds(
     """The bound of every joint in ``top_speeds`` (joint -> top speed): ``urdf_limits`` are the
     URDF's velocity limits, ``kinds`` the joints' types (hinge or slide), ``actuators`` the
     assembly's actuator records (with their ``motor``)."""
+    from mjcfbuild.control.motors import URDF_LIMITS
+
     drives = {
         record["joint"]: record["motor"]
         for record in actuators

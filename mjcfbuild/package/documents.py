@@ -118,7 +118,9 @@ def _derived(assembly: dict[str, Any]) -> list[str]:
     lines = []
     actuators = readiness.get("actuators") or []
     if actuators:
-        kinds = sorted({str(a.get("type")) for a in actuators})
+        # A <dcmotor> here is a position servo with its drive's torque-speed line.
+        labels = {"dcmotor": "dcmotor position servos"}
+        kinds = sorted({labels.get(str(a.get("type")), str(a.get("type"))) for a in actuators})
         lines.append(
             f"- {len(actuators)} actuators ({', '.join(kinds)}), gains tuned from each joint's "
             "inertia at home unless robot.yaml set them"

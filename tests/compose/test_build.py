@@ -37,13 +37,19 @@ def test_the_model_holds_both_parts_with_the_gripper_prefixed(built):
     assert model.neq == 2  # the arm's finger mimic and the gripper's jaw mimic
 
 
+def _kp(model, actuator) -> float:
+    """A position servo's kp: a <dcmotor>'s sits after its motor constants."""
+    dcmotor = model.actuator_gaintype[actuator.id] == mujoco.mjtGain.mjGAIN_DCMOTOR
+    return float(actuator.gainprm[4] if dcmotor else actuator.gainprm[0])
+
+
 def test_actuator_rules_and_home_name_prefixed_joints(built):
     _, result = built
     model = mujoco.MjModel.from_xml_path(str(result.robot))
     arm = model.actuator("elbow")
     jaw = model.actuator("gripper_left_jaw_joint")
     assert model.actuator_trnid[jaw.id][0] == model.joint("gripper_left_jaw_joint").id
-    assert jaw.gainprm[0] < arm.gainprm[0]  # the rule's 5 Hz on a light jaw
+    assert _kp(model, jaw) < _kp(model, arm)  # the rule's 5 Hz on a light jaw
     home = model.key("home")
     assert home.qpos[model.jnt_qposadr[model.joint("gripper_left_jaw_joint").id]] == 0.02
     assert home.qpos[model.jnt_qposadr[model.joint("elbow").id]] == 0.6

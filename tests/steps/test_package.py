@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import subprocess
 from pathlib import Path
 
@@ -72,9 +74,15 @@ def test_the_model_passes_the_format_check_with_kinematics_exact(packaged):
         assert np.array_equal(getattr(built, name), getattr(model, name)), name
     for name in ("site_pos", "site_quat", "geom_pos", "geom_quat", "key_qpos"):
         assert np.array_equal(getattr(built, name), getattr(model, name)), name
-    # gains carry 4 digits
-    assert np.allclose(model.actuator_gainprm[:, 0], built.actuator_gainprm[:, 0], rtol=1e-3)
-    assert 'kp="603.9"' in packaged_model.read_text()
+    # gains carry 4 digits: the <dcmotor>s' motor constants and controller gains (kp, kv)
+    for column in (0, 4, 6):
+        assert np.allclose(
+            model.actuator_gainprm[:, column], built.actuator_gainprm[:, column], rtol=1e-3
+        )
+    controllers = re.findall(r'controller="([^"]+)"', packaged_model.read_text())
+    assert len(controllers) == 5
+    for numbers in controllers:
+        assert all(len(n.replace(".", "").lstrip("0")) <= 4 for n in numbers.split()), numbers
 
 
 def test_readme_says_where_the_model_comes_from(packaged):
@@ -86,7 +94,7 @@ def test_readme_says_where_the_model_comes_from(packaged):
     assert f"MuJoCo {mujoco.__version__}" in readme and "mjcfbuild 0." in readme
     assert "```yaml\n# yaml-language-server" in readme and "  package: true\n```" in readme
     assert "- MuJoCo Menagerie's model test: no warnings" in readme
-    assert "5 actuators (position)" in readme
+    assert "5 actuators (dcmotor position servos)" in readme
 
 
 def test_changelog_grows_when_the_model_changes_and_not_otherwise(packaged):
