@@ -178,12 +178,18 @@ def _fixed_to(robot: Robot, root: str) -> set[str]:
     return body
 
 
-def _branches_reaching(robot: Robot, points: dict, floor: float) -> set[str]:
-    """The most links one link branches into whose subtrees reach down to ``floor``: a
-    pelvis's two legs, a trunk's four, even where the legs hang from a waist below the root."""
+def _children(robot: Robot) -> dict[str, list[str]]:
+    """Each link's child links."""
     children: dict[str, list[str]] = {}
     for joint in robot.joints:
         children.setdefault(joint.parent, []).append(joint.child)
+    return children
+
+
+def _branches_reaching(robot: Robot, points: dict, floor: float) -> set[str]:
+    """The most links one link branches into whose subtrees reach down to ``floor``: a
+    pelvis's two legs, a trunk's four, even where the legs hang from a waist below the root."""
+    children = _children(robot)
     reaches: dict[str, bool] = {}
 
     def reach(link: str) -> bool:
@@ -202,9 +208,7 @@ def _branches_reaching(robot: Robot, points: dict, floor: float) -> set[str]:
 
 def _feet(robot: Robot, points: dict, limbs: set[str]) -> list[tuple[float, float, float]]:
     """The lowest point of each of ``limbs``' subtrees."""
-    children: dict[str, list[str]] = {}
-    for joint in robot.joints:
-        children.setdefault(joint.parent, []).append(joint.child)
+    children = _children(robot)
 
     def lowest(link: str) -> tuple[float, float, float]:
         candidates = list(points.get(link, [])) + [lowest(c) for c in children.get(link, [])]
