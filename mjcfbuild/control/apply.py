@@ -25,12 +25,7 @@ from mjcfbuild.control.choose import (
 from mjcfbuild.control.efforts import EffortCap, describe, placeholder_efforts
 from mjcfbuild.control.floor import lowest_collision_point
 from mjcfbuild.control.home import HomeValue
-from mjcfbuild.control.motors import (
-    dcmotor_attributes,
-    has_speed_line,
-    line_inertia,
-    urdf_drive,
-)
+from mjcfbuild.control.motors import dcmotor_attributes, has_speed_line, urdf_drive
 from mjcfbuild.control.standing import MARGIN
 from mjcfbuild.inputs.apply import ACTUATOR_TAGS
 from mjcfbuild.numbers import output_list
@@ -487,13 +482,13 @@ def _actuator(
         record.placeholder_effort = cap.effort
     record.motor, record.rule = choice.motor, choice.rule
     added = 0.0  # armature this servo adds to the joint
-    line = _urdf_line(choice, record, cap)
+    line = _urdf_line(choice, record, cap, servo.timestep)
     if line is not None:
         record.motor = line.to_dict()
-        # The rotor inertia a drive with this line has (control.motors.line_inertia), in every
-        # pose: the joint's own inertia at home says nothing of a folded arm's.
+        # The drive's rotor, in every pose: the link's inertia at home says nothing of a folded
+        # arm's. A rule's armature replaces it.
         if choice.armature is None:
-            added = line_inertia(line, servo.timestep)
+            added = line.armature
             servo = replace(servo, inertia=servo.inertia + added)
     inertia = servo.inertia
     omega = servo.omega(choice.frequency, choice.stiffen)
@@ -536,7 +531,9 @@ def _actuator(
     return record
 
 
-def _urdf_line(choice: ActuatorChoice, record: ActuatorRecord, cap: EffortCap | None):
+def _urdf_line(
+    choice: ActuatorChoice, record: ActuatorRecord, cap: EffortCap | None, timestep: float
+):
     """The drive the URDF's effort and velocity limits make of a position servo that no motor
     names (None where a limit is missing or a placeholder replaced the effort)."""
     if choice.type != "position" or choice.motor is not None or choice.speed_limit is None:
@@ -544,7 +541,7 @@ def _urdf_line(choice: ActuatorChoice, record: ActuatorRecord, cap: EffortCap | 
     if cap is not None or record.forcerange is None:
         return None
     effort = max(abs(value) for value in record.forcerange)
-    return urdf_drive(effort, choice.speed_limit)
+    return urdf_drive(effort, choice.speed_limit, timestep)
 
 
 def _attributes(record: ActuatorRecord) -> dict[str, str]:

@@ -163,16 +163,17 @@ def _driven(choice: ActuatorChoice, rule: ActuatorRule, drive: Drive) -> Actuato
 URDF_LIMITS = "URDF limits"
 
 
-def urdf_drive(effort: float, velocity: float) -> Drive:
+def urdf_drive(effort: float, velocity: float, timestep: float) -> Drive:
     """The drive a joint's URDF limits describe when no motor is named: the torque-speed line
-    from its effort (at standing still) to its velocity limit (at no load). A URDF gives the
-    joint's top speed and torque, and a DC drive's torque falls along such a line between
+    from its effort (at standing still) to its velocity limit (at no load), on the rotor
+    inertia that keeps that line stable at ``timestep`` (:func:`line_inertia`). A URDF gives
+    the joint's top speed and torque, and a DC drive's torque falls along such a line between
     them; with it a default servo moves no faster than the real joint."""
     return Drive(
         motor=URDF_LIMITS,
         ratio=1.0,
         ratio_from="default",
-        armature=0.0,
+        armature=line_inertia(effort, velocity, timestep),
         peak_torque=effort,
         continuous_torque=None,
         stall_torque=effort,
@@ -190,13 +191,11 @@ def urdf_drive(effort: float, velocity: float) -> Drive:
 LINE_STEPS = 1.0
 
 
-def line_inertia(drive: Drive, timestep: float) -> float:
-    """The least inertia at the joint (link, rotor and what it carries) that keeps ``drive``'s
-    torque-speed line stable at ``timestep``: the line brakes like a damper of stall torque /
-    no-load speed, which the step applies explicitly."""
-    if drive.stall_torque is None or not drive.no_load_speed:
-        return 0.0
-    return LINE_STEPS * timestep * drive.stall_torque / drive.no_load_speed
+def line_inertia(stall_torque: float, no_load_speed: float, timestep: float) -> float:
+    """The rotor inertia that keeps a torque-speed line stable at ``timestep``: the line brakes
+    like a damper of stall torque / no-load speed, which the step applies explicitly. A rotor
+    of this inertia is there in every pose, unlike the link's."""
+    return LINE_STEPS * timestep * stall_torque / no_load_speed
 
 
 def has_speed_line(motor: dict | None) -> bool:

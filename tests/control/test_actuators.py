@@ -41,6 +41,8 @@ def test_a_bare_manifest_drives_every_moving_joint_with_a_position_servo(tmp_pat
     record = readiness(tmp_path)["actuators"][0]
     assert (record["name"], record["type"], record["source"]) == ("hinge", "dcmotor", "default")
     assert (record["motor"]["stall_torque"], record["motor"]["no_load_speed"]) == (10, 1)
+    # the drive's rotor, as the report and check.json state it, is the joint's armature
+    assert record["motor"]["armature"] == record["armature"] == pytest.approx(0.02)
 
 
 def test_speed_limits_off_gives_a_plain_position_servo(tmp_path):
