@@ -11,11 +11,13 @@ keyframe (mjlab adds them from Python), so they are given here what its constant
 home pose (``HOME_KEYFRAME`` / ``INIT_STATE``), a position actuator and the reflected rotor
 inertia (armature) on every hinge, the implicitfast integrator, and two
 collision set-ups from its constants, as shipped (every capsule against every other) and
-``FEET_ONLY_COLLISION``; they run with the variant's solver settings, so what differs is the
-model. Every scene is stepped the same way (``mjcfbuild.check.warp_variant.measure``): the
-same worlds, steps and noise on ``ctrl``, in one run, best of ``--rounds`` with the models
-taking turns (the machine is shared); the variant's behaviour at home (5 s
-standing, or 1 s holding) is checked in Warp too.
+``FEET_ONLY_COLLISION``. The variant is built twice, with ``output.training.device`` gpu and
+cpu (each device's solver defaults); mjlab's scenes run under each variant's solver settings
+in turn, so what differs between a variant and mjlab's models is the model. Every scene is
+stepped the same way (``mjcfbuild.check.warp_variant.measure``): the same worlds, steps and
+noise on ``ctrl``, in one run, best of ``--rounds`` with the models taking turns (the machine
+is shared); each variant's behaviour at home (5 s standing, or 1 s holding) is checked in Warp
+too.
 
 ``--export DIR`` writes every scene, the files it reads (model, meshes) and ``bench.json``
 (what to measure, and how) to ``DIR``, the files packed in ``scenes.tar.xz`` (about 15 MB for
@@ -75,21 +77,39 @@ MJLAB_ARMATURE = {"go1": 0.005, "g1": 0.02}
 MJLAB_FEET = {"go1": r"^[FR][LR]_foot_collision$", "g1": r"^(left|right)_foot[1-7]_collision$"}
 
 
-def built(name: str, scratch: Path) -> tuple[Path, Path]:
-    """The full scene and the variant's scene of ``name`` built from a bare robot.yaml."""
+DEVICES = ("gpu", "cpu")  # output.training.device: a variant with each one's solver defaults
+
+
+def built(name: str, scratch: Path) -> tuple[Path, dict[str, Path]]:
+    """The full scene of ``name`` built from a bare robot.yaml, and the variant's scene built
+    for each device (the same build with ``output.training.device`` set)."""
     import mjcfbuild
     from bench import robot_data
 
     robot = robot_data.ROBOTS[name]
     urdf = robot_data.unpack(robot)
-    extra = "output:\n  training: true\n"
-    manifest = robot_data.manifest(robot, scratch / name, urdf, robot_data.package_root(), extra)
-    result = mjcfbuild.build(manifest, jobs=2, check=False)
-    return result.scene, result.scene.parent / "scene_mjx.xml"
+    variants = {}
+    for device in DEVICES:
+        extra = f"output:\n  training:\n    device: {device}\n"
+        folder = scratch / name / device
+        manifest = robot_data.manifest(robot, folder, urdf, robot_data.package_root(), extra)
+        result = mjcfbuild.build(manifest, jobs=2, check=False)
+        variants[device] = result.scene.parent / "scene_mjx.xml"
+    return result.scene, variants
 
 
-def mjlab_scene(name: str, scratch: Path, feet_only: bool, solver) -> Path:
-    """mjlab's model of ``name`` on a floor, with home, actuators and solver settings."""
+def solver_label(scene: str | Path) -> str:
+    """The scene's solver and iteration caps, as ``Newton 1/5``."""
+    import mujoco
+
+    option = mujoco.MjModel.from_xml_path(str(scene)).opt
+    solver = {0: "PGS", 1: "CG", 2: "Newton"}[int(option.solver)]  # mjtSolver's values
+    return f"{solver} {option.iterations}/{option.ls_iterations}"
+
+
+def mjlab_scene(name: str, scratch: Path, feet_only: bool, solver, device: str) -> Path:
+    """mjlab's model of ``name`` on a floor, with home, actuators and the solver settings of
+    the variant built for ``device``."""
     import mujoco
 
     from bench.sim_speed import hand_tuned_model
@@ -123,26 +143,31 @@ def mjlab_scene(name: str, scratch: Path, feet_only: bool, solver) -> Path:
     spec.option.solver = solver.solver  # the variant's solver settings: what differs is the model
     spec.option.iterations = solver.iterations
     spec.option.ls_iterations = solver.ls_iterations
-    path = model_file.parent / f"bench_warp_{name}_{'feet' if feet_only else 'shipped'}.xml"
+    kind = "feet" if feet_only else "shipped"
+    path = model_file.parent / f"bench_warp_{name}_{kind}_{device}.xml"
     path.write_text(spec.to_xml())
     return path
 
 
 def planned(names: list[str], scratch: Path) -> list[dict]:
     """Build each robot and write mjlab's scenes: for each robot, the scenes to measure
-    (label, path) and the variant's scene, whose behaviour is checked."""
+    (label, path) and each device's variant scene, whose behaviour is checked."""
     import mujoco
 
     plan = []
     for name in names:
-        full, variant = built(name, scratch)
-        solver = mujoco.MjModel.from_xml_path(str(variant)).opt
-        scenes = [("full model", full), ("training variant", variant)]
-        if name in MJLAB_HOME:
-            for feet_only, label in ((False, "mjlab, as shipped"), (True, "mjlab, feet only")):
-                scenes.append((label, mjlab_scene(name, scratch, feet_only, solver)))
+        full, variants = built(name, scratch)
+        scenes = [("full model", full)]
+        for device, variant in variants.items():
+            scenes.append((f"training variant ({device})", variant))
+            if name in MJLAB_HOME:
+                solver = mujoco.MjModel.from_xml_path(str(variant)).opt
+                for feet_only, label in ((False, "mjlab, as shipped"), (True, "mjlab, feet only")):
+                    scene = mjlab_scene(name, scratch, feet_only, solver, device)
+                    scenes.append((f"{label} ({device})", scene))
         listed = [[label, str(path)] for label, path in scenes]
-        plan.append({"robot": name, "scenes": listed, "variant": str(variant)})
+        checked = [[device, str(path)] for device, path in variants.items()]
+        plan.append({"robot": name, "scenes": listed, "variants": checked})
     return plan
 
 
@@ -190,8 +215,10 @@ def export(plan: list[dict], folder: Path, settings: dict) -> Path:
         names: dict[Path, str] = {}
         name = robot["robot"]
         scenes = [[label, _packed(name, scene, names, members)] for label, scene in robot["scenes"]]
-        variant = _packed(name, robot["variant"], names, members)
-        moved.append({"robot": name, "scenes": scenes, "variant": variant})
+        variants = [
+            [device, _packed(name, path, names, members)] for device, path in robot["variants"]
+        ]
+        moved.append({"robot": name, "scenes": scenes, "variants": variants})
     folder.mkdir(parents=True, exist_ok=True)
     archive = folder / ARCHIVE
     with tarfile.open(archive, "w:xz") as packed:
@@ -214,7 +241,7 @@ def unpacked(folder: Path, into: Path) -> tuple[dict, list[dict]]:
         {
             "robot": robot["robot"],
             "scenes": [[label, str(into / scene)] for label, scene in robot["scenes"]],
-            "variant": str(into / robot["variant"]),
+            "variants": [[device, str(into / path)] for device, path in robot["variants"]],
         }
         for robot in document.pop("robots")
     ]
@@ -223,7 +250,7 @@ def unpacked(folder: Path, into: Path) -> tuple[dict, list[dict]]:
 
 def measured(plan: list[dict], worlds: int, steps: int, rounds: int, device: str, hold: float):
     """Every scene of ``plan`` measured (best of ``rounds``, the scenes taking turns) and each
-    variant's behaviour: rows of (robot, {label: figures}, behaviour line)."""
+    variant's behaviour: rows of (robot, {label: figures}, {label: solver}, behaviour line)."""
     from mjcfbuild.check.warp_variant import behaviour, measure
 
     rows = []
@@ -235,8 +262,12 @@ def measured(plan: list[dict], worlds: int, steps: int, rounds: int, device: str
                 best = figures.get(label)
                 if best is None or result.steps_per_second > best.steps_per_second:
                     figures[label] = result
-        line, failure = behaviour(robot["variant"], hold, device)
-        rows.append((robot["robot"], figures, line + (f" (FAILS: {failure})" if failure else "")))
+        lines = []
+        for built_for, path in robot["variants"]:
+            line, failure = behaviour(path, hold, device)
+            lines.append(f"({built_for}) {line}" + (f" (FAILS: {failure})" if failure else ""))
+        solvers = {label: solver_label(path) for label, path in robot["scenes"]}
+        rows.append((robot["robot"], figures, solvers, "; ".join(lines)))
         print(f"measured {robot['robot']}", file=sys.stderr)
     return rows
 
@@ -262,20 +293,21 @@ def table(rows, worlds: int, steps: int, device: str) -> str:
     lines = [
         f"MuJoCo Warp on {device_name(device)}: {worlds} worlds, {steps} steps, noise on ctrl",
         "",
-        "| robot | model | collision geoms | contact pairs | finite | steps/s | vs full |",
-        "|---|---|---:|---:|---|---:|---:|",
+        "| robot | model | solver | collision geoms | contact pairs | finite | steps/s | vs full |",
+        "|---|---|---|---:|---:|---|---:|---:|",
     ]
-    for name, figures, _ in rows:
+    for name, figures, solvers, _ in rows:
         base = figures["full model"].steps_per_second
         for label, result in figures.items():
             ratio = result.steps_per_second / base if base else 0.0
             lines.append(
-                f"| {name} | {label} | {result.collision_geoms} | {result.contact_pairs} "
+                f"| {name} | {label} | {solvers[label]} | {result.collision_geoms} "
+                f"| {result.contact_pairs} "
                 f"| {'yes' if result.finite else 'NO'} | {result.steps_per_second:.0f} "
                 f"| {ratio:.2f}x |"
             )
     lines.append("")
-    lines += [f"- {name} variant in Warp: {line}" for name, _, line in rows]
+    lines += [f"- {name} variants in Warp: {line}" for name, _, _, line in rows]
     return "\n".join(lines)
 
 

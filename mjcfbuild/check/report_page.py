@@ -321,6 +321,14 @@ def _training(training: dict | None) -> list[str]:
         f"{len(training.get('pairs', []))} self-collision body pairs.",
         "",
     ]
+    solver = training.get("solver")
+    if solver:
+        lines += [
+            f"Solver for a {solver['device'].upper()}: {solver['solver']}, "
+            f"{solver['iterations']} iterations, {solver['ls_iterations']} line-search "
+            "iterations (`output.training.device`, docs/simulation.md).",
+            "",
+        ]
     lines += [f"- {note}" for note in training.get("notes", [])]
     warp = training.get("warp")
     if warp:

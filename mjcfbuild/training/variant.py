@@ -35,6 +35,7 @@ from typing import Any
 
 from mjcfbuild.errors import ManifestError
 from mjcfbuild.training.contacts import floor_bodies, self_pairs
+from mjcfbuild.training.solver import DEVICE_DEFAULTS
 
 FLOOR_CONTACT = 2e-3  # m: collision geometry this close to the floor at home touches it
 SOLE = 5e-3  # m: a touching link's geoms this close to its lowest point at home are its sole
@@ -51,11 +52,13 @@ class VariantSettings:
     self_contacts: bool = False
     max_hull_vertices: int = 16
     primitive_fit: float = 2.0
-    iterations: int = 2
-    ls_iterations: int = 4
-    solver: str = "cg"  # MuJoCo's name, lower case: cg or newton
+    device: str = "gpu"  # gpu or cpu: whose solver defaults (mjcfbuild.training.solver)
+    iterations: int = DEVICE_DEFAULTS["gpu"].iterations
+    ls_iterations: int = DEVICE_DEFAULTS["gpu"].ls_iterations
+    solver: str = DEVICE_DEFAULTS["gpu"].solver  # MuJoCo's name, lower case: cg or newton
     timestep: float | None = None
     frictionloss: bool = False
+    dcmotor: bool = False
     label: str = "robot.yaml output.training"  # where the settings are, for messages
 
 
@@ -69,6 +72,7 @@ class Variant:
     pairs: list[tuple[str, str]] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     raised: float = 0.0
+    solver: dict[str, Any] = field(default_factory=dict)  # device, solver and iteration caps
 
     def to_dict(self) -> dict[str, Any]:
         """The report of the variant, JSON-ready."""
@@ -78,6 +82,7 @@ class Variant:
             "pairs": [list(pair) for pair in self.pairs],
             "notes": self.notes,
             "raised": self.raised,
+            "solver": self.solver,
         }
 
 
@@ -144,9 +149,17 @@ def build_variant(model_path: str, verdicts: list[dict], settings: VariantSettin
     _drop_unused_meshes(spec)
     if not settings.frictionloss:
         _drop_frictionloss(spec, variant)
+    if not settings.dcmotor:
+        _position_servos(spec, variant)
     spec.option.iterations = settings.iterations
     spec.option.ls_iterations = settings.ls_iterations
     spec.option.solver = getattr(mujoco.mjtSolver, f"mjSOL_{settings.solver.upper()}")
+    variant.solver = {
+        "device": settings.device,
+        "solver": settings.solver,
+        "iterations": settings.iterations,
+        "ls_iterations": settings.ls_iterations,
+    }
     if settings.timestep is not None:
         spec.option.timestep = settings.timestep
     variant.raised = _onto_floor(spec, lowest_full)
@@ -429,6 +442,34 @@ def _drop_frictionloss(spec, variant: Variant) -> None:
     if joints:
         variant.notes.append(
             f"frictionloss removed from {len(joints)} joints (output.training.frictionloss)"
+        )
+
+
+def _position_servos(spec, variant: Variant) -> None:
+    """``<dcmotor>`` position servos as ``<position>`` servos with the same gains, force limit
+    and control range: MJX's JAX engine refuses ``<dcmotor>`` (NotImplementedError in
+    ``mjx.put_model``), and training set-ups drive joints with position servos (MuJoCo
+    Menagerie's MJX variants, mjlab). The torque-speed line goes; the rotor inertia that came
+    with it stays on the joint."""
+    import mujoco
+
+    servos = [a for a in spec.actuators if a.gaintype == mujoco.mjtGain.mjGAIN_DCMOTOR]
+    for actuator in servos:
+        # gainprm of a <dcmotor input="pos">: resistance, motor constant, -, -, then the
+        # controller's kp, ki, kd and voltage clamp (as MuJoCo 4.0 compiles it).
+        kp, kv = float(actuator.gainprm[4]), float(actuator.gainprm[6])
+        actuator.type = mujoco.mjtActuator.mjACTUATOR_POSITION
+        actuator.dyntype = mujoco.mjtDyn.mjDYN_NONE
+        actuator.dynprm = [1.0] + [0.0] * (len(actuator.dynprm) - 1)  # MuJoCo's default
+        actuator.gainprm = [0.0] * len(actuator.gainprm)
+        actuator.biasprm = [0.0] * len(actuator.biasprm)
+        actuator.actearly = False
+        actuator.set_to_position(kp=kp, kv=kv)
+    if servos:
+        variant.notes.append(
+            f"{len(servos)} <dcmotor> servos are <position> servos with the same gains and force "
+            "limits, without their torque-speed lines (MJX has no <dcmotor>; "
+            "output.training.dcmotor keeps them for MuJoCo Warp)"
         )
 
 

@@ -41,6 +41,12 @@ def test_check_warp_proves_the_quadruped_variant_against_the_full_model(tmp_path
     assert run_cli("build", "--no-check", str(manifest)).code == 0
     report = (folder / "mjcf" / "report" / "report.md").read_text()
     assert "Not yet measured in MuJoCo Warp" in report and "| variant |" not in report
+    # It names the solver settings the variant has: the GPU's, with the iterations given.
+    import mujoco
+
+    option = mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "scene_mjx.xml")).opt
+    assert (option.solver, option.iterations, option.ls_iterations) == (2, 5, 5)  # Newton
+    assert "Solver for a GPU: newton, 5 iterations, 5 line-search iterations" in report
 
 
 def test_the_arm_variant_holds_home_and_the_hold_can_fail(tmp_path):
@@ -94,9 +100,9 @@ def test_the_bench_measures_an_exported_folder_without_the_build_dependencies(tm
             "robot": "arm",
             "scenes": [
                 ["full model", str(out / "scene.xml")],
-                ["training variant", str(out / "scene_mjx.xml")],
+                ["training variant (gpu)", str(out / "scene_mjx.xml")],
             ],
-            "variant": str(out / "scene_mjx.xml"),
+            "variants": [["gpu", str(out / "scene_mjx.xml")]],
         }
     ]
     exported = tmp_path / "exported"
@@ -115,8 +121,9 @@ def test_the_bench_measures_an_exported_folder_without_the_build_dependencies(tm
     )
     assert result.returncode == 0, result.stderr
     assert "MuJoCo Warp on cpu (" in result.stdout and "4 worlds, 3 steps" in result.stdout
-    assert "| arm | full model |" in result.stdout and "| arm | training variant |" in result.stdout
-    assert "- arm variant in Warp: holds home for 1 s" in result.stdout
+    assert "| arm | full model | Newton 100/50 |" in result.stdout
+    assert "| arm | training variant (gpu) | Newton 1/5 |" in result.stdout
+    assert "- arm variants in Warp: (gpu) holds home for 1 s" in result.stdout
 
 
 def test_warp_buffers_are_sized_from_what_the_scene_reaches(tmp_path):

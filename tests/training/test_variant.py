@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import functools
 import json
 
 import mujoco
+import numpy as np
 import pytest
 
 import mjcfbuild
@@ -68,7 +70,7 @@ def test_variant_and_scene_beside_the_model_and_only_its_task_reruns(tmp_path):
     out = folder / "mjcf"
     scene = mujoco.MjModel.from_xml_path(str(out / "scene_mjx.xml"))
     assert b'file="example_quadruped_mjx.xml"' in (out / "scene_mjx.xml").read_bytes()
-    assert scene.opt.iterations == 2 and scene.opt.ls_iterations == 4
+    assert (scene.opt.iterations, scene.opt.ls_iterations) == (1, 5)  # a GPU's defaults
     # The shin mesh is only drawn (the legs collide with authored primitives): an edit to it
     # leaves the variant, which refers to the same asset file, as it is.
     nudge(folder / "meshes" / "shin.stl")
@@ -144,16 +146,29 @@ def test_by_default_only_the_floor_and_only_through_the_soles(tmp_path):
     build(folder)
     model = mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "example_quadruped_mjx.xml"))
     assert self_contacts(model) == set() and model.nexclude == 0
-    assert scene_solver(folder) == int(mujoco.mjtSolver.mjSOL_CG)
+    assert scene_solver(folder) == (int(mujoco.mjtSolver.mjSOL_NEWTON), 1, 5)
+    assert json.loads((folder / "mjcf" / ".mjcfbuild" / "training.json").read_text())["solver"] == {
+        "device": "gpu",
+        "solver": "newton",
+        "iterations": 1,
+        "ls_iterations": 5,
+    }
     manifest = folder / "robot.yaml"
-    text = manifest.read_text().replace("training: true", "training:\n    solver: newton")
+    original = manifest.read_text()
+    manifest.write_text(original.replace("training: true", "training:\n    device: cpu"))
+    assert build(folder).ran == ["training"]
+    assert scene_solver(folder) == (int(mujoco.mjtSolver.mjSOL_CG), 2, 4)
+    # A setting given keeps its value on either device; the others are the device's.
+    text = original.replace("training: true", "training:\n    device: cpu\n    solver: newton")
     manifest.write_text(text)
     build(folder)
-    assert scene_solver(folder) == int(mujoco.mjtSolver.mjSOL_NEWTON)
+    assert scene_solver(folder) == (int(mujoco.mjtSolver.mjSOL_NEWTON), 2, 4)
 
 
 def scene_solver(folder):
-    return int(mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "scene_mjx.xml")).opt.solver)
+    """The variant scene's solver and its iteration caps."""
+    scene = mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "scene_mjx.xml"))
+    return int(scene.opt.solver), int(scene.opt.iterations), int(scene.opt.ls_iterations)
 
 
 LEG = """<mujoco>
@@ -232,6 +247,7 @@ def test_meshes_become_primitives_or_hulls_under_the_cap(tmp_path):
         ("  training:\n    iterations: 0\n", "robot.yaml:17:"),
         ("  training:\n    timestep: -0.001\n", "robot.yaml:17:"),
         ("  training:\n    solver: pgs\n", "robot.yaml:17:"),
+        ("  training:\n    device: tpu\n", "robot.yaml:17:"),
     ],
 )
 def test_bad_settings_are_one_line_with_the_robot_yaml_line_and_exit_3(tmp_path, settings, where):
@@ -342,7 +358,7 @@ def test_a_user_scene_file_includes_the_variant_in_its_scene(tmp_path):
     build(folder)
     scene = (folder / "mjcf" / "scene_mjx.xml").read_text()
     assert scene == USER_SCENE.replace("example_quadruped.xml", "example_quadruped_mjx.xml")
-    assert mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "scene_mjx.xml")).opt.iterations == 2
+    assert mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "scene_mjx.xml")).opt.iterations == 1
     # A scene file that does not include the model by its file name: one line, exit 4.
     (folder / "my_scene.xml").write_text(USER_SCENE.replace("example_quadruped.xml", "robot.xml"))
     result = run_cli("build", "--no-check", str(folder / "robot.yaml"))
@@ -350,3 +366,31 @@ def test_a_user_scene_file_includes_the_variant_in_its_scene(tmp_path):
     assert "my_scene.xml" in result.stderr and "does not include example_quadruped.xml" in (
         result.stderr
     )
+
+
+def test_dcmotor_servos_become_position_servos_with_the_same_gains_unless_kept(tmp_path):
+    folder = quadruped(tmp_path, "  training: true\n")
+    build(folder)
+    out = folder / "mjcf"
+    full = mujoco.MjModel.from_xml_path(str(out / "example_quadruped.xml"))
+    variant = mujoco.MjModel.from_xml_path(str(out / "example_quadruped_mjx.xml"))
+    dcmotor = int(mujoco.mjtGain.mjGAIN_DCMOTOR)
+    assert full.nu == variant.nu > 0 and all(full.actuator_gaintype == dcmotor)
+    assert all(variant.actuator_gaintype == int(mujoco.mjtGain.mjGAIN_FIXED))
+    assert all(variant.actuator_biastype == int(mujoco.mjtBias.mjBIAS_AFFINE))
+    kp, kv = full.actuator_gainprm[:, 4], full.actuator_gainprm[:, 6]  # the controller's gains
+    same = functools.partial(np.allclose, rtol=1e-5, atol=0)  # MuJoCo writes 6 digits
+    assert same(variant.actuator_gainprm[:, 0], kp)
+    assert same(variant.actuator_biasprm[:, 1], -kp) and same(variant.actuator_biasprm[:, 2], -kv)
+    assert same(variant.actuator_forcerange, full.actuator_forcerange)
+    assert same(variant.actuator_ctrlrange, full.actuator_ctrlrange)
+    assert same(variant.dof_armature, full.dof_armature)  # the rotor inertia stays
+    record = json.loads((out / ".mjcfbuild" / "training.json").read_text())
+    assert any("<dcmotor> servos are <position> servos" in note for note in record["notes"])
+    manifest = folder / "robot.yaml"
+    text = manifest.read_text().replace("training: true", "training:\n    dcmotor: true")
+    manifest.write_text(text)
+    build(folder)
+    kept = mujoco.MjModel.from_xml_path(str(out / "example_quadruped_mjx.xml"))
+    assert all(kept.actuator_gaintype == dcmotor)
+    assert same(kept.actuator_gainprm, full.actuator_gainprm)
