@@ -20,7 +20,7 @@ is shared); each variant's behaviour at home (5 s standing, or 1 s holding) is c
 too.
 
 ``--export DIR`` writes every scene, the files it reads (model, meshes) and ``bench.json``
-(what to measure, and how) to ``DIR``, the files packed in ``scenes.tar.xz`` (about 15 MB for
+(what to measure, and how) to ``DIR``, the files packed in ``scenes.tar.xz`` (about 20 MB for
 the three robots); ``--from DIR`` measures them on a machine that has only mujoco,
 mujoco_warp, warp-lang and numpy (no build dependencies, no network) and prints the same
 table with the device's name.
