@@ -11,7 +11,7 @@ The fastest settings differ between a GPU and a CPU, measured with the same scen
   back-substitution through the mass matrix that Newton does not).
 - **cpu** (MuJoCo Warp on a CPU): CG, 2 iterations and 4 line-search iterations. On a 2-core
   CPU at 512 worlds go1's variant ran 2.2 times its full model with these and 1.9 times with
-  the GPU's, g1's 2.5 against 1.7: CG does not factorize a Hessian at each iteration.
+  the GPU's, g1's 2.4 against 1.7: CG does not factorize a Hessian at each iteration.
 
 Either way the robot does the same at home (the variant's check stands and holds it in Warp).
 """
