@@ -6,6 +6,8 @@ forward kinematics and each link's shapes reduced to points (their origins, and 
 boxes, cylinders and spheres):
 
 - a robot bolted down says so: its root is a ``world`` link joined by a fixed joint;
+- a robot without moving joints floats: fixed, it could not move at all; free, it is a body
+  moved by forces (a quadrotor's thrust, hector's single link);
 - a wheeled base floats: two or more continuous joints with horizontal axes whose links sit in
   the lowest quarter of the robot (or in its lower half, below every other moving joint: a
   low-slung base);
@@ -50,6 +52,12 @@ def classify_base(robot: Robot) -> BaseKind:
         if "floating" in kinds:
             return BaseKind(False, "its URDF joins it to the world with a floating joint")
         return BaseKind(False, "its root is joined to the world link")
+    if all(joint.kind == "fixed" for joint in robot.joints):
+        return BaseKind(
+            True,
+            "it has no moving joints: fixed in place it could not move at all, free it "
+            "moves by the forces on it (a drone's thrust)",
+        )
     poses = link_poses(robot)
     points = {link.name: _points(link.shapes, poses[link.name]) for link in robot.links}
     heights = [p[2] for values in points.values() for p in values]

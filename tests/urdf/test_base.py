@@ -83,3 +83,25 @@ def test_a_low_slung_base_on_large_wheels_floats():
     kind = classify_base(parse_urdf(urdf.encode(), "rover.urdf"))
     assert kind.floating, kind.why
     assert "wheels" in kind.why
+
+
+def test_a_robot_without_moving_joints_floats():
+    """hector's quadrotor: one link (and here a fixed camera), no joints. Bolted down it could
+    never move; free, thrust moves it."""
+    inertial = robots.inertial
+    urdf = f"""<robot name="quadrotor">
+<link name="base">{inertial(1.5)}
+  <collision><geometry><box size="0.5 0.5 0.1"/></geometry></collision></link>
+<link name="camera">{inertial(0.05)}</link>
+<joint name="camera_mount" type="fixed"><parent link="base"/><child link="camera"/>
+  <origin xyz="0.2 0 -0.05"/></joint>
+</robot>"""
+    kind = classify_base(parse_urdf(urdf.encode(), "quadrotor.urdf"))
+    assert kind.floating and "no moving joints" in kind.why
+    # The same body with one joint that moves is judged by its shape: an arm's plate is fixed.
+    arm = urdf.replace('type="fixed"', 'type="revolute"').replace(
+        '<origin xyz="0.2 0 -0.05"/></joint>',
+        '<origin xyz="0.2 0 0.05"/><axis xyz="0 0 1"/>'
+        '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>',
+    )
+    assert not classify_base(parse_urdf(arm.encode(), "arm.urdf")).floating
