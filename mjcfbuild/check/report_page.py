@@ -325,8 +325,9 @@ def _training(training: dict | None) -> list[str]:
     if solver:
         lines += [
             f"Solver for a {solver['device'].upper()}: {solver['solver']}, "
-            f"{solver['iterations']} iterations, {solver['ls_iterations']} line-search "
-            "iterations (`output.training.device`, docs/simulation.md).",
+            f"{_count(solver['iterations'], 'iteration')}, "
+            f"{_count(solver['ls_iterations'], 'line-search iteration')} "
+            "(`output.training.device`, docs/simulation.md).",
             "",
         ]
     lines += [f"- {note}" for note in training.get("notes", [])]
@@ -347,10 +348,25 @@ def _training(training: dict | None) -> list[str]:
                 f"| {row['steps_per_second']:.0f} |"
             )
         lines += [f"- check failed: {failure}" for failure in warp.get("failures", [])]
+        gpu = warp.get("gpu")
+        if gpu:
+            rows = (("full", gpu["full"]), ("variant", gpu["variant"]))
+            lines += [
+                "",
+                f"On {gpu['device']} ({gpu['variant']['worlds']} worlds): {gpu['behaviour']}; "
+                + ", ".join(f"{n} {r['steps_per_second']:.0f} steps/s" for n, r in rows)
+                + ".",
+            ]
+            lines += [f"- check failed on the GPU: {failure}" for failure in gpu["failures"]]
     else:
         lines += ["", "Not yet measured in MuJoCo Warp: run `mjcfbuild check --warp`."]
     lines.append("")
     return lines
+
+
+def _count(number: int, noun: str) -> str:
+    """``1 iteration``, ``5 iterations``."""
+    return f"{number} {noun}{'' if number == 1 else 's'}"
 
 
 def _self_collision(matrix: dict | None) -> list[str]:

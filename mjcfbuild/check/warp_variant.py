@@ -85,6 +85,17 @@ def _warp():
     return mjw, wp
 
 
+GPU_WORLDS = 4096  # a GPU is measured at a training batch: 64 worlds would leave it idle
+
+
+def gpu_device() -> tuple[str, str] | None:
+    """MuJoCo Warp's first CUDA device and its name where this machine has one, else None."""
+    _, wp = _warp()
+    if not wp.is_cuda_available():
+        return None
+    return "cuda:0", str(wp.get_device("cuda:0").name)
+
+
 @contextlib.contextmanager
 def quiet_stdout() -> Iterator[None]:
     """Standard output (the file descriptor) sent nowhere: MuJoCo Warp's kernels print a line

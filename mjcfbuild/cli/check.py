@@ -259,7 +259,7 @@ def _prove_training_variant(ctx) -> int:
     """The training variant against the full model in MuJoCo Warp; EXIT_CHECK if it fails."""
     import json
 
-    from mjcfbuild.check.warp_variant import prove_variant
+    from mjcfbuild.check.warp_variant import GPU_WORLDS, gpu_device, prove_variant
     from mjcfbuild.engine.report import TRAINING_WARP, write_report
     from mjcfbuild.engine.tasks import training_paths
     from mjcfbuild.fsutil import md5_file
@@ -271,20 +271,35 @@ def _prove_training_variant(ctx) -> int:
             file=ctx.label(scene),
             hint=f"run mjcfbuild build {ctx.manifest_label}",
         )
-    proof = prove_variant(str(ctx.scene_path), str(scene), ctx.manifest.check.hold_tolerance)
+    hold = ctx.manifest.check.hold_tolerance
+    proof = prove_variant(str(ctx.scene_path), str(scene), hold)
     print("\n".join(proof.lines()))
-    record = {
+    record: dict = {
         "full": proof.full.to_dict(),
         "variant": proof.variant.to_dict(),
         "behaviour": proof.behaviour,
         "failures": proof.failures,
         "variant_md5": md5_file(variant),
     }
+    failures = list(proof.failures)
+    gpu = gpu_device()
+    if gpu:  # measured there too, at a training batch size
+        device, name = gpu
+        on_gpu = prove_variant(str(ctx.scene_path), str(scene), hold, GPU_WORLDS, device=device)
+        print("\n".join(on_gpu.lines(f"{device}, {name}")))
+        record["gpu"] = {
+            "device": name,
+            "full": on_gpu.full.to_dict(),
+            "variant": on_gpu.variant.to_dict(),
+            "behaviour": on_gpu.behaviour,
+            "failures": on_gpu.failures,
+        }
+        failures += [f"on {name}: {failure}" for failure in on_gpu.failures]
     ctx.state(TRAINING_WARP).write_text(json.dumps(record, indent=1, sort_keys=True) + "\n")
     write_report(ctx, [])
-    for failure in proof.failures:
+    for failure in failures:
         print(f"mjcfbuild: check failed: {ctx.label(scene)}: {failure}", file=sys.stderr)
-    return EXIT_CHECK if proof.failures else EXIT_OK
+    return EXIT_CHECK if failures else EXIT_OK
 
 
 def _read_if_present(path: Path) -> bytes | None:
