@@ -22,7 +22,9 @@ set, but MuJoCo Warp runs the narrow phase on every explicit pair at every step:
 self pairs that made the variant slower than the full model (measured on the CPU).
 
 Joints lose their ``frictionloss`` unless told to keep it: dry friction is a constraint row
-per joint that the solver iterates on in every world at every step.
+per joint that the solver iterates on in every world at every step. ``<dcmotor>`` servos
+become ``<position>`` servos with the same gains unless told to stay (MJX refuses
+``<dcmotor>``). The solver settings are the device's (:mod:`mjcfbuild.training.solver`).
 
 Fitted primitives enclose the geometry, so they reach a little lower than it: a floating robot
 is raised by that much (its body and its keyframes) so it starts on the floor, not in it.
