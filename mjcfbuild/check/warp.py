@@ -9,6 +9,7 @@ load them from Warp's kernel cache.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from mjcfbuild.errors import CheckError, UsageError
 
@@ -22,8 +23,9 @@ class WarpResult:
     finite: bool
 
 
-def check_in_warp(model_path: str, worlds: int = 4, steps: int = 50) -> WarpResult:
-    """Load ``model_path`` in MuJoCo Warp and step ``worlds`` copies of it from home."""
+def load_warp() -> tuple[Any, Any]:
+    """MuJoCo Warp and Warp (``mjw``, ``wp``), quiet: without ``quiet`` Warp prints a banner
+    and a line per kernel module it loads (about 40 for one model) into the check's report."""
     try:
         import mujoco_warp as mjw
         import warp as wp
@@ -31,6 +33,17 @@ def check_in_warp(model_path: str, worlds: int = 4, steps: int = 50) -> WarpResu
         raise UsageError(
             "MuJoCo Warp is not installed", hint="pip install 'mjcfbuild[warp]'"
         ) from None
+    # warp-lang 1.19 replaced ``config.quiet`` with ``config.log_level``; set what it reads.
+    if hasattr(wp, "LOG_WARNING"):
+        wp.config.log_level = wp.LOG_WARNING
+    else:  # older warp-lang
+        wp.config.quiet = True  # type: ignore[attr-defined]
+    return mjw, wp
+
+
+def check_in_warp(model_path: str, worlds: int = 4, steps: int = 50) -> WarpResult:
+    """Load ``model_path`` in MuJoCo Warp and step ``worlds`` copies of it from home."""
+    mjw, wp = load_warp()
     import mujoco
     import numpy as np
 

@@ -17,7 +17,8 @@ import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
-from mjcfbuild.errors import CheckError, UsageError
+from mjcfbuild.check.warp import load_warp
+from mjcfbuild.errors import CheckError
 
 
 @dataclass(frozen=True)
@@ -73,24 +74,12 @@ class VariantProof:
         return rows
 
 
-def _warp():
-    try:
-        import mujoco_warp as mjw
-        import warp as wp
-    except ImportError:
-        raise UsageError(
-            "MuJoCo Warp is not installed", hint="pip install 'mjcfbuild[warp]'"
-        ) from None
-    wp.config.quiet = True  # type: ignore[attr-defined]  # no line per kernel module loaded
-    return mjw, wp
-
-
 GPU_WORLDS = 4096  # a GPU is measured at a training batch: 64 worlds would leave it idle
 
 
 def gpu_device() -> tuple[str, str] | None:
     """MuJoCo Warp's first CUDA device and its name where this machine has one, else None."""
-    _, wp = _warp()
+    _, wp = load_warp()
     if not wp.is_cuda_available():
         return None
     return "cuda:0", str(wp.get_device("cuda:0").name)
@@ -136,7 +125,7 @@ def measure(
     import mujoco
     import numpy as np
 
-    mjw, wp = _warp()
+    mjw, wp = load_warp()
     model = mujoco.MjModel.from_xml_path(scene_path)
     data = _home(model)
     ctrl = noisy_ctrl(model, data, worlds, noise)
@@ -229,7 +218,7 @@ def behaviour(scene_path: str, hold_tolerance: float, device: str = "cpu") -> tu
     from mjcfbuild.check.control import STAND_SECONDS, STAND_SINK, STAND_TILT, TEST_SECONDS
     from mjcfbuild.control.standing import stance
 
-    mjw, wp = _warp()
+    mjw, wp = load_warp()
     model = mujoco.MjModel.from_xml_path(scene_path)
     data = _home(model)
     roots = [j for j in range(model.njnt) if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE]
