@@ -349,7 +349,9 @@ def _training(training: dict | None) -> list[str]:
             )
         lines += [f"- check failed: {failure}" for failure in warp.get("failures", [])]
         gpu = warp.get("gpu")
-        if gpu:
+        if gpu and "error" in gpu:
+            lines += ["", f"- check failed on the GPU: {gpu['error']}"]
+        elif gpu:
             rows = (("full", gpu["full"]), ("variant", gpu["variant"]))
             lines += [
                 "",

@@ -289,3 +289,31 @@ def prove_variant(
     if failure:
         proof.failures.append(failure)
     return proof
+
+
+def prove_on_gpu(
+    full_scene: str,
+    variant_scene: str,
+    hold_tolerance: float,
+    device: str,
+    name: str,
+    worlds: int = GPU_WORLDS,
+) -> tuple[dict, list[str]]:
+    """The variant proven on a GPU as on the CPU: the record ``check --warp`` keeps and the
+    failures, each naming the GPU. An error there (out of memory, the driver) is a failure
+    too, so the CPU's result is never lost to it."""
+    try:
+        proof = prove_variant(full_scene, variant_scene, hold_tolerance, worlds, device=device)
+    except Exception as exc:  # whatever the device raises, said in one line
+        detail = (str(exc).strip().splitlines() or [type(exc).__name__])[0]
+        failure = f"MuJoCo Warp failed on {name}: {detail}"
+        return {"device": name, "error": failure, "failures": [failure]}, [failure]
+    print("\n".join(proof.lines(f"{device}, {name}")))
+    record = {
+        "device": name,
+        "full": proof.full.to_dict(),
+        "variant": proof.variant.to_dict(),
+        "behaviour": proof.behaviour,
+        "failures": proof.failures,
+    }
+    return record, [f"on {name}: {failure}" for failure in proof.failures]

@@ -259,7 +259,7 @@ def _prove_training_variant(ctx) -> int:
     """The training variant against the full model in MuJoCo Warp; EXIT_CHECK if it fails."""
     import json
 
-    from mjcfbuild.check.warp_variant import GPU_WORLDS, gpu_device, prove_variant
+    from mjcfbuild.check.warp_variant import gpu_device, prove_on_gpu, prove_variant
     from mjcfbuild.engine.report import TRAINING_WARP, write_report
     from mjcfbuild.engine.tasks import training_paths
     from mjcfbuild.fsutil import md5_file
@@ -284,17 +284,8 @@ def _prove_training_variant(ctx) -> int:
     failures = list(proof.failures)
     gpu = gpu_device()
     if gpu:  # measured there too, at a training batch size
-        device, name = gpu
-        on_gpu = prove_variant(str(ctx.scene_path), str(scene), hold, GPU_WORLDS, device=device)
-        print("\n".join(on_gpu.lines(f"{device}, {name}")))
-        record["gpu"] = {
-            "device": name,
-            "full": on_gpu.full.to_dict(),
-            "variant": on_gpu.variant.to_dict(),
-            "behaviour": on_gpu.behaviour,
-            "failures": on_gpu.failures,
-        }
-        failures += [f"on {name}: {failure}" for failure in on_gpu.failures]
+        record["gpu"], on_gpu = prove_on_gpu(str(ctx.scene_path), str(scene), hold, *gpu)
+        failures += on_gpu
     ctx.state(TRAINING_WARP).write_text(json.dumps(record, indent=1, sort_keys=True) + "\n")
     write_report(ctx, [])
     for failure in failures:

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import asdict
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -60,7 +59,6 @@ from mjcfbuild.steps.payloads import (
     TuningPayload,
 )
 from mjcfbuild.steps.plan_record import Plan, read_plan
-from mjcfbuild.training.solver import solver_settings
 
 if TYPE_CHECKING:
     from mjcfbuild.collision.policy import CollisionChoice
@@ -1081,9 +1079,6 @@ def _training_task(
     scene_payload = _scene_payload(ctx, plan, variant.name, scene_path)
     source = scene_payload.scene_file
     auto_floor = ctx.manifest.placement.floor == "auto"
-    solver = solver_settings(
-        settings.device, settings.solver, settings.iterations, settings.ls_iterations
-    )
     payload = TrainingPayload(
         settings={
             "floor_add": list(settings.floor_contacts.add),
@@ -1092,7 +1087,9 @@ def _training_task(
             "max_hull_vertices": settings.max_hull_vertices,
             "primitive_fit": settings.primitive_fit,
             "device": settings.device,
-            **asdict(solver),
+            "solver": settings.solver,
+            "iterations": settings.iterations,
+            "ls_iterations": settings.ls_iterations,
             "timestep": settings.timestep,
             "frictionloss": settings.frictionloss,
             "dcmotor": settings.dcmotor,

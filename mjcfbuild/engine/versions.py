@@ -25,7 +25,7 @@ STEP_FORMATS = {
     "compose": 2,  # 2: the origins of the composed lines
     "mjcfpart": 1,
     "package": 2,  # 2: <dcmotor> gains rounded and shared in classes
-    "training": 7,  # 7: solver defaults per device (output.training.device)
+    "training": 7,  # 7: solver per device (output.training.device); <position> servos for MJX
     "page": 2,  # 2: bold, pictures and quotes in the tables; the diff's changes section
 }
 

@@ -567,15 +567,21 @@ class TrainingVariant(StrictModel):
         "gpu",
         description=(
             "Where the variant will run: gpu (MuJoCo Warp or MJX on a GPU) or cpu (MuJoCo Warp "
-            "on a CPU). Picks the solver defaults measured fastest there: gpu Newton with 1 "
-            "iteration and 5 line-search iterations, cpu CG with 2 and 4."
+            "on a CPU). Picks the solver: newton on a gpu (MuJoCo Menagerie's and Playground's "
+            "training settings), cg on a cpu (measured fastest there)."
         ),
     )
     iterations: int | None = Field(
-        None, ge=1, le=1000, description="Constraint solver iterations. Default: the device's."
+        None,
+        ge=1,
+        le=1000,
+        description="Constraint solver iterations. Default: the solver's (newton 1, cg 2).",
     )
     ls_iterations: int | None = Field(
-        None, ge=1, le=1000, description="Line search iterations. Default: the device's."
+        None,
+        ge=1,
+        le=1000,
+        description="Line search iterations. Default: the solver's (newton 5, cg 4).",
     )
     solver: Literal["cg", "newton"] | None = Field(
         None,

@@ -12,9 +12,9 @@ import html
 import json
 from pathlib import Path
 
+from mjcfbuild.mjcf.compat import for_mujoco3
 from mjcfbuild.page import WEB
 from mjcfbuild.page.bundle import model_script, mujoco_script, wasm_script
-from mjcfbuild.page.compat import for_wasm
 from mjcfbuild.page.vendor import mujoco_js
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import PagePayload
@@ -51,8 +51,8 @@ def _model_files(scene: Path, model: Path, assets: Path) -> dict[str, bytes]:
     relative to the output folder."""
     base = scene.parent
     files = {
-        scene.name: for_wasm(scene.read_bytes()),
-        model.relative_to(base).as_posix(): for_wasm(model.read_bytes()),
+        scene.name: for_mujoco3(scene.read_bytes()),
+        model.relative_to(base).as_posix(): for_mujoco3(model.read_bytes()),
     }
     if assets.is_dir():
         for path in sorted(p for p in assets.rglob("*") if p.is_file()):

@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 from mjcfbuild.errors import InputError
+from mjcfbuild.mjcf.compat import for_mujoco3
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import TrainingPayload
 from mjcfbuild.steps.scene import scene_bytes
@@ -24,8 +25,9 @@ def run(payload: dict) -> dict:
         verdicts = json.loads(Path(request.self_collision).read_text())["pairs"]
     variant = build_variant(request.model, verdicts, VariantSettings(**settings))
     outputs: dict[str, str] = {}
-    xml = f"<!-- {request.header} -->\n{variant.xml}"
-    write_output(Path(request.output), xml.encode(), outputs)
+    # MJX runs with the MuJoCo it was released with (3.x), which refuses one attribute 4.0 writes.
+    xml = for_mujoco3(f"<!-- {request.header} -->\n{variant.xml}".encode())
+    write_output(Path(request.output), xml, outputs)
     scene = scene_bytes(request.scene)
     if request.scene.scene_file:
         scene = _include_variant(scene, request.robot_file, request.scene.robot_file, request)

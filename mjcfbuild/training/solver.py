@@ -1,17 +1,17 @@
 """The training variant's constraint solver settings, chosen for the device it will run on.
 
-The fastest settings differ between a GPU and a CPU, measured with the same scenes
-(docs/benchmarks.md, "MuJoCo Warp"):
+The device picks the solver, and the solver its iteration caps:
 
-- **gpu** (the default: training runs thousands of worlds on GPUs): Newton, 1 iteration and
-  5 line-search iterations, the settings of MuJoCo Menagerie's ``*_mjx.xml`` variants and
-  MuJoCo Playground. On an NVIDIA H200 at 8192 worlds, the full models with Newton ran 1.5 to
-  2.8 times faster than the same robots' variants, and mjlab's models, under CG with 2
-  iterations (the stages were not timed; MuJoCo Warp's CG runs a tiled kernel per world and a
-  back-substitution through the mass matrix that Newton does not).
-- **cpu** (MuJoCo Warp on a CPU): CG, 2 iterations and 4 line-search iterations. On a 2-core
-  CPU at 512 worlds go1's variant ran 2.2 times its full model with these and 1.9 times with
-  the GPU's, g1's 2.4 against 1.7: CG does not factorize a Hessian at each iteration.
+- **gpu** (the default: training runs thousands of worlds on GPUs): Newton with 1 iteration
+  and 5 line-search iterations, the settings of MuJoCo Menagerie's ``*_mjx.xml`` variants and
+  MuJoCo Playground (mjlab's velocity tasks train with Newton too). Not yet timed on a GPU
+  with the variant; what moved the default there: on an NVIDIA H200 at 8192 worlds, the
+  variants and mjlab's models under CG with 2 and 4 iterations ran 1.5 to 2.8 times slower
+  than the full models under Newton (docs/benchmarks.md). The cause was not timed stage by
+  stage.
+- **cpu** (MuJoCo Warp on a CPU): CG with 2 iterations and 4 line-search iterations, measured
+  fastest on a 2-core CPU at 512 worlds (go1's variant 2.2 times its full model against 1.9
+  with Newton 1/5, g1's 2.4 against 1.7): CG does not factorize a Hessian at each iteration.
 
 Either way the robot does the same at home (the variant's check stands and holds it in Warp).
 """
@@ -19,9 +19,6 @@ Either way the robot does the same at home (the variant's check stands and holds
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
-
-Device = Literal["gpu", "cpu"]
 
 
 @dataclass(frozen=True)
@@ -33,10 +30,8 @@ class SolverSettings:
     ls_iterations: int
 
 
-DEVICE_DEFAULTS: dict[str, SolverSettings] = {
-    "gpu": SolverSettings("newton", 1, 5),
-    "cpu": SolverSettings("cg", 2, 4),
-}
+DEVICE_SOLVER = {"gpu": "newton", "cpu": "cg"}
+SOLVER_DEFAULTS = {"newton": SolverSettings("newton", 1, 5), "cg": SolverSettings("cg", 2, 4)}
 
 
 def solver_settings(
@@ -45,10 +40,11 @@ def solver_settings(
     iterations: int | None = None,
     ls_iterations: int | None = None,
 ) -> SolverSettings:
-    """The settings for ``device``, with any the user gave in place of its defaults."""
-    default = DEVICE_DEFAULTS[device]
+    """The settings for ``device``: its solver unless ``solver`` is given, that solver's
+    iteration caps unless they are given."""
+    default = SOLVER_DEFAULTS[solver or DEVICE_SOLVER[device]]
     return SolverSettings(
-        solver=solver or default.solver,
+        solver=default.solver,
         iterations=iterations if iterations is not None else default.iterations,
         ls_iterations=ls_iterations if ls_iterations is not None else default.ls_iterations,
     )

@@ -32,12 +32,12 @@ is raised by that much (its body and its keyframes) so it starts on the floor, n
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from typing import Any
 
 from mjcfbuild.errors import ManifestError
 from mjcfbuild.training.contacts import floor_bodies, self_pairs
-from mjcfbuild.training.solver import DEVICE_DEFAULTS
+from mjcfbuild.training.solver import solver_settings
 
 FLOOR_CONTACT = 2e-3  # m: collision geometry this close to the floor at home touches it
 SOLE = 5e-3  # m: a touching link's geoms this close to its lowest point at home are its sole
@@ -54,10 +54,10 @@ class VariantSettings:
     self_contacts: bool = False
     max_hull_vertices: int = 16
     primitive_fit: float = 2.0
-    device: str = "gpu"  # gpu or cpu: whose solver defaults (mjcfbuild.training.solver)
-    iterations: int = DEVICE_DEFAULTS["gpu"].iterations
-    ls_iterations: int = DEVICE_DEFAULTS["gpu"].ls_iterations
-    solver: str = DEVICE_DEFAULTS["gpu"].solver  # MuJoCo's name, lower case: cg or newton
+    device: str = "gpu"  # gpu or cpu: picks the solver defaults (mjcfbuild.training.solver)
+    iterations: int | None = None  # None: the solver's default
+    ls_iterations: int | None = None
+    solver: str | None = None  # MuJoCo's name, lower case: cg or newton; None: the device's
     timestep: float | None = None
     frictionloss: bool = False
     dcmotor: bool = False
@@ -153,15 +153,13 @@ def build_variant(model_path: str, verdicts: list[dict], settings: VariantSettin
         _drop_frictionloss(spec, variant)
     if not settings.dcmotor:
         _position_servos(spec, variant)
-    spec.option.iterations = settings.iterations
-    spec.option.ls_iterations = settings.ls_iterations
-    spec.option.solver = getattr(mujoco.mjtSolver, f"mjSOL_{settings.solver.upper()}")
-    variant.solver = {
-        "device": settings.device,
-        "solver": settings.solver,
-        "iterations": settings.iterations,
-        "ls_iterations": settings.ls_iterations,
-    }
+    solver = solver_settings(
+        settings.device, settings.solver, settings.iterations, settings.ls_iterations
+    )
+    spec.option.iterations = solver.iterations
+    spec.option.ls_iterations = solver.ls_iterations
+    spec.option.solver = getattr(mujoco.mjtSolver, f"mjSOL_{solver.solver.upper()}")
+    variant.solver = {"device": settings.device, **asdict(solver)}
     if settings.timestep is not None:
         spec.option.timestep = settings.timestep
     variant.raised = _onto_floor(spec, lowest_full)
@@ -448,17 +446,22 @@ def _drop_frictionloss(spec, variant: Variant) -> None:
 
 
 def _position_servos(spec, variant: Variant) -> None:
-    """``<dcmotor>`` position servos as ``<position>`` servos with the same gains, force limit
-    and control range: MJX's JAX engine refuses ``<dcmotor>`` (NotImplementedError in
-    ``mjx.put_model``), and training set-ups drive joints with position servos (MuJoCo
-    Menagerie's MJX variants, mjlab). The torque-speed line goes; the rotor inertia that came
-    with it stays on the joint."""
+    """``<dcmotor input="pos">`` servos (no integral term) as ``<position>`` servos with the
+    same gains, force limit and control range: MJX's JAX engine refuses ``<dcmotor>``
+    (NotImplementedError in ``mjx.put_model``), and training set-ups drive joints with position
+    servos (MuJoCo Menagerie's MJX variants, mjlab). The torque-speed line goes; the rotor
+    inertia that came with it stays on the joint."""
     import mujoco
 
-    servos = [a for a in spec.actuators if a.gaintype == mujoco.mjtGain.mjGAIN_DCMOTOR]
+    motors = [a for a in spec.actuators if a.gaintype == mujoco.mjtGain.mjGAIN_DCMOTOR]
+    # gainprm of a <dcmotor>: resistance, motor constant, -, -, then its controller's kp, ki,
+    # kd and voltage clamp (as MuJoCo 4.0 compiles it). A position servo is kp and kd alone.
+    servos = [
+        a
+        for a in motors
+        if a.ctrlspec == mujoco.mjtCtrlInput.mjINPUT_POS and float(a.gainprm[5]) == 0.0
+    ]
     for actuator in servos:
-        # gainprm of a <dcmotor input="pos">: resistance, motor constant, -, -, then the
-        # controller's kp, ki, kd and voltage clamp (as MuJoCo 4.0 compiles it).
         kp, kv = float(actuator.gainprm[4]), float(actuator.gainprm[6])
         actuator.type = mujoco.mjtActuator.mjACTUATOR_POSITION
         actuator.dyntype = mujoco.mjtDyn.mjDYN_NONE
@@ -472,6 +475,14 @@ def _position_servos(spec, variant: Variant) -> None:
             f"{len(servos)} <dcmotor> servos are <position> servos with the same gains and force "
             "limits, without their torque-speed lines (MJX has no <dcmotor>; "
             "output.training.dcmotor keeps them for MuJoCo Warp)"
+        )
+    kept = [a.name or f"actuator {a.id}" for a in motors if a not in servos]
+    if kept:
+        # Voltage or velocity input, or an integral term: no position servo is the same drive.
+        variant.notes.append(
+            f"{len(kept)} <dcmotor> actuators kept as they are ({', '.join(kept[:4])}): they are "
+            "not position servos without an integral term, so no <position> servo matches them; "
+            "MuJoCo Warp runs them, MJX refuses them"
         )
 
 

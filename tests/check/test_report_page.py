@@ -47,3 +47,18 @@ def test_gpu_figures_appear_beside_the_cpu_ones_only_when_measured():
         "variant 900000 steps/s." in text
     )
     assert "- check failed on the GPU: the training variant does not stand" in text
+
+
+def test_a_gpu_that_failed_is_one_failure_line_beside_the_cpu_figures():
+    full, variant = figures(64, 11000.0, 24000.0)
+    error = "MuJoCo Warp failed on NVIDIA H100: out of memory"
+    warp = {
+        "full": full,
+        "variant": variant,
+        "behaviour": "stands",
+        "failures": [],
+        "gpu": {"device": "NVIDIA H100", "error": error, "failures": [error]},
+    }
+    text = "\n".join(_training({**RECORD, "warp": warp}))
+    assert "| variant | 5 | 4 | 24000 |" in text
+    assert f"- check failed on the GPU: {error}" in text and "On NVIDIA" not in text

@@ -149,3 +149,21 @@ def test_warp_buffers_are_sized_from_what_the_scene_reaches(tmp_path):
     assert nconmax >= max(8, 2 * data.ncon) and njmax >= max(16, 2 * data.nefc)
     figures = measure(scene, worlds=4, steps=19)
     assert (figures.nconmax, figures.njmax) == (nconmax, njmax) and figures.finite
+
+
+def test_the_gpu_proof_records_figures_and_turns_a_device_error_into_a_failure(tmp_path):
+    """What check --warp does where Warp finds a GPU, run here on the CPU (the same Warp calls
+    with another device name), and on a device that does not exist: the error is a failure
+    naming the device, never a traceback that loses the CPU's result."""
+    from mjcfbuild.check.warp_variant import prove_on_gpu
+
+    folder = with_training(tmp_path, "arm")
+    full, variant = (str(folder / "mjcf" / name) for name in ("scene.xml", "scene_mjx.xml"))
+    record, failures = prove_on_gpu(full, variant, 0.05, "cpu", "this CPU", worlds=8)
+    assert failures == [] and record["device"] == "this CPU"
+    assert record["variant"]["worlds"] == 8 and record["variant"]["finite"]
+    assert record["behaviour"].startswith("holds home for 1 s")
+    record, failures = prove_on_gpu(full, variant, 0.05, "cuda:7", "a missing GPU", worlds=8)
+    assert failures == [record["error"]] and failures[0].startswith(
+        "MuJoCo Warp failed on a missing GPU: "
+    )

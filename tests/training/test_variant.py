@@ -158,11 +158,14 @@ def test_by_default_only_the_floor_and_only_through_the_soles(tmp_path):
     manifest.write_text(original.replace("training: true", "training:\n    device: cpu"))
     assert build(folder).ran == ["training"]
     assert scene_solver(folder) == (int(mujoco.mjtSolver.mjSOL_CG), 2, 4)
-    # A setting given keeps its value on either device; the others are the device's.
+    # A solver given brings its own iteration caps; a cap given keeps its value.
     text = original.replace("training: true", "training:\n    device: cpu\n    solver: newton")
     manifest.write_text(text)
     build(folder)
-    assert scene_solver(folder) == (int(mujoco.mjtSolver.mjSOL_NEWTON), 2, 4)
+    assert scene_solver(folder) == (int(mujoco.mjtSolver.mjSOL_NEWTON), 1, 5)
+    manifest.write_text(text + "    ls_iterations: 9\n")
+    build(folder)
+    assert scene_solver(folder) == (int(mujoco.mjtSolver.mjSOL_NEWTON), 1, 9)
 
 
 def scene_solver(folder):

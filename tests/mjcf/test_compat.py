@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mjcfbuild.page.compat import for_wasm
+from mjcfbuild.mjcf.compat import for_mujoco3
 
 SERVO = """<mujoco>
   <worldbody>
@@ -26,7 +26,7 @@ def test_the_position_shortcuts_input_goes_and_the_servo_stays_the_same():
 
     written = mujoco.MjSpec.from_string(SERVO).to_xml().encode()  # as MuJoCo 4.0 saves it
     assert b'input="pos"' in written
-    page = for_wasm(written)
+    page = for_mujoco3(written)
     assert b"input=" not in page
     assert page == written.replace(b' input="pos"', b"")  # nothing else touched
     paths = []
@@ -44,6 +44,16 @@ def test_the_position_shortcuts_input_goes_and_the_servo_stays_the_same():
 
 def test_the_actuators_that_take_an_input_keep_it():
     xml = b'<actuator><dcmotor name="m" joint="j" input="pos"/><pid input="vel"/></actuator>'
-    assert for_wasm(xml) == xml
+    assert for_mujoco3(xml) == xml
     both = b'<general input="pos" name="a"/><motor name="b" input="pos" gear="2"/>'
-    assert for_wasm(both) == b'<general name="a"/><motor name="b" gear="2"/>'
+    assert for_mujoco3(both) == b'<general name="a"/><motor name="b" gear="2"/>'
+
+
+def test_a_general_with_dc_motor_dynamics_keeps_its_input():
+    """MjSpec writes a <dcmotor> as a <general> with dcmotor gain, bias and dynamics, whose
+    controller needs its input: taking it out would make the model fail to load."""
+    xml = (
+        b'<general name="m" joint="j" dyntype="dcmotor" gaintype="dcmotor" input="pos" '
+        b'biastype="dcmotor" gainprm="1.92 0.8 0 0 100 0 5 24"/>'
+    )
+    assert for_mujoco3(xml) == xml
