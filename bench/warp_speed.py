@@ -241,11 +241,19 @@ def unpacked(folder: Path, into: Path) -> tuple[dict, list[dict]]:
         {
             "robot": robot["robot"],
             "scenes": [[label, str(into / scene)] for label, scene in robot["scenes"]],
-            "variants": [[device, str(into / path)] for device, path in robot["variants"]],
+            "variants": [[device, str(into / path)] for device, path in _variants(robot)],
         }
         for robot in document.pop("robots")
     ]
     return document, plan
+
+
+def _variants(robot: dict) -> list[list[str]]:
+    """An exported robot's variants by device; a folder exported before there were two has
+    one ``variant`` (built with CG 2/4, today's cpu settings)."""
+    if "variants" in robot:
+        return robot["variants"]
+    return [["cpu", robot["variant"]]]
 
 
 def measured(plan: list[dict], worlds: int, steps: int, rounds: int, device: str, hold: float):

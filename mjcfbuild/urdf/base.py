@@ -6,8 +6,9 @@ forward kinematics and each link's shapes reduced to points (their origins, and 
 boxes, cylinders and spheres):
 
 - a robot bolted down says so: its root is a ``world`` link joined by a fixed joint;
-- a robot without moving joints floats: fixed, it could not move at all; free, it is a body
-  moved by forces (a quadrotor's thrust, hector's single link);
+- a robot without moving joints floats: fixed, nothing in it could ever move; free, forces
+  move it (hector's quadrotor, one link). A fixture meant to stay put (a sensor mount, a
+  table) takes ``free_joint: false``;
 - a wheeled base floats: two or more continuous joints with horizontal axes whose links sit in
   the lowest quarter of the robot (or in its lower half, below every other moving joint: a
   low-slung base);
@@ -55,8 +56,8 @@ def classify_base(robot: Robot) -> BaseKind:
     if all(joint.kind == "fixed" for joint in robot.joints):
         return BaseKind(
             True,
-            "it has no moving joints: fixed in place it could not move at all, free it "
-            "moves by the forces on it (a drone's thrust)",
+            "it has no moving joints: fixed, nothing in it could move; free, forces move it "
+            "(a drone); false for a fixture that stays put",
         )
     poses = link_poses(robot)
     points = {link.name: _points(link.shapes, poses[link.name]) for link in robot.links}
