@@ -20,6 +20,8 @@ def test_the_quadruped_variant_loads_and_stands_in_mjx(tmp_path):
     manifest = folder / "robot.yaml"
     manifest.write_text(manifest.read_text() + "  training: true\n")
     assert run_cli("build", "--no-check", str(manifest)).code == 0
+    # Nothing MuJoCo 3.x (MJX's own release) refuses: no input= on the position servos.
+    assert "input=" not in (folder / "mjcf" / "example_quadruped_mjx.xml").read_text()
     model = mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "scene_mjx.xml"))
     device_model = mjx.put_model(model)  # refuses what MJX does not run (<dcmotor>, for one)
     home = model.key("home")
