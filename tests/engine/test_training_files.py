@@ -10,12 +10,19 @@ def build(folder):
     return mjcfbuild.build(folder / "robot.yaml", jobs=1, check=False)
 
 
-def test_turning_training_off_removes_the_variant_and_its_scene(tmp_path):
+def built_with_training(tmp_path):
+    """The example arm built with the variant: its folder, manifest and manifest text without
+    the training line."""
     folder = copy_example("arm", tmp_path)
     manifest = folder / "robot.yaml"
     plain = manifest.read_text()
     manifest.write_text(plain + "  training: true\n")
     build(folder)
+    return folder, manifest, plain
+
+
+def test_turning_training_off_removes_the_variant_and_its_scene(tmp_path):
+    folder, manifest, plain = built_with_training(tmp_path)
     out = folder / "mjcf"
     variant, scene = sorted(out.glob("*_mjx.xml"))
     assert variant.name != "scene_mjx.xml" and scene.name == "scene_mjx.xml"
@@ -34,11 +41,7 @@ def test_turning_training_off_removes_the_variant_and_its_scene(tmp_path):
 
 
 def test_a_new_name_for_the_variant_removes_the_old_files(tmp_path):
-    folder = copy_example("arm", tmp_path)
-    manifest = folder / "robot.yaml"
-    plain = manifest.read_text()
-    manifest.write_text(plain + "  training: true\n")
-    build(folder)
+    folder, manifest, plain = built_with_training(tmp_path)
     out = folder / "mjcf"
     old = sorted(out.glob("*_mjx.xml"))
     manifest.write_text(
