@@ -24,7 +24,6 @@ from mjcfbuild.xmlguard import refuse_entities
 
 # ``args_key`` of arguments given as NAME:=VALUE on the command line (``convert``).
 COMMAND_LINE = "the command line"
-XACRO_NAMESPACES = ("http://www.ros.org/wiki/xacro", "http://ros.org/wiki/xacro")
 # Carried by every element through xacro's expansion: where it was written ("file:line").
 _ORIGIN = "mjcfbuild-origin"
 _ARG_USE = re.compile(r"\$\(arg\s+([^\s)]+)\s*\)")
@@ -46,6 +45,7 @@ class Expansion:
 class _Reading:
     """What the expansion saw in the files xacro parsed."""
 
+    track_lines: bool = True  # mark elements with where they were written
     files: list[str] = field(default_factory=list)  # origins name files by index in this
     declared: set[str] = field(default_factory=set)  # <xacro:arg> names and $(arg) uses
 
@@ -118,19 +118,42 @@ def expand_xacro(
     ``args_key`` is where ``mappings`` were given: a manifest key (``robot.yaml source.args``:
     an argument the files neither declare nor use is a :class:`ManifestError` at that key's
     line), :data:`COMMAND_LINE` (a :class:`UsageError`), or None (not checked).
+
+    Where each element was written is tracked through the expansion (see
+    :mod:`mjcfbuild.sources.origins`). If xacro fails with the tracking but expands the same
+    files without it, the tracking was at fault, not the files: the expansion without it is
+    used, and its lines stay untracked.
     """
     problem = unreadable_file(path)
     if problem:
         raise InputError(
             f"xacro source {problem}", file=path, hint="fix 'source.xacro' in robot.yaml"
         )
+    try:
+        return _expand(path, mappings, packages, args_key, track_lines=True)
+    except _XacroFailed:
+        return _expand(path, mappings, packages, args_key, track_lines=False)
+
+
+class _XacroFailed(InputError):
+    """xacro itself failed on the files (not a $(find), $(env) or XML error of ours)."""
+
+
+def _expand(
+    path: Path,
+    mappings: Mapping[str, str],
+    packages: PackageResolver,
+    args_key: str | None,
+    track_lines: bool,
+) -> Expansion:
+    """One run of xacro over ``path``, with or without the tracking of written lines."""
     import xml.parsers.expat
 
     import xacro
 
     reads: dict[str, str | None] = {}
     raised: list[InputError] = []
-    reading = _Reading()
+    reading = _Reading(track_lines=track_lines)
     with _xacro_hooks(xacro, packages, reads, raised, reading):
         try:
             document = xacro.process_file(str(path), mappings=dict(mappings))
@@ -151,7 +174,8 @@ def expand_xacro(
                     line = _line_of(current, re.escape(f"$(find {package.group(1)})"))
                 raise InputError(first.message, file=current, line=line, hint=first.hint) from None
             message = _xacro_message(exc)
-            hint = "the same error appears with the 'xacro' command; fix the file or its args"
+            # Said only once xacro has failed without mjcfbuild's tracking too.
+            hint = "xacro fails the same way on its own; fix the file or its args"
             line = None
             undefined = re.search(r"(?i)undefined substitution argument (\S+)", message)
             if undefined:
@@ -165,12 +189,11 @@ def expand_xacro(
                 hint = (
                     "pass it under 'source.args' in robot.yaml, or give its <xacro:arg> a default"
                 )
-            raise InputError(
-                f"xacro failed: {message}", file=current, line=line, hint=hint
-            ) from None
+            failure = _XacroFailed if track_lines else InputError
+            raise failure(f"xacro failed: {message}", file=current, line=line, hint=hint) from None
         included = list(xacro.all_includes)
     _check_args(mappings, reading.declared, path, args_key)
-    marks = _take_origins(document)
+    marks = _take_origins(document) if track_lines else []
     text = document.toprettyxml(indent="  ", encoding="utf-8")
     files = {str(normalise(path))}
     missing: set[str] = set()
@@ -182,7 +205,7 @@ def expand_xacro(
         files=sorted(files),
         missing=sorted(missing),
         environment=dict(sorted(reads.items())),
-        origins=_origins(text, marks, reading.files),
+        origins=_origins(text, marks, reading.files) if track_lines else {},
     )
 
 
@@ -225,30 +248,51 @@ def _line_of(file: str, pattern: str) -> int | None:
 
 
 def _mark_origins(document: Any, data: bytes, file: str, reading: _Reading) -> None:
-    """Give each non-xacro element of a freshly parsed file (a minidom document) an attribute
-    saying where it is written, which xacro copies along wherever the element ends up; record
-    the arguments the file declares or uses."""
+    """Record the arguments a freshly parsed file (a minidom document) declares or uses, and
+    when tracking lines, give each of its non-xacro elements an attribute saying where it is
+    written, which xacro copies along wherever the element ends up."""
     from lxml import etree
 
     reading.declared.update(_ARG_USE.findall(data.decode("utf-8", "replace")))
+    nodes = document.getElementsByTagName("*")
+    for node in nodes:
+        if node.tagName == "xacro:arg" and node.getAttribute("name"):
+            reading.declared.add(node.getAttribute("name"))
+    if not reading.track_lines:
+        return
     try:
         parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=True)
         root = etree.fromstring(data, parser)
     except etree.XMLSyntaxError:
-        return  # xacro reports it
+        return  # xacro reports it, or reads what lxml refuses (an unbound prefix): no lines
     elements = [element for element in root.iter() if isinstance(element.tag, str)]
-    nodes = document.getElementsByTagName("*")
-    if len(elements) != len(nodes):
+    if len(elements) != len(nodes) or any(
+        _qualified_name(element) != node.tagName
+        for element, node in zip(elements, nodes, strict=True)
+    ):
         return  # never seen; without the same elements, no origin is better than a wrong one
     index = len(reading.files)
     reading.files.append(file)
     for element, node in zip(elements, nodes, strict=True):
-        name = etree.QName(element)
-        if name.namespace in XACRO_NAMESPACES:
-            if name.localname == "arg" and element.get("name"):
-                reading.declared.add(element.get("name"))
-            continue
-        node.setAttribute(_ORIGIN, f"{index}:{element.sourceline}")
+        # An attribute on a xacro element would reach a macro call as a parameter it does not
+        # declare ("Invalid parameter").
+        if not is_xacro_element(node.tagName):
+            node.setAttribute(_ORIGIN, f"{index}:{element.sourceline}")
+
+
+def is_xacro_element(tag: str) -> bool:
+    """Whether xacro processes an element with the tag name ``tag`` as written: xacro's own
+    rule is the prefix ``xacro:``, whatever namespace URI it is bound to (descriptions use
+    http://www.ros.org/wiki/xacro, http://ros.org/wiki/xacro and http://wiki.ros.org/xacro)."""
+    return tag.startswith("xacro:")
+
+
+def _qualified_name(element: Any) -> str:
+    """An lxml element's tag as written (``prefix:local``), as minidom names it."""
+    from lxml import etree
+
+    local = etree.QName(element).localname
+    return f"{element.prefix}:{local}" if element.prefix else local
 
 
 def _take_origins(document: Any) -> list[str]:
