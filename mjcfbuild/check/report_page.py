@@ -235,7 +235,7 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
             "```",
             "",
         ]
-    return lines
+    return lines + _runtime(check.get("mujoco_ros2_control"))
 
 
 def _motor(actuator: dict) -> str:
@@ -467,3 +467,42 @@ def _armature(actuator: dict) -> str:
     """The armature the build gave a weight-bearing joint, if it did."""
     armature = actuator.get("armature")
     return f" (armature {armature:.3g} added)" if armature else ""
+
+
+def _runtime(runtime: dict | None) -> list[str]:
+    """What mujoco_ros2_control finds for the <ros2_control> block (check.runtime)."""
+    if not runtime:
+        return []
+    lines = ["### mujoco_ros2_control", ""]
+    if runtime["joints"]:
+        lines += [
+            "| joint | command interfaces | actuator | kind (by its bias) |",
+            "|---|---|---|---|",
+        ]
+        for joint in runtime["joints"]:
+            how = ", ".join(
+                f"{name}: {way or 'REFUSED'}" for name, way in joint["how"].items()
+            ) or ", ".join(joint["interfaces"])
+            lines.append(
+                f"| {joint['joint']} | {how} | {joint['actuator'] or 'none'} | "
+                f"{joint['kind'] or '-'} |"
+            )
+        lines.append("")
+    if runtime["sensors"]:
+        lines += ["| sensor | mujoco_type | MJCF sensors (site) |", "|---|---|---|"]
+        for sensor in runtime["sensors"]:
+            found = ", ".join(
+                f"{m['type']} {m['name']}" + (f" ({m['site']})" if m["site"] else "")
+                if m["found"]
+                else f"{m['type']} {m['name']} MISSING"
+                for m in sensor["mjcf"]
+            )
+            lines.append(f"| {sensor['sensor']} | {sensor['type']} | {found} |")
+        lines.append("")
+    for device in runtime["devices"]:
+        rays = f", {device['rays']} rays" if device["kind"] == "lidar" else ""
+        state = "found" if device["found"] else "MISSING"
+        lines.append(f"- {device['kind']} {device['sensor']}: {state}{rays}")
+    if runtime["devices"]:
+        lines.append("")
+    return lines

@@ -132,6 +132,14 @@ def _print(report, label: str) -> int:
         print(f"  resting contacts      {len(contacts) or 'none'}")
         if contacts:
             print(results["resting_contacts"]["exclude"])
+        runtime = results.get("mujoco_ros2_control")
+        if runtime:
+            print(
+                f"  mujoco_ros2_control   {len(runtime['joints'])} joints, "
+                f"{len(runtime['sensors'])} sensors, {len(runtime['devices'])} cameras/lidars"
+            )
+            for warning in runtime["warnings"]:
+                print(f"mjcfbuild: warning: {warning}", file=sys.stderr)
     for failure in report.failures:
         print(f"mjcfbuild: check failed: {failure}", file=sys.stderr)
     print(
@@ -196,6 +204,7 @@ def _manifest(ctx, args) -> int:
     from mjcfbuild.check.reference import read_kinematics
     from mjcfbuild.engine.report import write_report
     from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN, planned_urdf
+    from mjcfbuild.steps.check import add_runtime_check
     from mjcfbuild.steps.plan_record import read_plan
 
     if not ctx.robot_path.exists() or not ctx.state(PLAN).exists():
@@ -204,11 +213,13 @@ def _manifest(ctx, args) -> int:
             file=ctx.label(ctx.robot_path),
             hint=f"run mjcfbuild build {ctx.manifest_label}",
         )
-    robot = read_plan(ctx.state(PLAN)).robot_model()
+    plan = read_plan(ctx.state(PLAN))
+    robot = plan.robot_model()
     try:
         assembly = json.loads(ctx.state(ASSEMBLY_REPORT).read_text())
     except (OSError, ValueError):
         assembly = {}
+    built = _built_parts(ctx, robot)
     report = check_model(
         robot,
         ctx.robot_path,
@@ -217,8 +228,9 @@ def _manifest(ctx, args) -> int:
         _options(args, ctx.manifest.check),
         readiness=assembly.get("readiness") or {},
         reference=read_kinematics(_read_if_present(planned_urdf(ctx))),
-        **_built_parts(ctx, robot),
+        **built,
     )
+    add_runtime_check(report, ctx.robot_path, plan.control(), built["sources"])
     data = {"passes": report.passes, "failures": report.failures, **report.results}
     ctx.state(CHECK_RESULTS).write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
     folder = write_report(ctx, [])

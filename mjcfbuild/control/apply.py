@@ -122,6 +122,7 @@ def make_ready(
         if choice.gravcomp and urdf_joints[choice.joint].child in bodies:
             bodies[urdf_joints[choice.joint].child].set("gravcomp", "1")
     generated = [c for c in choices if c.type not in ("none", "user")]
+    readiness.notes += runtime_line_notes(generated)
     readiness.passive = [c.joint for c in choices if c.type == "none"]
     if generated and not _has_integrator(root):
         # Stiff servos on light links need the implicit treatment of actuator damping that
@@ -525,10 +526,40 @@ def _actuator(
     else:  # motor
         record.ctrlrange, record.forcerange = record.forcerange, None
     record.armature = added or None
-    # issue 33: a drive with a torque-speed line makes a position servo a <dcmotor>
+    # issue 33: a drive with a torque-speed line makes a position servo a <dcmotor> - except
+    # where ros2_control commands the joint: mujoco_ros2_control takes a <dcmotor> (its
+    # DCMOTOR bias) for a custom actuator and refuses a position command on it (issue 42).
     if choice.type == "position" and has_speed_line(record.motor):
-        record.type = "dcmotor"
+        if choice.runtime_commanded:
+            record.motor = without_speed_line(record.motor)
+        else:
+            record.type = "dcmotor"
     return record
+
+
+def runtime_line_notes(choices: list[ActuatorChoice]) -> list[str]:
+    """One note naming the joints whose motor's torque-speed line is left out because
+    ros2_control commands their position (they get <position> servos, issue 42)."""
+    joints = [
+        c.joint
+        for c in choices
+        if c.runtime_commanded and c.type == "position" and has_speed_line(c.motor)
+    ]
+    if not joints:
+        return []
+    return [
+        f"{len(joints)} ros2_control position joint{'s' if len(joints) > 1 else ''} "
+        f"({', '.join(joints[:3])}{', ...' if len(joints) > 3 else ''}) get <position> servos "
+        "without their motors' torque-speed lines: mujoco_ros2_control commands position only "
+        "on an affine-bias servo (docs/ros2_control.md)"
+    ]
+
+
+def without_speed_line(motor: dict | None) -> dict | None:
+    """A drive's record without its torque-speed line (its rotor and force limit stay)."""
+    if not motor:
+        return motor
+    return {**motor, "no_load_speed": None, "stall_torque": None}
 
 
 def _urdf_line(
@@ -537,6 +568,8 @@ def _urdf_line(
     """The drive the URDF's effort and velocity limits make of a position servo that no motor
     names (None where a limit is missing or a placeholder replaced the effort)."""
     if choice.type != "position" or choice.motor is not None or choice.speed_limit is None:
+        return None
+    if choice.runtime_commanded:  # it stays a <position> servo, which has no speed line
         return None
     if cap is not None or record.forcerange is None:
         return None

@@ -28,9 +28,17 @@ from mjcfbuild.manifest.simulation import ActuatorRule, ActuatorSettings
 from mjcfbuild.urdf.model import Joint, Robot
 
 # ros2_control command interfaces (and transmission hardware interfaces) as MuJoCo actuators.
-_BY_COMMAND = {"position": "position", "velocity": "velocity", "effort": "motor"}
-# A joint with several command interfaces gets one actuator, of the first kind listed here.
-_COMMAND_PREFERENCE = ("position", "velocity", "effort")
+# torque and force are effort to mujoco_ros2_control.
+_BY_COMMAND = {
+    "position": "position",
+    "velocity": "velocity",
+    "effort": "motor",
+    "torque": "motor",
+    "force": "motor",
+}
+# A joint with several command interfaces gets one actuator, of the first kind listed here
+# (the runtime's own order): the runtime commands that interface directly.
+_COMMAND_PREFERENCE = ("position", "velocity", "effort", "torque", "force")
 
 
 @dataclass(frozen=True)
@@ -56,6 +64,9 @@ class ActuatorChoice:
     rule_forcerange: bool = False  # forcerange from a rule: it also sets the joint's own limit
     motor: dict | None = None  # issue 33: the rule's drive at the output (control.motors.Drive)
     speed_limit: float | None = None  # the URDF velocity a position servo's speed line ends at
+    # A <ros2_control> block commands it: mujoco_ros2_control accepts a position command only
+    # on an affine-bias servo, so it never becomes a <dcmotor> (issue 42).
+    runtime_commanded: bool = False
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""
@@ -148,6 +159,8 @@ def choose_actuators(
         else:
             kind, source = _default_type(joint, settings), "default"
         choice = _choice(joint, kind, source, settings, index, rule)
+        if joint.name in commands:
+            choice = replace(choice, runtime_commanded=True)
         if source in ("default", "transmission") and kind == "position" and _revolves(joint):
             choice = replace(choice, wheel_candidate=True)
         choices.append(choice)

@@ -10,12 +10,12 @@ from mjcfbuild import __version__
 # Bump a step's number when its output for the same inputs changes.
 STEP_FORMATS = {
     "expand": 2,  # 2: the origins of the expanded lines
-    "plan": 4,
+    "plan": 5,  # 5: the <hardware> parameters of ros2_control sensors and joints
     "mesh": 5,
     "decompose": 3,
-    "assemble": 10,  # 10: default servos get the URDF limits' torque-speed line
+    "assemble": 11,  # 11: ros2_control sensors' MJCF sensors; its position joints <position>
     "scene": 3,
-    "check": 7,  # 7: the report names a speed line from URDF limits
+    "check": 8,  # 8: the mujoco_ros2_control section
     "reference": 1,
     "previews": 5,
     "tuning": 1,

@@ -79,15 +79,15 @@ def apply_inputs(
         place = _link(links, camera.link, camera.origin, "camera")
         pose = camera_pose(place.pose)
         element = etree.Element("camera", {"name": camera.name})
-        _set_pose(element, pose)
+        set_pose(element, pose)
         for key, value in camera.attributes.items():
             element.set(key, value)
-        _insert_in_body(_body_element(root, place.body), element)
+        insert_in_body(body_element(root, place.body), element)
     for lidar in inputs.lidars:
         place = _link(links, lidar.link, lidar.origin, "lidar")
         count = ray_count(lidar.min_angle, lidar.max_angle, lidar.angle_increment)
         body = etree.Element("body", {"name": f"{lidar.link}_lidar_body"})
-        _set_pose(body, lidar_body_pose(place.pose, lidar.min_angle))
+        set_pose(body, lidar_body_pose(place.pose, lidar.min_angle))
         replicate = etree.SubElement(
             body,
             "replicate",
@@ -99,7 +99,7 @@ def apply_inputs(
             },
         )
         etree.SubElement(replicate, "site", {"name": lidar.sensor_name})
-        _insert_in_body(_body_element(root, place.body), body, last=True)
+        insert_in_body(body_element(root, place.body), body, last=True)
         for sensor in root.iter("rangefinder"):
             if sensor.get("site") == lidar.sensor_name and sensor.get("name"):
                 result.lidar_sensors.append(sensor.get("name"))
@@ -157,7 +157,7 @@ def _listing(names: Iterable[str], limit: int = 12) -> str:
     )
 
 
-def _set_pose(element: etree._Element, pose: Transform) -> None:
+def set_pose(element: etree._Element, pose: Transform) -> None:
     position = tuple(0.0 if abs(v) < 1e-14 else v for v in pose.position)
     quat = tuple(0.0 if abs(v) < 1e-14 else v for v in pose.quat)
     if any(position):
@@ -166,7 +166,7 @@ def _set_pose(element: etree._Element, pose: Transform) -> None:
         element.set("quat", output_list(quat))
 
 
-def _body_element(root: etree._Element, body: str | None) -> etree._Element:
+def body_element(root: etree._Element, body: str | None) -> etree._Element:
     worldbody = root.find("worldbody")
     if body is None:
         return worldbody
@@ -176,7 +176,7 @@ def _body_element(root: etree._Element, body: str | None) -> etree._Element:
     raise KeyError(body)
 
 
-def _insert_in_body(body: etree._Element, element: etree._Element, last: bool = False) -> None:
+def insert_in_body(body: etree._Element, element: etree._Element, last: bool = False) -> None:
     """Add ``element`` to ``body`` before its child bodies (or after everything if ``last``)."""
     if not last:
         for index, child in enumerate(body):
@@ -186,7 +186,7 @@ def _insert_in_body(body: etree._Element, element: etree._Element, last: bool = 
     body.append(element)
 
 
-def _section(root: etree._Element, name: str) -> etree._Element:
+def model_section(root: etree._Element, name: str) -> etree._Element:
     existing = root.find(name)
     if existing is not None:
         return existing
@@ -209,14 +209,14 @@ def _merge_raw(root: etree._Element, item: RawElement, warnings: list[str]) -> l
     if item.section in SINGLE_SECTIONS:
         existing = root.find(item.section)
         if existing is None:
-            _section(root, item.section)
+            model_section(root, item.section)
             existing = root.find(item.section)
         for key, value in element.attrib.items():
             existing.set(key, value)
         for child in element:
             existing.append(child)
         return [existing, *existing.iter()]
-    section = _section(root, item.section)
+    section = model_section(root, item.section)
     if item.section == "default":
         return _merge_default(section, element, item.origin, warnings)
     section.append(element)

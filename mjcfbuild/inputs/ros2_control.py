@@ -24,6 +24,7 @@ class ControlJoint:
     commands: list[str]
     initial: float | None
     origin: str
+    pids: bool = False  # its <hardware> names a pids_config_file (PIDs may drive it)
 
 
 @dataclass
@@ -33,6 +34,9 @@ class ControlSensor:
     name: str
     params: dict[str, str]
     origin: str
+    # The <hardware> parameters of its block: mujoco_ros2_control reads the MJCF sensor
+    # names' suffixes there (force_mjcf_suffix, ...), not from the sensor.
+    hardware: dict[str, str] = field(default_factory=dict)
 
     @property
     def kind(self) -> str | None:
@@ -82,6 +86,11 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
     """The ros2_control joints and sensors of a parsed URDF."""
     result = Ros2Control()
     for block in root.findall("ros2_control"):
+        hardware = {
+            p.get("name", ""): (p.text or "").strip()
+            for element in block.findall("hardware")
+            for p in element.findall("param")
+        }
         for joint in block.findall("joint"):
             commands = [c.get("name", "") for c in joint.findall("command_interface")]
             initial = None
@@ -99,12 +108,15 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                     [c for c in commands if c],
                     initial,
                     f"{label}:{joint.sourceline}",
+                    pids=bool(hardware.get("pids_config_file")),
                 )
             )
         for sensor in block.findall("sensor"):
             params = {p.get("name", ""): (p.text or "").strip() for p in sensor.findall("param")}
             result.sensors.append(
-                ControlSensor(sensor.get("name", ""), params, f"{label}:{sensor.sourceline}")
+                ControlSensor(
+                    sensor.get("name", ""), params, f"{label}:{sensor.sourceline}", hardware
+                )
             )
     for transmission in root.findall("transmission"):
         for joint in transmission.findall("joint"):
@@ -204,3 +216,112 @@ def sensor_warnings(
                 f"{', '.join(sorted(lidar_sensors)) or 'none'})"
             )
     return warnings
+
+
+# mujoco_ros2_control's sensor types (its ``mujoco_type`` parameter) and the MJCF sensors each
+# is read from: (what it measures, the <hardware> parameter that replaces the suffix, the
+# default suffix, the MJCF sensor element). The names are the sensor's ``mujoco_sensor_name``
+# parameter (else the sensor's own name) plus the suffix.
+RUNTIME_SENSORS: dict[str, tuple[tuple[str, str | None, str, str], ...]] = {
+    "imu": (
+        ("orientation", "orientation_mjcf_suffix", "_quat", "framequat"),
+        ("angular_velocity", "angular_velocity_mjcf_suffix", "_gyro", "gyro"),
+        ("linear_acceleration", "linear_acceleration_mjcf_suffix", "_accel", "accelerometer"),
+    ),
+    "fts": (
+        ("force", "force_mjcf_suffix", "_force", "force"),
+        ("torque", "torque_mjcf_suffix", "_torque", "torque"),
+    ),
+    "pose": (
+        ("position", "position_mjcf_suffix", "_pos", "framepos"),
+        ("orientation", "orientation_mjcf_suffix", "_quat", "framequat"),
+    ),
+    "magnetometer": (("magnetic_field", None, "", "magnetometer"),),
+}
+
+
+@dataclass(frozen=True)
+class ExpectedSensor:
+    """An MJCF sensor mujoco_ros2_control looks up by name for a ros2_control sensor."""
+
+    name: str
+    tag: str  # the MJCF element: framequat, gyro, accelerometer, force, torque, ...
+    measures: str
+
+
+def runtime_sensor_name(sensor: ControlSensor) -> str:
+    """The name the runtime puts before the suffixes: ``mujoco_sensor_name``, else the
+    sensor's own."""
+    return sensor.params.get("mujoco_sensor_name") or sensor.name
+
+
+def expected_sensors(sensor: ControlSensor) -> list[ExpectedSensor]:
+    """The MJCF sensors the runtime reads ``sensor`` from (none without a ``mujoco_type``);
+    :class:`InputError` for a type it does not know."""
+    kind = sensor.params.get("mujoco_type")
+    if not kind:
+        return []
+    if kind not in RUNTIME_SENSORS:
+        from mjcfbuild.errors import InputError
+        from mjcfbuild.inputs.model import origin_location
+
+        file, line = origin_location(sensor.origin)
+        raise InputError(
+            f"ros2_control sensor '{sensor.name}' has mujoco_type '{kind}', which "
+            "mujoco_ros2_control does not know",
+            file=file,
+            line=line,
+            hint=f"use one of {', '.join(RUNTIME_SENSORS)}",
+        )
+    base = runtime_sensor_name(sensor)
+    return [
+        ExpectedSensor(base + sensor.hardware.get(parameter or "", default), tag, measures)
+        for measures, parameter, default, tag in RUNTIME_SENSORS[kind]
+    ]
+
+
+def sensor_frame(sensor: ControlSensor) -> str:
+    """The URDF link (or frame) a ros2_control sensor measures at: its ``frame_name`` (or
+    ``frame_id``) parameter, else the link of its own name."""
+    return sensor.params.get("frame_name") or sensor.params.get("frame_id") or sensor.name
+
+
+# mujoco_ros2_control's actuator kinds, from the actuator's bias alone (getActuatorType).
+def runtime_actuator_kind(biastype: int, biasprm: tuple[float, ...]) -> str:
+    """'motor', 'position', 'velocity' or 'custom', as mujoco_ros2_control classifies an
+    actuator with bias type ``biastype`` (mjtBias: 0 none, 1 affine) and ``biasprm``."""
+    if biastype == 0:
+        return "motor"
+    if biastype == 1 and biasprm[1] != 0:
+        return "position"
+    if biastype == 1 and biasprm[2] != 0:
+        return "velocity"
+    return "custom"
+
+
+# The command interfaces each kind takes directly, and those it takes through the runtime's
+# PIDs (pid_gains from a pids_config_file); torque and force are effort to the runtime.
+_DIRECT = {
+    "position": {"position"},
+    "velocity": {"velocity"},
+    "motor": {"effort"},
+    "custom": {"effort"},
+}
+_WITH_PIDS = {
+    "position": set(),
+    "velocity": {"position"},
+    "motor": {"position", "velocity"},
+    "custom": {"position", "velocity"},
+}
+EFFORT_NAMES = {"effort", "torque", "force"}
+
+
+def interface_support(kind: str, interface: str, pids: bool) -> str | None:
+    """How the runtime commands ``interface`` on an actuator of ``kind``: 'direct', 'pid'
+    (only with PID gains), or None (refused at start-up)."""
+    name = "effort" if interface in EFFORT_NAMES else interface
+    if name in _DIRECT.get(kind, set()):
+        return "direct"
+    if pids and name in _WITH_PIDS.get(kind, set()):
+        return "pid"
+    return None

@@ -161,6 +161,7 @@ def _apply_additions(
     from mjcfbuild.control.home import home_values
     from mjcfbuild.control.motors import apply_motors
     from mjcfbuild.inputs.apply import LinkPlace, apply_inputs
+    from mjcfbuild.inputs.control_sensors import add_control_sensors
     from mjcfbuild.inputs.ros2_control import sensor_warnings
     from mjcfbuild.selfcollision.excludes import write_excludes
 
@@ -176,6 +177,7 @@ def _apply_additions(
     warnings = list(result.warnings)
     control = options.control or Ros2Control()
     warnings += sensor_warnings(control, [c.name for c in inputs.cameras], result.lidar_sensors)
+    add_control_sensors(root, control, links)
     write_excludes(root, options.excludes)
 
     def compile_tree(tree, drawing: bool = False) -> Any:

@@ -9,6 +9,7 @@ from mjcfbuild.check.contacts import part_bodies
 from mjcfbuild.check.loading import asset_sources, compile_model
 from mjcfbuild.check.model_check import CheckOptions, CheckReport, check_model
 from mjcfbuild.errors import CheckError
+from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import CheckPayload, MjcfPartFiles
 from mjcfbuild.steps.plan_record import read_plan
@@ -18,7 +19,8 @@ from mjcfbuild.urdf.transforms import vec3
 def run(payload: dict) -> dict:
     """Check the model; write the results (also when a check fails, for the report)."""
     request = CheckPayload.from_dict(payload)
-    robot = read_plan(Path(request.plan)).robot_model()
+    plan = read_plan(Path(request.plan))
+    robot = plan.robot_model()
     try:
         assembly = json.loads(Path(request.assembly_report).read_text())
     except (OSError, ValueError):
@@ -38,6 +40,7 @@ def run(payload: dict) -> dict:
     )
     if request.mjcf_parts and report.results.get("loads"):
         _check_parts(report, Path(request.model), request.mjcf_parts, request.options, sources)
+    add_runtime_check(report, Path(request.model), plan.control(), sources)
     outputs: dict[str, str] = {}
     data = {"passes": report.passes, "failures": report.failures, **report.results}
     write_output(
@@ -55,8 +58,23 @@ def run(payload: dict) -> dict:
     plausibility = report.results.get("plausibility") or {}
     return {
         "outputs": outputs,
-        "warnings": _standing_notes(report.results) + plausibility.get("warnings", []),
+        "warnings": _standing_notes(report.results)
+        + plausibility.get("warnings", [])
+        + (report.results.get("mujoco_ros2_control") or {}).get("warnings", []),
     }
+
+
+def add_runtime_check(
+    report: CheckReport, model_path: Path, control: Ros2Control, sources: dict[str, Path]
+) -> None:
+    """The mujoco_ros2_control section, where the description has a <ros2_control> block."""
+    if not report.results.get("loads") or not (control.joints or control.sensors):
+        return
+    from mjcfbuild.check.runtime import check_runtime
+
+    results, failures, warnings = check_runtime(compile_model(model_path, sources), control)
+    report.results["mujoco_ros2_control"] = {**results, "warnings": warnings}
+    report.failures += failures
 
 
 def _read_reference(path: Path) -> dict:

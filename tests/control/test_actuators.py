@@ -99,11 +99,9 @@ def test_ros2_control_command_interfaces_decide_the_type(tmp_path, interfaces, k
     model = load(build_two_link(tmp_path, urdf_extra=control))
     assert model.nu == 1  # never two actuators on one joint
     record = readiness(tmp_path)["actuators"][0]
-    # A position servo with the URDF's speed line is a <dcmotor input="pos">.
-    assert (record["type"], record["source"]) == (
-        "dcmotor" if kind == "position" else kind,
-        "ros2_control",
-    )
+    # Never a <dcmotor>: mujoco_ros2_control takes one for a custom actuator and refuses a
+    # position command on it (tests/check/test_runtime.py).
+    assert (record["type"], record["source"]) == (kind, "ros2_control")
     if kind == "motor":
         assert list(model.actuator_ctrlrange[0]) == [-10, 10]
 

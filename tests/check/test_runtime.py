@@ -1,0 +1,185 @@
+"""The model under mujoco_ros2_control's rules: each ros2_control joint's actuator is of a kind
+the runtime commands through the joint's interfaces, and the check says where it is not.
+
+The runtime's rule is restated here from its source (mujoco_system_interface.cpp,
+getActuatorType and the configure_*_command_interface functions), not imported from
+mjcfbuild, so the test holds the build to the runtime, not to itself.
+"""
+
+from __future__ import annotations
+
+import json
+
+import mujoco
+import pytest
+
+from mjcfbuild.errors import EXIT_CHECK
+from tests.conftest import run_cli, write
+from tests.control.helpers import build_two_link, load
+
+
+def runtime_kind(model, actuator: int) -> str:
+    """mujoco_ros2_control's getActuatorType: the bias alone decides."""
+    bias = model.actuator_biasprm[actuator]
+    if model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_NONE:
+        return "motor"
+    if model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_AFFINE and bias[1] != 0:
+        return "position"
+    if model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_AFFINE and bias[2] != 0:
+        return "velocity"
+    return "custom"
+
+
+# The interfaces each kind takes without PID gains (torque and force are effort).
+TAKES = {
+    "position": {"position"},
+    "velocity": {"velocity"},
+    "motor": {"effort", "torque", "force"},
+    "custom": {"effort", "torque", "force"},
+}
+
+
+def control_block(interfaces: list[str], hardware: str = "") -> str:
+    commands = "".join(f'<command_interface name="{i}"/>' for i in interfaces)
+    return (
+        f'<ros2_control name="s" type="system"><hardware>{hardware}</hardware>'
+        f'<joint name="hinge">{commands}<state_interface name="position"/></joint></ros2_control>'
+    )
+
+
+def check_record(folder) -> dict:
+    return json.loads((folder / "mjcf/.mjcfbuild/check.json").read_text())
+
+
+@pytest.mark.parametrize(
+    "interfaces",
+    [
+        ["position"],
+        ["velocity"],
+        ["effort"],
+        ["torque"],
+        ["position", "velocity"],
+        ["velocity", "effort"],
+        ["position", "velocity", "effort"],
+    ],
+)
+def test_every_command_interface_combination_gets_an_actuator_the_runtime_commands(
+    tmp_path, interfaces
+):
+    model = load(build_two_link(tmp_path, urdf_extra=control_block(interfaces)))
+    assert model.nu == 1
+    kind = runtime_kind(model, 0)
+    # The first interface in the runtime's own order (position, velocity, effort) is taken
+    # directly: without PIDs the joint is never left without one.
+    order = ["position", "velocity", "effort", "torque", "force"]
+    first = min(interfaces, key=order.index)
+    assert first in TAKES[kind], (interfaces, kind)
+    section = check_record(tmp_path)["mujoco_ros2_control"]
+    (joint,) = section["joints"]
+    assert (joint["joint"], joint["kind"]) == ("hinge", kind)
+    assert joint["how"][first] == "direct"
+    assert check_record(tmp_path)["passes"]
+
+
+def test_a_position_joint_keeps_a_position_servo_where_the_default_is_a_dcmotor(tmp_path):
+    """The URDF's effort and velocity limits make a <dcmotor> of a joint no ros2_control
+    block commands; one the runtime commands by position gets a <position> servo."""
+    plain = load(build_two_link(tmp_path / "plain"))
+    assert runtime_kind(plain, 0) == "custom"
+    commanded = load(build_two_link(tmp_path / "ros", urdf_extra=control_block(["position"])))
+    assert runtime_kind(commanded, 0) == "position"
+    # Same force limit; its rotor inertia from the speed line is not added.
+    assert list(commanded.actuator_forcerange[0]) == [-10, 10]
+
+
+def test_an_interface_the_actuator_refuses_beside_one_it_takes_is_a_warning(tmp_path):
+    raw = 'mujoco_inputs:\n  raw: \'<actuator><position name="hinge" joint="hinge" kp="50"/></actuator>\'\n'
+    result = build_two_link(tmp_path, raw, urdf_extra=control_block(["position", "velocity"]))
+    warning = next(w for w in result.warnings if "mujoco_ros2_control" in w)
+    assert "velocity command interface" in warning and "hinge" in warning
+    assert check_record(tmp_path)["passes"]
+
+
+def test_a_joint_whose_actuator_takes_none_of_its_interfaces_fails_the_check(tmp_path):
+    write(tmp_path / "robot.urdf", _two_link_with(control_block(["velocity"])))
+    write(
+        tmp_path / "robot.yaml",
+        "name: r\nsource: {urdf: robot.urdf}\nmujoco_inputs:\n"
+        '  raw: \'<actuator><position name="mine" joint="hinge" kp="50"/></actuator>\'\n',
+    )
+    result = run_cli("build", str(tmp_path / "robot.yaml"))
+    assert result.code == EXIT_CHECK, result.stderr
+    assert (
+        "joint 'hinge' commands velocity, none of which its actuator 'mine' (position, by its "
+        "bias) takes" in result.stderr
+    )
+    assert not check_record(tmp_path)["passes"]
+    # mjcfbuild check says the same.
+    again = run_cli("check", str(tmp_path / "robot.yaml"))
+    assert again.code == EXIT_CHECK and "none of which its actuator 'mine'" in again.stderr
+
+
+def test_pid_gains_let_a_motor_take_position(tmp_path):
+    hardware = '<param name="pids_config_file">/config/pids.yaml</param>'
+    rules = "actuators:\n  rules: [{joints: [hinge], type: motor}]\n"
+    build_two_link(tmp_path, rules, urdf_extra=control_block(["position"], hardware))
+    (joint,) = check_record(tmp_path)["mujoco_ros2_control"]["joints"]
+    assert (joint["kind"], joint["how"]) == ("motor", {"position": "pid"})
+
+
+def _two_link_with(extra: str) -> str:
+    from tests.conftest import two_link_urdf
+
+    return two_link_urdf(extra=extra)
+
+
+def test_the_reference_demo_passes_the_runtimes_rules(demo):
+    result = run_cli("build", str(demo / "robot.yaml"))
+    assert result.code == 0, result.stderr
+    record = check_record(demo)
+    assert record["passes"], record["failures"]
+    section = record["mujoco_ros2_control"]
+    assert {j["joint"]: j["kind"] for j in section["joints"]} == {
+        "joint1": "position",
+        "joint2": "position",
+        "gripper_left_finger_joint": "position",  # its tendon's actuator, named like it
+    }
+    assert all(m["found"] for s in section["sensors"] for m in s["mjcf"])
+    assert [(d["sensor"], d["found"]) for d in section["devices"]] == [
+        ("camera", True),
+        ("lidar", True),
+    ]
+    assert section["devices"][1]["rays"] == 25
+    # Its use_pid variant declares velocity beside position on position actuators, which the
+    # runtime logs as an error for velocity: a warning, not a failure.
+    assert "velocity command interface" in result.stderr
+
+
+def test_the_example_arm_with_its_ros2_control_block_passes(arm):
+    manifest = arm / "robot.yaml"
+    manifest.write_text(
+        manifest.read_text().replace(
+            "with_camera: true", "with_camera: true\n    ros2_control: true"
+        )
+    )
+    result = run_cli("build", str(manifest))
+    assert result.code == 0, result.stderr
+    record = json.loads((arm / "mjcf/.mjcfbuild/check.json").read_text())
+    assert record["passes"], record["failures"]
+    kinds = {j["joint"]: j["kind"] for j in record["mujoco_ros2_control"]["joints"]}
+    assert kinds == {
+        "shoulder_pan": "position",
+        "shoulder_lift": "position",
+        "elbow": "position",
+        "wrist_roll": "velocity",
+        "left_finger_joint": "position",
+    }
+    written = {m["name"] for s in record["mujoco_ros2_control"]["sensors"] for m in s["mjcf"]}
+    assert written == {
+        "wrist_ft_force",
+        "wrist_ft_torque",
+        "base_imu_quat",
+        "base_imu_gyro",
+        "base_imu_accel",
+    }
+    assert "mujoco_ros2_control" not in result.stderr  # nothing refused
