@@ -188,7 +188,12 @@ def _skipped_geoms(model, names: list[str]) -> list[str]:
 
 def _mimics(model) -> list[MimicOut]:
     """Active joint couplings ``q1 = c0 + c1 q2`` (higher terms zero) between hinge and slide
-    joints, in URDF coordinates (measured from each joint's reference position)."""
+    joints, in URDF coordinates (measured from each joint's reference position).
+
+    MuJoCo's joint equality already measures both joints from their reference positions: it
+    holds ``q1 - ref1 = c0 + c1 (q2 - ref2)``, and an exported joint's zero is its ``ref`` (the
+    pose its body is written in), so ``c0`` and ``c1`` are the mimic's offset and multiplier as
+    they are."""
     result = []
     for index in range(model.neq):
         if model.eq_type[index] != 2 or not model.eq_active0[index]:  # 2: mjEQ_JOINT
@@ -198,15 +203,12 @@ def _mimics(model) -> list[MimicOut]:
             continue
         if any(model.jnt_type[j] not in (2, 3) for j in (follower, leader)):
             continue
-        c0, c1 = float(model.eq_data[index][0]), float(model.eq_data[index][1])
-        ref_follower = float(model.qpos0[model.jnt_qposadr[follower]])
-        ref_leader = float(model.qpos0[model.jnt_qposadr[leader]])
         result.append(
             MimicOut(
                 follower=joint_name(model, follower),
                 leader=joint_name(model, leader),
-                multiplier=c1,
-                offset=c0 + c1 * ref_leader - ref_follower,
+                multiplier=float(model.eq_data[index][1]),
+                offset=float(model.eq_data[index][0]),
             )
         )
     return result
