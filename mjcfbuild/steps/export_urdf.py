@@ -40,15 +40,13 @@ def run(payload: dict) -> dict:
 
 def build_speeds(plan: Path, assembly_report: Path) -> dict[str, float]:
     """The speed limits the build knows beyond the model (joint -> rad/s or m/s): the source
-    URDF's ``<limit velocity>`` above 0 (0 and -1 are placeholders), overruled by the no-load
-    speed of the drive (``motors:``) behind the joint's actuator, which is the model's."""
+    URDF's ``<limit velocity>`` (:func:`~mjcfbuild.export.speeds.urdf_speeds`), overruled by
+    the no-load speed of the drive (``motors:``) behind the joint's actuator, which is the
+    model's."""
+    from mjcfbuild.export.speeds import urdf_speeds
     from mjcfbuild.steps.plan_record import read_plan
 
-    speeds: dict[str, float] = {}
-    for joint in read_plan(plan).robot_model().joints:
-        velocity = joint.limit.velocity if joint.limit is not None else None
-        if velocity is not None and 0 < velocity < float("inf"):
-            speeds[joint.name] = float(velocity)
+    speeds = urdf_speeds(read_plan(plan).robot_model())
     try:
         assembly = json.loads(assembly_report.read_text())
     except (OSError, ValueError):
