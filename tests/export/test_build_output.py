@@ -110,7 +110,8 @@ def test_default_servos_give_back_the_urdfs_speed_limits(arm):
 def test_speed_limits_from_a_named_motor_and_the_source_urdf(arm):
     """Without speed lines the servos are plain <position> servos, whose speed the model does
     not know: the build gives the source URDF's limits instead, a passive joint's too, and a
-    catalogue motor's no-load speed where a rule names one."""
+    catalogue motor's no-load speed where a rule names one: read back from the <dcmotor> of a
+    servo, from the build's drive for a torque motor (a <motor> says nothing of speed)."""
     manifest = arm / "robot.yaml"
     manifest.write_text(
         manifest.read_text()
@@ -119,6 +120,7 @@ def test_speed_limits_from_a_named_motor_and_the_source_urdf(arm):
             '    - {joints: ["*finger*"], frequency: 5}\n',
             '    - {joints: ["*finger*"], frequency: 5}\n'
             "    - {joints: [elbow], motor: go1_knee}\n"
+            "    - {joints: [shoulder_lift], type: motor, motor: go1_hip}\n"
             "    - {joints: [shoulder_pan], type: none}\n",
         )
     )
@@ -130,5 +132,5 @@ def test_speed_limits_from_a_named_motor_and_the_source_urdf(arm):
         model.count("<dcmotor") == 1 and 'joint="shoulder_pan"' not in model.split("<actuator")[1]
     )
     assert _velocities(arm / "mjcf" / "example_arm.urdf") == pytest.approx(
-        {**ARM_VELOCITIES, "elbow": 20.06}
+        {**ARM_VELOCITIES, "elbow": 20.06, "shoulder_lift": 30.1}
     )
