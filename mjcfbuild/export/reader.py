@@ -124,19 +124,46 @@ def _joint(model, index: int) -> JointOut:
 
 
 def _effort(model, joint: int) -> float:
-    """The joint's force limit: its actuatorfrcrange, else what an actuator on it can apply."""
+    """The joint's force limit: its actuatorfrcrange, else what an actuator on it can apply:
+    its force range, a ``<dcmotor>``'s stall torque at its top voltage (the smaller of the two
+    where it has both), or a motor's gain times its control range; all times the gear, since
+    the joint feels the actuator's force times the gear."""
+    import mujoco
+
     if model.jnt_actfrclimited[joint]:
         return max(abs(float(v)) for v in model.jnt_actfrcrange[joint])
     for actuator in range(model.nu):
         if model.actuator_trntype[actuator] != 0 or model.actuator_trnid[actuator][0] != joint:
             continue
+        gear = abs(float(model.actuator_gear[actuator][0]))
+        limits = []
         if model.actuator_forcelimited[actuator]:
-            return max(abs(float(v)) for v in model.actuator_forcerange[actuator])
+            limits.append(max(abs(float(v)) for v in model.actuator_forcerange[actuator]))
+        if model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_DCMOTOR:
+            resistance, constant = (float(v) for v in model.actuator_gainprm[actuator][:2])
+            voltage = _dcmotor_voltage(model, actuator)
+            if resistance > 0 and voltage is not None:
+                limits.append(constant * voltage / resistance)
+        if limits:
+            return min(limits) * gear
         if model.actuator_ctrllimited[actuator] and model.actuator_biastype[actuator] == 0:
-            gear = float(model.actuator_gear[actuator][0])
             gain = abs(float(model.actuator_gainprm[actuator][0]) * gear)
             return gain * max(abs(float(v)) for v in model.actuator_ctrlrange[actuator])
     return 0.0
+
+
+def _dcmotor_voltage(model, actuator: int) -> float | None:
+    """A ``<dcmotor>``'s top voltage: its controller's voltage clamp, else the largest of a
+    voltage input's control range (None: unbounded)."""
+    import mujoco
+
+    voltage = float(model.actuator_gainprm[actuator][7])  # after R, K, -, - and kp, ki, kd
+    if voltage > 0:
+        return voltage
+    voltage_input = model.actuator_ctrlspec[actuator] & mujoco.mjtCtrlInput.mjINPUT_VOLTAGE
+    if voltage_input and model.actuator_ctrllimited[actuator]:
+        return max(abs(float(v)) for v in model.actuator_ctrlrange[actuator]) or None
+    return None
 
 
 def joint_speed(model, joint: int) -> float | None:
@@ -162,12 +189,8 @@ def joint_speed(model, joint: int) -> float | None:
             model.actuator_ctrlrange[actuator] if model.actuator_ctrllimited[actuator] else None
         )
         if model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_DCMOTOR:
-            # gainprm: resistance, motor constant, ..., then the controller's voltage clamp
-            constant, voltage = float(gain[1]), float(gain[7])
-            voltage_input = model.actuator_ctrlspec[actuator] & mujoco.mjtCtrlInput.mjINPUT_VOLTAGE
-            if voltage <= 0 and voltage_input and controls is not None:
-                voltage = max(abs(float(v)) for v in controls)
-            if constant > 0 and voltage > 0:
+            constant, voltage = float(gain[1]), _dcmotor_voltage(model, actuator)
+            if constant > 0 and voltage is not None:
                 return voltage / constant / gear
         elif (
             model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_FIXED

@@ -74,12 +74,12 @@ def test_mesh_folder_may_not_be_one_the_build_uses(arm):
     assert "'assets' is used by the build" in result.stderr
 
 
-def _velocities(urdf) -> dict[str, float]:
+def _limit_values(urdf, attribute: str = "velocity") -> dict[str, float]:
     from lxml import etree
 
     root = etree.parse(str(urdf)).getroot()
     return {
-        joint.get("name"): float(joint.find("limit").get("velocity"))
+        joint.get("name"): float(joint.find("limit").get(attribute))
         for joint in root.iter("joint")
         if joint.find("limit") is not None
     }
@@ -96,6 +96,15 @@ ARM_VELOCITIES = {
 }
 
 
+ARM_EFFORTS = {
+    "shoulder_pan": 60.0,
+    "shoulder_lift": 60.0,
+    "elbow": 30.0,
+    "wrist_roll": 10.0,
+    "left_finger_joint": 20.0,
+}
+
+
 def test_default_servos_give_back_the_urdfs_speed_limits(arm):
     """Default servos are <dcmotor>s on the URDF's effort and velocity: the export reads each
     no-load speed back from the compiled model, so the URDF's limits survive the round trip."""
@@ -103,7 +112,10 @@ def test_default_servos_give_back_the_urdfs_speed_limits(arm):
     result = run_cli("build", "-q", "--no-check", cwd=arm)
     assert result.code == 0, result.stderr
     assert "dcmotor" in (arm / "mjcf" / "example_arm.xml").read_text()
-    assert _velocities(arm / "mjcf" / "example_arm.urdf") == pytest.approx(ARM_VELOCITIES)
+    assert _limit_values(arm / "mjcf" / "example_arm.urdf") == pytest.approx(ARM_VELOCITIES)
+    efforts = _limit_values(arm / "mjcf" / "example_arm.urdf", "effort")
+    # the <dcmotor>s' stall torques and saturations are the URDF's efforts
+    assert {joint: efforts[joint] for joint in ARM_EFFORTS} == pytest.approx(ARM_EFFORTS)
     assert "no speed limit known" not in result.stderr
 
 
@@ -131,6 +143,6 @@ def test_speed_limits_from_a_named_motor_and_the_source_urdf(arm):
     assert (
         model.count("<dcmotor") == 1 and 'joint="shoulder_pan"' not in model.split("<actuator")[1]
     )
-    assert _velocities(arm / "mjcf" / "example_arm.urdf") == pytest.approx(
+    assert _limit_values(arm / "mjcf" / "example_arm.urdf") == pytest.approx(
         {**ARM_VELOCITIES, "elbow": 20.06, "shoulder_lift": 30.1}
     )

@@ -141,7 +141,7 @@ DRIVEN = """<mujoco model="driven">
   </equality>
   <actuator>
     <dcmotor name="dc" joint="dc" input="pos" nominal="24 3 7" controller="10 0 1 0 0 24"
-             saturation="3 0 0" gear="2" ctrlrange="-1 1"/>
+             saturation="2.5 0 0" gear="2" ctrlrange="-1 1"/>
     <dcmotor name="dc_voltage" joint="dc_voltage" input="voltage" nominal="12 2 5"
              ctrlrange="-6 6"/>
     <velocity name="servo" joint="servo" kv="50" ctrlrange="-0.3 0.4"/>
@@ -195,6 +195,22 @@ def test_speed_limits_are_where_the_drives_stop_pushing(driven):
     assert any(
         "no speed limit known for 1 joint(s) (held)" in warning for warning in result.warnings
     )
+
+
+def test_a_dcmotors_effort_is_what_it_gives_standing_still(driven):
+    """A <dcmotor>'s effort is its stall torque at its top voltage, capped by its saturation,
+    times the gear: what MuJoCo's actuator gives the joint at rest under the full command."""
+    limits = _limits(export_urdf(driven, ExportOptions(sites=False)).urdf)
+    model = mujoco.MjModel.from_xml_path(str(driven))
+    data = mujoco.MjData(model)
+    for name, expected in (("dc", 5.0), ("dc_voltage", 1.0)):  # saturation 2.5 x 2; 6 V of 12
+        actuator = model.actuator(name)
+        mujoco.mj_resetData(model, data)
+        data.ctrl[actuator.id] = model.actuator_ctrlrange[actuator.id].max()
+        mujoco.mj_forward(model, data)
+        force = abs(float(data.qfrc_actuator[model.joint(name).dofadr[0]]))
+        assert force == pytest.approx(expected, rel=1e-9)
+        assert float(limits[name]["effort"]) == pytest.approx(force, rel=1e-9), name
 
 
 def test_speeds_known_beyond_the_model_fill_in_and_never_overrule_it(driven):
