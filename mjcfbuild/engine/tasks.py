@@ -991,6 +991,8 @@ def _export_urdf_task(ctx: BuildContext, prefix: str) -> dict:
             "edit the sources, not this file.",
         },
         model=str(ctx.robot_path),
+        plan=str(ctx.state(PLAN)),
+        assembly_report=str(ctx.state(ASSEMBLY_REPORT)),
         urdf=str(urdf),
         mesh_dir=str(mesh_dir),
         record=str(ctx.state(URDF_EXPORT_RECORD)),
@@ -1002,7 +1004,7 @@ def _export_urdf_task(ctx: BuildContext, prefix: str) -> dict:
         "export_urdf",
         payload,
         in_worker=True,
-        file_dep=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT)],
+        file_dep=[ctx.robot_path, ctx.state(PLAN), ctx.state(ASSEMBLY_REPORT)],
         targets=[urdf],
     )
 

@@ -21,7 +21,7 @@ STEP_FORMATS = {
     "tuning": 1,
     "srdf": 2,
     "selfcollision": 3,
-    "export_urdf": 1,
+    "export_urdf": 2,  # 2: mimic offsets with ref; speed limits from drives and the URDF
     "compose": 2,  # 2: the origins of the composed lines
     "mjcfpart": 1,
     "package": 2,  # 2: <dcmotor> gains rounded and shared in classes

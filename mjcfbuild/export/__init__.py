@@ -11,12 +11,17 @@ from pathlib import Path
 from mjcfbuild.export.urdf_writer import ExportOptions, ExportResult
 
 
-def export_urdf(model_path: Path, options: ExportOptions) -> ExportResult:
-    """The URDF of the MJCF at ``model_path`` and the mesh files it refers to (not written)."""
+def export_urdf(
+    model_path: Path, options: ExportOptions, speeds: dict[str, float] | None = None
+) -> ExportResult:
+    """The URDF of the MJCF at ``model_path`` and the mesh files it refers to (not written).
+
+    ``speeds`` (joint name -> top speed, rad/s or m/s) are speed limits known from outside the
+    model, used for the joints whose speed the model's actuators do not give."""
     from mjcfbuild.export.reader import read_mjcf
     from mjcfbuild.export.urdf_writer import write_urdf
 
-    return write_urdf(read_mjcf(model_path), options)
+    return write_urdf(read_mjcf(model_path, speeds), options)
 
 
 __all__ = ["ExportOptions", "ExportResult", "export_urdf"]

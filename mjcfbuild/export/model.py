@@ -34,7 +34,8 @@ class GeomOut:
 @dataclass
 class JointOut:
     """One MuJoCo joint of a body: its anchor and axis in the body frame, its range measured
-    from the joint's reference position (the pose the body is written in)."""
+    from the joint's reference position (the pose the body is written in), and its top speed
+    where the model knows it (rad/s or m/s; None: unknown)."""
 
     name: str
     kind: str  # hinge, slide, ball or free
@@ -46,6 +47,7 @@ class JointOut:
     effort: float
     damping: float = 0.0
     friction: float = 0.0
+    velocity: float | None = None
 
 
 @dataclass

@@ -16,13 +16,19 @@ from mjcfbuild.urdf.transforms import Transform, matmul, matrix3, quat_to_matrix
 
 WORLD = "world"
 DEFAULT_GEOM_RGBA = (0.5, 0.5, 0.5, 1.0)
+# Actuator dynamics whose activation settles at the control (none, filter, filterexact).
+_STEADY_DYNAMICS = (0, 2, 3)
 JOINT_KINDS = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
 GEOM_KINDS = {0: "plane", 1: "hfield", 2: "sphere", 3: "capsule", 4: "ellipsoid", 5: "cylinder"}
 GEOM_KINDS.update({6: "box", 7: "mesh", 8: "sdf"})
 
 
-def read_mjcf(path: Path) -> ModelOut:
-    """Load and compile the MJCF at ``path``; :class:`ModelError` if MuJoCo refuses it."""
+def read_mjcf(path: Path, speeds: dict[str, float] | None = None) -> ModelOut:
+    """Load and compile the MJCF at ``path``; :class:`ModelError` if MuJoCo refuses it.
+
+    ``speeds`` (joint name -> top speed) are what is known beyond the model, such as a build's
+    drives and its source URDF's velocity limits: they fill in the joints whose speed the
+    model's own actuators do not give (:func:`joint_speed`)."""
     import mujoco
 
     from mjcfbuild.mjwarnings import capture_mujoco_warnings
@@ -50,11 +56,13 @@ def read_mjcf(path: Path) -> ModelOut:
         bodies[body].sites.append((name, pose))
     meshes = {index: _mesh(model, index) for index in sorted(_meshes_used(bodies))}
     warnings = _skipped_geoms(model, names)
+    mimics = _mimics(model)
+    _fill_speeds(bodies, mimics, speeds or {})
     return ModelOut(
         name=spec.modelname or path.stem,
         bodies=bodies,
         meshes=meshes,
-        mimics=_mimics(model),
+        mimics=mimics,
         warnings=warnings,
     )
 
@@ -111,23 +119,106 @@ def _joint(model, index: int) -> JointOut:
         effort=_effort(model, index),
         damping=float(model.dof_damping[dof]),
         friction=float(model.dof_frictionloss[dof]),
+        velocity=joint_speed(model, index) if kind in ("hinge", "slide") else None,
     )
 
 
 def _effort(model, joint: int) -> float:
-    """The joint's force limit: its actuatorfrcrange, else what an actuator on it can apply."""
+    """The joint's force limit: its actuatorfrcrange, else what an actuator on it can apply:
+    its force range, a ``<dcmotor>``'s stall torque at its top voltage (the smaller of the two
+    where it has both), or a motor's gain times its control range; all times the gear, since
+    the joint feels the actuator's force times the gear."""
+    import mujoco
+
     if model.jnt_actfrclimited[joint]:
         return max(abs(float(v)) for v in model.jnt_actfrcrange[joint])
     for actuator in range(model.nu):
         if model.actuator_trntype[actuator] != 0 or model.actuator_trnid[actuator][0] != joint:
             continue
+        gear = abs(float(model.actuator_gear[actuator][0]))
+        limits = []
         if model.actuator_forcelimited[actuator]:
-            return max(abs(float(v)) for v in model.actuator_forcerange[actuator])
+            limits.append(max(abs(float(v)) for v in model.actuator_forcerange[actuator]))
+        if model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_DCMOTOR:
+            resistance, constant = (float(v) for v in model.actuator_gainprm[actuator][:2])
+            voltage = _dcmotor_voltage(model, actuator)
+            if resistance > 0 and voltage is not None:
+                limits.append(constant * voltage / resistance)
+        if limits:
+            return min(limits) * gear
         if model.actuator_ctrllimited[actuator] and model.actuator_biastype[actuator] == 0:
-            gear = float(model.actuator_gear[actuator][0])
             gain = abs(float(model.actuator_gainprm[actuator][0]) * gear)
             return gain * max(abs(float(v)) for v in model.actuator_ctrlrange[actuator])
     return 0.0
+
+
+def _dcmotor_voltage(model, actuator: int) -> float | None:
+    """A ``<dcmotor>``'s top voltage: its controller's voltage clamp, else the largest of a
+    voltage input's control range (None: unbounded)."""
+    import mujoco
+
+    voltage = float(model.actuator_gainprm[actuator][7])  # after R, K, -, - and kp, ki, kd
+    if voltage > 0:
+        return voltage
+    voltage_input = model.actuator_ctrlspec[actuator] & mujoco.mjtCtrlInput.mjINPUT_VOLTAGE
+    if voltage_input and model.actuator_ctrllimited[actuator]:
+        return max(abs(float(v)) for v in model.actuator_ctrlrange[actuator]) or None
+    return None
+
+
+def joint_speed(model, joint: int) -> float | None:
+    """The top speed the first actuator on the joint that bounds it allows (None: none does):
+
+    - a ``<dcmotor>``'s no-load speed: its torque falls to zero where the back-EMF reaches the
+      top voltage (the controller's voltage clamp, else a voltage input's control range), at
+      actuator speed voltage / motor constant;
+    - a velocity servo's (fixed gain, affine bias with a velocity term only) fastest target in
+      its control range, the speed at which its force falls to zero.
+
+    Actuator speeds are the joint's times the gear, so both are divided by it."""
+    import mujoco
+
+    for actuator in range(model.nu):
+        if model.actuator_trntype[actuator] not in (0, 1):  # joint, jointinparent
+            continue
+        gear = abs(float(model.actuator_gear[actuator][0]))
+        if model.actuator_trnid[actuator][0] != joint or gear == 0:
+            continue
+        gain, bias = model.actuator_gainprm[actuator], model.actuator_biasprm[actuator]
+        controls = (
+            model.actuator_ctrlrange[actuator] if model.actuator_ctrllimited[actuator] else None
+        )
+        if model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_DCMOTOR:
+            constant, voltage = float(gain[1]), _dcmotor_voltage(model, actuator)
+            if constant > 0 and voltage is not None:
+                return voltage / constant / gear
+        elif (
+            model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_FIXED
+            and model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_AFFINE
+            and model.actuator_dyntype[actuator] in _STEADY_DYNAMICS
+            and float(bias[1]) == 0.0
+            and float(bias[2]) < 0.0
+            and controls is not None
+        ):
+            top = max(abs(float(gain[0]) * float(c) + float(bias[0])) for c in controls)
+            return top / -float(bias[2]) / gear
+    return None
+
+
+def _fill_speeds(bodies: list[BodyOut], mimics: list[MimicOut], speeds: dict[str, float]) -> None:
+    """Joints the model's actuators leave without a speed take one from ``speeds``; then a
+    coupled joint still without one moves as fast as its leader allows (|multiplier| times)."""
+    joints = {joint.name: joint for body in bodies for joint in body.joints}
+    for name, joint in joints.items():
+        if joint.velocity is None and joint.kind in ("hinge", "slide"):
+            known = speeds.get(name)
+            joint.velocity = known if known is not None and known > 0 else None
+    for mimic in mimics:
+        follower, leader = joints.get(mimic.follower), joints.get(mimic.leader)
+        if follower is None or leader is None or follower.velocity is not None:
+            continue
+        if leader.velocity is not None and mimic.multiplier != 0:
+            follower.velocity = abs(mimic.multiplier) * leader.velocity
 
 
 def _geom(model, index: int, class_name: str) -> GeomOut:
@@ -188,7 +279,12 @@ def _skipped_geoms(model, names: list[str]) -> list[str]:
 
 def _mimics(model) -> list[MimicOut]:
     """Active joint couplings ``q1 = c0 + c1 q2`` (higher terms zero) between hinge and slide
-    joints, in URDF coordinates (measured from each joint's reference position)."""
+    joints, in URDF coordinates (measured from each joint's reference position).
+
+    MuJoCo's joint equality already measures both joints from their reference positions: it
+    holds ``q1 - ref1 = c0 + c1 (q2 - ref2)``, and an exported joint's zero is its ``ref`` (the
+    pose its body is written in), so ``c0`` and ``c1`` are the mimic's offset and multiplier as
+    they are."""
     result = []
     for index in range(model.neq):
         if model.eq_type[index] != 2 or not model.eq_active0[index]:  # 2: mjEQ_JOINT
@@ -198,15 +294,12 @@ def _mimics(model) -> list[MimicOut]:
             continue
         if any(model.jnt_type[j] not in (2, 3) for j in (follower, leader)):
             continue
-        c0, c1 = float(model.eq_data[index][0]), float(model.eq_data[index][1])
-        ref_follower = float(model.qpos0[model.jnt_qposadr[follower]])
-        ref_leader = float(model.qpos0[model.jnt_qposadr[leader]])
         result.append(
             MimicOut(
                 follower=joint_name(model, follower),
                 leader=joint_name(model, leader),
-                multiplier=c1,
-                offset=c0 + c1 * ref_leader - ref_follower,
+                multiplier=float(model.eq_data[index][1]),
+                offset=float(model.eq_data[index][0]),
             )
         )
     return result

@@ -69,6 +69,7 @@ class _Joint:
     damping: float = 0.0
     friction: float = 0.0
     mimic: tuple[str, float, float] | None = None
+    velocity: float | None = None  # None: unknown, written as 0 (URDF requires a value)
 
 
 class _Names:
@@ -107,6 +108,16 @@ def write_urdf(model: ModelOut, options: ExportOptions) -> ExportResult:
         mimic = mimics.get(joint.name)
         if mimic is not None and mimic[0] in single:
             joint.mimic = mimic
+    unknown = [j.name for j in joints if j.limit is not None and j.velocity is None]
+    if unknown:
+        listed = ", ".join(unknown[:5]) + (
+            f" and {len(unknown) - 5} more" if len(unknown) > 5 else ""
+        )
+        warnings.append(
+            f"no speed limit known for {len(unknown)} joint(s) ({listed}): written as "
+            "velocity=\"0\", which MoveIt reads as 'cannot move'; set them in MoveIt's "
+            "joint_limits.yaml (or drive the joints with a <dcmotor> or a velocity servo)"
+        )
     frames: list[str] = []
     if options.sites:
         for body in model.bodies:
@@ -212,7 +223,7 @@ def _steps(body: BodyOut, joint_names: _Names, warnings: list[str]) -> list[_Joi
                 (joint.lower, joint.upper, joint.effort) if joint.limited else None
             )
             kind = "revolute" if joint.limited else "continuous"
-            if not joint.limited and joint.effort > 0:
+            if not joint.limited and (joint.effort > 0 or joint.velocity is not None):
                 limit = (None, None, joint.effort)
             steps.append(_moving(joint, kind, anchor, limit))
         elif joint.kind == "slide":
@@ -248,6 +259,7 @@ def _moving(joint: JointOut, kind: str, anchor: Transform, limit) -> _Joint:
         limit,
         damping=joint.damping,
         friction=joint.friction,
+        velocity=joint.velocity,
     )
 
 
@@ -350,7 +362,8 @@ def _joint_lines(joint: _Joint) -> list[str]:
         bounds = ""
         if lower is not None and upper is not None:
             bounds = f'lower="{_n(lower)}" upper="{_n(upper)}" '
-        lines.append(f'    <limit {bounds}effort="{_n(effort)}" velocity="0"/>')
+        velocity = _n(joint.velocity) if joint.velocity is not None else "0"
+        lines.append(f'    <limit {bounds}effort="{_n(effort)}" velocity="{velocity}"/>')
     if joint.damping or joint.friction:
         lines.append(
             f'    <dynamics damping="{_n(joint.damping)}" friction="{_n(joint.friction)}"/>'

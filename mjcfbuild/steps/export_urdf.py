@@ -22,6 +22,7 @@ def run(payload: dict) -> dict:
     result = export_urdf(
         Path(request.model),
         ExportOptions(asset_prefix=prefix, sites=options["sites"], header=options["header"]),
+        build_speeds(Path(request.plan), Path(request.assembly_report)),
     )
     outputs: dict[str, str] = {}
     for name, data in sorted(result.meshes.items()):
@@ -35,6 +36,26 @@ def run(payload: dict) -> dict:
     write_output(record, (json.dumps({"meshes": sorted(result.meshes)}) + "\n").encode(), {})
     write_output(urdf, result.urdf, outputs)
     return {"outputs": outputs, "warnings": [f"URDF export: {w}" for w in result.warnings]}
+
+
+def build_speeds(plan: Path, assembly_report: Path) -> dict[str, float]:
+    """The speed limits the build knows beyond the model (joint -> rad/s or m/s): the source
+    URDF's ``<limit velocity>`` (:func:`~mjcfbuild.export.speeds.urdf_speeds`), overruled by
+    the no-load speed of the drive (``motors:``) behind the joint's actuator, which is the
+    model's."""
+    from mjcfbuild.export.speeds import urdf_speeds
+    from mjcfbuild.steps.plan_record import read_plan
+
+    speeds = urdf_speeds(read_plan(plan).robot_model())
+    try:
+        assembly = json.loads(assembly_report.read_text())
+    except (OSError, ValueError):
+        assembly = {}
+    for record in (assembly.get("readiness") or {}).get("actuators", []):
+        no_load = (record.get("motor") or {}).get("no_load_speed")
+        if no_load is not None and no_load > 0:
+            speeds[record["joint"]] = float(no_load)
+    return speeds
 
 
 def _previous_meshes(record: Path) -> set[str]:

@@ -396,6 +396,8 @@ class ExportUrdfPayload(Payload):
 
     options: dict[str, Any]
     model: FileDependency
+    plan: FileDependency  # the source URDF's velocity limits
+    assembly_report: FileDependency  # the drives behind the actuators
     urdf: Output
     mesh_dir: Annotated[str, NotCounted("named by options.mesh_folder")]
     record: Output

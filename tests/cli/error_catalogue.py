@@ -30,6 +30,12 @@ ARG_XACRO = (
     "</robot>\n"
 )
 XACRO_MANIFEST = "name: robot\nsource:\n  xacro: robot.urdf.xacro\n"
+# export-urdf of a one-joint model, keeping the velocity limits of original.urdf.
+EXPORT_MODEL = (
+    "<mujoco><worldbody><body name='arm'><joint name='shoulder' range='-1 1'/>"
+    "<geom size='0.1'/></body></worldbody></mujoco>\n"
+)
+EXPORT_ARGS = ["export-urdf", "model.xml", "-o", "out/robot.urdf", "--limits-from", "original.urdf"]
 TETRAHEDRON_STL = """solid t
 facet normal 0 0 -1
  outer loop
@@ -856,5 +862,29 @@ CASES: list[Case] = [
         EXIT_USAGE,
         ["--executor", "not an executor", "dask://host:port"],
         args=["build", "--executor", "ray://head:10001"],
+    ),
+    Case(
+        "export-urdf: --limits-from a missing URDF",
+        {"model.xml": EXPORT_MODEL},
+        EXIT_INPUT,
+        ["original.urdf", "not found"],
+        args=EXPORT_ARGS,
+    ),
+    Case(
+        "export-urdf: --limits-from a xacro file",
+        {"model.xml": EXPORT_MODEL, "original.urdf": ARG_XACRO},
+        EXIT_INPUT,
+        ["original.urdf", "xacro", "expand it with xacro first"],
+        args=EXPORT_ARGS,
+    ),
+    Case(
+        "export-urdf: --limits-from a malformed URDF",
+        {
+            "model.xml": EXPORT_MODEL,
+            "original.urdf": urdf(('velocity="1"', 'velocity="fast"')),
+        },
+        EXIT_INPUT,
+        ["original.urdf:", "velocity"],
+        args=EXPORT_ARGS,
     ),
 ]

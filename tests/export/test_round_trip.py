@@ -78,6 +78,14 @@ def test_round_trip_keeps_link_poses_and_masses(name, fuse_static, tmp_path):
             assert gap < 1e-6, (link.name, gap)
             assert rotation_angle_between(pose.rotation, reference.rotation) < 1e-6, link.name
 
+    # Every speed limit the original gives survives (from the servo's torque-speed line, or
+    # from the URDF itself where the servo has none).
+    speeds = {j.name: j.limit.velocity for j in exported.joints if j.limit is not None}
+    for joint in original.joints:
+        velocity = joint.limit.velocity if joint.limit is not None else None
+        if joint.kind != "fixed" and velocity and velocity > 0 and joint.name in speeds:
+            assert speeds[joint.name] == pytest.approx(velocity, rel=1e-9), joint.name
+
     report = json.loads((result.robot.parent / "report" / "report.json").read_text())
     repaired = {repair["body"] for repair in report["repairs"]}
     masses = {link.name: (link.inertial.mass if link.inertial else 0.0) for link in original.links}
