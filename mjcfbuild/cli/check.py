@@ -106,47 +106,29 @@ def _options(args, settings=None):
 
 
 def _print(report, label: str) -> int:
+    """One line per check with its result, then the verdict; the exit code."""
     results = report.results
     print(f"mjcfbuild check: {label}")
-    if results.get("loads"):
-        simulation = results["simulation"]
-        kinematics = results["kinematics"]
-        masses = results["masses"]
-        contacts = results["resting_contacts"]["pairs"]
-        print("  loads                 yes")
-        print(
-            f"  {simulation['steps']} steps            "
-            f"{'finite' if simulation['finite'] else 'NOT FINITE'}, "
-            f"{len(simulation['warnings'])} MuJoCo warnings"
-        )
-        print(
-            f"  link poses            max {kinematics['max_position_error']:.2g} m, "
-            f"{kinematics['max_rotation_error']:.2g} rad at {kinematics['configurations']} "
-            f"configurations"
-        )
-        print(f"  joints                {len(results['joints']['problems'])} problems")
-        print(
-            f"  masses                {masses['model_total']:.6g} kg "
-            f"(URDF {masses['urdf_total']:.6g} kg), {len(masses['problems'])} problems"
-        )
-        print(f"  resting contacts      {len(contacts) or 'none'}")
-        if contacts:
-            print(results["resting_contacts"]["exclude"])
-        runtime = results.get("mujoco_ros2_control")
-        if runtime:
-            print(
-                f"  mujoco_ros2_control   {len(runtime['joints'])} joints, "
-                f"{len(runtime['sensors'])} sensors, {len(runtime['devices'])} cameras/lidars"
-            )
-            for warning in runtime["warnings"]:
-                print(f"mjcfbuild: warning: {warning}", file=sys.stderr)
+    for name, result in check_lines(results):
+        print(f"  {name:<28} {result}")
+    contacts = (results.get("resting_contacts") or {}).get("pairs")
+    if contacts:
+        print(results["resting_contacts"]["exclude"])
+    runtime = results.get("mujoco_ros2_control") or {}
+    for warning in runtime.get("warnings", []):
+        print(f"mjcfbuild: warning: {warning}", file=sys.stderr)
     for failure in report.failures:
         print(f"mjcfbuild: check failed: {failure}", file=sys.stderr)
-    print(
-        "mjcfbuild: check passed"
-        if report.passes
-        else f"mjcfbuild: {len(report.failures)} check(s) failed"
-    )
+    if not report.passes:
+        print(f"mjcfbuild: {len(report.failures)} check(s) failed")
+    elif results.get("needs_controller"):
+        # Not a failure, but not what "check passed" promises: the stand test did not run.
+        print(
+            "mjcfbuild: checks pass, but the robot cannot stand without a controller "
+            f"({results['needs_controller']}): the stand test was not run"
+        )
+    else:
+        print("mjcfbuild: check passed")
     return EXIT_OK if report.passes else EXIT_CHECK
 
 
@@ -195,6 +177,110 @@ def _urdf_bytes(path: Path, packages: dict[str, str]) -> tuple[bytes, dict[int, 
     folders = {name: Path(folder) for name, folder in packages.items()}
     expansion = expand_xacro(path.resolve(), {}, PackageResolver(folders, os.environ))
     return expansion.urdf, expansion.origins
+
+
+def check_lines(results: dict) -> list[tuple[str, str]]:
+    """Each check that ran (or was skipped) and its result, as the console shows them."""
+    if not results.get("loads"):
+        return [("loads", "NO")]
+    lines = [("loads", "yes")]
+    simulation = results["simulation"]
+    lines.append(
+        (
+            f"{simulation['steps']} zero-control steps",
+            f"{'finite' if simulation['finite'] else 'NOT FINITE'}, "
+            f"{len(simulation['warnings'])} MuJoCo warnings",
+        )
+    )
+    kinematics = results["kinematics"]
+    lines.append(
+        (
+            "link poses",
+            f"max {kinematics['max_position_error']:.2g} m, "
+            f"{kinematics['max_rotation_error']:.2g} rad at {kinematics['configurations']} "
+            "configurations",
+        )
+    )
+    lines.append(("joints", f"{len(results['joints']['problems'])} problems"))
+    masses = results["masses"]
+    lines.append(
+        (
+            "masses",
+            f"{masses['model_total']:.6g} kg (URDF {masses['urdf_total']:.6g} kg), "
+            f"{len(masses['problems'])} problems",
+        )
+    )
+    contacts = results["resting_contacts"]["pairs"]
+    lines.append(("resting contacts", str(len(contacts)) if contacts else "none"))
+    actuation = results.get("actuation")
+    if actuation is not None:
+        lines.append(
+            (
+                "every moving joint driven",
+                f"{actuation['actuators']} actuators, {len(actuation['problems'])} problems",
+            )
+        )
+    if results.get("floor_gap") is not None:
+        lines.append(("on the floor at home", f"gap {results['floor_gap'] * 1000:.2g} mm"))
+    hold = results.get("hold")
+    if hold:
+        joint = f" ({hold['joint']})" if hold.get("joint") else ""
+        lines.append(("hold home 1 s", f"largest deviation {hold['max_deviation']:.3g}{joint}"))
+    stand = results.get("stand")
+    if stand and stand.get("needs_controller"):
+        lines.append(("stand 5 s", f"NOT RUN: needs a controller ({stand['needs_controller']})"))
+    elif stand:
+        lines.append(
+            (
+                f"stand {stand['seconds']:g} s",
+                f"tilt {stand['max_tilt']:.2g} rad, sank {stand['max_sink'] * 1000:.0f} mm",
+            )
+        )
+    elif results.get("home") is False:
+        lines.append(("hold and stand", "NOT RUN: the model has no home keyframe"))
+    test = results.get("menagerie_test")
+    if test:
+        lines.append(
+            (
+                "1 s pseudorandom control",
+                f"{'finite' if test['finite'] else 'NOT FINITE'}, "
+                f"{len(test['warnings'])} MuJoCo warnings",
+            )
+        )
+    fastest = results.get("max_joint_speed")
+    if fastest:
+        lines.append(
+            (
+                "joint speeds",
+                f"fastest {fastest['joint']} {fastest['speed']:.3g} (limit {fastest['limit']:g})",
+            )
+        )
+    plausibility = results.get("plausibility")
+    if plausibility:
+        lines.append(
+            (
+                "plausibility",
+                f"{len(plausibility['failures'])} failures, "
+                f"{len(plausibility['warnings'])} warnings",
+            )
+        )
+    for prefix, part in sorted((results.get("parts") or {}).items()):
+        lines.append(
+            (
+                f"MJCF part {prefix}",
+                f"max {part['max_position_error']:.2g} m, {len(part['problems'])} problems",
+            )
+        )
+    runtime = results.get("mujoco_ros2_control")
+    if runtime:
+        lines.append(
+            (
+                "mujoco_ros2_control",
+                f"{len(runtime['joints'])} joints, {len(runtime['sensors'])} sensors, "
+                f"{len(runtime['devices'])} cameras/lidars",
+            )
+        )
+    return lines
 
 
 def _manifest(ctx, args) -> int:

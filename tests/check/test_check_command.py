@@ -237,3 +237,45 @@ def test_check_urdf_points_a_xacro_mistake_at_the_included_file_and_line(tmp_pat
     assert result.code == 4, result.stderr
     assert "error: urdf/arm.xacro:3:" in result.stderr and "'bsae'" in result.stderr
     assert "of its expansion]" in result.stderr
+
+
+def test_the_console_names_each_check_and_never_says_passed_over_a_robot_that_cannot_stand(
+    tmp_path,
+):
+    """A two-wheeled balancer cannot stand without a controller: the console says so with the
+    reason, as the report does, instead of "check passed"."""
+    from tests.control import robots
+
+    write(tmp_path / "robot.urdf", robots.balancer())
+    write(
+        tmp_path / "robot.yaml",
+        "name: r\nsource: {urdf: robot.urdf}\noptions: {free_joint: true}\n",
+    )
+    assert run_cli("build", str(tmp_path / "robot.yaml")).code == EXIT_OK
+    result = run_cli("check", str(tmp_path / "robot.yaml"))
+    assert result.code == EXIT_OK, result.stderr
+    lines = result.stdout.splitlines()
+    assert "mjcfbuild: check passed" not in lines
+    assert (
+        lines[-2].startswith(
+            "mjcfbuild: checks pass, but the robot cannot stand without a controller ("
+        )
+        and "a line" in lines[-2]
+        and lines[-2].endswith("the stand test was not run")
+    )
+    stand = next(line for line in lines if line.strip().startswith("stand 5 s"))
+    assert "NOT RUN: needs a controller" in stand
+    for name in ("loads", "hold home 1 s", "1 s pseudorandom control", "every moving joint"):
+        assert any(line.strip().startswith(name) for line in lines), name
+
+
+def test_the_console_of_a_robot_that_stands_says_passed_with_each_result(tmp_path):
+    arm = copy_example("arm", tmp_path)
+    assert run_cli("build", str(arm / "robot.yaml")).code == EXIT_OK
+    result = run_cli("check", str(arm / "robot.yaml"))
+    assert result.code == EXIT_OK, result.stderr
+    lines = result.stdout.splitlines()
+    assert "mjcfbuild: check passed" in lines
+    hold = next(line for line in lines if line.strip().startswith("hold home 1 s"))
+    assert "largest deviation" in hold
+    assert any(line.strip().startswith("joint speeds") for line in lines)
