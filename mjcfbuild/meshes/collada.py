@@ -120,7 +120,10 @@ class _Reader:
 
 
 def _differs(one, other) -> bool:
-    """Whether two elements with the same id say different things (copies are harmless)."""
+    """Whether two elements with the same id say different things. Copies are harmless, except
+    <vertices> in different meshes: their inputs name sources of their own mesh."""
+    if etree.QName(one).localname == "vertices" and one.getparent() is not other.getparent():
+        return True
     return etree.tostring(one, with_tail=False) != etree.tostring(other, with_tail=False)
 
 
@@ -300,8 +303,9 @@ def _source_array(reader: _Reader, referrer, mesh, cache: dict) -> np.ndarray:
     """The values of the <source> (or <vertices>' POSITION source) that ``referrer`` (an
     <input>) names, as rows of its accessor's stride; ids are looked up in ``mesh`` first."""
     source_id = referrer.get("source") or ""
-    if source_id in cache:
-        return cache[source_id]
+    key = (source_id, mesh)  # the same id may mean another source in another mesh's scope
+    if key in cache:
+        return cache[key]
     source = reader.by_url(source_id, ("source", "vertices"), referrer, scope=mesh)
     if source is None:
         raise reader.error(f"source '{source_id}' is missing", referrer)
@@ -311,7 +315,7 @@ def _source_array(reader: _Reader, referrer, mesh, cache: dict) -> np.ndarray:
         )
         if position is None:
             raise reader.error(f"vertices '{source_id}' have no POSITION input", source)
-        result = _source_array(reader, position, mesh, cache)
+        result = _source_array(reader, position, source.getparent(), cache)
     else:
         array = reader.find(source, "float_array")
         accessor = reader.find(source, "technique_common/accessor")
@@ -327,7 +331,7 @@ def _source_array(reader: _Reader, referrer, mesh, cache: dict) -> np.ndarray:
                 f"source '{source_id}' has fewer values than its accessor says", source
             )
         result = values[: count * stride].reshape(count, stride)
-    cache[source_id] = result
+    cache[key] = result
     return result
 
 
