@@ -6,6 +6,10 @@ transforms (``matrix``, ``translate``, ``rotate``, ``scale``), ``instance_node``
 morphed geometry through ``instance_controller`` (in its bind pose), materials bound through
 ``bind_material``, Phong/Lambert/Blinn/constant colours and diffuse textures. Lines carry no
 surface and are left out; any other primitive is an error naming it, never silently dropped.
+Ids are resolved as pycollada resolves them (an input's source within its own ``<mesh>``
+first), since exporters reuse source ids in every geometry; a reference that stays ambiguous,
+a dangling instance, a count that disagrees with its index list or a primitive collapsed to one
+point is an error naming the file and line, never a partial or wrong mesh.
 Float arrays are parsed in C by numpy, so a 30 MB file loads in a fraction of the time a
 general reader takes.
 
@@ -390,15 +394,23 @@ def _add_geometry(
             counts = np.array([len(p) // stride for p in polygons], dtype=np.int64)
             indices = np.concatenate(polygons) if polygons else np.zeros(0, dtype=np.int64)
         else:
-            indices = _ints(getattr(reader.find(primitive, "p"), "text", None))
+            index_lists = reader.findall(primitive, "p")
+            if len(index_lists) > 1:  # the schema allows one; reading the first would be partial
+                raise reader.error(
+                    f"a <{kind}> of geometry '{geometry.get('id')}' has {len(index_lists)} <p> "
+                    "index lists (COLLADA allows one)",
+                    primitive,
+                )
+            indices = _ints(index_lists[0].text if index_lists else None)
             if kind == "polylist":
                 counts = _ints(getattr(reader.find(primitive, "vcount"), "text", None))
             else:
                 counts = np.full(len(indices) // (3 * stride), 3, dtype=np.int64)
+        _check_count(reader, geometry, primitive, len(counts) if len(indices) else 0)
         if len(indices) == 0:
             continue
         if len(indices) % stride or counts.sum() * stride != len(indices):
-            raise reader.error(f"the index list of a <{kind}> does not match its inputs")
+            raise reader.error(f"the index list of a <{kind}> does not match its inputs", primitive)
         corners = indices.reshape(-1, stride)
         positions = _source_array(reader, vertex_input, mesh, cache)[:, :3]
         vertex_index = corners[:, int(vertex_input.get("offset", "0"))]
@@ -424,6 +436,19 @@ def _add_geometry(
             faces = faces[:, ::-1]
         material = bindings.get(primitive.get("material"), primitive.get("material") or "")
         groups.setdefault(material, []).append((placed, faces, uv))
+
+
+def _check_count(reader: _Reader, geometry, primitive, found: int) -> None:
+    """Refuse a primitive whose ``count`` says more or fewer faces (polygons, strips) than its
+    index list holds: a truncated or hand-edited file, which would be read in part."""
+    declared = primitive.get("count")
+    if declared is None or not declared.strip().isdigit() or int(declared) == found:
+        return
+    raise reader.error(
+        f"a <{etree.QName(primitive).localname}> of geometry '{geometry.get('id')}' says "
+        f'count="{declared.strip()}" but its index list holds {found}',
+        primitive,
+    )
 
 
 def _refuse_collapsed(reader: _Reader, geometry, primitive, points: np.ndarray, count: int) -> None:

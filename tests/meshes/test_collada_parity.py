@@ -258,6 +258,23 @@ def test_an_index_beyond_its_own_source_is_refused_with_its_line(tmp_path):
     )
 
 
+def test_a_truncated_index_list_is_refused(tmp_path):
+    """count says 12 triangles, the list holds 11: a file cut short is not read in part."""
+    text = document(geometry("box", BOX), f"<node>{instance('box')}</node>")
+    cut = text.replace(" 3 4 7</p>", "</p>")
+    path = write(tmp_path / "cut.dae", cut)
+    with pytest.raises(InputError, match=r'says count="12" but its index list holds 11'):
+        read_collada(path)
+
+
+def test_a_second_index_list_is_refused_not_dropped(tmp_path):
+    text = document(geometry("box", BOX), f"<node>{instance('box')}</node>")
+    twice = text.replace("</p>", "</p><p>0 1 2</p>")
+    path = write(tmp_path / "twice.dae", twice)
+    with pytest.raises(InputError, match=r"has 2 <p> index lists \(COLLADA allows one\)"):
+        read_collada(path)
+
+
 # --- every DAE file of the description wheels the robot suite downloads ---------------------
 
 # pycollada skips these files' geometry after ignoring an error of its own (and so reads no
