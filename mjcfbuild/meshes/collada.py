@@ -6,6 +6,10 @@ transforms (``matrix``, ``translate``, ``rotate``, ``scale``), ``instance_node``
 morphed geometry through ``instance_controller`` (in its bind pose), materials bound through
 ``bind_material``, Phong/Lambert/Blinn/constant colours and diffuse textures. Lines carry no
 surface and are left out; any other primitive is an error naming it, never silently dropped.
+Ids are resolved as pycollada resolves them (an input's source within its own ``<mesh>``
+first), since exporters reuse source ids in every geometry; a reference that stays ambiguous,
+a dangling instance, a count that disagrees with its index list or a primitive collapsed to one
+point is an error naming the file and line, never a partial or wrong mesh.
 Float arrays are parsed in C by numpy, so a 30 MB file loads in a fraction of the time a
 general reader takes.
 
@@ -60,7 +64,14 @@ class _Reader:
         except (etree.XMLSyntaxError, OSError) as exc:
             raise InputError(f"cannot read COLLADA file: {exc}", file=path) from None
         self.ns = self.root.nsmap.get(None)
-        self.ids = {e.get("id"): e for e in self.root.iter() if e.get("id")}
+        # Every element by id, in document order. Exporters reuse ids (every geometry's
+        # positions called "verts"), so one id may name several elements: lookups choose by
+        # scope and kind (see `by_url`), never by whichever came last.
+        self.ids: dict[str, list] = {}
+        for element in self.root.iter(etree.Element):
+            element_id = element.get("id")
+            if element_id:
+                self.ids.setdefault(element_id, []).append(element)
 
     def tag(self, name: str) -> str:
         return f"{{{self.ns}}}{name}" if self.ns else name
@@ -71,13 +82,53 @@ class _Reader:
     def findall(self, element, path: str):
         return element.findall(_any_namespace(path))
 
-    def by_url(self, url: str | None):
+    def by_url(self, url: str | None, kinds: tuple[str, ...], referrer=None, scope=None):
+        """The element of one of ``kinds`` (local names) that ``url`` ("#id") names.
+
+        Ids are looked up as pycollada does: first among ``scope`` (the children of a
+        ``<mesh>``, where sources and vertices live), then in the whole document among
+        elements of the right kind. An id that still names two different elements is an
+        error naming both lines: the readings would disagree, and guessing could hand over
+        another geometry's vertices."""
         if not url:
             return None
-        return self.ids.get(url.lstrip("#"))
+        element_id = url[1:] if url.startswith("#") else url
+        for candidates in (
+            [e for e in scope if e.get("id") == element_id] if scope is not None else [],
+            self.ids.get(element_id, []),
+        ):
+            found = [e for e in candidates if etree.QName(e).localname in kinds]
+            if not found:
+                continue
+            first = found[0]
+            if any(_differs(first, other) for other in found[1:]):
+                lines = " and ".join(str(e.sourceline) for e in found)
+                kind = etree.QName(first).localname
+                raise InputError(
+                    f"id '{element_id}' names {len(found)} different <{kind}> "
+                    f"elements (lines {lines}); the reference cannot tell which one it means",
+                    file=self.path,
+                    line=referrer.sourceline if referrer is not None else None,
+                    hint="give each element its own id (re-export the mesh), or convert it to OBJ",
+                )
+            return first
+        return None
 
-    def error(self, message: str) -> InputError:
-        return InputError(message, file=self.path, hint="re-export the mesh, or convert it to OBJ")
+    def error(self, message: str, element=None) -> InputError:
+        return InputError(
+            message,
+            file=self.path,
+            line=element.sourceline if element is not None else None,
+            hint="re-export the mesh, or convert it to OBJ",
+        )
+
+
+def _differs(one, other) -> bool:
+    """Whether two elements with the same id say different things. Copies are harmless, except
+    <vertices> in different meshes: their inputs name sources of their own mesh."""
+    if etree.QName(one).localname == "vertices" and one.getparent() is not other.getparent():
+        return True
+    return etree.tostring(one, with_tail=False) != etree.tostring(other, with_tail=False)
 
 
 def _any_namespace(path: str) -> str:
@@ -106,7 +157,9 @@ def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
 
     groups: dict[str, list] = {}
     scene = reader.find(reader.root, "scene/instance_visual_scene")
-    visual_scene = reader.by_url(scene.get("url")) if scene is not None else None
+    visual_scene = (
+        reader.by_url(scene.get("url"), ("visual_scene",), scene) if scene is not None else None
+    )
     if visual_scene is None:
         # No scene: every geometry at the origin, as some exporters write them.
         for geometry in reader.findall(reader.root, "library_geometries/geometry"):
@@ -140,41 +193,57 @@ def _walk(reader: _Reader, node, parent: np.ndarray, groups: dict, depth: int) -
         raise reader.error("node hierarchy nested more than 64 levels (a cycle?)")
     transform = parent @ _node_transform(reader, node)
     for instance in reader.findall(node, "instance_geometry"):
-        geometry = reader.by_url(instance.get("url"))
-        if geometry is None:
-            continue
+        geometry = reader.by_url(instance.get("url"), ("geometry",), instance)
+        if geometry is None:  # leaving it out would hand over part of the mesh
+            raise reader.error(
+                f"<instance_geometry> refers to '{instance.get('url')}', which does not exist",
+                instance,
+            )
         bindings = {
             bound.get("symbol"): (bound.get("target") or "").lstrip("#")
             for bound in instance.iter(reader.tag("instance_material"))
         }
         _add_geometry(reader, geometry, transform, bindings, groups)
     for instance in reader.findall(node, "instance_controller"):
-        geometry, bind_shape = _controlled_geometry(reader, instance.get("url"))
+        geometry, bind_shape = _controlled_geometry(reader, instance)
         bindings = {
             bound.get("symbol"): (bound.get("target") or "").lstrip("#")
             for bound in instance.iter(reader.tag("instance_material"))
         }
         _add_geometry(reader, geometry, transform @ bind_shape, bindings, groups)
     for instance in reader.findall(node, "instance_node"):
-        target = reader.by_url(instance.get("url"))
-        if target is not None:
-            _walk(reader, target, transform, groups, depth + 1)
+        target = reader.by_url(instance.get("url"), ("node",), instance)
+        if target is None:
+            raise reader.error(
+                f"<instance_node> refers to '{instance.get('url')}', which does not exist",
+                instance,
+            )
+        _walk(reader, target, transform, groups, depth + 1)
     for child in reader.findall(node, "node"):
         _walk(reader, child, transform, groups, depth + 1)
 
 
-def _controlled_geometry(reader: _Reader, url: str | None):
+def _controlled_geometry(reader: _Reader, instance):
     """The geometry a ``<controller>`` deforms and the matrix placing it in its bind pose: a
     skin's ``bind_shape_matrix``, or none for a morph (its base mesh)."""
-    controller = reader.by_url(url)
+    url = instance.get("url")
+    controller = reader.by_url(url, ("controller",), instance)
     if controller is None:
-        raise reader.error(f"<instance_controller> refers to '{url}', which does not exist")
+        raise reader.error(
+            f"<instance_controller> refers to '{url}', which does not exist", instance
+        )
     skin = reader.find(controller, "skin")
     morph = reader.find(controller, "morph")
     deformer = skin if skin is not None else morph
-    geometry = reader.by_url(deformer.get("source")) if deformer is not None else None
+    geometry = (
+        reader.by_url(deformer.get("source"), ("geometry",), deformer)
+        if deformer is not None
+        else None
+    )
     if geometry is None:
-        raise reader.error(f"controller '{controller.get('id')}' has no <skin> or <morph> geometry")
+        raise reader.error(
+            f"controller '{controller.get('id')}' has no <skin> or <morph> geometry", controller
+        )
     bind_shape = np.eye(4)
     matrix = reader.find(skin, "bind_shape_matrix") if skin is not None else None
     if matrix is not None and len(_floats(matrix.text)) == 16:
@@ -234,20 +303,23 @@ def _ints(text: str | None) -> np.ndarray:
         return np.fromstring(text, dtype=np.int64, sep=" ")
 
 
-def _source_array(reader: _Reader, source_id: str, cache: dict) -> np.ndarray:
-    """The values of a <source> as rows of its accessor's stride."""
-    if source_id in cache:
-        return cache[source_id]
-    source = reader.by_url(source_id)
+def _source_array(reader: _Reader, referrer, mesh, cache: dict) -> np.ndarray:
+    """The values of the <source> (or <vertices>' POSITION source) that ``referrer`` (an
+    <input>) names, as rows of its accessor's stride; ids are looked up in ``mesh`` first."""
+    source_id = referrer.get("source") or ""
+    key = (source_id, mesh)  # the same id may mean another source in another mesh's scope
+    if key in cache:
+        return cache[key]
+    source = reader.by_url(source_id, ("source", "vertices"), referrer, scope=mesh)
     if source is None:
-        raise reader.error(f"source '{source_id}' is missing")
+        raise reader.error(f"source '{source_id}' is missing", referrer)
     if etree.QName(source).localname == "vertices":
         position = next(
             (i for i in reader.findall(source, "input") if i.get("semantic") == "POSITION"), None
         )
         if position is None:
-            raise reader.error(f"vertices '{source_id}' have no POSITION input")
-        result = _source_array(reader, position.get("source"), cache)
+            raise reader.error(f"vertices '{source_id}' have no POSITION input", source)
+        result = _source_array(reader, position, source.getparent(), cache)
     else:
         array = reader.find(source, "float_array")
         accessor = reader.find(source, "technique_common/accessor")
@@ -259,9 +331,11 @@ def _source_array(reader: _Reader, source_id: str, cache: dict) -> np.ndarray:
             else len(values) // stride
         )
         if stride <= 0 or len(values) < count * stride:
-            raise reader.error(f"source '{source_id}' has fewer values than its accessor says")
+            raise reader.error(
+                f"source '{source_id}' has fewer values than its accessor says", source
+            )
         result = values[: count * stride].reshape(count, stride)
-    cache[source_id] = result
+    cache[key] = result
     return result
 
 
@@ -275,6 +349,13 @@ def _add_geometry(
 ) -> None:
     mesh = reader.find(geometry, "mesh")
     if mesh is None:
+        shapes = [etree.QName(e).localname for e in geometry if isinstance(e.tag, str)]
+        if any(shape in ("convex_mesh", "spline", "brep") for shape in shapes):
+            raise reader.error(
+                f"geometry '{geometry.get('id')}' is a <{shapes[0]}>, which mjcfbuild does not "
+                "read",
+                geometry,
+            )
         return
     cache: dict = {}
     for primitive in mesh:
@@ -313,24 +394,38 @@ def _add_geometry(
             counts = np.array([len(p) // stride for p in polygons], dtype=np.int64)
             indices = np.concatenate(polygons) if polygons else np.zeros(0, dtype=np.int64)
         else:
-            indices = _ints(getattr(reader.find(primitive, "p"), "text", None))
+            index_lists = reader.findall(primitive, "p")
+            if len(index_lists) > 1:  # the schema allows one; reading the first would be partial
+                raise reader.error(
+                    f"a <{kind}> of geometry '{geometry.get('id')}' has {len(index_lists)} <p> "
+                    "index lists (COLLADA allows one)",
+                    primitive,
+                )
+            indices = _ints(index_lists[0].text if index_lists else None)
             if kind == "polylist":
                 counts = _ints(getattr(reader.find(primitive, "vcount"), "text", None))
             else:
                 counts = np.full(len(indices) // (3 * stride), 3, dtype=np.int64)
+        _check_count(reader, geometry, primitive, len(counts) if len(indices) else 0)
         if len(indices) == 0:
             continue
         if len(indices) % stride or counts.sum() * stride != len(indices):
-            raise reader.error(f"the index list of a <{kind}> does not match its inputs")
+            raise reader.error(f"the index list of a <{kind}> does not match its inputs", primitive)
         corners = indices.reshape(-1, stride)
-        positions = _source_array(reader, vertex_input.get("source"), cache)[:, :3]
+        positions = _source_array(reader, vertex_input, mesh, cache)[:, :3]
         vertex_index = corners[:, int(vertex_input.get("offset", "0"))]
         if vertex_index.size and (vertex_index.max() >= len(positions) or vertex_index.min() < 0):
-            raise reader.error("a vertex index is out of range")
+            raise reader.error(
+                f"a <{kind}> of geometry '{geometry.get('id')}' uses vertex "
+                f"{int(vertex_index.max())}, but its source has {len(positions)} vertices "
+                "(vertex index out of range)",
+                primitive,
+            )
         points = positions[vertex_index]
+        _refuse_collapsed(reader, geometry, primitive, points, int(counts.size))
         uv = None
         if uv_input is not None:
-            texcoords = _source_array(reader, uv_input.get("source"), cache)
+            texcoords = _source_array(reader, uv_input, mesh, cache)
             uv_index = corners[:, int(uv_input.get("offset", "0"))]
             if uv_index.size and uv_index.max() < len(texcoords):
                 uv = texcoords[uv_index][:, :2]
@@ -341,6 +436,30 @@ def _add_geometry(
             faces = faces[:, ::-1]
         material = bindings.get(primitive.get("material"), primitive.get("material") or "")
         groups.setdefault(material, []).append((placed, faces, uv))
+
+
+def _check_count(reader: _Reader, geometry, primitive, found: int) -> None:
+    """Refuse a primitive whose ``count`` says more or fewer faces (polygons, strips) than its
+    index list holds: a truncated or hand-edited file, which would be read in part."""
+    declared = primitive.get("count")
+    if declared is None or not declared.strip().isdigit() or int(declared) == found:
+        return
+    raise reader.error(
+        f"a <{etree.QName(primitive).localname}> of geometry '{geometry.get('id')}' says "
+        f'count="{declared.strip()}" but its index list holds {found}',
+        primitive,
+    )
+
+
+def _refuse_collapsed(reader: _Reader, geometry, primitive, points: np.ndarray, count: int) -> None:
+    """Refuse a primitive of several faces whose corners all lie on one point: no exporter
+    writes one on purpose, and it is what a source read from the wrong place looks like."""
+    if count > 1 and len(points) and np.all(points == points[0]):
+        raise reader.error(
+            f"all {count} faces of a <{etree.QName(primitive).localname}> of geometry "
+            f"'{geometry.get('id')}' collapse to a single point",
+            primitive,
+        )
 
 
 def _strip_triangles(counts: np.ndarray) -> np.ndarray:
@@ -374,11 +493,13 @@ def _fan_triangles(counts: np.ndarray) -> np.ndarray:
 
 def _material_look(reader: _Reader, material_id: str):
     """(rgba, texture path) of a material; (None, None) when the file gives no colour."""
-    material = reader.ids.get(material_id)
+    material = reader.by_url(material_id, ("material",))
     if material is None:
         return None, None
     instance = reader.find(material, "instance_effect")
-    effect = reader.by_url(instance.get("url")) if instance is not None else None
+    effect = (
+        reader.by_url(instance.get("url"), ("effect",), instance) if instance is not None else None
+    )
     if effect is None:
         return None, None
     technique = None
@@ -435,7 +556,7 @@ def _texture_file(reader: _Reader, effect, sampler_sid: str | None) -> Path | No
             instance = next(sampler.iter(reader.tag("instance_image")), None)
             if instance is not None:
                 image_id = instance.get("url", "").lstrip("#")
-    image = reader.ids.get(image_id)
+    image = reader.by_url(image_id, ("image",))
     if image is None:
         return None
     init = next(image.iter(reader.tag("init_from")), None)

@@ -19,6 +19,10 @@ from mjcfbuild.errors import (
     EXIT_USAGE,
 )
 from tests.conftest import two_link_urdf
+from tests.meshes.test_collada_parity import BOX, TETRAHEDRON
+from tests.meshes.test_collada_parity import document as dae_document
+from tests.meshes.test_collada_parity import geometry as dae_geometry
+from tests.meshes.test_collada_parity import instance as dae_instance
 
 FileContent = str | bytes | Callable[[Path], None]
 
@@ -663,6 +667,34 @@ CASES: list[Case] = [
         },
         EXIT_INPUT,
         ["arm.dae"],
+    ),
+    Case(
+        "mesh COLLADA id names two sources",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": mesh_urdf("meshes/arm.dae"),
+            "meshes/arm.dae": dae_document(
+                dae_geometry("tetrahedron", TETRAHEDRON, "a")
+                + dae_geometry("box", BOX, "a")
+                + dae_geometry("lost", TETRAHEDRON, "b", vertex_url="#a-vertices"),
+                f"<node>{dae_instance('lost')}</node>",
+            ),
+        },
+        EXIT_INPUT,
+        ["arm.dae:38:", "names 2 different <vertices> elements (lines 12 and 24)"],
+    ),
+    Case(
+        "mesh COLLADA collapsed to a point",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": mesh_urdf("meshes/arm.dae"),
+            "meshes/arm.dae": dae_document(
+                dae_geometry("box", ([0.5, 0.5, 0.5] * 8, BOX[1])),
+                f"<node>{dae_instance('box')}</node>",
+            ),
+        },
+        EXIT_INPUT,
+        ["arm.dae:", "all 12 faces", "collapse to a single point"],
     ),
     Case(
         "mesh format unknown",

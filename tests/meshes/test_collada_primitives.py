@@ -1,6 +1,7 @@
 """Every surface primitive of a DAE is read, checked against independent readers (trimesh,
-which reads DAE through pycollada): strips, fans, skinned geometry, and every DAE file of the
-example-robot-data wheel. What cannot be read is an error naming it, never a silent gap."""
+which reads DAE through pycollada): strips, fans, skinned geometry. What cannot be read is an
+error naming it, never a silent gap. Every DAE file of the description wheels is compared with
+pycollada in test_collada_parity.py."""
 
 from __future__ import annotations
 
@@ -104,67 +105,3 @@ def test_an_unreadable_primitive_is_named(tmp_path):
     )
     with pytest.raises(InputError, match="<splines>"):
         read_collada(path)
-
-
-def _reference_triangles(path):
-    """(faces, area in the file's units) from pycollada, or None where it cannot read the file."""
-    import collada
-
-    try:
-        document = collada.Collada(str(path))
-    except Exception:  # pycollada refuses some real files (broken effect references)
-        return None
-    faces, area = 0, 0.0
-    if document.scene is None:
-        return None
-    for kind in ("geometry", "controller"):
-        for bound in document.scene.objects(kind):
-            for primitive in bound.primitives():
-                if isinstance(primitive, collada.lineset.BoundLineSet):
-                    continue  # no surface
-                triangles = (
-                    primitive
-                    if isinstance(primitive, collada.triangleset.BoundTriangleSet)
-                    else primitive.triangleset()
-                )
-                corners = triangles.vertex[triangles.vertex_index]
-                faces += len(corners)
-                area += float(np.linalg.norm(area_vectors(corners), axis=1).sum())
-    return faces, area
-
-
-def area_vectors(corners: np.ndarray) -> np.ndarray:
-    return 0.5 * np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-
-
-@pytest.mark.robots
-@pytest.mark.slow
-@pytest.mark.filterwarnings("ignore::PendingDeprecationWarning")  # pycollada's numpy.matrix
-def test_every_dae_of_example_robot_data_matches_pycollada(tmp_path):
-    import zipfile
-
-    from bench import robot_data
-
-    with zipfile.ZipFile(robot_data.wheel()) as wheel:
-        names = [n for n in wheel.namelist() if n.lower().endswith(".dae")]
-        for name in names:
-            wheel.extract(name, tmp_path)
-    assert len(names) > 250
-    compared, mismatched = 0, []
-    for name in names:
-        path = tmp_path / name
-        mesh = read_collada(path)  # every file is read, whatever pycollada makes of it
-        reference = _reference_triangles(path)
-        if reference is None:
-            continue
-        faces = sum(len(part.faces) for part in mesh.parts)
-        area = sum(
-            float(np.linalg.norm(area_vectors(part.vertices[part.faces]), axis=1).sum())
-            for part in mesh.parts
-        )
-        expected_area = reference[1] * mesh.unit**2  # pycollada leaves <unit> to the caller
-        compared += 1
-        if faces != reference[0] or not np.isclose(area, expected_area, rtol=1e-6, atol=1e-12):
-            mismatched.append((name, faces, reference[0], area, expected_area))
-    assert compared > 0.9 * len(names)
-    assert mismatched == []
