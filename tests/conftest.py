@@ -63,6 +63,19 @@ def run_cli(*args: str, cwd: Path | None = None, stdin: str | None = None, env=N
     return CliResult(process.returncode, process.stdout, process.stderr)
 
 
+def file_clock_past(folder: Path, ns: int) -> None:
+    """Return once a file changed in ``folder`` gets a status-change time later than ``ns``.
+
+    The kernel stamps files from a clock that ticks every few milliseconds: a test whose next
+    change must carry a later time than an earlier one waits for that tick (a loop of
+    ``utime`` calls on a probe file), never for a fixed time."""
+    probe = folder / ".file-clock-probe"
+    probe.write_bytes(b"")
+    while os.stat(probe).st_ctime_ns <= ns:
+        os.utime(probe)
+    probe.unlink()
+
+
 @pytest.fixture
 def cli():
     """The :func:`run_cli` function."""

@@ -4,7 +4,11 @@ A revision's files come from ``git archive`` (the repo's checkout, index and wor
 left alone); they go to ``<scratch>/<side>/src`` and its build to ``<scratch>/<side>/out``.
 The output folder stays between runs, so a revision is built incrementally from the last one
 on the same side, and what both sides share (mesh products, decompositions, collision
-matrices) comes from the shared cache.
+matrices) comes from the shared cache. A new revision's files keep the size and time of the
+last one's when two commits were made in the same second (``git archive`` gives every file its
+commit's time in whole seconds), often their inodes too; their status-change time is new, and
+the build trusts no file whose signature changed (:mod:`mjcfbuild.filesig`), so the folder
+built for one revision is never taken as current for another.
 """
 
 from __future__ import annotations

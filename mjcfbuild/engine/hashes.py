@@ -1,10 +1,12 @@
-"""Content hashes of files, remembered by (size, mtime, inode) so unchanged files are not re-read.
+"""Content hashes of files, remembered by their stat signature so unchanged files are not re-read.
 
 doit's stock MD5 checker re-hashes every file whose mtime moved, on every run, until the task
 runs again. A fresh git checkout or a ``touch`` moves every mtime, so that would re-read every
-mesh on every no-op build. This cache records the hash of each file against its stat; a file
-whose stat is unchanged is not read again. Files modified in the last two seconds are hashed
-but not remembered, so a write within the file system's timestamp granularity is never missed.
+mesh on every no-op build. This cache records the hash of each file against its signature
+(:func:`mjcfbuild.filesig.signature`: size, mtime, ctime, inode, device); a file whose
+signature is unchanged is not read again. Files changed in the last two seconds
+(:func:`mjcfbuild.filesig.racy`) are hashed but not remembered, so a write within the file
+system's timestamp granularity is never missed.
 """
 
 from __future__ import annotations
@@ -15,9 +17,8 @@ import threading
 import time
 from pathlib import Path
 
+from mjcfbuild.filesig import racy, signature
 from mjcfbuild.fsutil import atomic_write, md5_file
-
-_RACY_SECONDS = 2.0
 
 
 class HashCache:
@@ -38,15 +39,16 @@ class HashCache:
         """The MD5 of ``file``; raises OSError if it cannot be read."""
         key = os.fspath(file)
         stat = stat or os.stat(key)
-        signature = [stat.st_size, stat.st_mtime_ns, stat.st_ino]
+        known = signature(stat)
         with self._lock:
             entry = self._entries.get(key)
-            if entry is not None and entry[:3] == signature:
-                return entry[3]
+            # An entry of an older format (without ctime and device) never matches.
+            if entry is not None and entry[:-1] == known:
+                return entry[-1]
         digest = md5_file(key)
-        if time.time() - stat.st_mtime > _RACY_SECONDS:
+        if not racy(stat, time.time_ns()):
             with self._lock:
-                self._entries[key] = [*signature, digest]
+                self._entries[key] = [*known, digest]
                 self._dirty = True
         return digest
 

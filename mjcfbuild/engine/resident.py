@@ -50,6 +50,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from mjcfbuild.errors import UsageError
+from mjcfbuild.filesig import signature
 
 if TYPE_CHECKING:  # imported where used: every build reads the variables, few start workers
     import socket
@@ -300,8 +301,8 @@ def _code_fingerprint(package: Path) -> list[str]:
         subfolders[:] = sorted(d for d in subfolders if d != "__pycache__")
         for name in sorted(files):
             if name.endswith(".py"):
-                info = os.stat(os.path.join(folder, name))
-                found.append(f"{folder}/{name}:{info.st_size}:{info.st_mtime_ns}")
+                identity = signature(os.stat(os.path.join(folder, name)))
+                found.append(f"{folder}/{name}:{identity}")
     return found
 
 

@@ -5,18 +5,20 @@ each task's file dependencies, what xacro and mesh steps discovered), every file
 (targets, products, assets, report, its own state), the files it looked for and did not find,
 the environment variables that can change a build, the folders Python imports packages from
 (their mtime moves when a package is installed or upgraded) and mjcfbuild's own source files.
-Each file is recorded with its size, mtime and MD5.
+Each file is recorded with its signature (:mod:`mjcfbuild.filesig`: size, mtime and ctime
+to the nanosecond, inode, device) and MD5.
 
 The next ``mjcfbuild build`` of the same manifest checks the stamp first, importing nothing
-but the standard library. A file whose size and mtime are unchanged is unchanged; one whose
-mtime moved is hashed, and if its bytes are the same (a ``touch`` or a fresh checkout) the
+but the standard library. A file whose signature is unchanged is unchanged; one whose size
+changed has changed; any other difference - a ``touch``, a fresh checkout, a ``cp -p`` or
+``tar`` that restored the mtime - has the file hashed, and if its bytes are the same the
 stamp is updated so it is not hashed again. Anything else - a changed byte, a file gone or
 appeared, a variable or package changed, no stamp - falls through to the full build, which
 decides what to run. A full build removes the stamp before it starts, so an interrupted or
 failed build never leaves one behind.
 
-A file written within two seconds of the stamp (``racy``) is always hashed: a later edit in
-the same timestamp tick would otherwise keep its size and mtime.
+A file changed within two seconds of the stamp (``racy``, :func:`mjcfbuild.filesig.racy`)
+is always hashed: a later edit in the same timestamp tick would otherwise keep its signature.
 """
 
 from __future__ import annotations
@@ -31,16 +33,17 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from mjcfbuild import filesig
+
 if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext
     from mjcfbuild.engine.hashes import HashCache
 
-FORMAT = 2
+FORMAT = 3  # 3: files recorded by their whole signature, not by size and mtime
 # Set to any value to skip the fast path (benchmarks of the full path, debugging).
 DISABLE_VARIABLE = "MJCFBUILD_FULL_BUILD"
 # Variables read by the build besides those a depfile records; every MJCFBUILD_* counts too.
 _VARIABLES = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH", "XDG_CACHE_HOME", "HOME")
-_RACY_SECONDS = 2.0
 # In the state folder: bookkeeping no step reads (the lock, workers' logs, the database of a
 # user's doit, which doit writes after the build it ran).
 STATE_NOT_CHECKED = ("lock", "logs", "dodo")
@@ -99,9 +102,9 @@ def _md5(path: str) -> str:
     return digest.hexdigest()
 
 
-def _record(path: str, stat: os.stat_result, digest: str, now: float) -> list:
-    racy = now - stat.st_mtime < _RACY_SECONDS
-    return [stat.st_size, stat.st_mtime_ns, digest, racy]
+def _record(stat: os.stat_result, digest: str, now_ns: int) -> list:
+    """``[signature, digest, racy]`` of a file whose ``stat`` is taken at ``now_ns``."""
+    return [filesig.signature(stat), digest, filesig.racy(stat, now_ns)]
 
 
 def command_key(command: str, cwd: str, options: dict) -> str:
@@ -129,7 +132,7 @@ def nothing_to_do_for(key: Path | str, run_check: bool) -> dict | None:
     if stamp is None:
         return None
     try:
-        started = time.time()
+        started = time.time_ns()
         if not _same_environment(stamp["environment"]):
             return None
         if stamp["python_folders"] != _python_folders():
@@ -168,8 +171,7 @@ def _meshes_moved(files: object) -> bool:
         if not mesh_format(name):
             continue
         try:
-            stat = os.stat(name)
-            if [stat.st_size, stat.st_mtime_ns] != record[:2]:
+            if filesig.signature(os.stat(name)) != record[0]:
                 return True
         except (OSError, TypeError):
             return True
@@ -189,18 +191,19 @@ def _read(path: Path) -> dict | None:
     return stamp
 
 
-def _verify_files(files: dict[str, list], now: float) -> dict[str, list] | None:
-    """None if a file changed; else the records of files whose mtime moved or were racy."""
+def _verify_files(files: dict[str, list], now_ns: int) -> dict[str, list] | None:
+    """None if a file changed; else the records of files whose signature moved or were racy."""
     refreshed = {}
-    for name, (size, mtime_ns, digest, racy) in files.items():
+    for name, (recorded, digest, racy) in files.items():
         stat = os.stat(name)  # FileNotFoundError: a file is gone, the caller falls through
-        if stat.st_size != size:
-            return None
-        if stat.st_mtime_ns == mtime_ns and not racy:
+        now = filesig.signature(stat)
+        if now[0] != recorded[0]:
+            return None  # another size: changed, no need to read it
+        if now == recorded and not racy:
             continue
         if _md5(name) != digest:
             return None
-        refreshed[name] = _record(name, stat, digest, now)
+        refreshed[name] = _record(stat, digest, now_ns)
     return refreshed
 
 
@@ -236,14 +239,14 @@ def write(
     ``hashes`` is the build's :class:`~mjcfbuild.engine.hashes.HashCache`, so files hashed by
     the build are not read again; ``next_build`` is kept for :func:`previous_build`.
     """
-    now = time.time()
+    now = time.time_ns()
     files: dict[str, list] = {}
     for name in sorted({os.fspath(p) for p in [*inputs, *outputs]}):
         try:
             stat = os.stat(name)
             if not os.path.isfile(name):
                 continue
-            files[name] = _record(name, stat, hashes.md5(name, stat), now)
+            files[name] = _record(stat, hashes.md5(name, stat), now)
         except OSError:
             continue  # a file the build names but never made: the full path decides again
     environment = _environment()

@@ -34,6 +34,8 @@ from collections.abc import Callable, Iterator
 from functools import partial
 from pathlib import Path
 
+from mjcfbuild.filesig import signature
+
 
 def _watch_parent(parent: int) -> None:
     """Exit when the build process that started this worker is gone."""
@@ -103,16 +105,16 @@ def _queue_meshes(report: str, work: IdleWork) -> None:
         work.append(partial(_warm, str(product)))
 
 
-# Mesh files processed while idle, with what identified them then (inode, size, mtime).
-_warmed: dict[str, tuple[int, int, int]] = {}
+# Mesh files processed while idle, with what identified them then (mjcfbuild.filesig).
+_warmed: dict[str, list[int]] = {}
+_MTIME, _CTIME = 1, 2  # the places of the modification and status-change times in one
 
 
-def _identity(path: str) -> tuple[int, int, int] | None:
+def _identity(path: str) -> list[int] | None:
     try:
-        stat = os.stat(path)
+        return signature(os.stat(path))
     except OSError:
         return None
-    return stat.st_ino, stat.st_size, stat.st_mtime_ns
 
 
 def _warm(path: str) -> None:
@@ -172,13 +174,14 @@ def note_products(request: dict) -> None:
             _warmed[name] = identity
 
 
-def _unseen_change(path: str, warmed: tuple[int, int, int]) -> bool:
+def _unseen_change(path: str, warmed: list[int]) -> bool:
     """Whether the file at ``path`` differs from when it was processed (``warmed``) while
-    keeping the whole-second time MuJoCo's cache compares."""
+    keeping the whole-second time MuJoCo's cache compares (a rewrite within the second, or
+    one that restored the time)."""
     now = _identity(path)
     if now is None or now == warmed:
         return False  # gone: MuJoCo cannot read it either; unchanged: the cache is right
-    return now[2] // 1_000_000_000 == warmed[2] // 1_000_000_000
+    return now[_MTIME] // 1_000_000_000 == warmed[_MTIME] // 1_000_000_000
 
 
 def requests(stdin: int, idle: IdleWork) -> Iterator[bytes]:
@@ -301,14 +304,15 @@ def _serve_resident(connection: socket.socket, limits: _Limits) -> None:
 
 
 class _CodeWatch:
-    """The size and time of every module file this process imported, when first seen: a
-    module edited in place since (an editable install, a patch to site-packages) would not
-    be imported again here, so such a worker must not serve another build. A module first
-    seen with a time later than the last look may have changed after it was imported: that
-    counts as a change too (slower, never wrong)."""
+    """The signature (mjcfbuild.filesig) of every module file this process imported, when
+    first seen: a module edited in place since (an editable install, a patch to
+    site-packages, a ``cp -p`` over it) would not be imported again here, so such a worker
+    must not serve another build. A module first seen with a time (modification or status
+    change) later than the last look may have changed after it was imported: that counts as
+    a change too (slower, never wrong)."""
 
     def __init__(self) -> None:
-        self._seen: dict[str, tuple[int, int]] = {}
+        self._seen: dict[str, list[int]] = {}
         self._since = time.time_ns()  # the last look (at first, this process's start)
         self._suspect: str | None = None
 
@@ -318,10 +322,11 @@ class _CodeWatch:
         for module in list(sys.modules.values()):
             name = getattr(module, "__file__", None)
             if isinstance(name, str) and name not in self._seen:
-                identity = _file_identity(name)
+                identity = _identity(name)
                 if identity is not None:
                     self._seen[name] = identity
-                    if identity[1] >= self._since and self._suspect is None:
+                    changed = max(identity[_MTIME], identity[_CTIME])
+                    if changed >= self._since and self._suspect is None:
                         self._suspect = name
         self._since = now
 
@@ -330,17 +335,9 @@ class _CodeWatch:
         if self._suspect is not None:
             return self._suspect
         for name, identity in self._seen.items():
-            if _file_identity(name) != identity:
+            if _identity(name) != identity:
                 return name
         return None
-
-
-def _file_identity(name: str) -> tuple[int, int] | None:
-    try:
-        info = os.stat(name)
-    except OSError:
-        return None
-    return info.st_size, info.st_mtime_ns
 
 
 _code = _CodeWatch()

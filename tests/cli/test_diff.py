@@ -254,3 +254,29 @@ def test_a_robot_that_stood_and_now_falls(tmp_path):
     assert checks[("check", "result")]["after"] == "failed"
     kp = {c["subject"]: c["after"] for c in groups["actuators"] if c["what"] == "kp"}
     assert kp["actuator front_left_knee_joint"] == 2.0
+
+
+def test_commits_made_within_one_second_diff_correctly(tmp_path, monkeypatch):
+    """``git archive`` stamps every file with its commit's second: a same-size edit committed
+    in the same second as the previous commit keeps each file's size and time, and a scratch
+    folder built for one revision must not be taken as current for the next."""
+    for variable in ("GIT_AUTHOR_DATE", "GIT_COMMITTER_DATE"):  # a script, a rebase
+        monkeypatch.setenv(variable, "2026-01-01T00:00:00Z")
+    arm = new_repo(tmp_path)
+    xacro = arm / "urdf" / "arm.urdf.xacro"
+    for before, after in (("1.5", "2.5"), ("2.5", "3.5")):  # the same size: only bytes differ
+        edit(xacro, f'<mass value="{before}"/>', f'<mass value="{after}"/>')
+        git(tmp_path, "commit", "-qam", f"mass {after}")
+    scratch = tmp_path / "scratch"
+
+    def mass_change(base: str, head: str) -> tuple:
+        result = run_cli(
+            "diff", "--base", base, "--head", head, "--format", "json",
+            "--scratch", str(scratch), cwd=arm,
+        )  # fmt: skip
+        assert result.code == 0, result.stderr
+        return changes(json.loads(result.stdout), "masses")[("body upper_arm_link", "mass")]
+
+    assert mass_change("main~2", "main~1") == (1.5, 2.5)
+    # Each side's scratch folder holds the previous pair's build; now the next commit's files.
+    assert mass_change("main~1", "main") == (2.5, 3.5)

@@ -2,13 +2,18 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 from pathlib import Path
 
 import pytest
 
+from mjcfbuild import filesig
 from mjcfbuild.diff import revisions
+from mjcfbuild.engine.hashes import HashCache
 from mjcfbuild.errors import InputError, UsageError
+from mjcfbuild.fsutil import md5_file
+from tests.conftest import file_clock_past
 
 
 def git(repo: Path, *args: str) -> str:
@@ -68,3 +73,34 @@ def test_a_manifest_missing_at_the_revision_is_an_input_error(repo, tmp_path):
     found = revisions.repository(repo / "robot" / "new.yaml")
     with pytest.raises(InputError, match="does not exist at main~1"):
         revisions.extract(found, revisions.resolve(found, "main~1"), tmp_path / "side")
+
+
+def test_a_revision_from_the_same_second_is_never_taken_for_the_one_it_replaces(
+    tmp_path, monkeypatch
+):
+    """``git archive`` gives every file its commit's second: two commits made in one second
+    (a script, a rebase) extract to files of the same size and time, often on the same inodes;
+    the build's hash cache still reads the new revision's bytes."""
+    monkeypatch.setattr(filesig, "RACY_NS", 0)  # hashes remembered at once, as after a build
+    for variable in ("GIT_AUTHOR_DATE", "GIT_COMMITTER_DATE"):
+        monkeypatch.setenv(variable, "2026-01-01T00:00:00Z")
+    top = tmp_path / "repo"
+    (top / "robot").mkdir(parents=True)
+    (top / "robot" / "robot.yaml").write_text("mass: 1.5\n")
+    git(top, "init", "-q", "-b", "main")
+    git(top, "add", ".")
+    git(top, "commit", "-qm", "one")
+    (top / "robot" / "robot.yaml").write_text("mass: 2.5\n")
+    git(top, "commit", "-qam", "two")
+    found = revisions.repository(top / "robot" / "robot.yaml")
+    side = tmp_path / "side"
+    first = revisions.extract(found, revisions.resolve(found, "main~1"), side)
+    cache = HashCache(None)
+    old = cache.md5(first)
+    before = os.stat(first)
+    file_clock_past(tmp_path, before.st_ctime_ns)
+    second = revisions.extract(found, revisions.resolve(found, "main"), side)
+    after = os.stat(second)
+    assert second == first and second.read_text() == "mass: 2.5\n"
+    assert (after.st_size, after.st_mtime_ns) == (before.st_size, before.st_mtime_ns)
+    assert cache.md5(second) == md5_file(second) != old

@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 
 import mjcfbuild
+from mjcfbuild import filesig
 from mjcfbuild.errors import BuildFailed
-from tests.conftest import run_cli, write
+from tests.conftest import file_clock_past, run_cli, write
 
 ALL_ARM_TASKS = {
     "expand",
@@ -67,6 +68,25 @@ def test_editing_one_mesh_reruns_that_mesh_and_the_assembly(built_arm):
     mesh.write_bytes(bytes(data))
     # The finger collides with authored primitives: the collision matrix stays up to date.
     assert sorted(build(built_arm).ran) == ["assemble", "mesh:finger"]
+
+
+def test_a_same_size_edit_with_its_mtime_restored_reruns_what_it_feeds(arm, monkeypatch):
+    """The engine's hash cache trusts a file only when size, mtime, ctime, inode and device
+    all agree: an edit that kept the size and had its time restored is still an edit."""
+    monkeypatch.setattr(filesig, "RACY_NS", 0)  # remember every hash: only ctime can tell
+    hour_ago = time.time() - 3600
+    for path in arm.rglob("*"):
+        if path.is_file():
+            os.utime(path, (hour_ago, hour_ago))
+    assert set(build(arm).ran) == ALL_ARM_TASKS
+    finger = arm / "urdf" / "finger.xacro"
+    before = os.stat(finger)
+    file_clock_past(arm, before.st_ctime_ns)
+    finger.write_text(finger.read_text().replace('<mass value="0.02"/>', '<mass value="0.03"/>'))
+    os.utime(finger, ns=(before.st_atime_ns, before.st_mtime_ns))
+    assert (os.stat(finger).st_size, os.stat(finger).st_ino) == (before.st_size, before.st_ino)
+    assert sorted(build(arm).ran) == ["assemble", "expand", "plan"]
+    assert 'mass="0.03"' in (arm / "mjcf" / "example_arm.xml").read_text()
 
 
 def test_editing_an_included_xacro_reruns_expansion_and_what_depends_on_it(built_arm):

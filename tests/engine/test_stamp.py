@@ -85,6 +85,35 @@ def test_the_fast_path_agrees_with_the_full_build_edit_by_edit(built_arm):
     assert agree(arm)
 
 
+def test_a_same_size_edit_whose_mtime_was_restored_is_rebuilt(arm):
+    """``cp -p``, ``rsync -a``, ``tar`` and ``os.utime`` leave an edited file its old size and
+    time: the fast path and the full build both see the new bytes."""
+    hour_ago = time.time() - 3600  # a checkout or an unpacked archive, not just written
+    for path in arm.rglob("*"):
+        if path.is_file():
+            os.utime(path, (hour_ago, hour_ago))
+    assert full_build_runs(arm) > 0
+    assert agree(arm)
+
+    finger = arm / "urdf" / "finger.xacro"  # edited in place: the same inode
+    before = os.stat(finger)
+    finger.write_text(finger.read_text().replace('<mass value="0.02"/>', '<mass value="0.03"/>'))
+    os.utime(finger, ns=(before.st_atime_ns, before.st_mtime_ns))
+    assert os.stat(finger).st_size == before.st_size
+    assert not agree(arm)
+    assert 'mass="0.03"' in (arm / "mjcf" / "example_arm.xml").read_text()
+
+    limits = arm / "config" / "joint_limits.yaml"  # replaced by a copy that kept its times
+    before = os.stat(limits)
+    edited = arm / "joint_limits.new"
+    edited.write_text(limits.read_text().replace("upper: 2.5", "upper: 2.4"))
+    os.utime(edited, ns=(before.st_atime_ns, before.st_mtime_ns))
+    os.replace(edited, limits)
+    assert os.stat(limits).st_size == before.st_size
+    assert not agree(arm)
+    assert agree(arm)
+
+
 def test_environment_variables_fall_through(built_arm, monkeypatch):
     monkeypatch.setenv("ROS_PACKAGE_PATH", str(built_arm))
     assert not agree(built_arm)  # expand and plan take the ROS environment as parameters

@@ -3,13 +3,16 @@ MuJoCo's cache hand a step a mesh that has changed since."""
 
 from __future__ import annotations
 
+import importlib
 import json
 import os
+import sys
 from collections.abc import Callable
 from pathlib import Path
 
 from mjcfbuild.engine import worker_main
 from mjcfbuild.engine.worker_main import drop_mesh_work, idle_work
+from tests.conftest import file_clock_past
 from tests.engine.mujoco_steps import cache_size, mesh_vertices
 
 
@@ -99,6 +102,28 @@ def test_a_waiting_worker_processes_the_meshes_and_forgets_them_when_one_changes
     assert worker.step(mesh_vertices, {"file": str(mesh)}) == {"vertices": 8}
 
 
+def test_a_mesh_rewritten_in_place_with_its_size_and_time_kept_is_read_again(tmp_path):
+    """Same inode, same size, its time restored (``cp -p``, ``rsync -a`` onto the file): only
+    the status-change time tells, and the worker empties MuJoCo's cache for it."""
+    report, mesh = _report(tmp_path)
+    tetrahedron = _tetrahedron()
+    mesh.write_text(tetrahedron + "#" * (len(_cube()) - len(tetrahedron) - 1) + "\n")
+    before = os.stat(mesh)
+    worker = _Worker(report)
+    assert worker.step(mesh_vertices, {"file": str(mesh)}) == {"vertices": 4}
+    file_clock_past(tmp_path, before.st_ctime_ns)
+    with open(mesh, "r+") as handle:  # in place: the same inode
+        handle.write(_cube())
+    os.utime(mesh, ns=(before.st_atime_ns, before.st_mtime_ns))
+    after = os.stat(mesh)
+    assert (after.st_ino, after.st_size, after.st_mtime_ns) == (
+        before.st_ino,
+        before.st_size,
+        before.st_mtime_ns,
+    )
+    assert worker.step(mesh_vertices, {"file": str(mesh)}) == {"vertices": 8}
+
+
 def test_a_mesh_changed_in_another_second_is_reread_without_emptying_the_cache(tmp_path):
     report, mesh = _report(tmp_path)
     worker = _Worker(report)
@@ -127,3 +152,24 @@ def test_a_missing_report_or_mesh_is_skipped(tmp_path):
         while work:
             work.pop(0)()  # nothing raises
     assert str(mesh) not in worker_main._warmed
+
+
+def test_a_module_edited_with_its_size_and_time_kept_is_a_code_change(tmp_path, monkeypatch):
+    """A worker must not serve a build with a module that changed after it was imported, even
+    when the edit kept its size and had its time restored."""
+    module = tmp_path / "probe_module_44.py"
+    module.write_text("VALUE = 1\n")
+    file_clock_past(tmp_path, os.stat(module).st_ctime_ns)
+    watch = worker_main._CodeWatch()  # this process "started" after the module was written
+    monkeypatch.syspath_prepend(str(tmp_path))
+    try:
+        importlib.import_module("probe_module_44")
+        watch.note()
+    finally:
+        sys.modules.pop("probe_module_44", None)
+    assert watch.changed() is None
+    before = os.stat(module)
+    file_clock_past(tmp_path, before.st_ctime_ns)
+    module.write_text("VALUE = 2\n")
+    os.utime(module, ns=(before.st_atime_ns, before.st_mtime_ns))
+    assert watch.changed() == str(module)

@@ -1,0 +1,37 @@
+"""When a file's bytes may be taken as unchanged without reading them (git's rule).
+
+A file counts as unchanged only when everything that can reveal a change agrees with what was
+recorded: its size, modification time and status-change time to the nanosecond, its inode and
+its device. The modification time alone misses a restored time: ``cp -p``, ``rsync -a``,
+``tar``, ``unzip`` and ``os.utime`` set it back, and ``git archive`` stamps every file with its
+commit's second. The status-change time (ctime) cannot be set: every write, every restore of
+the modification time, a rename or a new link moves it to now. The inode and device tell a
+file replaced by another at the same path (a folder removed and extracted again).
+
+A signature recorded in the same timestamp tick as the file's last change cannot tell a later
+change in that tick (git's "racily clean" files): a file changed less than
+:data:`RACY_NS` before its record is hashed again next time rather than trusted. The margin
+covers file systems that keep coarse times (FAT: 2 s) and the kernel's file clock, which lags
+``time.time()`` by up to a tick.
+
+Only the standard library is imported: the no-op path uses this before anything else.
+"""
+
+from __future__ import annotations
+
+import os
+
+RACY_NS = 2_000_000_000
+
+
+def signature(stat: os.stat_result) -> list[int]:
+    """What identifies the file of ``stat`` short of its bytes: size, mtime and ctime (ns),
+    inode, device. Two equal signatures taken :func:`racy`-free mean the same bytes."""
+    return [stat.st_size, stat.st_mtime_ns, stat.st_ctime_ns, stat.st_ino, stat.st_dev]
+
+
+def racy(stat: os.stat_result, recorded_ns: int) -> bool:
+    """Whether a signature of ``stat`` recorded at ``recorded_ns`` (``time.time_ns()``) could
+    miss a later change: the file was modified (or its times set) too shortly before. A time in
+    the future counts as racy too."""
+    return recorded_ns - max(stat.st_mtime_ns, stat.st_ctime_ns) < RACY_NS
