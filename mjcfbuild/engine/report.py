@@ -106,7 +106,7 @@ def write_report(ctx: BuildContext) -> Path:
         "decompositions": decomposed,
         "up_axis": up_axis_decisions(ctx),
         "products": {
-            "meshes": len(list(ctx.products_dir.glob("*.json"))),
+            "meshes": len(mesh_products(ctx)),
             "decompositions": len(decomposed),
         },
         "previews": [f"previews/{name}" for name in previews],
@@ -160,10 +160,16 @@ def _decomposition_summaries(ctx: BuildContext) -> list[tuple[Path, dict]]:
     return found
 
 
+def mesh_products(ctx: BuildContext) -> list[Path]:
+    """The records of the mesh products of this build (``products/<id>.json`` beside the
+    product's folder)."""
+    return [p for p in sorted(ctx.products_dir.glob("*.json")) if (p.parent / p.stem).is_dir()]
+
+
 def up_axis_decisions(ctx: BuildContext) -> list[dict]:
     """Per DAE file tagged other than Z-up: its mesh, whether it was turned, and why."""
     rows = []
-    for path in sorted(ctx.products_dir.glob("*.json")):
+    for path in mesh_products(ctx):
         decision = _read(path).get("up_axis")
         if isinstance(decision, dict):
             rows.append({"mesh": path.stem, **decision})
