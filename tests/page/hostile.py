@@ -77,6 +77,8 @@ def build(folder: Path) -> Path:
     return folder / "mjcf"
 
 
+# A code span: a run of backticks, then anything up to a run of the same length.
+_CODE_SPAN = re.compile(r"(?<![`\\])(`+)(?!`)(.+?)(?<!`)\1(?!`)")
 # CommonMark: a backslash before ASCII punctuation makes it a plain character.
 _ESCAPED = re.compile(r"\\([!-/:-@\[-`{-~])")
 
@@ -125,13 +127,19 @@ def markup_outside_code(markdown: str) -> list[str]:
     before a letter, ``/``, ``!`` or ``?``) or a link or picture (a bare ``]`` before ``(``),
     other than the report's own pictures of its own files."""
     own = re.compile(r"^!\[[^\\\[\]]*\]\((previews|tuning)/[\w.%-]+\)$")
-    found, fenced = [], False
+    found, fence = [], ""
     for line in markdown.splitlines():
-        if line.startswith("```"):
-            fenced = not fenced
+        opening = re.match(r"^(`{3,})", line)
+        if fence:
+            if line.rstrip() == fence:  # a block ends at its own fence only
+                fence = ""
             continue
-        if fenced or own.match(line):
+        if opening:
+            fence = opening.group(1)
             continue
+        if own.match(line):
+            continue
+        line = _CODE_SPAN.sub("", line)
         tags = [i for i in bare(line, "<") if re.match(r"[A-Za-z/!?]", line[i + 1 : i + 2])]
         links = [i for i in bare(line, "]") if line[i + 1 : i + 2] == "("]
         if tags or links:
