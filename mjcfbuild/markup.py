@@ -16,9 +16,11 @@ from urllib.parse import quote
 
 # Characters that start or end Markdown (CommonMark and GitHub's tables, strikethrough and
 # maths) wherever they stand; a backslash before any of them makes it a plain character.
-_ALWAYS = frozenset("\\`*[]<>|~&#$")
-# Where a text starts a line these begin a list, a heading rule or an ordered list item.
-_LEADING = re.compile(r"^([-+=]|\d+[.)])")
+# Every link, picture and footnote opens with a "[", every tag and autolink with a "<", so
+# "]" and ">" can stay bare: "[-1 1] -> [0 1]" reads "\[-1 1] -> \[0 1]".
+_ALWAYS = frozenset("\\`*[<|~&#$")
+# Where a text starts a line these begin a list, a quote, a heading rule or an ordered list.
+_LEADING = re.compile(r"^([-+=>]|\d+[.)])")
 _BREAKS = re.compile(r"[\r\n\t\f\v]")
 
 

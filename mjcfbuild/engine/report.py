@@ -46,14 +46,16 @@ PREVIEW_ORDER = (
 
 def write_stats(ctx: BuildContext) -> Path:
     """Write ``build-stats.json``: every task's seconds when it last ran (this build's merged
-    into the stored ones), this build's cache counters (null when no product task ran) and
-    each decomposition's seconds; its path."""
+    into the stored ones), this build's cache counters (null when no product task ran), each
+    decomposition's seconds, and this build's warnings that no task gave (a remote cache out
+    of reach, an object it rejected); its path."""
     path = ctx.state(STATS)
     times = _read(path).get("times") or {}
     times.update({name: round(seconds, 3) for name, seconds in ctx.session.timings.items()})
     stats = {
         "times": dict(sorted(times.items())),
         "cache": ctx.session.cache_report,
+        "warnings": _build_warnings(ctx),
         "decomposition_seconds": {
             path.stem: summary.get("seconds") for path, summary in _decomposition_summaries(ctx)
         },
@@ -61,6 +63,12 @@ def write_stats(ctx: BuildContext) -> Path:
     write_if_changed(path, (json.dumps(stats, indent=1, sort_keys=True) + "\n").encode())
     ctx.state("timings.json").unlink(missing_ok=True)  # where earlier versions kept the times
     return path
+
+
+def _build_warnings(ctx: BuildContext) -> list[str]:
+    """This build's warnings that came from no task (the product sharing's)."""
+    given = {w for warnings in ctx.session.task_warnings.values() for w in warnings}
+    return [w for w in dict.fromkeys(ctx.session.warnings) if w not in given]
 
 
 def record_warnings(ctx: BuildContext, tasks: list[str]) -> None:

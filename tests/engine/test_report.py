@@ -80,6 +80,7 @@ def test_the_stats_keep_each_tasks_last_time_and_stay_out_of_git(tmp_path):
     path = output / ".mjcfbuild" / "build-stats.json"
     stats = json.loads(path.read_text())
     assert {"expand", "plan", "assemble", "check"} <= set(stats["times"])
+    assert stats["warnings"] == []  # the description's warning is the report's, not a run's
     cache = stats["cache"]  # the one mesh: computed, or from the tests' shared cache
     assert cache["computed"].get("mesh", {}).get("here", 0) + cache["local_hits"] == 1
     build(tmp_path)  # up to date: nothing ran, the times stay those of the last run

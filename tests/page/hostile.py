@@ -124,8 +124,8 @@ def tables(markdown: str) -> list[list[list[str]]]:
 
 def markup_outside_code(markdown: str) -> list[str]:
     """Lines of ``markdown`` (outside fenced code) with raw HTML or an autolink (a bare ``<``
-    before a letter, ``/``, ``!`` or ``?``) or a link or picture (a bare ``]`` before ``(``),
-    other than the report's own pictures of its own files."""
+    before a letter, ``/``, ``!`` or ``?``) or a link or picture (a bare ``[`` with ``](`` or
+    ``][`` after it), other than the report's own pictures of its own files."""
     own = re.compile(r"^!\[[^\\\[\]]*\]\((previews|tuning)/[\w.%-]+\)$")
     found, fence = [], ""
     for line in markdown.splitlines():
@@ -141,7 +141,7 @@ def markup_outside_code(markdown: str) -> list[str]:
             continue
         line = _CODE_SPAN.sub("", line)
         tags = [i for i in bare(line, "<") if re.match(r"[A-Za-z/!?]", line[i + 1 : i + 2])]
-        links = [i for i in bare(line, "]") if line[i + 1 : i + 2] == "("]
+        links = [i for i in bare(line, "[") if re.search(r"\]\(|\]\[", line[i:])]
         if tags or links:
             found.append(line)
     return found
