@@ -26,12 +26,13 @@ _BREAKS = re.compile(r"[\r\n\t\f\v]")
 
 def markdown_text(value: object) -> str:
     """``value`` as plain text in Markdown: in a paragraph, a list item, a heading or a table
-    cell it reads as itself. Underscores inside a word stay bare (Markdown never reads them as
-    emphasis there), so ``left_hip_joint`` still reads well in the raw file."""
+    cell it reads as itself. An underscore after a letter or digit stays bare (CommonMark
+    never opens emphasis there, and every other one is escaped, so none can be closed), so
+    ``left_hip_joint`` and ``hand_`` still read well in the raw file."""
     text = _BREAKS.sub(" ", str(value))
     out: list[str] = []
     for index, char in enumerate(text):
-        if char in _ALWAYS or (char == "_" and not _inside_word(text, index)):
+        if char in _ALWAYS or (char == "_" and not (index and text[index - 1].isalnum())):
             out.append("\\" + char)
         else:
             out.append(char)
@@ -41,10 +42,6 @@ def markdown_text(value: object) -> str:
         end = leading.end()
         escaped = escaped[: end - 1] + "\\" + escaped[end - 1 :]
     return escaped
-
-
-def _inside_word(text: str, index: int) -> bool:
-    return 0 < index < len(text) - 1 and text[index - 1].isalnum() and text[index + 1].isalnum()
 
 
 def markdown_code(value: object) -> str:
