@@ -31,7 +31,7 @@ from mjcfbuild.engine.tasks import (
 )
 from mjcfbuild.fsutil import md5_file, write_if_changed
 
-STATS = "build-stats.json"  # in the state folder: times and cache counters
+STATS = "build-stats.json"  # in the state folder: what changes from run to run
 WARNINGS = "warnings.json"  # in the state folder: each task's warnings when it last ran
 PREVIEW_ORDER = (
     "three_quarter_visual",
@@ -57,7 +57,7 @@ def write_stats(ctx: BuildContext) -> Path:
         "cache": ctx.session.cache_report,
         "warnings": _build_warnings(ctx),
         "decomposition_seconds": {
-            path.stem: summary.get("seconds") for path, summary in _decomposition_summaries(ctx)
+            record.stem: summary.get("seconds") for record, summary in _decomposition_summaries(ctx)
         },
     }
     write_if_changed(path, (json.dumps(stats, indent=1, sort_keys=True) + "\n").encode())
