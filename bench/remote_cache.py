@@ -37,7 +37,7 @@ def free_port() -> int:
 
 
 def build(manifest: Path, env: dict) -> tuple[float, dict]:
-    """Seconds of one ``mjcfbuild build -j 2`` and the cache section of its report."""
+    """Seconds of one ``mjcfbuild build -j 2`` and its cache counters (build-stats.json)."""
     started = time.perf_counter()
     process = subprocess.run(
         [sys.executable, "-m", "mjcfbuild", "build", str(manifest), "-q", "-j", "2", "--no-check"],
@@ -48,8 +48,8 @@ def build(manifest: Path, env: dict) -> tuple[float, dict]:
     seconds = time.perf_counter() - started
     if process.returncode != 0 or "warning" in process.stderr:
         raise SystemExit(f"build of {manifest} failed or warned:\n{process.stderr}")
-    report = json.loads((manifest.parent / "mjcf" / "report" / "report.json").read_text())
-    return seconds, report.get("cache") or {}
+    stats = json.loads((manifest.parent / "mjcf" / ".mjcfbuild" / "build-stats.json").read_text())
+    return seconds, stats.get("cache") or {}
 
 
 def machine(robot: robot_data.Robot, folder: Path, decompose: bool) -> Path:

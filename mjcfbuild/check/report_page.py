@@ -1,7 +1,8 @@
 """The build report as a page people read (``report/report.md``), from ``report.json``'s data.
 
 What the check found comes first, then actuators, home and self-collision, mesh statistics,
-the product cache and the time each task took. :mod:`mjcfbuild.engine.report` gathers the data.
+the products. :mod:`mjcfbuild.engine.report` gathers the data. Every name and message goes
+through :mod:`mjcfbuild.markup`: a link named like a picture or a table stays text.
 """
 
 from __future__ import annotations
@@ -9,15 +10,17 @@ from __future__ import annotations
 from pathlib import Path
 
 from mjcfbuild.check.tuning_table import tuning_lines
+from mjcfbuild.markup import markdown_block, markdown_code, markdown_target
+from mjcfbuild.markup import markdown_text as md
 
 
 def markdown(report: dict) -> str:
     """The human report."""
-    lines = [f"# {report['robot']}: build report", ""]
+    lines = [f"# {md(report['robot'])}: build report", ""]
     lines.append(
-        f"Model `{report['model']}` ({report.get('bodies') or '?'} bodies, "
+        f"Model {markdown_code(report['model'])} ({report.get('bodies') or '?'} bodies, "
         f"{report.get('geoms') or '?'} geoms, {len(report['assets'])} asset files), "
-        f"scene `{report['scene']}`."
+        f"scene {markdown_code(report['scene'])}."
     )
     lines.append("")
     lines += _checks(report.get("check") or {}, report.get("warnings") or [])
@@ -34,12 +37,12 @@ def markdown(report: dict) -> str:
             "|---|---|---|---|",
         ]
         lines += [
-            f"| {r['body']} | {r['problem']} | {r['before']} | {r['after']} |"
+            f"| {md(r['body'])} | {md(r['problem'])} | {md(r['before'])} | {md(r['after'])} |"
             for r in report["repairs"]
         ]
         lines.append("")
     if report["warnings"]:
-        lines += ["## Warnings", ""] + [f"- {w}" for w in report["warnings"]] + [""]
+        lines += ["## Warnings", ""] + [f"- {md(w)}" for w in report["warnings"]] + [""]
     meshes = (report.get("check") or {}).get("meshes") or []
     if meshes:
         lines += [
@@ -50,25 +53,19 @@ def markdown(report: dict) -> str:
             "|---|---:|---:|---:|---:|---:|",
         ]
         lines += [
-            f"| {m['body']} | {m['visual_vertices']} | {m['visual_faces']} | "
+            f"| {md(m['body'])} | {m['visual_vertices']} | {m['visual_faces']} | "
             f"{m['collision_vertices']} | {m['collision_faces']} | {m['convex_parts']} |"
             for m in meshes
         ]
         lines.append("")
     lines += _decomposition_lines(report.get("decompositions") or [])
-    lines += _cache_lines(report.get("cache"))
-    if report["times"]:
-        lines += [
-            "## Build times (when each task last ran)",
-            "",
-            "| task | seconds |",
-            "|---|---:|",
-        ]
-        lines += [f"| {task} | {seconds:.2f} |" for task, seconds in report["times"].items()]
-        lines.append("")
+    lines += _product_lines(report.get("products"))
     if report["previews"]:
         lines += ["## Previews", ""]
-        lines += [f"![{Path(p).stem.replace('_', ' ')}]({p})" for p in report["previews"]]
+        lines += [
+            f"![{md(Path(p).stem.replace('_', ' '))}]({markdown_target(p)})"
+            for p in report["previews"]
+        ]
         lines.append("")
     return "\n".join(lines)
 
@@ -83,40 +80,32 @@ def _decomposition_lines(rows: list[dict]) -> list[str]:
         "Concavity: how far the hull, or the union of the parts, stands off the mesh, relative "
         "to half the mesh's largest extent (the units of CoACD's threshold).",
         "",
-        "| mesh | how | parts | hull concavity | concavity | seconds |",
-        "|---|---|---:|---:|---:|---:|",
+        "| mesh | how | parts | hull concavity | concavity |",
+        "|---|---|---:|---:|---:|",
     ]
     lines += [
-        f"| {r['name']} | {'hull kept' if r['method'] == 'hull' else 'CoACD'} | {r['parts']} "
-        f"| {_number(r['hull_concavity'])} | {_number(r['concavity'])} "
-        f"| {_number(r['seconds'])} |"
+        f"| {md(r['name'])} | {'hull kept' if r['method'] == 'hull' else 'CoACD'} "
+        f"| {r['parts']} | {_number(r['hull_concavity'])} | {_number(r['concavity'])} |"
         for r in rows
     ]
     return [*lines, ""]
 
 
-def _cache_lines(cache: dict | None) -> list[str]:
-    """Where this build's meshes and decompositions came from."""
-    if not cache:
+def _product_lines(products: dict | None) -> list[str]:
+    """How many mesh products and decompositions the model is made of. Where each came from
+    and how long it took changes from run to run: build-stats.json has it, not the report."""
+    if not products or not (products.get("meshes") or products.get("decompositions")):
         return []
-    computed = cache.get("computed", {})
-    made = ", ".join(
-        f"{kind} {n['here']} here, {n['on_cluster']} on the cluster" for kind, n in computed.items()
-    )
-    lines = [
+    return [
         "## Products (meshes, decompositions)",
         "",
-        f"Computed: {made or 'none'}. Local cache hits: {cache['local_hits']}.",
+        f"{_count(products['meshes'], 'mesh file')} converted, "
+        f"{_count(products['decompositions'], 'collision mesh', 'collision meshes')} "
+        "decomposed. Where each came from (computed here, on a cluster, or from a cache) and "
+        "the time each task took: `.mjcfbuild/build-stats.json` in the output folder, which "
+        "changes from build to build and is not for version control.",
+        "",
     ]
-    if cache.get("remote"):
-        lines.append(
-            f"Remote cache `{cache['remote']}`: {cache['remote_hits']} hits, "
-            f"{cache['remote_misses']} misses, {cache['remote_rejected']} rejected objects, "
-            f"{cache['uploaded']} uploaded."
-        )
-    if cache.get("executor", "local") != "local":
-        lines.append(f"Executor: `{cache['executor']}`.")
-    return [*lines, ""]
 
 
 def verdict(check: dict, warnings: list[str]) -> str:
@@ -125,17 +114,17 @@ def verdict(check: dict, warnings: list[str]) -> str:
     comes first."""
     if not check.get("passes"):
         failures = check.get("failures") or []
-        first = f": {failures[0]}" if failures else ""
+        first = f": {md(failures[0])}" if failures else ""
         more = f" (and {len(failures) - 1} more, below)" if len(failures) > 1 else ""
         return f"**checks failed**{first}{more}"
     if check.get("needs_controller"):
         return (
             "checks pass, but the robot cannot stand without a controller "
-            f"({check['needs_controller']}): the stand test was not run"
+            f"({md(check['needs_controller'])}): the stand test was not run"
         )
     if warnings:
         count = f"{len(warnings)} warning{'s' if len(warnings) > 1 else ''}"
-        return f"checks pass with {count} (see Warnings): {warnings[0]}"
+        return f"checks pass with {count} (see Warnings): {md(warnings[0])}"
     return "all checks pass"
 
 
@@ -149,7 +138,7 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
         ]
     lines = ["## Checks", "", f"Result: {verdict(check, warnings)}.", ""]
     for failure in check.get("failures", []):
-        lines.append(f"- {failure}")
+        lines.append(f"- {md(failure)}")
     if check.get("failures"):
         lines.append("")
     kinematics = check.get("kinematics", {})
@@ -159,7 +148,7 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
     lines.append(f"| loads | {'yes' if check.get('loads') else 'no'} |")
     if simulation:
         lines.append(
-            f"| {simulation['steps']} zero-control steps of {simulation['model']} | "
+            f"| {simulation['steps']} zero-control steps of {md(simulation['model'])} | "
             f"{'finite' if simulation['finite'] else 'NOT finite'}, "
             f"{len(simulation['warnings'])} MuJoCo warnings |"
         )
@@ -172,7 +161,7 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
         )
     for prefix, part in sorted(check.get("parts", {}).items()):
         lines.append(
-            f"| MJCF part {prefix} ({part['label']}) against the part alone, at "
+            f"| MJCF part {md(prefix)} ({md(part['label'])}) against the part alone, at "
             f"{part['configurations']} configurations | max error "
             f"{part['max_position_error']:.2g} m, {part['max_rotation_error']:.2g} rad; "
             f"{len(part['missing'])} missing, {len(part['problems'])} problems |"
@@ -187,7 +176,7 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
         lines.append(f"| floating base on the floor at home | gap {check['floor_gap']:.2g} m |")
     hold = check.get("hold")
     if hold:
-        where = f" ({hold['joint']})" if hold.get("joint") else ""
+        where = f" ({md(hold['joint'])})" if hold.get("joint") else ""
         tilt = hold.get("base_tilt")
         tilted = f"; the base tilted {tilt:.2g} rad" if tilt is not None else ""
         lines.append(
@@ -197,12 +186,12 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
     stand = check.get("stand")
     if stand:
         if stand.get("needs_controller"):
-            lines.append(f"| stand at home for 5 s | not run: {stand['needs_controller']} |")
+            lines.append(f"| stand at home for 5 s | not run: {md(stand['needs_controller'])} |")
         else:
             lines.append(
                 f"| stand at home holding its ctrl for {stand['seconds']:g} s | base tilted "
                 f"{stand['max_tilt']:.2g} rad, sank {stand['max_sink'] * 1000:.0f} mm; largest "
-                f"joint deviation {stand['max_deviation']:.3g} ({stand['joint']}) |"
+                f"joint deviation {stand['max_deviation']:.3g} ({md(stand['joint'])}) |"
             )
     menagerie = check.get("menagerie_test")
     if menagerie:
@@ -223,18 +212,12 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
     if contacts.get("pairs"):
         lines += ["### Robot bodies touching at home", ""]
         lines += [
-            f"- {p['body1']} and {p['body2']} ({p['pose']} pose, {p['depth']:.3g} m deep)"
+            f"- {md(p['body1'])} and {md(p['body2'])} ({md(p['pose'])} pose, "
+            f"{p['depth']:.3g} m deep)"
             for p in contacts["pairs"]
         ]
-        lines += [
-            "",
-            "To let them be, add to the raw inputs:",
-            "",
-            "```xml",
-            contacts["exclude"],
-            "```",
-            "",
-        ]
+        lines += ["", "To let them be, add to the raw inputs:", ""]
+        lines += [*markdown_block(contacts["exclude"], "xml"), ""]
     return lines + _runtime(check.get("mujoco_ros2_control"))
 
 
@@ -247,7 +230,7 @@ def _motor(actuator: dict) -> str:
         return ""
     if motor["motor"] == URDF_LIMITS:
         return ", URDF speed line"
-    return f", motor {motor['motor']}"
+    return f", motor {md(motor['motor'])}"
 
 
 def _replaced(actuator: dict) -> str:
@@ -266,7 +249,8 @@ def _control(readiness: dict) -> list[str]:
         lines += ["|---|---|---|---|---:|---:|---|---|"]
         for a in readiness["actuators"]:
             lines.append(
-                f"| {a['name']} | {a['joint']} | {a['type']} | {a['source']}{_motor(a)}"
+                f"| {md(a['name'])} | {md(a['joint'])} | {md(a['type'])} | {md(a['source'])}"
+                f"{_motor(a)}"
                 f"{', weight-bearing' if a.get('weight_bearing') else ''}"
                 f"{_armature(a)} | "
                 f"{_number(a.get('kp'))} | {_number(a.get('kv'))} | {_range(a.get('ctrlrange'))} "
@@ -275,14 +259,18 @@ def _control(readiness: dict) -> list[str]:
     else:
         lines.append("None.")
     if readiness.get("passive"):
-        lines += ["", "Passive joints (actuator type none): " + ", ".join(readiness["passive"])]
+        passive = ", ".join(md(joint) for joint in readiness["passive"])
+        lines += ["", f"Passive joints (actuator type none): {passive}"]
     lines += ["", "## Home pose", ""]
     if readiness.get("home"):
         lines += ["| joint | position | from |", "|---|---:|---|"]
-        lines += [f"| {h['joint']} | {h['value']:.6g} | {h['source']} |" for h in readiness["home"]]
+        lines += [
+            f"| {md(h['joint'])} | {h['value']:.6g} | {md(h['source'])} |"
+            for h in readiness["home"]
+        ]
     if readiness.get("home_from"):
         what = "computed" if readiness["home_from"].startswith("crouch") else "srdf"
-        lines += ["", f"The `{what}` values are the {readiness['home_from']}."]
+        lines += ["", f"The `{what}` values are the {md(readiness['home_from'])}."]
     if readiness.get("base_height") is not None:
         lines += [
             "",
@@ -293,13 +281,13 @@ def _control(readiness: dict) -> list[str]:
         if stance.get("can_stand"):
             lines += [
                 "",
-                f"At home it stands on {', '.join(stance['feet'])}: they span "
+                f"At home it stands on {', '.join(md(foot) for foot in stance['feet'])}: they span "
                 f"{stance['area'] * 1e4:.0f} cm2, its centre of mass "
                 f"{stance['com_margin'] * 1000:.0f} mm inside their edge. Weight-bearing "
                 "servos are stiffened to hold it (docs/simulation.md).",
             ]
         else:
-            lines += ["", f"It cannot stand on its own: {stance['why_not']}."]
+            lines += ["", f"It cannot stand on its own: {md(stance['why_not'])}."]
     lines.append("")
     return lines
 
@@ -312,12 +300,13 @@ def _training(training: dict | None) -> list[str]:
     for shapes in training.get("geoms", {}).values():
         for kind in shapes:
             kinds[kind] = kinds.get(kind, 0) + 1
-    shapes = ", ".join(f"{count} {kind}" for kind, count in sorted(kinds.items()))
-    floor = ", ".join(training.get("floor", [])) or "none"
+    shapes = ", ".join(f"{count} {md(kind)}" for kind, count in sorted(kinds.items()))
+    floor = ", ".join(md(body) for body in training.get("floor", [])) or "none"
     lines = [
         "## Training variant",
         "",
-        f"`{training['file']}`: collision shapes {shapes or 'none'}; floor contacts: {floor}; "
+        f"{markdown_code(training['file'])}: collision shapes {shapes or 'none'}; "
+        f"floor contacts: {floor}; "
         f"{len(training.get('pairs', []))} self-collision body pairs.",
         "",
     ]
@@ -330,14 +319,14 @@ def _training(training: dict | None) -> list[str]:
             "(`output.training.device`, docs/simulation.md).",
             "",
         ]
-    lines += [f"- {note}" for note in training.get("notes", [])]
+    lines += [f"- {md(note)}" for note in training.get("notes", [])]
     warp = training.get("warp")
     if warp:
         full, variant = warp["full"], warp["variant"]
         lines += [
             "",
             f"In MuJoCo Warp ({variant['worlds']} worlds, {variant['steps']} steps with noise "
-            f"on ctrl, `check --warp`): {warp['behaviour']}.",
+            f"on ctrl, `check --warp`): {md(warp['behaviour'])}.",
             "",
             "| model | collision geoms | contact pairs | steps/s |",
             "|---|---:|---:|---:|",
@@ -347,28 +336,29 @@ def _training(training: dict | None) -> list[str]:
                 f"| {name} | {row['collision_geoms']} | {row['contact_pairs']} "
                 f"| {row['steps_per_second']:.0f} |"
             )
-        lines += [f"- check failed: {failure}" for failure in warp.get("failures", [])]
+        lines += [f"- check failed: {md(failure)}" for failure in warp.get("failures", [])]
         gpu = warp.get("gpu")
         if gpu and "error" in gpu:
-            lines += ["", f"- check failed on the GPU: {gpu['error']}"]
+            lines += ["", f"- check failed on the GPU: {md(gpu['error'])}"]
         elif gpu:
             rows = (("full", gpu["full"]), ("variant", gpu["variant"]))
             lines += [
                 "",
-                f"On {gpu['device']} ({gpu['variant']['worlds']} worlds): {gpu['behaviour']}; "
+                f"On {md(gpu['device'])} ({gpu['variant']['worlds']} worlds): "
+                f"{md(gpu['behaviour'])}; "
                 + ", ".join(f"{n} {r['steps_per_second']:.0f} steps/s" for n, r in rows)
                 + ".",
             ]
-            lines += [f"- check failed on the GPU: {failure}" for failure in gpu["failures"]]
+            lines += [f"- check failed on the GPU: {md(f)}" for f in gpu["failures"]]
     else:
         lines += ["", "Not yet measured in MuJoCo Warp: run `mjcfbuild check --warp`."]
     lines.append("")
     return lines
 
 
-def _count(number: int, noun: str) -> str:
+def _count(number: int, noun: str, plural: str = "") -> str:
     """``1 iteration``, ``5 iterations``."""
-    return f"{number} {noun}{'' if number == 1 else 's'}"
+    return f"{number} {noun if number == 1 else plural or noun + 's'}"
 
 
 def _self_collision(matrix: dict | None) -> list[str]:
@@ -380,7 +370,7 @@ def _self_collision(matrix: dict | None) -> list[str]:
     counts: dict[str, int] = {}
     for pair in pairs:
         counts[pair["reason"]] = counts.get(pair["reason"], 0) + 1
-    summary = ", ".join(f"{count} {reason}" for reason, count in sorted(counts.items()))
+    summary = ", ".join(f"{count} {md(reason)}" for reason, count in sorted(counts.items()))
     lines = [
         "## Self-collision",
         "",
@@ -393,7 +383,7 @@ def _self_collision(matrix: dict | None) -> list[str]:
         lines += ["| body 1 | body 2 | reason | in collision |", "|---|---|---|---:|"]
         # MuJoCo never reports parent-child contacts, so adjacent pairs have no fraction.
         lines += [
-            f"| {p['body1']} | {p['body2']} | {p['reason']} | "
+            f"| {md(p['body1'])} | {md(p['body2'])} | {md(p['reason'])} | "
             f"{'-' if p['reason'] == 'adjacent' else format(p['fraction'], '.0%')} |"
             for p in excluded
         ]
@@ -428,8 +418,8 @@ def _plausibility(report: dict) -> list[str]:
         if findings:
             lines += ["| body | result | problems | likely cause |", "|---|---|---|---|"]
             lines += [
-                f"| {f['body']} | {'fails' if f['fails'] else 'warning'} | "
-                f"{'; '.join(f['problems'])} | {f['detail']} |"
+                f"| {md(f['body'])} | {'fails' if f['fails'] else 'warning'} | "
+                f"{md('; '.join(f['problems']))} | {md(f['detail'])} |"
                 for f in findings
             ]
             lines.append("")
@@ -443,8 +433,8 @@ def _plausibility(report: dict) -> list[str]:
             "|---|---|---|---|",
         ]
         lines += [
-            f"| {d['mesh']} | {d.get('tag')} | {'yes' if d.get('turned') else 'no'} | "
-            f"{d.get('reason')} |"
+            f"| {md(d['mesh'])} | {md(d.get('tag'))} | {'yes' if d.get('turned') else 'no'} | "
+            f"{md(d.get('reason'))} |"
             for d in decisions
         ]
         lines.append("")
@@ -455,7 +445,7 @@ def _plausibility(report: dict) -> list[str]:
             "",
         ]
         lines += [
-            f"- {p['body1']} and {p['body2']} in {p['part']} ({p['pose']} pose, "
+            f"- {md(p['body1'])} and {md(p['body2'])} in {md(p['part'])} ({md(p['pose'])} pose, "
             f"{p['depth']:.3g} m deep)"
             for p in inside
         ]
@@ -484,7 +474,7 @@ def _runtime(runtime: dict | None) -> list[str]:
                 f"{name}: {way or 'REFUSED'}" for name, way in joint["how"].items()
             ) or ", ".join(joint["interfaces"])
             lines.append(
-                f"| {joint['joint']} | {how} | {joint['actuator'] or 'none'} | "
+                f"| {md(joint['joint'])} | {md(how)} | {md(joint['actuator'] or 'none')} | "
                 f"{joint['kind'] or '-'} |"
             )
         lines.append("")
@@ -492,17 +482,17 @@ def _runtime(runtime: dict | None) -> list[str]:
         lines += ["| sensor | mujoco_type | MJCF sensors (site) |", "|---|---|---|"]
         for sensor in runtime["sensors"]:
             found = ", ".join(
-                f"{m['type']} {m['name']}" + (f" ({m['site']})" if m["site"] else "")
+                f"{m['type']} {md(m['name'])}" + (f" ({md(m['site'])})" if m["site"] else "")
                 if m["found"]
-                else f"{m['type']} {m['name']} MISSING"
+                else f"{m['type']} {md(m['name'])} MISSING"
                 for m in sensor["mjcf"]
             )
-            lines.append(f"| {sensor['sensor']} | {sensor['type']} | {found} |")
+            lines.append(f"| {md(sensor['sensor'])} | {md(sensor['type'])} | {found} |")
         lines.append("")
     for device in runtime["devices"]:
         rays = f", {device['rays']} rays" if device["kind"] == "lidar" else ""
         state = "found" if device["found"] else "MISSING"
-        lines.append(f"- {device['kind']} {device['sensor']}: {state}{rays}")
+        lines.append(f"- {device['kind']} {md(device['sensor'])}: {state}{rays}")
     if runtime["devices"]:
         lines.append("")
     return lines

@@ -3,6 +3,8 @@ each figure) and its plot. How to read it: docs/simulation.md, "The tuning repor
 
 from __future__ import annotations
 
+from mjcfbuild.markup import markdown_target, markdown_text
+
 
 def tuning_lines(tuning: dict) -> list[str]:
     """The section, or nothing where the report was not made."""
@@ -22,7 +24,8 @@ def tuning_lines(tuning: dict) -> list[str]:
     for group in groups:
         settling = group.get("settling_time")
         lines.append(
-            f"| {group['label']} | {len(group['joints'])} | {_seconds(group.get('rise_time'))} "
+            f"| {markdown_text(group['label'])} | {len(group['joints'])} "
+            f"| {_seconds(group.get('rise_time'))} "
             f"| {group['overshoot']:.1%} "
             f"| {'not settled' if settling is None else _seconds(settling)} "
             f"| {group['steady_state_error']:.3g} | {group['tracking_error']:.3g} "
@@ -30,7 +33,7 @@ def tuning_lines(tuning: dict) -> list[str]:
         )
     lines.append("")
     for name, path in sorted((tuning.get("plots") or {}).items()):
-        lines.append(f"![tuning {name}]({path})")
+        lines.append(f"![tuning {markdown_text(name)}]({markdown_target(path)})")
     return [*lines, ""]
 
 

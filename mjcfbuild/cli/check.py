@@ -319,7 +319,7 @@ def _manifest(ctx, args) -> int:
     add_runtime_check(report, ctx.robot_path, plan.control(), built["sources"])
     data = {"passes": report.passes, "failures": report.failures, **report.results}
     ctx.state(CHECK_RESULTS).write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
-    folder = write_report(ctx, [])
+    folder = write_report(ctx)
     code = _print(report, ctx.label(ctx.robot_path))
     print(f"  report: {ctx.label(folder / 'report.md')}")
     if (folder / "index.html").is_file():  # output.page: its tables are the report's
@@ -385,7 +385,7 @@ def _prove_training_variant(ctx) -> int:
         record["gpu"], on_gpu = prove_on_gpu(str(ctx.scene_path), str(scene), hold, *gpu)
         failures += on_gpu
     ctx.state(TRAINING_WARP).write_text(json.dumps(record, indent=1, sort_keys=True) + "\n")
-    write_report(ctx, [])
+    write_report(ctx)
     for failure in failures:
         print(f"mjcfbuild: check failed: {ctx.label(scene)}: {failure}", file=sys.stderr)
     return EXIT_CHECK if failures else EXIT_OK

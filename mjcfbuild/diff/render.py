@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from mjcfbuild.diff.compare import GROUPS, Change, ModelDiff
+from mjcfbuild.markup import markdown_code, markdown_target, markdown_text
 
 NO_CHANGES = "no model changes"
 
@@ -70,16 +71,16 @@ def text(diff: ModelDiff, sides: Sides) -> str:
 
 
 def _cell(value: Any) -> str:
-    return value_text(value).replace("|", "\\|").replace("\n", " ")
+    return markdown_text(value_text(value))
 
 
 def markdown(diff: ModelDiff, sides: Sides, pictures: dict[str, str] | None = None) -> str:
     """The diff as a pull request comment: a table per group; ``pictures`` maps a changed
     preview's name to the side-by-side picture's path (relative to the Markdown file)."""
     lines = [
-        f"### Model changes: `{sides.model}`",
+        f"### Model changes: {markdown_code(sides.model)}",
         "",
-        f"`{sides.base_label}` → `{sides.head_label}`",
+        f"{markdown_code(sides.base_label)} → {markdown_code(sides.head_label)}",
         "",
     ]
     if diff.empty:
@@ -92,8 +93,10 @@ def markdown(diff: ModelDiff, sides: Sides, pictures: dict[str, str] | None = No
         if key == "previews":
             for change in changes:
                 path = (pictures or {}).get(change.subject)
-                shown = f"![{change.subject}: before, after]({path})" if path else ""
-                lines.append(f"- `{change.subject}` {change.what} (before, after): {shown}")
+                alt = markdown_text(f"{change.subject}: before, after")
+                shown = f"![{alt}]({markdown_target(path)})" if path else ""
+                subject = markdown_code(change.subject)
+                lines.append(f"- {subject} {markdown_text(change.what)} (before, after): {shown}")
             lines.append("")
             continue
         lines += ["| | what | before | after | note |", "|---|---|---|---|---|"]

@@ -1,10 +1,15 @@
 """The build report: ``report/report.json`` and ``report/report.md`` in the output folder.
 
 This module gathers what the build steps recorded - the check results, inertia repairs,
-warnings, mesh statistics, the time each task took when it last ran, and the preview pictures -
-into one machine-readable file; :mod:`mjcfbuild.check.report_page` renders the page people
-read. The report describes the last build on this machine (its times differ from run to run),
-so its folder ignores itself in git.
+the warnings of the tasks that made the outputs, mesh statistics, the products and the preview
+pictures - into one machine-readable file; :mod:`mjcfbuild.check.report_page` renders the page
+people read. Both are made from what the outputs' tasks recorded, never from what ran this
+time, so the same inputs give the same bytes whether a build ran every task, none (up to date)
+or waited for another build of the folder.
+
+What does change from run to run - the time each task took when it last ran, where this build's
+products came from (the cache counters), how long each decomposition took - goes to
+``build-stats.json`` in the state folder, which is not for version control.
 """
 
 from __future__ import annotations
@@ -26,7 +31,8 @@ from mjcfbuild.engine.tasks import (
 )
 from mjcfbuild.fsutil import md5_file, write_if_changed
 
-TIMINGS = "timings.json"
+STATS = "build-stats.json"  # in the state folder: what changes from run to run
+WARNINGS = "warnings.json"  # in the state folder: each task's warnings when it last ran
 PREVIEW_ORDER = (
     "three_quarter_visual",
     "side_visual",
@@ -38,20 +44,51 @@ PREVIEW_ORDER = (
 )
 
 
-def record_timings(ctx: BuildContext) -> dict[str, float]:
-    """Merge this build's task times into the stored ones; all of them."""
-    path = ctx.state(TIMINGS)
-    try:
-        timings = json.loads(path.read_text())
-    except (OSError, ValueError):
-        timings = {}
-    timings.update({name: round(seconds, 3) for name, seconds in ctx.session.timings.items()})
-    write_if_changed(path, (json.dumps(dict(sorted(timings.items())), indent=1) + "\n").encode())
-    return timings
+def write_stats(ctx: BuildContext) -> Path:
+    """Write ``build-stats.json``: every task's seconds when it last ran (this build's merged
+    into the stored ones), this build's cache counters (null when no product task ran), each
+    decomposition's seconds, and this build's warnings that no task gave (a remote cache out
+    of reach, an object it rejected); its path."""
+    path = ctx.state(STATS)
+    times = _read(path).get("times") or {}
+    times.update({name: round(seconds, 3) for name, seconds in ctx.session.timings.items()})
+    stats = {
+        "times": dict(sorted(times.items())),
+        "cache": ctx.session.cache_report,
+        "warnings": _build_warnings(ctx),
+        "decomposition_seconds": {
+            record.stem: summary.get("seconds") for record, summary in _decomposition_summaries(ctx)
+        },
+    }
+    write_if_changed(path, (json.dumps(stats, indent=1, sort_keys=True) + "\n").encode())
+    ctx.state("timings.json").unlink(missing_ok=True)  # where earlier versions kept the times
+    return path
 
 
-def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
-    """Write report.json and report.md; the folder they are in."""
+def _build_warnings(ctx: BuildContext) -> list[str]:
+    """This build's warnings that came from no task (the product sharing's)."""
+    given = {w for warnings in ctx.session.task_warnings.values() for w in warnings}
+    return [w for w in dict.fromkeys(ctx.session.warnings) if w not in given]
+
+
+def record_warnings(ctx: BuildContext, tasks: list[str]) -> None:
+    """Keep the warnings of the tasks that ran in this build, by task, beside those of the
+    tasks that were up to date; ``tasks`` (every task of the build, in order) decides which
+    records stay and their order."""
+    recorded = _read(ctx.state(WARNINGS))
+    recorded.update(ctx.session.task_warnings)
+    kept = {name: list(recorded[name]) for name in tasks if recorded.get(name)}
+    write_if_changed(ctx.state(WARNINGS), (json.dumps(kept, indent=1) + "\n").encode())
+
+
+def recorded_warnings(ctx: BuildContext) -> list[str]:
+    """The warnings of the tasks that made the outputs, in task order, each once."""
+    recorded = _read(ctx.state(WARNINGS))
+    return list(dict.fromkeys(w for warnings in recorded.values() for w in warnings))
+
+
+def write_report(ctx: BuildContext) -> Path:
+    """Write report.json and report.md from what the build recorded; the folder they are in."""
     folder = report_dir(ctx)
     folder.mkdir(parents=True, exist_ok=True)
     write_if_changed(folder / ".gitignore", b"# the report of the last build on this machine\n*\n")
@@ -61,22 +98,25 @@ def write_report(ctx: BuildContext, warnings: list[str]) -> Path:
         (p.name for p in (folder / "previews").glob("*.png")),
         key=lambda n: PREVIEW_ORDER.index(n[:-4]) if n[:-4] in PREVIEW_ORDER else 99,
     )
+    decomposed = decompositions(ctx)
     report = {
         "robot": ctx.manifest.name,
         "model": ctx.manifest.robot_file,
         "scene": ctx.manifest.output.scene,
         "check": check,
         "repairs": assembly.get("repairs", []),
-        "warnings": warnings,
+        "warnings": recorded_warnings(ctx),
         "bodies": assembly.get("bodies"),
         "geoms": assembly.get("geoms"),
         "assets": assembly.get("assets", []),
         "readiness": assembly.get("readiness") or {},
         "self_collision": assembly.get("self_collision"),
-        "decompositions": decompositions(ctx),
+        "decompositions": decomposed,
         "up_axis": up_axis_decisions(ctx),
-        "times": record_timings(ctx),
-        "cache": ctx.session.cache_report,
+        "products": {
+            "meshes": len(mesh_products(ctx)),
+            "decompositions": len(decomposed),
+        },
         "previews": [f"previews/{name}" for name in previews],
         "tuning": _read(ctx.state(TUNING_RECORD)) if ctx.manifest.check.tuning else {},
         "training": training_summary(ctx),
@@ -104,29 +144,40 @@ def _page_tables(ctx: BuildContext, folder: Path, report: dict) -> None:
 
 
 def decompositions(ctx: BuildContext) -> list[dict]:
-    """Per decomposition of this build: hull kept or CoACD, parts, concavities, seconds."""
-    rows = []
+    """Per decomposition of this build: hull kept or CoACD, parts, concavities (its seconds
+    are in build-stats.json)."""
+    return [
+        {
+            "name": path.stem,
+            "method": summary.get("method", "coacd"),
+            "parts": len(summary["parts"]),
+            "hull_concavity": summary.get("hull_concavity"),
+            "concavity": summary.get("concavity"),
+        }
+        for path, summary in _decomposition_summaries(ctx)
+    ]
+
+
+def _decomposition_summaries(ctx: BuildContext) -> list[tuple[Path, dict]]:
+    """Each decomposition's record, by name."""
+    found = []
     for path in sorted(decomposition_dir(ctx, "any").parent.glob("*.json")):
         summary = _read(path)
-        if "parts" not in summary:
-            continue
-        rows.append(
-            {
-                "name": path.stem,
-                "method": summary.get("method", "coacd"),
-                "parts": len(summary["parts"]),
-                "hull_concavity": summary.get("hull_concavity"),
-                "concavity": summary.get("concavity"),
-                "seconds": summary.get("seconds"),
-            }
-        )
-    return rows
+        if "parts" in summary:
+            found.append((path, summary))
+    return found
+
+
+def mesh_products(ctx: BuildContext) -> list[Path]:
+    """The records of the mesh products of this build (``products/<id>.json`` beside the
+    product's folder)."""
+    return [p for p in sorted(ctx.products_dir.glob("*.json")) if (p.parent / p.stem).is_dir()]
 
 
 def up_axis_decisions(ctx: BuildContext) -> list[dict]:
     """Per DAE file tagged other than Z-up: its mesh, whether it was turned, and why."""
     rows = []
-    for path in sorted(ctx.products_dir.glob("*.json")):
+    for path in mesh_products(ctx):
         decision = _read(path).get("up_axis")
         if isinstance(decision, dict):
             rows.append({"mesh": path.stem, **decision})

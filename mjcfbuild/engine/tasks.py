@@ -423,10 +423,12 @@ def _run(
         result = ctx.session.run_step(step, payload, task=name, in_worker=in_worker)
     except Exception as exc:
         error = ctx.session.record_failure(name, exc)
+        ctx.session.task_warnings[name] = []  # it reruns, and warns again, next time
         return TaskFailed(error.one_line())
     finally:
         ctx.session.timings[name] = time.perf_counter() - started
     ctx.session.warnings.extend(result.get("warnings", []))
+    ctx.session.task_warnings[name] = list(result.get("warnings", []))
     notes = ["from cache" if result.get("cached") else "", result.get("note", "")]
     if any(notes):
         ctx.session.notes[name] = "; ".join(n for n in notes if n)

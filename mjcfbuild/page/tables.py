@@ -1,18 +1,22 @@
 """The report's tables for the page: ``report.md``'s Markdown (mjcfbuild.check.report_page)
 turned into HTML, and ``mjcfbuild diff``'s (mjcfbuild.diff.render). Only what those write is
-understood: headings, pipe tables, bullet lists, pictures, paragraphs, bold and inline code.
+understood: headings, pipe tables, bullet lists, fenced code, pictures, paragraphs, bold,
+inline code and backslash escapes (mjcfbuild.markup). Every character of text reaches the HTML
+escaped, and a picture is drawn only from a relative path: the page fetches nothing else.
 """
 
 from __future__ import annotations
 
-import html
 import json
 import re
 
-_IMAGE = re.compile(r"^!\[([^\]]*)\]\(([^)]+)\)$")
-_CODE = re.compile(r"`([^`]+)`")
-_BOLD = re.compile(r"\*\*([^*]+)\*\*")
-_INLINE_IMAGE = re.compile(r"!\[([^\]]*)\]\(([^)\s]+)\)")
+from mjcfbuild.markup import html_text
+
+_IMAGE = re.compile(r"^!\[((?:\\.|[^\\\]])*)\]\(([^)\s]+)\)$")
+_IMAGE_INLINE = re.compile(r"!\[((?:\\.|[^\\\]])*)\]\(([^)\s]+)\)")
+_FENCE = re.compile(r"^(`{3,})")
+_SCHEME = re.compile(r"^[A-Za-z][A-Za-z0-9+.-]*:")
+_PUNCTUATION = frozenset("!\"#$%&'()*+,-./:;<=>?@[\\]^_`{|}~")
 
 
 def markdown_html(text: str) -> str:
@@ -22,6 +26,16 @@ def markdown_html(text: str) -> str:
     index = 0
     while index < len(lines):
         line = lines[index].rstrip()
+        fence = _FENCE.match(line)
+        if fence:
+            index += 1
+            block = []
+            while index < len(lines) and lines[index].rstrip() != fence.group(1):
+                block.append(html_text(lines[index]))
+                index += 1
+            index += 1
+            out.append("<pre><code>" + "\n".join(block) + "</code></pre>")
+            continue
         if line.startswith("|"):
             rows = []
             while index < len(lines) and lines[index].startswith("|"):
@@ -44,15 +58,32 @@ def markdown_html(text: str) -> str:
         if 0 < heading <= 6 and line[heading : heading + 1] == " ":
             out.append(f"<h{heading + 1}>{_inline(line[heading + 1 :])}</h{heading + 1}>")
         elif image:
-            alt, src = (html.escape(part, quote=True) for part in image.groups())
-            out.append(f'<img alt="{alt}" src="{src}">')
+            out.append(_picture(*image.groups()))
         else:
             out.append(f"<p>{_inline(line)}</p>")
     return "\n".join(out) + "\n"
 
 
 def _cells(row: str) -> list[str]:
-    return [cell.strip() for cell in row.strip().strip("|").split("|")]
+    """A table row's cells; ``\\|`` is a ``|`` inside a cell."""
+    body = row.strip()
+    body = body[1:] if body.startswith("|") else body
+    if body.endswith("|") and not body.endswith("\\|"):
+        body = body[:-1]
+    cells, current, index = [], [], 0
+    while index < len(body):
+        if body[index] == "\\" and index + 1 < len(body):
+            current.append(body[index : index + 2])
+            index += 2
+            continue
+        if body[index] == "|":
+            cells.append("".join(current).strip())
+            current = []
+        else:
+            current.append(body[index])
+        index += 1
+    cells.append("".join(current).strip())
+    return cells
 
 
 def _table(rows: list[str]) -> str:
@@ -77,17 +108,76 @@ def _table(rows: list[str]) -> str:
 
 
 def _inline(text: str) -> str:
-    escaped = _CODE.sub(r"<code>\1</code>", html.escape(text, quote=True))
-    escaped = _BOLD.sub(r"<strong>\1</strong>", escaped)
-    return _INLINE_IMAGE.sub(r'<img alt="\1" src="\2">', escaped)
+    """A line's inline Markdown as HTML: escapes, code spans, bold and pictures."""
+    out: list[str] = []
+    index = 0
+    while index < len(text):
+        char = text[index]
+        if char == "\\" and index + 1 < len(text) and text[index + 1] in _PUNCTUATION:
+            out.append(html_text(text[index + 1]))
+            index += 2
+        elif char == "`":
+            index = _code_span(text, index, out)
+        elif text.startswith("**", index) and (end := _unescaped(text, "**", index + 2)) > 0:
+            out.append(f"<strong>{_inline(text[index + 2 : end])}</strong>")
+            index = end + 2
+        elif text.startswith("![", index) and (image := _IMAGE_INLINE.match(text, index)):
+            out.append(_picture(*image.groups()))
+            index = image.end()
+        else:
+            out.append(html_text(char))
+            index += 1
+    return "".join(out)
+
+
+def _code_span(text: str, start: int, out: list[str]) -> int:
+    """A code span opening at ``start`` (its content literal) into ``out``; where to go on."""
+    run = len(text) - start - len(text[start:].lstrip("`"))
+    fence = "`" * run
+    search = start + run
+    while (end := text.find(fence, search)) >= 0:
+        if text[end + run : end + run + 1] != "`":  # a run of exactly the fence's length
+            content = text[start + run : end]
+            if content.startswith(" ") and content.endswith(" ") and content.strip():
+                content = content[1:-1]
+            out.append(f"<code>{html_text(content)}</code>")
+            return end + run
+        search = end + len(text[end:]) - len(text[end:].lstrip("`"))
+    out.append(html_text(fence))  # no closing fence: the backticks are text
+    return start + run
+
+
+def _unescaped(text: str, marker: str, start: int) -> int:
+    """Where ``marker`` next stands in ``text`` from ``start``, not after a backslash; -1."""
+    index = start
+    while index < len(text):
+        if text[index] == "\\":
+            index += 2
+            continue
+        if text.startswith(marker, index):
+            return index
+        index += 1
+    return -1
+
+
+def _picture(alt: str, src: str) -> str:
+    """A picture from a file beside the page; any other address stays text, fetching nothing."""
+    if _SCHEME.match(src) or src.startswith(("/", "\\")):
+        return html_text(f"[{_plain(alt)}]")
+    return f'<img alt="{html_text(_plain(alt))}" src="{html_text(src)}">'
+
+
+def _plain(text: str) -> str:
+    """Markdown text without its backslash escapes."""
+    return re.sub(r"\\([!-/:-@\[-`{-~])", r"\1", text)
 
 
 def tables_script(report: dict) -> bytes:
-    """The report's tables as ``window.MJCFBUILD_TABLES`` (HTML), for the page. Build times
-    and cache figures are left out: they differ from run to run, the model's tables do not."""
+    """The report's tables as ``window.MJCFBUILD_TABLES`` (HTML), for the page: the same
+    bytes for the same report (build times and cache counters are not in it)."""
     from mjcfbuild.check.report_page import markdown
 
-    text = markdown({**report, "times": {}, "cache": None})
+    text = markdown(report)
     check = report.get("check") or {}
     # What the build's check measured, which the page shows beside what the browser measures.
     measured = {key: check[key] for key in ("hold", "stand", "needs_controller") if key in check}

@@ -17,6 +17,7 @@ from mjcfbuild.diff.compare import compare
 from mjcfbuild.diff.render import change_line
 from mjcfbuild.diff.snapshot import model_snapshot
 from mjcfbuild.fsutil import write_if_changed
+from mjcfbuild.markup import markdown_code, markdown_text
 from mjcfbuild.package.documents import Provenance, changelog, readme
 from mjcfbuild.package.format import format_model
 from mjcfbuild.steps.outputs import write_output
@@ -81,11 +82,13 @@ def _changelog(folder: Path, model: Path, info: Provenance, record: Path) -> Non
     text = path.read_text() if path.is_file() else ""
     title = info.revision[:12] + info.revision[40:] if info.revision else "unversioned sources"
     if previous is None or not text:
-        lines = [f"packaged by mjcfbuild {info.mjcfbuild_version} from `{info.source}`"]
+        lines = [
+            f"packaged by mjcfbuild {info.mjcfbuild_version} from {markdown_code(info.source)}"
+        ]
     else:
         diff = compare(previous, snapshot)
         lines = [
-            change_line(change, group)
+            markdown_text(change_line(change, group))
             for group, changes in diff.groups.items()
             for change in changes
         ]

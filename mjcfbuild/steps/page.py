@@ -8,10 +8,10 @@ with the report itself (``page/tables.js``, engine/report.py).
 
 from __future__ import annotations
 
-import html
 import json
 from pathlib import Path
 
+from mjcfbuild.markup import html_text
 from mjcfbuild.mjcf.compat import for_mujoco3
 from mjcfbuild.page import WEB
 from mjcfbuild.page.bundle import model_script, mujoco_script, wasm_script
@@ -29,7 +29,7 @@ def run(payload: dict) -> dict:
     outputs: dict[str, str] = {}
     index = (WEB / "index.html").read_text(encoding="utf-8")
     write_output(
-        folder / "index.html", index.replace("@TITLE@", html.escape(request.name)).encode(), outputs
+        folder / "index.html", index.replace("@TITLE@", html_text(request.name)).encode(), outputs
     )
     write_output(folder / "page" / "mujoco.js", mujoco_script(vendored.script), outputs)
     write_output(folder / "page" / "mujoco-wasm.js", wasm_script(vendored.wasm), outputs)

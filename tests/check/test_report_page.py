@@ -24,7 +24,7 @@ RECORD = {
 def test_the_section_names_the_solver_settings_the_variant_has():
     text = "\n".join(_training(RECORD))
     assert "Solver for a GPU: newton, 1 iteration, 5 line-search iterations" in text
-    assert "- 12 <dcmotor> servos are <position> servos" in text
+    assert "- 12 \\<dcmotor> servos are \\<position> servos" in text  # not HTML tags
     assert "Not yet measured in MuJoCo Warp" in text
 
 

@@ -73,7 +73,7 @@ def test_the_reports_rise_time_and_overshoot_match_a_measured_step(tmp_path):
     assert groups[0]["overshoot"] == pytest.approx(overshoot, rel=0.05)
     assert groups[0]["per_joint"][0]["step"] == -0.1
     page = (tmp_path / "mjcf/report/report.md").read_text()
-    assert "## Tuning" in page and "| actuators.rules[0]: hinge | 1 |" in page
+    assert "## Tuning" in page and "| actuators.rules\\[0]: hinge | 1 |" in page
     assert (tmp_path / "mjcf/report/tuning/rule0.png").read_bytes().startswith(b"\x89PNG")
 
 

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from mjcfbuild.package.documents import changelog, find_license
+from mjcfbuild.markup import markdown_text
+from mjcfbuild.package.documents import Provenance, changelog, find_license, readme
+from tests.page.hostile import CODE, PICTURE, PIPES, TAG, markup_outside_code
 
 
 def test_the_license_is_found_up_to_the_package_root_and_no_further(tmp_path: Path):
@@ -31,3 +33,27 @@ def test_changelog_entries_go_on_top_and_the_old_ones_stay():
     second = changelog(first + "\nhand-written note\n", "def", ["joint elbow: range"])
     assert second.startswith("# Changelog\n\n## def\n\n- joint elbow: range\n\n## abc\n")
     assert second.endswith("hand-written note\n")
+
+
+def test_names_in_the_readme_and_changelog_stay_text():
+    info = Provenance(
+        name=PIPES,
+        source=f"urdf/{CODE}.urdf",
+        manifest_text="name: robot\n# ``` a fence in a comment\n",
+        revision="abc",
+        remote=TAG,
+        mjcfbuild_version="1.0",
+        mujoco_version="3.3",
+        license_from=PICTURE,
+    )
+    assembly = {
+        "readiness": {"actuators": [{"type": TAG}], "home": [{"source": PICTURE}]},
+        "repairs": [{"body": CODE, "problem": PIPES, "before": 1, "after": 2}],
+        "warnings": [TAG],
+    }
+    text = readme(info, {"loads": True, "failures": [PICTURE]}, assembly)
+    assert markup_outside_code(text) == []
+    assert "name: robot\n# ``` a fence in a comment\n````" in text  # the block holds it whole
+    assert text.startswith(f"# {markdown_text(PIPES)}\n")
+    entry = changelog("", "abc", [markdown_text(f"joint {TAG}: range")])
+    assert markup_outside_code(entry) == []

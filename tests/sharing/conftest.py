@@ -40,8 +40,9 @@ class Machine:
         return mjcfbuild.build(self.manifest, jobs=2, check=False, **kwargs)
 
     def report(self) -> dict:
-        """The ``cache`` section of the last build's report."""
-        return json.loads((self.folder / "mjcf" / "report" / "report.json").read_text())["cache"]
+        """The last build's cache counters (build-stats.json: they are not in the report)."""
+        stats = self.folder / "mjcf" / ".mjcfbuild" / "build-stats.json"
+        return json.loads(stats.read_text())["cache"]
 
     def outputs(self) -> dict[str, bytes]:
         """The model and its assets, by relative path."""

@@ -18,6 +18,16 @@ import pytest
 from mjcfbuild.engine.tasks import PAGE_FILES
 from tests.conftest import EXAMPLES, copy_example, run_cli
 from tests.page.chromium import Browser, require_chromium
+from tests.page.hostile import (
+    CODE,
+    NAMES,
+    TAG,
+    build,
+    hostile_robot,
+    markup_outside_code,
+    tables,
+    unescaped,
+)
 
 RESULT = "document.getElementById('result').dataset"
 
@@ -249,3 +259,54 @@ def test_the_check_command_names_the_page_and_keeps_its_tables(arm):
     assert result.code == 0, result.stderr
     assert "  page: mjcf/report/index.html" in result.stdout
     assert tables.read_bytes() == before  # the same checks, the same tables
+
+
+@pytest.fixture(scope="module")
+def hostile(tmp_path_factory) -> Path:
+    """The output folder of a robot whose links and joints are named like Markdown and HTML
+    (tests/page/hostile.py), built with its page."""
+    folder = tmp_path_factory.mktemp("hostile")
+    hostile_robot(folder)
+    return build(folder)
+
+
+def test_names_like_markup_are_text_on_the_page_and_fetch_nothing(hostile, browser):
+    assert browser.open(hostile / "report" / "index.html") == "ready"
+    report = (hostile / "report").resolve().as_uri()
+    assert all(url.startswith((f"{report}/", "data:", "blob:")) for url in browser.requests), (
+        browser.requests
+    )
+    assert not any("8765" in url for url in browser.requests)
+    found = browser.evaluate(
+        """(() => {
+          const report = document.getElementById('report');
+          return {
+            pictures: [...document.images].map((image) => image.getAttribute('src')),
+            handlers: [...document.querySelectorAll('*')].filter(
+              (e) => [...e.attributes].some((a) => a.name.startsWith('on'))).length,
+            tables: [...report.querySelectorAll('table')].map(
+              (table) => [...table.rows].map((row) => row.cells.length)),
+            cells: [...report.querySelectorAll('td')].map((cell) => cell.textContent),
+            items: [...report.querySelectorAll('li')].map((item) => item.textContent),
+            sliders: [...document.querySelectorAll('#joints span')].map((s) => s.textContent),
+          };
+        })()"""
+    )
+    assert found["pictures"] and all(
+        src.startswith(("previews/", "tuning/")) for src in found["pictures"]
+    )
+    assert found["handlers"] == 0
+    assert found["tables"] and all(len(set(rows)) == 1 for rows in found["tables"])
+    assert set(NAMES) <= set(found["cells"])  # each name one cell, as written
+    assert set(found["sliders"]) == {TAG, CODE}
+    assert any('<origin xyz="0,0,0.05">' in item for item in found["items"])  # the warning
+
+
+def test_names_like_markup_are_text_in_report_md(hostile):
+    markdown = (hostile / "report" / "report.md").read_text()
+    assert markup_outside_code(markdown) == []
+    found = tables(markdown)
+    assert found and all(len({len(row) for row in rows}) == 1 for rows in found)
+    every_cell = {cell for rows in found for row in rows for cell in row}
+    assert set(NAMES) <= every_cell
+    assert '<origin xyz="0,0,0.05">' in unescaped(markdown)  # the warning, as text

@@ -1,0 +1,90 @@
+"""The build report is the same bytes for the same inputs, however the build ran: everything,
+nothing (up to date), after files were touched, from the product cache, waiting for another
+build, or through ``mjcfbuild check``; what changes from run to run goes to build-stats.json."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import run_cli
+from tests.page.hostile import build, hostile_robot
+
+pytestmark = pytest.mark.slow
+
+REPORT_FILES = ("report.md", "report.json", "page/tables.js", "index.html")
+
+
+def report_bytes(output: Path) -> dict[str, bytes]:
+    return {name: (output / "report" / name).read_bytes() for name in REPORT_FILES}
+
+
+def test_the_report_is_the_same_bytes_however_the_build_ran(tmp_path):
+    hostile_robot(tmp_path)
+    output = build(tmp_path)
+    first = report_bytes(output)
+    markdown = first["report.md"].decode()
+    assert "## Warnings" in markdown  # the description's commas: the build warns of them
+    assert "## Products (meshes, decompositions)" in markdown
+    assert "1 mesh file converted" in markdown
+    report = json.loads(first["report.json"])
+    assert "times" not in report and "cache" not in report
+    assert "Build times" not in markdown and "cache hits" not in markdown
+
+    # Up to date: the build warned, so it leaves no no-op stamp and doit runs, running nothing.
+    again = run_cli("build", "-v", cwd=tmp_path)
+    assert again.code == 0 and " 0 run" in again.stdout + again.stderr, again.stderr
+    assert report_bytes(output) == first
+
+    # Every input touched: new times, same bytes.
+    for path in [p for p in tmp_path.rglob("*") if p.is_file() and "mjcf" not in p.parts]:
+        stat = path.stat()
+        os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns + 10**10))
+    build(tmp_path)
+    assert report_bytes(output) == first
+
+    # The check on its own writes the report too.
+    checked = run_cli("check", cwd=tmp_path)
+    assert checked.code == 0, checked.stderr
+    assert report_bytes(output) == first
+
+    # A whole build again, its product from the cache this time.
+    shutil.rmtree(output)
+    build(tmp_path)
+    assert report_bytes(output) == first
+    stats = json.loads((output / ".mjcfbuild" / "build-stats.json").read_text())
+    assert stats["cache"]["local_hits"] == 1 and stats["times"]["assemble"] > 0
+
+    # Two builds at once: one builds, the other waits for it and finds everything done.
+    shutil.rmtree(output)
+    command = [sys.executable, "-m", "mjcfbuild", "build", "-q"]
+    builds = [
+        subprocess.Popen(command, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        for _ in range(2)
+    ]
+    for process in builds:
+        _, err = process.communicate(timeout=600)
+        assert process.returncode == 0, err
+    assert report_bytes(output) == first
+
+
+def test_the_stats_keep_each_tasks_last_time_and_stay_out_of_git(tmp_path):
+    hostile_robot(tmp_path, page=False)
+    output = build(tmp_path)
+    path = output / ".mjcfbuild" / "build-stats.json"
+    stats = json.loads(path.read_text())
+    assert {"expand", "plan", "assemble", "check"} <= set(stats["times"])
+    assert stats["warnings"] == []  # the description's warning is the report's, not a run's
+    cache = stats["cache"]  # the one mesh: computed, or from the tests' shared cache
+    assert cache["computed"].get("mesh", {}).get("here", 0) + cache["local_hits"] == 1
+    build(tmp_path)  # up to date: nothing ran, the times stay those of the last run
+    later = json.loads(path.read_text())
+    assert later["times"] == stats["times"] and later["cache"] is None
+    ignored = (output / ".mjcfbuild" / ".gitignore").read_text().splitlines()
+    assert "*" in ignored
