@@ -284,13 +284,16 @@ def check_lines(results: dict) -> list[tuple[str, str]]:
 
 
 def _manifest(ctx, args) -> int:
+    import dataclasses
     import json
+    import tempfile
+    from pathlib import Path
 
-    from mjcfbuild.check.model_check import check_model
     from mjcfbuild.check.reference import read_kinematics
+    from mjcfbuild.compose.tasks import mjcf_parts
     from mjcfbuild.engine.report import write_report
-    from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN, planned_urdf
-    from mjcfbuild.steps.check import add_runtime_check
+    from mjcfbuild.engine.tasks import CHECK_RESULTS, PLAN, REFERENCE, check_payload, planned_urdf
+    from mjcfbuild.steps.check import check_built, write_results
     from mjcfbuild.steps.plan_record import read_plan
 
     if not ctx.robot_path.exists() or not ctx.state(PLAN).exists():
@@ -299,26 +302,18 @@ def _manifest(ctx, args) -> int:
             file=ctx.label(ctx.robot_path),
             hint=f"run mjcfbuild build {ctx.manifest_label}",
         )
-    plan = read_plan(ctx.state(PLAN))
-    robot = plan.robot_model()
-    try:
-        assembly = json.loads(ctx.state(ASSEMBLY_REPORT).read_text())
-    except (OSError, ValueError):
-        assembly = {}
-    built = _built_parts(ctx, robot)
-    report = check_model(
-        robot,
-        ctx.robot_path,
-        ctx.scene_path if ctx.scene_path.exists() else None,
-        {r["body"] for r in assembly.get("repairs", [])},
-        _options(args, ctx.manifest.check),
-        readiness=assembly.get("readiness") or {},
-        reference=read_kinematics(_read_if_present(planned_urdf(ctx))),
-        **built,
-    )
-    add_runtime_check(report, ctx.robot_path, plan.control(), built["sources"])
-    data = {"passes": report.passes, "failures": report.failures, **report.results}
-    ctx.state(CHECK_RESULTS).write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
+    robot = read_plan(ctx.state(PLAN)).robot_model()
+    options = dataclasses.asdict(_options(args, ctx.manifest.check))
+    request = check_payload(ctx, mjcf_parts(ctx, robot), options)
+    with tempfile.TemporaryDirectory() as scratch:
+        if not ctx.state(REFERENCE).exists():  # a build that did not check reads none
+            record = read_kinematics(_read_if_present(planned_urdf(ctx)))
+            reference = Path(scratch) / "reference.json"
+            reference.write_text(json.dumps(record))
+            request = dataclasses.replace(request, reference=str(reference))
+        # The same checks, and the same check.json, as the build's check task.
+        report = check_built(request)
+    write_results(report, ctx.state(CHECK_RESULTS), {})
     folder = write_report(ctx)
     code = _print(report, ctx.label(ctx.robot_path))
     print(f"  report: {ctx.label(folder / 'report.md')}")
@@ -333,24 +328,6 @@ def _manifest(ctx, args) -> int:
         if ctx.manifest.training is not None:
             code = _prove_training_variant(ctx) or code
     return code
-
-
-def _built_parts(ctx, robot) -> dict:
-    """What the build recorded that the check reads as the build's own check does: the mesh
-    products the assets came from (COLLADA up axes) and the MJCF parts' bodies."""
-    from mjcfbuild.check.contacts import part_bodies
-    from mjcfbuild.check.loading import asset_sources
-    from mjcfbuild.compose.tasks import mjcf_parts
-    from mjcfbuild.engine.tasks import ASSEMBLY_REPORT
-
-    try:
-        parts = mjcf_parts(ctx, robot)
-    except (OSError, ValueError):
-        parts = []
-    return {
-        "sources": asset_sources(ctx.state(ASSEMBLY_REPORT)),
-        "part_bodies": part_bodies(parts),
-    }
 
 
 def _prove_training_variant(ctx) -> int:

@@ -751,10 +751,15 @@ def report_dir(ctx: BuildContext) -> Path:
     return ctx.out_dir / "report"
 
 
-def _check_task(ctx: BuildContext, prefix: str, parts: list[MjcfPartFiles]) -> dict:
+def check_payload(
+    ctx: BuildContext, parts: list[MjcfPartFiles], options: dict | None = None
+) -> CheckPayload:
+    """What the check is given: the build's ``check`` task and ``mjcfbuild check`` alike
+    (``options``, CheckOptions' fields, replace the manifest's check settings)."""
     settings = ctx.manifest.check
-    payload = CheckPayload(
-        options={
+    return CheckPayload(
+        options=options
+        or {
             "configurations": settings.configurations,
             "position_tolerance": settings.position_tolerance,
             "rotation_tolerance": settings.rotation_tolerance,
@@ -771,6 +776,10 @@ def _check_task(ctx: BuildContext, prefix: str, parts: list[MjcfPartFiles]) -> d
         output=str(ctx.state(CHECK_RESULTS)),
         mjcf_parts=parts,  # each compared with the part compiled alone
     )
+
+
+def _check_task(ctx: BuildContext, prefix: str, parts: list[MjcfPartFiles]) -> dict:
+    payload = check_payload(ctx, parts)
     return _task(
         ctx,
         f"{prefix}check",

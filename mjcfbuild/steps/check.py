@@ -19,6 +19,23 @@ from mjcfbuild.urdf.transforms import vec3
 def run(payload: dict) -> dict:
     """Check the model; write the results (also when a check fails, for the report)."""
     request = CheckPayload.from_dict(payload)
+    report = check_built(request)
+    outputs: dict[str, str] = {}
+    write_results(report, Path(request.output), outputs)
+    if report.failures:
+        more = len(report.failures) - 1
+        raise CheckError(
+            f"check: {report.failures[0]}",
+            file=request.model_label,
+            hint=f"{more} more failure{'s' if more > 1 else ''} in the report" if more else None,
+        )
+    return {"outputs": outputs, "warnings": check_warnings(report)}
+
+
+def check_built(request: CheckPayload) -> CheckReport:
+    """Every check of a built model: against its URDF, its MJCF parts alone and
+    mujoco_ros2_control's rules. The build's check task and ``mjcfbuild check`` both run this,
+    so they write the same check.json."""
     plan = read_plan(Path(request.plan))
     robot = plan.robot_model()
     try:
@@ -41,27 +58,23 @@ def run(payload: dict) -> dict:
     if request.mjcf_parts and report.results.get("loads"):
         _check_parts(report, Path(request.model), request.mjcf_parts, request.options, sources)
     add_runtime_check(report, Path(request.model), plan.control(), sources)
-    outputs: dict[str, str] = {}
+    return report
+
+
+def write_results(report: CheckReport, path: Path, outputs: dict[str, str]) -> None:
+    """check.json: whether it passes, the failures and every result."""
     data = {"passes": report.passes, "failures": report.failures, **report.results}
-    write_output(
-        Path(request.output),
-        (json.dumps(data, indent=1, sort_keys=True) + "\n").encode(),
-        outputs,
-    )
-    if report.failures:
-        more = len(report.failures) - 1
-        raise CheckError(
-            f"check: {report.failures[0]}",
-            file=request.model_label,
-            hint=f"{more} more failure{'s' if more > 1 else ''} in the report" if more else None,
-        )
+    write_output(path, (json.dumps(data, indent=1, sort_keys=True) + "\n").encode(), outputs)
+
+
+def check_warnings(report: CheckReport) -> list[str]:
+    """What the check found worth a warning that is not a failure."""
     plausibility = report.results.get("plausibility") or {}
-    return {
-        "outputs": outputs,
-        "warnings": _standing_notes(report.results)
+    return (
+        _standing_notes(report.results)
         + plausibility.get("warnings", [])
-        + (report.results.get("mujoco_ros2_control") or {}).get("warnings", []),
-    }
+        + (report.results.get("mujoco_ros2_control") or {}).get("warnings", [])
+    )
 
 
 def add_runtime_check(

@@ -279,3 +279,17 @@ def test_the_console_of_a_robot_that_stands_says_passed_with_each_result(tmp_pat
     hold = next(line for line in lines if line.strip().startswith("hold home 1 s"))
     assert "largest deviation" in hold
     assert any(line.strip().startswith("joint speeds") for line in lines)
+
+
+def test_check_writes_the_same_check_json_as_the_build_mjcf_parts_included(tmp_path):
+    """One code path: `mjcfbuild check` runs the build's check (steps.check.check_built), so the
+    MJCF part's comparison the build wrote is not lost."""
+    example = copy_example("arm_mjcf_gripper", tmp_path)
+    assert run_cli("build", str(example / "robot.yaml")).code == EXIT_OK
+    record = example / "mjcf/.mjcfbuild/check.json"
+    built = record.read_text()
+    assert '"parts"' in built
+    record.unlink()
+    result = run_cli("check", str(example / "robot.yaml"))
+    assert result.code == EXIT_OK, result.stderr
+    assert record.read_text() == built
