@@ -10,7 +10,7 @@ from mjcfbuild import __version__
 # Bump a step's number when its output for the same inputs changes.
 STEP_FORMATS = {
     "expand": 2,  # 2: the origins of the expanded lines
-    "plan": 4,
+    "plan": 5,  # 5: refuses chains deeper than MuJoCo reads back
     "mesh": 5,
     "decompose": 3,
     "assemble": 10,  # 10: default servos get the URDF limits' torque-speed line
