@@ -43,13 +43,15 @@ class _BoundedLoader(yaml.SafeLoader):
 
     def compose_node(self, parent: Any, index: Any) -> Any:  # PyYAML's untyped signature
         event = self.peek_event()
+        mark: Any = event.start_mark  # always set by PyYAML's parser
         if isinstance(event, yaml.AliasEvent):
-            node = super().compose_node(parent, index)
-            self.alias_uses.append((node, event.start_mark))
+            node = super().compose_node(parent, index)  # the anchor's node, never None
+            assert node is not None
+            self.alias_uses.append((node, mark))
             return node
         if isinstance(event, (yaml.MappingStartEvent, yaml.SequenceStartEvent)):
             if self.nesting >= MAX_DEPTH:
-                raise _too_deep(event.start_mark)
+                raise _too_deep(mark)
             self.nesting += 1
             try:
                 return super().compose_node(parent, index)

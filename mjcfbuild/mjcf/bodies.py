@@ -91,7 +91,7 @@ def build_bodies(robot: Robot, fuse_static: bool, float_from_world: bool = False
             body.shapes.append(
                 PlacedShape(link_name, shape, in_body.compose(Transform.from_pose(shape.origin)))
             )
-        below = []
+        below: list[tuple[str, Body | None, str | None, Joint | None, Transform]] = []
         for child in children[link_name]:
             joint_pose = in_body.compose(Transform.from_pose(child.origin))
             keep_body = float_from_world and body.name == WORLD and body.parent is None
