@@ -282,7 +282,7 @@ def included_files(path: Path, label: str) -> list[Path]:
     while pending:
         current = pending.pop()
         try:
-            root = etree.parse(str(current)).getroot()
+            root = etree.parse(str(current), etree.XMLParser(huge_tree=True)).getroot()
         except (OSError, etree.XMLSyntaxError):
             continue  # MuJoCo already read (or refused) it; nothing more to find
         for element in root.iter("include"):

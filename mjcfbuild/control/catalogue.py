@@ -34,7 +34,9 @@ def read_catalogue(path: Path, label: str) -> dict[str, Motor]:
     try:
         data, positions = load_with_positions(text)
     except YamlSyntaxError as exc:
-        raise ManifestError(exc.message, file=label, line=exc.line, column=exc.column) from None
+        raise ManifestError(
+            exc.message, file=label, line=exc.line, column=exc.column, hint=exc.hint
+        ) from None
     try:
         return MotorCatalogue.model_validate(data or {}).root
     except ValidationError as exc:

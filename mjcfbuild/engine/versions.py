@@ -10,7 +10,7 @@ from mjcfbuild import __version__
 # Bump a step's number when its output for the same inputs changes.
 STEP_FORMATS = {
     "expand": 2,  # 2: the origins of the expanded lines
-    "plan": 5,  # 5: the <hardware> parameters of ros2_control sensors and joints
+    "plan": 6,  # 5: ros2_control <hardware> parameters; 6: refuses chains deeper than MuJoCo reads
     "mesh": 5,
     "decompose": 3,
     "assemble": 11,  # 11: ros2_control sensors' MJCF sensors; its position joints <position>

@@ -3,7 +3,8 @@
 PyYAML's ``safe_load`` forgets positions; validation errors need them to say
 ``robot.yaml:12:5``. This loader composes the node tree, builds plain Python values from it and
 records the (line, column) of every mapping key and value, keyed by its path of keys and list
-indices. It also refuses duplicate keys, which ``safe_load`` silently collapses.
+indices. It also refuses duplicate keys, which ``safe_load`` silently collapses, and (through
+:mod:`mjcfbuild.yamlguard`) aliases that would expand without bound and nesting too deep.
 """
 
 from __future__ import annotations
@@ -12,6 +13,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import yaml
+
+from mjcfbuild.yamlguard import YamlLimitError, compose_bounded
 
 Path_ = tuple[str | int, ...]
 
@@ -39,11 +42,14 @@ class Positions:
 class YamlSyntaxError(Exception):
     """YAML that cannot be parsed, with the position of the problem."""
 
-    def __init__(self, message: str, line: int | None, column: int | None) -> None:
+    def __init__(
+        self, message: str, line: int | None, column: int | None, hint: str | None = None
+    ) -> None:
         super().__init__(message)
         self.message = message
         self.line = line
         self.column = column
+        self.hint = hint
 
 
 def _mark(node: yaml.Node) -> tuple[int, int]:
@@ -53,7 +59,9 @@ def _mark(node: yaml.Node) -> tuple[int, int]:
 def load_with_positions(text: str) -> tuple[object, Positions]:
     """Parse one YAML document into plain values and the positions of every value."""
     try:
-        node = yaml.compose(text, Loader=yaml.SafeLoader)
+        node = compose_bounded(text)
+    except YamlLimitError as exc:
+        raise YamlSyntaxError(exc.message, exc.line, exc.column, exc.hint) from None
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark else None

@@ -26,6 +26,7 @@ from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.manifest.simulation import ActuatorSettings
 from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies
+from mjcfbuild.mjcf.depth import refuse_deep_bodies
 from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
 from mjcfbuild.mjcf.precise import precise_xml
 from mjcfbuild.mjcf.prepared import Decomposition, GeomRecord, MeshAsset, Prepared, prepare
@@ -95,6 +96,7 @@ def assemble(
     take_mujoco_warnings()
 
     bodies = build_bodies(robot, options.fuse_static, float_from_world=options.free_joint)
+    refuse_deep_bodies(robot, bodies)
     if options.free_joint:
         for body in bodies:
             # A floating root moves too: a massless one gets the smallest repair, reported.

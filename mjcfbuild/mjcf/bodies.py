@@ -73,29 +73,35 @@ def build_bodies(robot: Robot, fuse_static: bool, float_from_world: bool = False
     children = robot.child_joints()
     links = {link.name: link for link in robot.links}
     bodies: list[Body] = []
-
-    def visit(link_name: str, body: Body, in_body: Transform) -> None:
+    # Depth first with an explicit stack, not recursion: chains (snakes, ropes) are thousands
+    # of links deep. An entry is a link to place in ``body`` at ``in_body``; a None body
+    # starts a new body for the link, hanging from ``parent`` by ``joint`` at ``in_body``.
+    pending: list[tuple[str, Body | None, str | None, Joint | None, Transform]] = [
+        (robot.root, None, None, None, Transform())
+    ]
+    while pending:
+        link_name, body, parent, joint, in_body = pending.pop()
+        if body is None:
+            body = Body(link_name, parent, joint, in_body, None, [], [])
+            bodies.append(body)
+            in_body = Transform()
         link = links[link_name]
         body.links.append(LinkFrame(link_name, in_body, fused=link_name != body.name))
         for shape in link.shapes:
             body.shapes.append(
                 PlacedShape(link_name, shape, in_body.compose(Transform.from_pose(shape.origin)))
             )
-        for joint in children[link_name]:
-            joint_pose = in_body.compose(Transform.from_pose(joint.origin))
+        below: list[tuple[str, Body | None, str | None, Joint | None, Transform]] = []
+        for child in children[link_name]:
+            joint_pose = in_body.compose(Transform.from_pose(child.origin))
             keep_body = float_from_world and body.name == WORLD and body.parent is None
-            if fuse_static and not joint.moves and not keep_body:
-                visit(joint.child, body, joint_pose)
+            if fuse_static and not child.moves and not keep_body:
+                below.append((child.child, body, None, None, joint_pose))
             else:
-                start(joint.child, body.name, joint, joint_pose)
-
-    def start(link_name: str, parent: str | None, joint: Joint | None, pose: Transform) -> None:
-        body = Body(link_name, parent, joint, pose, None, [], [])
-        bodies.append(body)
-        visit(link_name, body, Transform())
+                below.append((child.child, None, body.name, child, joint_pose))
+        pending.extend(reversed(below))  # the first child is placed next, as URDF orders them
+    for body in bodies:
         body.mass = combine_masses(robot, body)
-
-    start(robot.root, None, None, Transform())
     return bodies
 
 

@@ -73,7 +73,8 @@ def precise_xml(spec) -> etree._Element:
     finally:
         for element in temporary:
             element.name = ""
-    root = etree.fromstring(text.encode("utf-8"))
+    # huge_tree: libxml2 stops at 256 nested elements otherwise; chains nest bodies deeper.
+    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(huge_tree=True))
     for container in [*root.iter("worldbody"), *root.iter("asset")]:
         for element in container.iter(*FIELDS):
             name = element.get("name")

@@ -62,7 +62,8 @@ def _number(value: float, digits: int) -> str:
 
 def format_model(xml: bytes) -> bytes:
     """``xml`` (a model mjcfbuild wrote) formatted the Menagerie way."""
-    parser = etree.XMLParser(remove_blank_text=True)
+    # huge_tree: libxml2 stops at 256 nested elements otherwise; chains nest bodies deeper.
+    parser = etree.XMLParser(remove_blank_text=True, huge_tree=True)
     root = etree.fromstring(xml, parser)
     _order(root)
     _round_actuators(root)
@@ -197,7 +198,7 @@ def _common_start(lists: list[list[str]]) -> list[str]:
 def format_problems(xml: bytes) -> list[str]:
     """Where ``xml`` departs from Menagerie's format: top-level order, two-space indent."""
     problems = []
-    root = etree.fromstring(xml)
+    root = etree.fromstring(xml, etree.XMLParser(huge_tree=True))
     tags = [child.tag for child in root if isinstance(child.tag, str)]
     ranks = [_rank(child) for child in root if isinstance(child.tag, str)]
     for (tag, rank), (after, next_rank) in zip(

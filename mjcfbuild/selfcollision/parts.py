@@ -34,7 +34,8 @@ def collision_digest(xml: Path, summary: Path) -> str:
     that differs from every readable one, and the step reports the file)."""
     digest = hashlib.md5(usedforsecurity=False)
     try:
-        root = etree.parse(str(xml), etree.XMLParser(remove_comments=True)).getroot()
+        parser = etree.XMLParser(remove_comments=True, huge_tree=True)  # bodies nest deep
+        root = etree.parse(str(xml), parser).getroot()
         data = json.loads(summary.read_text())
     except (OSError, ValueError, etree.XMLSyntaxError) as exc:
         return f"unreadable: {exc}"

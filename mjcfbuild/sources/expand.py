@@ -48,6 +48,7 @@ class _Reading:
     track_lines: bool = True  # mark elements with where they were written
     files: list[str] = field(default_factory=list)  # origins name files by index in this
     declared: set[str] = field(default_factory=set)  # <xacro:arg> names and $(arg) uses
+    refused: InputError | None = None  # a YAML file xacro.load_yaml must not expand
 
 
 def expand_source(
@@ -165,6 +166,8 @@ def _expand(
                 column=exc.offset + 1 if exc.offset is not None else None,
             ) from None
         except Exception as exc:  # xacro raises many kinds; all mean "this input is wrong"
+            if reading.refused is not None:  # names the YAML file itself, not the xacro file
+                raise reading.refused from None
             current = _current_file(xacro, path)
             if raised:  # our own $(find)/$(env) error, which xacro wraps in its own
                 first = raised[0]
@@ -397,6 +400,14 @@ def _xacro_hooks(
             return document
         return original_parse(inp, filename)
 
+    def guarded(load_yaml: Callable) -> Callable:
+        def load_bounded(filename: str) -> Any:
+            """xacro's load_yaml, first refusing aliases that expand without bound."""
+            _refuse_yaml_bombs(xacro_module.abs_filename_spec(filename), reading)
+            return load_yaml(filename)
+
+        return load_bounded
+
     replacements: dict[str, Callable] = {
         "_eval_find": find,
         "_eval_env": env,
@@ -404,15 +415,51 @@ def _xacro_hooks(
     }
     saved_functions = {name: getattr(subst, name) for name in replacements}
     saved_eval = {key: subst._eval_dict[key] for key in ("find", "env", "optenv")}
+    # Expressions call load_yaml through the symbol table: as xacro.load_yaml, and (deprecated)
+    # as a plain load_yaml whose wrapper holds the original.
+    symbols = xacro_module._global_symbols
+    saved_symbols = {"load_yaml": symbols.get("load_yaml")}
+    saved_namespaced = symbols["xacro"]["load_yaml"]
     xacro_module.all_includes.clear()
     xacro_module.parse = parse
     try:
+        symbols["xacro"]["load_yaml"] = guarded(saved_namespaced)
+        if saved_symbols["load_yaml"] is not None:
+            symbols["load_yaml"] = guarded(saved_symbols["load_yaml"])
         for name, function in replacements.items():
             setattr(subst, name, function)
         subst._eval_dict.update(find=find, env=env, optenv=optenv)
         yield
     finally:
         xacro_module.parse = original_parse
+        symbols["xacro"]["load_yaml"] = saved_namespaced
+        if saved_symbols["load_yaml"] is not None:
+            symbols["load_yaml"] = saved_symbols["load_yaml"]
         for name, function in saved_functions.items():
             setattr(subst, name, function)
         subst._eval_dict.update(saved_eval)
+
+
+def _refuse_yaml_bombs(path: str, reading: _Reading) -> None:
+    """Raise :class:`InputError` (kept in ``reading``) where the YAML file at ``path`` nests too
+    deep or its aliases expand without bound; anything else is left to xacro, so ordinary files
+    load exactly as xacro loads them."""
+    import yaml
+
+    from mjcfbuild.yamlguard import YamlLimitError, compose_bounded
+
+    try:
+        with open(path, encoding="utf-8") as handle:
+            text = handle.read()
+        compose_bounded(text)
+    except YamlLimitError as exc:
+        reading.refused = InputError(
+            exc.message,
+            file=str(normalise(path)),
+            line=exc.line,
+            column=exc.column,
+            hint=exc.hint,
+        )
+        raise reading.refused from None
+    except (OSError, ValueError, yaml.YAMLError):  # ValueError: UnicodeDecodeError too
+        return  # xacro reports these in its own words

@@ -8,6 +8,7 @@ from pathlib import Path
 from mjcfbuild.errors import InputError
 from mjcfbuild.inputs.ros2_control import read_ros2_control
 from mjcfbuild.inputs.xml_inputs import inputs_in_urdf, read_inputs_file
+from mjcfbuild.mjcf.depth import refuse_deep_chains
 from mjcfbuild.sources.packages import PackageResolver
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import PlanPayload
@@ -27,6 +28,7 @@ def run(payload: dict) -> dict:
     display = request.display
     try:
         robot = parse_urdf(data, display)
+        refuse_deep_chains(robot)  # before any work: MuJoCo could not read the model back
         prebuilt = request.prebuilt_meshes
         resolve_files(robot, Path(request.base_dir), packages, Path(prebuilt) if prebuilt else None)
         root = parse_xml(data, display, [])

@@ -19,6 +19,7 @@ from mjcfbuild.inputs.ros2_control import ControlJoint, Ros2Control
 from mjcfbuild.meshes.product import read_product
 from mjcfbuild.mjcf.assemble import compile_error, floats, spec_meshes
 from mjcfbuild.mjcf.bodies import Body, build_bodies
+from mjcfbuild.mjcf.depth import refuse_deep_bodies
 from mjcfbuild.mjcf.prepared import Decomposition, prepare
 from mjcfbuild.selfcollision.matrix import (
     MatrixSettings,
@@ -46,6 +47,7 @@ def run(payload: dict) -> dict:
 
     robot = robot_from_dict(request.robot)
     bodies = build_bodies(robot, request.fuse_static, float_from_world=request.free_joint)
+    refuse_deep_bodies(robot, bodies)
     body_of = {frame.link: body.name for body in bodies for frame in body.links}
     choices = [CollisionChoice.from_dict(choice) for choice in request.choices]
     products = {m: read_product(Path(s)) for m, s in request.products.items()}

@@ -200,16 +200,13 @@ def _branches_reaching(robot: Robot, points: dict, floor: float) -> set[str]:
     pelvis's two legs, a trunk's four, even where the legs hang from a waist below the root."""
     children = _children(robot)
     reaches: dict[str, bool] = {}
-
-    def reach(link: str) -> bool:
-        if link not in reaches:
-            own = any(p[2] <= floor for p in points.get(link, []))
-            reaches[link] = own or any([reach(child) for child in children.get(link, [])])
-        return reaches[link]
+    for link in _bottom_up(children, robot.root):
+        own = any(p[2] <= floor for p in points.get(link, []))
+        reaches[link] = own or any(reaches[child] for child in children.get(link, []))
 
     best: set[str] = set()
     for link in [robot.root, *(joint.child for joint in robot.joints)]:
-        legs = {child for child in children.get(link, []) if reach(child)}
+        legs = {child for child in children.get(link, []) if reaches.get(child)}
         if len(legs) > len(best):
             best = legs
     return best
@@ -218,12 +215,29 @@ def _branches_reaching(robot: Robot, points: dict, floor: float) -> set[str]:
 def _feet(robot: Robot, points: dict, limbs: set[str]) -> list[tuple[float, float, float]]:
     """The lowest point of each of ``limbs``' subtrees."""
     children = _children(robot)
+    feet = []
+    for limb in sorted(limbs):
+        lowest: dict[str, tuple[float, float, float] | None] = {}
+        for link in _bottom_up(children, limb):
+            below = [lowest[child] for child in children.get(link, [])]
+            candidates = [*points.get(link, []), *(p for p in below if p is not None)]
+            lowest[link] = min(candidates, key=lambda p: p[2]) if candidates else None
+        foot = lowest[limb]
+        assert foot is not None, "a limb is chosen for a point of its subtree on the floor"
+        feet.append(foot)
+    return feet
 
-    def lowest(link: str) -> tuple[float, float, float]:
-        candidates = list(points.get(link, [])) + [lowest(c) for c in children.get(link, [])]
-        return min(candidates, key=lambda p: p[2])
 
-    return [lowest(limb) for limb in sorted(limbs)]
+def _bottom_up(children: dict[str, list[str]], top: str) -> list[str]:
+    """``top`` and the links below it, every child before its parent (no recursion: chains
+    are thousands of links deep)."""
+    order = []
+    pending = [top]
+    while pending:
+        link = pending.pop()
+        order.append(link)
+        pending.extend(children.get(link, []))
+    return order[::-1]
 
 
 def _in_a_row(feet: list[tuple[float, float, float]]) -> bool:

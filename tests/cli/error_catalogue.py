@@ -97,6 +97,14 @@ class Case:
                 path.write_text(content)
 
 
+def laughs(levels: int = 9) -> str:
+    """YAML whose anchors each repeat the one before nine times: 9**(levels+1) values."""
+    lines = ['l0: &l0 ["lol", "lol", "lol", "lol", "lol", "lol", "lol", "lol", "lol"]']
+    for level in range(1, levels + 1):
+        lines.append(f"l{level}: &l{level} [{', '.join([f'*l{level - 1}'] * 9)}]")
+    return "\n".join(lines) + "\n"
+
+
 def urdf(replace: tuple[str, str] | None = None, extra: str = "") -> str:
     """The two-link URDF with one substitution (which must apply) and extra elements."""
     text = two_link_urdf(extra)
@@ -159,6 +167,34 @@ CASES: list[Case] = [
         {"robot.yaml": "name: robot\nsource:\n\turdf: robot.urdf\n"},
         EXIT_MANIFEST,
         ["robot.yaml:3:"],
+    ),
+    Case(
+        "yaml aliases that expand to billions of values",
+        {"robot.yaml": MANIFEST + laughs()},
+        EXIT_MANIFEST,
+        ["robot.yaml:13:10:", "aliases add", "at most 100,000", "write the repeated"],
+    ),
+    Case(
+        "motor file aliases that expand to billions of values",
+        {
+            "robot.yaml": MANIFEST + "motors: {files: [drives.yaml]}\n",
+            "robot.urdf": two_link_urdf(),
+            "drives.yaml": laughs(),
+        },
+        EXIT_MANIFEST,
+        ["drives.yaml:10:10:", "aliases add"],
+    ),
+    Case(
+        "yaml read by xacro with aliases that expand to billions of values",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
+            '<xacro:property name="limits" value="${xacro.load_yaml(\'limits.yaml\')}"/>\n'
+            '<link name="${limits.l0[0]}"/></robot>\n',
+            "limits.yaml": laughs(),
+        },
+        EXIT_INPUT,
+        ["limits.yaml:10:10:", "aliases add", "write the repeated"],
     ),
     Case(
         "unknown top-level key",

@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
-from mjcfbuild.errors import EXIT_INPUT, EXIT_MANIFEST, EXIT_OK, EXIT_USAGE
-from tests.conftest import simple_manifest, two_link_urdf, write
+import pytest
+
+from mjcfbuild.errors import EXIT_INPUT, EXIT_MANIFEST, EXIT_MODEL, EXIT_OK, EXIT_USAGE
+from tests.conftest import run_cli, simple_manifest, two_link_urdf, write
 
 
 def test_build_prints_progress_then_summary(cli, arm):
@@ -102,3 +104,37 @@ def test_fail_on_change_fails_until_created_and_changed_files_are_added(cli, arm
     assert changed.code == 6
     assert "files were changed: mjcf/example_arm.xml" in changed.stderr
     assert "created" not in changed.stderr
+
+
+@pytest.mark.slow
+def test_a_chain_as_deep_as_mujoco_reads_builds(tmp_path):
+    # 496 nested bodies: past lxml's 256 and Python's recursion limit, within MuJoCo's.
+    import mujoco
+
+    from bench.deep_chain import snake_urdf
+    from mjcfbuild.mjcf.depth import MAX_BODY_DEPTH
+
+    write(tmp_path / "snake.urdf", snake_urdf(MAX_BODY_DEPTH))
+    manifest = simple_manifest(tmp_path, "urdf: snake.urdf")
+    result = run_cli("build", "-q", "--no-check", str(manifest))
+    assert result.code == EXIT_OK, result.stderr
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "mjcf" / "robot.xml"))
+    assert model.nbody == MAX_BODY_DEPTH + 1 and model.njnt == MAX_BODY_DEPTH - 1
+
+
+def test_a_2000_link_chain_stops_at_plan_with_mujocos_limit(tmp_path):
+    from bench.deep_chain import snake_urdf
+
+    text = snake_urdf(2000)
+    write(tmp_path / "snake.urdf", text)
+    manifest = simple_manifest(tmp_path, "urdf: snake.urdf")
+    result = run_cli("build", str(manifest))
+    assert result.code == EXIT_MODEL, result.stderr
+    [error] = [line for line in result.stderr.splitlines() if "error" in line]
+    line = text.splitlines().index(
+        '  <joint name="j496" type="revolute"><parent link="l495"/><child link="l496"/>'
+    )
+    assert f"snake.urdf:{line + 1}: the kinematic tree nests bodies 2000 deep" in error
+    assert "MuJoCo reads at most 496" in error and "not a fault in the file" in error
+    assert "Traceback" not in result.stderr and "self-collision" not in result.stdout
+    assert not (tmp_path / "mjcf" / "robot.xml").exists()

@@ -43,3 +43,20 @@ def test_without_fusing_every_link_is_a_body():
     bodies = build_bodies(parse_urdf(FUSED.encode()), fuse_static=False)
     assert [b.name for b in bodies] == ["base", "plate", "tip"]
     assert bodies[1].joint.kind == "fixed" and not bodies[1].moves
+
+
+def test_a_chain_thousands_of_links_deep_builds_without_recursion():
+    from bench.deep_chain import snake_urdf
+
+    robot = parse_urdf(snake_urdf(2500, fixed_every=2).encode())
+    bodies = build_bodies(robot, fuse_static=False)
+    assert [b.name for b in bodies] == [f"l{i}" for i in range(2500)]
+    assert all(b.parent == f"l{i}" for i, b in enumerate(bodies[1:]))
+    fused = build_bodies(robot, fuse_static=True)
+    # Joints j2, j4, ... are fixed: l2 is fused into l1's body, l4 into l3's, and so on.
+    assert [b.name for b in fused] == ["l0", *(f"l{i}" for i in range(1, 2500, 2))]
+    pair = fused[-2]
+    assert [(f.link, f.fused) for f in pair.links] == [("l2497", False), ("l2498", True)]
+    assert pair.links[1].pose.position == pytest.approx((0.05, 0.0, 0.0))
+    assert pair.parent == "l2495" and pair.mass is not None and pair.mass.mass == 0.1
+    assert fused[-1].parent == "l2497"

@@ -53,6 +53,43 @@ def test_expansion_resolves_find_args_yaml_and_records_dependencies(pkg, monkeyp
     assert expansion.environment == {"PART_SUFFIX": None}
 
 
+YAML_MAIN = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:property name="cfg" value="${xacro.load_yaml('$(find pkg)/config/c.yaml')}"/>
+  <xacro:property name="old" value="${load_yaml('$(find pkg)/config/c.yaml')}"/>
+  <link name="${cfg.arm.name}_${old.leg.name}_${cfg.leg.width}_${round(cfg.turn, 6)}"/>
+</robot>
+"""
+
+
+def test_yaml_with_small_aliases_and_unit_tags_loads_as_xacro_loads_it(pkg):
+    import xacro
+
+    write(pkg / "urdf" / "yaml.xacro", YAML_MAIN)
+    write(
+        pkg / "config" / "c.yaml",
+        "arm: &part {name: a, width: 1}\nleg: {<<: *part, width: 2}\nturn: !degrees 90\n",
+    )
+    loaders = xacro._global_symbols["load_yaml"], xacro._global_symbols["xacro"]["load_yaml"]
+    expansion = expand_xacro(pkg / "urdf" / "yaml.xacro", {}, PackageResolver({"pkg": pkg}, {}))
+    assert '<link name="a_a_2_1.570796"/>' in expansion.urdf.decode()
+    assert str(pkg / "config" / "c.yaml") in expansion.files
+    # The bounded loader is in place only during the expansion.
+    assert xacro._global_symbols["load_yaml"] is loaders[0]
+    assert xacro._global_symbols["xacro"]["load_yaml"] is loaders[1]
+
+
+def test_yaml_whose_aliases_expand_without_bound_names_the_yaml_file_and_line(pkg):
+    from tests.cli.error_catalogue import laughs
+
+    write(pkg / "urdf" / "yaml.xacro", YAML_MAIN)
+    write(pkg / "config" / "c.yaml", laughs())
+    with pytest.raises(InputError) as info:
+        expand_xacro(pkg / "urdf" / "yaml.xacro", {}, PackageResolver({"pkg": pkg}, {}))
+    assert info.value.location.file == str(pkg / "config" / "c.yaml")
+    assert (info.value.location.line, info.value.location.column) == (10, 10)
+    assert "aliases add" in info.value.message
+
+
 def test_unknown_package_in_find_names_the_file(pkg):
     with pytest.raises(InputError) as info:
         expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({}, {}))

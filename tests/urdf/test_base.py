@@ -9,10 +9,11 @@ from tests.control import robots
 BOX_TRUNK = '<collision><geometry><box size="0.45 0.25 0.1"/></geometry></collision>'
 
 
-def hand(square: bool = False) -> str:
+def hand(square: bool = False, phalanges: int = 3) -> str:
     """A palm at the top with four fingers of three phalanges hanging below it in a row, 2 cm
     apart, and a thumb to the side: the zero pose of the inspire and fourier hands. ``square``
-    puts the fingers at the corners of a square instead, as a quadruped's legs stand."""
+    puts the fingers at the corners of a square instead, as a quadruped's legs stand; more
+    ``phalanges`` make the same fingers of that many short links (a deep tree)."""
     inertial = robots.inertial
     parts = []
     for index in range(4):
@@ -21,7 +22,7 @@ def hand(square: bool = False) -> str:
         if square:
             x, y = (0.04 if index % 2 else -0.04), (0.04 if index // 2 else -0.04)
         previous = "palm"
-        lengths = (0.05, 0.035, 0.03)
+        lengths = (0.05, 0.035, 0.03) if phalanges == 3 else (0.115 / phalanges,) * phalanges
         for phalanx, length in enumerate(lengths):
             name = f"finger{index}_{phalanx}"
             origin = f"{x} {y} -0.1" if phalanx == 0 else f"0 0 {-lengths[phalanx - 1]}"
@@ -47,6 +48,14 @@ def test_a_hand_whose_fingers_hang_below_the_palm_is_fixed():
     kind = classify_base(parse_urdf(hand().encode(), "hand.urdf"))
     assert not kind.floating
     assert "hand's fingers" in kind.why
+
+
+def test_fingers_hundreds_of_links_deep_are_walked_without_recursion():
+    # The limbs that reach the floor and their lowest points, on chains 600 links long.
+    kind = classify_base(parse_urdf(hand(phalanges=600).encode(), "hand.urdf"))
+    assert not kind.floating and "hand's fingers" in kind.why, kind.why
+    kind = classify_base(parse_urdf(hand(square=True, phalanges=600).encode(), "hand.urdf"))
+    assert kind.floating and "4 limbs" in kind.why, kind.why
 
 
 def test_legs_standing_apart_float_even_with_nothing_above_the_trunk():
