@@ -9,6 +9,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from mjcfbuild.cli import (
+    allow_outside_argument,
     environment_jobs,
     jobs_argument,
     load_context,
@@ -38,6 +39,7 @@ def add_parser(commands) -> None:
     )
     jobs_argument(parser)
     timeout_argument(parser)
+    allow_outside_argument(parser)
     parser.add_argument(
         "-v",
         "--verbose",

@@ -7,7 +7,7 @@ import os
 import sys
 from pathlib import Path
 
-from mjcfbuild.cli import load_context, report_error
+from mjcfbuild.cli import allow_outside_argument, load_context, report_error
 from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, CheckError, MjcfbuildError, UsageError
 
 
@@ -61,6 +61,7 @@ def add_parser(commands) -> None:
         "inertias relative to their size (default 1e-6; axes to inertias no finer than the "
         "model file's digits allow, 1e-5 for MuJoCo's 6)",
     )
+    allow_outside_argument(parser)
     parser.set_defaults(handler=run)
 
 
@@ -194,6 +195,8 @@ def _manifest(ctx, args) -> int:
 
     from mjcfbuild.check.model_check import check_model
     from mjcfbuild.check.reference import read_kinematics
+    from mjcfbuild.engine import written
+    from mjcfbuild.engine.guard import check_output_folder
     from mjcfbuild.engine.report import write_report
     from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN, planned_urdf
     from mjcfbuild.steps.plan_record import read_plan
@@ -220,8 +223,10 @@ def _manifest(ctx, args) -> int:
         **_built_parts(ctx, robot),
     )
     data = {"passes": report.passes, "failures": report.failures, **report.results}
+    check_output_folder(ctx)  # what it writes goes where a build's would
     ctx.state(CHECK_RESULTS).write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
     folder = write_report(ctx, [])
+    written.record(ctx, ctx.session.written)
     code = _print(report, ctx.label(ctx.robot_path))
     print(f"  report: {ctx.label(folder / 'report.md')}")
     if (folder / "index.html").is_file():  # output.page: its tables are the report's

@@ -427,6 +427,8 @@ def _run(
     finally:
         ctx.session.timings[name] = time.perf_counter() - started
     ctx.session.warnings.extend(result.get("warnings", []))
+    # What clean may remove: the files the step reports, checked (outputs) or not (written).
+    ctx.session.written.update(result["outputs"], result.get("written", []))
     notes = ["from cache" if result.get("cached") else "", result.get("note", "")]
     if any(notes):
         ctx.session.notes[name] = "; ".join(n for n in notes if n)

@@ -619,6 +619,13 @@ class Output(StrictModel):
     """Where the model is written."""
 
     folder: RelPath = Field("mjcf", description="Output folder, relative to robot.yaml.")
+    allow_outside: bool = Field(
+        False,
+        description=(
+            "Let 'folder' leave the folder tree of robot.yaml (an absolute path, '..', or a "
+            "link pointing elsewhere); otherwise such a folder is refused."
+        ),
+    )
     robot: FileName | None = Field(
         None, description="File name of the robot model. Default: '<name>.xml'."
     )
