@@ -50,10 +50,10 @@ def run(args: argparse.Namespace) -> int:
 
     ctx = load_context(chosen_manifest(args), args)
     out = ctx.out_dir
+    check_output_folder(ctx)
     if not out.is_dir() or not ctx.state_dir.is_dir():
         _say(args, "removed nothing" if not args.dry_run else "would remove nothing")
         return EXIT_OK
-    check_output_folder(ctx)
     names = written.recorded(ctx)
     if names is None:
         report_warning(
