@@ -562,6 +562,7 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
         inputs_file_label=ctx.label(inputs_file) if inputs_file else None,
         output=str(ctx.state(PLAN)),
         prebuilt_meshes=str(prebuilt) if prebuilt is not None else None,
+        roots=None if ctx.manifest.source.read_outside else _description_roots(ctx),
     )
     return _task(
         ctx,
@@ -574,6 +575,13 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
         targets=[ctx.state(PLAN)],
         extra_uptodate=[planned_meshes_exist(ctx.state(PLAN))],
     )
+
+
+def _description_roots(ctx: BuildContext) -> list[str]:
+    """The folders a description reads from without a warning: robot.yaml's, the source
+    file's and the packages robot.yaml names."""
+    folders = [ctx.base_dir, ctx.source_base_dir, *ctx.resolver.explicit.values()]
+    return sorted({str(ctx.resolve(str(folder))) for folder in folders})
 
 
 def product_summary(ctx: BuildContext, mesh_id: str) -> Path:

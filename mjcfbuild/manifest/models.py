@@ -62,6 +62,13 @@ class Source(StrictModel):
             "Relative mesh paths in it are relative to robot.yaml's folder."
         ),
     )
+    read_outside: bool = Field(
+        False,
+        description=(
+            "The description reads meshes or textures from outside every package folder and "
+            "robot.yaml's folder on purpose: do not warn about them."
+        ),
+    )
 
     @model_validator(mode="after")
     def _exactly_one(self) -> Source:
