@@ -100,7 +100,7 @@ def test_files_in_the_packages_and_the_manifests_folder_are_not(tmp_path):
 
 
 def test_without_roots_nothing_is_warned_about(tmp_path):
-    project, packages = _outside_layout(tmp_path)
+    _, packages = _outside_layout(tmp_path)
     robot = _robot_reading(str(tmp_path / "elsewhere" / "m.stl"))
     resolve_files(robot, tmp_path / "pkg", packages)
     assert robot.warnings == []
