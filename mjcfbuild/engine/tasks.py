@@ -579,9 +579,11 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
 
 def _description_roots(ctx: BuildContext) -> list[str]:
     """The folders a description reads from without a warning: robot.yaml's, the source
-    file's and the packages robot.yaml names."""
+    file's, the packages robot.yaml names, and those of the parts it attaches."""
+    from mjcfbuild.compose.tasks import part_folders
+
     folders = [ctx.base_dir, ctx.source_base_dir, *ctx.resolver.explicit.values()]
-    return sorted({str(ctx.resolve(str(folder))) for folder in folders})
+    return sorted({str(ctx.resolve(str(folder))) for folder in [*folders, *part_folders(ctx)]})
 
 
 def product_summary(ctx: BuildContext, mesh_id: str) -> Path:

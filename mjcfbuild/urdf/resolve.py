@@ -10,7 +10,7 @@ from mjcfbuild.fsutil import normalise, unreadable_file
 from mjcfbuild.meshes.formats import MESH_FORMATS, mesh_format
 from mjcfbuild.meshes.naming import assign_mesh_ids
 from mjcfbuild.meshes.prebuilt import prebuilt_mesh
-from mjcfbuild.sources.packages import PackageResolver
+from mjcfbuild.sources.packages import PackageResolver, find_enclosing_package
 from mjcfbuild.sources.uris import resolve_uri, uri_package_folder
 from mjcfbuild.urdf.model import Robot, Shape
 
@@ -73,7 +73,8 @@ def _warn_outside(
     packages: PackageResolver,
     roots: Sequence[Path],
 ) -> None:
-    """Warn once per URI about a file outside ``roots`` and every package the URIs name.
+    """Warn once per URI about a file outside ``roots`` and every package folder (those the
+    URIs name, and any folder with a package.xml).
 
     Paths are compared as written (``..`` removed, links kept): a package installed with
     links into its sources (colcon --symlink-install) is still inside its folder.
@@ -83,6 +84,10 @@ def _warn_outside(
     warned: set[str] = set()
     for uri, path, line in reads:
         if uri in warned or any(path == root or root in path.parents for root in inside):
+            continue
+        enclosing = find_enclosing_package(path)  # a ROS package found by no URI
+        if enclosing is not None:
+            inside.append(enclosing[1])
             continue
         warned.add(uri)
         where = f"{robot.source}:{line}" if line is not None else robot.source

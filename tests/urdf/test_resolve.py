@@ -99,6 +99,16 @@ def test_files_in_the_packages_and_the_manifests_folder_are_not(tmp_path):
     assert robot.warnings == []
 
 
+def test_a_file_in_a_ros_package_no_uri_names_is_not(tmp_path):
+    project, packages = _outside_layout(tmp_path)
+    write(tmp_path / "installed" / "other_pkg" / "package.xml", "<package><name>o</name></package>")
+    mesh = write(tmp_path / "installed" / "other_pkg" / "meshes" / "m.stl", "solid a\nendsolid\n")
+    robot = _robot_reading(str(mesh), str(tmp_path / "installed" / "m.stl"))
+    write(tmp_path / "installed" / "m.stl", "solid a\nendsolid a\n")
+    resolve_files(robot, tmp_path / "pkg", packages, roots=[project])
+    assert [warning.split(":")[1] for warning in robot.warnings] == ["3"]
+
+
 def test_without_roots_nothing_is_warned_about(tmp_path):
     _, packages = _outside_layout(tmp_path)
     robot = _robot_reading(str(tmp_path / "elsewhere" / "m.stl"))
