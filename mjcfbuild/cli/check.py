@@ -207,6 +207,7 @@ def _manifest(ctx, args) -> int:
             file=ctx.label(ctx.robot_path),
             hint=f"run mjcfbuild build {ctx.manifest_label}",
         )
+    check_output_folder(ctx)  # it writes the report and its results where a build would
     robot = read_plan(ctx.state(PLAN)).robot_model()
     try:
         assembly = json.loads(ctx.state(ASSEMBLY_REPORT).read_text())
@@ -223,7 +224,6 @@ def _manifest(ctx, args) -> int:
         **_built_parts(ctx, robot),
     )
     data = {"passes": report.passes, "failures": report.failures, **report.results}
-    check_output_folder(ctx)  # what it writes goes where a build's would
     ctx.state(CHECK_RESULTS).write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
     folder = write_report(ctx, [])
     written.record(ctx, ctx.session.written)

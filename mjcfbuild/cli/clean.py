@@ -75,7 +75,7 @@ def run(args: argparse.Namespace) -> int:
             path.unlink(missing_ok=True)
         _remove_empty_folders(out, names)
     shutil.rmtree(ctx.state_dir, ignore_errors=True)  # the guard refused a link there
-    if not any(out.iterdir()):
+    if not out.is_symlink() and not any(out.iterdir()):  # a linked folder is the user's
         out.rmdir()
     _say(args, "removed " + ", ".join([*_grouped(ctx, files), ctx.label(ctx.state_dir) + "/"]))
     if out.is_dir() and not args.quiet:

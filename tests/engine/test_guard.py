@@ -30,6 +30,7 @@ def test_the_filesystem_root_is_refused(arm):
     stderr = _refused(run_cli("build", "-q", "--no-check", cwd=arm), arm)
     assert "output.folder: '/' is outside" in stderr
     assert "output.allow_outside: true" in stderr and "--allow-outside" in stderr
+    _refused(run_cli("build", "--dry-run", cwd=arm), arm)  # says what the build would say
 
 
 def test_a_folder_up_the_tree_is_refused_and_nothing_is_written(arm):
@@ -65,6 +66,9 @@ def test_a_linked_output_folder_is_resolved(arm, tmp_path):
     (arm / "mjcf").symlink_to(arm / "build")
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
     assert (arm / "build" / "example_arm.xml").is_file()
+    result = run_cli("clean", "-q", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert (arm / "mjcf").is_symlink() and list((arm / "build").iterdir()) == []
 
 
 def test_a_linked_assets_folder_is_not_written_through_even_when_allowed(arm, tmp_path):
