@@ -96,3 +96,16 @@ def test_a_linked_report_subfolder_an_earlier_build_wrote_is_refused(arm, tmp_pa
     result = run_cli("build", "-q", "--no-check", cwd=arm)
     assert result.code == EXIT_OUTPUT
     assert "mjcf/report/tuning: is a symbolic link" in result.stderr
+
+
+def test_check_refuses_a_folder_linked_after_the_build(arm, tmp_path):
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    report = arm / "mjcf" / "report"
+    elsewhere = tmp_path / "elsewhere"
+    report.rename(elsewhere)
+    report.symlink_to(elsewhere)
+    before = sorted(p.name for p in elsewhere.iterdir())
+    result = run_cli("check", cwd=arm)
+    assert result.code == EXIT_OUTPUT and len(result.stderr.splitlines()) == 1, result.stderr
+    assert result.stderr.startswith("mjcfbuild: error: mjcf/report: is a symbolic link")
+    assert sorted(p.name for p in elsewhere.iterdir()) == before
