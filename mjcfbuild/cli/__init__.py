@@ -187,6 +187,7 @@ def load_context(path: str | Path, args: argparse.Namespace):
             run_check=not getattr(args, "no_check", False),
             use_remote=not getattr(args, "no_remote", False),
             executor_override=getattr(args, "executor", None),
+            allow_outside=getattr(args, "allow_outside", False),
         )
     except ManifestError as error:
         raise error.relocate(path.resolve().parent, Path.cwd()) from None
@@ -233,6 +234,16 @@ def looks_like_manifest(word: str) -> bool:
     """Whether a positional word is a manifest rather than something else (a task name): it
     ends in .yaml or .yml, or names an existing file."""
     return word.endswith(MANIFEST_SUFFIXES) or os.path.isfile(word)
+
+
+def allow_outside_argument(parser: argparse.ArgumentParser) -> None:
+    """Add ``--allow-outside``: the output folder may be outside the manifest's folder tree."""
+    parser.add_argument(
+        "--allow-outside",
+        action="store_true",
+        help="let output.folder be outside the folder of robot.yaml (as output.allow_outside: "
+        "true does)",
+    )
 
 
 def environment_jobs() -> int | None:

@@ -9,6 +9,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from mjcfbuild.cli import (
+    allow_outside_argument,
     environment_jobs,
     jobs_argument,
     load_context,
@@ -38,6 +39,7 @@ def add_parser(commands) -> None:
     )
     jobs_argument(parser)
     timeout_argument(parser)
+    allow_outside_argument(parser)
     parser.add_argument(
         "-v",
         "--verbose",
@@ -236,9 +238,12 @@ def execute(
 
 
 def dry_run(ctx) -> int:
-    """Print what a build would run and why."""
+    """Print what a build would run and why (or the error the build would stop with, where
+    it may not write its output folder)."""
+    from mjcfbuild.engine.guard import check_output_folder
     from mjcfbuild.engine.status import build_statuses
 
+    check_output_folder(ctx)
     statuses, complete = build_statuses(ctx)
     running = [s for s in statuses if not s.up_to_date]
     for status in running:

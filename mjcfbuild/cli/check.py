@@ -7,7 +7,7 @@ import os
 import sys
 from pathlib import Path
 
-from mjcfbuild.cli import load_context, report_error
+from mjcfbuild.cli import allow_outside_argument, load_context, report_error
 from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, CheckError, MjcfbuildError, UsageError
 
 
@@ -61,6 +61,7 @@ def add_parser(commands) -> None:
         "inertias relative to their size (default 1e-6; axes to inertias no finer than the "
         "model file's digits allow, 1e-5 for MuJoCo's 6)",
     )
+    allow_outside_argument(parser)
     parser.set_defaults(handler=run)
 
 
@@ -291,6 +292,8 @@ def _manifest(ctx, args) -> int:
 
     from mjcfbuild.check.reference import read_kinematics
     from mjcfbuild.compose.tasks import mjcf_parts
+    from mjcfbuild.engine import written
+    from mjcfbuild.engine.guard import check_output_folder
     from mjcfbuild.engine.report import write_report
     from mjcfbuild.engine.tasks import CHECK_RESULTS, PLAN, REFERENCE, check_payload, planned_urdf
     from mjcfbuild.steps.check import check_built, write_results
@@ -302,6 +305,7 @@ def _manifest(ctx, args) -> int:
             file=ctx.label(ctx.robot_path),
             hint=f"run mjcfbuild build {ctx.manifest_label}",
         )
+    check_output_folder(ctx)  # it writes the report and its results where a build would
     robot = read_plan(ctx.state(PLAN)).robot_model()
     options = dataclasses.asdict(_options(args, ctx.manifest.check))
     request = check_payload(ctx, mjcf_parts(ctx, robot), options)
@@ -315,6 +319,7 @@ def _manifest(ctx, args) -> int:
         report = check_built(request)
     write_results(report, ctx.state(CHECK_RESULTS), {})
     folder = write_report(ctx)
+    written.record(ctx, ctx.session.written)
     code = _print(report, ctx.label(ctx.robot_path))
     print(f"  report: {ctx.label(folder / 'report.md')}")
     if (folder / "index.html").is_file():  # output.page: its tables are the report's

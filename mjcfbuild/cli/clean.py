@@ -1,12 +1,23 @@
-"""``mjcfbuild clean``: remove what a build wrote (models, assets, report, build state)."""
+"""``mjcfbuild clean``: remove what builds wrote (models, assets, report, build state), and
+nothing else."""
 
 from __future__ import annotations
 
 import argparse
+import os
 import shutil
+from pathlib import Path
 
-from mjcfbuild.cli import chosen_manifest, load_context, manifest_argument
+from mjcfbuild.cli import (
+    allow_outside_argument,
+    chosen_manifest,
+    load_context,
+    manifest_argument,
+    report_warning,
+)
 from mjcfbuild.errors import EXIT_OK
+
+_SHOWN = 5  # files named in a line before "and N more"
 
 
 def add_parser(commands) -> None:
@@ -15,37 +26,115 @@ def add_parser(commands) -> None:
         "clean",
         help="remove the built model, its assets, report and build state",
         description=(
-            "Remove what mjcfbuild wrote into the output folder: the robot and scene files, "
-            "assets/, report/ and .mjcfbuild/. Other files in the folder are left alone, and "
-            "so is the shared cache (see mjcfbuild cache)."
+            "Remove the files builds wrote into the output folder (the robot and scene files, "
+            "what they wrote in assets/, report/ and the other folders, and .mjcfbuild/), as "
+            "builds recorded them, and the folders that leave empty. Files builds did not write "
+            "are left alone wherever they are, links are not followed, and so is the shared "
+            "cache (see mjcfbuild cache)."
         ),
     )
     manifest_argument(parser)
+    parser.add_argument(
+        "-n", "--dry-run", action="store_true", help="list what would be removed; remove nothing"
+    )
+    allow_outside_argument(parser)
     parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    """Remove the outputs."""
+    """Remove the recorded outputs, or list them (``--dry-run``)."""
+    from mjcfbuild.engine import written
+    from mjcfbuild.engine.guard import check_output_folder
     from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.runner import build_lock
-    from mjcfbuild.engine.tasks import report_dir
 
     ctx = load_context(chosen_manifest(args), args)
-    removed = []
-    if ctx.out_dir.is_dir():
-        with build_lock(ctx, Progress(quiet=True)):
-            for path in (ctx.robot_path, ctx.scene_path, ctx.urdf_path):
-                if path is not None and path.exists():
-                    path.unlink()
-                    removed.append(ctx.label(path))
-            for folder in (ctx.assets_dir, report_dir(ctx), ctx.urdf_mesh_dir):
-                if folder is not None and folder.is_dir():
-                    shutil.rmtree(folder)
-                    removed.append(ctx.label(folder) + "/")
-        shutil.rmtree(ctx.state_dir, ignore_errors=True)
-        removed.append(ctx.label(ctx.state_dir) + "/")
-        if not any(ctx.out_dir.iterdir()):
-            ctx.out_dir.rmdir()
-    if not args.quiet:
-        print(f"mjcfbuild: removed {', '.join(removed) if removed else 'nothing'}")
+    out = ctx.out_dir
+    check_output_folder(ctx)
+    if not out.is_dir() or not ctx.state_dir.is_dir():
+        _say(args, "removed nothing" if not args.dry_run else "would remove nothing")
+        return EXIT_OK
+    names = written.recorded(ctx)
+    if names is None:
+        report_warning(
+            f"{ctx.label(ctx.state_dir)}: no record of the files builds wrote here (an older "
+            "mjcfbuild built it); build once, then clean again"
+        )
+        _say(args, "removed nothing" if not args.dry_run else "would remove nothing")
+        return EXIT_OK
+    files = [out / name for name in names if written.written_file(out, name)]
+    if args.dry_run:
+        if not args.quiet:
+            print("mjcfbuild: would remove:")
+            for path in [*files, ctx.state_dir]:
+                print(f"  {ctx.label(path)}{'/' if path == ctx.state_dir else ''}")
+            _say_kept(ctx, set(files))
+        return EXIT_OK
+    with build_lock(ctx, Progress(quiet=True)):
+        for path in files:
+            path.unlink(missing_ok=True)
+        _remove_empty_folders(out, names)
+    shutil.rmtree(ctx.state_dir, ignore_errors=True)  # the guard refused a link there
+    if not out.is_symlink() and not any(out.iterdir()):  # a linked folder is the user's
+        out.rmdir()
+    _say(args, "removed " + ", ".join([*_grouped(ctx, files), ctx.label(ctx.state_dir) + "/"]))
+    if out.is_dir() and not args.quiet:
+        _say_kept(ctx, set())
     return EXIT_OK
+
+
+def _say(args: argparse.Namespace, text: str) -> None:
+    if not args.quiet:
+        print(f"mjcfbuild: {text}")
+
+
+def _remove_empty_folders(out: Path, names: list[str]) -> None:
+    """Remove the folders of recorded files that are empty now, deepest first; never through
+    a link, never the output folder itself (the caller decides)."""
+    folders = {
+        "/".join(name.split("/")[:depth])
+        for name in names
+        for depth in range(1, name.count("/") + 1)
+    }
+    for folder in sorted(folders, key=lambda f: f.count("/"), reverse=True):
+        path = out / folder
+        if not path.is_symlink() and path.is_dir() and not any(path.iterdir()):
+            path.rmdir()
+
+
+def _grouped(ctx, files: list[Path]) -> list[str]:
+    """The removed files as a message lists them: files at the top of the output folder by
+    name, the others counted by the top folder they were in."""
+    top: list[str] = []
+    counts: dict[str, int] = {}
+    for path in files:
+        relative = path.relative_to(ctx.out_dir)
+        if len(relative.parts) == 1:
+            top.append(ctx.label(path))
+        else:
+            folder = ctx.label(ctx.out_dir / relative.parts[0]) + "/"
+            counts[folder] = counts.get(folder, 0) + 1
+    grouped = [f"{folder} ({n} file{'s' if n > 1 else ''})" for folder, n in counts.items()]
+    return [*top, *grouped]
+
+
+def _say_kept(ctx, removed: set[Path]) -> None:
+    """Name the files left in the output folder (not written by builds), a few of them."""
+    kept = [
+        path
+        for path in _files_below(ctx.out_dir)
+        if path not in removed and ctx.state_dir not in path.parents
+    ]
+    if kept:
+        shown = ", ".join(ctx.label(path) for path in kept[:_SHOWN])
+        more = f" and {len(kept) - _SHOWN} more" if len(kept) > _SHOWN else ""
+        print(f"mjcfbuild: kept {shown}{more} (not written by mjcfbuild)")
+
+
+def _files_below(folder: Path) -> list[Path]:
+    """Every file and link below ``folder``, sorted, not following links to folders."""
+    found = []
+    for root, dirs, names in os.walk(folder):  # os.walk does not enter linked folders
+        found += [Path(root) / name for name in names]
+        found += [Path(root) / name for name in dirs if (Path(root) / name).is_symlink()]
+    return sorted(found)

@@ -111,6 +111,17 @@ def part_urdf(ctx: BuildContext, index: int) -> Path:
     return ctx.state_dir / PARTS_DIR / f"{index}.urdf"
 
 
+def part_folders(ctx: BuildContext) -> list[Path]:
+    """The folders the URDF and xacro parts read their files from: each part file's folder
+    and the packages robot.yaml names for it."""
+    folders: list[Path] = []
+    for index, part in enumerate(ctx.manifest.attach):
+        if part.source.kind != "mjcf":
+            folders.append(ctx.resolve(part.source.file).parent)
+            folders += _part_packages(ctx, index, part).values()
+    return folders
+
+
 def _part_source(ctx: BuildContext, index: int, part: Attachment) -> Path:
     source = ctx.resolve(part.source.file)
     problem = unreadable_file(source)

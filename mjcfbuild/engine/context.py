@@ -49,6 +49,7 @@ class BuildContext:
     command_stamp_key: str | None = None  # the stamp's key without a manifest file (convert)
     use_remote: bool = True
     executor_override: str | None = None
+    allow_outside: bool = False  # --allow-outside: output.folder may leave the manifest's tree
     session: BuildSession = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:

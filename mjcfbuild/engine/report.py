@@ -126,6 +126,7 @@ def write_report(ctx: BuildContext) -> Path:
     )
     write_if_changed(folder / "report.md", markdown(report).encode())
     _page_tables(ctx, folder, report)
+    ctx.session.written.update(str(folder / n) for n in (".gitignore", "report.json", "report.md"))
     return folder
 
 
@@ -137,6 +138,7 @@ def _page_tables(ctx: BuildContext, folder: Path, report: dict) -> None:
 
         (folder / "page").mkdir(exist_ok=True)
         write_if_changed(folder / "page" / "tables.js", tables_script(report))
+        ctx.session.written.add(str(folder / "page" / "tables.js"))
         return
     (folder / "index.html").unlink(missing_ok=True)
     if (folder / "page").is_dir():

@@ -13,8 +13,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine import stamp
+from mjcfbuild.engine import stamp, written
 from mjcfbuild.engine.context import BuildContext
+from mjcfbuild.engine.guard import check_output_folder
 from mjcfbuild.engine.loader import DATABASE, run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.report import record_warnings, write_report, write_stats
@@ -64,7 +65,11 @@ class BuildResult:
 
 @contextlib.contextmanager
 def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
-    """Hold the output folder's lock; a second build of it waits instead of interleaving."""
+    """Hold the output folder's lock; a second build of it waits instead of interleaving.
+
+    The folder is checked first (:mod:`mjcfbuild.engine.guard`): nothing is written, not even
+    the lock, in a folder the build may not write."""
+    check_output_folder(ctx)
     try:
         ctx.state_dir.mkdir(parents=True, exist_ok=True)
         handle = open(ctx.state("lock"), "w")  # noqa: SIM115 - held for the whole build
@@ -143,20 +148,25 @@ def _build_locked(ctx: BuildContext, progress: Progress, result: BuildResult) ->
     # Workers start while this process plans, importing until their first step comes.
     ctx.session.warm_workers(first_build=not ctx.state(DATABASE).exists())
     planning = planning_tasks(ctx)
-    doit_output = _run_stage(ctx, planning, progress, result)
-    if not result.errors:
-        tasks = build_tasks(ctx)
-        doit_output += _run_stage(ctx, tasks, progress, result)
+    try:
+        doit_output = _run_stage(ctx, planning, progress, result)
         if not result.errors:
-            remove_stale_products(ctx, tasks)
-        # A failed check is what the report is for; any other failure means the model
-        # on disk is an earlier one, which the report must not claim to describe.
-        model_built = all(isinstance(e, CheckError) for e in result.errors)
-        ctx.session.finish_sharing()  # uploads are done (or given up) before the build returns
-        record_warnings(ctx, [task["name"] for task in (*planning, *tasks)])
-        if model_built and ctx.robot_path.exists():
-            write_report(ctx)
-        write_stats(ctx)
+            tasks = build_tasks(ctx)
+            doit_output += _run_stage(ctx, tasks, progress, result)
+            if not result.errors:
+                remove_stale_products(ctx, tasks)
+            # A failed check is what the report is for; any other failure means the model
+            # on disk is an earlier one, which the report must not claim to describe.
+            model_built = all(isinstance(e, CheckError) for e in result.errors)
+            ctx.session.finish_sharing()  # uploads are done (or given up) before it returns
+            record_warnings(ctx, [task["name"] for task in (*planning, *tasks)])
+            if model_built and ctx.robot_path.exists():
+                write_report(ctx)
+            write_stats(ctx)
+    finally:
+        # A failed or interrupted build wrote files too: clean must know them.
+        targets = [target for task in [*planning, *tasks] for target in task["targets"]]
+        written.record(ctx, [*targets, *ctx.session.written])
     if ctx.session.cache_grew:
         _prune_cache(ctx)
     result.engine_log = doit_output if result.errors else ""

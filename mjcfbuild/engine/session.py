@@ -46,6 +46,7 @@ class BuildSession:
         self.task_warnings: dict[str, list[str]] = {}  # what each task that ran warned of
         self.timings: dict[str, float] = {}
         self.notes: dict[str, str] = {}  # task -> a word for the progress line ("from cache")
+        self.written: set[str] = set()  # files this build wrote (engine.written records them)
         self.cache_grew = False  # a product was stored: the cache may need pruning
         self.cache_report: dict[str, Any] | None = None
         self._hashes: HashCache | None = None

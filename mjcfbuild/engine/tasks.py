@@ -429,6 +429,8 @@ def _run(
         ctx.session.timings[name] = time.perf_counter() - started
     ctx.session.warnings.extend(result.get("warnings", []))
     ctx.session.task_warnings[name] = list(result.get("warnings", []))
+    # What clean may remove: the files the step reports, checked (outputs) or not (written).
+    ctx.session.written.update(result["outputs"], result.get("written", []))
     notes = ["from cache" if result.get("cached") else "", result.get("note", "")]
     if any(notes):
         ctx.session.notes[name] = "; ".join(n for n in notes if n)
@@ -562,6 +564,7 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
         inputs_file_label=ctx.label(inputs_file) if inputs_file else None,
         output=str(ctx.state(PLAN)),
         prebuilt_meshes=str(prebuilt) if prebuilt is not None else None,
+        roots=None if ctx.manifest.source.read_outside else _description_roots(ctx),
     )
     return _task(
         ctx,
@@ -574,6 +577,15 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
         targets=[ctx.state(PLAN)],
         extra_uptodate=[planned_meshes_exist(ctx.state(PLAN))],
     )
+
+
+def _description_roots(ctx: BuildContext) -> list[str]:
+    """The folders a description reads from without a warning: robot.yaml's, the source
+    file's, the packages robot.yaml names, and those of the parts it attaches."""
+    from mjcfbuild.compose.tasks import part_folders
+
+    folders = [ctx.base_dir, ctx.source_base_dir, *ctx.resolver.explicit.values()]
+    return sorted({str(ctx.resolve(str(folder))) for folder in [*folders, *part_folders(ctx)]})
 
 
 def product_summary(ctx: BuildContext, mesh_id: str) -> Path:

@@ -62,6 +62,13 @@ class Source(StrictModel):
             "Relative mesh paths in it are relative to robot.yaml's folder."
         ),
     )
+    read_outside: bool = Field(
+        False,
+        description=(
+            "The description reads meshes or textures from outside every package folder and "
+            "robot.yaml's folder on purpose: do not warn about them."
+        ),
+    )
 
     @model_validator(mode="after")
     def _exactly_one(self) -> Source:
@@ -619,6 +626,13 @@ class Output(StrictModel):
     """Where the model is written."""
 
     folder: RelPath = Field("mjcf", description="Output folder, relative to robot.yaml.")
+    allow_outside: bool = Field(
+        False,
+        description=(
+            "Let 'folder' leave the folder tree of robot.yaml (an absolute path, '..', or a "
+            "link pointing elsewhere); otherwise such a folder is refused."
+        ),
+    )
     robot: FileName | None = Field(
         None, description="File name of the robot model. Default: '<name>.xml'."
     )

@@ -23,14 +23,12 @@ def resolve_uri(uri: str, base_dir: Path, packages: PackageResolver) -> Path:
     text = uri.strip()
     if not text:
         raise InputError("empty file name")
-    for scheme in _PACKAGE_SCHEMES:
-        if text.startswith(scheme):
-            # "package:///pkg/..." (an extra slash, seen in real descriptions) means the same.
-            rest = text[len(scheme) :].lstrip("/")
-            package, _, inner = rest.partition("/")
-            if not package:
-                raise InputError(f"'{uri}' names no package")
-            return normalise(packages.find(package) / unquote(inner))
+    named = _package_part(text)
+    if named is not None:
+        package, inner = named
+        if not package:
+            raise InputError(f"'{uri}' names no package")
+        return normalise(packages.find(package) / unquote(inner))
     if text.startswith(_REMOTE_SCHEMES):
         raise InputError(
             f"'{uri}' is a remote file; mjcfbuild does not download files",
@@ -42,3 +40,20 @@ def resolve_uri(uri: str, base_dir: Path, packages: PackageResolver) -> Path:
     if not path.is_absolute():
         path = base_dir / path
     return normalise(path)
+
+
+def uri_package_folder(uri: str, packages: PackageResolver) -> Path | None:
+    """The folder of the package a ``package://`` (or ``model://``) URI names; None for other
+    URIs. Call it after :func:`resolve_uri` succeeded (the package is found)."""
+    named = _package_part(uri.strip())
+    return normalise(packages.find(named[0])) if named and named[0] else None
+
+
+def _package_part(text: str) -> tuple[str, str] | None:
+    """(package, the rest) of a package URI, else None."""
+    for scheme in _PACKAGE_SCHEMES:
+        if text.startswith(scheme):
+            # "package:///pkg/..." (an extra slash, seen in real descriptions) means the same.
+            package, _, inner = text[len(scheme) :].lstrip("/").partition("/")
+            return package, inner
+    return None

@@ -55,7 +55,9 @@ def run(payload: dict) -> dict:
     assembly = _read(Path(request.assembly_report))
     write_output(folder / "README.md", readme(info, check, assembly).encode(), outputs)
     _changelog(folder, model, info, Path(request.record))
-    return {"outputs": outputs, "warnings": warnings}
+    # The changelog is kept, not checked (a user may edit it), but clean removes it too.
+    written = [str(folder / CHANGELOG)] if (folder / CHANGELOG).is_file() else []
+    return {"outputs": outputs, "warnings": warnings, "written": written}
 
 
 _PROVENANCE = ("source", "manifest_text", "revision", "remote", "mujoco_version", "license_from")

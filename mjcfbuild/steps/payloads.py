@@ -167,6 +167,8 @@ class PlanPayload(Payload):
     inputs_file_label: str | None
     output: Output
     prebuilt_meshes: str | None = None  # convert -a: a folder of meshes converted before
+    # The folders files may be read from without a warning; None: no warning (read_outside)
+    roots: list[str] | None = None
 
 
 @dataclass(frozen=True)

@@ -30,7 +30,13 @@ def run(payload: dict) -> dict:
         robot = parse_urdf(data, display)
         refuse_deep_chains(robot)  # before any work: MuJoCo could not read the model back
         prebuilt = request.prebuilt_meshes
-        resolve_files(robot, Path(request.base_dir), packages, Path(prebuilt) if prebuilt else None)
+        resolve_files(
+            robot,
+            Path(request.base_dir),
+            packages,
+            Path(prebuilt) if prebuilt else None,
+            roots=None if request.roots is None else [Path(root) for root in request.roots],
+        )
         root = parse_xml(data, display, [])
         urdf_inputs = inputs_in_urdf(root, display)
         control = read_ros2_control(root, display)

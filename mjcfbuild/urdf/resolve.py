@@ -2,20 +2,25 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 
 from mjcfbuild.errors import InputError
-from mjcfbuild.fsutil import unreadable_file
+from mjcfbuild.fsutil import normalise, unreadable_file
 from mjcfbuild.meshes.formats import MESH_FORMATS, mesh_format
 from mjcfbuild.meshes.naming import assign_mesh_ids
 from mjcfbuild.meshes.prebuilt import prebuilt_mesh
-from mjcfbuild.sources.packages import PackageResolver
-from mjcfbuild.sources.uris import resolve_uri
+from mjcfbuild.sources.packages import PackageResolver, find_enclosing_package
+from mjcfbuild.sources.uris import resolve_uri, uri_package_folder
 from mjcfbuild.urdf.model import Robot, Shape
 
 
 def resolve_files(
-    robot: Robot, base_dir: Path, packages: PackageResolver, prebuilt: Path | None = None
+    robot: Robot,
+    base_dir: Path,
+    packages: PackageResolver,
+    prebuilt: Path | None = None,
+    roots: Sequence[Path] | None = None,
 ) -> None:
     """Fill in the real path of every mesh and texture, and give each mesh file an id.
 
@@ -23,7 +28,11 @@ def resolve_files(
     A reference that cannot be resolved, a missing file or an unsupported format is an
     :class:`InputError` at the line of the element that names it. With ``prebuilt``, a
     folder of meshes converted before, a mesh with a pre-generated OBJ there is read from it.
+    With ``roots`` (the folders the description may read: robot.yaml's, its packages'), a
+    file outside them and outside every package a URI names gets a warning in
+    ``robot.warnings``, once per URI.
     """
+    reads: list[tuple[str, Path, int | None]] = []
     mesh_paths: list[str] = []
     for link in robot.links:
         for shape in link.shapes:
@@ -32,6 +41,7 @@ def resolve_files(
                 geometry.path = _resolve_existing(
                     robot, shape, geometry.uri or "", base_dir, packages
                 )
+                reads.append((geometry.uri or "", Path(geometry.path), shape.line))
                 if prebuilt is not None:
                     found = prebuilt_mesh(prebuilt, geometry.path)
                     geometry.path = str(found) if found is not None else geometry.path
@@ -44,15 +54,49 @@ def resolve_files(
                     )
                 mesh_paths.append(geometry.path)
             if shape.material is not None and shape.material.texture:
-                shape.material.texture = _resolve_existing(
-                    robot, shape, shape.material.texture, base_dir, packages
-                )
+                uri = shape.material.texture
+                shape.material.texture = _resolve_existing(robot, shape, uri, base_dir, packages)
+                reads.append((uri, Path(shape.material.texture), shape.line))
+    if roots is not None:
+        _warn_outside(robot, reads, packages, roots)
     ids = assign_mesh_ids(mesh_paths)
     for link in robot.links:
         for shape in link.shapes:
             if shape.geometry.kind == "mesh":
                 assert shape.geometry.path is not None, "every mesh was resolved above"
                 shape.geometry.mesh_id = ids[shape.geometry.path]
+
+
+def _warn_outside(
+    robot: Robot,
+    reads: list[tuple[str, Path, int | None]],
+    packages: PackageResolver,
+    roots: Sequence[Path],
+) -> None:
+    """Warn once per URI about a file outside ``roots`` and every package folder (those the
+    URIs name, and any folder with a package.xml).
+
+    Paths are compared as written (``..`` removed, links kept): a package installed with
+    links into its sources (colcon --symlink-install) is still inside its folder.
+    """
+    inside = [normalise(root) for root in roots]
+    inside += filter(None, (uri_package_folder(uri, packages) for uri, _, _ in reads))
+    warned: set[str] = set()
+    for uri, path, line in reads:
+        if uri in warned or any(path == root or root in path.parents for root in inside):
+            continue
+        enclosing = find_enclosing_package(path)  # a ROS package found by no URI
+        if enclosing is not None:
+            inside.append(enclosing[1])
+            continue
+        warned.add(uri)
+        where = f"{robot.source}:{line}" if line is not None else robot.source
+        read = "" if uri.strip() == str(path) else f" ({path})"
+        robot.warnings.append(
+            f"{where}: '{uri}'{read} is outside every package folder and robot.yaml's folder, "
+            "and the model publishes it; move the file into the description, or set "
+            "source.read_outside: true if it is meant"
+        )
 
 
 def _resolve_existing(

@@ -133,6 +133,11 @@ def a_plain_file(path: Path) -> None:
     path.write_text("not a folder\n")
 
 
+def link_to_elsewhere(path: Path) -> None:
+    """A link out of robot.yaml's tree (to nothing: a build must not even look there)."""
+    path.symlink_to("/nonexistent/mjcfbuild-elsewhere")
+
+
 def read_only_folder(path: Path) -> None:
     """A folder nobody may write in."""
     path.mkdir()
@@ -859,6 +864,45 @@ CASES: list[Case] = [
         EXIT_OUTPUT,
         ["locked", "permission"],
         needs_unprivileged=True,
+    ),
+    Case(
+        "output folder is the filesystem root",
+        {"robot.yaml": MANIFEST + "output:\n  folder: /\n", "robot.urdf": urdf()},
+        EXIT_OUTPUT,
+        ["robot.yaml:5:", "'/' is outside", "output.allow_outside: true", "--allow-outside"],
+    ),
+    Case(
+        "output folder above robot.yaml",
+        {"robot.yaml": MANIFEST + "output:\n  folder: ../built\n", "robot.urdf": urdf()},
+        EXIT_OUTPUT,
+        ["robot.yaml:5:", "'../built'", "is outside", "--allow-outside"],
+    ),
+    Case(
+        "output folder linked out of the tree",
+        {
+            "robot.yaml": MANIFEST + "output:\n  folder: out\n",
+            "robot.urdf": urdf(),
+            "out": link_to_elsewhere,
+        },
+        EXIT_OUTPUT,
+        ["robot.yaml:5:", "'out' leads through a link to", "--allow-outside"],
+    ),
+    Case(
+        "assets folder is a link",
+        {
+            "robot.yaml": MANIFEST + "output:\n  folder: out\n",
+            "robot.urdf": urdf(),
+            "out/assets": link_to_elsewhere,
+        },
+        EXIT_OUTPUT,
+        ["out/assets", "symbolic link", "remove the link"],
+    ),
+    Case(
+        "clean of an output folder above robot.yaml",
+        {"robot.yaml": MANIFEST + "output:\n  folder: ..\n", "robot.urdf": urdf()},
+        EXIT_OUTPUT,
+        ["robot.yaml:5:", "'..'", "is outside", "--allow-outside"],
+        args=["clean"],
     ),
     # ---- the command line ---------------------------------------------------------------------
     Case(

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import shutil
+
+from mjcfbuild.errors import EXIT_OUTPUT
 from tests.conftest import run_cli
 
 
@@ -35,3 +38,106 @@ def test_quiet_before_or_after_the_command_prints_nothing(arm):
         result = run_cli(*argv, cwd=arm)
         assert result.code == 0 and result.stdout == "", result.stdout
         assert not (arm / "mjcf").exists()
+
+
+def _output_setting(arm, text: str) -> None:
+    """Replace the arm's ``output:`` section with ``text``."""
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace("output:\n  folder: mjcf\n", text))
+
+
+def _files_below(folder):
+    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*") if not p.is_dir())
+
+
+def test_files_the_user_put_among_the_outputs_stay(arm):
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    out = arm / "mjcf"
+    (out / "assets" / "my_texture.png").write_bytes(b"my own picture")
+    (out / "report" / "notes.md").write_text("my notes\n")
+    result = run_cli("clean", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert _files_below(out) == ["assets/my_texture.png", "report/notes.md"]
+    assert (out / "assets" / "my_texture.png").read_bytes() == b"my own picture"
+    assert "mjcf/assets/ (5 files)" in result.stdout
+    assert "kept mjcf/assets/my_texture.png, mjcf/report/notes.md" in result.stdout
+
+
+def test_an_output_folder_up_a_level_keeps_the_parents_own_files(arm):
+    # The issue's case: with output.folder: .. the parent's own assets/ was deleted.
+    parent = arm.parent
+    (parent / "assets").mkdir()
+    (parent / "assets" / "logo.png").write_bytes(b"the parent's")
+    _output_setting(arm, "output:\n  folder: ..\n  allow_outside: true\n")
+    before = _files_below(parent)
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    assert (parent / "assets" / "base.obj").is_file()
+    result = run_cli("clean", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert _files_below(parent) == before
+    assert (parent / "assets" / "logo.png").read_bytes() == b"the parent's"
+
+
+def test_a_dry_run_lists_what_would_go_and_removes_nothing(arm):
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    (arm / "mjcf" / "NOTES.md").write_text("mine\n")
+    before = _files_below(arm / "mjcf")
+    result = run_cli("clean", "--dry-run", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert _files_below(arm / "mjcf") == before
+    listed = result.stdout.splitlines()
+    assert listed[0] == "mjcfbuild: would remove:"
+    assert "  mjcf/assets/base.obj" in listed and "  mjcf/example_arm.xml" in listed
+    assert "  mjcf/.mjcfbuild/" in listed
+    assert not any("NOTES.md" in line for line in listed[:-1])
+    assert listed[-1] == "mjcfbuild: kept mjcf/NOTES.md (not written by mjcfbuild)"
+    # what it listed is what clean removes
+    assert run_cli("clean", cwd=arm).code == 0
+    assert _files_below(arm / "mjcf") == ["NOTES.md"]
+
+
+def test_every_optional_output_goes_and_the_folder_with_them(arm):
+    _output_setting(
+        arm, "output:\n  folder: mjcf\n  package: true\n  urdf: exported.urdf\n  training: true\n"
+    )
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    assert (arm / "mjcf" / "package" / "CHANGELOG.md").is_file()
+    assert (arm / "mjcf" / "example_arm_mjx.xml").is_file()
+    assert run_cli("clean", "-q", cwd=arm).code == 0
+    assert not (arm / "mjcf").exists()
+
+
+def test_a_link_put_in_place_of_an_output_is_not_followed(arm, tmp_path):
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    mine = tmp_path / "my_scene.xml"
+    mine.write_text("<mujoco/>")
+    scene = arm / "mjcf" / "scene.xml"
+    scene.unlink()
+    scene.symlink_to(mine)
+    result = run_cli("clean", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert scene.is_symlink() and mine.read_text() == "<mujoco/>"
+    assert "kept mjcf/scene.xml" in result.stdout
+
+
+def test_a_linked_assets_folder_is_refused_and_nothing_outside_goes(arm, tmp_path):
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    elsewhere = tmp_path / "elsewhere"
+    shutil.copytree(arm / "mjcf" / "assets", elsewhere)
+    shutil.rmtree(arm / "mjcf" / "assets")
+    (arm / "mjcf" / "assets").symlink_to(elsewhere)
+    result = run_cli("clean", cwd=arm)
+    assert result.code == EXIT_OUTPUT
+    assert result.stderr.startswith("mjcfbuild: error: mjcf/assets: is a symbolic link")
+    assert len(result.stderr.splitlines()) == 1 and "Traceback" not in result.stderr
+    assert (elsewhere / "base.obj").is_file() and (arm / "mjcf" / "example_arm.xml").is_file()
+
+
+def test_a_folder_built_without_a_record_is_left_with_a_warning(arm):
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    (arm / "mjcf" / ".mjcfbuild" / "written.json").unlink()
+    before = _files_below(arm / "mjcf")
+    result = run_cli("clean", cwd=arm)
+    assert result.code == 0
+    assert "no record of the files builds wrote here" in result.stderr
+    assert _files_below(arm / "mjcf") == before

@@ -36,7 +36,7 @@ def test_unknown_key_names_line_column_and_allowed_keys():
     text = error.one_line()
     assert "source.xacor: unknown key 'xacor'" in text
     assert "did you mean 'xacro'?" in text
-    assert "allowed keys: args, description, urdf, xacro" in text
+    assert "allowed keys: args, description, read_outside, urdf, xacro" in text
 
 
 def test_unknown_top_level_key():

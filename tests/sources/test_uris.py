@@ -6,7 +6,7 @@ import pytest
 
 from mjcfbuild.errors import InputError
 from mjcfbuild.sources.packages import PackageResolver
-from mjcfbuild.sources.uris import resolve_uri
+from mjcfbuild.sources.uris import resolve_uri, uri_package_folder
 
 
 @pytest.fixture
@@ -42,3 +42,11 @@ def test_remote_and_empty_references_are_errors(tmp_path, resolver):
 
 def test_package_uri_with_an_extra_slash(tmp_path, resolver):
     assert resolve_uri("package:///pkg/a.stl", tmp_path, resolver) == tmp_path / "pkg" / "a.stl"
+
+
+def test_the_package_folder_a_uri_names(tmp_path, resolver):
+    folder = tmp_path / "pkg"
+    assert uri_package_folder("package://pkg/../../x.obj", resolver) == folder
+    assert uri_package_folder(" model:///pkg/m.stl", resolver) == folder
+    assert uri_package_folder("file:///pkg/m.stl", resolver) is None
+    assert uri_package_folder("meshes/m.stl", resolver) is None

@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+import shutil
+
 import pytest
 
 from mjcfbuild.errors import InputError
 from mjcfbuild.sources.packages import PackageResolver
 from mjcfbuild.urdf.parse import parse_urdf
 from mjcfbuild.urdf.resolve import resolve_files
-from tests.conftest import write
+from tests.conftest import ROOT, run_cli, simple_manifest, two_link_urdf, write
 
 
 def robot_with(mesh: str):
@@ -48,3 +50,92 @@ def test_unknown_package_points_at_the_urdf_line(tmp_path):
         resolve_files(robot_with("package://nope/a.stl"), tmp_path, PackageResolver({}, {}))
     assert info.value.location.line == 2
     assert "unknown package 'nope'" in info.value.message
+
+
+def _robot_reading(*uris: str):
+    """One link with a visual and a collision of each URI, each pair on its own line (2, 3...)."""
+    shapes = "".join(
+        f'\n<visual><geometry><mesh filename="{uri}"/></geometry></visual>'
+        f'<collision><geometry><mesh filename="{uri}"/></geometry></collision>'
+        for uri in uris
+    )
+    return parse_urdf(f'<robot name="r"><link name="a">{shapes}</link></robot>'.encode(), "r.urdf")
+
+
+def _outside_layout(tmp_path):
+    """A project (robot.yaml's folder), a package beside it and a folder outside both."""
+    for folder in ("project", "pkg/meshes", "elsewhere"):
+        write(tmp_path / folder / "m.stl", "solid a\nendsolid a\n")
+    return tmp_path / "project", PackageResolver({"pkg": tmp_path / "pkg"}, {})
+
+
+def test_files_outside_the_description_are_warned_about_once_per_uri(tmp_path):
+    project, packages = _outside_layout(tmp_path)
+    far = tmp_path / "elsewhere" / "m.stl"
+    robot = _robot_reading("package://pkg/../elsewhere/m.stl", str(far), f"file://{far}")
+    resolve_files(robot, tmp_path / "pkg", packages, roots=[project])
+    assert robot.warnings == [
+        f"r.urdf:2: 'package://pkg/../elsewhere/m.stl' ({far}) is outside every package "
+        "folder and robot.yaml's folder, and the model publishes it; move the file into the "
+        "description, or set source.read_outside: true if it is meant",
+        f"r.urdf:3: '{far}' is outside every package folder and robot.yaml's folder, and the "
+        "model publishes it; move the file into the description, or set "
+        "source.read_outside: true if it is meant",
+        f"r.urdf:4: 'file://{far}' ({far}) is outside every package folder and "
+        "robot.yaml's folder, and the model publishes it; move the file into the "
+        "description, or set source.read_outside: true if it is meant",
+    ]
+
+
+def test_files_in_the_packages_and_the_manifests_folder_are_not(tmp_path):
+    project, packages = _outside_layout(tmp_path)
+    robot = _robot_reading(
+        "package://pkg/meshes/m.stl",
+        "meshes/m.stl",  # relative to the URDF's folder, inside the package
+        str(project / "m.stl"),
+        "package://pkg/meshes/../meshes/m.stl",
+    )
+    resolve_files(robot, tmp_path / "pkg", packages, roots=[project])
+    assert robot.warnings == []
+
+
+def test_a_file_in_a_ros_package_no_uri_names_is_not(tmp_path):
+    project, packages = _outside_layout(tmp_path)
+    write(tmp_path / "installed" / "other_pkg" / "package.xml", "<package><name>o</name></package>")
+    mesh = write(tmp_path / "installed" / "other_pkg" / "meshes" / "m.stl", "solid a\nendsolid\n")
+    robot = _robot_reading(str(mesh), str(tmp_path / "installed" / "m.stl"))
+    write(tmp_path / "installed" / "m.stl", "solid a\nendsolid a\n")
+    resolve_files(robot, tmp_path / "pkg", packages, roots=[project])
+    assert [warning.split(":")[1] for warning in robot.warnings] == ["3"]
+
+
+def test_without_roots_nothing_is_warned_about(tmp_path):
+    _, packages = _outside_layout(tmp_path)
+    robot = _robot_reading(str(tmp_path / "elsewhere" / "m.stl"))
+    resolve_files(robot, tmp_path / "pkg", packages)
+    assert robot.warnings == []
+
+
+def test_a_build_warns_and_the_setting_silences_it(tmp_path):
+    project, _ = _outside_layout(tmp_path)
+    far = tmp_path / "elsewhere" / "forearm.obj"
+    shutil.copyfile(ROOT / "examples" / "arm" / "meshes" / "forearm.obj", far)
+    box = '<geometry><box size="0.2 0.2 0.1"/></geometry>'
+    write(
+        project / "robot.urdf",
+        two_link_urdf().replace(box, f'<geometry><mesh filename="{far}"/></geometry>'),
+    )
+    lines = (project / "robot.urdf").read_text().splitlines()
+    line = next(n for n, text in enumerate(lines, 1) if "<mesh" in text)
+    simple_manifest(project)
+    result = run_cli("build", "--no-check", "-q", cwd=project)
+    assert result.code == 0, result.stderr
+    warnings = [line for line in result.stderr.splitlines() if "outside every package" in line]
+    assert warnings == [
+        f"mjcfbuild: warning: robot.urdf:{line}: '{far}' is outside every package folder and "
+        "robot.yaml's folder, and the model publishes it; move the file into the description, "
+        "or set source.read_outside: true if it is meant"
+    ]
+    simple_manifest(project, "urdf: robot.urdf\n  read_outside: true")
+    result = run_cli("build", "--no-check", "-q", cwd=project)
+    assert result.code == 0 and "outside every package" not in result.stderr, result.stderr

@@ -1,0 +1,111 @@
+"""The output folder's guard: inside robot.yaml's folder tree unless allowed, never through a
+link. Every refusal comes before anything is written."""
+
+from __future__ import annotations
+
+from mjcfbuild.errors import EXIT_OUTPUT
+from tests.conftest import run_cli
+
+
+def _output_folder(arm, value: str, extra: str = "") -> None:
+    manifest = arm / "robot.yaml"
+    text = manifest.read_text().replace("  folder: mjcf\n", f"  folder: {value}\n{extra}")
+    manifest.write_text(text)
+
+
+def _output_line(arm) -> int:
+    lines = (arm / "robot.yaml").read_text().splitlines()
+    return next(i for i, line in enumerate(lines, 1) if line.startswith("  folder:"))
+
+
+def _refused(result, arm) -> str:
+    assert result.code == EXIT_OUTPUT, result.stderr
+    assert "Traceback" not in result.stderr and len(result.stderr.splitlines()) == 1
+    assert result.stderr.startswith(f"mjcfbuild: error: robot.yaml:{_output_line(arm)}:")
+    return result.stderr
+
+
+def test_the_filesystem_root_is_refused(arm):
+    _output_folder(arm, "/")
+    stderr = _refused(run_cli("build", "-q", "--no-check", cwd=arm), arm)
+    assert "output.folder: '/' is outside" in stderr
+    assert "output.allow_outside: true" in stderr and "--allow-outside" in stderr
+    _refused(run_cli("build", "--dry-run", cwd=arm), arm)  # says what the build would say
+
+
+def test_a_folder_up_the_tree_is_refused_and_nothing_is_written(arm):
+    _output_folder(arm, "../out")
+    stderr = _refused(run_cli("build", "-q", "--no-check", cwd=arm), arm)
+    assert f"'../out' ({arm.parent / 'out'}) is outside {arm}" in stderr
+    assert not (arm.parent / "out").exists()
+    _refused(run_cli("clean", cwd=arm), arm)
+
+
+def test_the_setting_or_the_flag_allows_it(arm):
+    _output_folder(arm, "../out")
+    assert run_cli("build", "-q", "--no-check", "--allow-outside", cwd=arm).code == 0
+    assert (arm.parent / "out" / "example_arm.xml").is_file()
+    assert run_cli("clean", "-q", "--allow-outside", cwd=arm).code == 0
+    assert not (arm.parent / "out").exists()
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace("../out\n", "../out\n  allow_outside: true\n"))
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    assert (arm.parent / "out" / "example_arm.xml").is_file()
+
+
+def test_a_linked_output_folder_is_resolved(arm, tmp_path):
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (arm / "mjcf").symlink_to(elsewhere)
+    stderr = _refused(run_cli("build", "-q", "--no-check", cwd=arm), arm)
+    assert f"'mjcf' leads through a link to {elsewhere}" in stderr
+    assert list(elsewhere.iterdir()) == []
+    # a link that stays inside the tree is the user's layout, not an escape
+    (arm / "mjcf").unlink()
+    (arm / "build").mkdir()
+    (arm / "mjcf").symlink_to(arm / "build")
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    assert (arm / "build" / "example_arm.xml").is_file()
+    result = run_cli("clean", "-q", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert (arm / "mjcf").is_symlink() and list((arm / "build").iterdir()) == []
+
+
+def test_a_linked_assets_folder_is_not_written_through_even_when_allowed(arm, tmp_path):
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (arm / "mjcf").mkdir()
+    (arm / "mjcf" / "assets").symlink_to(elsewhere)
+    _output_folder(arm, "mjcf", "  allow_outside: true\n")
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert result.code == EXIT_OUTPUT and len(result.stderr.splitlines()) == 1
+    assert result.stderr.startswith(
+        f"mjcfbuild: error: mjcf/assets: is a symbolic link (to {elsewhere})"
+    )
+    assert list(elsewhere.iterdir()) == [] and not (arm / "mjcf" / ".mjcfbuild").exists()
+
+
+def test_a_linked_report_subfolder_an_earlier_build_wrote_is_refused(arm, tmp_path):
+    assert run_cli("build", "-q", cwd=arm).code == 0  # the check writes report/tuning/
+    tuning = arm / "mjcf" / "report" / "tuning"
+    assert tuning.is_dir()  # a folder no fixed list names: the record does
+    elsewhere = tmp_path / "elsewhere"
+    tuning.rename(elsewhere)
+    tuning.symlink_to(elsewhere)
+    (arm / "robot.yaml").write_text((arm / "robot.yaml").read_text() + "# edited\n")
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert result.code == EXIT_OUTPUT
+    assert "mjcf/report/tuning: is a symbolic link" in result.stderr
+
+
+def test_check_refuses_a_folder_linked_after_the_build(arm, tmp_path):
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    report = arm / "mjcf" / "report"
+    elsewhere = tmp_path / "elsewhere"
+    report.rename(elsewhere)
+    report.symlink_to(elsewhere)
+    before = sorted(p.name for p in elsewhere.iterdir())
+    result = run_cli("check", cwd=arm)
+    assert result.code == EXIT_OUTPUT and len(result.stderr.splitlines()) == 1, result.stderr
+    assert result.stderr.startswith("mjcfbuild: error: mjcf/report: is a symbolic link")
+    assert sorted(p.name for p in elsewhere.iterdir()) == before
