@@ -15,7 +15,6 @@ products came from (the cache counters), how long each decomposition took - goes
 from __future__ import annotations
 
 import json
-import shutil
 from pathlib import Path
 
 from mjcfbuild.check.report_page import markdown
@@ -140,9 +139,11 @@ def _page_tables(ctx: BuildContext, folder: Path, report: dict) -> None:
         write_if_changed(folder / "page" / "tables.js", tables_script(report))
         ctx.session.written.add(str(folder / "page" / "tables.js"))
         return
-    (folder / "index.html").unlink(missing_ok=True)
-    if (folder / "page").is_dir():
-        shutil.rmtree(folder / "page")
+    # Only what builds wrote goes (engine.written): a file of the user's stays.
+    from mjcfbuild.engine.written import remove_written
+
+    remove_written(ctx, folder / "index.html")
+    remove_written(ctx, folder / "page")
 
 
 def decompositions(ctx: BuildContext) -> list[dict]:

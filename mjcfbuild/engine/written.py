@@ -74,3 +74,24 @@ def written_file(out_dir: Path, name: str) -> bool:
         return stat.S_ISREG((path / parts[-1]).lstat().st_mode)
     except OSError:
         return False
+
+
+def remove_written(ctx: BuildContext, below: Path) -> list[str]:
+    """Remove the files builds recorded writing under ``below`` (a folder in the output folder)
+    and the folders left empty there; a file the user put there stays. The names removed."""
+    prefix = _relative(ctx.out_dir, below)
+    if prefix is None:
+        return []
+    removed = []
+    for name in recorded(ctx) or []:
+        if (name == prefix or name.startswith(prefix + "/")) and written_file(ctx.out_dir, name):
+            (ctx.out_dir / name).unlink()
+            removed.append(name)
+    if below.is_dir() and not below.is_symlink():
+        folders = sorted(
+            (p for p in below.rglob("*") if p.is_dir() and not p.is_symlink()), reverse=True
+        )
+        for folder in [*folders, below]:
+            if not any(folder.iterdir()):
+                folder.rmdir()
+    return removed

@@ -9,7 +9,6 @@ time the packaged model changes, an entry on top says what changed (the groups o
 from __future__ import annotations
 
 import json
-import shutil
 from pathlib import Path
 
 from mjcfbuild import __version__
@@ -35,13 +34,16 @@ def run(payload: dict) -> dict:
     model = folder / f"{request.name}.xml"
     write_output(model, format_model(Path(request.model).read_bytes()), outputs)
     write_output(folder / "scene.xml", Path(request.scene).read_bytes(), outputs)
-    _copy_assets(Path(request.assets), folder / "assets", outputs)
+    copies = Path(request.record).with_name("package_copies.json")
+    copied = _read(copies).get("files", [])  # what this step copied last time
+    _copy_assets(Path(request.assets), folder / "assets", outputs, copied)
     if request.picture and Path(request.picture).is_file():
         write_output(folder / f"{request.name}.png", Path(request.picture).read_bytes(), outputs)
     if request.license:
         write_output(folder / "LICENSE", Path(request.license).read_bytes(), outputs)
     else:
-        (folder / "LICENSE").unlink(missing_ok=True)
+        if "LICENSE" in copied:  # our copy of a license the description no longer has
+            (folder / "LICENSE").unlink(missing_ok=True)
         warnings.append(
             "package: no LICENSE found in the description package (or its repository): the "
             "packaged folder has none; add the description's license before sharing it"
@@ -55,6 +57,10 @@ def run(payload: dict) -> dict:
     assembly = _read(Path(request.assembly_report))
     write_output(folder / "README.md", readme(info, check, assembly).encode(), outputs)
     _changelog(folder, model, info, Path(request.record))
+    names = sorted(
+        str(Path(path).relative_to(folder)) for path in outputs if Path(path).is_relative_to(folder)
+    )
+    write_if_changed(copies, (json.dumps({"files": names}, indent=1) + "\n").encode())
     # The changelog is kept, not checked (a user may edit it), but clean removes it too.
     written = [str(folder / CHANGELOG)] if (folder / CHANGELOG).is_file() else []
     return {"outputs": outputs, "warnings": warnings, "written": written}
@@ -63,16 +69,18 @@ def run(payload: dict) -> dict:
 _PROVENANCE = ("source", "manifest_text", "revision", "remote", "mujoco_version", "license_from")
 
 
-def _copy_assets(source: Path, target: Path, outputs: dict[str, str]) -> None:
-    """The output folder's assets, and no others."""
+def _copy_assets(source: Path, target: Path, outputs: dict[str, str], copied: list[str]) -> None:
+    """The output folder's assets; the copies an earlier package made of assets the model no
+    longer has go (``copied``: what it copied, relative to the package folder), a file the user
+    put there stays."""
     files = source.iterdir() if source.is_dir() else iter(())
     wanted = {path.name for path in files if path.is_file()}
     for name in sorted(wanted):
         write_output(target / name, (source / name).read_bytes(), outputs)
-    if target.is_dir():
-        for path in target.iterdir():
-            if path.name not in wanted:
-                shutil.rmtree(path) if path.is_dir() else path.unlink()
+    for name in copied:
+        stale = target.parent / name
+        if stale.parent == target and stale.name not in wanted and not stale.is_symlink():
+            stale.unlink(missing_ok=True)
 
 
 def _changelog(folder: Path, model: Path, info: Provenance, record: Path) -> None:

@@ -88,3 +88,22 @@ def test_the_stats_keep_each_tasks_last_time_and_stay_out_of_git(tmp_path):
     assert later["times"] == stats["times"] and later["cache"] is None
     ignored = (output / ".mjcfbuild" / ".gitignore").read_text().splitlines()
     assert "*" in ignored
+
+
+def test_turning_the_page_off_removes_only_what_builds_wrote(tmp_path):
+    """Without output.page, the page an earlier build wrote goes; a file the user keeps in the
+    report folder stays (issue 40)."""
+    from tests.conftest import copy_example, run_cli
+
+    arm = copy_example("arm", tmp_path)
+    manifest = arm / "robot.yaml"
+    text = manifest.read_text()
+    manifest.write_text(text + "  page: true\ncheck:\n  enabled: false\n")
+    assert run_cli("build", str(manifest)).code == 0
+    report = arm / "mjcf" / "report"
+    assert (report / "index.html").is_file() and (report / "page" / "tables.js").is_file()
+    (report / "page" / "notes.md").write_text("mine\n")
+    manifest.write_text(text + "check:\n  enabled: false\n")
+    assert run_cli("build", str(manifest)).code == 0
+    assert not (report / "index.html").exists() and not (report / "page" / "tables.js").exists()
+    assert (report / "page" / "notes.md").read_text() == "mine\n"

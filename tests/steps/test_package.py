@@ -138,3 +138,33 @@ def test_the_packaged_model_passes_the_check_against_its_urdf_to_1e12(packaged):
     assert result.code == 0, result.stdout + result.stderr
     found = re.search(r"link poses\s+max (\S+) m, (\S+) rad", result.stdout)
     assert found and float(found.group(1)) < 1e-12 and float(found.group(2)) < 1e-11
+
+
+def test_files_the_user_put_in_the_package_stay_and_stale_copies_go(tmp_path):
+    """A rebuild removes only the copies an earlier package made (an asset the model dropped, a
+    LICENSE the description no longer has), never a file the user added (issue 40)."""
+    import shutil
+
+    arm = tmp_path / "arm"
+    shutil.copytree(EXAMPLES / "arm", arm, ignore=shutil.ignore_patterns("mjcf"))
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "  package: true\ncheck:\n  enabled: false\n")
+    assert run_cli("build", cwd=arm).code == 0
+    folder = arm / "mjcf" / "package"
+    assert (folder / "LICENSE").is_file()
+    (folder / "assets" / "my_texture.png").write_bytes(b"mine")
+    stale = folder / "assets" / "gone.obj"
+    stale.write_bytes(b"v 0 0 0\n")
+    copies = arm / "mjcf/.mjcfbuild/package_copies.json"
+    copies.write_text(copies.read_text().replace('"files": [', '"files": [\n  "assets/gone.obj",'))
+    (arm / "LICENSE").unlink()  # the package task reruns: it has no license to copy
+    assert run_cli("build", cwd=arm).code == 0
+    assert (folder / "assets" / "my_texture.png").read_bytes() == b"mine"
+    assert not stale.exists()
+    assert not (folder / "LICENSE").exists()  # the copy of the license that went
+    # A license the user wrote into the package themselves stays.
+    (folder / "LICENSE").write_text("mine\n")
+    manifest.write_text(manifest.read_text().replace("elbow: 1.2", "elbow: 1.1"))  # a new model
+    result = run_cli("build", cwd=arm)
+    assert result.code == 0 and "package" in result.stdout, result.stdout
+    assert (folder / "LICENSE").read_text() == "mine\n"
