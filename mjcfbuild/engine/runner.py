@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import contextlib
-import fcntl
 import os
 import shutil
 import sys
@@ -64,30 +63,41 @@ class BuildResult:
 
 @contextlib.contextmanager
 def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
-    """Hold the output folder's lock; a second build of it waits instead of interleaving."""
-    try:
+    """Hold the output folder's lock; a second build of it waits instead of interleaving,
+    saying who holds it, and gives up after ``--timeout`` seconds naming the holder."""
+    from mjcfbuild.engine.context import DEFAULT_STEP_TIMEOUT
+    from mjcfbuild.engine.folderlock import Holder, LockBusy, folder_lock
+
+    folder = ctx.label(ctx.out_dir)
+    seconds = DEFAULT_STEP_TIMEOUT if ctx.step_timeout is None else ctx.step_timeout
+
+    def waiting(holder: Holder | None) -> None:
+        if not progress.quiet:
+            who = f" (held by {holder.describe()})" if holder else ""
+            progress.stream.write(f"mjcfbuild: waiting for another build of {folder}{who}\n")
+            progress.stream.flush()
+
+    held = contextlib.ExitStack()
+    try:  # only taking the lock: an error of the build itself is not about the lock
         ctx.state_dir.mkdir(parents=True, exist_ok=True)
-        handle = open(ctx.state("lock"), "w")  # noqa: SIM115 - held for the whole build
+        held.enter_context(folder_lock(ctx.state("lock"), seconds, waiting))
+    except LockBusy as busy:
+        holder = busy.holder
+        who = f"another build ({holder.describe()})" if holder else "another build"
+        hint = f"let it finish, or stop it: kill {holder.pid}" if holder else "let it finish"
+        raise OutputError(
+            f"{who} still holds the output folder's lock after {busy.seconds:g} s",
+            file=folder,
+            hint=f"{hint}; --timeout sets how long to wait",
+        ) from None
     except OSError as exc:
         raise OutputError(
             f"cannot write to the output folder: {exc.strerror}",
-            file=ctx.label(ctx.out_dir),
+            file=folder,
             hint="check its permissions, or set output.folder",
         ) from None
-    with handle:
-        try:
-            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            if not progress.quiet:
-                progress.stream.write(
-                    f"mjcfbuild: waiting for another build of {ctx.label(ctx.out_dir)}\n"
-                )
-                progress.stream.flush()
-            fcntl.flock(handle, fcntl.LOCK_EX)
-        try:
-            yield
-        finally:
-            fcntl.flock(handle, fcntl.LOCK_UN)
+    with held:
+        yield
 
 
 def run_build(
