@@ -141,7 +141,8 @@ def timeout_argument(parser: argparse.ArgumentParser) -> None:
         type=float,
         default=None,
         metavar="SECONDS",
-        help="stop a build step (mesh conversion, decomposition, assembly) that runs longer "
+        help="stop a build step (mesh conversion, decomposition, assembly) that runs longer, "
+        "and stop waiting for another build of the output folder after as long "
         "(default: $MJCFBUILD_TIMEOUT, else 1800)",
     )
 

@@ -25,6 +25,7 @@ from mjcfbuild.manifest.pinpoint import pinpoint
 from mjcfbuild.sources.origins import point_at_source, point_warning_at_source
 
 if TYPE_CHECKING:
+    from mjcfbuild.engine.folderlock import Holder
     from mjcfbuild.engine.workers import WorkerPool
 
 
@@ -66,7 +67,7 @@ def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
     """Hold the output folder's lock; a second build of it waits instead of interleaving,
     saying who holds it, and gives up after ``--timeout`` seconds naming the holder."""
     from mjcfbuild.engine.context import DEFAULT_STEP_TIMEOUT
-    from mjcfbuild.engine.folderlock import Holder, LockBusy, folder_lock
+    from mjcfbuild.engine.folderlock import LockBusy, folder_lock
 
     folder = ctx.label(ctx.out_dir)
     seconds = DEFAULT_STEP_TIMEOUT if ctx.step_timeout is None else ctx.step_timeout
@@ -84,11 +85,10 @@ def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
     except LockBusy as busy:
         holder = busy.holder
         who = f"another build ({holder.describe()})" if holder else "another build"
-        hint = f"let it finish, or stop it: kill {holder.pid}" if holder else "let it finish"
         raise OutputError(
             f"{who} still holds the output folder's lock after {busy.seconds:g} s",
             file=folder,
-            hint=f"{hint}; --timeout sets how long to wait",
+            hint=f"{_lock_hint(holder)}; --timeout sets how long to wait",
         ) from None
     except OSError as exc:
         raise OutputError(
@@ -98,6 +98,20 @@ def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
         ) from None
     with held:
         yield
+
+
+def _lock_hint(holder: Holder | None) -> str:
+    """What to do about the build that holds a folder's lock."""
+    from mjcfbuild.engine.folderlock import STOPPED, UNKNOWN
+
+    if holder is None:
+        return "let it finish"
+    state = holder.state()
+    if state == STOPPED:
+        return f"it is stopped: resume it (fg in its shell, or kill -CONT {holder.pid}) or end it"
+    if state == UNKNOWN:
+        return f"let it finish on {holder.host}, or end it there"
+    return f"let it finish, or end it (kill {holder.pid})"
 
 
 def run_build(
