@@ -19,8 +19,8 @@ from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.report import write_report
 from mjcfbuild.engine.tasks import SOURCE_URDF, build_tasks, planned_urdf, planning_tasks
 from mjcfbuild.engine.training_files import remove_stale_variant
-from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError
-from mjcfbuild.fsutil import remove_stale_temp_files, write_if_changed
+from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError, write_failure
+from mjcfbuild.fsutil import TEMP_SUFFIX, remove_stale_temp_files, write_if_changed
 from mjcfbuild.manifest.pinpoint import pinpoint
 from mjcfbuild.sources.origins import point_at_source, point_warning_at_source
 
@@ -91,7 +91,7 @@ def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
             hint=f"{_lock_hint(holder)}; --timeout sets how long to wait",
         ) from None
     except OSError as exc:
-        raise OutputError(
+        raise write_failure(exc) or OutputError(
             f"cannot write to the output folder: {exc.strerror}",
             file=folder,
             hint="check its permissions, or set output.folder",
@@ -143,6 +143,13 @@ def run_build(
             # removes what looks like a killed build's temporary files.
             try:
                 tasks = _build_locked(ctx, progress, result)
+                ctx.session.close()
+            except OSError as exc:  # the folder's own files (state, hash cache, report)
+                unwritable = write_failure(exc)
+                if unwritable is None:
+                    raise
+                result.errors.append(unwritable)
+                tasks = []
             finally:
                 ctx.session.close()
                 progress.clear()
@@ -218,8 +225,28 @@ def _run_stage(
         message = (
             progress.failure_messages.get("(doit)") or output.strip() or f"doit exited with {code}"
         )
-        result.errors.append(MjcfbuildError(f"build engine error: {_first_line(message)}"))
+        error = _database_failure(ctx)
+        result.errors.append(error or MjcfbuildError(f"build engine error: {_first_line(message)}"))
     return output
+
+
+def _database_failure(ctx: BuildContext) -> MjcfbuildError | None:
+    """The error naming doit's database when writing it is what failed (a full disk, a
+    read-only folder): doit says "database or disk is full", that the file may be corrupted
+    and should be removed, or nothing at all (exit 3). A small write beside it tells."""
+    database = ctx.state(DATABASE)
+    probe = database.with_name(f".space-probe.{os.getpid()}{TEMP_SUFFIX}")
+    try:
+        with open(probe, "wb") as handle:
+            handle.write(bytes(1 << 16))  # an SQLite transaction writes pages and a journal
+            handle.flush()
+            os.fsync(handle.fileno())
+    except OSError as exc:
+        return write_failure(exc, file=ctx.label(database))
+    finally:
+        with contextlib.suppress(OSError):
+            probe.unlink(missing_ok=True)
+    return None
 
 
 def _expanded_urdfs(ctx: BuildContext) -> list[Path]:
