@@ -111,7 +111,7 @@ def read_holder(path: Path) -> Holder | None:
 def folder_lock(
     path: Path, seconds: float, on_wait: Callable[[Holder | None], None]
 ) -> Iterator[None]:
-    """Hold the lock file ``path`` (its folder exists). While another build holds it,
+    """Hold the lock file ``path`` (its folder is made if need be). While another build holds it,
     ``on_wait`` is told who (once, and again when that changes); after ``seconds`` of waiting,
     :class:`LockBusy` names the holder. Raises OSError when the file cannot be written."""
     deadline = time.monotonic() + seconds
@@ -131,7 +131,8 @@ def folder_lock(
             yield
         finally:
             # A waiter that reads the file between these two calls finds no holder: free.
-            handle.truncate(0)
+            with contextlib.suppress(OSError):
+                handle.truncate(0)
             fcntl.flock(handle, fcntl.LOCK_UN)
 
 
@@ -144,6 +145,7 @@ def _try(path: Path) -> tuple[BinaryIO | None, Holder | None]:
     Taking the lock, writing the holder and taking over from a holder that is gone all happen
     under a short lock on the folder, so the holder a waiter reads there is the one whose lock
     it found taken, and two waiters never both take over."""
+    path.parent.mkdir(parents=True, exist_ok=True)  # `clean` may have removed it meanwhile
     guard = os.open(path.parent, os.O_RDONLY | os.O_CLOEXEC)
     try:
         try:

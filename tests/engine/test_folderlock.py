@@ -165,3 +165,11 @@ def test_this_process_is_running(tmp_path):
         assert told == [holder]
     assert read_holder(lock) is None
     assert Path(lock).exists()
+
+
+def test_a_folder_removed_while_waiting_is_made_again(tmp_path):
+    from mjcfbuild.engine.folderlock import folder_lock
+
+    lock = tmp_path / "mjcf" / ".mjcfbuild" / "lock"  # as `clean` leaves it: no state folder
+    with folder_lock(lock, 0.0, lambda holder: None):
+        assert read_holder(lock).pid == os.getpid()
