@@ -27,8 +27,9 @@ def product_problem(kind: str | None, summary: Any, folder: Path) -> str | None:
     for name in sorted(set(files) | named):
         if not _plain_name(name):
             return f"its summary names an unsafe file '{name[:40]}'"
-    for name in sorted(named - set(files)):
-        return f"its summary names {name}, which it does not contain"
+    absent = sorted(named - set(files))
+    if absent:
+        return f"its summary names {absent[0]}, which it does not contain"
     for name, digest in sorted(files.items()):
         try:
             actual = md5_file(folder / name)
