@@ -30,7 +30,8 @@ EXIT_CODES: dict[int, str] = {
     EXIT_INPUT: "an input (URDF, xacro, mesh, package, inputs file) is missing or invalid",
     EXIT_MODEL: "MuJoCo rejected the assembled model",
     EXIT_CHECK: "a check failed, or outputs are out of date",
-    EXIT_OUTPUT: "an output could not be written",
+    EXIT_OUTPUT: "an output could not be written (a full disk, no permission), or another build "
+    "held the output folder past --timeout",
     EXIT_INTERNAL: "internal error in mjcfbuild (please report it, with --debug output)",
     EXIT_INTERRUPTED: "interrupted",
 }
@@ -169,6 +170,40 @@ class OutputError(MjcfbuildError):
     """An output cannot be written."""
 
     exit_code = EXIT_OUTPUT
+
+
+# Why a file could not be written, in words, and what to do, by errno.
+_WRITE_FAILURES: dict[str, tuple[str, str]] = {
+    "ENOSPC": ("no space left on the device", "free some space there, or build on another disk"),
+    "EDQUOT": ("disk quota exceeded", "free some space there, or build on another disk"),
+    "EFBIG": ("file too large for its file system", "build on another disk"),
+    "EROFS": ("read-only file system", "build in a folder that can be written"),
+    "EACCES": ("permission denied", "check the permissions of the file and its folder"),
+    "EPERM": ("permission denied", "check the permissions of the file and its folder"),
+}
+
+
+def write_failure(exc: BaseException, file: str | Path | None = None) -> MjcfbuildError | None:
+    """The one-line error of an :class:`OSError` that says a file could not be written (no
+    space left, quota, permission denied, read-only), naming ``file`` (else the error's own
+    file name): an :class:`OutputError`, or an :class:`InputError` for permission to read a
+    file that is there. None for any other exception."""
+    import errno
+    import os
+
+    if not isinstance(exc, OSError) or exc.errno is None:
+        return None
+    code = errno.errorcode.get(exc.errno, "")
+    if code not in _WRITE_FAILURES:
+        return None
+    words, hint = _WRITE_FAILURES[code]
+    name = file if file is not None else exc.filename
+    if name is None:
+        return OutputError(f"cannot write a file: {words}", hint=hint)
+    path = os.fsdecode(name) if isinstance(name, (str, bytes, os.PathLike)) else str(name)
+    if code in ("EACCES", "EPERM") and os.path.isfile(path) and not os.access(path, os.R_OK):
+        return InputError(f"cannot read: {words}", file=path, hint="check its permissions")
+    return OutputError(f"cannot write: {words}", file=path, hint=hint)
 
 
 class TaskCrashed(MjcfbuildError):

@@ -54,8 +54,11 @@ def atomic_write(path: str | os.PathLike, data: bytes) -> None:
             failpoint(f"write:{path.name}")  # half a file on disk: what a crash here leaves
             handle.write(data[len(data) // 2 :])
         os.replace(temp, path)
-    except BaseException:
+    except BaseException as exc:
         temp.unlink(missing_ok=True)
+        if isinstance(exc, OSError) and exc.filename in (None, str(temp)):
+            # A failed write() names no file, and the temporary name means nothing to a user.
+            exc.filename = str(path)
         raise
 
 

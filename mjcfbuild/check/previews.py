@@ -23,6 +23,7 @@ and redraws every picture.
 from __future__ import annotations
 
 import hashlib
+import io
 import math
 import os
 from collections.abc import Mapping
@@ -33,7 +34,7 @@ from typing import Any
 from mjcfbuild.check.drawn import drawn_model_xml
 from mjcfbuild.check.loading import spec_reading_sources
 from mjcfbuild.errors import ModelError
-from mjcfbuild.fsutil import md5_file
+from mjcfbuild.fsutil import atomic_write, md5_file
 
 KINDS = ("visual", "collision")
 SKY_TOP = (150, 190, 232)
@@ -72,11 +73,10 @@ def render_previews(
     ``folder`` with the digest each was drawn for; one whose digest is unchanged is kept.
     ``sources``: the products a build published the assets from (see check.loading)."""
     from mjcfbuild.cachedir import user_cache_dir
+    from mjcfbuild.check.shadercache import choose_shader_cache
 
     os.environ.setdefault("MUJOCO_GL", "egl")
-    # Mesa keeps compiled shaders in ~/.cache unless told otherwise; mjcfbuild writes only in
-    # its output folder and its own cache.
-    os.environ.setdefault("MESA_SHADER_CACHE_DIR", str(user_cache_dir() / "mesa_shader_cache"))
+    choose_shader_cache(os.environ, user_cache_dir() / "mesa_shader_cache")
     import mujoco
     import numpy as np
     from PIL import Image
@@ -133,7 +133,9 @@ def render_previews(
             pixels, background = offscreen.draw(data, camera, option)
             pixels[background] = sky[background]
             picture = Image.fromarray(pixels).reduce(SUPERSAMPLING)  # the mean of each square
-            picture.save(folder / name, optimize=False)
+            png = io.BytesIO()
+            picture.save(png, format="PNG", optimize=False)
+            atomic_write(folder / name, png.getvalue())  # a full disk names the picture
     return shown
 
 

@@ -16,6 +16,7 @@ from mjcfbuild.errors import (
     EXIT_OK,
     InternalError,
     MjcfbuildError,
+    write_failure,
 )
 
 
@@ -97,6 +98,10 @@ def run(argv: Sequence[str] | None = None) -> int:
     except Exception as exc:  # a bug: say so plainly, traceback only with --debug
         import traceback
 
+        unwritable = write_failure(exc)  # a full disk, a folder it may not write in
+        if unwritable is not None:
+            report_error(unwritable, debug=args.debug, base_dir=Path.cwd())
+            return unwritable.exit_code
         internal = InternalError(
             f"{type(exc).__name__}: {exc}", details="".join(traceback.format_exception(exc))
         )
@@ -141,7 +146,8 @@ def timeout_argument(parser: argparse.ArgumentParser) -> None:
         type=float,
         default=None,
         metavar="SECONDS",
-        help="stop a build step (mesh conversion, decomposition, assembly) that runs longer "
+        help="stop a build step (mesh conversion, decomposition, assembly) that runs longer, "
+        "and stop waiting for another build of the output folder after as long "
         "(default: $MJCFBUILD_TIMEOUT, else 1800)",
     )
 

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import contextlib
-import fcntl
 import os
 import shutil
 import sys
@@ -21,12 +20,13 @@ from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.report import record_warnings, write_report, write_stats
 from mjcfbuild.engine.tasks import SOURCE_URDF, build_tasks, planned_urdf, planning_tasks
 from mjcfbuild.engine.training_files import remove_stale_variant
-from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError
-from mjcfbuild.fsutil import remove_stale_temp_files, write_if_changed
+from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError, write_failure
+from mjcfbuild.fsutil import TEMP_SUFFIX, remove_stale_temp_files, write_if_changed
 from mjcfbuild.manifest.pinpoint import pinpoint
 from mjcfbuild.sources.origins import point_at_source, point_warning_at_source
 
 if TYPE_CHECKING:
+    from mjcfbuild.engine.folderlock import Holder
     from mjcfbuild.engine.workers import WorkerPool
 
 
@@ -65,34 +65,58 @@ class BuildResult:
 
 @contextlib.contextmanager
 def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
-    """Hold the output folder's lock; a second build of it waits instead of interleaving.
+    """Hold the output folder's lock; a second build of it waits instead of interleaving,
+    saying who holds it, and gives up after ``--timeout`` seconds naming the holder.
 
     The folder is checked first (:mod:`mjcfbuild.engine.guard`): nothing is written, not even
     the lock, in a folder the build may not write."""
     check_output_folder(ctx)
-    try:
+    from mjcfbuild.engine.context import DEFAULT_STEP_TIMEOUT
+    from mjcfbuild.engine.folderlock import LockBusy, folder_lock
+
+    folder = ctx.label(ctx.out_dir)
+    seconds = DEFAULT_STEP_TIMEOUT if ctx.step_timeout is None else ctx.step_timeout
+
+    def waiting(holder: Holder | None) -> None:
+        if not progress.quiet:
+            who = f" (held by {holder.describe()})" if holder else ""
+            progress.stream.write(f"mjcfbuild: waiting for another build of {folder}{who}\n")
+            progress.stream.flush()
+
+    held = contextlib.ExitStack()
+    try:  # only taking the lock: an error of the build itself is not about the lock
         ctx.state_dir.mkdir(parents=True, exist_ok=True)
-        handle = open(ctx.state("lock"), "w")  # noqa: SIM115 - held for the whole build
-    except OSError as exc:
+        held.enter_context(folder_lock(ctx.state("lock"), seconds, waiting))
+    except LockBusy as busy:
+        holder = busy.holder
+        who = f"another build ({holder.describe()})" if holder else "another build"
         raise OutputError(
+            f"{who} still holds the output folder's lock after {busy.seconds:g} s",
+            file=folder,
+            hint=f"{_lock_hint(holder)}; --timeout sets how long to wait",
+        ) from None
+    except OSError as exc:
+        raise write_failure(exc) or OutputError(
             f"cannot write to the output folder: {exc.strerror}",
-            file=ctx.label(ctx.out_dir),
+            file=folder,
             hint="check its permissions, or set output.folder",
         ) from None
-    with handle:
-        try:
-            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            if not progress.quiet:
-                progress.stream.write(
-                    f"mjcfbuild: waiting for another build of {ctx.label(ctx.out_dir)}\n"
-                )
-                progress.stream.flush()
-            fcntl.flock(handle, fcntl.LOCK_EX)
-        try:
-            yield
-        finally:
-            fcntl.flock(handle, fcntl.LOCK_UN)
+    with held:
+        yield
+
+
+def _lock_hint(holder: Holder | None) -> str:
+    """What to do about the build that holds a folder's lock."""
+    from mjcfbuild.engine.folderlock import STOPPED, UNKNOWN
+
+    if holder is None:
+        return "let it finish"
+    state = holder.state()
+    if state == STOPPED:
+        return f"it is stopped: resume it (fg in its shell, or kill -CONT {holder.pid}) or end it"
+    if state == UNKNOWN:
+        return f"let it finish on {holder.host}, or end it there"
+    return f"let it finish, or end it (kill {holder.pid})"
 
 
 def run_build(
@@ -124,6 +148,13 @@ def run_build(
             # removes what looks like a killed build's temporary files.
             try:
                 tasks = _build_locked(ctx, progress, result)
+                ctx.session.close()
+            except OSError as exc:  # the folder's own files (state, hash cache, report)
+                unwritable = write_failure(exc)
+                if unwritable is None:
+                    raise
+                result.errors.append(unwritable)
+                tasks = []
             finally:
                 ctx.session.close()
                 progress.clear()
@@ -207,8 +238,28 @@ def _run_stage(
         message = (
             progress.failure_messages.get("(doit)") or output.strip() or f"doit exited with {code}"
         )
-        result.errors.append(MjcfbuildError(f"build engine error: {_first_line(message)}"))
+        error = _database_failure(ctx)
+        result.errors.append(error or MjcfbuildError(f"build engine error: {_first_line(message)}"))
     return output
+
+
+def _database_failure(ctx: BuildContext) -> MjcfbuildError | None:
+    """The error naming doit's database when writing it is what failed (a full disk, a
+    read-only folder): doit says "database or disk is full", that the file may be corrupted
+    and should be removed, or nothing at all (exit 3). A small write beside it tells."""
+    database = ctx.state(DATABASE)
+    probe = database.with_name(f".space-probe.{os.getpid()}{TEMP_SUFFIX}")
+    try:
+        with open(probe, "wb") as handle:
+            handle.write(bytes(1 << 16))  # an SQLite transaction writes pages and a journal
+            handle.flush()
+            os.fsync(handle.fileno())
+    except OSError as exc:
+        return write_failure(exc, file=ctx.label(database))
+    finally:
+        with contextlib.suppress(OSError):
+            probe.unlink(missing_ok=True)
+    return None
 
 
 def _expanded_urdfs(ctx: BuildContext) -> list[Path]:

@@ -14,7 +14,7 @@ import threading
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from mjcfbuild.errors import InternalError, MjcfbuildError
+from mjcfbuild.errors import InternalError, MjcfbuildError, write_failure
 
 ASSEMBLE = "mjcfbuild.steps.assemble:run"
 WARM = "mjcfbuild.steps.warm:run"
@@ -188,7 +188,7 @@ class BuildSession:
         if not isinstance(error, MjcfbuildError):
             import traceback
 
-            error = InternalError(
+            error = write_failure(error) or InternalError(
                 f"{task}: {type(error).__name__}: {error}",
                 details="".join(traceback.format_exception(error)),
             )

@@ -208,13 +208,16 @@ def _verify_files(files: dict[str, list], now_ns: int) -> dict[str, list] | None
 
 
 def _write(path: Path, stamp: dict) -> None:
+    temp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        temp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
         temp.write_text(json.dumps(stamp, separators=(",", ":")))
         os.replace(temp, path)
     except OSError:
-        pass  # without a stamp the next build takes the full path: slower, never wrong
+        # Without a stamp the next build takes the full path: slower, never wrong. A full
+        # cache keeps no half-written one.
+        with contextlib.suppress(OSError):
+            temp.unlink(missing_ok=True)
 
 
 def discard(manifest: Path | str, run_check: bool) -> None:

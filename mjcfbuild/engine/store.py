@@ -8,11 +8,14 @@ recomputing it; a fresh clone of a description repo does not decompose again.
 Layout: ``<cache>/products/<key[:2]>/<key>/`` holds the product's files and ``summary.json``.
 Entries are written to a temporary folder and renamed into place, so a killed build never
 leaves a half-written entry. Using an entry refreshes its modification time; pruning removes
-the least recently used entries until the cache fits its size cap.
+the least recently used entries until the cache fits its size cap. A product is checked for
+use (mjcfbuild.engine.usable) before it is stored and before it is used: an unusable entry is
+removed and the step computes the product again, so nothing in the cache can fail a build.
 """
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
@@ -23,6 +26,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from mjcfbuild.cachedir import user_cache_dir
+from mjcfbuild.engine.usable import product_problem
 from mjcfbuild.fsutil import md5_file
 
 DEFAULT_MAX_BYTES = 5 * 1024**3
@@ -86,19 +90,29 @@ class ProductStore:
     def __init__(self, folder: Path | None = None, max_bytes: int | None = None) -> None:
         self.folder = Path(folder) if folder is not None else default_cache_folder()
         self.max_bytes = default_max_bytes() if max_bytes is None else max_bytes
+        # (key, why) of each unusable entry :meth:`fetch` found and removed
+        self.dropped: list[tuple[str, str]] = []
 
     def _entry(self, key: str) -> Path:
         return self.folder / key[:2] / key
 
-    def fetch(self, key: str, destination: Path) -> dict | None:
-        """Copy the product ``key`` into ``destination`` (replacing its files); its summary."""
+    def fetch(self, key: str, destination: Path, kind: str | None = None) -> dict | None:
+        """Copy the product ``key`` (of ``kind``: see :func:`product_problem`) into
+        ``destination`` (replacing its files); its summary. None when there is none, or the
+        entry cannot be used: such an entry is removed and recorded in :attr:`dropped`."""
         entry = self._entry(key)
         try:
             summary = json.loads((entry / _SUMMARY).read_text())
+        except FileNotFoundError:
+            return None
         except (OSError, ValueError):
+            summary = None
+        problem = product_problem(kind, summary, entry)
+        if problem is not None:
+            self._drop(key, problem)
             return None
         destination.mkdir(parents=True, exist_ok=True)
-        wanted = set(summary.get("files", {}))
+        wanted = set(summary["files"])
         for stale in destination.iterdir():
             if stale.name not in wanted:
                 stale.unlink()
@@ -107,9 +121,15 @@ class ProductStore:
                 _link_or_copy(entry / name, destination / name)
         except OSError:
             return None
-        now = time.time()
-        os.utime(entry / _SUMMARY, (now, now))
+        with contextlib.suppress(OSError):  # a read-only cache: the entry just ages
+            now = time.time()
+            os.utime(entry / _SUMMARY, (now, now))
         return summary
+
+    def _drop(self, key: str, problem: str) -> None:
+        """Remove the unusable entry ``key`` (if the cache can be written) and remember why."""
+        self.dropped.append((key, problem))
+        shutil.rmtree(self._entry(key), ignore_errors=True)
 
     def has(self, key: str) -> bool:
         """Whether the product ``key`` is here."""
@@ -128,11 +148,15 @@ class ProductStore:
         the caller; a killed build's leftovers are removed by :meth:`prune`)."""
         return self._entry(key).parent / f".{key}.{uuid.uuid4().hex}.tmp"
 
-    def store(self, key: str, source: Path, summary: dict) -> None:
-        """Add a product (the files listed in ``summary['files']`` in ``source``)."""
+    def store(self, key: str, source: Path, summary: dict, kind: str | None = None) -> bool:
+        """Add a product (the files listed in ``summary['files']`` in ``source``); whether the
+        cache holds it now. A product that cannot be used (see :func:`product_problem`) is
+        never stored; a full or read-only cache stores nothing and never fails a build."""
         entry = self._entry(key)
         if (entry / _SUMMARY).exists():
-            return
+            return True
+        if product_problem(kind, summary, source) is not None:
+            return False
         temporary = entry.parent / f".{key}.{uuid.uuid4().hex}.tmp"
         try:
             temporary.mkdir(parents=True)
@@ -141,10 +165,11 @@ class ProductStore:
             (temporary / _SUMMARY).write_text(json.dumps(summary, sort_keys=True))
             os.replace(temporary, entry)
         except OSError:
-            pass  # a full or read-only cache must never fail a build
+            return False  # a full or read-only cache must never fail a build
         finally:
             if temporary.exists():
                 shutil.rmtree(temporary, ignore_errors=True)
+        return True
 
     def usage(self) -> CacheUsage:
         """Number of entries and bytes used."""

@@ -46,7 +46,7 @@ def _watch_parent(parent: int) -> None:
 
 
 def _run(request: dict) -> dict:
-    from mjcfbuild.errors import MjcfbuildError
+    from mjcfbuild.errors import MjcfbuildError, write_failure
 
     module_name, _, function_name = request["step"].partition(":")
     log = request.get("log")
@@ -62,6 +62,9 @@ def _run(request: dict) -> dict:
     except MjcfbuildError as exc:
         return {"ok": False, "error": exc.to_dict()}
     except Exception as exc:
+        unwritable = write_failure(exc)  # a full disk, a folder it may not write in
+        if unwritable is not None:
+            return {"ok": False, "error": unwritable.to_dict()}
         return {
             "ok": False,
             "error": {"type": "InternalError", "message": f"{type(exc).__name__}: {exc}"},

@@ -58,13 +58,13 @@ class ProductSharing:
         key = _key(kind, payload)
         if store.has(key):
             return "local"
-        if self._remote is not None and self._remote.fetch_into(key, store):
+        if self._remote is not None and self._remote.fetch_into(key, store, kind):
             return "remote"
         if self._executor is not None:
             found = self._compute_on_cluster(kind, payload, key, task)
             if found is not None:
                 summary, files = found
-                _store_files(store, key, summary, files)
+                _store_files(store, key, summary, files, kind)
                 if store.has(key):
                     self.stats.computed(kind, "on_cluster")
                     self._upload(store, key)
@@ -73,6 +73,7 @@ class ProductSharing:
 
     def after(self, kind: str, payload: dict, origin: str, result: dict) -> None:
         """Count what the step did; share a product it computed."""
+        self.stats.count("local_dropped", result.get("dropped", 0))
         if result.get("cached"):
             if origin in ("local", "local-or-here"):
                 self.stats.count("local_hits")
@@ -134,7 +135,9 @@ def _key(kind: str, payload: dict) -> str:
     return decompose.cache_key(DecomposePayload.from_dict(payload))
 
 
-def _store_files(store: ProductStore, key: str, summary: dict, files: dict[str, bytes]) -> None:
+def _store_files(
+    store: ProductStore, key: str, summary: dict, files: dict[str, bytes], kind: str
+) -> None:
     import shutil
 
     temporary = store.temporary_folder(key)
@@ -142,7 +145,7 @@ def _store_files(store: ProductStore, key: str, summary: dict, files: dict[str, 
         temporary.mkdir(parents=True)
         for name, data in files.items():
             (temporary / name).write_bytes(data)
-        store.store(key, temporary, summary)
+        store.store(key, temporary, summary, kind)
     except OSError:
         pass  # a read-only store: the step computes the product itself
     finally:

@@ -2,8 +2,9 @@
 
 A product missing from the local store is looked up here before it is computed; a product
 computed by this build is uploaded in the background and the build waits for the uploads
-before it returns. Objects are verified on download (:mod:`mjcfbuild.sharing.blob`): a bad one
-is ignored, the product is rebuilt and uploaded again over it; with a signing key
+before it returns. Objects are verified on download (:mod:`mjcfbuild.sharing.blob`) and checked
+for use (:mod:`mjcfbuild.engine.usable`: every file the summary names is there): a bad one is
+ignored, never stored, the product is rebuilt and uploaded again over it; with a signing key
 (``MJCFBUILD_CACHE_KEY``) so is an object it did not sign. A remote that cannot be reached,
 refuses access or does not answer within ``MJCFBUILD_REMOTE_TIMEOUT`` seconds (each call, and
 the wait for the build's last uploads together) is a warning, once, and the build carries on
@@ -23,6 +24,7 @@ from pathlib import Path
 from typing import Protocol, TypeVar
 
 from mjcfbuild.engine.store import ProductStore
+from mjcfbuild.engine.usable import product_problem
 from mjcfbuild.sharing.blob import BadObject, pack, unpack, verify
 from mjcfbuild.sharing.settings import RemoteSpec, remote_timeout, signing_key
 from mjcfbuild.sharing.stats import ShareStats
@@ -183,8 +185,9 @@ class RemoteCache:
                 self._backend = open_backend(self.spec, self._environ, self._seconds)
             return self._backend
 
-    def fetch_into(self, key: str, store: ProductStore) -> bool:
-        """Download the product ``key`` into ``store``; whether it was there and intact."""
+    def fetch_into(self, key: str, store: ProductStore, kind: str | None = None) -> bool:
+        """Download the product ``key`` (of ``kind``) into ``store``; whether it was there,
+        intact and usable (see :func:`~mjcfbuild.engine.usable.product_problem`)."""
         if self._disabled:
             return False
         try:
@@ -198,7 +201,10 @@ class RemoteCache:
         temporary = store.temporary_folder(key)
         try:
             summary = unpack(key, data, temporary, self._secret)
-            store.store(key, temporary, summary)
+            problem = product_problem(kind, summary, temporary)
+            if problem is not None:
+                raise BadObject(f"unusable: {problem}")
+            store.store(key, temporary, summary, kind)
         except BadObject as exc:
             self._rejected(key, str(exc))
             return False

@@ -14,6 +14,7 @@ from mjcfbuild.fsutil import atomic_write
 STATS_FILE = "remote-stats.json"
 COUNTERS = (
     "local_hits",
+    "local_dropped",
     "remote_hits",
     "remote_misses",
     "remote_rejected",

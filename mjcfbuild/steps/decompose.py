@@ -21,7 +21,7 @@ def run(payload: dict) -> dict:
     params = request.params
     store = open_store(request.cache)
     key = cache_key(request)
-    summary = store.fetch(key, output_dir) if store else None
+    summary = store.fetch(key, output_dir, "decompose") if store else None
     cached = summary is not None
     if summary is None:
         from mjcfbuild.collision.decompose import decompose  # coacd: only when needed
@@ -29,7 +29,7 @@ def run(payload: dict) -> dict:
         failpoint("decompose")
         summary = decompose(mesh_file, params, output_dir)
         if store:
-            store.store(key, output_dir, summary)
+            store.store(key, output_dir, summary, "decompose")
     outputs = {str(output_dir / name): digest for name, digest in summary["files"].items()}
     text = json.dumps(summary, indent=1, sort_keys=True) + "\n"
     write_output(Path(request.summary), text.encode(), outputs)
@@ -37,6 +37,7 @@ def run(payload: dict) -> dict:
         "outputs": outputs,
         "cached": cached,
         "stored": not cached and store is not None,
+        "dropped": len(store.dropped) if store else 0,
         "note": note(summary),
     }
 

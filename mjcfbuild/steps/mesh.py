@@ -28,7 +28,7 @@ def run(payload: dict) -> dict:
     store = open_store(request.cache)
     params, decision = conversion_options(request)
     key = _key(params, source, references)
-    stored = store.fetch(key, product_dir) if store else None
+    stored = store.fetch(key, product_dir, "mesh") if store else None
     cached = stored is not None
     if stored is not None:
         summary = MeshProduct.from_dict(stored)
@@ -38,7 +38,7 @@ def run(payload: dict) -> dict:
 
         summary = convert_with_options(source, product_dir, params)
         if store:
-            store.store(key, product_dir, summary.to_dict())
+            store.store(key, product_dir, summary.to_dict(), "mesh")
     # The decision's reason follows this build's evidence; the product follows only its verdict.
     summary = dataclasses.replace(summary, up_axis=decision.to_dict() if decision else None)
     failpoint("mesh")
@@ -51,6 +51,7 @@ def run(payload: dict) -> dict:
         "warnings": summary.warnings,
         "cached": cached,
         "stored": not cached and store is not None,
+        "dropped": len(store.dropped) if store else 0,
     }
 
 

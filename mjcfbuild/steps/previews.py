@@ -13,7 +13,7 @@ from pathlib import Path
 
 from mjcfbuild.check.loading import asset_sources
 from mjcfbuild.check.previews import render_previews
-from mjcfbuild.errors import MjcfbuildError, ModelError
+from mjcfbuild.errors import MjcfbuildError, ModelError, write_failure
 from mjcfbuild.fsutil import md5_file
 from mjcfbuild.steps.outputs import record_output, write_output
 from mjcfbuild.steps.payloads import PreviewsPayload
@@ -33,6 +33,9 @@ def run(payload: dict) -> dict:
     except MjcfbuildError:
         raise
     except Exception as exc:  # no EGL, no GPU driver...: the build itself is fine
+        unwritable = write_failure(exc)  # but a picture that cannot be written is no EGL's
+        if unwritable is not None:
+            raise unwritable from None
         return {
             "outputs": {},
             "warnings": [

@@ -152,6 +152,7 @@ def _matrix(
 ) -> tuple[list[dict], bool]:
     """The verdicts of every pair, from the shared cache when this matrix was computed before
     (in any folder: the key holds no paths), else computed and stored; whether cached."""
+    import contextlib
     import tempfile
 
     from mjcfbuild.engine.store import open_store, product_key
@@ -177,13 +178,18 @@ def _matrix(
     inputs = [*request.products.values(), *(d.summary for d in request.decompositions)]
     key = product_key("selfcollision", params, sorted(inputs, key=lambda p: Path(p).name))
     with tempfile.TemporaryDirectory() as scratch:
-        if store is not None and store.fetch(key, Path(scratch)) is not None:
-            return json.loads((Path(scratch) / "matrix.json").read_text()), True
+        if store is not None and store.fetch(key, Path(scratch), "selfcollision") is not None:
+            with contextlib.suppress(ValueError):  # unreadable: computed again, stored over
+                verdicts = json.loads((Path(scratch) / "matrix.json").read_text())
+                if isinstance(verdicts, list):
+                    return verdicts, True
         verdicts = [v.to_dict() for v in collision_matrix(model, qpos, settings)]
         if store is not None:
             matrix = Path(scratch) / "matrix.json"
             matrix.write_text(json.dumps(verdicts, sort_keys=True))
-            store.store(key, Path(scratch), {"files": {"matrix.json": md5_file(matrix)}})
+            store.store(
+                key, Path(scratch), {"files": {"matrix.json": md5_file(matrix)}}, "selfcollision"
+            )
     return verdicts, False
 
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import hashlib
+import json
 import os
 import time
 
@@ -13,7 +15,8 @@ from mjcfbuild.engine.store import ProductStore, parse_size, product_key
 def product(folder, text):
     folder.mkdir(parents=True, exist_ok=True)
     (folder / "mesh.obj").write_text(text)
-    return {"files": {"mesh.obj": "x"}, "parts": []}
+    digest = hashlib.md5(text.encode(), usedforsecurity=False).hexdigest()
+    return {"files": {"mesh.obj": digest}, "parts": []}
 
 
 def test_keys_depend_on_bytes_and_parameters(tmp_path):
@@ -45,7 +48,7 @@ def test_prune_removes_least_recently_used_first(tmp_path):
         summary = store.folder / key[:2] / key / "summary.json"
         os.utime(summary, (time.time() - 100 + index, time.time() - 100 + index))
     store.fetch("aa" * 32, tmp_path / "use")  # now the most recently used
-    assert store.prune(max_bytes=2100) == 1
+    assert store.prune(max_bytes=2200) == 1
     assert store.fetch("bb" * 32, tmp_path / "x") is None
     assert store.fetch("aa" * 32, tmp_path / "x") is not None
     assert store.usage().entries == 2
@@ -59,3 +62,42 @@ def test_parse_size():
     assert parse_size("3MiB") == 3 * 1024**2
     with pytest.raises(ValueError):
         parse_size("lots")
+
+
+def test_an_unusable_product_is_never_stored(tmp_path):
+    store = ProductStore(tmp_path / "cache")
+    summary = product(tmp_path / "made", "v 0 0 0\n")
+    wrong = {**summary, "files": {"mesh.obj": "0" * 32}}
+    assert not store.store("ab" * 32, tmp_path / "made", wrong)
+    assert not store.store(
+        "ab" * 32, tmp_path / "made", {**summary, "parts": ["part000.obj"]}, "decompose"
+    )
+    assert not store.has("ab" * 32) and store.usage().entries == 0
+    assert store.store("ab" * 32, tmp_path / "made", summary)
+
+
+@pytest.mark.parametrize(
+    "spoil",
+    ["summary names a missing file", "file changed", "file removed", "summary unreadable"],
+)
+def test_an_unusable_entry_is_dropped_and_counted(tmp_path, spoil):
+    store = ProductStore(tmp_path / "cache")
+    key = "ab" * 32
+    summary = product(tmp_path / "made", "v 0 0 0\n")
+    summary["parts"] = ["mesh.obj"]
+    assert store.store(key, tmp_path / "made", summary, "decompose")
+    entry = store.folder / key[:2] / key
+    if spoil == "summary names a missing file":
+        summary["parts"].append("part001.obj")
+        (entry / "summary.json").write_text(json.dumps(summary))
+    elif spoil == "file changed":
+        (entry / "mesh.obj").write_text("v 1 1 1\n")
+    elif spoil == "file removed":
+        (entry / "mesh.obj").unlink()
+    else:
+        (entry / "summary.json").write_text("{")
+
+    assert store.fetch(key, tmp_path / "use", "decompose") is None
+    assert [k for k, _ in store.dropped] == [key] and not entry.exists()
+    assert store.fetch(key, tmp_path / "use", "decompose") is None  # dropped once
+    assert len(store.dropped) == 1

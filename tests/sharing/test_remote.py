@@ -295,3 +295,86 @@ def test_a_short_or_unreadable_signing_key_is_a_one_line_usage_error(arm, tmp_pa
     }
     result = run_cli("build", "--no-check", cwd=arm, env=env)
     assert result.code == 2 and "signing key file cannot be read" in result.stderr
+
+
+def _unusable(data: bytes, key: str, folder) -> bytes:
+    """The product ``data`` with a summary that names a file it does not contain, every
+    checksum right: what a buggy or hostile writer can upload."""
+    from mjcfbuild.sharing.blob import pack
+
+    summary, files = verify(key, data)
+    folder.mkdir(parents=True)
+    for name, content in files.items():
+        (folder / name).write_bytes(content)
+    if "parts" in summary and "collision" not in summary:  # a decomposition
+        summary["parts"].append("part999.obj")
+    else:
+        summary["collision"] = "ghost.obj"
+    return pack(key, folder, summary)
+
+
+def test_products_whose_summary_names_a_missing_file_never_break_a_build(
+    machines, s3_remote, monkeypatch, tmp_path
+):
+    import os
+
+    import boto3
+
+    first, second = machines
+    monkeypatch.setenv("MJCFBUILD_CACHE_REMOTE", s3_remote)
+    first.build(monkeypatch)
+    objects = s3_objects(s3_remote)
+    assert len(objects) == PRODUCTS
+    bucket = s3_remote.removeprefix("s3://").partition("/")[0]
+    client = boto3.client("s3", endpoint_url=os.environ["AWS_ENDPOINT_URL"])
+    for index, (name, data) in enumerate(sorted(objects.items())):
+        bad = _unusable(data, name.rsplit("/", 1)[1], tmp_path / f"bad{index}")
+        verify(name.rsplit("/", 1)[1], bad)  # passes every checksum
+        client.put_object(Bucket=bucket, Key=name, Body=bad)
+
+    result = second.build(monkeypatch)  # before: exit 70, KeyError 'ghost.obj'
+    got = second.report()
+    assert got["remote_rejected"] == PRODUCTS and got["remote_hits"] == 0
+    assert got["computed_here"] == PRODUCTS and got["uploaded"] == PRODUCTS
+    warnings = only_remote_warnings(result)
+    assert len(warnings) == 1 and "does not contain" in warnings[0], result.warnings
+    assert second.outputs() == first.outputs()
+    healed = s3_objects(s3_remote)
+    assert sorted(healed) == sorted(objects)
+    for name, data in healed.items():  # uploaded again over the unusable ones
+        verify(name.rsplit("/", 1)[1], data)
+        assert b"ghost.obj" not in data and b"part999.obj" not in data
+    # Nothing unusable was stored: a build without the remote uses the local cache alone.
+    (second.folder / "mjcf").rename(second.folder / "old")
+    monkeypatch.delenv("MJCFBUILD_CACHE_REMOTE")
+    second.build(monkeypatch)  # raises BuildFailed if a step failed
+    assert second.report()["local_hits"] == PRODUCTS
+
+
+def test_an_unusable_local_entry_is_dropped_counted_and_rebuilt(machines, monkeypatch):
+    import json
+    import shutil
+
+    first, _ = machines
+    first.build(monkeypatch)
+    summaries = sorted(first.cache.rglob("summary.json"))
+    assert summaries
+    for path in summaries:  # each names a file its entry does not hold
+        summary = json.loads(path.read_text())
+        if "parts" in summary and "collision" not in summary:
+            summary["parts"].append("part999.obj")
+        elif "collision" in summary:
+            summary["collision"] = "ghost.obj"
+        else:
+            (path.parent / "matrix.json").unlink()
+        path.write_text(json.dumps(summary))
+    before = first.outputs()
+    shutil.rmtree(first.folder / "mjcf")
+
+    first.build(monkeypatch)  # before: exit 70
+    got = first.report()
+    assert got["local_dropped"] == PRODUCTS and got["computed_here"] == PRODUCTS
+    assert first.outputs() == before
+    shutil.rmtree(first.folder / "mjcf")
+    first.build(monkeypatch)  # the rebuilt products were stored: used from now on
+    assert first.report()["local_hits"] == PRODUCTS and first.report()["local_dropped"] == 0
