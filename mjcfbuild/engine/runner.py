@@ -70,9 +70,10 @@ def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
 
     The folder is checked first (:mod:`mjcfbuild.engine.guard`): nothing is written, not even
     the lock, in a folder the build may not write."""
-    check_output_folder(ctx)
     from mjcfbuild.engine.context import DEFAULT_STEP_TIMEOUT
     from mjcfbuild.engine.folderlock import LockBusy, folder_lock
+
+    check_output_folder(ctx)
 
     folder = ctx.label(ctx.out_dir)
     seconds = DEFAULT_STEP_TIMEOUT if ctx.step_timeout is None else ctx.step_timeout
