@@ -29,6 +29,9 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from mjcfbuild.check.findings import BodyFinding
+from mjcfbuild.urdf.model import Robot
+
 if TYPE_CHECKING:
     import mujoco
     import numpy as np
@@ -46,21 +49,6 @@ MM_SIZE = 2.0
 MIN_SHARED = 0.02
 # Bodies lighter than this (dummy frames, sensors' placeholders) say nothing.
 MIN_MASS = 1e-3
-
-
-@dataclass
-class BodyFinding:
-    """One body that failed the test, and why it likely did."""
-
-    body: str
-    problems: list[str]
-    cause: str  # "units in mm", "up axis" or "wrong origin"
-    detail: str
-    fails: bool  # a failure of the check; else a warning
-
-    def text(self) -> str:
-        """The one-line message."""
-        return f"body '{self.body}': {'; '.join(self.problems)}; likely cause: {self.detail}"
 
 
 @dataclass
@@ -102,14 +90,21 @@ class _Geom:
 
 
 def check_plausibility(
-    model: mujoco.MjModel, sources: dict[str, Path] | None = None, skip: set[str] | None = None
+    model: mujoco.MjModel,
+    sources: dict[str, Path] | None = None,
+    skip: set[str] | None = None,
+    robot: Robot | None = None,
 ) -> Plausibility:
     """Test every body of ``model`` with mass and geometry (except those named in ``skip``).
 
     ``sources``, the mesh products a build published the model's assets from (by asset file
     name), say which meshes came from DAE files tagged Y-up or X-up: only those can have a
-    wrong up axis. Without them (a model mjcfbuild did not build) any mesh can."""
+    wrong up axis. Without them (a model mjcfbuild did not build) any mesh can. ``robot``,
+    the URDF the model was built from, names the file and line of each mass finding and adds
+    the links welded to the world (check.mass_findings)."""
     import mujoco
+
+    from mjcfbuild.check.mass_findings import mass_findings
 
     result = Plausibility()
     geoms_of: dict[int, list[_Geom]] = {}
@@ -130,6 +125,12 @@ def check_plausibility(
             continue
         turnable = [g for g in geoms if g.is_mesh and (tagged is None or g.name in tagged)]
         result.findings.append(_diagnose(name, geoms, com, problems, robot_size, turnable))
+    # A body in mm is one finding, not a second one for the mass its huge mesh cannot fill.
+    in_mm = {f.body for f in result.findings if f.cause == "units in mm"}
+    for finding in mass_findings(model, robot, MIN_MASS, skip or set()):
+        if in_mm and (finding.subject == "robot" or finding.body in in_mm):
+            continue
+        result.findings.append(finding)
     return result
 
 
