@@ -27,10 +27,11 @@ LOW_DENSITY = 50.0
 HIGH_DENSITY = 25000.0
 # The density the decades off are counted from (of the order of plastics and aluminium).
 TYPICAL_DENSITY = 1000.0
-# A body too heavy for its geometry's upper bound fails; too light fails only this far down
-# (units: a mass in tonnes, meshes in cm or mm). Between it and LOW_DENSITY the usual cause is
-# a collision primitive drawn larger than the part, or a placeholder mass: a warning.
-FAILING_LOW_DENSITY = 5.0
+# Ten times beyond the bounds is a unit (grams, tonnes, meshes in cm or mm) and fails the
+# check. Nearer, real descriptions have reasons: a collision primitive drawn larger than the
+# part, a placeholder mass, wheels given 100 kg for a stable simulation; a warning.
+FAILING_LOW_DENSITY = LOW_DENSITY / 10
+FAILING_HIGH_DENSITY = HIGH_DENSITY * 10
 
 
 @dataclass(frozen=True)
@@ -141,13 +142,18 @@ def density_problem(mass: float, volume: Volume) -> tuple[str, float] | None:
 
 def density_fails(density: float) -> bool:
     """Whether an implausible ``density`` fails the check (else it is a warning)."""
-    return bool(density > HIGH_DENSITY or density < FAILING_LOW_DENSITY)
+    return bool(density > FAILING_HIGH_DENSITY or density < FAILING_LOW_DENSITY)
 
 
 def density_cause(density: float) -> str:
     """The likely cause of an implausible ``density``, with what to do."""
     decades = round(math.log10(density / TYPICAL_DENSITY))
-    if decades >= 2:
+    if decades == 2:
+        return (
+            "a mass far too large for the part: ballast written for a stable simulation, or a "
+            "mass in grams written as kilograms; give the <inertial> the part's real mass"
+        )
+    if decades >= 3:
         if decades <= 4:
             return (
                 f"a mass in grams written as kilograms (about 10^{decades} too heavy): divide "

@@ -2,12 +2,11 @@
 geometry (check.density), the robot's total mass against all of it, and the links welded to
 the world, whose masses and inertias MuJoCo drops without a word.
 
-A body heavier than tungsten fails the check with the likely cause (a mass in grams, a mesh
-scaled too small), and so does one ten times lighter than foam (a mass in tonnes, a missing
-mesh scale); one merely lighter than foam is a warning (a collision primitive larger than the
-part, a placeholder mass). Each is named at the URDF link to fix when the URDF is known. Links
-welded to the world do not move, so their findings are warnings: the model simulates the same,
-the description is still wrong.
+A body ten times denser than tungsten or ten times lighter than foam fails the check with the
+likely cause (a mass in grams or tonnes, a missing mesh scale); nearer the bounds it is a
+warning (a collision primitive larger than the part, a placeholder mass, ballast). Each is
+named at the URDF link to fix when the URDF is known. Links welded to the world do not move, so
+their findings are warnings: the model simulates the same, the description is still wrong.
 """
 
 from __future__ import annotations
@@ -103,11 +102,8 @@ def _marker(model: mujoco.MjModel, body: int) -> bool:
 
 
 def _urdf_mass(robot: Robot, links: list[str]) -> float:
-    return sum(
-        robot.link(link).inertial.mass  # type: ignore[union-attr]
-        for link in links
-        if robot.link(link).inertial is not None
-    )
+    inertials = [robot.link(link).inertial for link in links]
+    return sum(inertial.mass for inertial in inertials if inertial is not None)
 
 
 def _where(robot: Robot | None, links: list[str]) -> tuple[str, list[str]]:

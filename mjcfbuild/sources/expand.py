@@ -167,9 +167,9 @@ def expand_xacro(
                 hint = (
                     "pass it under 'source.args' in robot.yaml, or give its <xacro:arg> a default"
                 )
-            missing = re.match(r"No such file or directory: (\S+)", message)
-            if missing:
-                raise _missing_include(missing.group(1), current) from None
+            absent = re.match(r"No such file or directory: (\S+)", message)
+            if absent:
+                raise _missing_include(absent.group(1), current) from None
             raise InputError(
                 f"xacro failed: {message}", file=current, line=line, hint=hint
             ) from None
