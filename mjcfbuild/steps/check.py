@@ -47,9 +47,11 @@ def run(payload: dict) -> dict:
     )
     if report.failures:
         more = len(report.failures) - 1
+        file, line, text = _located(report.failures[0], robot.source, request.model_label)
         raise CheckError(
-            f"check: {report.failures[0]}",
-            file=request.model_label,
+            f"check: {text}",
+            file=file,
+            line=line,
             hint=f"{more} more failure{'s' if more > 1 else ''} in the report" if more else None,
         )
     plausibility = report.results.get("plausibility") or {}
@@ -57,6 +59,17 @@ def run(payload: dict) -> dict:
         "outputs": outputs,
         "warnings": _standing_notes(report.results) + plausibility.get("warnings", []),
     }
+
+
+def _located(failure: str, source: str, model_label: str) -> tuple[str, int | None, str]:
+    """(file, line, message) of a failure: one that starts ``source:line:`` (a URDF link to
+    fix, which the runner then follows into a xacro file) is placed there; others are the
+    model's."""
+    head = f"{source}:"
+    number, sep, rest = failure[len(head) :].partition(": ")
+    if failure.startswith(head) and sep and number.isdigit():
+        return source, int(number), rest
+    return model_label, None, failure
 
 
 def _read_reference(path: Path) -> dict:

@@ -189,7 +189,7 @@ def test_a_link_in_grams_fails_the_check_at_its_urdf_line(tmp_path):
     assert finding["where"] == where
     assert "grams written as kilograms" in finding["detail"]
     (line,) = [line for line in done.stderr.splitlines() if "kg/m^3" in line]
-    assert f"{where}: body 'arm'" in line
+    assert f"{where}: check: body 'arm'" in line
     assert "2e+06 kg/m^3" in line and "grams" in line
     page = (tmp_path / "mjcf" / "report" / "report.md").read_text()
     assert f"| arm ({where}) | fails |" in page
@@ -277,3 +277,15 @@ def test_geometry_that_only_marks_a_link_says_nothing_of_its_mass():
         <geom type="sphere" size="0.001"/></body></worldbody></mujoco>"""
     )
     assert check_plausibility(model).findings == []
+
+
+def test_a_link_in_grams_written_in_xacro_is_named_at_its_xacro_line(tmp_path):
+    urdf = arm_urdf(1500.0, 11.5).replace(
+        '<robot name="arm">', '<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+    )
+    write(tmp_path / "robot.urdf.xacro", urdf)
+    simple_manifest(tmp_path, "xacro: robot.urdf.xacro")
+    done = run_cli("build", cwd=tmp_path)
+    assert done.code == EXIT_CHECK
+    (line,) = [line for line in done.stderr.splitlines() if "kg/m^3" in line]
+    assert f"robot.urdf.xacro:{line_of(urdf, ARM_LINK)}: check: body 'arm'" in line, line
