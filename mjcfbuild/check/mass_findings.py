@@ -33,6 +33,8 @@ TRIANGLE_SLACK = 1e-6
 # The mass of a body lies within its geometry's reach of its centre of mass, so its radius of
 # gyration cannot exceed that reach; this many times beyond it, the geometry is only a marker.
 MARKER_REACH = 2.0
+# Geometry whose largest geom fits in a sphere this small (m) is a marker: no robot part is.
+MARKER_SIZE = 0.005
 
 
 def mass_findings(
@@ -61,24 +63,32 @@ def mass_findings(
             problem and problem[1] > HIGH_DENSITY and body != 0 and _marker(model, body)
         ):
             continue
-        # The whole robot counts the light bodies too: a hand in tonnes has each finger below
-        # the lightest body judged alone.
-        total_mass += mass
-        total = Volume(total.low + volume.low, total.high + volume.high)
+        welded = int(model.body_weldid[body]) == 0  # static: MuJoCo never moves its mass
+        if not welded:
+            # The whole robot counts the light bodies too: a hand in tonnes has each finger
+            # below the lightest body judged alone.
+            total_mass += mass
+            total = Volume(total.low + volume.low, total.high + volume.high)
         if mass < min_mass or problem is None:
             continue
         text, density = problem
         where, links = _where(robot, links_of.get(body, []))
         if body == 0:
             text += f" (links welded to the world: {', '.join(links)}; MuJoCo ignores their mass)"
+        elif welded:
+            text += " (welded to the world: MuJoCo ignores its mass)"
         elif links and links[0] != name:
             text += f" (link '{links[0]}' carries most of it)"
-        fails = body != 0 and density_fails(density)
+        fails = not welded and density_fails(density)
         findings.append(
             BodyFinding(name, [text], "mass units", density_cause(density), fails, where=where)
         )
-    # Mass on bodies without geometry weighs too.
-    total_mass += sum(float(model.body_mass[b]) for b in range(1, model.nbody) if b not in volumes)
+    # Mass on moving bodies without geometry weighs too.
+    total_mass += sum(
+        float(model.body_mass[b])
+        for b in range(1, model.nbody)
+        if b not in volumes and model.body_weldid[b] != 0
+    )
     if not findings and total_mass > 0:
         findings += _total_finding(model, robot, total_mass, total)
     if robot is not None:
@@ -87,10 +97,11 @@ def mass_findings(
 
 
 def _marker(model: mujoco.MjModel, body: int) -> bool:
-    """Whether ``body``'s geometry is a marker, not the part: its inertia puts the mass
-    further from the centre of mass than any of its geometry reaches (a 1 mm sphere on a link
-    whose inertia says 15 cm, written "to stabilise the simulation"). Nothing about the mass
-    can be told from such geometry."""
+    """Whether ``body``'s geometry is a marker, not the part: none of it is a centimetre
+    across (the invisible 1 mm spheres of "fake" links), or its inertia puts the mass further
+    from the centre of mass than any of it reaches (a 1 mm sphere on a link whose inertia says
+    15 cm, written "to stabilize simulation"). Nothing about the mass can be told from such
+    geometry."""
     import numpy as np
 
     mass = float(model.body_mass[body])
@@ -98,7 +109,8 @@ def _marker(model: mujoco.MjModel, body: int) -> bool:
     geoms = np.flatnonzero(model.geom_bodyid == body)
     offsets = np.linalg.norm(model.geom_pos[geoms] - model.body_ipos[body], axis=1)
     reach = float(np.max(offsets + model.geom_rbound[geoms]))
-    return gyration > MARKER_REACH * reach
+    size = float(np.max(model.geom_rbound[geoms]))
+    return size < MARKER_SIZE or gyration > MARKER_REACH * reach
 
 
 def _urdf_mass(robot: Robot, links: list[str]) -> float:

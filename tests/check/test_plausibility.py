@@ -289,3 +289,30 @@ def test_a_link_in_grams_written_in_xacro_is_named_at_its_xacro_line(tmp_path):
     assert done.code == EXIT_CHECK
     (line,) = [line for line in done.stderr.splitlines() if "kg/m^3" in line]
     assert f"robot.urdf.xacro:{line_of(urdf, ARM_LINK)}: check: body 'arm'" in line, line
+
+
+def test_a_fake_link_drawn_as_a_point_says_nothing_of_its_mass():
+    # gym-ignition's character: 10 g "fake" links between hinges, invisible 0.5 mm spheres.
+    model = mujoco.MjModel.from_xml_string(
+        """<mujoco><worldbody><body name="fake"><joint type="hinge"/>
+        <inertial pos="0 0 0" mass="0.01" diaginertia="1e-9 1e-9 1e-9"/>
+        <geom type="sphere" size="0.0005" contype="0" conaffinity="0"/></body>
+        </worldbody></mujoco>"""
+    )
+    assert check_plausibility(model).findings == []
+
+
+def test_a_heavy_body_welded_to_the_world_is_a_warning():
+    # gym-ignition's pendulum: a 1 t support (a 5 x 10 x 60 cm box) that never moves.
+    model = mujoco.MjModel.from_xml_string(
+        """<mujoco><worldbody><body name="support">
+        <inertial pos="0 0 0.3" mass="1000" diaginertia="30 30 1"/>
+        <geom type="box" size="0.025 0.05 0.3" pos="0 0 0.3"/>
+        <body name="arm" pos="0 0 0.6"><joint type="hinge" axis="0 1 0"/>
+          <geom type="capsule" fromto="0 0 0 0 0 -0.3" size="0.02" density="2000"/></body>
+        </body></worldbody></mujoco>"""
+    )
+    found = check_plausibility(model)
+    (finding,) = found.findings
+    assert finding.body == "support" and not finding.fails and finding.cause == "mass units"
+    assert "welded to the world" in finding.problems[0] and found.failures == []
