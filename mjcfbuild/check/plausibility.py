@@ -13,7 +13,9 @@ geometry, in the body's frame:
   where a neighbouring link carries it, as on Baxter's elbows);
 * no mesh should be metres across and a hundred times the body's other geometry (or, with none,
   the robot's joint layout): a robot whose meshes are all in mm keeps every centre of mass
-  inside them, so this is a problem in itself.
+  inside them, so this is a problem in itself;
+* its mass should fit the volume of its geometry, and the robot's total mass all of it
+  (check.mass_findings: a mass in grams or tonnes, a missing scale).
 
 A body that fails is named with the likely cause, tried in order: *units in mm* (the last
 test); *up axis*, when the meshes that came from DAE files tagged Y-up or X-up, turned a quarter
