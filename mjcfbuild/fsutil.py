@@ -28,7 +28,12 @@ def unreadable_file(path: str | os.PathLike) -> str | None:
         if exc.errno == errno.ELOOP:
             return "is a symbolic link loop"
         if exc.errno in (errno.ENOENT, errno.ENOTDIR):
-            return "not found" if not os.path.islink(path) else "is a broken symbolic link"
+            if os.path.islink(path):
+                return "is a broken symbolic link"
+            match = case_match(path)
+            if match is not None:
+                return f"not found; did you mean '{case_suggestion(path, match)}'?"
+            return "not found"
         return f"is not readable ({exc.strerror})"
     if stat.S_ISDIR(mode):
         return "is a folder, not a file"
@@ -37,6 +42,38 @@ def unreadable_file(path: str | os.PathLike) -> str | None:
     if not os.access(path, os.R_OK):
         return "is not readable (permission denied)"
     return None
+
+
+def case_match(path: str | os.PathLike) -> Path | None:
+    """The existing file or folder whose name differs from missing ``path`` only in letter
+    case (``part.STL`` for ``part.stl``, ``Meshes/`` for ``meshes/``), or None.
+
+    Each missing part of the path is matched against its folder's entries ignoring case; where
+    several match, the first in sorted order is taken."""
+    absolute = normalise(path)
+    found = Path(absolute.anchor)
+    changed = False
+    for part in absolute.parts[1:]:
+        if os.path.lexists(found / part):
+            found = found / part
+            continue
+        try:
+            entries = sorted(os.listdir(found))
+        except OSError:
+            return None
+        same = [entry for entry in entries if entry.casefold() == part.casefold()]
+        if not same:
+            return None
+        found, changed = found / same[0], True
+    return found if changed and os.path.exists(found) else None
+
+
+def case_suggestion(path: str | os.PathLike, match: Path) -> str:
+    """How to write ``path`` as ``match`` (from :func:`case_match`) is spelt: ``path`` with
+    the name of each part that differs replaced, from the first of them on."""
+    asked = normalise(path).parts
+    first = next(i for i, (a, b) in enumerate(zip(asked, match.parts, strict=True)) if a != b)
+    return "/".join(match.parts[first:])
 
 
 def atomic_write(path: str | os.PathLike, data: bytes) -> None:

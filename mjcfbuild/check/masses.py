@@ -28,7 +28,7 @@ def compare_masses(
     import mujoco
 
     poses = link_poses(robot)
-    owner = _owner_bodies(robot, model)
+    owner = owner_bodies(robot, model)
     groups: dict[int, list[str]] = {}
     for link, body in owner.items():
         groups.setdefault(body, []).append(link)
@@ -72,7 +72,7 @@ def compare_masses(
     return problems, urdf_total, model_total
 
 
-def _owner_bodies(robot: Robot, model) -> dict[str, int]:
+def owner_bodies(robot: Robot, model) -> dict[str, int]:
     """The model body each URDF link belongs to: its own body, its site's, or its parent's."""
     import mujoco
 

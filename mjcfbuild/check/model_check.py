@@ -171,16 +171,19 @@ def check_model(
     report.failures += control.failures
     _speed_bound(report, robot, model, readiness)  # issue 33
     report.results["meshes"] = mesh_statistics(model)
-    _check_plausibility(model, report, sources)
+    _check_plausibility(model, report, sources, robot)
     return report
 
 
-def _check_plausibility(model, report: CheckReport, sources: dict[str, Path] | None) -> None:
-    """Centres of mass inside their bodies' geometry, visual and collision overlapping
-    (check.plausibility): meshes in mm fail; other findings are warnings in the results."""
+def _check_plausibility(
+    model, report: CheckReport, sources: dict[str, Path] | None, robot: Robot
+) -> None:
+    """Centres of mass inside their bodies' geometry, visual and collision overlapping, masses
+    their geometry can hold (check.plausibility): meshes in mm and masses in the wrong unit
+    fail; other findings are warnings in the results."""
     from mjcfbuild.check.plausibility import check_plausibility
 
-    plausibility = check_plausibility(model, sources)
+    plausibility = check_plausibility(model, sources, robot=robot)
     report.results["plausibility"] = plausibility.to_dict()
     report.failures += plausibility.failures
 

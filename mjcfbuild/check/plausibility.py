@@ -13,7 +13,9 @@ geometry, in the body's frame:
   where a neighbouring link carries it, as on Baxter's elbows);
 * no mesh should be metres across and a hundred times the body's other geometry (or, with none,
   the robot's joint layout): a robot whose meshes are all in mm keeps every centre of mass
-  inside them, so this is a problem in itself.
+  inside them, so this is a problem in itself;
+* its mass should fit the volume of its geometry, and the robot's total mass all of it
+  (check.mass_findings: a mass in grams or tonnes, a missing scale).
 
 A body that fails is named with the likely cause, tried in order: *units in mm* (the last
 test); *up axis*, when the meshes that came from DAE files tagged Y-up or X-up, turned a quarter
@@ -28,6 +30,9 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
+
+from mjcfbuild.check.findings import BodyFinding
+from mjcfbuild.urdf.model import Robot
 
 if TYPE_CHECKING:
     import mujoco
@@ -46,21 +51,6 @@ MM_SIZE = 2.0
 MIN_SHARED = 0.02
 # Bodies lighter than this (dummy frames, sensors' placeholders) say nothing.
 MIN_MASS = 1e-3
-
-
-@dataclass
-class BodyFinding:
-    """One body that failed the test, and why it likely did."""
-
-    body: str
-    problems: list[str]
-    cause: str  # "units in mm", "up axis" or "wrong origin"
-    detail: str
-    fails: bool  # a failure of the check; else a warning
-
-    def text(self) -> str:
-        """The one-line message."""
-        return f"body '{self.body}': {'; '.join(self.problems)}; likely cause: {self.detail}"
 
 
 @dataclass
@@ -102,14 +92,21 @@ class _Geom:
 
 
 def check_plausibility(
-    model: mujoco.MjModel, sources: dict[str, Path] | None = None, skip: set[str] | None = None
+    model: mujoco.MjModel,
+    sources: dict[str, Path] | None = None,
+    skip: set[str] | None = None,
+    robot: Robot | None = None,
 ) -> Plausibility:
     """Test every body of ``model`` with mass and geometry (except those named in ``skip``).
 
     ``sources``, the mesh products a build published the model's assets from (by asset file
     name), say which meshes came from DAE files tagged Y-up or X-up: only those can have a
-    wrong up axis. Without them (a model mjcfbuild did not build) any mesh can."""
+    wrong up axis. Without them (a model mjcfbuild did not build) any mesh can. ``robot``,
+    the URDF the model was built from, names the file and line of each mass finding and adds
+    the links welded to the world (check.mass_findings)."""
     import mujoco
+
+    from mjcfbuild.check.mass_findings import mass_findings
 
     result = Plausibility()
     geoms_of: dict[int, list[_Geom]] = {}
@@ -130,6 +127,12 @@ def check_plausibility(
             continue
         turnable = [g for g in geoms if g.is_mesh and (tagged is None or g.name in tagged)]
         result.findings.append(_diagnose(name, geoms, com, problems, robot_size, turnable))
+    # A body in mm is one finding, not a second one for the mass its huge mesh cannot fill.
+    in_mm = {f.body for f in result.findings if f.cause == "units in mm"}
+    for finding in mass_findings(model, robot, MIN_MASS, skip or set()):
+        if in_mm and (finding.subject == "robot" or finding.body in in_mm):
+            continue
+        result.findings.append(finding)
     return result
 
 

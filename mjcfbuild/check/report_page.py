@@ -412,13 +412,14 @@ def _plausibility(report: dict) -> list[str]:
         findings = found.get("findings", [])
         lines.append(
             f"{found.get('bodies', 0)} bodies tested (centre of mass inside its own geometry, "
-            f"visual and collision geometry overlapping): {len(findings) or 'none'} named."
+            "visual and collision geometry overlapping, a mass its geometry can hold): "
+            f"{len(findings) or 'none'} named."
         )
         lines.append("")
         if findings:
             lines += ["| body | result | problems | likely cause |", "|---|---|---|---|"]
             lines += [
-                f"| {md(f['body'])} | {'fails' if f['fails'] else 'warning'} | "
+                f"| {_named(f)} | {'fails' if f['fails'] else 'warning'} | "
                 f"{md('; '.join(f['problems']))} | {md(f['detail'])} |"
                 for f in findings
             ]
@@ -451,6 +452,14 @@ def _plausibility(report: dict) -> list[str]:
         ]
         lines.append("")
     return lines
+
+
+def _named(finding: dict) -> str:
+    """A plausibility finding's body, or what else it names (a link, the robot), with the
+    URDF line to fix where there is one."""
+    subject = finding.get("subject", "body")
+    name = finding["body"] if subject == "body" else f"{subject} {finding['body']}"
+    return md(f"{name} ({finding['where']})" if finding.get("where") else name)
 
 
 def _armature(actuator: dict) -> str:

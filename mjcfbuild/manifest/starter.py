@@ -7,6 +7,7 @@ import re
 from pathlib import Path
 
 from mjcfbuild.errors import InputError, OutputError, UsageError
+from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.manifest.models import NAME_PATTERN
 from mjcfbuild.sources.infer import infer_package, package_references
 from mjcfbuild.sources.packages import find_enclosing_package
@@ -23,7 +24,7 @@ def write_starter_manifest(
     """Write a manifest for ``source`` to ``output``; return its path."""
     source_path = Path(source).resolve()
     if not source_path.is_file():
-        raise InputError("source file not found", file=source)
+        raise InputError(f"source file {unreadable_file(source) or 'not found'}", file=source)
     manifest_path = Path(output).resolve()
     if manifest_path.exists() and not force:
         raise UsageError(f"{output} already exists", hint="pass --force to overwrite it")

@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import IO, Any
 
 from mjcfbuild.errors import InputError, ManifestError, UsageError
-from mjcfbuild.fsutil import normalise, unreadable_file
+from mjcfbuild.fsutil import case_match, case_suggestion, normalise, unreadable_file
 from mjcfbuild.sources.packages import PackageResolver, did_you_mean
 from mjcfbuild.xmlguard import refuse_entities
 
@@ -76,7 +76,9 @@ def read_urdf_file(path: Path) -> Expansion:
         data = path.read_bytes()
     except FileNotFoundError:
         raise InputError(
-            "source file not found", file=path, hint="fix 'source' in robot.yaml"
+            f"source file {unreadable_file(path) or 'not found'}",
+            file=path,
+            hint="fix 'source' in robot.yaml",
         ) from None
     except IsADirectoryError:
         raise InputError("source is a folder, not a file", file=path) from None
@@ -192,6 +194,9 @@ def _expand(
                 hint = (
                     "pass it under 'source.args' in robot.yaml, or give its <xacro:arg> a default"
                 )
+            absent = re.match(r"No such file or directory: (\S+)", message)
+            if absent:
+                raise _missing_include(absent.group(1), current) from None
             failure = _XacroFailed if track_lines else InputError
             raise failure(f"xacro failed: {message}", file=current, line=line, hint=hint) from None
         included = list(xacro.all_includes)
@@ -235,6 +240,28 @@ def _check_args(
         message,
         file=f"{args_key}.{name}",
         hint="fix its name, or declare it in the xacro file with <xacro:arg name=...>",
+    )
+
+
+def _missing_include(path: str, current: str) -> InputError:
+    """The error for a file xacro could not find (an include): its line in ``current``, and
+    the file spelt otherwise in letter case, if there is one."""
+    name = Path(path).name
+    line = _line_of(current, re.escape(name))
+    match = case_match(path)
+    if match is not None:
+        return InputError(
+            f"xacro include '{name}' not found; did you mean '{case_suggestion(path, match)}'? "
+            f"(looked at {path})",
+            file=current,
+            line=line,
+            hint="write the name as the file is spelt: letter case matters here",
+        )
+    return InputError(
+        f"xacro include '{name}' not found (looked at {path})",
+        file=current,
+        line=line,
+        hint="check the include's filename and the 'packages' in robot.yaml",
     )
 
 

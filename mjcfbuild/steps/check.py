@@ -24,9 +24,12 @@ def run(payload: dict) -> dict:
     write_results(report, Path(request.output), outputs)
     if report.failures:
         more = len(report.failures) - 1
+        source = read_plan(Path(request.plan)).robot_model().source
+        file, line, text = _located(report.failures[0], source, request.model_label)
         raise CheckError(
-            f"check: {report.failures[0]}",
-            file=request.model_label,
+            f"check: {text}",
+            file=file,
+            line=line,
             hint=f"{more} more failure{'s' if more > 1 else ''} in the report" if more else None,
         )
     return {"outputs": outputs, "warnings": check_warnings(report)}
@@ -88,6 +91,17 @@ def add_runtime_check(
     results, failures, warnings = check_runtime(compile_model(model_path, sources), control)
     report.results["mujoco_ros2_control"] = {**results, "warnings": warnings}
     report.failures += failures
+
+
+def _located(failure: str, source: str, model_label: str) -> tuple[str, int | None, str]:
+    """(file, line, message) of a failure: one that starts ``source:line:`` (a URDF link to
+    fix, which the runner then follows into a xacro file) is placed there; others are the
+    model's."""
+    head = f"{source}:"
+    number, sep, rest = failure[len(head) :].partition(": ")
+    if failure.startswith(head) and sep and number.isdigit():
+        return source, int(number), rest
+    return model_label, None, failure
 
 
 def _read_reference(path: Path) -> dict:

@@ -6,7 +6,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from mjcfbuild.errors import InputError
-from mjcfbuild.fsutil import normalise, unreadable_file
+from mjcfbuild.fsutil import case_match, case_suggestion, normalise, unreadable_file
 from mjcfbuild.meshes.formats import MESH_FORMATS, mesh_format
 from mjcfbuild.meshes.naming import assign_mesh_ids
 from mjcfbuild.meshes.prebuilt import prebuilt_mesh
@@ -107,6 +107,15 @@ def _resolve_existing(
     except InputError as exc:
         raise InputError(exc.message, file=robot.source, line=shape.line, hint=exc.hint) from None
     problem = unreadable_file(path)
+    match = case_match(path) if problem and problem.startswith("not found") else None
+    if match is not None:
+        raise InputError(
+            f"file '{uri}' not found; did you mean '{_respelt(uri, path, match)}'? "
+            f"(looked at {path})",
+            file=robot.source,
+            line=shape.line,
+            hint="write the name as the file is spelt: letter case matters here",
+        )
     if problem:
         raise InputError(
             f"file '{uri}' {problem} (looked at {path})",
@@ -115,3 +124,14 @@ def _resolve_existing(
             hint="check the path and the 'packages' in robot.yaml",
         )
     return str(path)
+
+
+def _respelt(uri: str, path: Path, match: Path) -> str:
+    """``uri`` with the parts that differ from ``match`` in letter case spelt as ``match``
+    spells them; the file's path where the URI does not end with those parts as written."""
+    tail = case_suggestion(path, match).split("/")
+    parts = uri.split("/")
+    written = parts[-len(tail) :]
+    if len(parts) >= len(tail) and [p.casefold() for p in written] == [t.casefold() for t in tail]:
+        return "/".join(parts[: -len(tail)] + tail)
+    return str(match)

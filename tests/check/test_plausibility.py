@@ -134,3 +134,185 @@ def test_a_mesh_in_millimetres_fails_the_check_with_its_likely_cause(tmp_path):
     check = json.loads((tmp_path / "mjcf" / ".mjcfbuild" / "check.json").read_text())
     assert check["plausibility"]["findings"] == []
     assert np.isfinite(check["plausibility"]["bodies"])
+
+
+def arm_urdf(mass: float, inertia: float, base: str = "") -> str:
+    """A base and a 30 cm arm link of ``mass`` (a 5 x 5 x 30 cm box: 1.5 kg of aluminium)."""
+    arm_inertia = (
+        f'<inertia ixx="{inertia}" iyy="{inertia}" izz="{inertia / 10}" ixy="0" ixz="0" iyz="0"/>'
+    )
+    return f"""<?xml version="1.0" encoding="utf-8"?>
+<robot name="arm">
+{base}  <link name="base"><inertial><mass value="2"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision></link>
+  <link name="arm">
+    <inertial><origin xyz="0 0 -0.15"/><mass value="{mass}"/>{arm_inertia}</inertial>
+    <visual><origin xyz="0 0 -0.15"/><geometry><box size="0.05 0.05 0.3"/></geometry></visual>
+    <collision><origin xyz="0 0 -0.15"/><geometry><box size="0.05 0.05 0.3"/></geometry>
+    </collision></link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="arm"/>
+    <origin xyz="0 0 -0.05"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="50" velocity="1"/></joint>
+</robot>
+"""
+
+
+ARM_LINK, BASE_LINK = '<link name="arm">', '<link name="base">'
+
+
+def line_of(text: str, fragment: str) -> int:
+    return next(n for n, line in enumerate(text.splitlines(), 1) if fragment in line)
+
+
+def build_arm(tmp_path, urdf: str):
+    write(tmp_path / "robot.urdf", urdf)
+    simple_manifest(tmp_path)
+    done = run_cli("build", cwd=tmp_path)
+    check = json.loads((tmp_path / "mjcf" / ".mjcfbuild" / "check.json").read_text())
+    return done, check
+
+
+def test_a_link_in_kilograms_passes(tmp_path):
+    done, check = build_arm(tmp_path, arm_urdf(1.5, 0.0115))
+    assert done.code == 0, done.stderr
+    assert check["plausibility"]["findings"] == []
+
+
+def test_a_link_in_grams_fails_the_check_at_its_urdf_line(tmp_path):
+    urdf = arm_urdf(1500.0, 11.5)  # 1.5 kg written in grams (and g m^2)
+    done, check = build_arm(tmp_path, urdf)
+    assert done.code == EXIT_CHECK and "Traceback" not in done.stderr
+    (finding,) = check["plausibility"]["findings"]
+    assert finding["body"] == "arm" and finding["cause"] == "mass units" and finding["fails"]
+    where = f"robot.urdf:{line_of(urdf, ARM_LINK)}"
+    assert finding["where"] == where
+    assert "grams written as kilograms" in finding["detail"]
+    (line,) = [line for line in done.stderr.splitlines() if "kg/m^3" in line]
+    assert f"{where}: check: body 'arm'" in line
+    assert "2e+06 kg/m^3" in line and "grams" in line
+    page = (tmp_path / "mjcf" / "report" / "report.md").read_text()
+    assert f"| arm ({where}) | fails |" in page
+
+
+def test_a_link_in_tonnes_fails_the_check(tmp_path):
+    done, check = build_arm(tmp_path, arm_urdf(0.0015, 1.15e-5))  # 1.5 kg written in tonnes
+    assert done.code == EXIT_CHECK, done.stderr
+    (finding,) = check["plausibility"]["findings"]
+    assert finding["body"] == "arm" and finding["fails"]
+    assert "lighter than anything robots are made of" in finding["problems"][0]
+    assert "tonnes written as kilograms" in finding["detail"]
+
+
+def test_a_link_welded_to_the_world_is_judged_and_its_impossible_inertia_reported(tmp_path):
+    world = (
+        '  <link name="world"/>\n'
+        '  <joint name="weld" type="fixed"><parent link="world"/><child link="base"/></joint>\n'
+    )
+    urdf = arm_urdf(1.5, 0.0115, world).replace('<mass value="2"/>', '<mass value="2000"/>')
+    urdf = urdf.replace('izz="0.01" ixy="0"', 'izz="0.05" ixy="0"', 1)  # 0.01 + 0.01 < 0.05
+    done, check = build_arm(tmp_path, urdf)
+    # The world's mass is MuJoCo's to drop: the model simulates the same, so warnings only.
+    assert done.code == 0, done.stderr
+    findings = {f["cause"]: f for f in check["plausibility"]["findings"]}
+    assert set(findings) == {"mass units", "impossible inertia"}
+    dense = findings["mass units"]
+    assert dense["body"] == "world" and not dense["fails"]
+    assert "links welded to the world: base" in dense["problems"][0]
+    assert dense["where"] == f"robot.urdf:{line_of(urdf, BASE_LINK)}"
+    inertia = findings["impossible inertia"]
+    assert inertia["subject"] == "link" and inertia["body"] == "base" and not inertia["fails"]
+    assert "break A + B >= C" in inertia["problems"][0]
+    assert len(check["plausibility"]["warnings"]) == 2
+    assert "link 'base'" in done.stdout + done.stderr
+
+
+def fingers(mass: float, inertia: float, extra: str = "") -> mujoco.MjModel:
+    """A palm and three 2 x 2 x 5 cm fingers of ``mass`` each (20 g of plastic: 1,000 kg/m^3)."""
+    finger = (
+        '<body name="{name}" pos="{x} 0 0.05"><joint type="hinge" axis="0 1 0"/>'
+        f'<inertial pos="0 0 0.025" mass="{mass}" diaginertia="{inertia} {inertia} '
+        f'{inertia / 4}"/>'
+        '<geom type="box" size="0.01 0.01 0.025" pos="0 0 0.025"/></body>'
+    )
+    bodies = "".join(finger.format(name=f"finger{i}", x=0.03 * i) for i in range(3))
+    return mujoco.MjModel.from_xml_string(
+        f"""<mujoco><worldbody><body name="palm"><freejoint/>
+        <inertial pos="0 0 0" mass="0.3" diaginertia="3e-4 3e-4 3e-4"/>
+        <geom type="box" size="0.05 0.05 0.02"/>{bodies}{extra}</body></worldbody></mujoco>"""
+    )
+
+
+def test_a_hand_in_kilograms_passes():
+    assert check_plausibility(fingers(0.02, 5e-6)).findings == []
+
+
+def test_fingers_too_light_to_judge_alone_are_judged_as_the_whole_robot():
+    # Each finger in tonnes (2e-5) is below the lightest body judged alone, the palm too.
+    model = fingers(2e-5, 5e-9)
+    model.body_mass[1] = 3e-4  # the palm in tonnes as well
+    found = check_plausibility(model)
+    (finding,) = found.findings
+    assert finding.subject == "robot" and finding.fails and finding.cause == "mass units"
+    assert "in all:" in finding.problems[0] and "tonnes" in finding.detail
+
+
+def test_mass_on_a_body_without_geometry_counts_in_the_robots_total():
+    extra = (
+        '<body name="counterweight"><joint type="hinge"/>'
+        '<inertial pos="0 0 0" mass="50000" diaginertia="1 1 1"/></body>'
+    )
+    found = check_plausibility(fingers(0.02, 5e-6, extra))
+    (finding,) = found.findings
+    assert finding.subject == "robot" and finding.fails
+    assert "denser than anything robots are made of" in finding.problems[0]
+
+
+def test_geometry_that_only_marks_a_link_says_nothing_of_its_mass():
+    # TIAGo's hand links: 50 g on a 1 mm sphere, with an inertia that puts the mass 14 cm
+    # out ("to stabilize simulation"). The sphere is a marker, not the part.
+    model = mujoco.MjModel.from_xml_string(
+        """<mujoco><worldbody><body name="hand"><joint type="hinge"/>
+        <inertial pos="0 0 0" mass="0.05" diaginertia="0.001 0.001 0.001"/>
+        <geom type="sphere" size="0.001"/></body></worldbody></mujoco>"""
+    )
+    assert check_plausibility(model).findings == []
+
+
+def test_a_link_in_grams_written_in_xacro_is_named_at_its_xacro_line(tmp_path):
+    urdf = arm_urdf(1500.0, 11.5).replace(
+        '<robot name="arm">', '<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+    )
+    write(tmp_path / "robot.urdf.xacro", urdf)
+    simple_manifest(tmp_path, "xacro: robot.urdf.xacro")
+    done = run_cli("build", cwd=tmp_path)
+    assert done.code == EXIT_CHECK
+    (line,) = [line for line in done.stderr.splitlines() if "kg/m^3" in line]
+    assert f"robot.urdf.xacro:{line_of(urdf, ARM_LINK)}: check: body 'arm'" in line, line
+
+
+def test_a_fake_link_drawn_as_a_point_says_nothing_of_its_mass():
+    # gym-ignition's character: 10 g "fake" links between hinges, invisible 0.5 mm spheres.
+    model = mujoco.MjModel.from_xml_string(
+        """<mujoco><worldbody><body name="fake"><joint type="hinge"/>
+        <inertial pos="0 0 0" mass="0.01" diaginertia="1e-9 1e-9 1e-9"/>
+        <geom type="sphere" size="0.0005" contype="0" conaffinity="0"/></body>
+        </worldbody></mujoco>"""
+    )
+    assert check_plausibility(model).findings == []
+
+
+def test_a_heavy_body_welded_to_the_world_is_a_warning():
+    # gym-ignition's pendulum: a 1 t support (a 5 x 10 x 60 cm box) that never moves.
+    model = mujoco.MjModel.from_xml_string(
+        """<mujoco><worldbody><body name="support">
+        <inertial pos="0 0 0.3" mass="1000" diaginertia="30 30 1"/>
+        <geom type="box" size="0.025 0.05 0.3" pos="0 0 0.3"/>
+        <body name="arm" pos="0 0 0.6"><joint type="hinge" axis="0 1 0"/>
+          <geom type="capsule" fromto="0 0 0 0 0 -0.3" size="0.02" density="2000"/></body>
+        </body></worldbody></mujoco>"""
+    )
+    found = check_plausibility(model)
+    (finding,) = found.findings
+    assert finding.body == "support" and not finding.fails and finding.cause == "mass units"
+    assert "welded to the world" in finding.problems[0] and found.failures == []

@@ -339,6 +339,23 @@ CASES: list[Case] = [
     # ---- sources ------------------------------------------------------------------------------
     Case("urdf not found", {"robot.yaml": MANIFEST}, EXIT_INPUT, ["robot.urdf", "not found"]),
     Case(
+        "urdf spelt in another letter case",
+        {"robot.yaml": MANIFEST, "Robot.URDF": urdf()},
+        EXIT_INPUT,
+        ["robot.urdf", "not found", "did you mean 'Robot.URDF'?"],
+    ),
+    Case(
+        "xacro include spelt in another letter case",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
+            '  <xacro:include filename="Arm.xacro"/>\n  <link name="base"/>\n</robot>\n',
+            "arm.xacro": '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"/>\n',
+        },
+        EXIT_INPUT,
+        ["robot.urdf.xacro:2:", "Arm.xacro", "did you mean 'arm.xacro'?"],
+    ),
+    Case(
         "xacro not found",
         {"robot.yaml": XACRO_MANIFEST},
         EXIT_INPUT,
@@ -684,6 +701,16 @@ CASES: list[Case] = [
         ["robot.urdf:6:", "meshes/arm.stl", "not found"],
     ),
     Case(
+        "mesh spelt in another letter case",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": mesh_urdf("meshes/arm.STL"),
+            "meshes/arm.stl": TETRAHEDRON_STL,
+        },
+        EXIT_INPUT,
+        ["robot.urdf:6:", "meshes/arm.STL", "did you mean 'meshes/arm.stl'?", "letter case"],
+    ),
+    Case(
         "mesh file empty",
         {"robot.yaml": MANIFEST, "robot.urdf": mesh_urdf("meshes/arm.stl"), "meshes/arm.stl": b""},
         EXIT_INPUT,
@@ -822,6 +849,16 @@ CASES: list[Case] = [
         {"robot.yaml": MANIFEST + "mujoco_inputs:\n  file: inputs.xml\n", "robot.urdf": urdf()},
         EXIT_INPUT,
         ["inputs.xml", "not found"],
+    ),
+    Case(
+        "inputs file spelt in another letter case",
+        {
+            "robot.yaml": MANIFEST + "mujoco_inputs:\n  file: inputs.xml\n",
+            "robot.urdf": urdf(),
+            "Inputs.XML": "<mujoco/>\n",
+        },
+        EXIT_INPUT,
+        ["inputs.xml", "did you mean 'Inputs.XML'?"],
     ),
     Case(
         "camera on unknown link",

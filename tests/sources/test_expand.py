@@ -104,7 +104,26 @@ def test_missing_include_is_an_error_naming_the_including_file(pkg):
     )
     with pytest.raises(InputError) as info:
         expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({"pkg": pkg}, {}))
-    assert "xacro failed" in info.value.message
+    error = info.value
+    assert (error.location.file, error.location.line) == (str(pkg / "urdf" / "part.xacro"), 2)
+    assert "xacro include 'gone.xacro' not found" in error.message
+    assert "did you mean" not in error.message
+
+
+def test_an_include_spelt_in_another_letter_case_is_named(pkg):
+    write(pkg / "urdf" / "main.xacro", MAIN.replace("urdf/part.xacro", "URDF/Part.xacro"))
+    with pytest.raises(InputError) as info:
+        expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({"pkg": pkg}, {}))
+    error = info.value
+    assert (error.location.file, error.location.line) == (str(pkg / "urdf" / "main.xacro"), 5)
+    assert "did you mean 'urdf/part.xacro'?" in error.message
+    assert "letter case" in (error.hint or "")
+
+
+def test_a_plain_urdf_spelt_in_another_letter_case_is_named(tmp_path):
+    write(tmp_path / "robot.urdf", "<robot name='r'/>")
+    with pytest.raises(InputError, match=r"did you mean 'robot\.urdf'"):
+        read_urdf_file(tmp_path / "Robot.URDF")
 
 
 def test_xml_error_in_included_file_has_file_and_line(pkg):

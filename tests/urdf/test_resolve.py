@@ -6,7 +6,7 @@ import shutil
 
 import pytest
 
-from mjcfbuild.errors import InputError
+from mjcfbuild.errors import EXIT_INPUT, InputError
 from mjcfbuild.sources.packages import PackageResolver
 from mjcfbuild.urdf.parse import parse_urdf
 from mjcfbuild.urdf.resolve import resolve_files
@@ -139,3 +139,45 @@ def test_a_build_warns_and_the_setting_silences_it(tmp_path):
     simple_manifest(project, "urdf: robot.urdf\n  read_outside: true")
     result = run_cli("build", "--no-check", "-q", cwd=project)
     assert result.code == 0 and "outside every package" not in result.stderr, result.stderr
+
+
+@pytest.mark.parametrize(
+    ("written", "meant"),
+    [
+        ("package://pkg/meshes/part.STL", "package://pkg/meshes/part.stl"),
+        ("meshes/Part.stl", "meshes/part.stl"),
+        ("Meshes/part.stl", "meshes/part.stl"),
+        ("file://{root}/meshes/PART.STL", "file://{root}/meshes/part.stl"),
+    ],
+)
+def test_a_mesh_spelt_in_another_letter_case_is_named(tmp_path, written, meant):
+    write(tmp_path / "meshes" / "part.stl", "solid a\nendsolid a\n")
+    robot = robot_with(written.format(root=tmp_path))
+    with pytest.raises(InputError) as info:
+        resolve_files(robot, tmp_path, PackageResolver({"pkg": tmp_path}, {}))
+    error = info.value
+    assert (error.location.file, error.location.line) == ("r.urdf", 2)
+    assert f"did you mean '{meant.format(root=tmp_path)}'?" in error.message
+    assert "letter case" in (error.hint or "")
+
+
+def test_a_missing_mesh_with_no_file_of_its_name_suggests_nothing(tmp_path):
+    write(tmp_path / "meshes" / "part.stl", "solid a\nendsolid a\n")
+    with pytest.raises(InputError) as info:
+        resolve_files(robot_with("meshes/part2.STL"), tmp_path, PackageResolver({}, {}))
+    assert "not found" in info.value.message and "did you mean" not in info.value.message
+
+
+def test_the_build_names_the_file_the_urdf_meant_in_one_line(tmp_path):
+    write(tmp_path / "meshes" / "part.stl", "solid a\nendsolid a\n")
+    write(
+        tmp_path / "robot.urdf",
+        '<robot name="r">\n<link name="a">\n<visual><geometry><mesh filename="meshes/part.STL"/>'
+        "</geometry></visual></link></robot>\n",
+    )
+    simple_manifest(tmp_path)
+    done = run_cli("build", cwd=tmp_path)
+    assert done.code == EXIT_INPUT
+    lines = [line for line in done.stderr.splitlines() if "part.STL" in line]
+    assert len(lines) == 1 and "robot.urdf:3" in lines[0], done.stderr
+    assert "did you mean 'meshes/part.stl'?" in lines[0] and "Traceback" not in done.stderr
