@@ -235,7 +235,7 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
             "```",
             "",
         ]
-    return lines + _runtime(check.get("mujoco_ros2_control"))
+    return lines + _runtime(check.get("mujoco_ros2_control")) + _gazebo(check.get("gazebo_sensors"))
 
 
 def _motor(actuator: dict) -> str:
@@ -467,6 +467,24 @@ def _armature(actuator: dict) -> str:
     """The armature the build gave a weight-bearing joint, if it did."""
     armature = actuator.get("armature")
     return f" (armature {armature:.3g} added)" if armature else ""
+
+
+def _gazebo(sensors: list[dict] | None) -> list[str]:
+    """The URDF's Gazebo sensors: which have an MJCF counterpart, and what it does not model."""
+    if not sensors:
+        return []
+    lines = [
+        "### Gazebo sensors",
+        "",
+        "| sensor | type | on | not modelled |",
+        "|---|---|---|---|",
+    ]
+    for sensor in sensors:
+        missing = "the sensor" if not sensor["modelled"] else ", ".join(sensor["not_modelled"])
+        lines.append(
+            f"| {sensor['name']} | {sensor['type']} | {sensor['reference']} | {missing or '-'} |"
+        )
+    return [*lines, ""]
 
 
 def _runtime(runtime: dict | None) -> list[str]:

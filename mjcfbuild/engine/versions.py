@@ -10,10 +10,10 @@ from mjcfbuild import __version__
 # Bump a step's number when its output for the same inputs changes.
 STEP_FORMATS = {
     "expand": 2,  # 2: the origins of the expanded lines
-    "plan": 5,  # 5: the <hardware> parameters of ros2_control sensors and joints
+    "plan": 6,  # 6: the Gazebo sensors
     "mesh": 5,
     "decompose": 3,
-    "assemble": 11,  # 11: ros2_control sensors' MJCF sensors; its position joints <position>
+    "assemble": 12,  # 12: the Gazebo sensors' MJCF counterparts
     "scene": 3,
     "check": 8,  # 8: the mujoco_ros2_control section
     "reference": 1,

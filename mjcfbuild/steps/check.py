@@ -41,6 +41,19 @@ def run(payload: dict) -> dict:
     if request.mjcf_parts and report.results.get("loads"):
         _check_parts(report, Path(request.model), request.mjcf_parts, request.options, sources)
     add_runtime_check(report, Path(request.model), plan.control(), sources)
+    gazebo = plan.gazebo()
+    if gazebo:
+        # What each Gazebo sensor became, and what of it MuJoCo does not model (noise, rates).
+        report.results["gazebo_sensors"] = [
+            {
+                "name": sensor.name,
+                "type": sensor.type,
+                "reference": sensor.reference,
+                "modelled": sensor.kind is not None,
+                "not_modelled": sensor.not_modelled,
+            }
+            for sensor in gazebo
+        ]
     outputs: dict[str, str] = {}
     data = {"passes": report.passes, "failures": report.failures, **report.results}
     write_output(
