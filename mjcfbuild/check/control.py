@@ -73,8 +73,14 @@ def check_control(model, passive: set[str], hold_tolerance: float, strict: bool)
     if floating and home >= 0:
         stand = stand_test(model, home, passive)
         report.results["stand"] = stand.to_dict()
+        motors = torque_motors(model, passive)
         if stand.needs_controller:
             report.results["needs_controller"] = stand.needs_controller
+        elif stand.fails(hold_tolerance) and motors:
+            # A torque motor's constant ctrl cannot hold a pose: no gain fixes that.
+            why = motors_need_a_controller(motors)
+            report.results["needs_controller"] = why
+            report.results["stand"]["fell_without_controller"] = why
         elif stand.fails(hold_tolerance):
             advice = _hold_advice(model, home, stand.joint)
             report.failures.append(stand.failure(hold_tolerance, advice))
@@ -183,12 +189,73 @@ def stand_test(model, key: int, passive: set[str], seconds: float = STAND_SECOND
     return StandTest(seconds, tilt, sink, height, worst, worst_joint, "", found.margin)
 
 
-def _hold_advice(model, key: int, joint: str | None) -> str:
-    """What to change when ``joint`` does not hold home: its force limit when gravity at home
-    needs more than it allows (both numbers, and the two fixes), else its stiffness."""
+def joint_drives(model) -> dict[str, str]:
+    """Each actuated joint's actuator kind, as mujoco_ros2_control classifies it by the bias:
+    'motor' (a torque motor), 'position', 'velocity' or 'custom'."""
     import mujoco
 
-    stiffen = "stiffen its actuator (actuators.frequency, or kp in a rule)"
+    from mjcfbuild.inputs.ros2_control import runtime_actuator_kind
+
+    drives = {}
+    for actuator in range(model.nu):
+        if model.actuator_trntype[actuator] != mujoco.mjtTrn.mjTRN_JOINT:
+            continue
+        joint = mujoco.mj_id2name(
+            model, mujoco.mjtObj.mjOBJ_JOINT, model.actuator_trnid[actuator][0]
+        )
+        biasprm = tuple(float(v) for v in model.actuator_biasprm[actuator][:3])
+        drives[joint or ""] = runtime_actuator_kind(int(model.actuator_biastype[actuator]), biasprm)
+    return drives
+
+
+def torque_motors(model, passive: set[str]) -> list[str]:
+    """The watched joints driven by torque motors, in joint order."""
+    import mujoco
+
+    drives = joint_drives(model)
+    names = [
+        mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or ""
+        for j in _watched(model, passive)
+    ]
+    return [name for name in names if drives.get(name) == "motor"]
+
+
+def motors_need_a_controller(motors: list[str]) -> str:
+    """Why a robot on torque motors falls at home, and the two ways out (the rule names every
+    motor, to be copied as it is)."""
+    shown = ", ".join(motors[:6]) + (f", ... ({len(motors)} in all)" if len(motors) > 6 else "")
+    return (
+        f"its joints are driven by torque motors ({shown}), whose constant ctrl cannot hold a "
+        "pose, so it fell: it stands under a controller that closes the loop (a ros2_control "
+        "controller, or mujoco_ros2_control's PIDs); for a passive stand make them position "
+        f"servos with a rule (actuators: {{rules: [{{joints: [{', '.join(motors)}], "
+        "type: position}]}) in a model not meant for mujoco_ros2_control, whose effort "
+        "interfaces need the motors"
+    )
+
+
+def _hold_advice(model, key: int, joint: str | None) -> str:
+    """What to change when ``joint`` does not hold home: its force limit when gravity at home
+    needs more than it allows (both numbers, and the two fixes), else what fits what drives
+    it: a position servo can be stiffened, a torque motor or velocity servo cannot hold a
+    pose."""
+    import mujoco
+
+    drive = joint_drives(model).get(joint or "")
+    if drive == "motor":
+        stiffen = (
+            f"'{joint}' is driven by a torque motor, whose constant ctrl cannot hold a pose: "
+            "hold it with a controller, or make it a position servo with a rule (actuators: "
+            f"{{rules: [{{joints: [{joint}], type: position}}]}})"
+        )
+    elif drive == "velocity":
+        stiffen = (
+            f"'{joint}' is driven by a velocity servo, which holds a speed, not a position: "
+            "where it must hold a pose, make it a position servo with a rule (actuators: "
+            f"{{rules: [{{joints: [{joint}], type: position}}]}})"
+        )
+    else:
+        stiffen = "stiffen its actuator (actuators.frequency, or kp in a rule)"
     index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint or "")
     if index < 0:
         return stiffen

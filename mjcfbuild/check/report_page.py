@@ -129,9 +129,10 @@ def verdict(check: dict, warnings: list[str]) -> str:
         more = f" (and {len(failures) - 1} more, below)" if len(failures) > 1 else ""
         return f"**checks failed**{first}{more}"
     if check.get("needs_controller"):
+        ran = (check.get("stand") or {}).get("fell_without_controller")
         return (
             "checks pass, but the robot cannot stand without a controller "
-            f"({check['needs_controller']}): the stand test was not run"
+            f"({check['needs_controller']})" + ("" if ran else ": the stand test was not run")
         )
     if warnings:
         count = f"{len(warnings)} warning{'s' if len(warnings) > 1 else ''}"
@@ -196,7 +197,9 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
         )
     stand = check.get("stand")
     if stand:
-        if stand.get("needs_controller"):
+        if stand.get("fell_without_controller"):
+            lines.append(f"| stand at home for 5 s | fell: {stand['fell_without_controller']} |")
+        elif stand.get("needs_controller"):
             lines.append(f"| stand at home for 5 s | not run: {stand['needs_controller']} |")
         else:
             lines.append(

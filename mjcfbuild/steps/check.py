@@ -144,6 +144,8 @@ def _standing_notes(results: dict) -> list[str]:
     why = results.get("needs_controller")
     if not why:
         return []
+    if (results.get("stand") or {}).get("fell_without_controller"):
+        return [f"the robot cannot stand without a controller: {why}"]
     return [
         f"the robot cannot stand without a controller: {why}; the stand test was not run, "
         "and the model holds its joints, not its balance"
