@@ -26,6 +26,8 @@ STAND_SINK = 0.1
 # A centre of mass this far (m) inside the feet's edge makes a pose one to stand in: a robot
 # that falls from it falls for its servos, not its pose.
 POSE_MARGIN = 0.02
+# A robot on wheels held by velocity servos may roll this far (m) while standing at home.
+ROLL_TOLERANCE = 0.05
 
 
 @dataclass
@@ -113,6 +115,11 @@ class StandTest:
     joint: str | None  # the joint of max_deviation
     needs_controller: str  # why the robot cannot stand without a controller ('' if it can)
     com_margin: float = 0.0  # m, from the centre of mass to the edge of the feet's area at home
+    # Wheels on velocity servos are judged by what a wheel should do - not let the robot roll
+    # away - rather than by their angle, which is theirs to change.
+    wheels: list[str] = field(default_factory=list)
+    max_roll: float = 0.0  # m, how far the base moved along the floor at most
+    wheel_kv: float = 0.0  # the smallest kv among the wheels' velocity servos
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""
@@ -125,7 +132,12 @@ class StandTest:
             self.max_tilt > STAND_TILT
             or self.max_sink > sink
             or self.max_deviation > hold_tolerance
+            or self.rolled()
         )
+
+    def rolled(self) -> bool:
+        """Whether wheels on velocity servos let the robot roll away."""
+        return bool(self.wheels) and self.max_roll > ROLL_TOLERANCE
 
     def failure(self, hold_tolerance: float, advice: str) -> str:
         """The check's failure line."""
@@ -146,6 +158,16 @@ class StandTest:
                 "give home: a pose it stands in (feet under the centre of mass, knees bent), "
                 "or name an SRDF group_state with self_collision.srdf and home_state"
             )
+        if self.rolled():
+            return (
+                f"the robot rolled {self.max_roll * 1000:.0f} mm standing at home for "
+                f"{self.seconds:g} s (tolerance {ROLL_TOLERANCE * 1000:.0f} mm): the velocity "
+                f"servos of its wheels ({', '.join(self.wheels)}, kv {self.wheel_kv:.3g}) do "
+                "not hold it still; a velocity servo creeps at its load over kv, so raise "
+                f"their kv about {self.max_roll / ROLL_TOLERANCE:.2g} times with a rule "
+                f"(actuators: {{rules: [{{joints: [{', '.join(self.wheels)}], kv: "
+                f"{_round_up(self.wheel_kv * self.max_roll / ROLL_TOLERANCE)}}}]}})"
+            )
         return (
             f"standing at home for {self.seconds:g} s, joint '{self.joint}' moved "
             f"{self.max_deviation:.3g} from home (check.hold_tolerance {hold_tolerance:g}); "
@@ -163,12 +185,22 @@ def stand_test(model, key: int, passive: set[str], seconds: float = STAND_SECOND
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, key)
     mujoco.mj_forward(model, data)
-    found = stance(model, data, rolling_bodies(model, data))
+    rolling = rolling_bodies(model, data)
+    found = stance(model, data, rolling)
     root = _free_body(model)
     height = float(data.xpos[root][2]) - _floor_height(model)
     if not found.can_stand:
         return StandTest(0.0, 0.0, 0.0, height, 0.0, None, found.why_not())
-    watched = _watched(model, passive)
+    drives = joint_drives(model)
+    wheels = [
+        j
+        for j in _watched(model, passive)
+        if int(model.jnt_bodyid[j]) in rolling
+        and drives.get(mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or "") == "velocity"
+    ]
+    watched = [j for j in _watched(model, passive) if j not in wheels]
+    start = data.xpos[root][:2].copy()
+    roll = 0.0
     addresses = np.array([model.jnt_qposadr[j] for j in watched], dtype=int)
     home = data.qpos.copy()
     tilt = sink = worst = 0.0
@@ -177,6 +209,7 @@ def stand_test(model, key: int, passive: set[str], seconds: float = STAND_SECOND
         mujoco.mj_step(model, data)
         tilt = max(tilt, _base_tilt(model, data))
         sink = max(sink, height - (float(data.xpos[root][2]) - _floor_height(model)))
+        roll = max(roll, float(np.linalg.norm(data.xpos[root][:2] - start)))
         if len(addresses):
             deviation = np.abs(data.qpos[addresses] - home[addresses])
             index = int(np.argmax(deviation))
@@ -186,7 +219,26 @@ def stand_test(model, key: int, passive: set[str], seconds: float = STAND_SECOND
         if not np.all(np.isfinite(data.qpos)):
             tilt = math.pi
             break
-    return StandTest(seconds, tilt, sink, height, worst, worst_joint, "", found.margin)
+    names = [mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or "" for j in wheels]
+    kvs = [
+        float(model.actuator_gainprm[a][0])
+        for a in range(model.nu)
+        if model.actuator_trntype[a] == mujoco.mjtTrn.mjTRN_JOINT
+        and int(model.actuator_trnid[a][0]) in wheels
+    ]
+    return StandTest(
+        seconds,
+        tilt,
+        sink,
+        height,
+        worst,
+        worst_joint,
+        "",
+        found.margin,
+        names,
+        roll,
+        min(kvs, default=0.0),
+    )
 
 
 def joint_drives(model) -> dict[str, str]:

@@ -155,3 +155,37 @@ def test_an_effort_only_quadruped_needs_a_controller_and_the_rule_the_check_give
     check = json.loads((result.robot.parent / ".mjcfbuild/check.json").read_text())
     assert check["passes"] and "needs_controller" not in check, check["failures"]
     assert check["stand"]["max_tilt"] < 0.2
+
+
+def test_wheels_on_velocity_servos_are_judged_by_not_rolling_away(tmp_path):
+    """A rover on a slope (gravity tilted 12 degrees): its wheels' angles are theirs to change,
+    but the robot must not roll away. The check names the wheels and the kv that holds it;
+    with that kv the rover stays put."""
+    import json
+
+    import mjcfbuild
+    from mjcfbuild.errors import BuildFailed
+    from tests.conftest import write
+    from tests.control.robots import rover
+
+    write(tmp_path / "robot.urdf", rover())
+    manifest = (
+        "name: r\nsource: {urdf: robot.urdf}\noptions: {free_joint: true}\n"
+        "mujoco_inputs:\n  raw: '<option gravity=\"2 0 -9.81\"/>'\n"
+    )
+    write(tmp_path / "robot.yaml", manifest)
+    with pytest.raises(BuildFailed):
+        mjcfbuild.build(tmp_path / "robot.yaml", jobs=1)
+    check = json.loads((tmp_path / "mjcf/.mjcfbuild/check.json").read_text())
+    assert check["stand"]["wheels"] == ["left_wheel_joint", "right_wheel_joint"]
+    [failure] = check["failures"]
+    assert failure.startswith("the robot rolled "), failure
+    assert "wheel_joint' moved" not in failure and "stiffen" not in failure
+    rule = failure[failure.index("actuators: ") : -1]
+    assert rule.startswith(
+        "actuators: {rules: [{joints: [left_wheel_joint, right_wheel_joint], kv: "
+    )
+    write(tmp_path / "robot.yaml", manifest + rule + "\n")
+    mjcfbuild.build(tmp_path / "robot.yaml", jobs=1)
+    check = json.loads((tmp_path / "mjcf/.mjcfbuild/check.json").read_text())
+    assert check["passes"] and check["stand"]["max_roll"] < 0.05, check["failures"]
