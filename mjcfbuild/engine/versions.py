@@ -15,7 +15,7 @@ STEP_FORMATS = {
     "decompose": 3,
     "assemble": 12,  # 12: the Gazebo sensors' MJCF counterparts
     "scene": 3,
-    "check": 8,  # 8: the mujoco_ros2_control section
+    "check": 9,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts
     "reference": 1,
     "previews": 5,
     "tuning": 1,

@@ -41,7 +41,7 @@ from mjcfbuild.inputs.ros2_control import (
 )
 from mjcfbuild.numbers import output
 from mjcfbuild.urdf.model import Pose, Robot
-from mjcfbuild.urdf.transforms import Transform, matrix3
+from mjcfbuild.urdf.transforms import Transform, matrix3, vec3
 
 # The mujoco_type ros2_control gives each kind read through MJCF sensors.
 RUNTIME_TYPES = {"imu": "imu", "force_torque": "fts", "magnetometer": "magnetometer"}
@@ -72,6 +72,7 @@ def add_gazebo_sensors(
     ``root``; :class:`InputError` for one whose reference is no link or joint."""
     result = GazeboResult()
     skipped: dict[str, list[str]] = {}
+    fused: list[str] = []  # force-torque and contact sensors on a link fused into its parent
     children = {joint.name: joint.child for joint in robot.joints}
     # Gazebo cameras (lidars) per link: a ros2_control sensor at the link names only a lone one.
     per_link: dict[tuple[str, str], int] = {}
@@ -96,9 +97,11 @@ def add_gazebo_sensors(
         pose = LinkPlace(
             place.body,
             place.pose.compose(
-                Transform.from_pose(Pose(tuple(sensor.pose[:3]), tuple(sensor.pose[3:])))
+                Transform.from_pose(Pose(vec3(sensor.pose[:3]), vec3(sensor.pose[3:])))
             ),
         )
+        if sensor.kind in ("force_torque", "contact") and place.body != link:
+            fused.append(f"{sensor.name} (on {place.body or 'the world'})")
         if sensor.kind in RUNTIME_TYPES:
             _runtime_sensors(root, sensor, link, pose, control)
         elif sensor.kind in ("camera", "depth"):
@@ -115,9 +118,17 @@ def add_gazebo_sensors(
             _contact(root, sensor, pose)
     for kind, names in sorted(skipped.items()):
         count = len(names)
+        shown = ", ".join(names[:8]) + (", ..." if count > 8 else "")
         result.warnings.append(
             f"{count} Gazebo sensor{'s' if count > 1 else ''} of kind {kind} "
-            f"{'are' if count > 1 else 'is'} not modelled: {', '.join(names)}"
+            f"{'are' if count > 1 else 'is'} not modelled: {shown}"
+        )
+    if fused:
+        result.warnings.append(
+            f"{len(fused)} Gazebo force_torque or contact sensor{'s' if len(fused) > 1 else ''} "
+            f"on links fused into their parent body measure that body's joint or contacts: "
+            f"{', '.join(fused[:8])}{', ...' if len(fused) > 8 else ''}; set options.fuse_static: "
+            "false to keep each link a body of its own, welded where its fixed joint is"
         )
     return result
 

@@ -307,3 +307,31 @@ def test_a_gazebo_sensor_on_a_missing_link_is_one_line_with_the_urdf_line(tmp_pa
     assert f"robot.urdf:{line}:" in error[0], error[0]
     assert "Gazebo sensor 'imu' is on 'nowhere', which is not a link" in error[0]
     assert "Traceback" not in result.stderr
+
+
+def test_a_force_torque_sensor_on_a_fused_link_is_warned_and_measures_the_weld_unfused(
+    built, tmp_path
+):
+    _, result = built
+    assert any(
+        w.startswith("1 Gazebo force_torque or contact sensor on links fused")
+        and "wrist_ft (on arm)" in w
+        and "options.fuse_static: false" in w
+        for w in result.warnings
+    ), result.warnings
+    # Kept as a body of its own, the sensor measures what holds the 1 kg head: its weight.
+    write(tmp_path / "robot.urdf", two_link_urdf(extra=MOUNT + GAZEBO))
+    write(
+        tmp_path / "robot.yaml",
+        "name: r\nsource: {urdf: robot.urdf}\noptions: {fuse_static: false}\n",
+    )
+    unfused = mjcfbuild.build(tmp_path / "robot.yaml")
+    assert not any("fused" in w for w in unfused.warnings)
+    model = mujoco.MjModel.from_xml_path(str(unfused.robot))
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SENSOR, "wrist_ft_force")
+    force = data.sensordata[model.sensor_adr[index] : model.sensor_adr[index] + 3]
+    # (the arm starts to sag under gravity: the head accelerates a little). Fused, the sensor
+    # would carry the arm too: twice that.
+    assert np.linalg.norm(force) == pytest.approx(9.81, rel=0.01)
