@@ -248,6 +248,9 @@ def test_noise_and_update_rates_go_to_the_check_report_not_the_warnings(built):
     assert "update_rate 30 Hz" in listed["front_camera"]["not_modelled"]
     assert listed["scan"]["not_modelled"] == ["range min 0.1 m"]
     assert listed["gps_1"]["modelled"] is False and listed["body_imu"]["modelled"] is True
+    report = (result.robot.parent / "report/report.md").read_text()
+    assert "| body_imu | imu | head | update_rate 200 Hz, noise |" in report
+    assert "| gps_1 | gps | head | the sensor |" in report
 
 
 CONTROL = """
