@@ -74,6 +74,7 @@ def add_gazebo_sensors(
     skipped: dict[str, list[str]] = {}
     fused: list[str] = []  # force-torque and contact sensors on a link fused into its parent
     children = {joint.name: joint.child for joint in robot.joints}
+    seen: dict[str, str] = {}  # each modelled Gazebo sensor's name -> its origin
     # Gazebo cameras (lidars) per link: a ros2_control sensor at the link names only a lone one.
     per_link: dict[tuple[str, str], int] = {}
     for sensor in sensors:
@@ -93,6 +94,13 @@ def add_gazebo_sensors(
                 "(or joint) of the URDF",
                 hint="set <gazebo reference> to the link the sensor is mounted on",
             )
+        if sensor.name in seen:
+            result.warnings.append(
+                f"{sensor.origin}: Gazebo sensor '{sensor.name}' has the name of the one at "
+                f"{seen[sensor.name]}, so only that one is written; rename one"
+            )
+            continue
+        seen[sensor.name] = sensor.origin
         place = links[link]
         pose = LinkPlace(
             place.body,

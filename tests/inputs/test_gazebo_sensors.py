@@ -338,3 +338,19 @@ def test_a_force_torque_sensor_on_a_fused_link_is_warned_and_measures_the_weld_u
     # (the arm starts to sag under gravity: the head accelerates a little). Fused, the sensor
     # would carry the arm too: twice that.
     assert np.linalg.norm(force) == pytest.approx(9.81, rel=0.01)
+
+
+def test_two_gazebo_sensors_of_one_name_are_written_once_and_warned(tmp_path):
+    twice = '<gazebo reference="head"><sensor name="imu" type="imu"/></gazebo>'
+    model, result = build(tmp_path, twice + twice.replace("head", "arm"))
+    gyros = [
+        i for i in range(model.nsensor) if model.sensor_type[i] == mujoco.mjtSensor.mjSENS_GYRO
+    ]
+    assert len(gyros) == 1
+    line = two_link_urdf(extra=MOUNT + twice + twice.replace("head", "arm")).splitlines()
+    number = next(i for i, text in enumerate(line) if 'reference="arm"' in text) + 1
+    assert any(
+        w.startswith(f"robot.urdf:{number}: Gazebo sensor 'imu' has the name of the one at ")
+        and w.endswith("so only that one is written; rename one")
+        for w in result.warnings
+    ), result.warnings
