@@ -26,6 +26,8 @@ STAND_SINK = 0.1
 # A centre of mass this far (m) inside the feet's edge makes a pose one to stand in: a robot
 # that falls from it falls for its servos, not its pose.
 POSE_MARGIN = 0.02
+# A robot on wheels held by velocity servos may roll this far (m) while standing at home.
+ROLL_TOLERANCE = 0.05
 
 
 @dataclass
@@ -73,8 +75,14 @@ def check_control(model, passive: set[str], hold_tolerance: float, strict: bool)
     if floating and home >= 0:
         stand = stand_test(model, home, passive)
         report.results["stand"] = stand.to_dict()
+        motors = torque_motors(model, passive)
         if stand.needs_controller:
             report.results["needs_controller"] = stand.needs_controller
+        elif stand.fails(hold_tolerance) and motors:
+            # A torque motor's constant ctrl cannot hold a pose: no gain fixes that.
+            why = motors_need_a_controller(motors)
+            report.results["needs_controller"] = why
+            report.results["stand"]["fell_without_controller"] = why
         elif stand.fails(hold_tolerance):
             advice = _hold_advice(model, home, stand.joint)
             report.failures.append(stand.failure(hold_tolerance, advice))
@@ -107,6 +115,11 @@ class StandTest:
     joint: str | None  # the joint of max_deviation
     needs_controller: str  # why the robot cannot stand without a controller ('' if it can)
     com_margin: float = 0.0  # m, from the centre of mass to the edge of the feet's area at home
+    # Wheels on velocity servos are judged by what a wheel should do - not let the robot roll
+    # away - rather than by their angle, which is theirs to change.
+    wheels: list[str] = field(default_factory=list)
+    max_roll: float = 0.0  # m, how far the base moved along the floor at most
+    wheel_kv: float = 0.0  # the smallest kv among the wheels' velocity servos
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""
@@ -119,7 +132,12 @@ class StandTest:
             self.max_tilt > STAND_TILT
             or self.max_sink > sink
             or self.max_deviation > hold_tolerance
+            or self.rolled()
         )
+
+    def rolled(self) -> bool:
+        """Whether wheels on velocity servos let the robot roll away."""
+        return bool(self.wheels) and self.max_roll > ROLL_TOLERANCE
 
     def failure(self, hold_tolerance: float, advice: str) -> str:
         """The check's failure line."""
@@ -140,6 +158,16 @@ class StandTest:
                 "give home: a pose it stands in (feet under the centre of mass, knees bent), "
                 "or name an SRDF group_state with self_collision.srdf and home_state"
             )
+        if self.rolled():
+            return (
+                f"the robot rolled {self.max_roll * 1000:.0f} mm standing at home for "
+                f"{self.seconds:g} s (tolerance {ROLL_TOLERANCE * 1000:.0f} mm): the velocity "
+                f"servos of its wheels ({', '.join(self.wheels)}, kv {self.wheel_kv:.3g}) do "
+                "not hold it still; a velocity servo creeps at its load over kv, so raise "
+                f"their kv about {self.max_roll / ROLL_TOLERANCE:.2g} times with a rule "
+                f"(actuators: {{rules: [{{joints: [{', '.join(self.wheels)}], kv: "
+                f"{_round_up(self.wheel_kv * self.max_roll / ROLL_TOLERANCE)}}}]}})"
+            )
         return (
             f"standing at home for {self.seconds:g} s, joint '{self.joint}' moved "
             f"{self.max_deviation:.3g} from home (check.hold_tolerance {hold_tolerance:g}); "
@@ -157,12 +185,22 @@ def stand_test(model, key: int, passive: set[str], seconds: float = STAND_SECOND
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, key)
     mujoco.mj_forward(model, data)
-    found = stance(model, data, rolling_bodies(model, data))
+    rolling = rolling_bodies(model, data)
+    found = stance(model, data, rolling)
     root = _free_body(model)
     height = float(data.xpos[root][2]) - _floor_height(model)
     if not found.can_stand:
         return StandTest(0.0, 0.0, 0.0, height, 0.0, None, found.why_not())
-    watched = _watched(model, passive)
+    drives = joint_drives(model)
+    wheels = [
+        j
+        for j in _watched(model, passive)
+        if int(model.jnt_bodyid[j]) in rolling
+        and drives.get(mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or "") == "velocity"
+    ]
+    watched = [j for j in _watched(model, passive) if j not in wheels]
+    start = data.xpos[root][:2].copy()
+    roll = 0.0
     addresses = np.array([model.jnt_qposadr[j] for j in watched], dtype=int)
     home = data.qpos.copy()
     tilt = sink = worst = 0.0
@@ -171,6 +209,7 @@ def stand_test(model, key: int, passive: set[str], seconds: float = STAND_SECOND
         mujoco.mj_step(model, data)
         tilt = max(tilt, _base_tilt(model, data))
         sink = max(sink, height - (float(data.xpos[root][2]) - _floor_height(model)))
+        roll = max(roll, float(np.linalg.norm(data.xpos[root][:2] - start)))
         if len(addresses):
             deviation = np.abs(data.qpos[addresses] - home[addresses])
             index = int(np.argmax(deviation))
@@ -180,15 +219,95 @@ def stand_test(model, key: int, passive: set[str], seconds: float = STAND_SECOND
         if not np.all(np.isfinite(data.qpos)):
             tilt = math.pi
             break
-    return StandTest(seconds, tilt, sink, height, worst, worst_joint, "", found.margin)
+    names = [mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or "" for j in wheels]
+    kvs = [
+        float(model.actuator_gainprm[a][0])
+        for a in range(model.nu)
+        if model.actuator_trntype[a] == mujoco.mjtTrn.mjTRN_JOINT
+        and int(model.actuator_trnid[a][0]) in wheels
+    ]
+    return StandTest(
+        seconds,
+        tilt,
+        sink,
+        height,
+        worst,
+        worst_joint,
+        "",
+        found.margin,
+        names,
+        roll,
+        min(kvs, default=0.0),
+    )
+
+
+def joint_drives(model) -> dict[str, str]:
+    """Each actuated joint's actuator kind, as mujoco_ros2_control classifies it by the bias:
+    'motor' (a torque motor), 'position', 'velocity' or 'custom'."""
+    import mujoco
+
+    from mjcfbuild.inputs.ros2_control import runtime_actuator_kind
+
+    drives = {}
+    for actuator in range(model.nu):
+        if model.actuator_trntype[actuator] != mujoco.mjtTrn.mjTRN_JOINT:
+            continue
+        joint = mujoco.mj_id2name(
+            model, mujoco.mjtObj.mjOBJ_JOINT, model.actuator_trnid[actuator][0]
+        )
+        biasprm = tuple(float(v) for v in model.actuator_biasprm[actuator][:3])
+        drives[joint or ""] = runtime_actuator_kind(int(model.actuator_biastype[actuator]), biasprm)
+    return drives
+
+
+def torque_motors(model, passive: set[str]) -> list[str]:
+    """The watched joints driven by torque motors, in joint order."""
+    import mujoco
+
+    drives = joint_drives(model)
+    names = [
+        mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or ""
+        for j in _watched(model, passive)
+    ]
+    return [name for name in names if drives.get(name) == "motor"]
+
+
+def motors_need_a_controller(motors: list[str]) -> str:
+    """Why a robot on torque motors falls at home, and the two ways out (the rule names every
+    motor, to be copied as it is)."""
+    shown = ", ".join(motors[:6]) + (f", ... ({len(motors)} in all)" if len(motors) > 6 else "")
+    return (
+        f"its joints are driven by torque motors ({shown}), whose constant ctrl cannot hold a "
+        "pose, so it fell: it stands under a controller that closes the loop (a ros2_control "
+        "controller, or mujoco_ros2_control's PIDs); for a passive stand make them position "
+        f"servos with a rule (actuators: {{rules: [{{joints: [{', '.join(motors)}], "
+        "type: position}]}) in a model not meant for mujoco_ros2_control, whose effort "
+        "interfaces need the motors"
+    )
 
 
 def _hold_advice(model, key: int, joint: str | None) -> str:
     """What to change when ``joint`` does not hold home: its force limit when gravity at home
-    needs more than it allows (both numbers, and the two fixes), else its stiffness."""
+    needs more than it allows (both numbers, and the two fixes), else what fits what drives
+    it: a position servo can be stiffened, a torque motor or velocity servo cannot hold a
+    pose."""
     import mujoco
 
-    stiffen = "stiffen its actuator (actuators.frequency, or kp in a rule)"
+    drive = joint_drives(model).get(joint or "")
+    if drive == "motor":
+        stiffen = (
+            f"'{joint}' is driven by a torque motor, whose constant ctrl cannot hold a pose: "
+            "hold it with a controller, or make it a position servo with a rule (actuators: "
+            f"{{rules: [{{joints: [{joint}], type: position}}]}})"
+        )
+    elif drive == "velocity":
+        stiffen = (
+            f"'{joint}' is driven by a velocity servo, which holds a speed, not a position: "
+            "where it must hold a pose, make it a position servo with a rule (actuators: "
+            f"{{rules: [{{joints: [{joint}], type: position}}]}})"
+        )
+    else:
+        stiffen = "stiffen its actuator (actuators.frequency, or kp in a rule)"
     index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint or "")
     if index < 0:
         return stiffen

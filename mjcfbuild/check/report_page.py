@@ -118,9 +118,10 @@ def verdict(check: dict, warnings: list[str]) -> str:
         more = f" (and {len(failures) - 1} more, below)" if len(failures) > 1 else ""
         return f"**checks failed**{first}{more}"
     if check.get("needs_controller"):
+        ran = (check.get("stand") or {}).get("fell_without_controller")
         return (
             "checks pass, but the robot cannot stand without a controller "
-            f"({md(check['needs_controller'])}): the stand test was not run"
+            f"({md(check['needs_controller'])})" + ("" if ran else ": the stand test was not run")
         )
     if warnings:
         count = f"{len(warnings)} warning{'s' if len(warnings) > 1 else ''}"
@@ -185,7 +186,11 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
         )
     stand = check.get("stand")
     if stand:
-        if stand.get("needs_controller"):
+        if stand.get("fell_without_controller"):
+            lines.append(
+                f"| stand at home for 5 s | fell: {md(stand['fell_without_controller'])} |"
+            )
+        elif stand.get("needs_controller"):
             lines.append(f"| stand at home for 5 s | not run: {md(stand['needs_controller'])} |")
         else:
             lines.append(
@@ -218,7 +223,7 @@ def _checks(check: dict, warnings: list[str]) -> list[str]:
         ]
         lines += ["", "To let them be, add to the raw inputs:", ""]
         lines += [*markdown_block(contacts["exclude"], "xml"), ""]
-    return lines + _runtime(check.get("mujoco_ros2_control"))
+    return lines + _runtime(check.get("mujoco_ros2_control")) + _gazebo(check.get("gazebo_sensors"))
 
 
 def _motor(actuator: dict) -> str:
@@ -466,6 +471,25 @@ def _armature(actuator: dict) -> str:
     """The armature the build gave a weight-bearing joint, if it did."""
     armature = actuator.get("armature")
     return f" (armature {armature:.3g} added)" if armature else ""
+
+
+def _gazebo(sensors: list[dict] | None) -> list[str]:
+    """The URDF's Gazebo sensors: which have an MJCF counterpart, and what it does not model."""
+    if not sensors:
+        return []
+    lines = [
+        "### Gazebo sensors",
+        "",
+        "| sensor | type | on | not modelled |",
+        "|---|---|---|---|",
+    ]
+    for sensor in sensors:
+        missing = "the sensor" if not sensor["modelled"] else ", ".join(sensor["not_modelled"])
+        lines.append(
+            f"| {md(sensor['name'])} | {md(sensor['type'])} | {md(sensor['reference'])} | "
+            f"{md(missing or '-')} |"
+        )
+    return [*lines, ""]
 
 
 def _runtime(runtime: dict | None) -> list[str]:

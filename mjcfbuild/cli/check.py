@@ -124,9 +124,10 @@ def _print(report, label: str) -> int:
         print(f"mjcfbuild: {len(report.failures)} check(s) failed")
     elif results.get("needs_controller"):
         # Not a failure, but not what "check passed" promises: the stand test did not run.
+        ran = (results.get("stand") or {}).get("fell_without_controller")
         print(
             "mjcfbuild: checks pass, but the robot cannot stand without a controller "
-            f"({results['needs_controller']}): the stand test was not run"
+            f"({results['needs_controller']})" + ("" if ran else ": the stand test was not run")
         )
     else:
         print("mjcfbuild: check passed")
@@ -228,7 +229,9 @@ def check_lines(results: dict) -> list[tuple[str, str]]:
         joint = f" ({hold['joint']})" if hold.get("joint") else ""
         lines.append(("hold home 1 s", f"largest deviation {hold['max_deviation']:.3g}{joint}"))
     stand = results.get("stand")
-    if stand and stand.get("needs_controller"):
+    if stand and stand.get("fell_without_controller"):
+        lines.append(("stand 5 s", f"FELL: needs a controller ({stand['fell_without_controller']})"))
+    elif stand and stand.get("needs_controller"):
         lines.append(("stand 5 s", f"NOT RUN: needs a controller ({stand['needs_controller']})"))
     elif stand:
         lines.append(

@@ -10,12 +10,12 @@ from mjcfbuild import __version__
 # Bump a step's number when its output for the same inputs changes.
 STEP_FORMATS = {
     "expand": 2,  # 2: the origins of the expanded lines
-    "plan": 6,  # 5: ros2_control <hardware> parameters; 6: refuses chains deeper than MuJoCo reads
+    "plan": 7,  # 5: ros2_control <hardware>; 6: chains deeper than MuJoCo reads; 7: Gazebo sensors
     "mesh": 5,
     "decompose": 3,
-    "assemble": 11,  # 11: ros2_control sensors' MJCF sensors; its position joints <position>
+    "assemble": 12,  # 12: the Gazebo sensors' MJCF counterparts
     "scene": 3,
-    "check": 8,  # 8: the mujoco_ros2_control section
+    "check": 9,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts
     "reference": 1,
     "previews": 5,
     "tuning": 1,

@@ -85,21 +85,13 @@ def apply_inputs(
         insert_in_body(body_element(root, place.body), element)
     for lidar in inputs.lidars:
         place = _link(links, lidar.link, lidar.origin, "lidar")
-        count = ray_count(lidar.min_angle, lidar.max_angle, lidar.angle_increment)
-        body = etree.Element("body", {"name": f"{lidar.link}_lidar_body"})
-        set_pose(body, lidar_body_pose(place.pose, lidar.min_angle))
-        replicate = etree.SubElement(
-            body,
-            "replicate",
-            {
-                "count": str(count),
-                "sep": "-",
-                "offset": "0 0 0",
-                "euler": f"0 {output(lidar.angle_increment)} 0",
-            },
+        add_lidar_sites(
+            root,
+            place,
+            f"{lidar.link}_lidar_body",
+            lidar.sensor_name,
+            (lidar.min_angle, lidar.max_angle, lidar.angle_increment),
         )
-        etree.SubElement(replicate, "site", {"name": lidar.sensor_name})
-        insert_in_body(body_element(root, place.body), body, last=True)
         for sensor in root.iter("rangefinder"):
             if sensor.get("site") == lidar.sensor_name and sensor.get("name"):
                 result.lidar_sensors.append(sensor.get("name"))
@@ -111,6 +103,30 @@ def apply_inputs(
                 element.set(key, value)
     check_references(root, tracked)
     return result
+
+
+def add_lidar_sites(
+    root: etree._Element,
+    place: LinkPlace,
+    body_name: str,
+    site_name: str,
+    angles: tuple[float, float, float],
+) -> int:
+    """A body at ``place`` holding a ``<replicate>`` of rangefinder sites named
+    ``site_name`` (one per ray: min_angle to max_angle by the increment, in ``angles``);
+    returns how many rays."""
+    min_angle, max_angle, increment = angles
+    count = ray_count(min_angle, max_angle, increment)
+    body = etree.Element("body", {"name": body_name})
+    set_pose(body, lidar_body_pose(place.pose, min_angle))
+    replicate = etree.SubElement(
+        body,
+        "replicate",
+        {"count": str(count), "sep": "-", "offset": "0 0 0", "euler": f"0 {output(increment)} 0"},
+    )
+    etree.SubElement(replicate, "site", {"name": site_name})
+    insert_in_body(body_element(root, place.body), body, last=True)
+    return count
 
 
 def _drop_mimics_the_inputs_couple(root, tracked) -> list[str]:

@@ -21,6 +21,7 @@ from mjcfbuild.compose.attach import AttachedPart, attach_parts, part_frames, pu
 from mjcfbuild.control.apply import ActuatorRecord, Readiness
 from mjcfbuild.control.stand_up import crouched_home, described_nothing, replace_tree, stands
 from mjcfbuild.errors import ModelError
+from mjcfbuild.inputs.gazebo import GazeboSensor
 from mjcfbuild.inputs.model import Inputs
 from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.manifest.simulation import ActuatorSettings
@@ -60,6 +61,7 @@ class AssemblyOptions:
     decompositions: list[Decomposition] = field(default_factory=list)
     inputs: Inputs | None = None
     control: Ros2Control | None = None
+    gazebo: list[GazeboSensor] = field(default_factory=list)  # the URDF's Gazebo sensors
     actuators: ActuatorSettings = field(default_factory=ActuatorSettings)
     motors: dict[str, dict] = field(default_factory=dict)  # rules' motors: name -> datasheet
     home: dict[str, float] = field(default_factory=dict)
@@ -164,6 +166,7 @@ def _apply_additions(
     from mjcfbuild.control.motors import apply_motors
     from mjcfbuild.inputs.apply import LinkPlace, apply_inputs
     from mjcfbuild.inputs.control_sensors import add_control_sensors
+    from mjcfbuild.inputs.gazebo_sensors import add_gazebo_sensors
     from mjcfbuild.inputs.ros2_control import sensor_warnings
     from mjcfbuild.selfcollision.excludes import write_excludes
 
@@ -178,7 +181,13 @@ def _apply_additions(
     result = apply_inputs(root, inputs, links, _mesh_aliases(prepared))
     warnings = list(result.warnings)
     control = options.control or Ros2Control()
-    warnings += sensor_warnings(control, [c.name for c in inputs.cameras], result.lidar_sensors)
+    gazebo = add_gazebo_sensors(root, options.gazebo, control, links, robot)
+    warnings += gazebo.warnings
+    warnings += sensor_warnings(
+        control,
+        [c.name for c in inputs.cameras] + gazebo.cameras,
+        result.lidar_sensors + gazebo.lidars,
+    )
     add_control_sensors(root, control, links)
     write_excludes(root, options.excludes)
 

@@ -55,6 +55,7 @@ def run(payload: dict) -> dict:
     options = AssemblyOptions(
         inputs=inputs,
         control=control,
+        gazebo=plan.gazebo(),
         actuators=ActuatorSettings(**request.actuators),
         motors=request.motors,
         home=request.home,

@@ -61,6 +61,19 @@ def check_built(request: CheckPayload) -> CheckReport:
     if request.mjcf_parts and report.results.get("loads"):
         _check_parts(report, Path(request.model), request.mjcf_parts, request.options, sources)
     add_runtime_check(report, Path(request.model), plan.control(), sources)
+    gazebo = plan.gazebo()
+    if gazebo:
+        # What each Gazebo sensor became, and what of it MuJoCo does not model (noise, rates).
+        report.results["gazebo_sensors"] = [
+            {
+                "name": sensor.name,
+                "type": sensor.type,
+                "reference": sensor.reference,
+                "modelled": sensor.kind is not None,
+                "not_modelled": sensor.not_modelled,
+            }
+            for sensor in gazebo
+        ]
     return report
 
 
@@ -158,6 +171,8 @@ def _standing_notes(results: dict) -> list[str]:
     why = results.get("needs_controller")
     if not why:
         return []
+    if (results.get("stand") or {}).get("fell_without_controller"):
+        return [f"the robot cannot stand without a controller: {why}"]
     return [
         f"the robot cannot stand without a controller: {why}; the stand test was not run, "
         "and the model holds its joints, not its balance"

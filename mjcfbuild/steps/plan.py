@@ -1,11 +1,12 @@
 """Step ``plan``: parse the URDF, resolve every file it names, list the meshes to convert, and
-read the MuJoCo inputs and ros2_control it holds (and the inputs file, if any)."""
+read the MuJoCo inputs, ros2_control and Gazebo sensors it holds (and the inputs file, if any)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 from mjcfbuild.errors import InputError
+from mjcfbuild.inputs.gazebo import read_gazebo_sensors
 from mjcfbuild.inputs.ros2_control import read_ros2_control
 from mjcfbuild.inputs.xml_inputs import inputs_in_urdf, read_inputs_file
 from mjcfbuild.mjcf.depth import refuse_deep_chains
@@ -40,6 +41,7 @@ def run(payload: dict) -> dict:
         root = parse_xml(data, display, [])
         urdf_inputs = inputs_in_urdf(root, display)
         control = read_ros2_control(root, display)
+        gazebo = read_gazebo_sensors(root, display)
     except InputError as exc:
         if request.expanded_from and exc.hint is None:
             exc.hint = f"the line is in the expansion of {request.expanded_from}"
@@ -62,6 +64,7 @@ def run(payload: dict) -> dict:
             file=file_inputs.to_dict() if file_inputs is not None else None,
         ),
         ros2_control=control.to_dict(),
+        gazebo_sensors=[sensor.to_dict() for sensor in gazebo],
     )
     outputs: dict[str, str] = {}
     write_output(Path(request.output), plan.text(), outputs)

@@ -7,6 +7,7 @@ steps after it.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from dataclasses import dataclass
 from pathlib import Path
@@ -15,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 from mjcfbuild.records import Record
 
 if TYPE_CHECKING:
+    from mjcfbuild.inputs.gazebo import GazeboSensor
     from mjcfbuild.inputs.ros2_control import Ros2Control
     from mjcfbuild.urdf.model import Robot
 
@@ -48,6 +50,7 @@ class Plan(Record):
     meshes: list[PlannedMesh]
     inputs: PlannedInputs
     ros2_control: dict[str, Any]  # inputs.ros2_control.Ros2Control.to_dict()
+    gazebo_sensors: list[dict[str, Any]] = dataclasses.field(default_factory=list)
 
     def robot_model(self) -> Robot:
         """The parsed robot."""
@@ -60,6 +63,12 @@ class Plan(Record):
         from mjcfbuild.inputs.ros2_control import Ros2Control
 
         return Ros2Control.from_dict(self.ros2_control)
+
+    def gazebo(self) -> list[GazeboSensor]:
+        """The Gazebo sensors of the URDF."""
+        from mjcfbuild.inputs.gazebo import GazeboSensor
+
+        return [GazeboSensor(**sensor) for sensor in self.gazebo_sensors]
 
     def text(self) -> bytes:
         """The plan as the bytes of ``plan.json``."""

@@ -4,6 +4,7 @@ joint that ran away and what to change."""
 from __future__ import annotations
 
 import mujoco
+import pytest
 
 from mjcfbuild.check.control import check_control, menagerie_test
 from mjcfbuild.mjwarnings import capture_mujoco_warnings, take_mujoco_warnings
@@ -52,3 +53,139 @@ def test_a_servo_within_its_real_torque_passes():
     assert test.fastest_joint == "swing" and 0 < test.fastest_speed < 100
     report = check_control(pendulum(1.0, 2.7), set(), 0.05, strict=True)
     assert not [f for f in report.failures if "pseudorandom" in f]
+
+
+HELD = """<mujoco>
+  <option timestep="0.002"/>
+  <worldbody>
+    <body name="arm">
+      <joint name="swing" type="hinge" axis="0 1 0" damping="0.01"/>
+      <geom type="capsule" fromto="0 0 0 0.2 0 0" size="0.01" mass="0.5"/>
+    </body>
+  </worldbody>
+  <actuator>{actuator}</actuator>
+  <keyframe><key name="home" qpos="0" ctrl="0"/></keyframe>
+</mujoco>"""
+
+
+@pytest.mark.parametrize(
+    ("actuator", "advice"),
+    [
+        (
+            '<motor joint="swing" ctrlrange="-5 5"/>',
+            "'swing' is driven by a torque motor, whose constant ctrl cannot hold a pose: "
+            "hold it with a controller, or make it a position servo with a rule (actuators: "
+            "{rules: [{joints: [swing], type: position}]})",
+        ),
+        (
+            '<velocity joint="swing" kv="0.5" ctrlrange="-5 5"/>',
+            "'swing' is driven by a velocity servo, which holds a speed, not a position",
+        ),
+        (
+            '<position joint="swing" kp="0.5" ctrlrange="-5 5"/>',
+            "stiffen its actuator (actuators.frequency, or kp in a rule)",
+        ),
+    ],
+)
+def test_hold_advice_fits_what_drives_the_joint(actuator, advice):
+    """A horizontal arm that sags at home: only a position servo is told to stiffen."""
+    model = mujoco.MjModel.from_xml_string(HELD.format(actuator=actuator))
+    report = check_control(model, set(), 0.05, strict=True)
+    held = [f for f in report.failures if f.startswith("holding home's ctrl")]
+    assert len(held) == 1 and advice in held[0], report.failures
+    if "position" not in actuator:
+        assert "stiffen" not in held[0]
+
+
+def test_an_effort_only_quadruped_needs_a_controller_and_the_rule_the_check_gives_stands(
+    tmp_path,
+):
+    """ros2_control effort interfaces give torque motors holding home's gravity torques: the
+    robot falls, which no stiffening fixes. The check says it needs a controller, names the
+    motors and gives the rule for a passive stand; with that rule it stands."""
+    import json
+
+    import mjcfbuild
+    from tests.conftest import write
+    from tests.control.robots import quadruped
+
+    legs = [
+        f"{leg}_{part}_joint"
+        for leg in ("FL", "FR", "RL", "RR")
+        for part in ("hip", "thigh", "calf")
+    ]
+    joints = "".join(
+        f'<joint name="{name}"><command_interface name="effort"/>'
+        '<state_interface name="position"/></joint>'
+        for name in legs
+    )
+    block = (
+        '<ros2_control name="legs" type="system"><hardware><plugin>'
+        f"mujoco_ros2_control/MujocoSystemInterface</plugin></hardware>{joints}</ros2_control>"
+    )
+    write(
+        tmp_path / "robot.urdf", quadruped(foot_offset=0.05).replace("</robot>", block + "</robot>")
+    )
+    bent = ", ".join(
+        f"{leg}_{part}_joint: {angle}"
+        for leg in ("FL", "FR", "RL", "RR")
+        for part, angle in (("thigh", 0.6), ("calf", -1.2))
+    )
+    manifest = (
+        f"name: q\nsource: {{urdf: robot.urdf}}\noptions: {{free_joint: true}}\nhome: {{{bent}}}\n"
+    )
+    write(tmp_path / "robot.yaml", manifest)
+    result = mjcfbuild.build(tmp_path / "robot.yaml", jobs=1)
+    check = json.loads((result.robot.parent / ".mjcfbuild/check.json").read_text())
+    assert check["passes"], check["failures"]
+    why = check["needs_controller"]
+    assert why.startswith("its joints are driven by torque motors (FL_hip_joint, "), why
+    assert "stiffen" not in why and "(12 in all)" in why
+    rule = f"actuators: {{rules: [{{joints: [{', '.join(legs)}], type: position}}]}}"
+    assert rule in why
+    notes = [w for w in result.warnings if "without a controller" in w]
+    assert len(notes) == 1 and "stand test was not run" not in notes[0], notes
+
+    assert "whose effort interfaces need the motors" in why
+    # The passive stand the rule gives (without the block: the runtime would refuse position
+    # servos on effort interfaces, and the build's check says so).
+    write(tmp_path / "robot.urdf", quadruped(foot_offset=0.05))
+    write(tmp_path / "robot.yaml", manifest + rule + "\n")
+    result = mjcfbuild.build(tmp_path / "robot.yaml", jobs=1)
+    check = json.loads((result.robot.parent / ".mjcfbuild/check.json").read_text())
+    assert check["passes"] and "needs_controller" not in check, check["failures"]
+    assert check["stand"]["max_tilt"] < 0.2
+
+
+def test_wheels_on_velocity_servos_are_judged_by_not_rolling_away(tmp_path):
+    """A rover on a slope (gravity tilted 12 degrees): its wheels' angles are theirs to change,
+    but the robot must not roll away. The check names the wheels and the kv that holds it;
+    with that kv the rover stays put."""
+    import json
+
+    import mjcfbuild
+    from mjcfbuild.errors import BuildFailed
+    from tests.conftest import write
+    from tests.control.robots import rover
+
+    write(tmp_path / "robot.urdf", rover())
+    manifest = (
+        "name: r\nsource: {urdf: robot.urdf}\noptions: {free_joint: true}\n"
+        "mujoco_inputs:\n  raw: '<option gravity=\"2 0 -9.81\"/>'\n"
+    )
+    write(tmp_path / "robot.yaml", manifest)
+    with pytest.raises(BuildFailed):
+        mjcfbuild.build(tmp_path / "robot.yaml", jobs=1)
+    check = json.loads((tmp_path / "mjcf/.mjcfbuild/check.json").read_text())
+    assert check["stand"]["wheels"] == ["left_wheel_joint", "right_wheel_joint"]
+    [failure] = check["failures"]
+    assert failure.startswith("the robot rolled "), failure
+    assert "wheel_joint' moved" not in failure and "stiffen" not in failure
+    rule = failure[failure.index("actuators: ") : -1]
+    assert rule.startswith(
+        "actuators: {rules: [{joints: [left_wheel_joint, right_wheel_joint], kv: "
+    )
+    write(tmp_path / "robot.yaml", manifest + rule + "\n")
+    mjcfbuild.build(tmp_path / "robot.yaml", jobs=1)
+    check = json.loads((tmp_path / "mjcf/.mjcfbuild/check.json").read_text())
+    assert check["passes"] and check["stand"]["max_roll"] < 0.05, check["failures"]
