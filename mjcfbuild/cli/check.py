@@ -230,7 +230,9 @@ def check_lines(results: dict) -> list[tuple[str, str]]:
         lines.append(("hold home 1 s", f"largest deviation {hold['max_deviation']:.3g}{joint}"))
     stand = results.get("stand")
     if stand and stand.get("fell_without_controller"):
-        lines.append(("stand 5 s", f"FELL: needs a controller ({stand['fell_without_controller']})"))
+        lines.append(
+            ("stand 5 s", f"FELL: needs a controller ({stand['fell_without_controller']})")
+        )
     elif stand and stand.get("needs_controller"):
         lines.append(("stand 5 s", f"NOT RUN: needs a controller ({stand['needs_controller']})"))
     elif stand:
