@@ -123,6 +123,17 @@ def report_warning(text: str) -> None:
     print(f"mjcfbuild: warning: {text}", file=sys.stderr)
 
 
+def report_warnings(warnings: list[str], listed_in: str = "", prefix: str = "") -> None:
+    """Print warnings one line per kind (:mod:`mjcfbuild.cli.warning_groups`), each after
+    ``prefix``; ``listed_in`` names the file that lists them all, for a kind with more
+    subjects than a line shows."""
+    from mjcfbuild.cli.warning_groups import group_warnings
+
+    more = f"all in {listed_in}" if listed_in else ""
+    for line in group_warnings(warnings, more):
+        report_warning(prefix + line)
+
+
 def jobs_argument(parser: argparse.ArgumentParser) -> None:
     """Add ``-j/--jobs``."""
     parser.add_argument(
