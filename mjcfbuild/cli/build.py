@@ -9,9 +9,11 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from mjcfbuild.cli import (
+    chosen_manifests,
     environment_jobs,
     jobs_argument,
     load_context,
+    manifest_argument,
     report_error,
     report_warnings,
     timeout_argument,
@@ -29,13 +31,7 @@ def add_parser(commands) -> None:
         help="build the models described by manifests (robot.yaml)",
         description="Build the model of each manifest. Only tasks whose inputs changed run.",
     )
-    parser.add_argument(
-        "manifests",
-        nargs="*",
-        default=["robot.yaml"],
-        metavar="MANIFEST",
-        help="manifests to build (default: robot.yaml)",
-    )
+    manifest_argument(parser, several=True)
     jobs_argument(parser)
     timeout_argument(parser)
     parser.add_argument(
@@ -76,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
     code = EXIT_OK
     if args.verbose and not args.quiet:
         _say_why_workers_are_off()
-    for manifest in args.manifests:
+    for manifest in chosen_manifests(args):
         if not args.dry_run:
             summary = _nothing_changed(manifest, args)
             if summary is not None:

@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from mjcfbuild.cli import jobs_argument, timeout_argument
+from mjcfbuild.cli import chosen_manifest, jobs_argument, manifest_argument, timeout_argument
 from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, MjcfbuildError, UsageError
 
 FORMATS = ("text", "markdown", "json")
@@ -36,13 +36,7 @@ def add_parser(commands) -> None:
             "--head defaults to the working tree, built in its own output folder."
         ),
     )
-    parser.add_argument(
-        "manifest",
-        nargs="?",
-        default="robot.yaml",
-        metavar="MANIFEST",
-        help="the manifest whose model to compare (default: robot.yaml)",
-    )
+    manifest_argument(parser)
     parser.add_argument("--base", metavar="REF", help="the git revision to compare against")
     parser.add_argument(
         "--head", metavar="REF", help="the git revision to compare (default: the working tree)"
@@ -127,7 +121,7 @@ def _revisions(args: argparse.Namespace, warnings: dict[str, list[str]]):
     from mjcfbuild.diff.render import Sides
     from mjcfbuild.diff.snapshot import find_model
 
-    manifest = Path(args.manifest)
+    manifest = Path(chosen_manifest(args))
     repo = revisions.repository(manifest)
     base = revisions.resolve(repo, args.base)
     head = revisions.resolve(repo, args.head) if args.head else None

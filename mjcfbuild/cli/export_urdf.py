@@ -20,7 +20,9 @@ def add_parser(commands) -> None:
             "couplings as <mimic>. See docs/export_urdf.md for how each MuJoCo concept maps."
         ),
     )
-    parser.add_argument("model", help="the MJCF file (its includes and meshes are read too)")
+    parser.add_argument(
+        "model", metavar="MODEL", help="the MJCF file (its includes and meshes are read too)"
+    )
     parser.add_argument("-o", "--output", required=True, help="the URDF file to write")
     parser.add_argument(
         "--mesh-folder",
