@@ -7,6 +7,7 @@ import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
+from typing import NoReturn
 
 from mjcfbuild import __version__
 from mjcfbuild.errors import (
@@ -14,13 +15,52 @@ from mjcfbuild.errors import (
     EXIT_INTERNAL,
     EXIT_INTERRUPTED,
     EXIT_OK,
+    EXIT_USAGE,
     InternalError,
     MjcfbuildError,
     write_failure,
 )
 
+EXAMPLES: dict[str, str] = {
+    "build": "mjcfbuild build robots/arm/robot.yaml",
+    "check": "mjcfbuild check robots/arm/robot.yaml",
+    "explain": "mjcfbuild explain robots/arm/robot.yaml mesh:base",
+    "graph": "mjcfbuild graph --dot robots/arm/robot.yaml | dot -Tsvg > graph.svg",
+    "clean": "mjcfbuild clean robots/arm/robot.yaml",
+    "diff": "mjcfbuild diff robots/arm/robot.yaml --base origin/main",
+    "convert": "mjcfbuild convert -u robot.urdf.xacro -o mjcf_data use_gripper:=true",
+    "export-urdf": "mjcfbuild export-urdf mjcf/arm.xml -o urdf/arm.urdf",
+    "init": "mjcfbuild init urdf/arm.urdf.xacro --package arm_description=.",
+    "schema": "mjcfbuild schema > robot.schema.json",
+    "cache": "mjcfbuild cache prune --max-size 2G",
+    "workers": "mjcfbuild workers stop",
+}
+"""One invocation per command, shown at the end of its ``--help``."""
 
-def build_parser() -> argparse.ArgumentParser:
+QUIET: dict[str, str] = {
+    "build": "print errors only: no progress, warnings or summary",
+    "convert": "print errors only: no progress, warnings or summary",
+    "clean": "print errors only, not what was removed",
+    "diff": "print errors and the answer only: no building lines, warnings or page line",
+    "export-urdf": "print errors only: no warnings or summary",
+}
+"""What ``-q`` leaves out, per command; commands not named print only what they are asked
+for already, and take ``-q`` so that it can go anywhere on a command line."""
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line, with a suggestion for a misspelling."""
+
+    commands: dict[str, argparse.ArgumentParser]
+
+    def error(self, message: str) -> NoReturn:
+        """Print ``message`` as one line with what to do, and exit with the usage code."""
+        from mjcfbuild.cli.suggest import usage_error_line
+
+        self.exit(EXIT_USAGE, usage_error_line(self.prog, message) + "\n")
+
+
+def build_parser() -> Parser:
     """The argument parser with every subcommand."""
     from mjcfbuild.cli import (
         build,
@@ -37,10 +77,12 @@ def build_parser() -> argparse.ArgumentParser:
         workers,
     )
 
-    parser = argparse.ArgumentParser(
+    parser = Parser(
         prog="mjcfbuild",
         description="Build MuJoCo models (MJCF) from URDF and xacro robot descriptions.",
-        epilog="exit codes: " + "; ".join(f"{code} {text}" for code, text in EXIT_CODES.items()),
+        epilog=f"example: {EXAMPLES['build']}\n\nexit codes: "
+        + "; ".join(f"{code} {text}" for code, text in EXIT_CODES.items()),
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     parser.add_argument("--version", action="version", version=f"mjcfbuild {__version__}")
     global_flags(parser, default=False)
@@ -49,26 +91,35 @@ def build_parser() -> argparse.ArgumentParser:
     commands_in_order = (build, check, explain, graph, clean, convert, export_urdf, init, schema)
     for module in (*commands_in_order, diff, cache, workers):
         module.add_parser(commands)
-    for command in commands.choices.values():
+    parser.commands = dict(commands.choices)
+    for name, command in parser.commands.items():
         # After the command too; unset there, so the value given before it stands.
-        global_flags(command, default=argparse.SUPPRESS)
+        global_flags(command, default=argparse.SUPPRESS, quiet=QUIET.get(name))
+        command.epilog = f"example: {EXAMPLES[name]}"
     return parser
 
 
-def global_flags(parser: argparse.ArgumentParser, default: object) -> None:
-    """The flags every command takes, before or after its name: ``--debug`` and ``-q``."""
+def global_flags(
+    parser: argparse.ArgumentParser, default: object, quiet: str | None = None
+) -> None:
+    """The flags every command takes, before or after its name: ``--debug`` and ``-q``;
+    ``quiet`` says what ``-q`` leaves out of this command's output."""
     parser.add_argument(
         "--debug",
         action="store_true",
         default=default,
         help="show the traceback of an error, and the build engine's output",
     )
+    if quiet is None and default is argparse.SUPPRESS:
+        quiet = "no effect here: this command prints only what it is asked for"
     parser.add_argument(
         "-q",
         "--quiet",
         action="store_true",
         default=default,
-        help="print only warnings and errors (build, convert, clean)",
+        help=quiet
+        or "print errors only, and the answer a command is asked for: no progress, "
+        "warnings or summaries",
     )
 
 
@@ -79,8 +130,13 @@ def main(argv: Sequence[str] | None = None) -> None:
 
 def run(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit code instead of exiting."""
+    from mjcfbuild.cli.suggest import unknown_arguments_line
+
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args, unknown = parser.parse_known_args(argv)
+    if unknown:
+        print(unknown_arguments_line(parser, args.command, unknown), file=sys.stderr)
+        return EXIT_USAGE
     try:
         return args.handler(args)
     except MjcfbuildError as error:
@@ -126,6 +182,17 @@ def report_error(error: MjcfbuildError, debug: bool, base_dir: Path | None = Non
 def report_warning(text: str) -> None:
     """Print one warning line."""
     print(f"mjcfbuild: warning: {text}", file=sys.stderr)
+
+
+def report_warnings(warnings: list[str], listed_in: str = "", prefix: str = "") -> None:
+    """Print warnings one line per kind (:mod:`mjcfbuild.cli.warning_groups`), each after
+    ``prefix``; ``listed_in`` names the file that lists them all, for a kind with more
+    subjects than a line shows."""
+    from mjcfbuild.cli.warning_groups import group_warnings
+
+    more = f"all in {listed_in}" if listed_in else ""
+    for line in group_warnings(warnings, more):
+        report_warning(prefix + line)
 
 
 def jobs_argument(parser: argparse.ArgumentParser) -> None:
@@ -203,25 +270,30 @@ DEFAULT_MANIFEST = "robot.yaml"
 MANIFEST_SUFFIXES = (".yaml", ".yml")
 
 
-def manifest_argument(parser: argparse.ArgumentParser, positional: bool = True) -> None:
-    """Add the manifest as an optional positional argument (unless ``positional`` is False,
-    for a command that sorts its positionals itself) and as ``-m/--manifest``, the older form;
-    :func:`chosen_manifest` reads them."""
+def manifest_argument(
+    parser: argparse.ArgumentParser, positional: bool = True, several: bool = False
+) -> None:
+    """Add the manifest the way every command takes it: an optional positional ``MANIFEST``
+    (default robot.yaml; unless ``positional`` is False, for a command that sorts its
+    positionals itself) and ``-m/--manifest``; with ``several``, any number of either.
+    :func:`chosen_manifest` and :func:`chosen_manifests` read them."""
     if positional:
         parser.add_argument(
             "manifest",
-            nargs="?",
+            nargs="*" if several else "?",
             default=None,
             metavar="MANIFEST",
-            help=f"the manifest (default: {DEFAULT_MANIFEST})",
+            help=f"the manifest{'s' if several else ''} (default: {DEFAULT_MANIFEST})",
         )
     parser.add_argument(
         "-m",
         "--manifest",
         dest="manifest_flag",
+        action="append" if several else "store",
         default=None,
         metavar="MANIFEST",
-        help="the manifest, as a flag (the same as the positional argument)",
+        help="a manifest, as an option: the same as the positional argument"
+        + (" (repeatable)" if several else ""),
     )
 
 
@@ -234,6 +306,16 @@ def chosen_manifest(args: argparse.Namespace, positional: str | None = None) -> 
     if given is not None and flag is not None and given != flag:
         raise UsageError(f"two manifests: '{given}' and -m '{flag}'", hint="name one, without -m")
     return given or flag or DEFAULT_MANIFEST
+
+
+def chosen_manifests(args: argparse.Namespace) -> list[str]:
+    """The manifests named as positional arguments and with ``-m``, in that order, else
+    robot.yaml (a command given ``several=True`` by :func:`manifest_argument`)."""
+    given = [
+        *(getattr(args, "manifest", None) or []),
+        *(getattr(args, "manifest_flag", None) or []),
+    ]
+    return list(dict.fromkeys(given)) or [DEFAULT_MANIFEST]
 
 
 def looks_like_manifest(word: str) -> bool:

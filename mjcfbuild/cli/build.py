@@ -10,14 +10,16 @@ from typing import TYPE_CHECKING
 
 from mjcfbuild.cli import (
     allow_outside_argument,
+    chosen_manifests,
     environment_jobs,
     jobs_argument,
     load_context,
+    manifest_argument,
     report_error,
-    report_warning,
+    report_warnings,
     timeout_argument,
 )
-from mjcfbuild.errors import EXIT_OK, MjcfbuildError
+from mjcfbuild.errors import EXIT_OK, CheckError, MjcfbuildError
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.workers import WorkerPool
@@ -30,13 +32,7 @@ def add_parser(commands) -> None:
         help="build the models described by manifests (robot.yaml)",
         description="Build the model of each manifest. Only tasks whose inputs changed run.",
     )
-    parser.add_argument(
-        "manifests",
-        nargs="*",
-        default=["robot.yaml"],
-        metavar="MANIFEST",
-        help="manifests to build (default: robot.yaml)",
-    )
+    manifest_argument(parser, several=True)
     jobs_argument(parser)
     timeout_argument(parser)
     allow_outside_argument(parser)
@@ -78,7 +74,7 @@ def run(args: argparse.Namespace) -> int:
     code = EXIT_OK
     if args.verbose and not args.quiet:
         _say_why_workers_are_off()
-    for manifest in args.manifests:
+    for manifest in chosen_manifests(args):
         if not args.dry_run:
             summary = _nothing_changed(manifest, args)
             if summary is not None:
@@ -204,11 +200,14 @@ def execute(
     debug: bool,
     hints: Callable[[str], str] | None = None,
     workers: WorkerPool | None = None,
+    warnings: list[str] | None = None,
 ) -> int:
-    """Run a build of ``ctx`` and print its warnings, errors and summary; the exit code.
+    """Run a build of ``ctx`` and print its errors, summary and (unless ``quiet``) warnings,
+    one line per kind; the exit code.
 
     ``hints`` rewrites the advice errors give (``convert`` has flags where robot.yaml has keys);
-    ``workers`` were started for this build before its manifest was read.
+    ``workers`` were started for this build before its manifest was read; ``warnings``, when
+    given, receives the warnings instead of the console (``diff`` prints them after its answer).
     """
     from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.runner import run_build
@@ -223,8 +222,12 @@ def execute(
     except MjcfbuildError as error:  # found while making the graph (missing source, ...)
         report(error)
         return error.exit_code
-    for warning in result.warnings:
-        report_warning(warning)
+    if warnings is not None:
+        warnings.extend(result.warnings)
+    elif not quiet:
+        # The report is written when the model was (a failed check still leaves one).
+        built = all(isinstance(error, CheckError) for error in result.errors)
+        report_warnings(result.warnings, report_md(ctx) if built else "")
     for failure in result.errors:
         report(failure)
     if debug and result.engine_log.strip():
@@ -235,6 +238,15 @@ def execute(
             slowest = ", ".join(f"{title} {seconds:.2f} s" for title, seconds in result.slowest)
             print(f"  slowest: {slowest}")
     return result.errors[0].exit_code if result.errors else EXIT_OK
+
+
+def report_md(ctx) -> str:
+    """Where a build's report lists every warning, as the console names it."""
+    import os
+
+    from mjcfbuild.engine.tasks import report_dir
+
+    return os.path.relpath(report_dir(ctx) / "report.md")
 
 
 def dry_run(ctx) -> int:

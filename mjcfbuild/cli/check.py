@@ -7,7 +7,13 @@ import os
 import sys
 from pathlib import Path
 
-from mjcfbuild.cli import allow_outside_argument, load_context, report_error
+from mjcfbuild.cli import (
+    allow_outside_argument,
+    chosen_manifests,
+    load_context,
+    manifest_argument,
+    report_error,
+)
 from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, CheckError, MjcfbuildError, UsageError
 
 
@@ -23,13 +29,7 @@ def add_parser(commands) -> None:
             "whether the outputs still match their inputs, without building."
         ),
     )
-    parser.add_argument(
-        "manifests",
-        nargs="*",
-        default=["robot.yaml"],
-        metavar="MANIFEST",
-        help="manifests whose models to check (default: robot.yaml)",
-    )
+    manifest_argument(parser, several=True)
     parser.add_argument("--urdf", help="check this URDF against --mjcf, without a manifest")
     parser.add_argument("--mjcf", help="the MuJoCo model to check against --urdf")
     parser.add_argument(
@@ -52,7 +52,12 @@ def add_parser(commands) -> None:
         "prove the training variant where robot.yaml asks for one (output.training) "
         "(pip install 'mjcfbuild[warp]'; the first run compiles kernels for about a minute)",
     )
-    parser.add_argument("--configurations", type=int, default=None, help="default: 20")
+    parser.add_argument(
+        "--configurations",
+        type=int,
+        default=None,
+        help="how many joint configurations the link-pose check compares (default: 20)",
+    )
     parser.add_argument(
         "--tolerance",
         type=float,
@@ -74,7 +79,7 @@ def run(args: argparse.Namespace) -> int:
     if args.package:
         raise UsageError("--package goes with --urdf", hint="a manifest lists its packages")
     code = EXIT_OK
-    for manifest in args.manifests:
+    for manifest in chosen_manifests(args):
         try:
             ctx = load_context(manifest, args)
             result = _up_to_date(ctx) if args.up_to_date else _manifest(ctx, args)

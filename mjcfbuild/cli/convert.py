@@ -26,7 +26,9 @@ def add_parser(commands) -> None:
             "Convert a URDF or robot description to MJCF, accepting the flags of "
             "mujoco_ros2_control's make_mjcf_from_robot_description.py. Files are written to "
             "OUTPUT (mujoco_description_formatted.xml, scene.xml, assets/); repeating a "
-            "conversion into the same folder only redoes what changed."
+            "conversion into the same folder only redoes what changed. Its flags are the "
+            "reference converter's, so it takes no manifest and -m is --mujoco_inputs, not "
+            "the --manifest of the other commands."
         ),
     )
     source = parser.add_mutually_exclusive_group(required=True)

@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from mjcfbuild.cli import jobs_argument, timeout_argument
+from mjcfbuild.cli import chosen_manifest, jobs_argument, manifest_argument, timeout_argument
 from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, MjcfbuildError, UsageError
 
 FORMATS = ("text", "markdown", "json")
@@ -36,13 +36,7 @@ def add_parser(commands) -> None:
             "--head defaults to the working tree, built in its own output folder."
         ),
     )
-    parser.add_argument(
-        "manifest",
-        nargs="?",
-        default="robot.yaml",
-        metavar="MANIFEST",
-        help="the manifest whose model to compare (default: robot.yaml)",
-    )
+    manifest_argument(parser)
     parser.add_argument("--base", metavar="REF", help="the git revision to compare against")
     parser.add_argument(
         "--head", metavar="REF", help="the git revision to compare (default: the working tree)"
@@ -78,17 +72,31 @@ def run(args: argparse.Namespace) -> int:
     from mjcfbuild.diff.compare import compare
     from mjcfbuild.diff.snapshot import read_snapshot
 
-    sides = _sides(args)
+    warnings: dict[str, list[str]] = {}  # each built side's warnings, printed after the answer
+    sides = _sides(args, warnings)
     before = read_snapshot(sides.base_folder)
     after = read_snapshot(sides.head_folder)
     diff = compare(before, after)
     _print(diff, sides, args.format)
     if args.write:
-        _write(diff, sides, Path(args.write))
+        _write(diff, sides, Path(args.write), args.quiet)
+    if not args.quiet:
+        _print_warnings(warnings)
     return EXIT_OK
 
 
-def _sides(args: argparse.Namespace):
+def _print_warnings(warnings: dict[str, list[str]]) -> None:
+    """Each side's warnings, one line per kind; once for both where the sides agree."""
+    from mjcfbuild.cli import report_warnings
+
+    sides = [(label, found) for label, found in warnings.items() if found]
+    if len(sides) == 2 and sides[0][1] == sides[1][1]:
+        sides = [(f"{sides[0][0]} and {sides[1][0]}", sides[0][1])]
+    for label, found in sides:
+        report_warnings(found, prefix=f"{label}: ")
+
+
+def _sides(args: argparse.Namespace, warnings: dict[str, list[str]]):
     from mjcfbuild.diff.render import Sides
     from mjcfbuild.diff.snapshot import find_model
 
@@ -104,55 +112,65 @@ def _sides(args: argparse.Namespace):
             "say what to compare: --base REF [--head REF], or --folders OLD NEW",
             hint="mjcfbuild diff --base origin/main",
         )
-    return _revisions(args)
+    return _revisions(args, warnings)
 
 
-def _revisions(args: argparse.Namespace):
+def _revisions(args: argparse.Namespace, warnings: dict[str, list[str]]):
     from mjcfbuild.cachedir import user_cache_dir
     from mjcfbuild.diff import revisions
     from mjcfbuild.diff.render import Sides
     from mjcfbuild.diff.snapshot import find_model
 
-    manifest = Path(args.manifest)
+    manifest = Path(chosen_manifest(args))
     repo = revisions.repository(manifest)
     base = revisions.resolve(repo, args.base)
     head = revisions.resolve(repo, args.head) if args.head else None
     scratch = Path(args.scratch) if args.scratch else user_cache_dir() / "diff" / repo.key
-    base_folder = _build_revision(repo, base, scratch / "base", args)
+    base_folder = _build_revision(repo, base, scratch / "base", args, warnings)
     if head is None:
-        head_folder = _build(manifest, None, "the working tree", args)
+        head_folder = _build(manifest, None, "the working tree", args, warnings)
         head_label = "working tree"
     elif head.commit == base.commit:
         head_folder, head_label = base_folder, head.label
     else:
-        head_folder = _build_revision(repo, head, scratch / "head", args)
+        head_folder = _build_revision(repo, head, scratch / "head", args, warnings)
         head_label = head.label
     model = find_model(head_folder).name
     return Sides(base.label, head_label, base_folder, head_folder, model)
 
 
-def _build_revision(repo, revision, side: Path, args: argparse.Namespace) -> Path:
+def _build_revision(
+    repo, revision, side: Path, args: argparse.Namespace, warnings: dict[str, list[str]]
+) -> Path:
     from mjcfbuild.diff.revisions import extract
 
     manifest = extract(repo, revision, side)
-    return _build(manifest, side / "out", revision.label, args)
+    return _build(manifest, side / "out", revision.label, args, warnings)
 
 
-def _build(manifest: Path, output: Path | None, label: str, args: argparse.Namespace) -> Path:
-    """Build ``manifest`` (into ``output`` when given) with its messages on stderr; its output
-    folder. A check that fails still leaves a model to compare."""
+def _build(
+    manifest: Path,
+    output: Path | None,
+    label: str,
+    args: argparse.Namespace,
+    warnings: dict[str, list[str]],
+) -> Path:
+    """Build ``manifest`` (into ``output`` when given) with its messages on stderr, its
+    warnings into ``warnings[label]``; its output folder. A check that fails still leaves a
+    model to compare."""
     import contextlib
     from dataclasses import replace
 
     from mjcfbuild.cli import load_context
     from mjcfbuild.cli.build import execute
 
-    print(f"mjcfbuild diff: building {label}", file=sys.stderr)
+    if not args.quiet:
+        print(f"mjcfbuild diff: building {label}", file=sys.stderr)
     ctx = load_context(manifest, args)
     if output is not None:
         ctx = replace(ctx, output_override=output)
     with contextlib.redirect_stdout(sys.stderr):
-        code = execute(ctx, quiet=True, debug=args.debug)
+        code = execute(ctx, quiet=True, debug=args.debug, warnings=warnings.setdefault(label, []))
     if code not in (EXIT_OK, EXIT_CHECK):
         raise RevisionBuildFailed(label, code)
     return ctx.out_dir
@@ -169,7 +187,7 @@ def _print(diff, sides, form: str) -> None:
         sys.stdout.write(render.text(diff, sides))
 
 
-def _write(diff, sides, folder: Path) -> None:
+def _write(diff, sides, folder: Path, quiet: bool) -> None:
     from mjcfbuild.diff import render
     from mjcfbuild.diff.page import write_page
     from mjcfbuild.errors import OutputError
@@ -180,7 +198,7 @@ def _write(diff, sides, folder: Path) -> None:
         text = render.markdown(diff, sides, pictures)
         (folder / "diff.md").write_text(text)
         (folder / "diff.json").write_text(render.as_json(diff, sides))
-        if write_page(folder, sides, text):
+        if write_page(folder, sides, text) and not quiet:
             print(f"mjcfbuild diff: page {folder / 'index.html'}", file=sys.stderr)
     except OSError as error:
         raise OutputError(f"cannot write the diff: {error.strerror}", file=str(folder)) from None

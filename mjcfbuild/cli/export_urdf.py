@@ -20,7 +20,9 @@ def add_parser(commands) -> None:
             "couplings as <mimic>. See docs/export_urdf.md for how each MuJoCo concept maps."
         ),
     )
-    parser.add_argument("model", help="the MJCF file (its includes and meshes are read too)")
+    parser.add_argument(
+        "model", metavar="MODEL", help="the MJCF file (its includes and meshes are read too)"
+    )
     parser.add_argument("-o", "--output", required=True, help="the URDF file to write")
     parser.add_argument(
         "--mesh-folder",
@@ -45,7 +47,7 @@ def add_parser(commands) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Export, write, and print a summary line."""
-    from mjcfbuild.cli import report_warning
+    from mjcfbuild.cli import report_warnings
     from mjcfbuild.export import ExportOptions, export_urdf
     from mjcfbuild.export.publish import default_asset_prefix, publish
 
@@ -75,8 +77,9 @@ def run(args: argparse.Namespace) -> int:
         speeds = read_urdf_speeds(source)
     result = export_urdf(Path(args.model), options, speeds)
     publish(result, urdf_path, mesh_dir)
-    for warning in result.warnings:
-        report_warning(warning)
+    if args.quiet:
+        return EXIT_OK
+    report_warnings(result.warnings)
     meshes = len([name for name in result.meshes if name.endswith(".obj")])
     print(f"mjcfbuild: wrote {urdf_path} and {meshes} mesh file(s) in {mesh_dir}")
     return EXIT_OK

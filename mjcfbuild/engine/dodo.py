@@ -86,7 +86,7 @@ def up_to_date(ctx: BuildContext) -> bool:
 def build(ctx: BuildContext) -> bool:
     """Build ``ctx`` as ``mjcfbuild build`` does, each line naming the robot; False when it
     failed (doit then reports the task failed)."""
-    from mjcfbuild.cli import report_error, report_warning
+    from mjcfbuild.cli import report_error, report_warnings
     from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.runner import run_build
     from mjcfbuild.errors import MjcfbuildError
@@ -97,8 +97,7 @@ def build(ctx: BuildContext) -> bool:
     except MjcfbuildError as error:
         report_error(error, debug=False, base_dir=ctx.base_dir)
         return False
-    for warning in result.warnings:
-        report_warning(f"{robot}: {warning}")
+    report_warnings(result.warnings, prefix=f"{robot}: ")
     for failure in result.errors:
         report_error(failure, debug=False, base_dir=ctx.base_dir)
     print(result.summary())

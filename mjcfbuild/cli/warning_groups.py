@@ -1,0 +1,115 @@
+"""Warnings as the console shows them: one line per kind, with a count and the first subjects.
+
+Build steps write warnings as plain sentences, one per joint, link or mesh they are about. Two
+warnings are of one kind when they differ only in their variable parts: the ``file:line:`` they
+start with, quoted names and values, and numbers. A kind seen once prints as it is; a kind seen
+N times prints as one line, ``N × <the sentence, '…' where it varies>: a, b, c, ...``, keeping
+the first warning's location so an editor can still jump to it. The report lists every warning.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+SHOWN_SUBJECTS = 3
+
+# A location first: "file:line:" or "file:line:column:", or a file name with a suffix.
+_LOCATION = re.compile(r"^(?P<where>[^\s:'\"]+:\d+(?::\d+)?|[^\s:'\"]+\.\w+): ")
+# The parts of a sentence that name what it is about: quoted text and free-standing numbers.
+_SLOT = re.compile(
+    r"(?<!\w)'(?P<single>[^']*)'(?!\w)|\"(?P<double>[^\"]*)\"|"
+    r"(?<![\w.+-])(?P<number>[-+]?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?)(?![\w.])"
+)
+
+
+@dataclass
+class _Kind:
+    """Warnings whose sentences agree outside their slots."""
+
+    pieces: tuple[str, ...]  # the text around the slots
+    quoted: tuple[str, ...]  # each slot's quote character ("" for a number)
+    texts: list[str] = field(default_factory=list)
+    locations: list[str | None] = field(default_factory=list)
+    slots: list[tuple[str, ...]] = field(default_factory=list)
+
+
+def group_warnings(warnings: list[str], more: str = "") -> list[str]:
+    """One line per kind of warning, in the order each kind first appears.
+
+    ``more`` follows the subjects of a kind that has more than are shown (where to find them
+    all, like ``"see report/report.md"``).
+    """
+    kinds: dict[tuple[tuple[str, ...], tuple[str, ...]], _Kind] = {}
+    for text in dict.fromkeys(warnings):
+        location, message = _split_location(text)
+        pieces, quoted, values = _slots(message)
+        kind = kinds.setdefault((pieces, quoted), _Kind(pieces, quoted))
+        kind.texts.append(text)
+        kind.locations.append(location)
+        kind.slots.append(values)
+    return [_line(kind, more) for kind in kinds.values()]
+
+
+def _split_location(text: str) -> tuple[str | None, str]:
+    match = _LOCATION.match(text)
+    if match is None:
+        return None, text
+    return match.group("where"), text[match.end() :]
+
+
+def _slots(message: str) -> tuple[tuple[str, ...], tuple[str, ...], tuple[str, ...]]:
+    """The text between the slots, each slot's quote character, and each slot's value."""
+    pieces, quoted, values = [], [], []
+    start = 0
+    for match in _SLOT.finditer(message):
+        pieces.append(message[start : match.start()])
+        if match.group("single") is not None:
+            quoted.append("'")
+            values.append(match.group("single"))
+        elif match.group("double") is not None:
+            quoted.append('"')
+            values.append(match.group("double"))
+        else:
+            quoted.append("")
+            values.append(match.group("number"))
+        start = match.end()
+    pieces.append(message[start:])
+    return tuple(pieces), tuple(quoted), tuple(values)
+
+
+def _line(kind: _Kind, more: str) -> str:
+    if len(kind.texts) == 1:
+        return kind.texts[0]
+    columns = list(zip(*kind.slots, strict=True))
+    varying = [len(set(column)) > 1 for column in columns]
+    text = kind.pieces[0]
+    for index, column in enumerate(columns):
+        value = "…" if varying[index] else column[0]
+        quote = kind.quoted[index]
+        text += f"{quote}{value}{quote}{kind.pieces[index + 1]}"
+    subjects = _subjects(kind, columns, varying)
+    line = f"{len(kind.texts)} × {text.rstrip('.')}"
+    if subjects:
+        shown = ", ".join(subjects[:SHOWN_SUBJECTS])
+        rest = len(subjects) - SHOWN_SUBJECTS
+        line += f": {shown}" + (f", ... {rest} more" if rest > 0 else "")
+        if rest > 0 and more:
+            line += f" ({more})"
+    first = kind.locations[0]
+    return f"{first}: {line}" if first is not None else line
+
+
+def _subjects(kind: _Kind, columns: list[tuple[str, ...]], varying: list[bool]) -> list[str]:
+    """What each warning of a kind is about: its first varying quoted name, else its first
+    varying value, else its location."""
+    quoted_first = sorted(range(len(columns)), key=lambda i: (kind.quoted[i] == "", i))
+    for index in quoted_first:
+        if varying[index]:
+            quote = kind.quoted[index] or "'"
+            return [
+                f"{quote}{value}{quote}" if re.search(r"[\s,]", value) else value
+                for value in dict.fromkeys(columns[index])
+            ]
+    places = [location for location in kind.locations if location is not None]
+    return list(dict.fromkeys(places)) if len(set(places)) > 1 else []

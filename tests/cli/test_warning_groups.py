@@ -1,0 +1,132 @@
+"""Warnings one line per kind (mjcfbuild/cli/warning_groups.py), and where builds print them:
+``build`` (not with ``-q``) and ``diff`` (after its answer, once, not with ``-q``)."""
+
+from __future__ import annotations
+
+import subprocess
+from pathlib import Path
+
+from mjcfbuild.cli.warning_groups import group_warnings
+from tests.conftest import run_cli, simple_manifest, two_link_urdf, write
+
+
+def test_warnings_that_differ_only_in_their_subject_are_one_line():
+    boxes = [
+        f"robot.urdf:{10 + i}: link 'pad{i}' visual 0 has box size 0 0 0; dropped it"
+        for i in range(8)
+    ]
+    assert group_warnings(boxes, "all in report.md") == [
+        "robot.urdf:10: 8 × link '…' visual 0 has box size 0 0 0; dropped it: "
+        "pad0, pad1, pad2, ... 5 more (all in report.md)"
+    ]
+
+
+def test_values_that_vary_are_elided_and_those_that_agree_are_kept():
+    notes = [
+        f"joint '{name}' has velocity=\"0\" in the URDF (line {line}): not a limit"
+        for name, line in (("a", 3), ("b", 9), ("c", 20))
+    ]
+    assert group_warnings(notes) == [
+        "3 × joint '…' has velocity=\"0\" in the URDF (line …): not a limit: a, b, c"
+    ]
+
+
+def test_different_kinds_stay_apart_in_the_order_they_came():
+    warnings = [
+        "mesh 'a' encloses no volume; it uses shell inertia",
+        "robot.urdf: undeclared XML namespace prefix(es) foo; elements using them are ignored",
+        "mesh 'b' encloses no volume; it uses shell inertia",
+        "the URDF's link 'x' isn't moved",
+    ]
+    assert group_warnings(warnings) == [
+        "2 × mesh '…' encloses no volume; it uses shell inertia: a, b",
+        warnings[1],
+        warnings[3],
+    ]
+
+
+def test_the_same_sentence_at_several_places_lists_the_places():
+    lines = [
+        f'r.urdf:{n}: <origin xyz="1,2,3"> uses commas between numbers; read them as spaces'
+        for n in (4, 8)
+    ]
+    assert group_warnings(lines) == [
+        'r.urdf:4: 2 × <origin xyz="1,2,3"> uses commas between numbers; read them as spaces: '
+        "r.urdf:4, r.urdf:8"
+    ]
+
+
+def test_a_single_warning_and_repeats_print_as_they_are():
+    assert group_warnings(["joint 'a' has no limit", "joint 'a' has no limit"]) == [
+        "joint 'a' has no limit"
+    ]
+    assert group_warnings([]) == []
+
+
+PADS = "".join(
+    f'<link name="pad{i}"><visual><geometry><box size="0 0 0"/></geometry></visual></link>'
+    f'<joint name="pad{i}_fix" type="fixed"><parent link="arm"/><child link="pad{i}"/></joint>'
+    for i in range(8)
+)
+
+
+def padded_robot(folder: Path) -> Path:
+    """A robot with 8 zero-size visual boxes, each one a warning; its folder."""
+    write(folder / "robot.urdf", two_link_urdf(PADS))
+    simple_manifest(folder)
+    return folder
+
+
+def warning_lines(stderr: str) -> list[str]:
+    return [line for line in stderr.splitlines() if line.startswith("mjcfbuild: warning:")]
+
+
+def test_build_prints_eight_zero_size_boxes_as_one_line_and_the_report_lists_all(tmp_path):
+    folder = padded_robot(tmp_path)
+    result = run_cli("build", "--no-check", cwd=folder)
+    assert result.code == 0, result.stderr
+    assert warning_lines(result.stderr) == [
+        "mjcfbuild: warning: robot.urdf:15: 8 × link '…' visual 0 has box size 0 0 0; "
+        "dropped it: pad0, pad1, pad2, ... 5 more (all in mjcf/report/report.md)"
+    ]
+    assert "8 warnings" in result.stdout
+    report = (folder / "mjcf" / "report" / "report.md").read_text()
+    assert all(f"link 'pad{i}' visual 0 has box size 0 0 0" in report for i in range(8))
+
+
+def test_quiet_build_prints_errors_only(tmp_path):
+    folder = padded_robot(tmp_path)
+    result = run_cli("build", "--no-check", "-q", cwd=folder)
+    assert result.code == 0 and result.stdout == "" and result.stderr == ""
+    (folder / "robot.urdf").write_text(
+        two_link_urdf(PADS).replace('link="arm"/><child', 'link="arn"/><child', 1)
+    )
+    failed = run_cli("build", "--no-check", "-q", cwd=folder)
+    assert failed.code == 4
+    assert failed.stderr.startswith("mjcfbuild: error: robot.urdf:")
+    assert not warning_lines(failed.stderr)
+
+
+def test_diff_prints_the_warnings_once_after_the_answer_and_none_with_quiet(tmp_path):
+    folder = padded_robot(tmp_path / "repo")
+    (folder / ".gitignore").write_text("mjcf/\n")
+    git = ["git", "-c", "user.email=t@example.com", "-c", "user.name=t"]
+    subprocess.run([*git, "init", "-q", "-b", "main"], cwd=folder, check=True)
+    subprocess.run([*git, "add", "."], cwd=folder, check=True)
+    subprocess.run([*git, "commit", "-qm", "robot"], cwd=folder, check=True)
+    scratch = str(tmp_path / "scratch")
+    argv = ("diff", "--base", "main", "--scratch", scratch)
+    result = run_cli(*argv, cwd=folder)
+    assert result.code == 0, result.stderr
+    lines = result.stderr.splitlines()
+    warned = warning_lines(result.stderr)
+    assert len(warned) == 1, result.stderr
+    assert warned[0].startswith("mjcfbuild: warning: main (")
+    assert warned[0].endswith(
+        ") and the working tree: robot.urdf:15: 8 × link '…' visual 0 has "
+        "box size 0 0 0; dropped it: pad0, pad1, pad2, ... 5 more"
+    )
+    assert lines[-1] == warned[0]  # after the builds' lines, as the last word
+    quiet = run_cli(*argv, "-q", cwd=folder)
+    assert quiet.code == 0 and quiet.stderr == "", quiet.stderr
+    assert quiet.stdout == result.stdout
