@@ -107,3 +107,39 @@ def test_turning_the_page_off_removes_only_what_builds_wrote(tmp_path):
     assert run_cli("build", str(manifest)).code == 0
     assert not (report / "index.html").exists() and not (report / "page" / "tables.js").exists()
     assert (report / "page" / "notes.md").read_text() == "mine\n"
+
+
+def test_the_report_keeps_warnings_of_tasks_that_did_not_run_again(tmp_path):
+    """After a build whose assembly warned, a rebuild that only runs the check keeps them."""
+    import json
+
+    from tests.cli.test_warning_groups import padded_robot
+    from tests.conftest import run_cli
+
+    folder = padded_robot(tmp_path)
+    assert run_cli("build", "--no-check", "-q", cwd=folder).code == 0
+    # Now the check and previews run; the assembly that warned is up to date.
+    again = run_cli("build", cwd=folder)
+    assert again.code == 0, again.stderr
+    report = json.loads((folder / "mjcf" / "report" / "report.json").read_text())
+    assert report["warnings"] == [
+        f"robot.urdf:15: link 'pad{i}' visual 0 has box size 0 0 0; dropped it" for i in range(8)
+    ]
+    text = (folder / "mjcf" / "report" / "report.md").read_text()
+    listed = [line for line in text.splitlines() if line.startswith("- ") and "box size" in line]
+    assert len(listed) == 8
+
+
+def test_a_warning_fixed_in_the_source_leaves_the_report(tmp_path):
+    import json
+
+    from tests.cli.test_warning_groups import padded_robot
+    from tests.conftest import run_cli
+
+    folder = padded_robot(tmp_path)
+    assert run_cli("build", "--no-check", "-q", cwd=folder).code == 0
+    urdf = folder / "robot.urdf"
+    urdf.write_text(urdf.read_text().replace('size="0 0 0"', 'size="0.1 0.1 0.1"'))
+    assert run_cli("build", "--no-check", "-q", cwd=folder).code == 0
+    report = json.loads((folder / "mjcf" / "report" / "report.json").read_text())
+    assert report["warnings"] == []
