@@ -27,6 +27,7 @@ from mjcfbuild.engine.tasks import (
 from mjcfbuild.fsutil import md5_file, write_if_changed
 
 TIMINGS = "timings.json"
+TASK_WARNINGS = "warnings.json"
 PREVIEW_ORDER = (
     "three_quarter_visual",
     "side_visual",
@@ -48,6 +49,25 @@ def record_timings(ctx: BuildContext) -> dict[str, float]:
     timings.update({name: round(seconds, 3) for name, seconds in ctx.session.timings.items()})
     write_if_changed(path, (json.dumps(dict(sorted(timings.items())), indent=1) + "\n").encode())
     return timings
+
+
+def record_warnings(ctx: BuildContext, task_names: list[str]) -> list[str]:
+    """Merge the warnings of the tasks this build ran into those stored from earlier builds,
+    for the tasks still in the graph (``task_names``); every current warning, in graph order,
+    then this build's warnings no task gave (the remote cache's).
+
+    A task that is up to date gives no warnings, yet what it warned about when it ran is
+    still true of the model: the report keeps saying so."""
+    path = ctx.state(TASK_WARNINGS)
+    try:
+        stored = json.loads(path.read_text())
+    except (OSError, ValueError):
+        stored = {}
+    stored.update(ctx.session.task_warnings)
+    kept = {name: stored[name] for name in task_names if stored.get(name)}
+    write_if_changed(path, (json.dumps(kept, indent=1, sort_keys=True) + "\n").encode())
+    from_tasks = [warning for name in task_names for warning in kept.get(name, [])]
+    return list(dict.fromkeys([*from_tasks, *ctx.session.warnings]))
 
 
 def write_report(ctx: BuildContext, warnings: list[str]) -> Path:

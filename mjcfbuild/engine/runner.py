@@ -17,7 +17,7 @@ from mjcfbuild.engine import stamp
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.loader import DATABASE, run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
-from mjcfbuild.engine.report import write_report
+from mjcfbuild.engine.report import record_warnings, write_report
 from mjcfbuild.engine.tasks import SOURCE_URDF, build_tasks, planned_urdf, planning_tasks
 from mjcfbuild.engine.training_files import remove_stale_variant
 from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError
@@ -142,7 +142,8 @@ def _build_locked(ctx: BuildContext, progress: Progress, result: BuildResult) ->
     remove_stale_variant(ctx)
     # Workers start while this process plans, importing until their first step comes.
     ctx.session.warm_workers(first_build=not ctx.state(DATABASE).exists())
-    doit_output = _run_stage(ctx, planning_tasks(ctx), progress, result)
+    planning = planning_tasks(ctx)
+    doit_output = _run_stage(ctx, planning, progress, result)
     if not result.errors:
         tasks = build_tasks(ctx)
         doit_output += _run_stage(ctx, tasks, progress, result)
@@ -153,7 +154,8 @@ def _build_locked(ctx: BuildContext, progress: Progress, result: BuildResult) ->
         model_built = all(isinstance(e, CheckError) for e in result.errors)
         ctx.session.finish_sharing()  # uploads are done (or given up) before the build returns
         if model_built and ctx.robot_path.exists():
-            write_report(ctx, list(dict.fromkeys(ctx.session.warnings)))
+            names = list(dict.fromkeys(task["name"] for task in [*planning, *tasks]))
+            write_report(ctx, record_warnings(ctx, names))
     if ctx.session.cache_grew:
         _prune_cache(ctx)
     result.engine_log = doit_output if result.errors else ""

@@ -43,6 +43,7 @@ class BuildSession:
         self.ctx = ctx
         self.failures: dict[str, MjcfbuildError] = {}
         self.warnings: list[str] = []
+        self.task_warnings: dict[str, list[str]] = {}  # task -> the warnings it gave this build
         self.timings: dict[str, float] = {}
         self.notes: dict[str, str] = {}  # task -> a word for the progress line ("from cache")
         self.cache_grew = False  # a product was stored: the cache may need pruning

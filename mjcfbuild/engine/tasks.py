@@ -427,6 +427,7 @@ def _run(
     finally:
         ctx.session.timings[name] = time.perf_counter() - started
     ctx.session.warnings.extend(result.get("warnings", []))
+    ctx.session.task_warnings[name] = list(result.get("warnings", []))
     notes = ["from cache" if result.get("cached") else "", result.get("note", "")]
     if any(notes):
         ctx.session.notes[name] = "; ".join(n for n in notes if n)
