@@ -19,6 +19,7 @@ from typing import IO, Any
 
 from mjcfbuild.errors import InputError, ManifestError, UsageError
 from mjcfbuild.fsutil import normalise, unreadable_file
+from mjcfbuild.sources.kind import not_a_description, xacro_evidence
 from mjcfbuild.sources.packages import PackageResolver, did_you_mean
 from mjcfbuild.xmlguard import refuse_entities
 
@@ -81,30 +82,25 @@ def read_urdf_file(path: Path) -> Expansion:
         raise InputError("source is a folder, not a file", file=path) from None
     except OSError as exc:
         raise InputError(f"cannot read source: {exc.strerror}", file=path) from None
-    macro = next(
-        (m for m in _XACRO_ELEMENT.finditer(data) if not _in_comment(data, m.start())), None
-    )
-    if macro is not None:
+    what = not_a_description(path, data)
+    if what is not None:
+        raise InputError(
+            f"this is {what}, not a URDF or xacro file",
+            file=path,
+            hint="name the robot's .urdf or .xacro file under 'source' in robot.yaml",
+        )
+    evidence = xacro_evidence(data)
+    if evidence is not None:
         # Read as URDF, a xacro file loses every macro and include silently (a one-link model
         # that passes every check): it must be expanded.
-        line = data.count(b"\n", 0, macro.start()) + 1
+        used, line = evidence
         raise InputError(
-            f"this file is xacro (<{macro.group(1).decode()}> at line {line}), not a URDF",
+            f"this file is xacro ({used} at line {line}), not a URDF",
             file=path,
             line=line,
             hint=f"name it with source: {{xacro: {path.name}}} in robot.yaml",
         )
     return Expansion(urdf=data, files=[str(normalise(path))])
-
-
-# A xacro element (not just the namespace declaration, which expanded URDFs often keep).
-_XACRO_ELEMENT = re.compile(rb"<(xacro:(?:include|macro|property|arg|if|unless|call)\b)")
-
-
-def _in_comment(data: bytes, position: int) -> bool:
-    """Whether ``position`` lies inside an XML comment (talos's URDF comments out a property)."""
-    opened = data.rfind(b"<!--", 0, position)
-    return opened >= 0 and data.find(b"-->", opened, position) < 0
 
 
 def expand_xacro(
