@@ -185,6 +185,8 @@ def _expand(
                 hint = (
                     "pass it under 'source.args' in robot.yaml, or give its <xacro:arg> a default"
                 )
+            else:
+                current, line, message, hint = _place_failure(exc, message, xacro, current, hint)
             failure = _XacroFailed if track_lines else InputError
             raise failure(f"xacro failed: {message}", file=current, line=line, hint=hint) from None
         included = list(xacro.all_includes)
@@ -231,12 +233,15 @@ def _check_args(
     )
 
 
-def _line_of(file: str, pattern: str) -> int | None:
-    """The first line of ``file`` matching ``pattern``, if any."""
+def _line_of(file: str, pattern: str, after: str | None = None) -> int | None:
+    """The first line of ``file`` matching ``pattern``, if any; with ``after``, the first from
+    the line matching ``after`` on."""
     try:
         with open(file, encoding="utf-8", errors="replace") as handle:
+            started = after is None
             for number, line in enumerate(handle, 1):
-                if re.search(pattern, line):
+                started = started or bool(re.search(after or "", line))
+                if started and re.search(pattern, line):
                     return number
     except OSError:
         pass
@@ -317,6 +322,87 @@ def _origins(text: bytes, marks: list[str], files: list[str]) -> dict[int, tuple
             index, _, written = mark.partition(":")
             origins.setdefault(line, (str(normalise(files[int(index)])), int(written)))
     return origins
+
+
+def _place_failure(
+    exc: Exception, message: str, xacro_module: Any, current: str, hint: str
+) -> tuple[str, int | None, str, str]:
+    """The file and line a xacro failure is about, with its message and hint, from what xacro
+    leaves behind: the macros being instantiated and the files being read. xacro's DOM has no
+    line numbers, so the line is found by searching the file for what the message names."""
+    cause = getattr(exc, "exc", None)
+    if isinstance(cause, OSError) and cause.filename:
+        # A missing include: xacro names it twice, with the file that includes it nowhere.
+        missing = str(cause.filename)
+        stack = [str(f) for f in getattr(xacro_module, "filestack", None) or [] if f]
+        including = next((f for f in reversed(stack) if f != missing), current)
+        shown = os.path.relpath(missing, os.path.dirname(including))
+        if shown.startswith(".."):
+            shown = missing
+        base = re.escape(os.path.basename(missing))
+        line = _line_of(including, rf"<xacro:include\b.*{base}") or _line_of(including, base)
+        reason = "not found" if isinstance(cause, FileNotFoundError) else cause.strerror
+        return (
+            including,
+            line,
+            f"included file {shown} {reason}",
+            "fix the include's filename (relative to this file, or $(find package)/...) "
+            'or add optional="true"',
+        )
+    macros = list(getattr(xacro_module, "macrostack", None) or [])
+    # Where to look, innermost first: the body of the macro being instantiated, then where it
+    # was called (the body of the macro around it, or the file being read).
+    places: list[tuple[str, str | None]] = []
+    if macros:
+        name = macros[-1].body.getAttribute("name")
+        message = f"in macro '{name}': {message}"
+        defined_in = str(macros[-1].history[-1][-1] or current)
+        places.append((defined_in, rf"<xacro:macro\s[^>]*name=[\"']{re.escape(name)}[\"']"))
+        if len(macros) > 1:
+            outer = macros[-2]
+            places.append(
+                (
+                    str(outer.history[-1][-1] or current),
+                    rf"<xacro:macro\s[^>]*name=[\"']{re.escape(outer.body.getAttribute('name'))}",
+                )
+            )
+        else:
+            places.append((current, None))
+    else:
+        places.append((current, None))
+    undefined = re.search(r"name '([^']+)' is not defined", message)
+    unknown = re.search(r"unknown macro name: (xacro:\S+)", message)
+    if undefined:
+        pattern = rf"\$\{{[^}}]*\b{re.escape(undefined.group(1))}\b"
+        hint = "define it with <xacro:property>, or as a macro parameter, before it is used"
+    elif unknown:
+        pattern = rf"<{re.escape(unknown.group(1))}\b"
+        hint = "define the macro, or include the file that does, before this call"
+    elif macros:  # a bad call (an undeclared or missing parameter), or its body failed
+        macro = macros[-1]
+        name = macro.body.getAttribute("name")
+        pattern = rf"<xacro:{re.escape(name)}\b"
+        places = places[1:]
+        declared = [param.lstrip("*") for param in macro.params]
+        invalid = re.search(r'Invalid parameter "([^"]+)"', message)
+        missing = re.search(r"Undefined parameters \[([^\]]*)\]", message)
+        if invalid:
+            given = invalid.group(1)
+            message = (
+                f"macro '{name}' is called with parameter '{given}', which it does not declare"
+                f"{did_you_mean(given, declared)} (declared: {', '.join(declared) or 'none'})"
+            )
+            hint = "fix the parameter's name in the call"
+        elif missing:
+            message = f"macro '{name}' is called without parameter {missing.group(1)}"
+            hint = "give it in the call, or a default in the macro's params as name:=value"
+    else:
+        return current, None, message, hint
+    for file, start in places:
+        line = _line_of(file, pattern, after=start)
+        if line is not None:
+            return file, line, message, hint
+    return places[0][0] if places else current, None, message, hint
 
 
 def _xacro_message(exc: Exception) -> str:

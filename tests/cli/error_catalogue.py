@@ -33,6 +33,7 @@ ARG_XACRO = (
     '  <link name="base"/><xacro:if value="$(arg with_camera)"><link name="camera"/></xacro:if>\n'
     "</robot>\n"
 )
+XACRO_OPEN = '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
 XACRO_MANIFEST = "name: robot\nsource:\n  xacro: robot.urdf.xacro\n"
 # export-urdf of a one-joint model, keeping the velocity limits of original.urdf.
 EXPORT_MODEL = (
@@ -321,7 +322,59 @@ CASES: list[Case] = [
             '<link name="${base_name}"/>\n</robot>\n',
         },
         EXIT_INPUT,
-        ["robot.urdf.xacro", "base_name"],
+        [
+            "error: robot.urdf.xacro:2: xacro failed: name 'base_name' is not defined",
+            "define it with <xacro:property>",
+        ],
+    ),
+    Case(
+        "xacro undefined property in a macro of an included file",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": XACRO_OPEN + '<xacro:include filename="parts/leg.xacro"/>\n'
+            '<link name="base"/>\n<xacro:leg side="left"/>\n</robot>\n',
+            "parts/leg.xacro": XACRO_OPEN + '<xacro:macro name="leg" params="side">\n'
+            '  <link name="${side}_leg"/>\n'
+            '  <link name="${sid}_foot"/>\n'
+            "</xacro:macro>\n</robot>\n",
+        },
+        EXIT_INPUT,
+        ["error: parts/leg.xacro:4: xacro failed: in macro 'leg': name 'sid' is not defined"],
+    ),
+    Case(
+        "xacro macro called with a misspelt parameter",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": XACRO_OPEN + '<xacro:macro name="leg" params="side">\n'
+            '  <link name="${side}_leg"/>\n</xacro:macro>\n<link name="base"/>\n'
+            '<xacro:leg sied="left"/>\n</robot>\n',
+        },
+        EXIT_INPUT,
+        [
+            "error: robot.urdf.xacro:6: xacro failed: macro 'leg' is called with parameter 'sied',"
+            " which it does not declare; did you mean 'side'? (declared: side)"
+        ],
+    ),
+    Case(
+        "xacro macro called without a parameter",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": XACRO_OPEN + '<xacro:macro name="leg" params="side">\n'
+            '  <link name="${side}_leg"/>\n</xacro:macro>\n<link name="base"/>\n'
+            "<xacro:leg/>\n</robot>\n",
+        },
+        EXIT_INPUT,
+        ["robot.urdf.xacro:6: xacro failed: macro 'leg' is called without parameter side"],
+    ),
+    Case(
+        "xacro unknown macro",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": XACRO_OPEN
+            + '<link name="base"/>\n<xacro:lge side="l"/>\n</robot>\n',
+        },
+        EXIT_INPUT,
+        ["robot.urdf.xacro:3: xacro failed: unknown macro name: xacro:lge", "define the macro"],
     ),
     Case(
         "xacro unknown package",
@@ -342,7 +395,11 @@ CASES: list[Case] = [
             '<xacro:include filename="parts/missing.xacro"/>\n</robot>\n',
         },
         EXIT_INPUT,
-        ["robot.urdf.xacro", "missing.xacro"],
+        # The path once, and the line of the include.
+        [
+            "error: robot.urdf.xacro:2: xacro failed: included file parts/missing.xacro not found"
+            " (fix the include's filename"
+        ],
     ),
     Case(
         "xacro argument without value",
