@@ -57,7 +57,7 @@ def parse_manifest(text: str, display_name: str = "robot.yaml") -> Manifest:
         data, positions = load_with_positions(text)
     except YamlSyntaxError as exc:
         raise ManifestError(
-            exc.message, file=display_name, line=exc.line, column=exc.column
+            exc.message, file=display_name, line=exc.line, column=exc.column, hint=exc.hint
         ) from None
     if data is None:
         raise ManifestError(

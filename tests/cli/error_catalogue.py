@@ -153,13 +153,39 @@ CASES: list[Case] = [
         "yaml syntax",
         {"robot.yaml": "name: robot\nsource: [urdf: robot.urdf\n"},
         EXIT_MANIFEST,
-        ["robot.yaml:3:", "YAML"],
+        # Where the '[' was opened, not the end of the file where PyYAML noticed.
+        ["robot.yaml:2:9:", "YAML", "close the '[' opened here with ']'"],
     ),
     Case(
         "yaml tab indentation",
         {"robot.yaml": "name: robot\nsource:\n\turdf: robot.urdf\n"},
         EXIT_MANIFEST,
-        ["robot.yaml:3:"],
+        ["robot.yaml:3:", "indent with spaces"],
+    ),
+    Case(
+        "yaml key without its colon",
+        {"robot.yaml": "name: robot\nsource\n  urdf: robot.urdf\n"},
+        EXIT_MANIFEST,
+        # PyYAML notices on line 3; the mistake is on line 2.
+        ["robot.yaml:2:1: YAML syntax error", "a key needs a ':' after it"],
+    ),
+    Case(
+        "yaml key indented deeper than its siblings",
+        {"robot.yaml": MANIFEST + "options:\n  free_joint: true\n   fuse_static: true\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:6:", "indented deeper than the keys beside it?"],
+    ),
+    Case(
+        "yaml key indented less than its siblings",
+        {"robot.yaml": MANIFEST + "options:\n    free_joint: true\n  fuse_static: true\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:6:3:", "line it up with its siblings"],
+    ),
+    Case(
+        "yaml quote not closed",
+        {"robot.yaml": MANIFEST + 'home:\n  "elbow: 1\noptions: {}\n'},
+        EXIT_MANIFEST,
+        ["robot.yaml:5:3:", "close the quote opened here"],
     ),
     Case(
         "unknown top-level key",
