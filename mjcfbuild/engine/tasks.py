@@ -445,9 +445,11 @@ def _require_file(ctx: BuildContext, path: Path, what: str, key: str) -> None:
     """:class:`InputError` unless ``path``, named by manifest key ``key``, is a readable file."""
     problem = unreadable_file(path)
     if problem:
-        raise InputError(
-            f"{what} {problem}", file=ctx.label(path), hint=f"fix '{key}' in {ctx.manifest_label}"
-        )
+        from mjcfbuild.manifest.pinpoint import key_line
+
+        line = key_line(ctx.manifest_file, key)
+        where = f"at {ctx.manifest_label}:{line}" if line else f"in {ctx.manifest_label}"
+        raise InputError(f"{what} {problem}", file=ctx.label(path), hint=f"fix '{key}' {where}")
 
 
 def _packages(packages: dict[str, Path]) -> dict[str, str]:
@@ -461,7 +463,7 @@ def _environment(ctx: BuildContext) -> dict[str, str]:
 
 def _expand_task(ctx: BuildContext, prefix: str) -> dict:
     source = ctx.source_path
-    _require_file(ctx, source, "source file", "source")
+    _require_file(ctx, source, "source file", f"source.{ctx.source_kind}")
     return expand_file_task(
         ctx,
         f"{prefix}expand",

@@ -323,12 +323,32 @@ CASES: list[Case] = [
         ["robot.yaml:5:3", "packages.my_robot", "nowhere", "not a folder"],
     ),
     # ---- sources ------------------------------------------------------------------------------
-    Case("urdf not found", {"robot.yaml": MANIFEST}, EXIT_INPUT, ["robot.urdf", "not found"]),
+    Case(
+        "urdf not found",
+        {"robot.yaml": MANIFEST},
+        EXIT_INPUT,
+        ["error: robot.urdf: source file not found (fix 'source.urdf' at robot.yaml:3)"],
+    ),
     Case(
         "xacro not found",
-        {"robot.yaml": XACRO_MANIFEST},
+        {"robot.yaml": "# a comment first\n" + XACRO_MANIFEST},
         EXIT_INPUT,
-        ["robot.urdf.xacro", "not found"],
+        ["error: robot.urdf.xacro: source file not found (fix 'source.xacro' at robot.yaml:4)"],
+    ),
+    Case(
+        "srdf not found",
+        {
+            "robot.yaml": MANIFEST + "self_collision:\n  srdf: config/robot.srdf\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["config/robot.srdf: SRDF not found (fix 'self_collision.srdf' at robot.yaml:5)"],
+    ),
+    Case(
+        "mesh named as the source",
+        {"robot.yaml": MANIFEST.replace("robot.urdf", "robot.stl"), "robot.stl": TETRAHEDRON_STL},
+        EXIT_INPUT,
+        ["error: robot.stl: this is an STL mesh, not a URDF or xacro file"],
     ),
     Case(
         "xacro XML syntax",
