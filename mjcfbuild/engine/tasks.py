@@ -35,7 +35,7 @@ from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
 from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.meshes.upaxis import mesh_uses
-from mjcfbuild.sources.packages import ENV_VARIABLES
+from mjcfbuild.sources.packages import ENV_VARIABLES, did_you_mean
 from mjcfbuild.steps.payloads import (
     AssemblePayload,
     CheckPayload,
@@ -209,7 +209,7 @@ def _check_kept_pairs(robot: Robot, ctx: BuildContext) -> None:
         for link in pair:
             if link not in links:
                 raise ManifestError(
-                    f"link '{link}' is not a link of the robot",
+                    f"link '{link}' is not a link of the robot{did_you_mean(link, links)}",
                     file=f"{ctx.manifest_label} self_collision.keep[{index}]",
                     hint=f"links: {listing(links)}",
                 )
@@ -227,7 +227,7 @@ def _check_floor_contacts(robot: Robot, ctx: BuildContext) -> None:
         for index, link in enumerate(getattr(settings.floor_contacts, key)):
             if link not in links:
                 raise ManifestError(
-                    f"link '{link}' is not a link of the robot",
+                    f"link '{link}' is not a link of the robot{did_you_mean(link, links)}",
                     file=f"{ctx.manifest_label} output.training.floor_contacts.{key}[{index}]",
                     hint=f"links: {listing(links)}",
                 )

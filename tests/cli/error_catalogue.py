@@ -905,6 +905,62 @@ CASES: list[Case] = [
         EXIT_INPUT,
         ["robot.yaml:6:", 'joint="elbow" names a joint that does not exist'],
     ),
+    # ---- names looked up: did you mean ---------------------------------------------------------
+    Case(
+        "home joint misspelt",
+        {"robot.yaml": MANIFEST + "home:\n  hnige: 0.5\n", "robot.urdf": urdf()},
+        EXIT_MANIFEST,
+        ["robot.yaml:5:3:", "'hnige' matches no moving joint; did you mean 'hinge'?"],
+    ),
+    Case(
+        "actuator rule joint misspelt",
+        {
+            "robot.yaml": MANIFEST + "actuators:\n  rules:\n    - {joints: [hnige], type: motor}\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:6:", "matches no actuated joint (hnige); did you mean 'hinge'?"],
+    ),
+    Case(
+        "kept collision pair link misspelt",
+        {
+            "robot.yaml": MANIFEST + "self_collision:\n  keep: [[base, amr]]\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:5:", "link 'amr' is not a link of the robot; did you mean 'arm'?"],
+    ),
+    Case(
+        "camera link misspelt",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  cameras:\n    - name: eye\n      link: amr\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["robot.yaml:6:7", "link 'amr', which does not exist; did you mean 'arm'?"],
+    ),
+    Case(
+        "raw actuator joint misspelt",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  raw: |\n    <actuator><motor joint='hnige'/></actuator>\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["robot.yaml:6:", "names a joint that does not exist; did you mean 'hinge'?"],
+    ),
+    Case(
+        "attached part's link misspelt",
+        {
+            "robot.yaml": MANIFEST
+            + "attach:\n  - {source: {urdf: part.urdf}, to: amr, prefix: p_}\n",
+            "robot.urdf": two_link_urdf(),
+            "part.urdf": '<robot name="p"><link name="palm"/></robot>\n',
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:", "'amr'", "did you mean 'arm'?"],
+    ),
     # ---- outputs ------------------------------------------------------------------------------
     Case(
         "output folder inside a file",
