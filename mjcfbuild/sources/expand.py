@@ -19,7 +19,7 @@ from typing import IO, Any
 
 from mjcfbuild.errors import InputError, ManifestError, UsageError
 from mjcfbuild.fsutil import normalise, unreadable_file
-from mjcfbuild.sources.kind import not_a_description, xacro_evidence
+from mjcfbuild.sources.kind import mesh_kind, xacro_evidence
 from mjcfbuild.sources.packages import PackageResolver, did_you_mean
 from mjcfbuild.xmlguard import refuse_entities
 
@@ -82,7 +82,7 @@ def read_urdf_file(path: Path) -> Expansion:
         raise InputError("source is a folder, not a file", file=path) from None
     except OSError as exc:
         raise InputError(f"cannot read source: {exc.strerror}", file=path) from None
-    what = not_a_description(path, data)
+    what = mesh_kind(path, data)
     if what is not None:
         raise InputError(
             f"this is {what}, not a URDF or xacro file",

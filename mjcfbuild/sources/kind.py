@@ -60,6 +60,24 @@ def _in_comment(data: bytes, position: int) -> bool:
 def not_a_description(path: Path, data: bytes) -> str | None:
     """What ``path`` (with content ``data``) is when it is not a URDF or xacro file ("an STL
     mesh", "an SDF model", "not XML"), or None when it is one."""
+    mesh = mesh_kind(path, data)
+    if mesh is not None:
+        return mesh
+    head = data[:4096]
+    root = _root_tag(head)
+    if root is not None:
+        local = root.split(":")[-1]
+        return _ROOTS.get(local, f"an XML file whose root element is <{root}>, not <robot>")
+    if not data.strip():
+        return "an empty file"
+    return _MESH_EXTENSIONS.get(
+        path.suffix.lower(), "a binary file" if b"\0" in head else "not XML"
+    )
+
+
+def mesh_kind(path: Path, data: bytes) -> str | None:
+    """What mesh ``path`` (with content ``data``) is ("an STL mesh"), by its content, or by
+    its extension where the content is not XML; None when it is no mesh."""
     head = data[:4096]
     if len(data) >= 84 and len(data) == 84 + 50 * struct.unpack("<I", data[80:84])[0]:
         return "an STL mesh"  # binary STL: a header, a count and 50 bytes per triangle
@@ -74,13 +92,10 @@ def not_a_description(path: Path, data: bytes) -> str | None:
         return "a glTF mesh"
     root = _root_tag(head)
     if root is not None:
-        local = root.split(":")[-1]
-        return _ROOTS.get(local, f"an XML file whose root element is <{root}>, not <robot>")
-    if b"\0" in head:
-        return _MESH_EXTENSIONS.get(path.suffix.lower(), "a binary file")
+        return "a COLLADA (DAE) mesh" if root.split(":")[-1] == "COLLADA" else None
     if re.search(rb"(?m)^\s*(v|vn|vt|f)\s+-?[0-9]", head):
         return "an OBJ mesh"
-    return _MESH_EXTENSIONS.get(path.suffix.lower(), "not XML")
+    return _MESH_EXTENSIONS.get(path.suffix.lower()) if data.strip() else None
 
 
 def _root_tag(head: bytes) -> str | None:
