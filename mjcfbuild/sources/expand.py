@@ -385,7 +385,7 @@ def _place_failure(
         places = places[1:]
         declared = [param.lstrip("*") for param in macro.params]
         invalid = re.search(r'Invalid parameter "([^"]+)"', message)
-        missing = re.search(r"Undefined parameters \[([^\]]*)\]", message)
+        lacking = re.search(r"Undefined parameters \[([^\]]*)\]", message)
         if invalid:
             given = invalid.group(1)
             message = (
@@ -393,8 +393,8 @@ def _place_failure(
                 f"{did_you_mean(given, declared)} (declared: {', '.join(declared) or 'none'})"
             )
             hint = "fix the parameter's name in the call"
-        elif missing:
-            message = f"macro '{name}' is called without parameter {missing.group(1)}"
+        elif lacking:
+            message = f"macro '{name}' is called without parameter {lacking.group(1)}"
             hint = "give it in the call, or a default in the macro's params as name:=value"
     else:
         return current, None, message, hint
