@@ -345,6 +345,13 @@ CASES: list[Case] = [
         ["config/robot.srdf: SRDF not found (fix 'self_collision.srdf' at robot.yaml:5)"],
     ),
     Case(
+        "init on a mesh",
+        {"meshes/robot.stl": TETRAHEDRON_STL},
+        EXIT_INPUT,
+        ["error: meshes/robot.stl is an STL mesh, not a URDF or xacro file"],
+        args=["init", "meshes/robot.stl"],
+    ),
+    Case(
         "mesh named as the source",
         {"robot.yaml": MANIFEST.replace("robot.urdf", "robot.stl"), "robot.stl": TETRAHEDRON_STL},
         EXIT_INPUT,
