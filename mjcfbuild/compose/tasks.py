@@ -20,7 +20,7 @@ from mjcfbuild.errors import ManifestError, MjcfbuildError
 from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.manifest.composition import Attachment
 from mjcfbuild.manifest.models import Manifest
-from mjcfbuild.sources.packages import ENV_VARIABLES
+from mjcfbuild.sources.packages import ENV_VARIABLES, did_you_mean
 from mjcfbuild.steps.payloads import ComposePayload, MjcfPartFiles, MjcfPartPayload, PartEntry
 from mjcfbuild.urdf.model import Robot
 
@@ -291,7 +291,7 @@ def _unplaceable(ctx: BuildContext, pending: list, targets: list[str]) -> Manife
     if last.to not in owner:
         return ManifestError(
             f"'to' names '{last.to}', which is not a link of the model nor a body or site of "
-            "an MJCF part",
+            f"an MJCF part{did_you_mean(last.to, set(targets))}",
             file=f"{ctx.manifest_label} attach[{index}].to",
             hint=f"links: {listing(targets)}",
         )

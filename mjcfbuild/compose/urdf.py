@@ -15,6 +15,7 @@ from pathlib import Path
 from lxml import etree
 
 from mjcfbuild.errors import InputError, ManifestError
+from mjcfbuild.sources.packages import did_you_mean
 
 # Top-level URDF elements a part keeps; the others (gazebo, mujoco, mujoco_inputs) describe
 # the part's own simulation and are left out, with a warning.
@@ -116,7 +117,8 @@ def _unplaceable(pending: list[Part], links: list[str]) -> ManifestError:
     last = chain[-1]
     if last.to not in owner:
         return ManifestError(
-            f"'to' names link '{last.to}', which is not a link of the model",
+            f"'to' names link '{last.to}', which is not a link of the model"
+            f"{did_you_mean(last.to, set(links))}",
             file=f"{last.key}.to",
             hint=f"links: {listing(links)}",
         )

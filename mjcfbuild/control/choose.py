@@ -214,7 +214,8 @@ def check_rules(robot: Robot, settings: ActuatorSettings, manifest_label: str) -
     for index, rule in enumerate(settings.rules):
         if not any(matches(name, rule.joints) for name in names):
             raise ManifestError(
-                f"rule matches no actuated joint ({', '.join(rule.joints)})",
+                f"rule matches no actuated joint ({', '.join(rule.joints)})"
+                f"{suggestion(rule.joints, names)}",
                 file=f"{manifest_label} actuators.rules[{index}].joints",
                 hint=f"actuated joints: {listing(names)}",
             )
@@ -255,6 +256,18 @@ def positive_velocity(joint: Joint) -> float | None:
     """The joint's URDF velocity limit where it is one (positive), else None."""
     velocity = joint.limit.velocity if joint.limit is not None else None
     return velocity if velocity is not None and velocity > 0 else None
+
+
+def suggestion(patterns: list[str], names: list[str]) -> str:
+    """``; did you mean 'x'?`` for the name closest to one of ``patterns`` (a glob pattern
+    compared without its wildcards), or nothing."""
+    from mjcfbuild.sources.packages import did_you_mean
+
+    for pattern in patterns:
+        found = did_you_mean(pattern, names) or did_you_mean(pattern.strip("*?"), names)
+        if found:
+            return found
+    return ""
 
 
 def listing(names: list[str], most: int = 12) -> str:

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from mjcfbuild.control.choose import listing, matches
+from mjcfbuild.control.choose import listing, matches, suggestion
 from mjcfbuild.errors import ManifestError
 from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.urdf.limits import joint_range
@@ -96,7 +96,7 @@ def _check_patterns(moving: list[Joint], patterns: dict[str, float], label: str)
         named = [joint for joint in moving if matches(joint.name, [pattern])]
         if not named:
             raise ManifestError(
-                f"'{pattern}' matches no moving joint",
+                f"'{pattern}' matches no moving joint{suggestion([pattern], names)}",
                 file=f"{label} home.{pattern}",
                 hint=f"moving joints: {listing(names)}",
             )

@@ -35,7 +35,7 @@ from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
 from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.meshes.upaxis import mesh_uses
-from mjcfbuild.sources.packages import ENV_VARIABLES
+from mjcfbuild.sources.packages import ENV_VARIABLES, did_you_mean
 from mjcfbuild.steps.payloads import (
     AssemblePayload,
     CheckPayload,
@@ -209,7 +209,7 @@ def _check_kept_pairs(robot: Robot, ctx: BuildContext) -> None:
         for link in pair:
             if link not in links:
                 raise ManifestError(
-                    f"link '{link}' is not a link of the robot",
+                    f"link '{link}' is not a link of the robot{did_you_mean(link, links)}",
                     file=f"{ctx.manifest_label} self_collision.keep[{index}]",
                     hint=f"links: {listing(links)}",
                 )
@@ -227,7 +227,7 @@ def _check_floor_contacts(robot: Robot, ctx: BuildContext) -> None:
         for index, link in enumerate(getattr(settings.floor_contacts, key)):
             if link not in links:
                 raise ManifestError(
-                    f"link '{link}' is not a link of the robot",
+                    f"link '{link}' is not a link of the robot{did_you_mean(link, links)}",
                     file=f"{ctx.manifest_label} output.training.floor_contacts.{key}[{index}]",
                     hint=f"links: {listing(links)}",
                 )
@@ -449,9 +449,11 @@ def _require_file(ctx: BuildContext, path: Path, what: str, key: str) -> None:
     """:class:`InputError` unless ``path``, named by manifest key ``key``, is a readable file."""
     problem = unreadable_file(path)
     if problem:
-        raise InputError(
-            f"{what} {problem}", file=ctx.label(path), hint=f"fix '{key}' in {ctx.manifest_label}"
-        )
+        from mjcfbuild.manifest.pinpoint import key_line
+
+        line = key_line(ctx.manifest_file, key)
+        where = f"at {ctx.manifest_label}:{line}" if line else f"in {ctx.manifest_label}"
+        raise InputError(f"{what} {problem}", file=ctx.label(path), hint=f"fix '{key}' {where}")
 
 
 def _packages(packages: dict[str, Path]) -> dict[str, str]:
@@ -465,7 +467,7 @@ def _environment(ctx: BuildContext) -> dict[str, str]:
 
 def _expand_task(ctx: BuildContext, prefix: str) -> dict:
     source = ctx.source_path
-    _require_file(ctx, source, "source file", "source")
+    _require_file(ctx, source, "source file", f"source.{ctx.source_kind}")
     return expand_file_task(
         ctx,
         f"{prefix}expand",

@@ -19,6 +19,7 @@ from mjcfbuild.errors import InputError
 from mjcfbuild.inputs.frames import camera_pose, lidar_body_pose, ray_count
 from mjcfbuild.inputs.model import SINGLE_SECTIONS, Inputs, RawElement, origin_location
 from mjcfbuild.numbers import output, output_list
+from mjcfbuild.sources.packages import did_you_mean
 from mjcfbuild.urdf.transforms import Transform
 
 # Where sections go in the model, in the order MJCF files conventionally list them.
@@ -157,7 +158,7 @@ def _link(links: dict[str, LinkPlace], name: str, origin: str, what: str) -> Lin
     if name not in links:
         raise input_error(
             origin,
-            f"{what} refers to link '{name}', which does not exist",
+            f"{what} refers to link '{name}', which does not exist{did_you_mean(name, set(links))}",
             hint=f"links: {_listing(links)}",
         )
     return links[name]
@@ -423,6 +424,7 @@ def _missing(element, attribute, value, kind, names, origin) -> InputError:
     what = f"<{element.tag}{' ' + repr(element.get('name')) if element.get('name') else ''}>"
     return input_error(
         origin,
-        f'{what} {attribute}="{value}" names a {kind} that does not exist',
+        f'{what} {attribute}="{value}" names a {kind} that does not exist'
+        f"{did_you_mean(value, set(names[kind]))}",
         hint=f"{kind} names: {_listing(names[kind])}",
     )

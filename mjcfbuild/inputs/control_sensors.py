@@ -27,6 +27,7 @@ from mjcfbuild.inputs.ros2_control import (
     runtime_sensor_name,
     sensor_frame,
 )
+from mjcfbuild.sources.packages import did_you_mean
 
 # Sensors that name their object with objtype/objname rather than site.
 _FRAME_SENSORS = {"framequat", "framepos"}
@@ -64,7 +65,7 @@ def _site_at_frame(root: etree._Element, sensor: ControlSensor, links: dict[str,
         given = "its frame_name" if sensor.params.get("frame_name") else "its name"
         raise InputError(
             f"ros2_control sensor '{sensor.name}': {given} '{frame}' is not a link of the "
-            "URDF, so the build cannot place its MJCF sensors",
+            f"URDF{did_you_mean(frame, set(links))}, so the build cannot place its MJCF sensors",
             file=file,
             line=line,
             hint='set <param name="frame_name"> to the link it measures at',

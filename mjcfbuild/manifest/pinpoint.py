@@ -29,6 +29,22 @@ def key_path(dotted: str) -> tuple[str | int, ...] | None:
     return tuple(parts) if parts and position == len(dotted) else None
 
 
+def key_line(manifest_file: Path | None, dotted: str) -> int | None:
+    """The line of ``robot.yaml`` where the setting ``dotted`` (``source.urdf``) is written;
+    None without a manifest file, or when it cannot be read or has no such key."""
+    path = key_path(dotted)
+    if manifest_file is None or path is None:
+        return None
+    from mjcfbuild.manifest.yamlpos import YamlSyntaxError, load_with_positions
+
+    try:
+        _, positions = load_with_positions(manifest_file.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, YamlSyntaxError):
+        return None
+    found = positions.of(path)
+    return found[0] if found else None
+
+
 def pinpoint(error: MjcfbuildError, manifest_label: str, manifest_file: Path) -> MjcfbuildError:
     """Give ``error`` the manifest's line and column when its file is ``LABEL KEY.PATH``."""
     location = error.location

@@ -9,7 +9,13 @@ from pathlib import Path
 from mjcfbuild.errors import InputError, OutputError, UsageError
 from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.manifest.models import NAME_PATTERN
-from mjcfbuild.sources.infer import infer_package, package_references
+from mjcfbuild.sources.infer import (
+    InferredPackage,
+    find_package_xml,
+    infer_package,
+    package_references,
+)
+from mjcfbuild.sources.kind import not_a_description, xacro_evidence
 from mjcfbuild.sources.packages import find_enclosing_package
 
 _ARG = re.compile(rb"<xacro:arg\s+name=\"([^\"]+)\"(?:\s+default=\"([^\"]*)\")?")
@@ -25,6 +31,12 @@ def write_starter_manifest(
     source_path = Path(source).resolve()
     if not source_path.is_file():
         raise InputError(f"source file {unreadable_file(source) or 'not found'}", file=source)
+    what = not_a_description(source_path, source_path.read_bytes())
+    if what is not None:
+        raise InputError(
+            f"{source} is {what}, not a URDF or xacro file",
+            hint="pass the robot's .urdf or .xacro file; it names its meshes itself",
+        )
     manifest_path = Path(output).resolve()
     if manifest_path.exists() and not force:
         raise UsageError(f"{output} already exists", hint="pass --force to overwrite it")
@@ -42,7 +54,9 @@ def starter_manifest_text(
 ) -> str:
     """The manifest text: source, packages it needs, xacro args with their defaults."""
     data = source.read_bytes()
-    is_xacro = source.name.endswith(".xacro") or b"xmlns:xacro" in data[:4096]
+    # By what the file uses: a URDF that only declares the xacro namespace is read as it is
+    # (through xacro, errors would cite lines of an expanded copy).
+    is_xacro = xacro_evidence(data) is not None
     relative = _relative(source, manifest_dir)
     match = _ROBOT_NAME.search(data)
     raw_name = match.group(1).decode() if match else source.name.split(".")[0]
@@ -50,16 +64,26 @@ def starter_manifest_text(
 
     needed = sorted({m.decode() for m in _PACKAGE_URI.findall(data) + _FIND.findall(data)})
     known = dict(packages)
+    notes: dict[str, str] = {}
+    references = package_references(data)
+    for package in needed:
+        if package in known:
+            continue
+        folder = find_package_xml(package, source)
+        if folder is not None:
+            known[package] = str(folder)
+            continue
+        found = infer_package(package, references.get(package, []), source)
+        if found is not None:
+            known[package] = str(found.folder)
+            notes[package] = _inferred_note(package, found)
     enclosing = find_enclosing_package(source)
-    if enclosing is not None:
-        known.setdefault(enclosing[0], str(enclosing[1]))
-    inferred = {}
-    for package, paths in package_references(data).items():
-        if package not in known:
-            found = infer_package(package, paths, source)
-            if found is not None:
-                inferred[package] = found
-                known[package] = str(found.folder)
+    # One name per folder: the description's own package only under a name it uses, or under
+    # its package.xml's name when no other name already points there.
+    if enclosing is not None and enclosing[0] not in known:
+        folders = {Path(folder).resolve() for folder in known.values()}
+        if enclosing[1].resolve() not in folders:
+            known[enclosing[0]] = str(enclosing[1])
 
     lines = [
         f"# mjcfbuild manifest for {relative}. Build it with: mjcfbuild build {manifest_name}",
@@ -90,11 +114,8 @@ def starter_manifest_text(
     ]
     lines.append("packages:" if known else "packages: {}")
     for package in sorted(known):
-        if package in inferred:
-            lines.append(
-                f"  # {package}: inferred (no package.xml) from the description's "
-                f"{inferred[package].evidence}, found in this folder"
-            )
+        if package in notes:
+            lines.append(notes[package])
         lines.append(f"  {package}: {_relative(Path(known[package]), manifest_dir)}")
     free_joint = _free_joint_lines(source, is_xacro, known, data)
     lines += [
@@ -136,6 +157,19 @@ def starter_manifest_text(
         "",
     ]
     return "\n".join(lines)
+
+
+def _inferred_note(package: str, found: InferredPackage) -> str:
+    """The comment above a package found from the files the description names in it."""
+    where = f"from the description's {found.evidence}, found in this folder"
+    if found.package_xml is None:
+        return f"  # {package}: inferred (no package.xml) {where}"
+    if found.package_xml == package:
+        return f"  # {package}: its package.xml is in this folder"
+    return (
+        f"  # {package}: inferred {where}; its package.xml names it '{found.package_xml}', "
+        "which the description does not use"
+    )
 
 
 def _free_joint_lines(source: Path, is_xacro: bool, packages: dict[str, str], data: bytes) -> list:

@@ -56,6 +56,45 @@ def _mark(node: yaml.Node) -> tuple[int, int]:
     return node.start_mark.line + 1, node.start_mark.column + 1
 
 
+# Contexts whose mark is where the mistake was made, when PyYAML only notices it lines later:
+# a key without its ':', an unclosed quote or an unclosed [ or {.
+_OPENED_CONTEXTS = ("while scanning a simple key", "while scanning a quoted scalar", "flow")
+
+
+def _offending_mark(exc: yaml.MarkedYAMLError) -> yaml.Mark | None:
+    """The position to report: where the problem was noticed, or the earlier line where it
+    was made."""
+    problem, context = exc.problem_mark, exc.context_mark
+    if problem is None:
+        return context
+    opened = any(text in (exc.context or "") for text in _OPENED_CONTEXTS)
+    if context is not None and opened and context.line < problem.line:
+        return context
+    return problem
+
+
+def _syntax_hint(exc: yaml.MarkedYAMLError) -> str | None:
+    """What to do about the usual YAML mistakes, from PyYAML's problem and context."""
+    problem, context = exc.problem or "", exc.context or ""
+    if "'\\t'" in problem or "\\t" in problem:
+        return "indent with spaces: YAML does not allow tabs"
+    if "could not find expected ':'" in problem:
+        return "a key needs a ':' after it, or this line is indented too far"
+    if "mapping values are not allowed" in problem:
+        return "indented deeper than the keys beside it? A value with ': ' needs quotes"
+    if "expected <block end>" in problem:
+        return "this line's indentation matches no key above it: line it up with its siblings"
+    if "quoted scalar" in context:
+        return "close the quote opened here"
+    if "flow mapping" in context:
+        return "close the '{' opened here with '}', with ',' between its items"
+    if "flow sequence" in context:
+        return "close the '[' opened here with ']', with ',' between its items"
+    if "block sequence" in context or "block collection" in problem:
+        return "a list item ('- ') must be indented like the others of its list"
+    return None
+
+
 def load_with_positions(text: str) -> tuple[object, Positions]:
     """Parse one YAML document into plain values and the positions of every value."""
     try:
@@ -63,11 +102,13 @@ def load_with_positions(text: str) -> tuple[object, Positions]:
     except YamlLimitError as exc:
         raise YamlSyntaxError(exc.message, exc.line, exc.column, exc.hint) from None
     except yaml.MarkedYAMLError as exc:
-        mark = exc.problem_mark or exc.context_mark
+        mark = _offending_mark(exc)
         line = mark.line + 1 if mark else None
         column = mark.column + 1 if mark else None
         problem = exc.problem or exc.context or "invalid YAML"
-        raise YamlSyntaxError(f"YAML syntax error: {problem}", line, column) from None
+        raise YamlSyntaxError(
+            f"YAML syntax error: {problem}", line, column, _syntax_hint(exc)
+        ) from None
     except yaml.YAMLError as exc:
         raise YamlSyntaxError(f"YAML syntax error: {exc}", None, None) from None
     except ValueError as exc:  # PyYAML's scanner on an escape beyond Unicode, like "\U00110000"

@@ -19,6 +19,7 @@ from typing import IO, Any
 
 from mjcfbuild.errors import InputError, ManifestError, UsageError
 from mjcfbuild.fsutil import case_match, case_suggestion, normalise, unreadable_file
+from mjcfbuild.sources.kind import mesh_kind, xacro_evidence
 from mjcfbuild.sources.packages import PackageResolver, did_you_mean
 from mjcfbuild.xmlguard import refuse_entities
 
@@ -84,30 +85,25 @@ def read_urdf_file(path: Path) -> Expansion:
         raise InputError("source is a folder, not a file", file=path) from None
     except OSError as exc:
         raise InputError(f"cannot read source: {exc.strerror}", file=path) from None
-    macro = next(
-        (m for m in _XACRO_ELEMENT.finditer(data) if not _in_comment(data, m.start())), None
-    )
-    if macro is not None:
+    what = mesh_kind(path, data)
+    if what is not None:
+        raise InputError(
+            f"this is {what}, not a URDF or xacro file",
+            file=path,
+            hint="name the robot's .urdf or .xacro file under 'source' in robot.yaml",
+        )
+    evidence = xacro_evidence(data)
+    if evidence is not None:
         # Read as URDF, a xacro file loses every macro and include silently (a one-link model
         # that passes every check): it must be expanded.
-        line = data.count(b"\n", 0, macro.start()) + 1
+        used, line = evidence
         raise InputError(
-            f"this file is xacro (<{macro.group(1).decode()}> at line {line}), not a URDF",
+            f"this file is xacro ({used} at line {line}), not a URDF",
             file=path,
             line=line,
             hint=f"name it with source: {{xacro: {path.name}}} in robot.yaml",
         )
     return Expansion(urdf=data, files=[str(normalise(path))])
-
-
-# A xacro element (not just the namespace declaration, which expanded URDFs often keep).
-_XACRO_ELEMENT = re.compile(rb"<(xacro:(?:include|macro|property|arg|if|unless|call)\b)")
-
-
-def _in_comment(data: bytes, position: int) -> bool:
-    """Whether ``position`` lies inside an XML comment (talos's URDF comments out a property)."""
-    opened = data.rfind(b"<!--", 0, position)
-    return opened >= 0 and data.find(b"-->", opened, position) < 0
 
 
 def expand_xacro(
@@ -194,9 +190,8 @@ def _expand(
                 hint = (
                     "pass it under 'source.args' in robot.yaml, or give its <xacro:arg> a default"
                 )
-            absent = re.match(r"No such file or directory: (\S+)", message)
-            if absent:
-                raise _missing_include(absent.group(1), current) from None
+            else:
+                current, line, message, hint = _place_failure(exc, message, xacro, current, hint)
             failure = _XacroFailed if track_lines else InputError
             raise failure(f"xacro failed: {message}", file=current, line=line, hint=hint) from None
         included = list(xacro.all_includes)
@@ -243,34 +238,15 @@ def _check_args(
     )
 
 
-def _missing_include(path: str, current: str) -> InputError:
-    """The error for a file xacro could not find (an include): its line in ``current``, and
-    the file spelt otherwise in letter case, if there is one."""
-    name = Path(path).name
-    line = _line_of(current, re.escape(name))
-    match = case_match(path)
-    if match is not None:
-        return InputError(
-            f"xacro include '{name}' not found; did you mean '{case_suggestion(path, match)}'? "
-            f"(looked at {path})",
-            file=current,
-            line=line,
-            hint="write the name as the file is spelt: letter case matters here",
-        )
-    return InputError(
-        f"xacro include '{name}' not found (looked at {path})",
-        file=current,
-        line=line,
-        hint="check the include's filename and the 'packages' in robot.yaml",
-    )
-
-
-def _line_of(file: str, pattern: str) -> int | None:
-    """The first line of ``file`` matching ``pattern``, if any."""
+def _line_of(file: str, pattern: str, after: str | None = None) -> int | None:
+    """The first line of ``file`` matching ``pattern``, if any; with ``after``, the first from
+    the line matching ``after`` on."""
     try:
         with open(file, encoding="utf-8", errors="replace") as handle:
+            started = after is None
             for number, line in enumerate(handle, 1):
-                if re.search(pattern, line):
+                started = started or bool(re.search(after or "", line))
+                if started and re.search(pattern, line):
                     return number
     except OSError:
         pass
@@ -351,6 +327,96 @@ def _origins(text: bytes, marks: list[str], files: list[str]) -> dict[int, tuple
             index, _, written = mark.partition(":")
             origins.setdefault(line, (str(normalise(files[int(index)])), int(written)))
     return origins
+
+
+def _place_failure(
+    exc: Exception, message: str, xacro_module: Any, current: str, hint: str
+) -> tuple[str, int | None, str, str]:
+    """The file and line a xacro failure is about, with its message and hint, from what xacro
+    leaves behind: the macros being instantiated and the files being read. xacro's DOM has no
+    line numbers, so the line is found by searching the file for what the message names."""
+    cause = getattr(exc, "exc", None)
+    if isinstance(cause, OSError) and cause.filename:
+        # A missing include: xacro names it twice, with the file that includes it nowhere.
+        missing = str(cause.filename)
+        stack = [str(f) for f in getattr(xacro_module, "filestack", None) or [] if f]
+        including = next((f for f in reversed(stack) if f != missing), current)
+        shown = os.path.relpath(missing, os.path.dirname(including))
+        if shown.startswith(".."):
+            shown = missing
+        base = re.escape(os.path.basename(missing))
+        line = _line_of(including, rf"<xacro:include\b.*{base}") or _line_of(including, base)
+        reason = "not found" if isinstance(cause, FileNotFoundError) else cause.strerror
+        match = case_match(missing) if isinstance(cause, FileNotFoundError) else None
+        if match is not None:
+            return (
+                including,
+                line,
+                f"included file {shown} not found; did you mean "
+                f"'{case_suggestion(missing, match)}'?",
+                "write the name as the file is spelt: letter case matters here",
+            )
+        return (
+            including,
+            line,
+            f"included file {shown} {reason}",
+            "fix the include's filename (relative to this file, or $(find package)/...) "
+            'or add optional="true"',
+        )
+    macros = list(getattr(xacro_module, "macrostack", None) or [])
+    # Where to look, innermost first: the body of the macro being instantiated, then where it
+    # was called (the body of the macro around it, or the file being read).
+    places: list[tuple[str, str | None]] = []
+    if macros:
+        name = macros[-1].body.getAttribute("name")
+        message = f"in macro '{name}': {message}"
+        defined_in = str(macros[-1].history[-1][-1] or current)
+        places.append((defined_in, rf"<xacro:macro\s[^>]*name=[\"']{re.escape(name)}[\"']"))
+        if len(macros) > 1:
+            outer = macros[-2]
+            places.append(
+                (
+                    str(outer.history[-1][-1] or current),
+                    rf"<xacro:macro\s[^>]*name=[\"']{re.escape(outer.body.getAttribute('name'))}",
+                )
+            )
+        else:
+            places.append((current, None))
+    else:
+        places.append((current, None))
+    undefined = re.search(r"name '([^']+)' is not defined", message)
+    unknown = re.search(r"unknown macro name: (xacro:\S+)", message)
+    if undefined:
+        pattern = rf"\$\{{[^}}]*\b{re.escape(undefined.group(1))}\b"
+        hint = "define it with <xacro:property>, or as a macro parameter, before it is used"
+    elif unknown:
+        pattern = rf"<{re.escape(unknown.group(1))}\b"
+        hint = "define the macro, or include the file that does, before this call"
+    elif macros:  # a bad call (an undeclared or missing parameter), or its body failed
+        macro = macros[-1]
+        name = macro.body.getAttribute("name")
+        pattern = rf"<xacro:{re.escape(name)}\b"
+        places = places[1:]
+        declared = [param.lstrip("*") for param in macro.params]
+        invalid = re.search(r'Invalid parameter "([^"]+)"', message)
+        lacking = re.search(r"Undefined parameters \[([^\]]*)\]", message)
+        if invalid:
+            given = invalid.group(1)
+            message = (
+                f"macro '{name}' is called with parameter '{given}', which it does not declare"
+                f"{did_you_mean(given, declared)} (declared: {', '.join(declared) or 'none'})"
+            )
+            hint = "fix the parameter's name in the call"
+        elif lacking:
+            message = f"macro '{name}' is called without parameter {lacking.group(1)}"
+            hint = "give it in the call, or a default in the macro's params as name:=value"
+    else:
+        return current, None, message, hint
+    for file, start in places:
+        line = _line_of(file, pattern, after=start)
+        if line is not None:
+            return file, line, message, hint
+    return places[0][0] if places else current, None, message, hint
 
 
 def _xacro_message(exc: Exception) -> str:

@@ -1,4 +1,5 @@
-"""Guessing where a package is when no ``package.xml`` says so (for ``mjcfbuild init``).
+"""Finding the packages a description names (for ``mjcfbuild init``): by their ``package.xml``
+first, else by the files the description names in them.
 
 Description folders shipped in wheels or copied out of a ROS workspace (jvrc-, icub- or
 upkie-style) often keep the package's folder without its ``package.xml``. The ``package://``
@@ -24,6 +25,7 @@ class InferredPackage:
 
     folder: Path
     evidence: str  # one file of the package that is there, as the description names it
+    package_xml: str | None = None  # the name the folder's package.xml gives, if it has one
 
 
 def package_references(data: bytes) -> dict[str, list[str]]:
@@ -37,6 +39,23 @@ def package_references(data: bytes) -> dict[str, list[str]]:
     return found
 
 
+def find_package_xml(name: str, source: Path) -> Path | None:
+    """The folder of the ``package.xml`` naming package ``name``, among the folders above
+    ``source`` and their children (a package beside the description's own, in one workspace)."""
+    from mjcfbuild.sources.packages import package_name
+
+    for ancestor in list(source.resolve().parents)[:_LEVELS]:
+        try:
+            children = sorted(child for child in ancestor.iterdir() if child.is_dir())
+        except OSError:
+            continue
+        for folder in [ancestor, *children]:
+            manifest = folder / "package.xml"
+            if manifest.is_file() and package_name(manifest) == name:
+                return folder
+    return None
+
+
 def infer_package(name: str, paths: list[str], source: Path) -> InferredPackage | None:
     """The folder of package ``name``: the nearest folder, among those above ``source`` and
     their children called ``name``, holding every path of ``paths`` (or, failing that, the
@@ -48,7 +67,15 @@ def infer_package(name: str, paths: list[str], source: Path) -> InferredPackage 
     for folder in candidates:
         present = [p for p in paths if (folder / p).is_file()]
         if present and len(present) == len(paths):
-            return InferredPackage(folder, present[0])
+            return _inferred(folder, present[0])
         if present and partial is None:
-            partial = InferredPackage(folder, present[0])
+            partial = _inferred(folder, present[0])
     return partial
+
+
+def _inferred(folder: Path, evidence: str) -> InferredPackage:
+    from mjcfbuild.sources.packages import package_name
+
+    manifest = folder / "package.xml"
+    declared = (package_name(manifest) or folder.name) if manifest.is_file() else None
+    return InferredPackage(folder, evidence, declared)

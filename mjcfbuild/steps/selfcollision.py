@@ -29,6 +29,7 @@ from mjcfbuild.selfcollision.matrix import (
 )
 from mjcfbuild.selfcollision.srdf import Srdf
 from mjcfbuild.selfcollision.srdf import home_state as home_state_of
+from mjcfbuild.sources.packages import did_you_mean
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import DecompositionFiles, SelfCollisionPayload
 from mjcfbuild.urdf.model import robot_from_dict
@@ -237,7 +238,7 @@ def _decomposition(entry: DecompositionFiles) -> Decomposition:
 def _body(link: str, body_of: dict[str, str], srdf: Srdf, line: int | None) -> str:
     if link not in body_of:
         raise InputError(
-            f"link '{link}' is not a link of the robot",
+            f"link '{link}' is not a link of the robot{did_you_mean(link, set(body_of))}",
             file=srdf.label,
             line=line,
             hint=f"links: {listing(sorted(body_of))}",
@@ -248,7 +249,7 @@ def _body(link: str, body_of: dict[str, str], srdf: Srdf, line: int | None) -> s
 def _kept_body(link: str, body_of: dict[str, str], label: str, index: int) -> str:
     if link not in body_of:
         raise ManifestError(
-            f"link '{link}' is not a link of the robot",
+            f"link '{link}' is not a link of the robot{did_you_mean(link, set(body_of))}",
             file=f"{label} self_collision.keep[{index}]",
             hint=f"links: {listing(sorted(body_of))}",
         )

@@ -33,6 +33,7 @@ ARG_XACRO = (
     '  <link name="base"/><xacro:if value="$(arg with_camera)"><link name="camera"/></xacro:if>\n'
     "</robot>\n"
 )
+XACRO_OPEN = '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
 XACRO_MANIFEST = "name: robot\nsource:\n  xacro: robot.urdf.xacro\n"
 # export-urdf of a one-joint model, keeping the velocity limits of original.urdf.
 EXPORT_MODEL = (
@@ -165,13 +166,39 @@ CASES: list[Case] = [
         "yaml syntax",
         {"robot.yaml": "name: robot\nsource: [urdf: robot.urdf\n"},
         EXIT_MANIFEST,
-        ["robot.yaml:3:", "YAML"],
+        # Where the '[' was opened, not the end of the file where PyYAML noticed.
+        ["robot.yaml:2:9:", "YAML", "close the '[' opened here with ']'"],
     ),
     Case(
         "yaml tab indentation",
         {"robot.yaml": "name: robot\nsource:\n\turdf: robot.urdf\n"},
         EXIT_MANIFEST,
-        ["robot.yaml:3:"],
+        ["robot.yaml:3:", "indent with spaces"],
+    ),
+    Case(
+        "yaml key without its colon",
+        {"robot.yaml": "name: robot\nsource\n  urdf: robot.urdf\n"},
+        EXIT_MANIFEST,
+        # PyYAML notices on line 3; the mistake is on line 2.
+        ["robot.yaml:2:1: YAML syntax error", "a key needs a ':' after it"],
+    ),
+    Case(
+        "yaml key indented deeper than its siblings",
+        {"robot.yaml": MANIFEST + "options:\n  free_joint: true\n   fuse_static: true\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:6:", "indented deeper than the keys beside it?"],
+    ),
+    Case(
+        "yaml key indented less than its siblings",
+        {"robot.yaml": MANIFEST + "options:\n    free_joint: true\n  fuse_static: true\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:6:3:", "line it up with its siblings"],
+    ),
+    Case(
+        "yaml quote not closed",
+        {"robot.yaml": MANIFEST + 'home:\n  "elbow: 1\noptions: {}\n'},
+        EXIT_MANIFEST,
+        ["robot.yaml:5:3:", "close the quote opened here"],
     ),
     Case(
         "yaml aliases that expand to billions of values",
@@ -337,7 +364,12 @@ CASES: list[Case] = [
         ["robot.yaml:5:3", "packages.my_robot", "nowhere", "not a folder"],
     ),
     # ---- sources ------------------------------------------------------------------------------
-    Case("urdf not found", {"robot.yaml": MANIFEST}, EXIT_INPUT, ["robot.urdf", "not found"]),
+    Case(
+        "urdf not found",
+        {"robot.yaml": MANIFEST},
+        EXIT_INPUT,
+        ["error: robot.urdf: source file not found (fix 'source.urdf' at robot.yaml:3)"],
+    ),
     Case(
         "urdf spelt in another letter case",
         {"robot.yaml": MANIFEST, "Robot.URDF": urdf()},
@@ -357,9 +389,31 @@ CASES: list[Case] = [
     ),
     Case(
         "xacro not found",
-        {"robot.yaml": XACRO_MANIFEST},
+        {"robot.yaml": "# a comment first\n" + XACRO_MANIFEST},
         EXIT_INPUT,
-        ["robot.urdf.xacro", "not found"],
+        ["error: robot.urdf.xacro: source file not found (fix 'source.xacro' at robot.yaml:4)"],
+    ),
+    Case(
+        "srdf not found",
+        {
+            "robot.yaml": MANIFEST + "self_collision:\n  srdf: config/robot.srdf\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["config/robot.srdf: SRDF not found (fix 'self_collision.srdf' at robot.yaml:5)"],
+    ),
+    Case(
+        "init on a mesh",
+        {"meshes/robot.stl": TETRAHEDRON_STL},
+        EXIT_INPUT,
+        ["error: meshes/robot.stl is an STL mesh, not a URDF or xacro file"],
+        args=["init", "meshes/robot.stl"],
+    ),
+    Case(
+        "mesh named as the source",
+        {"robot.yaml": MANIFEST.replace("robot.urdf", "robot.stl"), "robot.stl": TETRAHEDRON_STL},
+        EXIT_INPUT,
+        ["error: robot.stl: this is an STL mesh, not a URDF or xacro file"],
     ),
     Case(
         "xacro XML syntax",
@@ -379,7 +433,59 @@ CASES: list[Case] = [
             '<link name="${base_name}"/>\n</robot>\n',
         },
         EXIT_INPUT,
-        ["robot.urdf.xacro", "base_name"],
+        [
+            "error: robot.urdf.xacro:2: xacro failed: name 'base_name' is not defined",
+            "define it with <xacro:property>",
+        ],
+    ),
+    Case(
+        "xacro undefined property in a macro of an included file",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": XACRO_OPEN + '<xacro:include filename="parts/leg.xacro"/>\n'
+            '<link name="base"/>\n<xacro:leg side="left"/>\n</robot>\n',
+            "parts/leg.xacro": XACRO_OPEN + '<xacro:macro name="leg" params="side">\n'
+            '  <link name="${side}_leg"/>\n'
+            '  <link name="${sid}_foot"/>\n'
+            "</xacro:macro>\n</robot>\n",
+        },
+        EXIT_INPUT,
+        ["error: parts/leg.xacro:4: xacro failed: in macro 'leg': name 'sid' is not defined"],
+    ),
+    Case(
+        "xacro macro called with a misspelt parameter",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": XACRO_OPEN + '<xacro:macro name="leg" params="side">\n'
+            '  <link name="${side}_leg"/>\n</xacro:macro>\n<link name="base"/>\n'
+            '<xacro:leg sied="left"/>\n</robot>\n',
+        },
+        EXIT_INPUT,
+        [
+            "error: robot.urdf.xacro:6: xacro failed: macro 'leg' is called with parameter 'sied',"
+            " which it does not declare; did you mean 'side'? (declared: side)"
+        ],
+    ),
+    Case(
+        "xacro macro called without a parameter",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": XACRO_OPEN + '<xacro:macro name="leg" params="side">\n'
+            '  <link name="${side}_leg"/>\n</xacro:macro>\n<link name="base"/>\n'
+            "<xacro:leg/>\n</robot>\n",
+        },
+        EXIT_INPUT,
+        ["robot.urdf.xacro:6: xacro failed: macro 'leg' is called without parameter side"],
+    ),
+    Case(
+        "xacro unknown macro",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": XACRO_OPEN
+            + '<link name="base"/>\n<xacro:lge side="l"/>\n</robot>\n',
+        },
+        EXIT_INPUT,
+        ["robot.urdf.xacro:3: xacro failed: unknown macro name: xacro:lge", "define the macro"],
     ),
     Case(
         "xacro unknown package",
@@ -400,7 +506,11 @@ CASES: list[Case] = [
             '<xacro:include filename="parts/missing.xacro"/>\n</robot>\n',
         },
         EXIT_INPUT,
-        ["robot.urdf.xacro", "missing.xacro"],
+        # The path once, and the line of the include.
+        [
+            "error: robot.urdf.xacro:2: xacro failed: included file parts/missing.xacro not found"
+            " (fix the include's filename"
+        ],
     ),
     Case(
         "xacro argument without value",
@@ -879,6 +989,62 @@ CASES: list[Case] = [
         },
         EXIT_INPUT,
         ["robot.yaml:6:", 'joint="elbow" names a joint that does not exist'],
+    ),
+    # ---- names looked up: did you mean ---------------------------------------------------------
+    Case(
+        "home joint misspelt",
+        {"robot.yaml": MANIFEST + "home:\n  hnige: 0.5\n", "robot.urdf": urdf()},
+        EXIT_MANIFEST,
+        ["robot.yaml:5:3:", "'hnige' matches no moving joint; did you mean 'hinge'?"],
+    ),
+    Case(
+        "actuator rule joint misspelt",
+        {
+            "robot.yaml": MANIFEST + "actuators:\n  rules:\n    - {joints: [hnige], type: motor}\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:6:", "matches no actuated joint (hnige); did you mean 'hinge'?"],
+    ),
+    Case(
+        "kept collision pair link misspelt",
+        {
+            "robot.yaml": MANIFEST + "self_collision:\n  keep: [[base, amr]]\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:5:", "link 'amr' is not a link of the robot; did you mean 'arm'?"],
+    ),
+    Case(
+        "camera link misspelt",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  cameras:\n    - name: eye\n      link: amr\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["robot.yaml:6:7", "link 'amr', which does not exist; did you mean 'arm'?"],
+    ),
+    Case(
+        "raw actuator joint misspelt",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  raw: |\n    <actuator><motor joint='hnige'/></actuator>\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["robot.yaml:6:", "names a joint that does not exist; did you mean 'hinge'?"],
+    ),
+    Case(
+        "attached part's link misspelt",
+        {
+            "robot.yaml": MANIFEST
+            + "attach:\n  - {source: {urdf: part.urdf}, to: amr, prefix: p_}\n",
+            "robot.urdf": two_link_urdf(),
+            "part.urdf": '<robot name="p"><link name="palm"/></robot>\n',
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:", "'amr'", "did you mean 'arm'?"],
     ),
     # ---- outputs ------------------------------------------------------------------------------
     Case(

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from mjcfbuild.errors import EXIT_OK, EXIT_USAGE
+import pytest
+
+from mjcfbuild.errors import EXIT_INPUT, EXIT_OK, EXIT_USAGE
 from tests.conftest import EXAMPLES
 
 
@@ -90,3 +92,203 @@ def test_init_finds_a_wheeled_base_floats_and_an_arm_named_hip_does_not(cli, tmp
     assert floating and "left_wheel_joint" in text and "wheels" in text
     arm = two_link_urdf().replace('name="hinge"', 'name="hip_knee_joint"')
     assert _init_free_joint(cli, tmp_path / "arm", arm)[0] is False
+
+
+# ---- the source kind, from what the file uses ------------------------------------------------
+
+
+def test_a_urdf_that_only_declares_the_xacro_namespace_is_a_urdf(cli, tmp_path):
+    """Read through xacro, its errors would cite lines of an expanded copy."""
+    from tests.conftest import two_link_urdf, write
+
+    declared = two_link_urdf().replace(
+        '<robot name="two_link">', '<robot name="two_link" xmlns:xacro="http://wiki.ros.org/xacro">'
+    )
+    write(tmp_path / "robot.urdf.xacro", declared)
+    assert cli("init", "robot.urdf.xacro", cwd=tmp_path).code == EXIT_OK
+    text = (tmp_path / "robot.yaml").read_text()
+    assert "  urdf: robot.urdf.xacro\n" in text and "args:" not in text
+    built = cli("build", "-q", "--no-check", cwd=tmp_path)
+    assert built.code == EXIT_OK, built.stderr
+
+
+def test_a_substitution_without_xacro_elements_makes_a_xacro_source(cli, tmp_path):
+    from tests.conftest import two_link_urdf, write
+
+    substituted = two_link_urdf().replace(
+        '<box size="0.2 0.2 0.1"/>', '<box size="${0.1*2} 0.2 0.1"/>'
+    )
+    assert "xacro:" not in substituted
+    write(tmp_path / "robot.urdf", substituted)
+    assert cli("init", "robot.urdf", cwd=tmp_path).code == EXIT_OK
+    assert "  xacro: robot.urdf\n" in (tmp_path / "robot.yaml").read_text()
+    built = cli("build", "-q", "--no-check", cwd=tmp_path)
+    assert built.code == EXIT_OK, built.stderr
+
+
+def test_the_build_refuses_a_urdf_source_that_uses_a_substitution(cli, tmp_path):
+    """The same rule as init's: this URDF needs xacro, and says where."""
+    from tests.conftest import two_link_urdf, write
+
+    substituted = two_link_urdf().replace('<box size="0.2 0.2 0.1"/>', '<box size="${s} 0.2 0.1"/>')
+    write(tmp_path / "robot.urdf", substituted)
+    write(tmp_path / "robot.yaml", "name: robot\nsource:\n  urdf: robot.urdf\n")
+    line = substituted[: substituted.index("${s}")].count("\n") + 1
+    result = cli("build", "-q", cwd=tmp_path)
+    assert result.code == EXIT_INPUT
+    assert f"robot.urdf:{line}: this file is xacro (${{s}} at line {line}), not a URDF" in (
+        result.stderr
+    )
+
+
+def _binary_stl(path):
+    import struct
+
+    triangle = struct.pack("<12fH", 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0)
+    path.write_bytes(b"\0" * 80 + struct.pack("<I", 1) + triangle)
+
+
+def _ascii_stl(path):
+    from tests.meshes.samples import ascii_stl
+
+    ascii_stl(path)
+
+
+def _obj(path):
+    path.write_text("# a triangle\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+
+
+def _dae(path):
+    path.write_text(
+        '<?xml version="1.0"?>\n<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema"'
+        ' version="1.4.1"/>\n'
+    )
+
+
+def _gltf(binary):
+    def make(path):
+        from tests.meshes.samples import gltf
+
+        made = gltf(path.parent / "made", binary)
+        path.write_bytes(made.read_bytes())
+
+    return make
+
+
+def _ply(path):
+    from tests.meshes.samples import coloured_ply
+
+    coloured_ply(path)
+
+
+@pytest.mark.parametrize(
+    ("name", "make", "what"),
+    [
+        ("robot.stl", _binary_stl, "an STL mesh"),
+        ("robot.stl", _ascii_stl, "an STL mesh"),
+        ("robot.urdf", _binary_stl, "an STL mesh"),  # by content, whatever its name
+        ("robot.obj", _obj, "an OBJ mesh"),
+        ("robot.dae", _dae, "a COLLADA (DAE) mesh"),
+        ("robot.glb", _gltf(True), "a glTF (GLB) mesh"),
+        ("robot.gltf", _gltf(False), "a glTF mesh"),
+        ("robot.ply", _ply, "a PLY mesh"),
+    ],
+    ids=["binary-stl", "ascii-stl", "stl-named-urdf", "obj", "dae", "glb", "gltf", "ply"],
+)
+def test_init_refuses_a_mesh_saying_what_it_is(cli, tmp_path, name, make, what):
+    make(tmp_path / name)
+    result = cli("init", name, cwd=tmp_path)
+    assert result.code == EXIT_INPUT
+    errors = [line for line in result.stderr.splitlines() if line.strip()]
+    assert errors == [
+        f"mjcfbuild: error: {name} is {what}, not a URDF or xacro file (pass the robot's .urdf"
+        " or .xacro file; it names its meshes itself)"
+    ]
+    assert not (tmp_path / "robot.yaml").exists()
+
+
+def test_init_refuses_an_sdf_model(cli, tmp_path):
+    (tmp_path / "model.sdf").write_text(
+        '<?xml version="1.0"?>\n<sdf version="1.7"><model/></sdf>\n'
+    )
+    result = cli("init", "model.sdf", cwd=tmp_path)
+    assert result.code == EXIT_INPUT
+    assert "model.sdf is an SDF model, not a URDF or xacro file" in result.stderr
+
+
+# ---- packages, from package.xml files ---------------------------------------------------------
+
+
+def _described_package(root, folder: str, xml_name: str | None):
+    """A package folder with a mesh and a URDF naming it as package://jvrc_description."""
+    from tests.conftest import two_link_urdf, write
+    from tests.meshes.samples import ascii_stl
+
+    share = root / folder
+    (share / "meshes").mkdir(parents=True)
+    ascii_stl(share / "meshes" / "base.stl")
+    if xml_name is not None:
+        write(share / "package.xml", f"<package format='3'><name>{xml_name}</name></package>\n")
+    urdf = two_link_urdf().replace(
+        '<geometry><box size="0.2 0.2 0.1"/></geometry>',
+        '<geometry><mesh filename="package://jvrc_description/meshes/base.stl"/></geometry>',
+    )
+    return write(share / "urdf" / "jvrc1.urdf", urdf)
+
+
+def _packages_section(text: str) -> list[str]:
+    lines = text[text.index("\npackages:") :].splitlines()[2:]
+    return lines[: next(i for i, line in enumerate(lines) if not line.startswith("  "))]
+
+
+def test_a_package_with_its_package_xml_is_not_called_inferred(cli, tmp_path):
+    urdf = _described_package(tmp_path, "jvrc_description", "jvrc_description")
+    result = cli("init", str(urdf), "-o", "robot.yaml", cwd=tmp_path)
+    assert result.code == EXIT_OK, result.stderr
+    text = (tmp_path / "robot.yaml").read_text()
+    assert _packages_section(text) == ["  jvrc_description: jvrc_description"]
+    assert "inferred" not in text
+    assert cli("build", "-q", "--no-check", cwd=tmp_path).code == EXIT_OK
+
+
+def test_one_name_per_folder_when_package_xml_names_it_otherwise(cli, tmp_path):
+    """The description says jvrc_description, the folder's package.xml jvrc1: the build needs
+    the name the description uses, once."""
+    urdf = _described_package(tmp_path, "jvrc_description", "jvrc1")
+    assert cli("init", str(urdf), "-o", "robot.yaml", cwd=tmp_path).code == EXIT_OK
+    text = (tmp_path / "robot.yaml").read_text()
+    section = _packages_section(text)
+    assert section[-1] == "  jvrc_description: jvrc_description"
+    assert len([line for line in section if not line.lstrip().startswith("#")]) == 1
+    assert "no package.xml" not in text and "its package.xml names it 'jvrc1'" in text
+    assert cli("build", "-q", "--no-check", cwd=tmp_path).code == EXIT_OK
+
+
+def test_a_sibling_package_is_found_by_its_package_xml(cli, tmp_path):
+    """In a workspace, package://robot_meshes is the folder whose package.xml says so, whatever
+    the folder is called."""
+    from tests.conftest import two_link_urdf, write
+    from tests.meshes.samples import ascii_stl
+
+    src = tmp_path / "src"
+    (src / "meshes_pkg" / "stl").mkdir(parents=True)
+    ascii_stl(src / "meshes_pkg" / "stl" / "base.stl")
+    write(src / "meshes_pkg" / "package.xml", "<package><name>robot_meshes</name></package>\n")
+    write(
+        src / "robot_description" / "package.xml",
+        "<package><name>robot_description</name></package>",
+    )
+    urdf = two_link_urdf().replace(
+        '<geometry><box size="0.2 0.2 0.1"/></geometry>',
+        '<geometry><mesh filename="package://robot_meshes/stl/base.stl"/></geometry>',
+    )
+    write(src / "robot_description" / "urdf" / "robot.urdf", urdf)
+    source = src / "robot_description" / "urdf" / "robot.urdf"
+    assert cli("init", str(source), "-o", "robot.yaml", cwd=tmp_path).code == EXIT_OK
+    text = (tmp_path / "robot.yaml").read_text()
+    assert _packages_section(text) == [
+        "  robot_description: src/robot_description",
+        "  robot_meshes: src/meshes_pkg",
+    ]
+    assert "inferred" not in text
+    assert cli("build", "-q", "--no-check", cwd=tmp_path).code == EXIT_OK

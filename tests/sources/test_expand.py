@@ -106,7 +106,7 @@ def test_missing_include_is_an_error_naming_the_including_file(pkg):
         expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({"pkg": pkg}, {}))
     error = info.value
     assert (error.location.file, error.location.line) == (str(pkg / "urdf" / "part.xacro"), 2)
-    assert "xacro include 'gone.xacro' not found" in error.message
+    assert "included file gone.xacro not found" in error.message
     assert "did you mean" not in error.message
 
 

@@ -208,10 +208,11 @@ def test_a_file_xacro_refuses_is_refused_saying_xacro_fails_too(tmp_path):
         '<xacro:m name="a" colour="red"/>\n</robot>\n',
     )
     assert assert_agrees(source, tmp_path) is None
-    with pytest.raises(InputError, match='Invalid parameter "colour"') as caught:
+    with pytest.raises(InputError, match="called with parameter 'colour'") as caught:
         expand_xacro(source, {}, PackageResolver({}, {}))
-    assert caught.value.hint == "xacro fails the same way on its own; fix the file or its args"
+    assert caught.value.hint == "fix the parameter's name in the call"
     assert caught.value.location is not None and caught.value.location.file == str(source)
+    assert caught.value.location.line == 3  # the call, found from xacro's macro stack
 
 
 @pytest.mark.parametrize(

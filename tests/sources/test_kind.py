@@ -1,0 +1,59 @@
+"""Telling xacro from URDF by what a file uses, and meshes from descriptions by content."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from mjcfbuild.sources.kind import mesh_kind, not_a_description, xacro_evidence
+
+NS = '<robot name="r" xmlns:xacro="http://wiki.ros.org/xacro">\n'
+
+
+def test_the_namespace_declaration_alone_is_no_evidence():
+    assert xacro_evidence((NS + '<link name="a"/>\n</robot>\n').encode()) is None
+
+
+def test_a_commented_out_xacro_element_is_no_evidence():
+    data = NS + '<!-- <xacro:property name="x" value="1"/> -->\n<link name="a"/></robot>'
+    assert xacro_evidence(data.encode()) is None
+
+
+@pytest.mark.parametrize(
+    ("body", "used"),
+    [
+        ('<xacro:leg side="l"/>', "<xacro:leg>"),  # any element xacro processes, macro calls too
+        ('<link name="${prefix}base"/>', "${prefix}"),
+        ("<link name='$(arg prefix)base'/>", "$(arg prefix)"),
+    ],
+)
+def test_what_xacro_would_process_is_evidence_with_its_line(body, used):
+    assert xacro_evidence((NS + '<link name="a"/>\n' + body + "\n</robot>").encode()) == (used, 3)
+
+
+def test_a_dollar_outside_attributes_is_no_evidence():
+    assert xacro_evidence(b'<robot name="r"><link name="a"/><!-- costs $5 --></robot>') is None
+
+
+def test_meshes_are_told_by_content_whatever_their_name(tmp_path: Path):
+    import struct
+
+    binary = b"\0" * 80 + struct.pack("<I", 1) + b"\0" * 50
+    assert mesh_kind(tmp_path / "robot.urdf", binary) == "an STL mesh"
+    assert mesh_kind(tmp_path / "a.txt", b"solid x\nfacet normal 0 0 1\n") == "an STL mesh"
+    assert mesh_kind(tmp_path / "a.txt", b"# x\nv 0 0 0\nv 1 0 0\nf 1 2 3\n") == "an OBJ mesh"
+    assert mesh_kind(tmp_path / "a.xml", b"<?xml version='1.0'?><COLLADA/>") == (
+        "a COLLADA (DAE) mesh"
+    )
+    assert mesh_kind(tmp_path / "a.bin", b"glTF\x02\0\0\0") == "a glTF (GLB) mesh"
+    assert mesh_kind(tmp_path / "a", b"ply\nformat ascii 1.0\n") == "a PLY mesh"
+    assert mesh_kind(tmp_path / "robot.urdf", (NS + "</robot>").encode()) is None
+
+
+def test_other_files_are_named_for_what_they_are(tmp_path: Path):
+    assert not_a_description(tmp_path / "m.sdf", b"<?xml version='1.0'?><sdf/>") == "an SDF model"
+    assert not_a_description(tmp_path / "m.xml", b"<!-- x --><mujoco/>") == "an MJCF model"
+    assert not_a_description(tmp_path / "r.urdf", b"  \n") == "an empty file"
+    assert not_a_description(tmp_path / "r.urdf", b"name: robot\n") == "not XML"
+    assert not_a_description(tmp_path / "r.urdf", b'<?xml version="1.0"?>\n<robot/>') is None
