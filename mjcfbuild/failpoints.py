@@ -4,8 +4,9 @@ The interruption tests kill real builds at chosen moments (during mesh conversio
 decomposition, between publishing assets and writing the model, in the middle of writing a
 file) to prove the next build recovers. ``action`` is ``kill`` (SIGKILL to the build and the
 worker, as ``kill -9`` would), ``interrupt`` (SIGINT to the build, as Ctrl-C would) or ``raise``
-(an unexpected exception, as a bug in mjcfbuild would raise). Without the variable, a failpoint
-does nothing.
+(an unexpected exception, as a bug in mjcfbuild would raise) or ``stop`` (SIGSTOP to the
+process that reached the point, so that a test can look at what it holds there and go on with
+SIGCONT). Without the variable, a failpoint does nothing.
 """
 
 from __future__ import annotations
@@ -38,6 +39,9 @@ def failpoint(name: str, spec: str | None = None, once_dir: str | None = None) -
                 continue
         if action == "raise":
             raise RuntimeError(f"failpoint {name}")
+        if action == "stop":
+            os.kill(os.getpid(), signal.SIGSTOP)
+            return
         build = int(os.environ.get(BUILD_PID, os.getpid()))
         if action == "interrupt":
             os.kill(build, signal.SIGINT)

@@ -17,6 +17,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from mjcfbuild.mjstopped import SimulationStopped, simulating
+
 FLOOR_TOLERANCE = 1e-3  # m
 TEST_SECONDS = 1.0
 STAND_SECONDS = 5.0
@@ -59,34 +61,16 @@ def check_control(model, passive: set[str], hold_tolerance: float, strict: bool)
                 f"at home the robot's lowest collision geometry is {gap * 1000:.1f} mm "
                 f"{'above' if gap > 0 else 'below'} the floor (tolerance 1 mm)"
             )
-    if home >= 0:
-        deviation, joint, tilt = hold_deviation(model, home, passive)
-        report.results["hold"] = {
-            "max_deviation": deviation,
-            "joint": joint,
-            "floating": floating,
-            "base_tilt": tilt if floating else None,
-        }
-        if not floating and deviation > hold_tolerance:
-            report.failures.append(
-                f"holding home's ctrl for 1 s, joint '{joint}' moved {deviation:.3g} from home "
-                f"(check.hold_tolerance {hold_tolerance:g}); " + _hold_advice(model, home, joint)
-            )
-    if floating and home >= 0:
-        stand = stand_test(model, home, passive)
-        report.results["stand"] = stand.to_dict()
-        motors = torque_motors(model, passive)
-        if stand.needs_controller:
-            report.results["needs_controller"] = stand.needs_controller
-        elif stand.fails(hold_tolerance) and motors:
-            # A torque motor's constant ctrl cannot hold a pose: no gain fixes that.
-            why = motors_need_a_controller(motors)
-            report.results["needs_controller"] = why
-            report.results["stand"]["fell_without_controller"] = why
-        elif stand.fails(hold_tolerance):
-            advice = _hold_advice(model, home, stand.joint)
-            report.failures.append(stand.failure(hold_tolerance, advice))
-    test = menagerie_test(model)
+    try:
+        _hold_and_stand(model, home, passive, hold_tolerance, floating, report)
+    except SimulationStopped as stop:
+        report.failures.append(stop.line)
+    try:
+        with simulating("1 s of pseudorandom control (the Menagerie test)"):
+            test = menagerie_test(model)
+    except SimulationStopped as stop:
+        report.failures.append(stop.line)
+        return report
     report.results["menagerie_test"] = {
         "warnings": test.warnings,
         "finite": test.finite,
@@ -101,6 +85,41 @@ def check_control(model, passive: set[str], hold_tolerance: float, strict: bool)
     for warning in test.warnings:
         report.failures.append(f"MuJoCo warned under pseudorandom control: {warning}{advice}")
     return report
+
+
+def _hold_and_stand(
+    model, home: int, passive: set[str], hold_tolerance: float, floating: bool, report
+) -> None:
+    """The hold (fixed base) and stand (floating base) checks from home, into ``report``."""
+    if home >= 0:
+        with simulating("holding home's ctrl for 1 s"):
+            deviation, joint, tilt = hold_deviation(model, home, passive)
+        report.results["hold"] = {
+            "max_deviation": deviation,
+            "joint": joint,
+            "floating": floating,
+            "base_tilt": tilt if floating else None,
+        }
+        if not floating and deviation > hold_tolerance:
+            report.failures.append(
+                f"holding home's ctrl for 1 s, joint '{joint}' moved {deviation:.3g} from home "
+                f"(check.hold_tolerance {hold_tolerance:g}); " + _hold_advice(model, home, joint)
+            )
+    if floating and home >= 0:
+        with simulating("holding home's ctrl for 5 s standing on the floor"):
+            stand = stand_test(model, home, passive)
+        report.results["stand"] = stand.to_dict()
+        motors = torque_motors(model, passive)
+        if stand.needs_controller:
+            report.results["needs_controller"] = stand.needs_controller
+        elif stand.fails(hold_tolerance) and motors:
+            # A torque motor's constant ctrl cannot hold a pose: no gain fixes that.
+            why = motors_need_a_controller(motors)
+            report.results["needs_controller"] = why
+            report.results["stand"]["fell_without_controller"] = why
+        elif stand.fails(hold_tolerance):
+            advice = _hold_advice(model, home, stand.joint)
+            report.failures.append(stand.failure(hold_tolerance, advice))
 
 
 @dataclass

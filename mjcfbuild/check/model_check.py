@@ -24,6 +24,7 @@ from mjcfbuild.check.meshstats import mesh_statistics
 from mjcfbuild.check.precision import relative_tolerance
 from mjcfbuild.check.reference import reference_from_record
 from mjcfbuild.check.simulation import simulate
+from mjcfbuild.mjstopped import SimulationStopped, simulating
 from mjcfbuild.urdf.model import Robot
 
 
@@ -89,20 +90,32 @@ def check_model(
         report.results["loads"] = False
         return report
     report.results["loads"] = True
-    simulation = simulate(model, options.steps)
-    report.results["simulation"] = {
-        "model": path.name,
-        "steps": simulation.steps,
-        "finite": simulation.finite,
-        "warnings": simulation.warnings,
-    }
     problems: list[Problem] = []
-    if not simulation.finite:
-        problems.append(
-            Problem(f"the state is not finite within {options.steps} zero-control steps")
-        )
-    for warning in simulation.warnings:
-        problems.append(Problem(f"MuJoCo warned while simulating: {warning}"))
+    try:
+        with simulating(f"{options.steps} zero-control steps of {path.name}"):
+            simulation = simulate(model, options.steps)
+    except SimulationStopped as stop:
+        problems.append(Problem(stop.line))
+        report.results["simulation"] = {
+            "model": path.name,
+            "steps": options.steps,
+            "finite": False,
+            "warnings": [],
+            "stopped": stop.line,
+        }
+    else:
+        report.results["simulation"] = {
+            "model": path.name,
+            "steps": simulation.steps,
+            "finite": simulation.finite,
+            "warnings": simulation.warnings,
+        }
+        if not simulation.finite:
+            problems.append(
+                Problem(f"the state is not finite within {options.steps} zero-control steps")
+            )
+        for warning in simulation.warnings:
+            problems.append(Problem(f"MuJoCo warned while simulating: {warning}"))
 
     reader, fallback = reference_from_record(reference)
     kinematics = compare_kinematics(robot, model, options.configurations, options.seed, reader)
@@ -150,7 +163,13 @@ def check_model(
     problems += mass_problems
     report.failures = structural_first(problems)
 
-    contacts, in_parts = split_by_part(resting_contacts(model), part_bodies or {})
+    try:
+        with simulating("the contacts at home"):
+            at_rest = resting_contacts(model)
+    except SimulationStopped as stop:
+        report.failures.append(stop.line)
+        at_rest = []
+    contacts, in_parts = split_by_part(at_rest, part_bodies or {})
     report.results["resting_contacts"] = {
         "pairs": [c.__dict__ for c in contacts],
         "exclude": exclude_suggestion(contacts),
@@ -166,12 +185,23 @@ def check_model(
         )
 
     passive = set((readiness or {}).get("passive", []))
-    control = check_control(model, passive, options.hold_tolerance, strict=readiness is not None)
-    report.results.update(control.results)
-    report.failures += control.failures
+    try:
+        with simulating("the control checks"):  # each simulation there says which it was
+            control = check_control(
+                model, passive, options.hold_tolerance, strict=readiness is not None
+            )
+    except SimulationStopped as stop:
+        report.failures.append(stop.line)
+    else:
+        report.results.update(control.results)
+        report.failures += control.failures
     _speed_bound(report, robot, model, readiness)  # issue 33
     report.results["meshes"] = mesh_statistics(model)
-    _check_plausibility(model, report, sources, robot)
+    try:
+        with simulating("the plausibility checks"):
+            _check_plausibility(model, report, sources, robot)
+    except SimulationStopped as stop:
+        report.failures.append(stop.line)
     return report
 
 

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 
 from mjcfbuild.check.warp import load_warp
 from mjcfbuild.errors import CheckError
+from mjcfbuild.mjstopped import SimulationStopped, simulating
 
 
 @dataclass(frozen=True)
@@ -127,9 +128,13 @@ def measure(
 
     mjw, wp = load_warp()
     model = mujoco.MjModel.from_xml_path(scene_path)
-    data = _home(model)
-    ctrl = noisy_ctrl(model, data, worlds, noise)
-    nconmax, njmax = sizes(model, data, ctrl, steps + 1)
+    try:
+        with simulating(f"{steps + 1} steps of each world on MuJoCo's CPU (Warp's sizes)"):
+            data = _home(model)
+            ctrl = noisy_ctrl(model, data, worlds, noise)
+            nconmax, njmax = sizes(model, data, ctrl, steps + 1)
+    except SimulationStopped as stop:
+        raise CheckError(stop.line, file=scene_path) from None
     with wp.ScopedDevice(device):
         try:
             warp_model = mjw.put_model(model)

@@ -195,7 +195,9 @@ def check_lines(results: dict) -> list[tuple[str, str]]:
     lines.append(
         (
             f"{simulation['steps']} zero-control steps",
-            f"{'finite' if simulation['finite'] else 'NOT FINITE'}, "
+            "STOPPED by a MuJoCo error"
+            if simulation.get("stopped")
+            else f"{'finite' if simulation['finite'] else 'NOT FINITE'}, "
             f"{len(simulation['warnings'])} MuJoCo warnings",
         )
     )

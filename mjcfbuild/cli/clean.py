@@ -4,6 +4,7 @@ nothing else."""
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import shutil
 from pathlib import Path
@@ -16,6 +17,7 @@ from mjcfbuild.cli import (
     report_warning,
 )
 from mjcfbuild.errors import EXIT_OK
+from mjcfbuild.failpoints import failpoint
 
 _SHOWN = 5  # files named in a line before "and N more"
 
@@ -74,9 +76,13 @@ def run(args: argparse.Namespace) -> int:
         for path in files:
             path.unlink(missing_ok=True)
         _remove_empty_folders(out, names)
-    shutil.rmtree(ctx.state_dir, ignore_errors=True)  # the guard refused a link there
-    if not out.is_symlink() and not any(out.iterdir()):  # a linked folder is the user's
-        out.rmdir()
+        # Still holding the lock: a build waiting for it finds the folder gone and makes a
+        # new one, never loses the state it has just made (the guard refused a link there).
+        shutil.rmtree(ctx.state_dir, ignore_errors=True)
+        if not out.is_symlink() and not any(out.iterdir()):  # a linked folder is the user's
+            with contextlib.suppress(OSError):  # a waiting build made its state folder again
+                out.rmdir()
+        failpoint("clean-removed")  # the tests stop here, the lock still held
     _say(args, "removed " + ", ".join([*_grouped(ctx, files), ctx.label(ctx.state_dir) + "/"]))
     if out.is_dir() and not args.quiet:
         _say_kept(ctx, set())

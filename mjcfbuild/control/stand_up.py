@@ -33,6 +33,7 @@ def stands(root: etree._Element, compile_tree: Callable[[etree._Element], Any]) 
     import mujoco
 
     from mjcfbuild.check.control import stand_test
+    from mjcfbuild.mjstopped import simulating
 
     trial = deepcopy(root)
     worldbody = trial.find("worldbody")
@@ -45,7 +46,8 @@ def stands(root: etree._Element, compile_tree: Callable[[etree._Element], Any]) 
     key = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home")
     if key < 0:
         return True  # the user's own keyframe: nothing to decide here
-    result = stand_test(model, key, set(), TRIAL_SECONDS)
+    with simulating(f"the build's {TRIAL_SECONDS:g} s trial of whether the robot stands at home"):
+        result = stand_test(model, key, set(), TRIAL_SECONDS)
     return not result.needs_controller and not result.fails(float("inf"))
 
 

@@ -117,7 +117,12 @@ def folder_lock(
     deadline = time.monotonic() + seconds
     told: object = _NOBODY_YET
     while True:
-        handle, holder = _try(path)
+        try:
+            handle, holder = _try(path)
+        except FileNotFoundError:  # `clean` removed the folder this moment: make it again
+            if time.monotonic() >= deadline:
+                raise
+            continue
         if handle is not None:
             break
         if holder != told:
@@ -177,8 +182,23 @@ def _lock_file(path: Path) -> BinaryIO | None:
     except BlockingIOError:
         handle.close()
         return None
+    if not _still_there(handle, path):
+        # Opened just before its holder removed it (`clean`, a take-over): a lock on a
+        # removed file locks nothing.
+        handle.close()
+        raise FileNotFoundError(path)
     handle.truncate(0)
     return handle
+
+
+def _still_there(handle: BinaryIO, path: Path) -> bool:
+    """Whether ``path`` is still the file ``handle`` has open."""
+    try:
+        named = os.stat(path)
+    except FileNotFoundError:
+        return False
+    opened = os.fstat(handle.fileno())
+    return (named.st_dev, named.st_ino) == (opened.st_dev, opened.st_ino)
 
 
 def _process_status(pid: int) -> tuple[str, str] | None:

@@ -168,6 +168,7 @@ def _apply_additions(
     from mjcfbuild.inputs.control_sensors import add_control_sensors
     from mjcfbuild.inputs.gazebo_sensors import add_gazebo_sensors
     from mjcfbuild.inputs.ros2_control import sensor_warnings
+    from mjcfbuild.mjcf.arena import size_arena
     from mjcfbuild.selfcollision.excludes import write_excludes
 
     links = {
@@ -259,7 +260,8 @@ def _apply_additions(
     readiness.passive += [joint for joint in parts.undriven if joint not in chosen]
     readiness.actuators += _part_actuators(root, options.parts)
     warnings += readiness.notes
-    compile_tree(root, drawing=True)  # the finished model, as published
+    finished = compile_tree(root, drawing=True)  # the finished model, as published
+    size_arena(root, finished)  # issue 40: a long chain's contacts outgrow the default
     return warnings, readiness
 
 

@@ -9,6 +9,7 @@ from pathlib import Path
 from mjcfbuild.check.loading import SOURCES_KEY, source_entries
 from mjcfbuild.collision.policy import CollisionChoice
 from mjcfbuild.compose.attach import AttachedPart
+from mjcfbuild.errors import CheckError
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import remove_stale_temp_files
 from mjcfbuild.inputs.combine import combine
@@ -19,6 +20,7 @@ from mjcfbuild.meshes.product import read_product
 from mjcfbuild.mjcf.assemble import Assembly, AssemblyOptions, assemble
 from mjcfbuild.mjcf.inertia import InertiaPolicy
 from mjcfbuild.mjcf.prepared import Decomposition
+from mjcfbuild.mjstopped import SimulationStopped, simulating
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import AssemblePayload
 from mjcfbuild.steps.plan_record import read_plan
@@ -73,7 +75,11 @@ def run(payload: dict) -> dict:
         decompositions=decompositions,
         parts=[AttachedPart.from_dict(entry.to_dict()) for entry in request.mjcf_parts],
     )
-    assembly = assemble(robot, products, product_dirs, options)
+    try:
+        with simulating("the build's trials of the model"):  # a trial names itself
+            assembly = assemble(robot, products, product_dirs, options)
+    except SimulationStopped as stop:
+        raise CheckError(stop.line, file=request.manifest_label) from None
     assembly.warnings += _placement_warnings(assembly, request.floor)
 
     outputs: dict[str, str] = {}

@@ -11,6 +11,7 @@ from mjcfbuild.check.loading import asset_sources, compile_model, spec_reading_s
 from mjcfbuild.check.tuning import groups_of, measure, stand_spec
 from mjcfbuild.check.tuning_plot import plot_group
 from mjcfbuild.errors import ModelError
+from mjcfbuild.mjstopped import SimulationStopped, simulating
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import TuningPayload
 
@@ -44,7 +45,12 @@ def run(payload: dict) -> dict:
         except (ModelError, ValueError):
             return {"outputs": {}}
         home_qpos, home_ctrl = _home(built)
-        for group in measure(model, home_qpos, home_ctrl, groups):
+        try:
+            with simulating("the tuning report's step and sweep of each group"):
+                measured = measure(model, home_qpos, home_ctrl, groups)
+        except SimulationStopped as stop:
+            return {"outputs": {}, "warnings": [f"no tuning report: {stop.line}"]}
+        for group in measured:
             if not group.joints:  # none of its actuators is in the model any more
                 continue
             summaries.append(group.summary())

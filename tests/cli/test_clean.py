@@ -2,10 +2,16 @@
 
 from __future__ import annotations
 
+import os
 import shutil
+import signal
+import subprocess
+import sys
+from pathlib import Path
 
 from mjcfbuild.errors import EXIT_OUTPUT
-from tests.conftest import run_cli
+from mjcfbuild.failpoints import VARIABLE
+from tests.conftest import ROOT, run_cli
 
 
 def test_clean_removes_outputs_and_state_and_keeps_other_files(arm):
@@ -141,3 +147,32 @@ def test_a_folder_built_without_a_record_is_left_with_a_warning(arm):
     assert result.code == 0
     assert "no record of the files builds wrote here" in result.stderr
     assert _files_below(arm / "mjcf") == before
+
+
+def test_the_state_folder_goes_while_clean_still_holds_the_lock(arm):
+    """A real clean, stopped where it still holds the lock: the state folder is gone already,
+    so a build that takes the lock after it keeps the state folder it makes."""
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    cleaning = subprocess.Popen(
+        [sys.executable, "-m", "mjcfbuild", "clean"],
+        cwd=arm,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        env={**os.environ, "PYTHONPATH": str(ROOT), VARIABLE: "clean-removed:stop"},
+    )
+    try:
+        _, status = os.waitpid(cleaning.pid, os.WUNTRACED)
+        assert os.WIFSTOPPED(status), status
+        held = [os.readlink(fd) for fd in Path(f"/proc/{cleaning.pid}/fd").iterdir()]
+        assert any(link.endswith("/mjcf/.mjcfbuild/lock (deleted)") for link in held), held
+        assert not (arm / "mjcf").exists()  # before: .mjcfbuild/ went after the lock
+        built = run_cli("build", "-q", "--no-check", "--timeout", "60", cwd=arm)
+        assert built.code == 0, built.stderr
+    finally:
+        os.kill(cleaning.pid, signal.SIGCONT)
+    _, errors = cleaning.communicate(timeout=60)
+    assert cleaning.returncode == 0, errors
+    # What the build made after clean had removed everything stays: nothing to redo.
+    assert (arm / "mjcf" / ".mjcfbuild" / "lock").exists()
+    again = run_cli("build", "--no-check", cwd=arm)
+    assert again.code == 0 and " 0 run," in again.stdout, again.stdout

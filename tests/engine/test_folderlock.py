@@ -173,3 +173,18 @@ def test_a_folder_removed_while_waiting_is_made_again(tmp_path):
     lock = tmp_path / "mjcf" / ".mjcfbuild" / "lock"  # as `clean` leaves it: no state folder
     with folder_lock(lock, 0.0, lambda holder: None):
         assert read_holder(lock).pid == os.getpid()
+
+
+def test_a_lock_file_removed_after_it_was_opened_is_not_taken_for_the_lock(tmp_path):
+    """A waiter that opened the lock file just before its holder (`clean`) removed it would
+    lock a file nobody else can see: it finds out, and makes the file again instead."""
+    from mjcfbuild.engine.folderlock import _still_there
+
+    lock = tmp_path / "lock"
+    lock.write_bytes(b"")
+    with open(lock, "r+b") as opened:
+        assert _still_there(opened, lock)
+        lock.unlink()
+        assert not _still_there(opened, lock)
+        lock.write_bytes(b"")  # made again by the next build: another file
+        assert not _still_there(opened, lock)
