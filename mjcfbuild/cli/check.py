@@ -13,6 +13,8 @@ from mjcfbuild.cli import (
     load_context,
     manifest_argument,
     report_error,
+    report_warnings,
+    timeout_argument,
 )
 from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, CheckError, MjcfbuildError, UsageError
 
@@ -67,6 +69,7 @@ def add_parser(commands) -> None:
         "model file's digits allow, 1e-5 for MuJoCo's 6)",
     )
     allow_outside_argument(parser)
+    timeout_argument(parser)
     parser.set_defaults(handler=run)
 
 
@@ -111,8 +114,9 @@ def _options(args, settings=None):
     )
 
 
-def _print(report, label: str) -> int:
-    """One line per check with its result, then the verdict; the exit code."""
+def _print(report, label: str, built: bool = True) -> int:
+    """One line per check with its result, then the verdict; the exit code. A model
+    mjcfbuild ``built`` has a home keyframe: without one, its hold and stand did not run."""
     results = report.results
     print(f"mjcfbuild check: {label}")
     for name, result in check_lines(results):
@@ -120,13 +124,12 @@ def _print(report, label: str) -> int:
     contacts = (results.get("resting_contacts") or {}).get("pairs")
     if contacts:
         print(results["resting_contacts"]["exclude"])
-    runtime = results.get("mujoco_ros2_control") or {}
-    for warning in runtime.get("warnings", []):
-        print(f"mjcfbuild: warning: {warning}", file=sys.stderr)
     for failure in report.failures:
         print(f"mjcfbuild: check failed: {failure}", file=sys.stderr)
     if not report.passes:
         print(f"mjcfbuild: {len(report.failures)} check(s) failed")
+    elif built and results.get("home") is False:
+        print("mjcfbuild: checks pass, but the hold and stand tests were not run: no home keyframe")
     elif results.get("needs_controller"):
         # Not a failure, but not what "check passed" promises: the stand test did not run.
         ran = (results.get("stand") or {}).get("fell_without_controller")
@@ -168,7 +171,7 @@ def _pair(args) -> int:
             error.message += f" [line {expanded} of its expansion]"
         raise
     report = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))
-    return _print(report, f"{mjcf} against {urdf}")
+    return _print(report, f"{mjcf} against {urdf}", built=False)
 
 
 def _urdf_bytes(path: Path, packages: dict[str, str]) -> tuple[bytes, dict[int, tuple[str, int]]]:
@@ -306,9 +309,11 @@ def _manifest(ctx, args) -> int:
     from mjcfbuild.compose.tasks import mjcf_parts
     from mjcfbuild.engine import written
     from mjcfbuild.engine.guard import check_output_folder
+    from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.report import write_report
+    from mjcfbuild.engine.runner import build_lock
     from mjcfbuild.engine.tasks import CHECK_RESULTS, PLAN, REFERENCE, check_payload, planned_urdf
-    from mjcfbuild.steps.check import check_built, write_results
+    from mjcfbuild.steps.check import check_built, check_warnings, write_results
     from mjcfbuild.steps.plan_record import read_plan
 
     if not ctx.robot_path.exists() or not ctx.state(PLAN).exists():
@@ -329,9 +334,13 @@ def _manifest(ctx, args) -> int:
             request = dataclasses.replace(request, reference=str(reference))
         # The same checks, and the same check.json, as the build's check task.
         report = check_built(request)
-    write_results(report, ctx.state(CHECK_RESULTS), {})
-    folder = write_report(ctx)
-    written.record(ctx, ctx.session.written)
+    # What it writes in the folder, a build writes too: under the folder's lock, as a build.
+    with build_lock(ctx, Progress(quiet=bool(getattr(args, "quiet", False)))):
+        write_results(report, ctx.state(CHECK_RESULTS), {})
+        folder = write_report(ctx)
+        written.record(ctx, ctx.session.written)
+    if not getattr(args, "quiet", False):  # as the build prints them: one line per kind
+        report_warnings(check_warnings(report), ctx.label(folder / "report.md"))
     code = _print(report, ctx.label(ctx.robot_path))
     print(f"  report: {ctx.label(folder / 'report.md')}")
     if (folder / "index.html").is_file():  # output.page: its tables are the report's
@@ -352,7 +361,9 @@ def _prove_training_variant(ctx) -> int:
     import json
 
     from mjcfbuild.check.warp_variant import gpu_device, prove_on_gpu, prove_variant
+    from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.report import TRAINING_WARP, write_report
+    from mjcfbuild.engine.runner import build_lock
     from mjcfbuild.engine.tasks import training_paths
     from mjcfbuild.fsutil import md5_file
 
@@ -378,8 +389,9 @@ def _prove_training_variant(ctx) -> int:
     if gpu:  # measured there too, at a training batch size
         record["gpu"], on_gpu = prove_on_gpu(str(ctx.scene_path), str(scene), hold, *gpu)
         failures += on_gpu
-    ctx.state(TRAINING_WARP).write_text(json.dumps(record, indent=1, sort_keys=True) + "\n")
-    write_report(ctx)
+    with build_lock(ctx, Progress(quiet=True)):
+        ctx.state(TRAINING_WARP).write_text(json.dumps(record, indent=1, sort_keys=True) + "\n")
+        write_report(ctx)
     for failure in failures:
         print(f"mjcfbuild: check failed: {ctx.label(scene)}: {failure}", file=sys.stderr)
     return EXIT_CHECK if failures else EXIT_OK

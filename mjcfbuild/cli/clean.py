@@ -15,6 +15,7 @@ from mjcfbuild.cli import (
     load_context,
     manifest_argument,
     report_warning,
+    timeout_argument,
 )
 from mjcfbuild.errors import EXIT_OK
 from mjcfbuild.failpoints import failpoint
@@ -40,6 +41,7 @@ def add_parser(commands) -> None:
         "-n", "--dry-run", action="store_true", help="list what would be removed; remove nothing"
     )
     allow_outside_argument(parser)
+    timeout_argument(parser)
     parser.set_defaults(handler=run)
 
 

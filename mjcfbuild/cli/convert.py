@@ -250,12 +250,14 @@ def parse_xacro_args(values: list[str]) -> dict[str, str]:
 
 
 def is_xacro(path: Path) -> bool:
-    """Whether a description file uses xacro (by name, or by declaring its namespace)."""
+    """Whether a description file needs xacro: by name, or by what it uses (xacro elements or
+    substitutions; declaring the namespace is not enough, as for ``init`` and the build)."""
+    from mjcfbuild.sources.kind import xacro_evidence
+
     if path.name.endswith(".xacro"):
         return True
     try:
-        with open(path, "rb") as handle:
-            return b"xmlns:xacro" in handle.read(65536)
+        return xacro_evidence(path.read_bytes()) is not None
     except OSError:
         return False
 

@@ -6,7 +6,13 @@ import argparse
 import sys
 from pathlib import Path
 
-from mjcfbuild.cli import chosen_manifest, jobs_argument, manifest_argument, timeout_argument
+from mjcfbuild.cli import (
+    allow_outside_argument,
+    chosen_manifest,
+    jobs_argument,
+    manifest_argument,
+    timeout_argument,
+)
 from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, MjcfbuildError, UsageError
 
 FORMATS = ("text", "markdown", "json")
@@ -64,6 +70,7 @@ def add_parser(commands) -> None:
     )
     jobs_argument(parser)
     timeout_argument(parser)
+    allow_outside_argument(parser)
     parser.set_defaults(handler=run)
 
 

@@ -13,7 +13,14 @@ def add_parser(commands) -> None:
         description="Write a commented starting manifest for a URDF or xacro file.",
     )
     parser.add_argument("source", help="the URDF or xacro file")
-    parser.add_argument("--package", action="append", default=[], metavar="NAME=DIR")
+    parser.add_argument(
+        "--package",
+        action="append",
+        default=[],
+        metavar="NAME=DIR",
+        help="where a package the description names lives (repeatable; by default found from "
+        "package.xml files and ROS_PACKAGE_PATH / AMENT_PREFIX_PATH)",
+    )
     parser.add_argument("-o", "--output", default="robot.yaml", help="manifest to write")
     parser.add_argument("--force", action="store_true", help="overwrite an existing manifest")
     parser.set_defaults(handler=run)
