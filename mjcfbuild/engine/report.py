@@ -90,7 +90,13 @@ def write_report(ctx: BuildContext) -> Path:
     """Write report.json and report.md from what the build recorded; the folder they are in."""
     folder = report_dir(ctx)
     folder.mkdir(parents=True, exist_ok=True)
-    write_if_changed(folder / ".gitignore", b"# the report of the last build on this machine\n*\n")
+    # Ignored in git by default: the preview pictures are rendered on this machine and its
+    # OpenGL (report.md and report.json are the same bytes for the same inputs, and may be
+    # added with git add -f).
+    write_if_changed(
+        folder / ".gitignore",
+        b"# previews are rendered on this machine; git add -f report.md report.json\n*\n",
+    )
     check = _read(ctx.state(CHECK_RESULTS))
     assembly = _read(ctx.state(ASSEMBLY_REPORT))
     previews = sorted(
