@@ -58,7 +58,27 @@ def check_runtime(model, control: Ros2Control) -> tuple[dict, list[str], list[st
         if sensor.params.get("mujoco_type")
     ]
     devices = [_device(model, sensor, failures) for sensor in control.sensors if sensor.kind]
-    return {"joints": joints, "sensors": sensors, "devices": devices}, failures, _refusals(joints)
+    warnings = _refusals(joints) + _effort_on_dcmotors(joints)
+    return {"joints": joints, "sensors": sensors, "devices": devices}, failures, warnings
+
+
+def _effort_on_dcmotors(joints: list[dict]) -> list[str]:
+    """One warning for joints whose effort command would reach a <dcmotor>: the runtime takes
+    it for a custom actuator and writes the effort into its ctrl, which the <dcmotor> reads as
+    a position target or a voltage, not a torque."""
+    names = [
+        j["joint"]
+        for j in joints
+        if j.get("dcmotor") and any(i in ("effort", "torque", "force") for i in j["interfaces"])
+    ]
+    if not names:
+        return []
+    return [
+        f"mujoco_ros2_control: {len(names)} joint{'s' if len(names) > 1 else ''} "
+        f"({', '.join(names[:3])}{', ...' if len(names) > 3 else ''}) command effort on a "
+        "<dcmotor>, which reads its ctrl as a position target or a voltage, not a torque; give "
+        "them a <motor> (actuators.rules: type: motor)"
+    ]
 
 
 def _refusals(joints: list[dict]) -> list[str]:
@@ -134,7 +154,15 @@ def _joint(model, name: str, commands: list[str], pids: bool, failures: list[str
             f"its actuator '{label}' ({kind}, by its bias) takes, so the runtime refuses to "
             f"start; give it {_FIX.get(_family(first), '')}"
         )
-    return {"joint": name, "interfaces": commands, "actuator": label, "kind": kind, "how": how}
+    dcmotor = int(model.actuator_gaintype[actuator]) == int(mujoco.mjtGain.mjGAIN_DCMOTOR)
+    return {
+        "joint": name,
+        "interfaces": commands,
+        "actuator": label,
+        "kind": kind,
+        "how": how,
+        "dcmotor": dcmotor,
+    }
 
 
 def _sensor(model, sensor, failures: list[str]) -> dict:

@@ -360,6 +360,8 @@ ACTUATOR_TAGS = (
     "muscle",
     "adhesion",
     "plugin",
+    "dcmotor",  # MuJoCo 4.0's
+    "pid",
 )
 TENDON_TAGS = ("fixed", "spatial")
 
