@@ -199,21 +199,27 @@ def check_model(
     report.results["meshes"] = mesh_statistics(model)
     try:
         with simulating("the plausibility checks"):
-            _check_plausibility(model, report, sources, robot)
+            _check_plausibility(model, report, sources, robot, repaired or set())
     except SimulationStopped as stop:
         report.failures.append(stop.line)
     return report
 
 
 def _check_plausibility(
-    model, report: CheckReport, sources: dict[str, Path] | None, robot: Robot
+    model,
+    report: CheckReport,
+    sources: dict[str, Path] | None,
+    robot: Robot,
+    repaired: set[str],
 ) -> None:
     """Centres of mass inside their bodies' geometry, visual and collision overlapping, masses
     their geometry can hold (check.plausibility): meshes in mm and masses in the wrong unit
-    fail; other findings are warnings in the results."""
+    fail; other findings are warnings in the results. Bodies whose mass or inertia the build
+    repaired (a zero mass made the smallest MuJoCo accepts) are not judged: the repair is
+    reported where it was made."""
     from mjcfbuild.check.plausibility import check_plausibility
 
-    plausibility = check_plausibility(model, sources, robot=robot)
+    plausibility = check_plausibility(model, sources, skip=repaired, robot=robot)
     report.results["plausibility"] = plausibility.to_dict()
     report.failures += plausibility.failures
 

@@ -12,9 +12,16 @@ from pathlib import Path
 
 # xacro processes an element whose tag starts with "xacro:" (expand.is_xacro_element) and
 # evaluates ${...} and $(...) in attribute values; a namespace declaration alone does nothing.
+# $(...) counts only with one of xacro's substitution commands: anything else in $( ) xacro
+# refuses too, so it is text of the URDF (a name like "$(touch x)"), not xacro.
+_SUBSTITUTION = rb"\$(?:\{|\((?:find|arg|env|optenv|anon|eval|dirname|cwd)\b)"
 _XACRO_USE = re.compile(
     rb"<(xacro:[A-Za-z_][\w.-]*)"
-    rb"|=\s*(?:\"[^\"<]*?(\$[{(][^\"]*?)\"|'[^'<]*?(\$[{(][^']*?)')"
+    rb"|=\s*(?:\"[^\"<]*?("
+    + _SUBSTITUTION
+    + rb"[^\"]*?)\"|'[^'<]*?("
+    + _SUBSTITUTION
+    + rb"[^']*?)')"
 )
 _ROOT = re.compile(rb"<([A-Za-z_][\w:.-]*)")
 _ROOTS = {
