@@ -19,8 +19,9 @@ from urllib.parse import quote
 # Every link, picture and footnote opens with a "[", every tag and autolink with a "<", so
 # "]" and ">" can stay bare: "[-1 1] -> [0 1]" reads "\[-1 1] -> \[0 1]".
 _ALWAYS = frozenset("\\`*[<|~&#$")
-# Where a text starts a line these begin a list, a quote, a heading rule or an ordered list.
-_LEADING = re.compile(r"^([-+=>]|\d+[.)])")
+# Where a text starts a line these begin a quote, a heading rule, a thematic break, or a list
+# (a bullet or "1." only when a space or the end follows: "1.5" and "-0.3" read as numbers).
+_LEADING = re.compile(r"^(?:[>=]|(?:[-+]|\d+[.)])(?=\s|$)|-(?=-))")
 _BREAKS = re.compile(r"[\r\n\t\f\v]")
 
 
