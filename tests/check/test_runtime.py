@@ -189,8 +189,8 @@ def test_an_effort_command_on_a_dcmotor_is_warned_about(tmp_path):
     """The runtime takes a <dcmotor> for a custom actuator and writes efforts into its ctrl,
     which a position-input <dcmotor> reads as a target angle."""
     raw = (
-        "mujoco_inputs:\n  raw: '<actuator><dcmotor name=\"hinge\" joint=\"hinge\" input=\"pos\" "
-        "nominal=\"1 10 5\" controller=\"50 0 2 0 0 1\" saturation=\"10 0 0\"/></actuator>'\n"
+        'mujoco_inputs:\n  raw: \'<actuator><dcmotor name="hinge" joint="hinge" input="pos" '
+        'nominal="1 10 5" controller="50 0 2 0 0 1" saturation="10 0 0"/></actuator>\'\n'
     )
     result = build_two_link(tmp_path, raw, urdf_extra=control_block(["effort"]))
     (joint,) = check_record(tmp_path)["mujoco_ros2_control"]["joints"]

@@ -36,10 +36,12 @@ def test_a_wheel_without_bounds_builds_unlimited_and_passes_the_check(tmp_path):
     simple_manifest(tmp_path)
     result = run_cli("build", cwd=tmp_path)
     assert result.code == EXIT_OK, result.stdout + result.stderr
-    assert (
-        "joint 'left_wheel_joint' has a <limit> without lower or upper"
-        in result.stdout + result.stderr
-    )
+    # Both wheels' warnings are one line on the console; the report lists each.
+    (warning,) = [line for line in result.stderr.splitlines() if "without lower or upper" in line]
+    assert "2 × revolute joint" in warning and "left_wheel_joint, right_wheel_joint" in warning
+    report = (tmp_path / "mjcf" / "report" / "report.md").read_text()
+    listed = [line for line in report.splitlines() if line.startswith("- ") and "lower or" in line]
+    assert len(listed) == 2 and "left_wheel_joint" in listed[0]
     model = etree.parse(str(tmp_path / "mjcf" / "robot.xml"))
     for joint in model.iter("joint"):
         assert joint.get("range") is None, etree.tostring(joint)
