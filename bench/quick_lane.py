@@ -94,7 +94,8 @@ def main() -> None:
     LANE.write_text("".join(f"{node}\n" for node in lane))
     per_package: dict[str, list[float]] = defaultdict(list)
     for node in lane:
-        package = node.split("/")[1] if node.count("/") > 1 else "(top)"
+        path = node.split("::")[0]
+        package = path.split("/")[1] if path.count("/") > 1 else "(top)"
         per_package[package].append(times[node])
     print("| package | tests | measured s |")
     print("|---|---:|---:|")

@@ -44,7 +44,7 @@ QUICK_LANE = Path(__file__).with_name("quick_lane.txt")
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
     """Mark the tests of the quick lane (``pytest -m quick``) before ``-m`` selects."""
-    lane = set(QUICK_LANE.read_text().split()) if QUICK_LANE.is_file() else set()
+    lane = set(QUICK_LANE.read_text().splitlines()) if QUICK_LANE.is_file() else set()
     for item in items:
         if item.nodeid in lane:
             item.add_marker(pytest.mark.quick)
