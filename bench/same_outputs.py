@@ -8,7 +8,8 @@ Each tree builds, with its own code and a fresh product cache of its own, copies
 (bench/robot_data.py, bench/other_wheels.py). Every file a user sees is compared byte for byte:
 everything in the copied folders but the build's state folder (``.mjcfbuild/``), whose
 ``check.json`` is compared as well. Prints one line per differing or missing file and a summary;
-exit 1 when anything differs. This is how a refactor shows it changed no output.
+exit 1 when anything differs. ``--keep DIR --reuse`` builds only AFTER, against the BEFORE
+side an earlier run kept in DIR. This is how a refactor shows it changed no output.
 """
 
 from __future__ import annotations
@@ -105,11 +106,18 @@ def main() -> None:
         help=f"comma-separated robot names, '' for the examples alone (default: {DEFAULT_ROBOTS})",
     )
     parser.add_argument("--keep", type=Path, help="build here and keep the outputs")
+    parser.add_argument(
+        "--reuse",
+        action="store_true",
+        help="with --keep: use the BEFORE side's outputs kept there by an earlier run",
+    )
     args = parser.parse_args()
     robots = [name for name in args.robots.split(",") if name]
     with tempfile.TemporaryDirectory() as scratch:
         root = args.keep or Path(scratch)
         for side, tree in (("before", args.before), ("after", args.after)):
+            if side == "before" and args.reuse and args.keep and (root / side).is_dir():
+                continue
             print(f"building with {tree}", file=sys.stderr)
             build_all(tree.resolve(), root / side, robots)
         differences = compare(root / "before", root / "after")
