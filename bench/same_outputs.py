@@ -4,8 +4,9 @@
 
 BEFORE and AFTER are checkouts of this repository (``git worktree add ../before <commit>``).
 Each tree builds, with its own code and a fresh product cache of its own, copies of its
-``examples/`` and the named robots of example-robot-data and the other description wheels
-(bench/robot_data.py, bench/other_wheels.py). Every file a user sees is compared byte for byte:
+``examples/`` (and of the example quadruped with every optional output and a motor) and the
+named robots of example-robot-data and the other description wheels (bench/robot_data.py,
+bench/other_wheels.py). Every file a user sees is compared byte for byte:
 everything in the copied folders but the build's state folder (``.mjcfbuild/``), whose
 ``check.json`` is compared as well. Prints one line per differing or missing file and a summary;
 exit 1 when anything differs. ``--keep DIR --reuse`` builds only AFTER, against the BEFORE
@@ -35,6 +36,7 @@ def build_all(tree: Path, into: Path, robots: list[str]) -> None:
     env["MJCFBUILD_CACHE_DIR"] = str(into / "cache")
     env["PYTHONHASHSEED"] = "0"
     shutil.copytree(tree / "examples", into / "examples")
+    _every_output(into / "examples")
     for manifest in sorted((into / "examples").glob("*/robot.yaml")):
         _build(manifest, env)
     if robots:
@@ -58,6 +60,26 @@ def build_all(tree: Path, into: Path, robots: list[str]) -> None:
                 text=True,
             ).stdout.strip()
             _build(Path(manifest), env)
+
+
+EVERY_OUTPUT = """
+  package: true
+  page: true
+  urdf: exported.urdf
+  training: true
+actuators:
+  rules:
+    - joints: ["*knee*"]
+      motor: go1_knee
+"""
+
+
+def _every_output(examples: Path) -> None:
+    """A copy of the quadruped with every optional output and a motor: those paths compared too."""
+    copy = examples / "quadruped_every_output"
+    shutil.copytree(examples / "quadruped", copy)
+    manifest = copy / "robot.yaml"
+    manifest.write_text(manifest.read_text() + EVERY_OUTPUT)
 
 
 def _build(manifest: Path, env: dict[str, str]) -> None:
