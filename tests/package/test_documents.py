@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from mjcfbuild.check.results import CheckResults
 from mjcfbuild.markup import markdown_text
 from mjcfbuild.package.documents import Provenance, changelog, find_license, readme
 from tests.page.hostile import CODE, PICTURE, PIPES, TAG, markup_outside_code
@@ -51,7 +52,7 @@ def test_names_in_the_readme_and_changelog_stay_text():
         "repairs": [{"body": CODE, "problem": PIPES, "before": 1, "after": 2}],
         "warnings": [TAG],
     }
-    text = readme(info, {"loads": True, "failures": [PICTURE]}, assembly)
+    text = readme(info, CheckResults(loads=True, failures=[PICTURE]), assembly)
     assert markup_outside_code(text) == []
     assert "name: robot\n# ``` a fence in a comment\n````" in text  # the block holds it whole
     assert text.startswith(f"# {markdown_text(PIPES)}\n")
