@@ -170,8 +170,10 @@ def _checks(check: CheckResults | None) -> list[str]:
         lines.append("- MuJoCo Menagerie's model test: no warnings")
     if check.hold:
         lines.append(f"- holds its home pose (within {check.hold.max_deviation:.2g})")
-    if check.stand:
+    if check.stand_verdict() == "stands":
         lines.append("- stands on the floor at home")
+    elif check.standing_note():  # the check passed, but it would not say "stands"
+        lines.append(f"- {check.standing_note(md)}")
     if check.failures:
         lines.append("")
         lines.append(f"**{len(check.failures)} check(s) failed:**")
