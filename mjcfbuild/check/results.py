@@ -403,7 +403,9 @@ class CheckResults:
             return None
         if any("does not stand" in failure for failure in self.failures):
             return "falls"
-        return "needs a controller" if self.stand.needs_controller else "stands"
+        # Torque motors that let it fall: a controller's job, not a failure (check.control).
+        needs = self.stand.needs_controller or self.stand.fell_without_controller
+        return "needs a controller" if needs else "stands"
 
     def standing_note(self, escape: Callable[[str], str] = str, warning: bool = False) -> str:
         """Why the robot cannot stand without a controller, '' where it can: the words of the

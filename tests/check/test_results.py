@@ -117,6 +117,8 @@ def test_the_stand_verdict_in_a_word():
     falls = CheckResults(stand=Stand(), failures=["the robot does not stand at home: it fell"])
     assert falls.stand_verdict() == "falls"
     assert CheckResults(stand=Stand(needs_controller="x")).stand_verdict() == "needs a controller"
+    fell = Stand(seconds=5.0, fell_without_controller="torque motors")
+    assert CheckResults(stand=fell).stand_verdict() == "needs a controller"
     assert CheckResults().stand_verdict() is None
 
 

@@ -75,3 +75,7 @@ def test_the_readme_says_a_robot_stands_only_when_it_stood():
         "- the robot cannot stand without a controller (point feet): the stand test was not run"
         in text.splitlines()
     )
+    fell = Stand(seconds=5.0, fell_without_controller="torque motors")
+    motors = CheckResults(loads=True, stand=fell, needs_controller="torque motors")
+    lines = readme(info, motors, {}).splitlines()
+    assert "- the robot cannot stand without a controller (torque motors)" in lines
