@@ -9,7 +9,8 @@ back, a file of an older mjcfbuild included: a key it lacks takes the field's de
 
 A new check adds its section here (a record, a field of :class:`CheckResults`, its console
 line and report row), its own module under ``check/``, and the call that runs it in
-``check/model_check.py``: nothing else changes.
+``check/model_check.py`` (``steps/check.py`` for one that needs the build's records): the
+readers need no change.
 """
 
 from __future__ import annotations
@@ -380,11 +381,8 @@ class CheckResults:
 
     @classmethod
     def from_json(cls, text: str | bytes) -> CheckResults:
-        """The results of check.json's text (an empty record where it is not JSON)."""
-        try:
-            return cls.from_dict(json.loads(text))
-        except ValueError:
-            return cls()
+        """The results of check.json's text (ValueError where it is not JSON)."""
+        return cls.from_dict(json.loads(text))
 
     @classmethod
     def read(cls, path: Path) -> CheckResults | None:
@@ -392,9 +390,9 @@ class CheckResults:
         did not check, or the file is not a check's)."""
         try:
             data = json.loads(path.read_bytes())
-        except (OSError, ValueError):
+            return cls.from_dict(data) if isinstance(data, dict) else None
+        except (OSError, ValueError, TypeError):  # TypeError: a record without its keys
             return None
-        return cls.from_dict(data) if isinstance(data, dict) else None
 
     def stand_verdict(self) -> str | None:
         """A floating robot's stand test in a word: "stands", "falls" or "needs a controller";

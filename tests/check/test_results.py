@@ -85,6 +85,8 @@ def test_an_older_check_json_reads_with_defaults_and_a_broken_one_as_none(tmp_pa
     assert CheckResults.read(broken) is None
     assert CheckResults.read(tmp_path / "missing.json") is None
     assert CheckResults.read(write(tmp_path / "list.json", "[]")) is None
+    no_body = '{"resting_contacts": {"pairs": [{"depth": 1}]}}'
+    assert CheckResults.read(write(tmp_path / "pairs.json", no_body)) is None
 
 
 def test_the_standing_sentence_has_one_owner():
