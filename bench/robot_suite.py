@@ -29,6 +29,7 @@ import numpy as np
 import mjcfbuild
 from bench import other_wheels, robot_data
 from mjcfbuild.check.kinematics import compare_kinematics
+from mjcfbuild.check.results import CheckResults, to_plain
 from mjcfbuild.errors import BuildFailed, MjcfbuildError
 from mjcfbuild.urdf.parse import parse_urdf
 
@@ -56,10 +57,9 @@ def check(name: str, folder: Path) -> dict:
     except MjcfbuildError as failed:  # the description refused: the row says why
         return {"robot": name, "error": str(failed), "seconds": time.perf_counter() - started}
     seconds = time.perf_counter() - started
-    check_path = folder / "mjcf/.mjcfbuild/check.json"
-    if not check_path.exists():
+    checked = CheckResults.read(folder / "mjcf/.mjcfbuild/check.json")
+    if checked is None:
         return {"robot": name, "error": error, "seconds": seconds}
-    checked = json.loads(check_path.read_text())
     assembly = json.loads((folder / "mjcf/.mjcfbuild/assembly.json").read_text())
     if result is None:
         result = mjcfbuild.build(manifest, jobs=2, check=False)
@@ -71,6 +71,8 @@ def check(name: str, folder: Path) -> dict:
     source = parse_urdf(text, str(urdf))
     kinematics = compare_kinematics(source, mujoco.MjModel.from_xml_path(str(result.robot)))
     repairs = sum(1 for w in result.warnings if w.startswith("body '"))
+    menagerie = checked.menagerie_test
+    fastest = checked.speeds.fastest if checked.speeds else None
     return {
         "robot": name,
         "links": len(source.links),
@@ -81,25 +83,25 @@ def check(name: str, folder: Path) -> dict:
         "rotation": kinematics.max_rotation,
         "missing": len(kinematics.missing_links) + len(kinematics.missing_joints),
         "repairs": repairs,
-        "actuators": checked.get("actuation", {}).get("actuators", 0),
-        "home": bool(checked.get("home")),
-        "floor_gap": checked.get("floor_gap"),
-        "hold": checked.get("hold", {}),
-        "menagerie": checked.get("menagerie_test", {}),
-        "touching": len(checked.get("resting_contacts", {}).get("pairs", [])),
-        "failures": checked.get("failures", []),
-        "passes": finite and kinematics.passes() and bool(checked.get("passes")),
+        "actuators": checked.actuation.actuators if checked.actuation else 0,
+        "home": bool(checked.home),
+        "floor_gap": checked.floor.gap if checked.floor else None,
+        "hold": to_plain(checked.hold) or {},
+        "menagerie": to_plain(checked.menagerie_test) or {},
+        "touching": len(checked.resting_contacts.pairs) if checked.resting_contacts else 0,
+        "failures": checked.failures,
+        "passes": finite and kinematics.passes() and checked.passes,
         "floating": robot.floating,
-        "driven": not checked.get("actuation", {}).get("problems"),
+        "driven": not (checked.actuation and checked.actuation.problems),
         "home_sources": sorted({h["source"] for h in assembly["readiness"].get("home", [])}),
-        "stand": checked.get("stand"),
-        "needs_controller": checked.get("needs_controller", ""),
-        "speed": checked.get("max_joint_speed")
+        "stand": to_plain(checked.stand),
+        "needs_controller": checked.needs_controller,
+        "speed": to_plain(fastest)
         or {
-            "joint": checked.get("menagerie_test", {}).get("fastest_joint"),
-            "speed": checked.get("menagerie_test", {}).get("fastest_speed"),
+            "joint": menagerie.fastest_joint if menagerie else None,
+            "speed": menagerie.fastest_speed if menagerie else None,
         },
-        "plausibility": checked.get("plausibility"),
+        "plausibility": to_plain(checked.plausibility),
         "error": error,
     }
 

@@ -15,7 +15,6 @@ stand column is the build's own 5 s stand test (base tilt in rad).
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 import tempfile
@@ -26,26 +25,28 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import mjcfbuild
 from bench import robot_data
 from bench.sim_speed import measure
+from mjcfbuild.check.results import CheckResults
 
 LEGGED = "go1,go2,a1,anymal_c,solo12,g1,talos"
 POSITION_SERVOS = "actuators:\n  speed_limits: false\n"
 
 
-def build(name: str, folder: Path, extra: str) -> tuple[Path, dict]:
+def build(name: str, folder: Path, extra: str) -> tuple[Path, CheckResults]:
     """The scene of ``name`` built with ``extra`` in its robot.yaml, and its check record."""
     robot = robot_data.ROBOTS[name]
     urdf = robot_data.unpack(robot)
     manifest = robot_data.manifest(robot, folder, urdf, robot_data.package_root(), extra)
     scene = mjcfbuild.build(manifest, jobs=2).scene
-    return scene, json.loads((folder / "mjcf/.mjcfbuild/check.json").read_text())
+    return scene, CheckResults.read(folder / "mjcf/.mjcfbuild/check.json") or CheckResults()
 
 
-def tilt(check: dict) -> str:
+def tilt(check: CheckResults) -> str:
     """The stand test's largest base tilt, or why it was not run."""
-    stand = check.get("stand") or {}
-    if stand.get("needs_controller"):
+    if check.stand is None:
+        return "-"
+    if check.stand_verdict() == "needs a controller":
         return "needs a controller"
-    return f"{stand['max_tilt']:.3f}" if "max_tilt" in stand else "-"
+    return f"{check.stand.max_tilt:.3f}"
 
 
 def main() -> None:

@@ -15,8 +15,17 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
 
+from mjcfbuild.check.results import (
+    Actuation,
+    CheckResults,
+    FloorGap,
+    Hold,
+    MenagerieResult,
+    Stand,
+)
 from mjcfbuild.mjstopped import SimulationStopped, simulating
 
 FLOOR_TOLERANCE = 1e-3  # m
@@ -34,56 +43,78 @@ ROLL_TOLERANCE = 0.05
 
 @dataclass
 class ControlReport:
-    """Results of the control checks and the failures among them."""
+    """The results with the control checks' sections added, and what the Menagerie test
+    measured for the speed bound (check.speeds), which check.json does not hold."""
 
-    failures: list[str] = field(default_factory=list)
-    results: dict = field(default_factory=dict)
+    results: CheckResults = field(default_factory=CheckResults)
+    top_speeds: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def failures(self) -> list[str]:
+        """Every failure so far."""
+        return self.results.failures
+
+    def add(self, failures: Sequence[str] = (), **sections) -> None:
+        """Add sections and failures to the results."""
+        self.results = self.results.add(failures, **sections)
 
 
-def check_control(model, passive: set[str], hold_tolerance: float, strict: bool) -> ControlReport:
-    """Run every control check on ``model`` (the scene). Without ``strict`` (a model mjcfbuild
-    did not build), undriven joints are reported but do not fail."""
+def check_control(
+    model,
+    passive: set[str],
+    hold_tolerance: float,
+    strict: bool,
+    results: CheckResults | None = None,
+) -> ControlReport:
+    """Run every control check on ``model`` (the scene), adding their sections to ``results``.
+    Without ``strict`` (a model mjcfbuild did not build), undriven joints are reported but do
+    not fail."""
     import mujoco
 
-    report = ControlReport()
+    report = ControlReport(results or CheckResults())
     problems = actuation_problems(model, passive)
-    report.results["actuation"] = {"actuators": model.nu, "problems": problems}
-    if strict:
-        report.failures += problems
+    report.add(problems if strict else [], actuation=Actuation(model.nu, problems))
     home = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home")
-    report.results["home"] = home >= 0
+    report.add(home=home >= 0)
     floating = _floating(model)
     if floating and home >= 0:
         gap = floor_gap(model, home)
-        report.results["floor_gap"] = gap
+        report.add(floor=FloorGap(gap))
         if gap is not None and abs(gap) > FLOOR_TOLERANCE:
-            report.failures.append(
-                f"at home the robot's lowest collision geometry is {gap * 1000:.1f} mm "
-                f"{'above' if gap > 0 else 'below'} the floor (tolerance 1 mm)"
+            report.add(
+                [
+                    f"at home the robot's lowest collision geometry is {gap * 1000:.1f} mm "
+                    f"{'above' if gap > 0 else 'below'} the floor (tolerance 1 mm)"
+                ]
             )
     try:
         _hold_and_stand(model, home, passive, hold_tolerance, floating, report)
     except SimulationStopped as stop:
-        report.failures.append(stop.line)
+        report.add([stop.line])
     try:
         with simulating("1 s of pseudorandom control (the Menagerie test)"):
             test = menagerie_test(model)
     except SimulationStopped as stop:
-        report.failures.append(stop.line)
+        report.add([stop.line])
         return report
-    report.results["menagerie_test"] = {
-        "warnings": test.warnings,
-        "finite": test.finite,
-        "fastest_joint": test.fastest_joint,
-        "fastest_speed": test.fastest_speed,
-        "unstable_joint": test.unstable_joint,
-        "top_speeds": test.top_speeds,  # issue 33: taken out by the speed bound (check.speeds)
-    }
+    report.top_speeds = test.top_speeds  # issue 33: for the speed bound (check.speeds)
     advice = _unstable_advice(model, test) if test.warnings or not test.finite else ""
+    failures = []
     if not test.finite:
-        report.failures.append(f"the state is not finite under 1 s of pseudorandom control{advice}")
-    for warning in test.warnings:
-        report.failures.append(f"MuJoCo warned under pseudorandom control: {warning}{advice}")
+        failures.append(f"the state is not finite under 1 s of pseudorandom control{advice}")
+    failures += [
+        f"MuJoCo warned under pseudorandom control: {warning}{advice}" for warning in test.warnings
+    ]
+    report.add(
+        failures,
+        menagerie_test=MenagerieResult(
+            warnings=test.warnings,
+            finite=test.finite,
+            fastest_joint=test.fastest_joint,
+            fastest_speed=test.fastest_speed,
+            unstable_joint=test.unstable_joint,
+        ),
+    )
     return report
 
 
@@ -94,32 +125,32 @@ def _hold_and_stand(
     if home >= 0:
         with simulating("holding home's ctrl for 1 s"):
             deviation, joint, tilt = hold_deviation(model, home, passive)
-        report.results["hold"] = {
-            "max_deviation": deviation,
-            "joint": joint,
-            "floating": floating,
-            "base_tilt": tilt if floating else None,
-        }
+        report.add(hold=Hold(deviation, joint, floating, tilt if floating else None))
         if not floating and deviation > hold_tolerance:
-            report.failures.append(
-                f"holding home's ctrl for 1 s, joint '{joint}' moved {deviation:.3g} from home "
-                f"(check.hold_tolerance {hold_tolerance:g}); " + _hold_advice(model, home, joint)
+            report.add(
+                [
+                    f"holding home's ctrl for 1 s, joint '{joint}' moved {deviation:.3g} from "
+                    f"home (check.hold_tolerance {hold_tolerance:g}); "
+                    + _hold_advice(model, home, joint)
+                ]
             )
     if floating and home >= 0:
         with simulating("holding home's ctrl for 5 s standing on the floor"):
             stand = stand_test(model, home, passive)
-        report.results["stand"] = stand.to_dict()
+        standing = Stand(**stand.to_dict())
         motors = torque_motors(model, passive)
         if stand.needs_controller:
-            report.results["needs_controller"] = stand.needs_controller
+            report.add(stand=standing, needs_controller=stand.needs_controller)
         elif stand.fails(hold_tolerance) and motors:
             # A torque motor's constant ctrl cannot hold a pose: no gain fixes that.
             why = motors_need_a_controller(motors)
-            report.results["needs_controller"] = why
-            report.results["stand"]["fell_without_controller"] = why
+            fell = replace(standing, fell_without_controller=why)
+            report.add(stand=fell, needs_controller=why)
         elif stand.fails(hold_tolerance):
             advice = _hold_advice(model, home, stand.joint)
-            report.failures.append(stand.failure(hold_tolerance, advice))
+            report.add([stand.failure(hold_tolerance, advice)], stand=standing)
+        else:
+            report.add(stand=standing)
 
 
 @dataclass

@@ -10,7 +10,7 @@ ready contact exclude); and the model is ready to control (see mjcfbuild.check.c
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 from mjcfbuild.check.contacts import exclude_suggestion, resting_contacts, split_by_part
@@ -23,6 +23,17 @@ from mjcfbuild.check.masses import compare_masses
 from mjcfbuild.check.meshstats import mesh_statistics
 from mjcfbuild.check.precision import relative_tolerance
 from mjcfbuild.check.reference import reference_from_record
+from mjcfbuild.check.results import (
+    CheckResults,
+    Joints,
+    Kinematics,
+    Masses,
+    MeshStatistics,
+    PartContact,
+    PlausibilityResults,
+    RestingContacts,
+    Simulation,
+)
 from mjcfbuild.check.simulation import simulate
 from mjcfbuild.mjstopped import SimulationStopped, simulating
 from mjcfbuild.urdf.model import Robot
@@ -42,19 +53,6 @@ class CheckOptions:
     relative_tolerance: float | None = None
 
 
-@dataclass
-class CheckReport:
-    """Results of every check, the failures among them, and statistics."""
-
-    failures: list[str] = field(default_factory=list)
-    results: dict = field(default_factory=dict)
-
-    @property
-    def passes(self) -> bool:
-        """Whether every check passed."""
-        return not self.failures
-
-
 def check_model(
     robot: Robot,
     model_path: Path,
@@ -65,7 +63,7 @@ def check_model(
     reference: dict | None = None,
     sources: dict[str, Path] | None = None,
     part_bodies: dict[str, set[str]] | None = None,
-) -> CheckReport:
+) -> CheckResults:
     """Check the model at ``model_path`` against ``robot``; simulate ``simulate_path`` (the
     scene, with its floor) or the model itself. ``readiness`` is what the build recorded about
     actuators and home (None for a model mjcfbuild did not build: undriven joints are then
@@ -80,36 +78,29 @@ def check_model(
 
     capture_mujoco_warnings()  # simulation warnings are read from MjData instead
     options = options or CheckOptions()
-    report = CheckReport()
     # The scene includes the model, so one load serves every check (meshes load once).
     path = simulate_path or model_path
     try:
         model = compile_model(path, sources)
     except Exception as exc:
-        report.failures.append(f"{path.name} does not load: {str(exc).strip().splitlines()[0]}")
-        report.results["loads"] = False
-        return report
-    report.results["loads"] = True
+        line = f"{path.name} does not load: {str(exc).strip().splitlines()[0]}"
+        return CheckResults(loads=False, failures=[line])
+    results = CheckResults(loads=True)
     problems: list[Problem] = []
     try:
         with simulating(f"{options.steps} zero-control steps of {path.name}"):
             simulation = simulate(model, options.steps)
     except SimulationStopped as stop:
         problems.append(Problem(stop.line))
-        report.results["simulation"] = {
-            "model": path.name,
-            "steps": options.steps,
-            "finite": False,
-            "warnings": [],
-            "stopped": stop.line,
-        }
+        results = results.add(
+            simulation=Simulation(path.name, options.steps, False, [], stopped=stop.line)
+        )
     else:
-        report.results["simulation"] = {
-            "model": path.name,
-            "steps": simulation.steps,
-            "finite": simulation.finite,
-            "warnings": simulation.warnings,
-        }
+        results = results.add(
+            simulation=Simulation(
+                path.name, simulation.steps, simulation.finite, simulation.warnings
+            )
+        )
         if not simulation.finite:
             problems.append(
                 Problem(f"the state is not finite within {options.steps} zero-control steps")
@@ -119,15 +110,17 @@ def check_model(
 
     reader, fallback = reference_from_record(reference)
     kinematics = compare_kinematics(robot, model, options.configurations, options.seed, reader)
-    report.results["kinematics"] = {
-        "configurations": options.configurations,
-        "max_position_error": kinematics.max_position,
-        "max_rotation_error": kinematics.max_rotation,
-        "worst_link": kinematics.worst.link if kinematics.worst else None,
-        "missing_links": kinematics.missing_links,
-        "missing_joints": kinematics.missing_joints,
-        "reference": reader.name if reader else f"mjcfbuild's URDF parser: {fallback}",
-    }
+    results = results.add(
+        kinematics=Kinematics(
+            configurations=options.configurations,
+            max_position_error=kinematics.max_position,
+            max_rotation_error=kinematics.max_rotation,
+            worst_link=kinematics.worst.link if kinematics.worst else None,
+            missing_links=kinematics.missing_links,
+            missing_joints=kinematics.missing_joints,
+            reference=reader.name if reader else f"mjcfbuild's URDF parser: {fallback}",
+        )
+    )
     for link in kinematics.missing_links:
         problems.append(
             Problem(f"link '{link}' has no body or site of its name in the model", True)
@@ -147,71 +140,74 @@ def check_model(
 
     relative = relative_tolerance(model_path, options.relative_tolerance)
     joint_problems = compare_joints(robot, model, relative)
-    report.results["joints"] = {
-        "problems": [p.text for p in joint_problems],
-        "relative_tolerance": relative,
-    }
+    results = results.add(joints=Joints([p.text for p in joint_problems], relative))
     problems += joint_problems
 
     mass_problems, urdf_mass, model_mass = compare_masses(robot, model, repaired or set(), relative)
-    report.results["masses"] = {
-        "urdf_total": urdf_mass,
-        "model_total": model_mass,
-        "problems": [p.text for p in mass_problems],
-        "repaired_bodies": sorted(repaired or ()),
-    }
+    results = results.add(
+        masses=Masses(
+            urdf_total=urdf_mass,
+            model_total=model_mass,
+            problems=[p.text for p in mass_problems],
+            repaired_bodies=sorted(repaired or ()),
+        )
+    )
     problems += mass_problems
-    report.failures = structural_first(problems)
+    results = results.add(structural_first(problems))
 
     try:
         with simulating("the contacts at home"):
             at_rest = resting_contacts(model)
     except SimulationStopped as stop:
-        report.failures.append(stop.line)
+        results = results.add([stop.line])
         at_rest = []
     contacts, in_parts = split_by_part(at_rest, part_bodies or {})
-    report.results["resting_contacts"] = {
-        "pairs": [c.__dict__ for c in contacts],
-        "exclude": exclude_suggestion(contacts),
-        "inside_parts": [{"part": part, **c.__dict__} for part, c in in_parts],
-    }
+    results = results.add(
+        resting_contacts=RestingContacts(
+            pairs=contacts,
+            exclude=exclude_suggestion(contacts),
+            inside_parts=[PartContact(part, **c.__dict__) for part, c in in_parts],
+        )
+    )
     if contacts:
         listed = ", ".join(f"{c.body1}/{c.body2}" for c in contacts[:5])
         more = f" and {len(contacts) - 5} more" if len(contacts) > 5 else ""
-        report.failures.append(
-            f"{len(contacts)} robot body pair{'s' if len(contacts) > 1 else ''} touch at "
-            f"{contacts[0].pose} ({listed}{more}); exclude them (report.md has the block) or "
-            "fix the collision geometry"
+        results = results.add(
+            [
+                f"{len(contacts)} robot body pair{'s' if len(contacts) > 1 else ''} touch at "
+                f"{contacts[0].pose} ({listed}{more}); exclude them (report.md has the block) "
+                "or fix the collision geometry"
+            ]
         )
 
     passive = set((readiness or {}).get("passive", []))
+    top_speeds: dict[str, float] = {}
     try:
         with simulating("the control checks"):  # each simulation there says which it was
             control = check_control(
-                model, passive, options.hold_tolerance, strict=readiness is not None
+                model, passive, options.hold_tolerance, readiness is not None, results
             )
     except SimulationStopped as stop:
-        report.failures.append(stop.line)
+        results = results.add([stop.line])
     else:
-        report.results.update(control.results)
-        report.failures += control.failures
-    _speed_bound(report, robot, model, readiness)  # issue 33
-    report.results["meshes"] = mesh_statistics(model)
+        results, top_speeds = control.results, control.top_speeds
+    results = _speed_bound(results, top_speeds, robot, model, readiness)  # issue 33
+    results = results.add(meshes=[MeshStatistics(**row) for row in mesh_statistics(model)])
     try:
         with simulating("the plausibility checks"):
-            _check_plausibility(model, report, sources, robot, repaired or set())
+            results = _check_plausibility(model, results, sources, robot, repaired or set())
     except SimulationStopped as stop:
-        report.failures.append(stop.line)
-    return report
+        results = results.add([stop.line])
+    return results
 
 
 def _check_plausibility(
     model,
-    report: CheckReport,
+    results: CheckResults,
     sources: dict[str, Path] | None,
     robot: Robot,
     repaired: set[str],
-) -> None:
+) -> CheckResults:
     """Centres of mass inside their bodies' geometry, visual and collision overlapping, masses
     their geometry can hold (check.plausibility): meshes in mm and masses in the wrong unit
     fail; other findings are warnings in the results. Bodies whose mass or inertia the build
@@ -219,19 +215,24 @@ def _check_plausibility(
     reported where it was made."""
     from mjcfbuild.check.plausibility import check_plausibility
 
-    plausibility = check_plausibility(model, sources, skip=repaired, robot=robot)
-    report.results["plausibility"] = plausibility.to_dict()
-    report.failures += plausibility.failures
+    found = check_plausibility(model, sources, skip=repaired, robot=robot)
+    section = PlausibilityResults(found.bodies, found.findings, found.failures, found.warnings)
+    return results.add(found.failures, plausibility=section)
 
 
-def _speed_bound(report: CheckReport, robot: Robot, model, readiness: dict | None) -> None:
+def _speed_bound(
+    results: CheckResults,
+    tops: dict[str, float],
+    robot: Robot,
+    model,
+    readiness: dict | None,
+) -> CheckResults:
     """The Menagerie test's speed bound (check.speeds): the joint fastest against its velocity
     limit, and a failure for every joint past its bound."""
     import mujoco
 
     from mjcfbuild.check.speeds import joint_speeds, speed_results
 
-    tops = (report.results.get("menagerie_test") or {}).pop("top_speeds", None) or {}
     limits = {
         joint.name: (joint.limit.velocity if joint.limit is not None else None)
         for joint in robot.joints
@@ -242,6 +243,5 @@ def _speed_bound(report: CheckReport, robot: Robot, model, readiness: dict | Non
         slide = model.jnt_type[index] == mujoco.mjtJoint.mjJNT_SLIDE
         kinds[name] = "slide" if slide else "hinge"
     speeds = joint_speeds(tops, limits, kinds, (readiness or {}).get("actuators", []))
-    results, failures = speed_results(speeds)
-    report.results.update(results)
-    report.failures += failures
+    bound, failures = speed_results(speeds)
+    return results.add(failures, speeds=bound)

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from mjcfbuild.check.findings import BodyFinding
+from mjcfbuild.check.results import CheckResults, GazeboSensor, Runtime
 from mjcfbuild.check.tuning_table import tuning_lines
 from mjcfbuild.markup import markdown_block, markdown_code, markdown_target
 from mjcfbuild.markup import markdown_text as md
@@ -23,11 +25,13 @@ def markdown(report: dict) -> str:
         f"scene {markdown_code(report['scene'])}."
     )
     lines.append("")
-    lines += _checks(report.get("check") or {}, report.get("warnings") or [])
+    checked = report.get("check")
+    results = CheckResults.from_dict(checked) if checked else None
+    lines += _checks(results, report.get("warnings") or [])
     lines += _control(report.get("readiness") or {})
     lines += tuning_lines(report.get("tuning") or {})  # issue 33
     lines += _self_collision(report.get("self_collision"))
-    lines += _plausibility(report)
+    lines += _plausibility(report, results)
     lines += _training(report.get("training"))
     if report["repairs"]:
         lines += [
@@ -43,7 +47,7 @@ def markdown(report: dict) -> str:
         lines.append("")
     if report["warnings"]:
         lines += ["## Warnings", ""] + [f"- {md(w)}" for w in report["warnings"]] + [""]
-    meshes = (report.get("check") or {}).get("meshes") or []
+    meshes = (results.meshes if results else None) or []
     if meshes:
         lines += [
             "## Meshes",
@@ -53,8 +57,8 @@ def markdown(report: dict) -> str:
             "|---|---:|---:|---:|---:|---:|",
         ]
         lines += [
-            f"| {md(m['body'])} | {m['visual_vertices']} | {m['visual_faces']} | "
-            f"{m['collision_vertices']} | {m['collision_faces']} | {m['convex_parts']} |"
+            f"| {md(m.body)} | {m.visual_vertices} | {m.visual_faces} | "
+            f"{m.collision_vertices} | {m.collision_faces} | {m.convex_parts} |"
             for m in meshes
         ]
         lines.append("")
@@ -108,122 +112,50 @@ def _product_lines(products: dict | None) -> list[str]:
     ]
 
 
-def verdict(check: dict, warnings: list[str]) -> str:
+def verdict(results: CheckResults, warnings: list[str]) -> str:
     """The report's one-line result: "all checks pass" only when nothing failed, the robot
     needs nothing the checks assumed it has, and the build warned of nothing; otherwise what
     comes first."""
-    if not check.get("passes"):
-        failures = check.get("failures") or []
+    if not results.passes:
+        failures = results.failures
         first = f": {md(failures[0])}" if failures else ""
         more = f" (and {len(failures) - 1} more, below)" if len(failures) > 1 else ""
         return f"**checks failed**{first}{more}"
-    if check.get("needs_controller"):
-        ran = (check.get("stand") or {}).get("fell_without_controller")
-        return (
-            "checks pass, but the robot cannot stand without a controller "
-            f"({md(check['needs_controller'])})" + ("" if ran else ": the stand test was not run")
-        )
+    standing = results.standing_note(md)
+    if standing:
+        return f"checks pass, but {standing}"
     if warnings:
         count = f"{len(warnings)} warning{'s' if len(warnings) > 1 else ''}"
         return f"checks pass with {count} (see Warnings): {md(warnings[0])}"
     return "all checks pass"
 
 
-def _checks(check: dict, warnings: list[str]) -> list[str]:
-    if not check:
+def _checks(results: CheckResults | None, warnings: list[str]) -> list[str]:
+    if results is None:
         return [
             "## Checks",
             "",
             "Not run (check.enabled is false, or the build stopped before).",
             "",
         ]
-    lines = ["## Checks", "", f"Result: {verdict(check, warnings)}.", ""]
-    for failure in check.get("failures", []):
+    lines = ["## Checks", "", f"Result: {verdict(results, warnings)}.", ""]
+    for failure in results.failures:
         lines.append(f"- {md(failure)}")
-    if check.get("failures"):
+    if results.failures:
         lines.append("")
-    kinematics = check.get("kinematics", {})
-    simulation = check.get("simulation", {})
-    masses = check.get("masses", {})
     lines += ["| check | result |", "|---|---|"]
-    lines.append(f"| loads | {'yes' if check.get('loads') else 'no'} |")
-    if simulation:
-        lines.append(
-            f"| {simulation['steps']} zero-control steps of {md(simulation['model'])} | "
-            f"{'finite' if simulation['finite'] else 'NOT finite'}, "
-            f"{len(simulation['warnings'])} MuJoCo warnings |"
-        )
-    if kinematics:
-        lines.append(
-            f"| link poses at {kinematics['configurations']} configurations | max error "
-            f"{kinematics['max_position_error']:.2g} m, "
-            f"{kinematics['max_rotation_error']:.2g} rad; "
-            f"{len(kinematics['missing_links'])} links missing |"
-        )
-    for prefix, part in sorted(check.get("parts", {}).items()):
-        lines.append(
-            f"| MJCF part {md(prefix)} ({md(part['label'])}) against the part alone, at "
-            f"{part['configurations']} configurations | max error "
-            f"{part['max_position_error']:.2g} m, {part['max_rotation_error']:.2g} rad; "
-            f"{len(part['missing'])} missing, {len(part['problems'])} problems |"
-        )
-    actuation = check.get("actuation")
-    if actuation is not None:
-        lines.append(
-            f"| every moving joint driven once | {check['actuation']['actuators']} actuators, "
-            f"{len(actuation['problems'])} problems |"
-        )
-    if check.get("floor_gap") is not None:
-        lines.append(f"| floating base on the floor at home | gap {check['floor_gap']:.2g} m |")
-    hold = check.get("hold")
-    if hold:
-        where = f" ({md(hold['joint'])})" if hold.get("joint") else ""
-        tilt = hold.get("base_tilt")
-        tilted = f"; the base tilted {tilt:.2g} rad" if tilt is not None else ""
-        lines.append(
-            f"| hold home's ctrl for 1 s | largest deviation {hold['max_deviation']:.3g}{where}"
-            f"{tilted} |"
-        )
-    stand = check.get("stand")
-    if stand:
-        if stand.get("fell_without_controller"):
-            lines.append(
-                f"| stand at home for 5 s | fell: {md(stand['fell_without_controller'])} |"
-            )
-        elif stand.get("needs_controller"):
-            lines.append(f"| stand at home for 5 s | not run: {md(stand['needs_controller'])} |")
-        else:
-            lines.append(
-                f"| stand at home holding its ctrl for {stand['seconds']:g} s | base tilted "
-                f"{stand['max_tilt']:.2g} rad, sank {stand['max_sink'] * 1000:.0f} mm; largest "
-                f"joint deviation {stand['max_deviation']:.3g} ({md(stand['joint'])}) |"
-            )
-    menagerie = check.get("menagerie_test")
-    if menagerie:
-        lines.append(
-            "| 1 s of pseudorandom control (Menagerie's model test) | "
-            f"{'finite' if menagerie['finite'] else 'NOT finite'}, "
-            f"{len(menagerie['warnings'])} MuJoCo warnings |"
-        )
-    joint_problems = len(check.get("joints", {}).get("problems", []))
-    lines.append(f"| joint types, axes, ranges | {joint_problems} problems |")
-    if masses:
-        lines.append(
-            f"| masses and inertias | total {masses['urdf_total']:.6g} kg in the URDF, "
-            f"{masses['model_total']:.6g} kg in the model; {len(masses['problems'])} problems |"
-        )
+    lines += results.table_rows()
     lines.append("")
-    contacts = check.get("resting_contacts", {})
-    if contacts.get("pairs"):
+    contacts = results.resting_contacts
+    if contacts and contacts.pairs:
         lines += ["### Robot bodies touching at home", ""]
         lines += [
-            f"- {md(p['body1'])} and {md(p['body2'])} ({md(p['pose'])} pose, "
-            f"{p['depth']:.3g} m deep)"
-            for p in contacts["pairs"]
+            f"- {md(p.body1)} and {md(p.body2)} ({md(p.pose)} pose, {p.depth:.3g} m deep)"
+            for p in contacts.pairs
         ]
         lines += ["", "To let them be, add to the raw inputs:", ""]
-        lines += [*markdown_block(contacts["exclude"], "xml"), ""]
-    return lines + _runtime(check.get("mujoco_ros2_control")) + _gazebo(check.get("gazebo_sensors"))
+        lines += [*markdown_block(contacts.exclude, "xml"), ""]
+    return lines + _runtime(results.mujoco_ros2_control) + _gazebo(results.gazebo_sensors)
 
 
 def _motor(actuator: dict) -> str:
@@ -404,19 +336,19 @@ def _range(values) -> str:
     return f"[{values[0]:.4g}, {values[1]:.4g}]" if values else ""
 
 
-def _plausibility(report: dict) -> list[str]:
+def _plausibility(report: dict, results: CheckResults | None) -> list[str]:
     """Where the meshes are: the plausibility test, COLLADA up axes, MJCF parts' own contacts."""
-    check = report.get("check") or {}
-    found = check.get("plausibility")
+    found = results.plausibility if results else None
     decisions = report.get("up_axis") or []
-    inside = (check.get("resting_contacts") or {}).get("inside_parts") or []
+    contacts = results.resting_contacts if results else None
+    inside = contacts.inside_parts if contacts else []
     if found is None and not decisions and not inside:
         return []
     lines = ["## Mesh plausibility", ""]
     if found is not None:
-        findings = found.get("findings", [])
+        findings = found.findings
         lines.append(
-            f"{found.get('bodies', 0)} bodies tested (centre of mass inside its own geometry, "
+            f"{found.bodies} bodies tested (centre of mass inside its own geometry, "
             "visual and collision geometry overlapping, a mass its geometry can hold): "
             f"{len(findings) or 'none'} named."
         )
@@ -424,8 +356,8 @@ def _plausibility(report: dict) -> list[str]:
         if findings:
             lines += ["| body | result | problems | likely cause |", "|---|---|---|---|"]
             lines += [
-                f"| {_named(f)} | {'fails' if f['fails'] else 'warning'} | "
-                f"{md('; '.join(f['problems']))} | {md(f['detail'])} |"
+                f"| {_named(f)} | {'fails' if f.fails else 'warning'} | "
+                f"{md('; '.join(f.problems))} | {md(f.detail)} |"
                 for f in findings
             ]
             lines.append("")
@@ -451,20 +383,20 @@ def _plausibility(report: dict) -> list[str]:
             "",
         ]
         lines += [
-            f"- {md(p['body1'])} and {md(p['body2'])} in {md(p['part'])} ({md(p['pose'])} pose, "
-            f"{p['depth']:.3g} m deep)"
+            f"- {md(p.body1)} and {md(p.body2)} in {md(p.part)} ({md(p.pose)} pose, "
+            f"{p.depth:.3g} m deep)"
             for p in inside
         ]
         lines.append("")
     return lines
 
 
-def _named(finding: dict) -> str:
+def _named(finding: BodyFinding) -> str:
     """A plausibility finding's body, or what else it names (a link, the robot), with the
     URDF line to fix where there is one."""
-    subject = finding.get("subject", "body")
-    name = finding["body"] if subject == "body" else f"{subject} {finding['body']}"
-    return md(f"{name} ({finding['where']})" if finding.get("where") else name)
+    subject = finding.subject
+    name = finding.body if subject == "body" else f"{subject} {finding.body}"
+    return md(f"{name} ({finding.where})" if finding.where else name)
 
 
 def _armature(actuator: dict) -> str:
@@ -473,7 +405,7 @@ def _armature(actuator: dict) -> str:
     return f" (armature {armature:.3g} added)" if armature else ""
 
 
-def _gazebo(sensors: list[dict] | None) -> list[str]:
+def _gazebo(sensors: list[GazeboSensor] | None) -> list[str]:
     """The URDF's Gazebo sensors: which have an MJCF counterpart, and what it does not model."""
     if not sensors:
         return []
@@ -484,25 +416,25 @@ def _gazebo(sensors: list[dict] | None) -> list[str]:
         "|---|---|---|---|",
     ]
     for sensor in sensors:
-        missing = "the sensor" if not sensor["modelled"] else ", ".join(sensor["not_modelled"])
+        missing = "the sensor" if not sensor.modelled else ", ".join(sensor.not_modelled)
         lines.append(
-            f"| {md(sensor['name'])} | {md(sensor['type'])} | {md(sensor['reference'])} | "
+            f"| {md(sensor.name)} | {md(sensor.type)} | {md(sensor.reference)} | "
             f"{md(missing or '-')} |"
         )
     return [*lines, ""]
 
 
-def _runtime(runtime: dict | None) -> list[str]:
+def _runtime(runtime: Runtime | None) -> list[str]:
     """What mujoco_ros2_control finds for the <ros2_control> block (check.runtime)."""
     if not runtime:
         return []
     lines = ["### mujoco_ros2_control", ""]
-    if runtime["joints"]:
+    if runtime.joints:
         lines += [
             "| joint | command interfaces | actuator | kind (by its bias) |",
             "|---|---|---|---|",
         ]
-        for joint in runtime["joints"]:
+        for joint in runtime.joints:
             how = ", ".join(
                 f"{name}: {way or 'REFUSED'}" for name, way in joint["how"].items()
             ) or ", ".join(joint["interfaces"])
@@ -511,9 +443,9 @@ def _runtime(runtime: dict | None) -> list[str]:
                 f"{joint['kind'] or '-'} |"
             )
         lines.append("")
-    if runtime["sensors"]:
+    if runtime.sensors:
         lines += ["| sensor | mujoco_type | MJCF sensors (site) |", "|---|---|---|"]
-        for sensor in runtime["sensors"]:
+        for sensor in runtime.sensors:
             found = ", ".join(
                 f"{m['type']} {md(m['name'])}" + (f" ({md(m['site'])})" if m["site"] else "")
                 if m["found"]
@@ -522,10 +454,10 @@ def _runtime(runtime: dict | None) -> list[str]:
             )
             lines.append(f"| {md(sensor['sensor'])} | {md(sensor['type'])} | {found} |")
         lines.append("")
-    for device in runtime["devices"]:
+    for device in runtime.devices:
         rays = f", {device['rays']} rays" if device["kind"] == "lidar" else ""
         state = "found" if device["found"] else "MISSING"
         lines.append(f"- {device['kind']} {md(device['sensor'])}: {state}{rays}")
-    if runtime["devices"]:
+    if runtime.devices:
         lines.append("")
     return lines

@@ -21,6 +21,10 @@ m/s for a slide). How far past it a joint may go depends on what the model knows
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from mjcfbuild.check.results import Speeds
 
 DRIVEN_MULTIPLE = 1.5
 FREE_MULTIPLE = 50.0
@@ -112,9 +116,11 @@ def _advice(speed: JointSpeed) -> str:
     )
 
 
-def speed_results(speeds: list[JointSpeed]) -> tuple[dict, list[str]]:
+def speed_results(speeds: list[JointSpeed]) -> tuple[Speeds, list[str]]:
     """check.json's ``max_joint_speed`` (the fastest joint, with its limit) and
     ``speed_bound`` entries, and the failures."""
+    from mjcfbuild.check.results import FastestJoint, Speeds
+
     failures = [
         f"joint '{s.joint}' reached {s.speed:.3g} {s.unit} under pseudorandom control, more "
         f"than {s.multiple:g} times its velocity limit {s.limit:g} {s.unit} ({s.limit_from}); "
@@ -123,16 +129,10 @@ def speed_results(speeds: list[JointSpeed]) -> tuple[dict, list[str]]:
         if s.fails
     ]
     worst = max(speeds, key=lambda s: (s.speed, s.joint), default=None)
-    results = {
-        "max_joint_speed": (
-            {"joint": worst.joint, "speed": worst.speed, "limit": worst.limit}
-            if worst is not None
-            else None
-        ),
-        "speed_bound": {
-            "driven_multiple": DRIVEN_MULTIPLE,
-            "free_multiple": FREE_MULTIPLE,
-            "over_limit": [s.to_dict() for s in speeds if s.exceeds_limit],
-        },
-    }
-    return results, failures
+    bound = Speeds(
+        fastest=FastestJoint(worst.joint, worst.speed, worst.limit) if worst is not None else None,
+        driven_multiple=DRIVEN_MULTIPLE,
+        free_multiple=FREE_MULTIPLE,
+        over_limit=[s for s in speeds if s.exceeds_limit],
+    )
+    return bound, failures

@@ -6,6 +6,7 @@ import argparse
 import os
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from mjcfbuild.cli import (
     allow_outside_argument,
@@ -17,6 +18,9 @@ from mjcfbuild.cli import (
     timeout_argument,
 )
 from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, CheckError, MjcfbuildError, UsageError
+
+if TYPE_CHECKING:
+    from mjcfbuild.check.results import CheckResults
 
 
 def add_parser(commands) -> None:
@@ -114,32 +118,28 @@ def _options(args, settings=None):
     )
 
 
-def _print(report, label: str, built: bool = True) -> int:
+def _print(results: CheckResults, label: str, built: bool = True) -> int:
     """One line per check with its result, then the verdict; the exit code. A model
     mjcfbuild ``built`` has a home keyframe: without one, its hold and stand did not run."""
-    results = report.results
     print(f"mjcfbuild check: {label}")
-    for name, result in check_lines(results):
+    for name, result in results.console_lines():
         print(f"  {name:<28} {result}")
-    contacts = (results.get("resting_contacts") or {}).get("pairs")
-    if contacts:
-        print(results["resting_contacts"]["exclude"])
-    for failure in report.failures:
+    contacts = results.resting_contacts
+    if contacts and contacts.pairs:
+        print(contacts.exclude)
+    for failure in results.failures:
         print(f"mjcfbuild: check failed: {failure}", file=sys.stderr)
-    if not report.passes:
-        print(f"mjcfbuild: {len(report.failures)} check(s) failed")
-    elif built and results.get("home") is False:
+    standing = results.standing_note()
+    if not results.passes:
+        print(f"mjcfbuild: {len(results.failures)} check(s) failed")
+    elif built and results.home is False:
         print("mjcfbuild: checks pass, but the hold and stand tests were not run: no home keyframe")
-    elif results.get("needs_controller"):
+    elif standing:
         # Not a failure, but not what "check passed" promises: the stand test did not run.
-        ran = (results.get("stand") or {}).get("fell_without_controller")
-        print(
-            "mjcfbuild: checks pass, but the robot cannot stand without a controller "
-            f"({results['needs_controller']})" + ("" if ran else ": the stand test was not run")
-        )
+        print(f"mjcfbuild: checks pass, but {standing}")
     else:
         print("mjcfbuild: check passed")
-    return EXIT_OK if report.passes else EXIT_CHECK
+    return EXIT_OK if results.passes else EXIT_CHECK
 
 
 def _pair(args) -> int:
@@ -170,8 +170,8 @@ def _pair(args) -> int:
             where.file = file if relative.startswith("..") else relative
             error.message += f" [line {expanded} of its expansion]"
         raise
-    report = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))
-    return _print(report, f"{mjcf} against {urdf}", built=False)
+    results = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))
+    return _print(results, f"{mjcf} against {urdf}", built=False)
 
 
 def _urdf_bytes(path: Path, packages: dict[str, str]) -> tuple[bytes, dict[int, tuple[str, int]]]:
@@ -189,116 +189,6 @@ def _urdf_bytes(path: Path, packages: dict[str, str]) -> tuple[bytes, dict[int, 
     return expansion.urdf, expansion.origins
 
 
-def check_lines(results: dict) -> list[tuple[str, str]]:
-    """Each check that ran (or was skipped) and its result, as the console shows them."""
-    if not results.get("loads"):
-        return [("loads", "NO")]
-    lines = [("loads", "yes")]
-    simulation = results["simulation"]
-    lines.append(
-        (
-            f"{simulation['steps']} zero-control steps",
-            "STOPPED by a MuJoCo error"
-            if simulation.get("stopped")
-            else f"{'finite' if simulation['finite'] else 'NOT FINITE'}, "
-            f"{len(simulation['warnings'])} MuJoCo warnings",
-        )
-    )
-    kinematics = results["kinematics"]
-    lines.append(
-        (
-            "link poses",
-            f"max {kinematics['max_position_error']:.2g} m, "
-            f"{kinematics['max_rotation_error']:.2g} rad at {kinematics['configurations']} "
-            "configurations",
-        )
-    )
-    lines.append(("joints", f"{len(results['joints']['problems'])} problems"))
-    masses = results["masses"]
-    lines.append(
-        (
-            "masses",
-            f"{masses['model_total']:.6g} kg (URDF {masses['urdf_total']:.6g} kg), "
-            f"{len(masses['problems'])} problems",
-        )
-    )
-    contacts = results["resting_contacts"]["pairs"]
-    lines.append(("resting contacts", str(len(contacts)) if contacts else "none"))
-    actuation = results.get("actuation")
-    if actuation is not None:
-        lines.append(
-            (
-                "every moving joint driven",
-                f"{actuation['actuators']} actuators, {len(actuation['problems'])} problems",
-            )
-        )
-    if results.get("floor_gap") is not None:
-        lines.append(("on the floor at home", f"gap {results['floor_gap'] * 1000:.2g} mm"))
-    hold = results.get("hold")
-    if hold:
-        joint = f" ({hold['joint']})" if hold.get("joint") else ""
-        lines.append(("hold home 1 s", f"largest deviation {hold['max_deviation']:.3g}{joint}"))
-    stand = results.get("stand")
-    if stand and stand.get("fell_without_controller"):
-        lines.append(
-            ("stand 5 s", f"FELL: needs a controller ({stand['fell_without_controller']})")
-        )
-    elif stand and stand.get("needs_controller"):
-        lines.append(("stand 5 s", f"NOT RUN: needs a controller ({stand['needs_controller']})"))
-    elif stand:
-        lines.append(
-            (
-                f"stand {stand['seconds']:g} s",
-                f"tilt {stand['max_tilt']:.2g} rad, sank {stand['max_sink'] * 1000:.0f} mm",
-            )
-        )
-    elif results.get("home") is False:
-        lines.append(("hold and stand", "NOT RUN: the model has no home keyframe"))
-    test = results.get("menagerie_test")
-    if test:
-        lines.append(
-            (
-                "1 s pseudorandom control",
-                f"{'finite' if test['finite'] else 'NOT FINITE'}, "
-                f"{len(test['warnings'])} MuJoCo warnings",
-            )
-        )
-    fastest = results.get("max_joint_speed")
-    if fastest:
-        lines.append(
-            (
-                "joint speeds",
-                f"fastest {fastest['joint']} {fastest['speed']:.3g} (limit {fastest['limit']:g})",
-            )
-        )
-    plausibility = results.get("plausibility")
-    if plausibility:
-        lines.append(
-            (
-                "plausibility",
-                f"{len(plausibility['failures'])} failures, "
-                f"{len(plausibility['warnings'])} warnings",
-            )
-        )
-    for prefix, part in sorted((results.get("parts") or {}).items()):
-        lines.append(
-            (
-                f"MJCF part {prefix}",
-                f"max {part['max_position_error']:.2g} m, {len(part['problems'])} problems",
-            )
-        )
-    runtime = results.get("mujoco_ros2_control")
-    if runtime:
-        lines.append(
-            (
-                "mujoco_ros2_control",
-                f"{len(runtime['joints'])} joints, {len(runtime['sensors'])} sensors, "
-                f"{len(runtime['devices'])} cameras/lidars",
-            )
-        )
-    return lines
-
-
 def _manifest(ctx, args) -> int:
     import dataclasses
     import json
@@ -313,7 +203,7 @@ def _manifest(ctx, args) -> int:
     from mjcfbuild.engine.report import write_report
     from mjcfbuild.engine.runner import build_lock
     from mjcfbuild.engine.tasks import CHECK_RESULTS, PLAN, REFERENCE, check_payload, planned_urdf
-    from mjcfbuild.steps.check import check_built, check_warnings, write_results
+    from mjcfbuild.steps.check import check_built, write_results
     from mjcfbuild.steps.plan_record import read_plan
 
     if not ctx.robot_path.exists() or not ctx.state(PLAN).exists():
@@ -333,15 +223,15 @@ def _manifest(ctx, args) -> int:
             reference.write_text(json.dumps(record))
             request = dataclasses.replace(request, reference=str(reference))
         # The same checks, and the same check.json, as the build's check task.
-        report = check_built(request)
+        results = check_built(request)
     # What it writes in the folder, a build writes too: under the folder's lock, as a build.
     with build_lock(ctx, Progress(quiet=bool(getattr(args, "quiet", False)))):
-        write_results(report, ctx.state(CHECK_RESULTS), {})
+        write_results(results, ctx.state(CHECK_RESULTS), {})
         folder = write_report(ctx)
         written.record(ctx, ctx.session.written)
     if not getattr(args, "quiet", False):  # as the build prints them: one line per kind
-        report_warnings(check_warnings(report), ctx.label(folder / "report.md"))
-    code = _print(report, ctx.label(ctx.robot_path))
+        report_warnings(results.warnings(), ctx.label(folder / "report.md"))
+    code = _print(results, ctx.label(ctx.robot_path))
     print(f"  report: {ctx.label(folder / 'report.md')}")
     if (folder / "index.html").is_file():  # output.page: its tables are the report's
         print(f"  page: {ctx.label(folder / 'index.html')}")

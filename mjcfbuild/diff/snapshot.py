@@ -303,39 +303,26 @@ def _home_sources(path: Path) -> dict[str, str]:
 def _checks(path: Path) -> dict[str, Any] | None:
     """What the check found: passed or not, its failures, the hold, stand and Menagerie tests;
     None when the build did not check."""
-    try:
-        results = json.loads(path.read_text())
-    except (OSError, ValueError):
+    from mjcfbuild.check.results import CheckResults
+
+    results = CheckResults.read(path)
+    if results is None:
         return None
-    if not isinstance(results, dict):
-        return None
-    stand = _stand(results)
-    hold = results.get("hold") or None
-    menagerie = results.get("menagerie_test") or None
+    stand = results.stand
+    menagerie = results.menagerie_test
     return {
-        "passes": bool(results.get("passes")),
-        "failures": [str(f) for f in results.get("failures", [])],
-        "stand": stand,
-        "hold_deviation": hold.get("max_deviation") if isinstance(hold, dict) else None,
-        "menagerie_finite": menagerie.get("finite") if isinstance(menagerie, dict) else None,
-        "menagerie_warnings": len(menagerie.get("warnings", []))
-        if isinstance(menagerie, dict)
+        "passes": results.passes,
+        "failures": [str(f) for f in results.failures],
+        "stand": {
+            "verdict": results.stand_verdict(),
+            "max_tilt": stand.max_tilt,
+            "max_sink": stand.max_sink,
+        }
+        if stand
         else None,
-    }
-
-
-def _stand(results: dict[str, Any]) -> dict[str, Any] | None:
-    """The stand test of a floating robot: stands, falls or needs a controller, how far its
-    base tilted and sank; None for a fixed robot."""
-    stand = results.get("stand")
-    if not isinstance(stand, dict):
-        return None
-    fell = any("does not stand" in str(f) for f in results.get("failures", []))
-    verdict = "needs a controller" if stand.get("needs_controller") else "stands"
-    return {
-        "verdict": "falls" if fell else verdict,
-        "max_tilt": stand.get("max_tilt"),
-        "max_sink": stand.get("max_sink"),
+        "hold_deviation": results.hold.max_deviation if results.hold else None,
+        "menagerie_finite": menagerie.finite if menagerie else None,
+        "menagerie_warnings": len(menagerie.warnings) if menagerie else None,
     }
 
 

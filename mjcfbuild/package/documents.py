@@ -5,10 +5,13 @@ from __future__ import annotations
 import subprocess
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from mjcfbuild.markup import markdown_block, markdown_code
 from mjcfbuild.markup import markdown_text as md
+
+if TYPE_CHECKING:
+    from mjcfbuild.check.results import CheckResults
 
 LICENSE_NAMES = ("LICENSE", "LICENSE.txt", "LICENSE.md", "LICENCE", "COPYING", "COPYING.txt")
 CHANGELOG_TITLE = "# Changelog"
@@ -66,7 +69,7 @@ def find_license(folders: list[Path], top: Path | None, levels: int = 3) -> Path
     return None
 
 
-def readme(info: Provenance, check: dict[str, Any], assembly: dict[str, Any]) -> str:
+def readme(info: Provenance, check: CheckResults | None, assembly: dict[str, Any]) -> str:
     """README.md: where the model comes from, how it was derived, what it passed."""
     name, source = markdown_code(info.name), markdown_code(info.source)
     lines = [f"# {md(info.name)}", ""]
@@ -148,35 +151,33 @@ def _derived(assembly: dict[str, Any]) -> list[str]:
     return lines or ["- nothing beyond MuJoCo's own URDF conversion"]
 
 
-def _checks(check: dict[str, Any]) -> list[str]:
-    if not check:
+def _checks(check: CheckResults | None) -> list[str]:
+    if check is None:
         return ["The build did not check this model (check.enabled: false)."]
     lines = []
-    if check.get("loads"):
+    if check.loads:
         lines.append("- loads and simulates in MuJoCo")
-    kinematics = check.get("kinematics") or {}
-    if "max_position_error" in kinematics:
+    kinematics = check.kinematics
+    if kinematics:
         lines.append(
-            f"- every link where the URDF puts it: {kinematics['max_position_error']:.1g} m, "
-            f"{kinematics['max_rotation_error']:.1g} rad at most over "
-            f"{kinematics.get('configurations')} configurations"
+            f"- every link where the URDF puts it: {kinematics.max_position_error:.1g} m, "
+            f"{kinematics.max_rotation_error:.1g} rad at most over "
+            f"{kinematics.configurations} configurations"
         )
-    masses = check.get("masses") or {}
-    if "model_total" in masses:
-        lines.append(f"- masses and inertias as in the URDF ({masses['model_total']:.6g} kg)")
-    menagerie = check.get("menagerie_test") or {}
-    if menagerie.get("finite"):
+    if check.masses:
+        lines.append(f"- masses and inertias as in the URDF ({check.masses.model_total:.6g} kg)")
+    if check.menagerie_test and check.menagerie_test.finite:
         lines.append("- MuJoCo Menagerie's model test: no warnings")
-    hold = check.get("hold") or {}
-    if hold.get("max_deviation") is not None:
-        lines.append(f"- holds its home pose (within {hold['max_deviation']:.2g})")
-    if check.get("stand"):
+    if check.hold:
+        lines.append(f"- holds its home pose (within {check.hold.max_deviation:.2g})")
+    if check.stand_verdict() == "stands":
         lines.append("- stands on the floor at home")
-    failures = check.get("failures") or []
-    if failures:
+    elif check.standing_note():  # the check passed, but it would not say "stands"
+        lines.append(f"- {check.standing_note(md)}")
+    if check.failures:
         lines.append("")
-        lines.append(f"**{len(failures)} check(s) failed:**")
-        lines += [f"- {md(failure)}" for failure in failures]
+        lines.append(f"**{len(check.failures)} check(s) failed:**")
+        lines += [f"- {md(failure)}" for failure in check.failures]
     return lines
 
 

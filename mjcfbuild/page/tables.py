@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import re
+from dataclasses import asdict
 
 from mjcfbuild.markup import html_text
 
@@ -176,11 +177,19 @@ def tables_script(report: dict) -> bytes:
     """The report's tables as ``window.MJCFBUILD_TABLES`` (HTML), for the page: the same
     bytes for the same report (build times and cache counters are not in it)."""
     from mjcfbuild.check.report_page import markdown
+    from mjcfbuild.check.results import CheckResults
 
     text = markdown(report)
-    check = report.get("check") or {}
+    checked = report.get("check")
+    results = CheckResults.from_dict(checked) if checked else CheckResults()
     # What the build's check measured, which the page shows beside what the browser measures.
-    measured = {key: check[key] for key in ("hold", "stand", "needs_controller") if key in check}
+    measured: dict[str, object] = {}
+    if results.hold:
+        measured["hold"] = asdict(results.hold)
+    if results.stand:
+        measured["stand"] = results.stand.to_dict()
+    if results.needs_controller:
+        measured["needs_controller"] = results.needs_controller
     return (
         f"window.MJCFBUILD_TABLES = {json.dumps(markdown_html(text))};\n"
         f"window.MJCFBUILD_CHECKED = {json.dumps(measured, sort_keys=True)};\n"

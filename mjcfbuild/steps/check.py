@@ -7,7 +7,8 @@ from pathlib import Path
 
 from mjcfbuild.check.contacts import part_bodies
 from mjcfbuild.check.loading import asset_sources, compile_model
-from mjcfbuild.check.model_check import CheckOptions, CheckReport, check_model
+from mjcfbuild.check.model_check import CheckOptions, check_model
+from mjcfbuild.check.results import CheckResults, GazeboSensor, Runtime
 from mjcfbuild.errors import CheckError
 from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.steps.outputs import write_output
@@ -19,23 +20,23 @@ from mjcfbuild.urdf.transforms import vec3
 def run(payload: dict) -> dict:
     """Check the model; write the results (also when a check fails, for the report)."""
     request = CheckPayload.from_dict(payload)
-    report = check_built(request)
+    results = check_built(request)
     outputs: dict[str, str] = {}
-    write_results(report, Path(request.output), outputs)
-    if report.failures:
-        more = len(report.failures) - 1
+    write_results(results, Path(request.output), outputs)
+    if results.failures:
+        more = len(results.failures) - 1
         source = read_plan(Path(request.plan)).robot_model().source
-        file, line, text = _located(report.failures[0], source, request.model_label)
+        file, line, text = _located(results.failures[0], source, request.model_label)
         raise CheckError(
             f"check: {text}",
             file=file,
             line=line,
             hint=f"{more} more failure{'s' if more > 1 else ''} in the report" if more else None,
         )
-    return {"outputs": outputs, "warnings": check_warnings(report)}
+    return {"outputs": outputs, "warnings": results.warnings()}
 
 
-def check_built(request: CheckPayload) -> CheckReport:
+def check_built(request: CheckPayload) -> CheckResults:
     """Every check of a built model: against its URDF, its MJCF parts alone and
     mujoco_ros2_control's rules. The build's check task and ``mjcfbuild check`` both run this,
     so they write the same check.json."""
@@ -47,7 +48,7 @@ def check_built(request: CheckPayload) -> CheckReport:
         assembly = {}
     repaired = {repair["body"] for repair in assembly.get("repairs", [])}
     sources = asset_sources(Path(request.assembly_report))
-    report = check_model(
+    results = check_model(
         robot,
         Path(request.model),
         Path(request.scene),
@@ -58,52 +59,44 @@ def check_built(request: CheckPayload) -> CheckReport:
         sources=sources,
         part_bodies=part_bodies(request.mjcf_parts),
     )
-    if request.mjcf_parts and report.results.get("loads"):
-        _check_parts(report, Path(request.model), request.mjcf_parts, request.options, sources)
-    add_runtime_check(report, Path(request.model), plan.control(), sources)
+    if request.mjcf_parts and results.loads:
+        results = _check_parts(
+            results, Path(request.model), request.mjcf_parts, request.options, sources
+        )
+    results = add_runtime_check(results, Path(request.model), plan.control(), sources)
     gazebo = plan.gazebo()
     if gazebo:
         # What each Gazebo sensor became, and what of it MuJoCo does not model (noise, rates).
-        report.results["gazebo_sensors"] = [
-            {
-                "name": sensor.name,
-                "type": sensor.type,
-                "reference": sensor.reference,
-                "modelled": sensor.kind is not None,
-                "not_modelled": sensor.not_modelled,
-            }
+        sensors = [
+            GazeboSensor(
+                name=sensor.name,
+                type=sensor.type,
+                reference=sensor.reference,
+                modelled=sensor.kind is not None,
+                not_modelled=sensor.not_modelled,
+            )
             for sensor in gazebo
         ]
-    return report
+        results = results.add(gazebo_sensors=sensors)
+    return results
 
 
-def write_results(report: CheckReport, path: Path, outputs: dict[str, str]) -> None:
+def write_results(results: CheckResults, path: Path, outputs: dict[str, str]) -> None:
     """check.json: whether it passes, the failures and every result."""
-    data = {"passes": report.passes, "failures": report.failures, **report.results}
-    write_output(path, (json.dumps(data, indent=1, sort_keys=True) + "\n").encode(), outputs)
-
-
-def check_warnings(report: CheckReport) -> list[str]:
-    """What the check found worth a warning that is not a failure."""
-    plausibility = report.results.get("plausibility") or {}
-    return (
-        _standing_notes(report.results)
-        + plausibility.get("warnings", [])
-        + (report.results.get("mujoco_ros2_control") or {}).get("warnings", [])
-    )
+    write_output(path, results.to_json(), outputs)
 
 
 def add_runtime_check(
-    report: CheckReport, model_path: Path, control: Ros2Control, sources: dict[str, Path]
-) -> None:
+    results: CheckResults, model_path: Path, control: Ros2Control, sources: dict[str, Path]
+) -> CheckResults:
     """The mujoco_ros2_control section, where the description has a <ros2_control> block."""
-    if not report.results.get("loads") or not (control.joints or control.sensors):
-        return
+    if not results.loads or not (control.joints or control.sensors):
+        return results
     from mjcfbuild.check.runtime import check_runtime
 
-    results, failures, warnings = check_runtime(compile_model(model_path, sources), control)
-    report.results["mujoco_ros2_control"] = {**results, "warnings": warnings}
-    report.failures += failures
+    found, failures, warnings = check_runtime(compile_model(model_path, sources), control)
+    runtime = Runtime(found["joints"], found["sensors"], found["devices"], warnings)
+    return results.add(failures, mujoco_ros2_control=runtime)
 
 
 def _located(failure: str, source: str, model_label: str) -> tuple[str, int | None, str]:
@@ -128,18 +121,19 @@ def _read_reference(path: Path) -> dict:
 
 
 def _check_parts(
-    report: CheckReport,
+    results: CheckResults,
     model_path: Path,
     parts: list[MjcfPartFiles],
     options: dict,
     sources: dict[str, Path],
-) -> None:
+) -> CheckResults:
     """Compare every MJCF part with the part compiled alone; add results and failures."""
-    from mjcfbuild.check.parts import PartReference, check_part
+    from mjcfbuild.check.parts import PartReference, PartResult, check_part
 
     model = compile_model(model_path, sources)
     tolerance = max(options["position_tolerance"], options["rotation_tolerance"])
-    results = {}
+    found: dict[str, PartResult] = {}
+    failures: list[str] = []
     for entry in parts:
         reference = PartReference(
             prefix=entry.prefix,
@@ -150,30 +144,16 @@ def _check_parts(
             quat=(entry.quat[0], entry.quat[1], entry.quat[2], entry.quat[3]),
         )
         result = check_part(model, reference, options["configurations"], options["seed"], tolerance)
-        results[entry.prefix] = result.to_dict()
+        found[entry.prefix] = result
         where = f"MJCF part {entry.prefix} ({entry.label})"
         if result.missing:
-            report.failures.append(f"{where}: {', '.join(result.missing)} not in the model")
-        report.failures += [f"{where}: {problem}" for problem in result.problems]
+            failures.append(f"{where}: {', '.join(result.missing)} not in the model")
+        failures += [f"{where}: {problem}" for problem in result.problems]
         if result.max_position_error > options["position_tolerance"] or (
             result.max_rotation_error > options["rotation_tolerance"]
         ):
-            report.failures.append(
+            failures.append(
                 f"{where}: body '{result.worst_body}' is {result.max_position_error:.3g} m and "
                 f"{result.max_rotation_error:.3g} rad from where the part alone puts it"
             )
-    report.results["parts"] = results
-
-
-def _standing_notes(results: dict) -> list[str]:
-    """A warning when a floating robot cannot stand without a controller (the stand test
-    fails the check of one that could but does not)."""
-    why = results.get("needs_controller")
-    if not why:
-        return []
-    if (results.get("stand") or {}).get("fell_without_controller"):
-        return [f"the robot cannot stand without a controller: {why}"]
-    return [
-        f"the robot cannot stand without a controller: {why}; the stand test was not run, "
-        "and the model holds its joints, not its balance"
-    ]
+    return results.add(failures, parts=found)

@@ -12,6 +12,7 @@ import json
 from pathlib import Path
 
 from mjcfbuild import __version__
+from mjcfbuild.check.results import CheckResults
 from mjcfbuild.diff.compare import compare
 from mjcfbuild.diff.render import change_line
 from mjcfbuild.diff.snapshot import model_snapshot
@@ -53,7 +54,7 @@ def run(payload: dict) -> dict:
         mjcfbuild_version=__version__,
         **{key: request.provenance[key] for key in _PROVENANCE},
     )
-    check = _read(Path(request.check)) if request.check else {}
+    check = CheckResults.read(Path(request.check)) if request.check else None
     assembly = _read(Path(request.assembly_report))
     write_output(folder / "README.md", readme(info, check, assembly).encode(), outputs)
     _changelog(folder, model, info, Path(request.record))

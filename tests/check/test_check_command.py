@@ -8,6 +8,7 @@ import numpy as np
 from PIL import Image
 
 import mjcfbuild
+from mjcfbuild.check.results import CheckResults
 from mjcfbuild.errors import EXIT_CHECK, EXIT_OK
 from tests.conftest import copy_example, run_cli, write
 
@@ -283,13 +284,21 @@ def test_the_console_of_a_robot_that_stands_says_passed_with_each_result(tmp_pat
 
 def test_check_writes_the_same_check_json_as_the_build_mjcf_parts_included(tmp_path):
     """One code path: `mjcfbuild check` runs the build's check (steps.check.check_built), so the
-    MJCF part's comparison the build wrote is not lost."""
+    MJCF part's comparison the build wrote is not lost, and check.json and the report come out
+    byte for byte as the build wrote them."""
     example = copy_example("arm_mjcf_gripper", tmp_path)
     assert run_cli("build", str(example / "robot.yaml")).code == EXIT_OK
     record = example / "mjcf/.mjcfbuild/check.json"
-    built = record.read_text()
-    assert '"parts"' in built
+    report = example / "mjcf/report/report.md"
+    built, built_report = record.read_bytes(), report.read_bytes()
+    parts = CheckResults.from_json(built).parts
+    assert parts and all(part.configurations > 0 for part in parts.values()), parts
     record.unlink()
     result = run_cli("check", str(example / "robot.yaml"))
     assert result.code == EXIT_OK, result.stderr
-    assert record.read_text() == built
+    assert record.read_bytes() == built
+    assert report.read_bytes() == built_report
+    prefix = next(iter(parts))
+    assert any(
+        line.strip().startswith(f"MJCF part {prefix}") for line in result.stdout.splitlines()
+    )

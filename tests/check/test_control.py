@@ -44,7 +44,7 @@ def test_a_runaway_joint_is_named_with_its_force_range_and_the_fix(tmp_path, mon
         "placeholder, give the real one (a rule's forcerange in actuators:), or lower "
         "actuators.frequency"
     ]
-    assert report.results["menagerie_test"]["unstable_joint"] == "swing"
+    assert report.results.menagerie_test.unstable_joint == "swing"
 
 
 def test_a_servo_within_its_real_torque_passes():

@@ -25,7 +25,7 @@ def test_a_parser_bug_that_the_build_shares_is_caught(tmp_path):
     model = _model_of_the_parse(tmp_path, "-0.3")  # and the build followed the parse
     reference = read_kinematics(ROUNDED_URDF.encode())
     report = check_model(robot, model, model, set(), reference=reference)
-    assert report.results["kinematics"]["reference"] == "yourdfpy"
+    assert report.kinematics.reference == "yourdfpy"
     assert any(f.startswith("link 'lower' is 0.1 m") for f in report.failures), report.failures
 
 
@@ -36,7 +36,7 @@ def test_the_correct_model_passes_and_an_unreadable_text_falls_back(tmp_path):
     assert check_model(robot, model, model, set(), reference=reference).passes
     fallback = check_model(robot, model, model, set(), reference=read_kinematics(b"<robot"))
     assert fallback.passes
-    assert fallback.results["kinematics"]["reference"].startswith("mjcfbuild's URDF parser")
+    assert fallback.kinematics.reference.startswith("mjcfbuild's URDF parser")
 
 
 JOINTED_URDF = """<robot name="jointed">

@@ -7,6 +7,7 @@ import json
 
 import pytest
 
+from mjcfbuild.check.results import FastestJoint
 from mjcfbuild.check.speeds import DRIVEN_MULTIPLE, FREE_MULTIPLE, joint_speeds, speed_results
 from tests.conftest import run_cli, write
 from tests.control.test_home import _urdf
@@ -21,9 +22,9 @@ def test_a_driven_joint_is_held_to_its_limit_and_a_free_one_to_a_multiple():
         {"knee": "hinge", "elbow": "hinge", "wrist": "hinge"},
         [DRIVE],
     )
-    results, failures = speed_results(speeds)
-    assert results["max_joint_speed"] == {"joint": "wrist", "speed": 120.0, "limit": 2.0}
-    assert [s["joint"] for s in results["speed_bound"]["over_limit"]] == ["elbow", "knee", "wrist"]
+    bound, failures = speed_results(speeds)
+    assert bound.fastest == FastestJoint("wrist", 120.0, 2.0)
+    assert [s.joint for s in bound.over_limit] == ["elbow", "knee", "wrist"]
     assert len(failures) == 1 and failures[0].startswith(
         f"joint 'wrist' reached 120 rad/s under pseudorandom control, more than {FREE_MULTIPLE:g} "
         "times its velocity limit 2 rad/s (urdf)"

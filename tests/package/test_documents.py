@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from mjcfbuild.check.results import CheckResults, Stand
 from mjcfbuild.markup import markdown_text
 from mjcfbuild.package.documents import Provenance, changelog, find_license, readme
 from tests.page.hostile import CODE, PICTURE, PIPES, TAG, markup_outside_code
@@ -51,9 +52,30 @@ def test_names_in_the_readme_and_changelog_stay_text():
         "repairs": [{"body": CODE, "problem": PIPES, "before": 1, "after": 2}],
         "warnings": [TAG],
     }
-    text = readme(info, {"loads": True, "failures": [PICTURE]}, assembly)
+    text = readme(info, CheckResults(loads=True, failures=[PICTURE]), assembly)
     assert markup_outside_code(text) == []
     assert "name: robot\n# ``` a fence in a comment\n````" in text  # the block holds it whole
     assert text.startswith(f"# {markdown_text(PIPES)}\n")
     entry = changelog("", "abc", [markdown_text(f"joint {TAG}: range")])
     assert markup_outside_code(entry) == []
+
+
+def test_the_readme_says_a_robot_stands_only_when_it_stood():
+    """A robot that cannot stand without a controller passes its check; its README says why
+    instead of claiming that it stands."""
+    info = Provenance("r", "r.urdf", "name: r\n", "", "", "1.0", "3.3", "")
+    stood = readme(info, CheckResults(loads=True, stand=Stand(seconds=5.0)), {})
+    assert "- stands on the floor at home" in stood.splitlines()
+    balancer = CheckResults(
+        loads=True, stand=Stand(needs_controller="point feet"), needs_controller="point feet"
+    )
+    text = readme(info, balancer, {})
+    assert "stands on the floor" not in text
+    assert (
+        "- the robot cannot stand without a controller (point feet): the stand test was not run"
+        in text.splitlines()
+    )
+    fell = Stand(seconds=5.0, fell_without_controller="torque motors")
+    motors = CheckResults(loads=True, stand=fell, needs_controller="torque motors")
+    lines = readme(info, motors, {}).splitlines()
+    assert "- the robot cannot stand without a controller (torque motors)" in lines

@@ -1,0 +1,610 @@
+"""The check's results, typed: what ``check.json`` holds, and the one way to read and write it.
+
+The build's check task and ``mjcfbuild check`` produce a :class:`CheckResults`
+(``steps.check.check_built``); the report, the page, the package's README, ``mjcfbuild diff``
+and the console read it, never the file's keys. Each section is a frozen record whose fields
+are its keys in check.json, so :meth:`CheckResults.to_json` writes the same bytes the check
+always wrote (sorted keys, one-space indent), and :meth:`CheckResults.from_json` reads them
+back, a file of an older mjcfbuild included: a key it lacks takes the field's default.
+
+A new check adds its section here (a record, a field of :class:`CheckResults`, its console
+line and report row), its own module under ``check/``, and the call that runs it in
+``check/model_check.py`` (``steps/check.py`` for one that needs the build's records): the
+readers need no change.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, fields, is_dataclass, replace
+from pathlib import Path
+from typing import Any, TypeVar
+
+from mjcfbuild.check.contacts import RestingContact
+from mjcfbuild.check.findings import BodyFinding
+from mjcfbuild.check.parts import PartResult
+from mjcfbuild.check.speeds import JointSpeed
+from mjcfbuild.markup import markdown_text as md
+
+R = TypeVar("R")
+
+CANNOT_STAND = "the robot cannot stand without a controller"
+
+
+def to_plain(value: Any) -> Any:
+    """``value`` as check.json holds it: records as dicts, lists and dicts of them likewise."""
+    if is_dataclass(value) and not isinstance(value, type):
+        to_dict = getattr(value, "to_dict", None)
+        return (
+            to_dict()
+            if to_dict
+            else {f.name: to_plain(getattr(value, f.name)) for f in fields(value)}
+        )
+    if isinstance(value, list | tuple):
+        return [to_plain(item) for item in value]
+    if isinstance(value, dict):
+        return {key: to_plain(item) for key, item in value.items()}
+    return value
+
+
+def _record(cls: type[R], data: Any, **nested: Callable[[Any], Any]) -> R:
+    """A record of ``cls`` from its dict in check.json: keys it does not have are dropped, keys
+    the dict lacks take the field's default, ``nested`` turns a key's value into its type."""
+    if not isinstance(data, dict):
+        data = {}
+    names = {f.name for f in fields(cls)}  # type: ignore[arg-type]
+    values = {key: value for key, value in data.items() if key in names}
+    for key, read in nested.items():
+        if values.get(key) is not None:
+            values[key] = read(values[key])
+    return cls(**values)
+
+
+def _listed(cls: type[R]) -> Callable[[Any], list[R]]:
+    """A reader of a list of ``cls`` records."""
+    return lambda items: [_record(cls, item) for item in items if isinstance(item, dict)]
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """Zero-control steps of the scene (or the model alone)."""
+
+    model: str = ""
+    steps: int = 0
+    finite: bool = True
+    warnings: list[str] = field(default_factory=list)
+    stopped: str | None = None  # the MuJoCo error that stopped it
+
+    def to_dict(self) -> dict[str, Any]:
+        """As check.json holds it (``stopped`` only when it stopped)."""
+        data = {f.name: to_plain(getattr(self, f.name)) for f in fields(self)}
+        if self.stopped is None:
+            del data["stopped"]
+        return data
+
+
+@dataclass(frozen=True)
+class Kinematics:
+    """Every URDF link's pose in the model against the reference's, at random configurations."""
+
+    configurations: int = 0
+    max_position_error: float = 0.0
+    max_rotation_error: float = 0.0
+    worst_link: str | None = None
+    missing_links: list[str] = field(default_factory=list)
+    missing_joints: list[str] = field(default_factory=list)
+    reference: str = ""  # who read the URDF: yourdfpy, or mjcfbuild's parser and why
+
+
+@dataclass(frozen=True)
+class Joints:
+    """Joint types, axes and ranges against the URDF."""
+
+    problems: list[str] = field(default_factory=list)
+    relative_tolerance: float = 0.0
+
+
+@dataclass(frozen=True)
+class Masses:
+    """Masses, centres of mass and inertias against the URDF."""
+
+    urdf_total: float = 0.0
+    model_total: float = 0.0
+    problems: list[str] = field(default_factory=list)
+    repaired_bodies: list[str] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class PartContact:
+    """Two bodies of one MJCF part touching at home: the part's own behaviour, not a failure."""
+
+    part: str = ""
+    body1: str = ""
+    body2: str = ""
+    depth: float = 0.0
+    pose: str = ""
+
+
+@dataclass(frozen=True)
+class RestingContacts:
+    """Robot bodies touching at home, and the contact excludes that would let them be."""
+
+    pairs: list[RestingContact] = field(default_factory=list)
+    exclude: str = ""
+    inside_parts: list[PartContact] = field(default_factory=list)
+
+    @classmethod
+    def from_dict(cls, data: Any) -> RestingContacts:
+        """From check.json."""
+        return _record(cls, data, pairs=_listed(RestingContact), inside_parts=_listed(PartContact))
+
+
+@dataclass(frozen=True)
+class Actuation:
+    """Every moving joint driven by exactly one actuator."""
+
+    actuators: int = 0
+    problems: list[str] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class FloorGap:
+    """A floating robot's lowest collision geometry at home above (+) or below the floor."""
+
+    gap: float | None = None  # m; None where there is no collision geometry to measure
+
+
+@dataclass(frozen=True)
+class Hold:
+    """Holding home's ctrl for 1 s."""
+
+    max_deviation: float = 0.0
+    joint: str | None = None
+    floating: bool = False
+    base_tilt: float | None = None
+
+
+@dataclass(frozen=True)
+class Stand:
+    """A floating robot holding home's ctrl for 5 s on the floor (check.control.StandTest)."""
+
+    seconds: float = 0.0
+    max_tilt: float = 0.0
+    max_sink: float = 0.0
+    home_height: float = 0.0
+    max_deviation: float = 0.0
+    joint: str | None = None
+    needs_controller: str = ""  # why it cannot stand at all; the test did not run
+    com_margin: float = 0.0
+    wheels: list[str] = field(default_factory=list)
+    max_roll: float = 0.0
+    wheel_kv: float = 0.0
+    fell_without_controller: str = ""  # why it fell: torque motors cannot hold a pose
+
+    def to_dict(self) -> dict[str, Any]:
+        """As check.json holds it (``fell_without_controller`` only when it fell so)."""
+        data = {f.name: to_plain(getattr(self, f.name)) for f in fields(self)}
+        if not self.fell_without_controller:
+            del data["fell_without_controller"]
+        return data
+
+
+@dataclass(frozen=True)
+class MenagerieResult:
+    """MuJoCo Menagerie's model test: 1 s of pseudorandom control."""
+
+    warnings: list[str] = field(default_factory=list)
+    finite: bool = True
+    fastest_joint: str | None = None
+    fastest_speed: float = 0.0
+    unstable_joint: str | None = None
+
+
+@dataclass(frozen=True)
+class FastestJoint:
+    """The joint fastest under pseudorandom control, with its velocity limit."""
+
+    joint: str = ""
+    speed: float = 0.0
+    limit: float = 0.0
+
+
+@dataclass(frozen=True)
+class Speeds:
+    """The speed bound (check.speeds): in check.json, ``max_joint_speed`` and ``speed_bound``."""
+
+    fastest: FastestJoint | None = None
+    driven_multiple: float = 0.0
+    free_multiple: float = 0.0
+    over_limit: list[JointSpeed] = field(default_factory=list)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The two keys of check.json."""
+        return {
+            "max_joint_speed": to_plain(self.fastest),
+            "speed_bound": {
+                "driven_multiple": self.driven_multiple,
+                "free_multiple": self.free_multiple,
+                "over_limit": to_plain(self.over_limit),
+            },
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Speeds | None:
+        """From check.json (None where the bound was not measured)."""
+        if "speed_bound" not in data and "max_joint_speed" not in data:
+            return None
+        bound = _record(cls, data.get("speed_bound"), over_limit=_listed(JointSpeed))
+        fastest = data.get("max_joint_speed")
+        return replace(bound, fastest=_record(FastestJoint, fastest) if fastest else None)
+
+
+@dataclass(frozen=True)
+class MeshStatistics:
+    """One body's mesh vertices and faces, visual and collision, and its convex parts."""
+
+    body: str = ""
+    visual_vertices: int = 0
+    visual_faces: int = 0
+    collision_vertices: int = 0
+    collision_faces: int = 0
+    convex_parts: int = 0
+
+
+@dataclass(frozen=True)
+class PlausibilityResults:
+    """The plausibility test (check.plausibility): the bodies it named and why."""
+
+    bodies: int = 0
+    findings: list[BodyFinding] = field(default_factory=list)
+    failures: list[str] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+
+    @classmethod
+    def from_dict(cls, data: Any) -> PlausibilityResults:
+        """From check.json."""
+        return _record(cls, data, findings=_listed(BodyFinding))
+
+
+@dataclass(frozen=True)
+class Runtime:
+    """What mujoco_ros2_control makes of the <ros2_control> block (check.runtime); the rows
+    are check.runtime's own records."""
+
+    joints: list[dict[str, Any]] = field(default_factory=list)
+    sensors: list[dict[str, Any]] = field(default_factory=list)
+    devices: list[dict[str, Any]] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class GazeboSensor:
+    """A URDF Gazebo sensor: whether the model has it, and what of it MuJoCo does not model."""
+
+    name: str = ""
+    type: str = ""
+    reference: str = ""
+    modelled: bool = False
+    not_modelled: list[str] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class CheckResults:
+    """Every result of the check of a model, and the failures among them. A section is None
+    where its check did not run (the model did not load, it has no home keyframe...)."""
+
+    loads: bool = False
+    failures: list[str] = field(default_factory=list)
+    simulation: Simulation | None = None
+    kinematics: Kinematics | None = None
+    joints: Joints | None = None
+    masses: Masses | None = None
+    resting_contacts: RestingContacts | None = None
+    actuation: Actuation | None = None
+    home: bool | None = None  # whether the model has a home keyframe
+    floor: FloorGap | None = None
+    hold: Hold | None = None
+    stand: Stand | None = None
+    needs_controller: str = ""  # why the robot cannot stand without one ('' if it can)
+    menagerie_test: MenagerieResult | None = None
+    speeds: Speeds | None = None
+    meshes: list[MeshStatistics] | None = None
+    plausibility: PlausibilityResults | None = None
+    parts: dict[str, PartResult] | None = None  # by the MJCF part's prefix
+    mujoco_ros2_control: Runtime | None = None
+    gazebo_sensors: list[GazeboSensor] | None = None
+
+    @property
+    def passes(self) -> bool:
+        """Whether every check passed."""
+        return not self.failures
+
+    def add(self, failures: Sequence[str] = (), **sections: Any) -> CheckResults:
+        """These results with ``sections`` set and ``failures`` added."""
+        return replace(self, failures=[*self.failures, *failures], **sections)
+
+    def to_dict(self) -> dict[str, Any]:
+        """check.json's content: whether it passes, the failures and every section that ran."""
+        data: dict[str, Any] = {"passes": self.passes}
+        for item in fields(self):
+            value = getattr(self, item.name)
+            if value is None or (item.name == "needs_controller" and not value):
+                continue
+            if item.name == "speeds":
+                data.update(value.to_dict())
+            elif item.name == "floor":
+                data["floor_gap"] = value.gap
+            else:
+                data[item.name] = to_plain(value)
+        return data
+
+    def to_json(self) -> bytes:
+        """check.json's bytes."""
+        return (json.dumps(self.to_dict(), indent=1, sort_keys=True) + "\n").encode()
+
+    @classmethod
+    def from_dict(cls, data: Any) -> CheckResults:
+        """The results check.json holds (an empty record where it holds none)."""
+        if not isinstance(data, dict):
+            data = {}
+        parts = data.get("parts")
+        results = _record(
+            cls,
+            data,
+            simulation=lambda d: _record(Simulation, d),
+            kinematics=lambda d: _record(Kinematics, d),
+            joints=lambda d: _record(Joints, d),
+            masses=lambda d: _record(Masses, d),
+            resting_contacts=RestingContacts.from_dict,
+            actuation=lambda d: _record(Actuation, d),
+            hold=lambda d: _record(Hold, d),
+            stand=lambda d: _record(Stand, d),
+            menagerie_test=lambda d: _record(MenagerieResult, d),
+            meshes=_listed(MeshStatistics),
+            plausibility=PlausibilityResults.from_dict,
+            mujoco_ros2_control=lambda d: _record(Runtime, d),
+            gazebo_sensors=_listed(GazeboSensor),
+        )
+        return replace(
+            results,
+            floor=FloorGap(data["floor_gap"]) if "floor_gap" in data else None,
+            speeds=Speeds.from_dict(data),
+            parts={
+                prefix: _record(PartResult, part)
+                for prefix, part in parts.items()
+                if isinstance(part, dict)
+            }
+            if isinstance(parts, dict)
+            else None,
+        )
+
+    @classmethod
+    def from_json(cls, text: str | bytes) -> CheckResults:
+        """The results of check.json's text (ValueError where it is not JSON)."""
+        return cls.from_dict(json.loads(text))
+
+    @classmethod
+    def read(cls, path: Path) -> CheckResults | None:
+        """The results in check.json at ``path``; None where there are none to read (the build
+        did not check, or the file is not a check's)."""
+        try:
+            data = json.loads(path.read_bytes())
+            return cls.from_dict(data) if isinstance(data, dict) else None
+        except (OSError, ValueError, TypeError):  # TypeError: a record without its keys
+            return None
+
+    def stand_verdict(self) -> str | None:
+        """A floating robot's stand test in a word: "stands", "falls" or "needs a controller";
+        None for a robot that was not stood (fixed, or no home)."""
+        if self.stand is None:
+            return None
+        if any("does not stand" in failure for failure in self.failures):
+            return "falls"
+        # Torque motors that let it fall: a controller's job, not a failure (check.control).
+        needs = self.stand.needs_controller or self.stand.fell_without_controller
+        return "needs a controller" if needs else "stands"
+
+    def standing_note(self, escape: Callable[[str], str] = str, warning: bool = False) -> str:
+        """Why the robot cannot stand without a controller, '' where it can: the words of the
+        report's verdict and the console (``escape`` for Markdown), or with ``warning`` the
+        build's warning, which also says what the model then holds."""
+        why = self.needs_controller
+        if not why:
+            return ""
+        ran = bool(self.stand and self.stand.fell_without_controller)
+        if warning:
+            return f"{CANNOT_STAND}: {why}" + (
+                ""
+                if ran
+                else "; the stand test was not run, and the model holds its joints, not its balance"
+            )
+        return f"{CANNOT_STAND} ({escape(why)})" + ("" if ran else ": the stand test was not run")
+
+    def warnings(self) -> list[str]:
+        """What the check found worth a warning that is not a failure."""
+        standing = self.standing_note(warning=True)
+        return (
+            ([standing] if standing else [])
+            + (self.plausibility.warnings if self.plausibility else [])
+            + (self.mujoco_ros2_control.warnings if self.mujoco_ros2_control else [])
+        )
+
+    def console_lines(self) -> list[tuple[str, str]]:
+        """Each check that ran (or was skipped) and its result, as the console shows them."""
+        if not self.loads:
+            return [("loads", "NO")]
+        lines = [("loads", "yes")]
+        if self.simulation:
+            sim = self.simulation
+            result = (
+                "STOPPED by a MuJoCo error"
+                if sim.stopped
+                else f"{'finite' if sim.finite else 'NOT FINITE'}, "
+                f"{len(sim.warnings)} MuJoCo warnings"
+            )
+            lines.append((f"{sim.steps} zero-control steps", result))
+        if self.kinematics:
+            kin = self.kinematics
+            lines.append(
+                (
+                    "link poses",
+                    f"max {kin.max_position_error:.2g} m, {kin.max_rotation_error:.2g} rad at "
+                    f"{kin.configurations} configurations",
+                )
+            )
+        if self.joints:
+            lines.append(("joints", f"{len(self.joints.problems)} problems"))
+        if self.masses:
+            masses = self.masses
+            lines.append(
+                (
+                    "masses",
+                    f"{masses.model_total:.6g} kg (URDF {masses.urdf_total:.6g} kg), "
+                    f"{len(masses.problems)} problems",
+                )
+            )
+        if self.resting_contacts:
+            pairs = self.resting_contacts.pairs
+            lines.append(("resting contacts", str(len(pairs)) if pairs else "none"))
+        if self.actuation is not None:
+            actuation = self.actuation
+            lines.append(
+                (
+                    "every moving joint driven",
+                    f"{actuation.actuators} actuators, {len(actuation.problems)} problems",
+                )
+            )
+        if self.floor is not None and self.floor.gap is not None:
+            lines.append(("on the floor at home", f"gap {self.floor.gap * 1000:.2g} mm"))
+        if self.hold:
+            joint = f" ({self.hold.joint})" if self.hold.joint else ""
+            deviation = f"largest deviation {self.hold.max_deviation:.3g}{joint}"
+            lines.append(("hold home 1 s", deviation))
+        stand = self.stand
+        if stand and stand.fell_without_controller:
+            lines.append(
+                ("stand 5 s", f"FELL: needs a controller ({stand.fell_without_controller})")
+            )
+        elif stand and stand.needs_controller:
+            lines.append(("stand 5 s", f"NOT RUN: needs a controller ({stand.needs_controller})"))
+        elif stand:
+            lines.append(
+                (
+                    f"stand {stand.seconds:g} s",
+                    f"tilt {stand.max_tilt:.2g} rad, sank {stand.max_sink * 1000:.0f} mm",
+                )
+            )
+        elif self.home is False:
+            lines.append(("hold and stand", "NOT RUN: the model has no home keyframe"))
+        if self.menagerie_test:
+            test = self.menagerie_test
+            lines.append(
+                (
+                    "1 s pseudorandom control",
+                    f"{'finite' if test.finite else 'NOT FINITE'}, "
+                    f"{len(test.warnings)} MuJoCo warnings",
+                )
+            )
+        fastest = self.speeds.fastest if self.speeds else None
+        if fastest:
+            lines.append(
+                (
+                    "joint speeds",
+                    f"fastest {fastest.joint} {fastest.speed:.3g} (limit {fastest.limit:g})",
+                )
+            )
+        if self.plausibility:
+            found = self.plausibility
+            lines.append(
+                (
+                    "plausibility",
+                    f"{len(found.failures)} failures, {len(found.warnings)} warnings",
+                )
+            )
+        for prefix, part in sorted((self.parts or {}).items()):
+            lines.append(
+                (
+                    f"MJCF part {prefix}",
+                    f"max {part.max_position_error:.2g} m, {len(part.problems)} problems",
+                )
+            )
+        if self.mujoco_ros2_control:
+            runtime = self.mujoco_ros2_control
+            lines.append(
+                (
+                    "mujoco_ros2_control",
+                    f"{len(runtime.joints)} joints, {len(runtime.sensors)} sensors, "
+                    f"{len(runtime.devices)} cameras/lidars",
+                )
+            )
+        return lines
+
+    def table_rows(self) -> list[str]:
+        """The rows of report.md's table of checks (Markdown, names escaped)."""
+        rows = [f"| loads | {'yes' if self.loads else 'no'} |"]
+        if self.simulation:
+            sim = self.simulation
+            rows.append(
+                f"| {sim.steps} zero-control steps of {md(sim.model)} | "
+                f"{'finite' if sim.finite else 'NOT finite'}, "
+                f"{len(sim.warnings)} MuJoCo warnings |"
+            )
+        if self.kinematics:
+            kin = self.kinematics
+            rows.append(
+                f"| link poses at {kin.configurations} configurations | max error "
+                f"{kin.max_position_error:.2g} m, {kin.max_rotation_error:.2g} rad; "
+                f"{len(kin.missing_links)} links missing |"
+            )
+        for prefix, part in sorted((self.parts or {}).items()):
+            rows.append(
+                f"| MJCF part {md(prefix)} ({md(part.label)}) against the part alone, at "
+                f"{part.configurations} configurations | max error "
+                f"{part.max_position_error:.2g} m, {part.max_rotation_error:.2g} rad; "
+                f"{len(part.missing)} missing, {len(part.problems)} problems |"
+            )
+        if self.actuation is not None:
+            rows.append(
+                f"| every moving joint driven once | {self.actuation.actuators} actuators, "
+                f"{len(self.actuation.problems)} problems |"
+            )
+        if self.floor is not None and self.floor.gap is not None:
+            rows.append(f"| floating base on the floor at home | gap {self.floor.gap:.2g} m |")
+        if self.hold:
+            hold = self.hold
+            where = f" ({md(hold.joint)})" if hold.joint else ""
+            tilted = (
+                f"; the base tilted {hold.base_tilt:.2g} rad" if hold.base_tilt is not None else ""
+            )
+            rows.append(
+                f"| hold home's ctrl for 1 s | largest deviation {hold.max_deviation:.3g}{where}"
+                f"{tilted} |"
+            )
+        stand = self.stand
+        if stand and stand.fell_without_controller:
+            rows.append(f"| stand at home for 5 s | fell: {md(stand.fell_without_controller)} |")
+        elif stand and stand.needs_controller:
+            rows.append(f"| stand at home for 5 s | not run: {md(stand.needs_controller)} |")
+        elif stand:
+            rows.append(
+                f"| stand at home holding its ctrl for {stand.seconds:g} s | base tilted "
+                f"{stand.max_tilt:.2g} rad, sank {stand.max_sink * 1000:.0f} mm; largest "
+                f"joint deviation {stand.max_deviation:.3g} ({md(stand.joint)}) |"
+            )
+        if self.menagerie_test:
+            test = self.menagerie_test
+            rows.append(
+                "| 1 s of pseudorandom control (Menagerie's model test) | "
+                f"{'finite' if test.finite else 'NOT finite'}, "
+                f"{len(test.warnings)} MuJoCo warnings |"
+            )
+        joint_problems = len(self.joints.problems) if self.joints else 0
+        rows.append(f"| joint types, axes, ranges | {joint_problems} problems |")
+        if self.masses:
+            masses = self.masses
+            rows.append(
+                f"| masses and inertias | total {masses.urdf_total:.6g} kg in the URDF, "
+                f"{masses.model_total:.6g} kg in the model; {len(masses.problems)} problems |"
+            )
+        return rows

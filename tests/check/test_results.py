@@ -1,0 +1,129 @@
+"""The check's typed results: check.json's bytes written and read back, and the words about a
+robot that cannot stand without a controller, which the report, console and warnings share."""
+
+from __future__ import annotations
+
+import json
+
+from mjcfbuild.check.model_check import check_model
+from mjcfbuild.check.reference import read_kinematics
+from mjcfbuild.check.results import (
+    CheckResults,
+    FastestJoint,
+    FloorGap,
+    Hold,
+    Simulation,
+    Speeds,
+    Stand,
+)
+from mjcfbuild.urdf.parse import parse_urdf
+from tests.check.test_check_command import MJCF, ROUNDED_MJCF, ROUNDED_URDF, URDF
+from tests.conftest import write
+
+
+def _checked(tmp_path, urdf: str, mjcf: str) -> CheckResults:
+    """The real check of a hand-written model against its URDF."""
+    model = write(tmp_path / "model.xml", mjcf)
+    robot = parse_urdf(urdf.encode(), "robot.urdf")
+    return check_model(robot, model, model, set(), reference=read_kinematics(urdf.encode()))
+
+
+def test_a_real_checks_results_read_back_to_the_same_bytes(tmp_path):
+    results = _checked(tmp_path, URDF, MJCF)
+    written = results.to_json()
+    assert CheckResults.from_json(written) == results
+    assert CheckResults.from_json(written).to_json() == written
+    data = json.loads(written)
+    assert data["passes"] is True and data["failures"] == []
+    # Keys as check.json always had them: the speed bound is two; no home, so no hold or stand.
+    assert {"max_joint_speed", "speed_bound", "menagerie_test", "meshes"} <= set(data)
+    assert data["home"] is False and not {"hold", "stand", "floor_gap", "speeds"} & set(data)
+    assert written == (json.dumps(data, indent=1, sort_keys=True) + "\n").encode()
+
+
+def test_a_failing_check_says_so_in_its_results(tmp_path):
+    text = ROUNDED_MJCF.replace("TOOL", "").replace(
+        '<body name="lower" pos="0 0 -0.2">', '<body name="lower" pos="0 0 -0.3">'
+    )
+    results = _checked(tmp_path, ROUNDED_URDF, text)
+    assert not results.passes
+    assert json.loads(results.to_json())["passes"] is False
+    assert CheckResults.from_json(results.to_json()).failures == results.failures
+
+
+def test_a_model_that_does_not_load_has_only_that_result(tmp_path):
+    results = _checked(tmp_path, URDF, "<mujoco><worldbody><body></mujoco>")
+    data = json.loads(results.to_json())
+    assert set(data) == {"passes", "failures", "loads"} and data["loads"] is False
+    assert results.console_lines() == [("loads", "NO")]
+
+
+def test_keys_present_only_when_they_say_something():
+    stopped = Simulation("scene.xml", 2000, False, [], stopped="mj_step: unstable")
+    results = CheckResults(
+        loads=True,
+        simulation=stopped,
+        floor=FloorGap(None),  # measured, without geometry to measure: written as null
+        speeds=Speeds(None, 1.5, 50.0, []),
+        stand=Stand(seconds=5.0),
+    )
+    data = json.loads(results.to_json())
+    assert data["simulation"]["stopped"] == "mj_step: unstable"
+    assert data["floor_gap"] is None and data["max_joint_speed"] is None
+    assert "fell_without_controller" not in data["stand"] and "needs_controller" not in data
+    assert (
+        "stopped" not in json.loads(CheckResults(simulation=Simulation()).to_json())["simulation"]
+    )
+    assert CheckResults.from_json(results.to_json()) == results
+
+
+def test_an_older_check_json_reads_with_defaults_and_a_broken_one_as_none(tmp_path):
+    old = CheckResults.from_dict({"passes": True, "failures": [], "hold": {"max_deviation": 0.1}})
+    assert old.hold == Hold(max_deviation=0.1)
+    assert old.stand is None and old.speeds is None
+    broken = write(tmp_path / "check.json", "{not json")
+    assert CheckResults.read(broken) is None
+    assert CheckResults.read(tmp_path / "missing.json") is None
+    assert CheckResults.read(write(tmp_path / "list.json", "[]")) is None
+    no_body = '{"resting_contacts": {"pairs": [{"depth": 1}]}}'
+    assert CheckResults.read(write(tmp_path / "pairs.json", no_body)) is None
+
+
+def test_the_standing_sentence_has_one_owner():
+    fell = CheckResults(
+        loads=True,
+        stand=Stand(seconds=5.0, fell_without_controller="torque motors"),
+        needs_controller="torque motors",
+    )
+    not_run = CheckResults(
+        loads=True, stand=Stand(needs_controller="a_line"), needs_controller="a_line"
+    )
+    assert fell.standing_note() == "the robot cannot stand without a controller (torque motors)"
+    assert not_run.standing_note() == (
+        "the robot cannot stand without a controller (a_line): the stand test was not run"
+    )
+    assert not_run.standing_note(lambda text: text.replace("_", "\\_")).startswith(
+        "the robot cannot stand without a controller (a\\_line)"
+    )
+    assert fell.warnings() == ["the robot cannot stand without a controller: torque motors"]
+    assert not_run.warnings() == [
+        "the robot cannot stand without a controller: a_line; the stand test was not run, and "
+        "the model holds its joints, not its balance"
+    ]
+    assert CheckResults(loads=True).standing_note() == "" and CheckResults().warnings() == []
+
+
+def test_the_stand_verdict_in_a_word():
+    stands = CheckResults(stand=Stand(seconds=5.0))
+    assert stands.stand_verdict() == "stands"
+    falls = CheckResults(stand=Stand(), failures=["the robot does not stand at home: it fell"])
+    assert falls.stand_verdict() == "falls"
+    assert CheckResults(stand=Stand(needs_controller="x")).stand_verdict() == "needs a controller"
+    fell = Stand(seconds=5.0, fell_without_controller="torque motors")
+    assert CheckResults(stand=fell).stand_verdict() == "needs a controller"
+    assert CheckResults().stand_verdict() is None
+
+
+def test_the_fastest_joint_is_on_the_console():
+    results = CheckResults(loads=True, speeds=Speeds(FastestJoint("knee", 3.14159, 2.0)))
+    assert ("joint speeds", "fastest knee 3.14 (limit 2)") in results.console_lines()
