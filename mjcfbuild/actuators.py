@@ -340,6 +340,43 @@ def actuator_kind(model: Any, index: int) -> str:
     return VELOCITY if bias[2] != 0 else "general"
 
 
+@dataclass(frozen=True)
+class ActuatorReading:
+    """What the diff compares of an actuator, read from a compiled model; a field added here
+    is snapshotted and compared (mjcfbuild.diff) without more."""
+
+    kind: str  # actuator_kind
+    kp: float
+    kv: float
+    gear: float
+    ctrlrange: list[float] | None  # None: not limited
+    forcerange: list[float] | None
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-friendly form."""
+        return asdict(self)
+
+
+READING_FIELDS = tuple(ActuatorReading.__dataclass_fields__)
+
+
+def read_actuator(model: Any, index: int) -> ActuatorReading:
+    """Actuator ``index`` of a compiled model as :class:`ActuatorReading`."""
+    kp, kv = servo_gains(model, index)
+    return ActuatorReading(
+        kind=actuator_kind(model, index),
+        kp=kp,
+        kv=kv,
+        gear=float(model.actuator_gear[index][0]),
+        ctrlrange=[float(v) for v in model.actuator_ctrlrange[index]]
+        if model.actuator_ctrllimited[index]
+        else None,
+        forcerange=[float(v) for v in model.actuator_forcerange[index]]
+        if model.actuator_forcelimited[index]
+        else None,
+    )
+
+
 def servo_gains(model: Any, index: int) -> tuple[float, float]:
     """Actuator ``index``'s kp and kv: a ``<dcmotor>``'s controller gains, else the gain and
     the bias's velocity term of a shortcut servo."""

@@ -20,6 +20,7 @@ from mjcfbuild.actuators import (
     as_position_servos,
     dcmotor_of,
     for_mujoco3,
+    read_actuator,
     resolve_choice,
     servo_gains,
     settle_kind,
@@ -56,6 +57,8 @@ def test_each_kind_is_read_back_as_written(kind, kp, kv):
     model = _compiled(record)
     assert actuator_kind(model, 0) == kind
     assert dcmotor_of(model, 0) is None
+    reading = read_actuator(model, 0)  # what the diff compares
+    assert (reading.kind, reading.gear, reading.ctrlrange) == (kind, 1.0, [-1.0, 1.0])
     gains = servo_gains(model, 0)
     if kind == "position":
         assert gains == (kp, kv)
@@ -71,6 +74,14 @@ def test_a_dcmotor_servo_reads_back_its_gains_line_and_force_limit():
     model = _compiled(record)
     assert actuator_kind(model, 0) == DCMOTOR
     assert servo_gains(model, 0) == (40.0, 2.5)
+    assert read_actuator(model, 0).to_dict() == {
+        "kind": DCMOTOR,
+        "kp": 40.0,
+        "kv": 2.5,
+        "gear": 1.0,
+        "ctrlrange": None,
+        "forcerange": [-10.0, 10.0],  # MuJoCo compiles the saturation into it
+    }
     motor = dcmotor_of(model, 0)
     assert motor is not None and motor.ki == 0 and motor.voltage_clamp == 24.0
     # The torque-speed line MuJoCo derived from the nominal point is the drive's.

@@ -12,7 +12,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from mjcfbuild.actuators import actuator_kind, servo_gains
+from mjcfbuild.actuators import read_actuator
 from mjcfbuild.errors import InputError, ModelError
 
 STATE_DIR = ".mjcfbuild"
@@ -154,19 +154,9 @@ def _actuators(model) -> dict[str, dict[str, Any]]:
         target = int(model.actuator_trnid[index][0])
         trn = int(model.actuator_trntype[index])
         kind = {0: mujoco.mjtObj.mjOBJ_JOINT, 4: mujoco.mjtObj.mjOBJ_SITE}.get(trn)
-        kp, kv = servo_gains(model, index)
         actuators[_name(model, mujoco.mjtObj.mjOBJ_ACTUATOR, index)] = {
             "target": _name(model, kind, target) if kind is not None else f"#{target}",
-            "kind": actuator_kind(model, index),
-            "kp": kp,
-            "kv": kv,
-            "gear": float(model.actuator_gear[index][0]),
-            "ctrlrange": _floats(model.actuator_ctrlrange[index])
-            if model.actuator_ctrllimited[index]
-            else None,
-            "forcerange": _floats(model.actuator_forcerange[index])
-            if model.actuator_forcelimited[index]
-            else None,
+            **read_actuator(model, index).to_dict(),
         }
     return actuators
 
