@@ -14,11 +14,11 @@ The build generates four kinds of actuator, each an MJCF element of its name:
 A robot.yaml actuator setting flows through here: :func:`resolve_choice` turns a joint's
 rule (or the defaults) into an :class:`ActuatorChoice`, :func:`actuator_record` carries it
 into the :class:`ActuatorRecord` that :mod:`mjcfbuild.control.apply` sizes the gains of, and
-:func:`actuator_attributes` writes that record as MJCF. What reads a model back - the diff, the URDF
-export, the checks, the home keyframe - reads it with :func:`actuator_kind`,
-:func:`servo_gains` and :func:`dcmotor_of`; the package formatter rounds and shares the
-attributes listed here; engines without ``<dcmotor>`` get the forms :func:`for_mujoco3` and
-:func:`as_position_servos` make.
+:func:`actuator_attributes` writes that record as MJCF. What reads a model back - the diff,
+the URDF export, the checks, the home keyframe - reads it with :func:`read_actuator`,
+:func:`actuator_kind`, :func:`servo_gains`, :func:`is_dcmotor` and :func:`dcmotor_of`; the
+package formatter rounds and shares the attributes listed here; engines without ``<dcmotor>``
+get the forms :func:`for_mujoco3` and :func:`as_position_servos` make.
 """
 
 from __future__ import annotations
