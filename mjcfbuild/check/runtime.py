@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import re
 
+from mjcfbuild.actuators import is_dcmotor
 from mjcfbuild.inputs.frames import ray_count
 from mjcfbuild.inputs.ros2_control import (
     Ros2Control,
@@ -154,14 +155,13 @@ def _joint(model, name: str, commands: list[str], pids: bool, failures: list[str
             f"its actuator '{label}' ({kind}, by its bias) takes, so the runtime refuses to "
             f"start; give it {_FIX.get(_family(first), '')}"
         )
-    dcmotor = int(model.actuator_gaintype[actuator]) == int(mujoco.mjtGain.mjGAIN_DCMOTOR)
     return {
         "joint": name,
         "interfaces": commands,
         "actuator": label,
         "kind": kind,
         "how": how,
-        "dcmotor": dcmotor,
+        "dcmotor": is_dcmotor(model, actuator),
     }
 
 

@@ -33,14 +33,15 @@ import itertools
 import math
 from dataclasses import asdict, dataclass, field
 
+from mjcfbuild.actuators import DCMOTOR, POSITION_KINDS, VELOCITY
+
 SETTLE = 0.5  # s of holding home before each test
 WINDOW = 1.5  # s of each test
 STEP = 0.1  # rad (m for a slide, rad/s for a velocity servo)
 SINE_HZ = 1.0
 SETTLED = 0.02  # the settling band, a share of the step
 SATURATED = 0.999  # a force at this share of its limit counts as saturated
-POSITION_TYPES = ("position", "dcmotor")
-TUNED_TYPES = (*POSITION_TYPES, "velocity")
+TUNED_TYPES = (*POSITION_KINDS, VELOCITY)
 
 
 @dataclass
@@ -168,7 +169,7 @@ def _group(model, settled, ctrl, name: str, label: str, records: list[dict]) -> 
         limited = bool(model.actuator_forcelimited[actuator])
         limits.append(float(max(abs(forcerange[0]), abs(forcerange[1]))) if limited else math.inf)
         motor = record.get("motor") or {}
-        speed_line = motor.get("no_load_speed") and record["type"] == "dcmotor"
+        speed_line = motor.get("no_load_speed") and record["type"] == DCMOTOR
         # A drive's torque-speed line: stall torque and no-load speed (inf: none).
         lines.append(
             (float(motor["stall_torque"]), float(motor["no_load_speed"]))

@@ -16,42 +16,32 @@ from typing import Any
 
 from lxml import etree
 
-from mjcfbuild.control.choose import (
+from mjcfbuild.actuators import (
+    ACTUATOR_TAGS,
+    NONE,
+    POSITION,
+    POSITION_KINDS,
+    USER,
+    VELOCITY,
     ActuatorChoice,
-    limit_notes,
-    placeholder_range,
-    positive_velocity,
+    ActuatorRecord,
+    actuator_attributes,
+    actuator_record,
+    has_speed_line,
+    is_dcmotor,
+    settle_kind,
 )
+from mjcfbuild.control.choose import limit_notes, placeholder_range, positive_velocity
 from mjcfbuild.control.efforts import EffortCap, describe, placeholder_efforts
 from mjcfbuild.control.floor import lowest_collision_point
 from mjcfbuild.control.home import HomeValue
-from mjcfbuild.control.motors import dcmotor_attributes, has_speed_line, urdf_drive
+from mjcfbuild.control.motors import urdf_drive
 from mjcfbuild.control.standing import MARGIN
-from mjcfbuild.inputs.apply import ACTUATOR_TAGS
 from mjcfbuild.numbers import output_list
 from mjcfbuild.urdf.limits import joint_range
 from mjcfbuild.urdf.model import Robot
 
 HOME = "home"
-
-
-@dataclass
-class ActuatorRecord:
-    """An actuator of the finished model, for the report."""
-
-    name: str
-    joint: str
-    type: str
-    source: str
-    kp: float | None = None
-    kv: float | None = None
-    ctrlrange: list[float] | None = None
-    forcerange: list[float] | None = None
-    placeholder_effort: float | None = None  # the URDF effort the forcerange replaced
-    weight_bearing: bool = False  # kp raised to hold the standing robot (control.standing)
-    armature: float | None = None  # added to the joint so the stiff servo stays stable
-    motor: dict | None = None  # issue 33: the drive (control.motors.Drive) behind the actuator
-    rule: int | None = None  # issue 33: the actuators.rules entry it came from (tuning groups)
 
 
 @dataclass
@@ -121,9 +111,9 @@ def make_ready(
         _set_force_limit(joints.get(choice.joint), choice, urdf_joints[choice.joint])
         if choice.gravcomp and urdf_joints[choice.joint].child in bodies:
             bodies[urdf_joints[choice.joint].child].set("gravcomp", "1")
-    generated = [c for c in choices if c.type not in ("none", "user")]
+    generated = [c for c in choices if c.type not in (NONE, USER)]
     readiness.notes += runtime_line_notes(generated)
-    readiness.passive = [c.joint for c in choices if c.type == "none"]
+    readiness.passive = [c.joint for c in choices if c.type == NONE]
     if generated and not _has_integrator(root):
         # Stiff servos on light links need the implicit treatment of actuator damping that
         # MuJoCo Menagerie's models use; the default Euler integrator treats it explicitly.
@@ -160,10 +150,10 @@ def make_ready(
         section = etree.SubElement(root, "actuator")
     taken = {e.get("name") for e in section} if section is not None else set()
     for choice in choices:
-        if choice.type == "user":
-            readiness.actuators.append(ActuatorRecord("", choice.joint, "user", "user"))
+        if choice.type == USER:
+            readiness.actuators.append(ActuatorRecord("", choice.joint, USER, USER))
             continue
-        if choice.type == "none":
+        if choice.type == NONE:
             continue
         motion = _coupled_motion(model, choice.joint, robot)
         servo = Servo(
@@ -178,8 +168,8 @@ def make_ready(
         readiness.actuators.append(record)
     _match_mirrored(model, data, readiness.actuators)
     for record in readiness.actuators:
-        if record.source != "user":
-            etree.SubElement(section, record.type, _attributes(record))
+        if record.source != USER:
+            etree.SubElement(section, record.type, actuator_attributes(record))
         if record.armature is not None and record.joint in joints:
             # Added to what the joint has (its URDF's or a default class's), which the inertia
             # the gains were sized for already holds.
@@ -273,7 +263,7 @@ def _drive_wheels(model, data, choices: list[ActuatorChoice]) -> list[ActuatorCh
         return choices
     wheels = wheel_joints(model, data, candidates)
     return [
-        replace(choice, type="velocity", source="wheel") if choice.joint in wheels else choice
+        replace(choice, type=VELOCITY, source="wheel") if choice.joint in wheels else choice
         for choice in choices
     ]
 
@@ -340,9 +330,7 @@ def _match_mirrored(model, data, records: list[ActuatorRecord]) -> None:
     (the larger of the two), so a left-right symmetric robot gets symmetric servos."""
     from mjcfbuild.control.standing import mirror_pairs
 
-    generated = {
-        r.joint: r for r in records if r.source != "user" and r.type in ("position", "dcmotor")
-    }
+    generated = {r.joint: r for r in records if r.source != USER and r.type in POSITION_KINDS}
     for left, right in mirror_pairs(model, data, sorted(generated)):
         first, second = generated[left], generated[right]
         for attribute in ("kp", "kv", "armature"):
@@ -476,12 +464,10 @@ def _actuator(
     """The actuator of a choice, its gains worked out from the joint's effective inertia; a
     ``cap`` replaces a placeholder effort."""
     name = choice.joint if choice.joint not in taken else f"{choice.joint}_actuator"
-    forcerange = list(choice.forcerange) if choice.forcerange else None
-    record = ActuatorRecord(name, choice.joint, choice.type, choice.source, forcerange=forcerange)
+    record = actuator_record(choice, name)
     if cap is not None:
         record.forcerange = [-cap.holding, cap.holding]
         record.placeholder_effort = cap.effort
-    record.motor, record.rule = choice.motor, choice.rule
     added = 0.0  # armature this servo adds to the joint
     line = _urdf_line(choice, record, cap, servo.timestep)
     if line is not None:
@@ -493,7 +479,7 @@ def _actuator(
             servo = replace(servo, inertia=servo.inertia + added)
     inertia = servo.inertia
     omega = servo.omega(choice.frequency, choice.stiffen)
-    if choice.type == "position":
+    if choice.type == POSITION:
         record.kp = choice.kp or inertia * omega**2
         record.kv = choice.kv or 2 * choice.damping_ratio * inertia * omega
         # Weight-bearing: stiff enough to hold the pendulum the robot forms over its feet and
@@ -519,21 +505,14 @@ def _actuator(
         # (+-1e16) none worth commanding over.
         real = bounds is not None and bounds[0] < bounds[1] and not placeholder_range(bounds)
         record.ctrlrange = list(bounds) if real and bounds else None
-    elif choice.type == "velocity":
+    elif choice.type == VELOCITY:
         record.kv = choice.kv or inertia * omega  # a first-order servo with bandwidth omega
         velocity = positive_velocity(joint)
         record.ctrlrange = [-velocity, velocity] if velocity else None
     else:  # motor
         record.ctrlrange, record.forcerange = record.forcerange, None
     record.armature = added or None
-    # issue 33: a drive with a torque-speed line makes a position servo a <dcmotor> - except
-    # where ros2_control commands the joint: mujoco_ros2_control takes a <dcmotor> (its
-    # DCMOTOR bias) for a custom actuator and refuses a position command on it (issue 42).
-    if choice.type == "position" and has_speed_line(record.motor):
-        if choice.runtime_commanded:
-            record.motor = without_speed_line(record.motor)
-        else:
-            record.type = "dcmotor"
+    settle_kind(record, choice.runtime_commanded)  # issue 33, 42: a <dcmotor> or not
     return record
 
 
@@ -543,7 +522,7 @@ def runtime_line_notes(choices: list[ActuatorChoice]) -> list[str]:
     joints = [
         c.joint
         for c in choices
-        if c.runtime_commanded and c.type == "position" and has_speed_line(c.motor)
+        if c.runtime_commanded and c.type == POSITION and has_speed_line(c.motor)
     ]
     if not joints:
         return []
@@ -555,19 +534,12 @@ def runtime_line_notes(choices: list[ActuatorChoice]) -> list[str]:
     ]
 
 
-def without_speed_line(motor: dict | None) -> dict | None:
-    """A drive's record without its torque-speed line (its rotor and force limit stay)."""
-    if not motor:
-        return motor
-    return {**motor, "no_load_speed": None, "stall_torque": None}
-
-
 def _urdf_line(
     choice: ActuatorChoice, record: ActuatorRecord, cap: EffortCap | None, timestep: float
 ):
     """The drive the URDF's effort and velocity limits make of a position servo that no motor
     names (None where a limit is missing or a placeholder replaced the effort)."""
-    if choice.type != "position" or choice.motor is not None or choice.speed_limit is None:
+    if choice.type != POSITION or choice.motor is not None or choice.speed_limit is None:
         return None
     if choice.runtime_commanded:  # it stays a <position> servo, which has no speed line
         return None
@@ -575,30 +547,6 @@ def _urdf_line(
         return None
     effort = max(abs(value) for value in record.forcerange)
     return urdf_drive(effort, choice.speed_limit, timestep)
-
-
-def _attributes(record: ActuatorRecord) -> dict[str, str]:
-    if record.type == "dcmotor" and record.motor is not None:  # issue 33
-        assert record.kp is not None and record.kv is not None
-        return dcmotor_attributes(
-            record.name,
-            record.joint,
-            record.kp,
-            record.kv,
-            record.ctrlrange,
-            record.forcerange,
-            record.motor,
-        )
-    attributes = {"name": record.name, "joint": record.joint}
-    if record.kp is not None:
-        attributes["kp"] = output_list([record.kp])
-    if record.kv is not None:
-        attributes["kv"] = output_list([record.kv])
-    if record.ctrlrange is not None:
-        attributes["ctrlrange"] = output_list(record.ctrlrange)
-    if record.forcerange is not None:
-        attributes["forcerange"] = output_list(record.forcerange)
-    return attributes
 
 
 def _fill_user_records(readiness: Readiness, root) -> None:
@@ -610,7 +558,7 @@ def _fill_user_records(readiness: Readiness, root) -> None:
         (e.get("joint") or e.get("jointinparent")): e for e in section if e.tag in ACTUATOR_TAGS
     }
     for record in readiness.actuators:
-        if record.source == "user" and record.joint in by_joint:
+        if record.source == USER and record.joint in by_joint:
             element = by_joint[record.joint]
             record.name = element.get("name") or ""
             record.type = element.tag
@@ -654,7 +602,7 @@ def _home_ctrl(model, data, torques):
         affine = model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_AFFINE
         if affine and bias[1] != 0:  # a position servo: force = kp (ctrl - length) ...
             ctrl[actuator] = gear * data.qpos[address]
-        elif model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_DCMOTOR:  # issue 33
+        elif is_dcmotor(model, actuator):  # issue 33
             ctrl[actuator] = gear * data.qpos[address]  # a drive's position servo
         elif not affine and model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_FIXED:
             ctrl[actuator] = torques[dof] / (gear * model.actuator_gainprm[actuator, 0])

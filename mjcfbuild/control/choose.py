@@ -20,8 +20,9 @@ the "unknown" marker of many descriptions: they are treated as no limit, and rep
 from __future__ import annotations
 
 import fnmatch
-from dataclasses import asdict, dataclass, replace
+from dataclasses import replace
 
+from mjcfbuild.actuators import ActuatorChoice, resolve_choice
 from mjcfbuild.errors import ManifestError
 from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.manifest.simulation import ActuatorRule, ActuatorSettings
@@ -39,38 +40,6 @@ _BY_COMMAND = {
 # A joint with several command interfaces gets one actuator, of the first kind listed here
 # (the runtime's own order): the runtime commands that interface directly.
 _COMMAND_PREFERENCE = ("position", "velocity", "effort", "torque", "force")
-
-
-@dataclass(frozen=True)
-class ActuatorChoice:
-    """The actuator of one joint, before its gains are worked out from the compiled model."""
-
-    joint: str
-    type: str  # position, velocity, motor, none, or user (written by the user)
-    source: str  # rule, ros2_control, transmission, default, user
-    kp: float | None = None
-    kv: float | None = None
-    frequency: float = 10.0
-    damping_ratio: float = 1.0
-    forcerange: tuple[float, float] | None = None
-    effort_limited: bool = False  # forcerange is the URDF's effort (no rule gave one)
-    armature: float | None = None
-    damping: float | None = None
-    frictionloss: float | None = None
-    gravcomp: bool = False
-    rule: int | None = None  # index of the matching actuators.rules entry
-    stiffen: bool = True  # default gains: stiffened where gravity at home would bend the joint
-    wheel_candidate: bool = False  # continuous, default type: a wheel if its geometry says so
-    rule_forcerange: bool = False  # forcerange from a rule: it also sets the joint's own limit
-    motor: dict | None = None  # issue 33: the rule's drive at the output (control.motors.Drive)
-    speed_limit: float | None = None  # the URDF velocity a position servo's speed line ends at
-    # A <ros2_control> block commands it: mujoco_ros2_control accepts a position command only
-    # on an affine-bias servo, so it never becomes a <dcmotor> (issue 42).
-    runtime_commanded: bool = False
-
-    def to_dict(self) -> dict:
-        """A JSON-friendly form."""
-        return asdict(self)
 
 
 def matches(name: str, patterns: list[str]) -> bool:
@@ -158,54 +127,22 @@ def choose_actuators(
                 kind = "velocity"
         else:
             kind, source = _default_type(joint, settings), "default"
-        choice = _choice(joint, kind, source, settings, index, rule)
+        choice = resolve_choice(
+            joint.name,
+            kind,
+            source,
+            settings,
+            index,
+            rule,
+            _effort_range(joint),
+            positive_velocity(joint),
+        )
         if joint.name in commands:
             choice = replace(choice, runtime_commanded=True)
         if source in ("default", "transmission") and kind == "position" and _revolves(joint):
             choice = replace(choice, wheel_candidate=True)
         choices.append(choice)
     return choices
-
-
-def _choice(
-    joint: Joint,
-    kind: str,
-    source: str,
-    settings: ActuatorSettings,
-    index: int | None,
-    rule: ActuatorRule | None,
-) -> ActuatorChoice:
-    """The choice for ``joint``: gains and dynamics from its rule, else the defaults."""
-    if rule is None:
-        return ActuatorChoice(
-            joint.name,
-            kind,
-            source,
-            frequency=settings.frequency,
-            damping_ratio=settings.damping_ratio,
-            forcerange=_effort_range(joint),
-            effort_limited=_effort_range(joint) is not None,
-            speed_limit=positive_velocity(joint) if settings.speed_limits else None,
-        )
-    return ActuatorChoice(
-        joint.name,
-        kind,
-        source,
-        kp=rule.kp,
-        kv=rule.kv,
-        frequency=rule.frequency or settings.frequency,
-        damping_ratio=rule.damping_ratio or settings.damping_ratio,
-        forcerange=rule.forcerange or _effort_range(joint),
-        effort_limited=rule.forcerange is None and _effort_range(joint) is not None,
-        rule_forcerange=rule.forcerange is not None,
-        armature=rule.armature,
-        damping=rule.damping,
-        frictionloss=rule.frictionloss,
-        gravcomp=bool(rule.gravcomp),
-        rule=index,
-        stiffen=rule.kp is None and rule.frequency is None,
-        speed_limit=positive_velocity(joint) if settings.speed_limits else None,
-    )
 
 
 def check_rules(robot: Robot, settings: ActuatorSettings, manifest_label: str) -> None:

@@ -5,11 +5,9 @@ From a motor (see :mod:`mjcfbuild.manifest.motors`), with gear ratio N:
 - joint ``armature`` = rotor inertia x N^2 (the rotor's inertia reflected through the gearbox);
 - the force limit = the peak torque at the output (rotor-side torques x N);
 - a torque-speed line: at speed w the drive gives at most stall x (1 - |w| / w0), w0 the no-load
-  speed at the output (rotor-side speeds / N). A position servo with such a line is MuJoCo 4.0's
-  ``<dcmotor input="pos">``: its controller computes kp (u - q) - kd q' like ``<position>``,
-  drives the voltage that delivers that torque (compensating back-EMF, as a current-controlled
-  driver does) and clamps it to the supply voltage, so the torque falls along the motor's line
-  as speed rises; ``saturation`` clamps it to the peak torque;
+  speed at the output (rotor-side speeds / N). A position servo with such a line is written as
+  MuJoCo 4.0's ``<dcmotor input="pos">`` (:mod:`mjcfbuild.actuators`), whose torque falls
+  along the motor's line as speed rises;
 - joint ``frictionloss`` and ``damping`` from the motor's friction and damping.
 
 The gear ratio is the joint's ``<transmission>`` mechanicalReduction (ROS 1) or
@@ -22,10 +20,9 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import asdict, dataclass
 
-from mjcfbuild.control.choose import ActuatorChoice
+from mjcfbuild.actuators import ActuatorChoice
 from mjcfbuild.inputs.ros2_control import Transmission
 from mjcfbuild.manifest.simulation import ActuatorRule
-from mjcfbuild.numbers import output_list
 
 # The supply voltage written into a <dcmotor> whose datasheet gives none: only the torque-speed
 # line (stall torque and no-load speed) matters to the model, and MuJoCo derives the motor
@@ -196,36 +193,3 @@ def line_inertia(stall_torque: float, no_load_speed: float, timestep: float) -> 
     like a damper of stall torque / no-load speed, which the step applies explicitly. A rotor
     of this inertia is there in every pose, unlike the link's."""
     return LINE_STEPS * timestep * stall_torque / no_load_speed
-
-
-def has_speed_line(motor: dict | None) -> bool:
-    """Whether a drive (:meth:`Drive.to_dict`) has a torque-speed line."""
-    return bool(motor) and motor.get("no_load_speed") is not None  # type: ignore[union-attr]
-
-
-def dcmotor_attributes(
-    name: str,
-    joint: str,
-    kp: float,
-    kv: float,
-    ctrlrange: list[float] | None,
-    forcerange: list[float] | None,
-    motor: dict,
-) -> dict[str, str]:
-    """The attributes of the ``<dcmotor input="pos">`` position servo of a drive with a
-    torque-speed line: gains in torque space, the line as MuJoCo's ``nominal`` operating point
-    (voltage, stall torque, no-load speed), the controller's voltage clamp at the supply, and the
-    force limit as ``saturation``."""
-    voltage = float(motor["voltage"])
-    peak = max(abs(v) for v in forcerange) if forcerange else float(motor["peak_torque"])
-    attributes = {
-        "name": name,
-        "joint": joint,
-        "input": "pos",
-        "nominal": output_list([voltage, motor["stall_torque"], motor["no_load_speed"]]),
-        "controller": output_list([kp, 0, kv, 0, 0, voltage]),
-        "saturation": output_list([peak, 0, 0]),
-    }
-    if ctrlrange is not None:
-        attributes["ctrlrange"] = output_list(ctrlrange)
-    return attributes

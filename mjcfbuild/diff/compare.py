@@ -10,6 +10,7 @@ import math
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+from mjcfbuild.actuators import READING_FIELDS
 from mjcfbuild.diff.snapshot import Snapshot
 
 GROUPS: tuple[tuple[str, str], ...] = (
@@ -220,7 +221,7 @@ def _actuators(diff: ModelDiff, before: Snapshot, after: Snapshot) -> None:
         after["actuators"],
         lambda actuator: f"{actuator['kind']} on {actuator['target']}",
     )
-    names = ("kind", "target", "kp", "kv", "gear", "ctrlrange", "forcerange")
+    names = ("kind", "target", *(name for name in READING_FIELDS if name != "kind"))
     for name in common:
         old, new = before["actuators"][name], after["actuators"][name]
         _fields(diff, "actuators", f"actuator {name}", old, new, names)

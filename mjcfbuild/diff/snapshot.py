@@ -12,6 +12,7 @@ import json
 from pathlib import Path
 from typing import Any
 
+from mjcfbuild.actuators import read_actuator
 from mjcfbuild.errors import InputError, ModelError
 
 STATE_DIR = ".mjcfbuild"
@@ -153,42 +154,11 @@ def _actuators(model) -> dict[str, dict[str, Any]]:
         target = int(model.actuator_trnid[index][0])
         trn = int(model.actuator_trntype[index])
         kind = {0: mujoco.mjtObj.mjOBJ_JOINT, 4: mujoco.mjtObj.mjOBJ_SITE}.get(trn)
-        gain = model.actuator_gainprm[index]
-        bias = model.actuator_biasprm[index]
-        actuator_kind = _actuator_kind(model, index)
-        # A <dcmotor>'s controller gains sit after its motor constants (MuJoCo's gainprm).
-        kp, kv = (gain[4], gain[6]) if actuator_kind == "dcmotor" else (gain[0], -bias[2])
         actuators[_name(model, mujoco.mjtObj.mjOBJ_ACTUATOR, index)] = {
             "target": _name(model, kind, target) if kind is not None else f"#{target}",
-            "kind": actuator_kind,
-            "kp": float(kp),
-            "kv": float(kv),
-            "gear": float(model.actuator_gear[index][0]),
-            "ctrlrange": _floats(model.actuator_ctrlrange[index])
-            if model.actuator_ctrllimited[index]
-            else None,
-            "forcerange": _floats(model.actuator_forcerange[index])
-            if model.actuator_forcelimited[index]
-            else None,
+            **read_actuator(model, index).to_dict(),
         }
     return actuators
-
-
-def _actuator_kind(model, index: int) -> str:
-    """position, velocity or motor from the gain and bias, as MuJoCo's shortcuts set them."""
-    import mujoco
-
-    gain_fixed = int(model.actuator_gaintype[index]) == 0
-    bias = model.actuator_biasprm[index]
-    if int(model.actuator_gaintype[index]) == mujoco.mjtGain.mjGAIN_DCMOTOR:
-        return "dcmotor"
-    if not gain_fixed:
-        return "general"
-    if int(model.actuator_biastype[index]) == 0:
-        return "motor"
-    if bias[1] != 0:
-        return "position"
-    return "velocity" if bias[2] != 0 else "general"
 
 
 _GEOM_TYPES = {0: "plane", 2: "sphere", 3: "capsule", 4: "ellipsoid", 5: "cylinder", 6: "box"}

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from mjcfbuild.actuators import dcmotor_of
 from mjcfbuild.errors import InputError, ModelError
 from mjcfbuild.export.model import BodyOut, GeomOut, JointOut, MeshOut, MimicOut, ModelOut
 from mjcfbuild.fsutil import unreadable_file
@@ -128,8 +129,6 @@ def _effort(model, joint: int) -> float:
     its force range, a ``<dcmotor>``'s stall torque at its top voltage (the smaller of the two
     where it has both), or a motor's gain times its control range; all times the gear, since
     the joint feels the actuator's force times the gear."""
-    import mujoco
-
     if model.jnt_actfrclimited[joint]:
         return max(abs(float(v)) for v in model.jnt_actfrcrange[joint])
     for actuator in range(model.nu):
@@ -139,31 +138,15 @@ def _effort(model, joint: int) -> float:
         limits = []
         if model.actuator_forcelimited[actuator]:
             limits.append(max(abs(float(v)) for v in model.actuator_forcerange[actuator]))
-        if model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_DCMOTOR:
-            resistance, constant = (float(v) for v in model.actuator_gainprm[actuator][:2])
-            voltage = _dcmotor_voltage(model, actuator)
-            if resistance > 0 and voltage is not None:
-                limits.append(constant * voltage / resistance)
+        motor = dcmotor_of(model, actuator)
+        if motor is not None and motor.stall_torque is not None:
+            limits.append(motor.stall_torque)
         if limits:
             return min(limits) * gear
         if model.actuator_ctrllimited[actuator] and model.actuator_biastype[actuator] == 0:
             gain = abs(float(model.actuator_gainprm[actuator][0]) * gear)
             return gain * max(abs(float(v)) for v in model.actuator_ctrlrange[actuator])
     return 0.0
-
-
-def _dcmotor_voltage(model, actuator: int) -> float | None:
-    """A ``<dcmotor>``'s top voltage: its controller's voltage clamp, else the largest of a
-    voltage input's control range (None: unbounded)."""
-    import mujoco
-
-    voltage = float(model.actuator_gainprm[actuator][7])  # after R, K, -, - and kp, ki, kd
-    if voltage > 0:
-        return voltage
-    voltage_input = model.actuator_ctrlspec[actuator] & mujoco.mjtCtrlInput.mjINPUT_VOLTAGE
-    if voltage_input and model.actuator_ctrllimited[actuator]:
-        return max(abs(float(v)) for v in model.actuator_ctrlrange[actuator]) or None
-    return None
 
 
 def joint_speed(model, joint: int) -> float | None:
@@ -188,10 +171,10 @@ def joint_speed(model, joint: int) -> float | None:
         controls = (
             model.actuator_ctrlrange[actuator] if model.actuator_ctrllimited[actuator] else None
         )
-        if model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_DCMOTOR:
-            constant, voltage = float(gain[1]), _dcmotor_voltage(model, actuator)
-            if constant > 0 and voltage is not None:
-                return voltage / constant / gear
+        motor = dcmotor_of(model, actuator)
+        if motor is not None:
+            if motor.no_load_speed is not None:
+                return motor.no_load_speed / gear
         elif (
             model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_FIXED
             and model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_AFFINE

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 
 from lxml import etree
 
+from mjcfbuild.actuators import ACTUATOR_TAGS
 from mjcfbuild.errors import InputError
 from mjcfbuild.inputs.frames import camera_pose, lidar_body_pose, ray_count
 from mjcfbuild.inputs.model import SINGLE_SECTIONS, Inputs, RawElement, origin_location
@@ -349,20 +350,6 @@ OBJECT_TYPES = {
     "tendon": "tendon",
     "actuator": "actuator",
 }
-ACTUATOR_TAGS = (
-    "general",
-    "motor",
-    "position",
-    "velocity",
-    "intvelocity",
-    "damper",
-    "cylinder",
-    "muscle",
-    "adhesion",
-    "plugin",
-    "dcmotor",  # MuJoCo 4.0's
-    "pid",
-)
 TENDON_TAGS = ("fixed", "spatial")
 
 

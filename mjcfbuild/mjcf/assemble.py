@@ -16,9 +16,10 @@ from typing import Any
 
 from lxml import etree
 
+from mjcfbuild.actuators import ACTUATOR_TAGS, ActuatorRecord
 from mjcfbuild.collision.policy import CollisionChoice, choose_collisions
 from mjcfbuild.compose.attach import AttachedPart, attach_parts, part_frames, publish_part_files
-from mjcfbuild.control.apply import ActuatorRecord, Readiness
+from mjcfbuild.control.apply import Readiness
 from mjcfbuild.control.stand_up import crouched_home, described_nothing, replace_tree, stands
 from mjcfbuild.errors import ModelError
 from mjcfbuild.inputs.gazebo import GazeboSensor
@@ -316,8 +317,6 @@ def _drop_drawing_meshes(root: etree._Element) -> None:
 
 def _part_actuators(root: etree._Element, parts: list[AttachedPart]) -> list[ActuatorRecord]:
     """The MJCF parts' own actuators, for the report: the part wrote them, not mjcfbuild."""
-    from mjcfbuild.inputs.apply import ACTUATOR_TAGS
-
     names = {part.prefix + name for part in parts for name in part.summary.actuators}
     section = root.find("actuator")
     records = []

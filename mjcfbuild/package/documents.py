@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from mjcfbuild.actuators import KIND_LABELS
 from mjcfbuild.markup import markdown_block, markdown_code
 from mjcfbuild.markup import markdown_text as md
 
@@ -126,9 +127,9 @@ def _derived(assembly: dict[str, Any]) -> list[str]:
     lines = []
     actuators = readiness.get("actuators") or []
     if actuators:
-        # A <dcmotor> here is a position servo with its drive's torque-speed line.
-        labels = {"dcmotor": "dcmotor position servos"}
-        kinds = sorted({md(labels.get(str(a.get("type")), str(a.get("type")))) for a in actuators})
+        kinds = sorted(
+            {md(KIND_LABELS.get(str(a.get("type")), str(a.get("type")))) for a in actuators}
+        )
         lines.append(
             f"- {len(actuators)} actuators ({', '.join(kinds)}), gains tuned from each joint's "
             "inertia at home unless robot.yaml set them"

@@ -13,6 +13,13 @@ import re
 
 from lxml import etree
 
+from mjcfbuild.actuators import (
+    CLASS_ATTRIBUTES,
+    FORMATTED_TAGS,
+    GAIN_ATTRIBUTES,
+    RANGE_ATTRIBUTES,
+)
+
 # Menagerie's element order (its format check); an element not listed goes before worldbody.
 ORDER = (
     "extension",
@@ -32,21 +39,6 @@ ORDER = (
     "sensor",
     "keyframe",
 )
-ACTUATORS = (
-    "position",
-    "velocity",
-    "motor",
-    "general",
-    "intvelocity",
-    "damper",
-    "cylinder",
-    "dcmotor",
-)
-GAINS = ("kp", "kv", "dampratio", "gainprm", "biasprm", "controller", "nominal", "saturation")
-RANGES = ("ctrlrange", "forcerange")
-# What actuators of one class have in common: gains and force limits (a <dcmotor>'s controller
-# gains, torque-speed line and torque limit).
-SHARED = ("kp", "kv", "forcerange", "input", "nominal", "controller", "saturation")
 INDENT = "  "
 
 
@@ -106,16 +98,16 @@ def _actuator_elements(root: etree._Element) -> list[etree._Element]:
         element
         for section in root.findall("actuator")
         for element in section
-        if isinstance(element.tag, str) and element.tag in ACTUATORS
+        if isinstance(element.tag, str) and element.tag in FORMATTED_TAGS
     ]
 
 
 def _round_actuators(root: etree._Element) -> None:
     for element in _actuator_elements(root):
-        for name in GAINS:
+        for name in GAIN_ATTRIBUTES:
             if name in element.attrib:
                 element.set(name, significant(element.get(name, ""), 4))
-        for name in RANGES:
+        for name in RANGE_ATTRIBUTES:
             if name in element.attrib:
                 element.set(name, significant(element.get(name, ""), 6))
 
@@ -125,9 +117,11 @@ def _actuator_classes(root: etree._Element) -> None:
     and force range (a robot's four hips, say), named after what their names share."""
     groups: dict[tuple, list[etree._Element]] = {}
     for element in _actuator_elements(root):
-        if element.get("class") is not None or not any(a in element.attrib for a in SHARED):
+        if element.get("class") is not None or not any(
+            a in element.attrib for a in CLASS_ATTRIBUTES
+        ):
             continue
-        key = (element.tag, *(element.get(name) for name in SHARED))
+        key = (element.tag, *(element.get(name) for name in CLASS_ATTRIBUTES))
         groups.setdefault(key, []).append(element)
     shared = [members for members in groups.values() if len(members) > 1]
     if not shared:
@@ -145,12 +139,12 @@ def _actuator_classes(root: etree._Element) -> None:
         taken.add(name)
         holder = etree.SubElement(default, "default", {"class": name})
         item = etree.SubElement(holder, members[0].tag)
-        for attribute in SHARED:
+        for attribute in CLASS_ATTRIBUTES:
             value = members[0].get(attribute)
             if value is not None:
                 item.set(attribute, value)
         for member in members:
-            for attribute in SHARED:
+            for attribute in CLASS_ATTRIBUTES:
                 member.attrib.pop(attribute, None)
             _set_first(member, "class", name)
 

@@ -11,8 +11,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from mjcfbuild.actuators import for_mujoco3
 from mjcfbuild.markup import html_text
-from mjcfbuild.mjcf.compat import for_mujoco3
 from mjcfbuild.page import WEB
 from mjcfbuild.page.bundle import model_script, mujoco_script, wasm_script
 from mjcfbuild.page.vendor import mujoco_js

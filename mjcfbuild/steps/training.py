@@ -5,8 +5,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from mjcfbuild.actuators import for_mujoco3
 from mjcfbuild.errors import InputError
-from mjcfbuild.mjcf.compat import for_mujoco3
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import TrainingPayload
 from mjcfbuild.steps.scene import scene_bytes

@@ -35,6 +35,7 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+from mjcfbuild.actuators import as_position_servos
 from mjcfbuild.errors import ManifestError
 from mjcfbuild.training.contacts import floor_bodies, self_pairs
 from mjcfbuild.training.solver import solver_settings
@@ -446,37 +447,17 @@ def _drop_frictionloss(spec, variant: Variant) -> None:
 
 
 def _position_servos(spec, variant: Variant) -> None:
-    """``<dcmotor input="pos">`` servos (no integral term) as ``<position>`` servos with the
-    same gains, force limit and control range: MJX's JAX engine refuses ``<dcmotor>``
-    (NotImplementedError in ``mjx.put_model``), and training set-ups drive joints with position
-    servos (MuJoCo Menagerie's MJX variants, mjlab). The torque-speed line goes; the rotor
-    inertia that came with it stays on the joint."""
-    import mujoco
-
-    motors = [a for a in spec.actuators if a.gaintype == mujoco.mjtGain.mjGAIN_DCMOTOR]
-    # gainprm of a <dcmotor>: resistance, motor constant, -, -, then its controller's kp, ki,
-    # kd and voltage clamp (as MuJoCo 4.0 compiles it). A position servo is kp and kd alone.
-    servos = [
-        a
-        for a in motors
-        if a.ctrlspec == mujoco.mjtCtrlInput.mjINPUT_POS and float(a.gainprm[5]) == 0.0
-    ]
-    for actuator in servos:
-        kp, kv = float(actuator.gainprm[4]), float(actuator.gainprm[6])
-        actuator.type = mujoco.mjtActuator.mjACTUATOR_POSITION
-        actuator.dyntype = mujoco.mjtDyn.mjDYN_NONE
-        actuator.dynprm = [1.0] + [0.0] * (len(actuator.dynprm) - 1)  # MuJoCo's default
-        actuator.gainprm = [0.0] * len(actuator.gainprm)
-        actuator.biasprm = [0.0] * len(actuator.biasprm)
-        actuator.actearly = False
-        actuator.set_to_position(kp=kp, kv=kv)
-    if servos:
+    """``<dcmotor input="pos">`` servos as ``<position>`` servos with the same gains
+    (:func:`mjcfbuild.actuators.as_position_servos`): MJX's JAX engine refuses ``<dcmotor>``,
+    and training set-ups drive joints with position servos (MuJoCo Menagerie's MJX variants,
+    mjlab)."""
+    turned, kept = as_position_servos(spec)
+    if turned:
         variant.notes.append(
-            f"{len(servos)} <dcmotor> servos are <position> servos with the same gains and force "
+            f"{turned} <dcmotor> servos are <position> servos with the same gains and force "
             "limits, without their torque-speed lines (MJX has no <dcmotor>; "
             "output.training.dcmotor keeps them for MuJoCo Warp)"
         )
-    kept = [a.name or f"actuator {a.id}" for a in motors if a not in servos]
     if kept:
         # Voltage or velocity input, or an integral term: no position servo is the same drive.
         variant.notes.append(

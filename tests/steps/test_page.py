@@ -237,7 +237,7 @@ def test_a_registry_out_of_reach_fails_the_build_in_one_line(tmp_path):
 
 def test_a_servo_from_an_mjcf_part_loads_in_the_browsers_older_mujoco(tmp_path, browser):
     # MuJoCo 4.0 writes input="pos" on the part's <position> servo, which 3.14 refuses
-    # (mjcfbuild.mjcf.compat); the hold test agrees with the build's check.
+    # (mjcfbuild.actuators.for_mujoco3); the hold test agrees with the build's check.
     folder = build_with_page(tmp_path, "arm_mjcf_gripper")
     assert b'input="pos"' in (folder / "arm_with_mjcf_hand.xml").read_bytes()
     state = browser.open(folder / "report" / "index.html")
