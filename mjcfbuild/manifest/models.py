@@ -8,7 +8,7 @@ manifest's folder and resolved by :class:`mjcfbuild.engine.context.BuildContext`
 from __future__ import annotations
 
 import re
-from typing import Annotated, Any, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 from pydantic import (
     BaseModel,
@@ -20,6 +20,7 @@ from pydantic import (
     model_validator,
 )
 
+from mjcfbuild.collision.policy import POLICIES, POLICY_NAMES, policies_described
 from mjcfbuild.inputs.processed import CameraInput, DecomposeInput, LidarInput, ModifyInput
 from mjcfbuild.manifest.composition import Attachment, check_prefixes
 from mjcfbuild.manifest.motors import MotorSettings
@@ -223,7 +224,12 @@ class CoacdParams(StrictModel):
         return value
 
 
-Policy = Literal["authored", "visual", "hull", "decompose", "primitive", "none"]
+# The names of collision.policy.POLICIES (mypy sees a str; the schema, their enum).
+if TYPE_CHECKING:
+    Policy = str
+else:
+    Policy = Literal[POLICY_NAMES]
+DECOMPOSING = [name for name, policy in POLICIES.items() if policy.coacd]
 
 
 class CollisionRule(StrictModel):
@@ -237,7 +243,9 @@ class CollisionRule(StrictModel):
         description="Mesh patterns, matched against the file name, its stem, the URI and "
         "mjcfbuild's mesh name.",
     )
-    policy: Policy
+    policy: Policy = Field(
+        description=f"The geometry the matched shapes collide with: {policies_described()}."
+    )
     decompose: dict[str, float | int | bool | str] = Field(
         default_factory=dict,
         description="CoACD parameters for this rule, over those of collision.decompose.",
@@ -247,8 +255,10 @@ class CollisionRule(StrictModel):
     def _has_patterns(self) -> CollisionRule:
         if not self.links and not self.meshes:
             raise ValueError("a rule needs 'links' or 'meshes' patterns")
-        if self.decompose and self.policy != "decompose":
-            raise ValueError("decompose parameters only apply to policy: decompose")
+        if self.decompose and self.policy not in DECOMPOSING:
+            raise ValueError(
+                f"decompose parameters only apply to policy: {' or '.join(DECOMPOSING)}"
+            )
         unknown = sorted(set(self.decompose) - set(CoacdParams.model_fields))
         if unknown:
             raise ValueError(
@@ -269,10 +279,7 @@ class CollisionSettings(StrictModel):
 
     default: Policy = Field(
         "authored",
-        description=(
-            "Policy for every link and mesh no rule matches: authored (the URDF's collision "
-            "elements), visual, hull, decompose, primitive or none."
-        ),
+        description=(f"Policy for every link and mesh no rule matches: {policies_described()}."),
     )
     decompose: CoacdParams = Field(
         default_factory=CoacdParams, description="Default CoACD parameters."
@@ -301,7 +308,7 @@ class CollisionSettings(StrictModel):
                     "links": list(rule.links),
                     "meshes": list(rule.meshes),
                     "policy": rule.policy,
-                    "decompose": params.model_dump() if rule.policy == "decompose" else {},
+                    "decompose": params.model_dump() if rule.policy in DECOMPOSING else {},
                 }
             )
         return result
