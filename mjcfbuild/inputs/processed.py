@@ -103,8 +103,7 @@ class ProcessedInput(BaseModel):
         extra: dict[str, str] = {}
         for key, value in element.attrib.items():
             if key in cls.xml_fields:
-                if value.strip():  # a blank name is a missing one
-                    values[cls.xml_fields[key]] = value.strip()
+                values[cls.xml_fields[key]] = value.strip()
             elif cls.xml_attributes:
                 extra[str(key)] = str(value)
         values = cls.xml_values(values)

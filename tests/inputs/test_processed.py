@@ -94,6 +94,16 @@ def test_the_plan_keeps_every_item_and_where_it_was_given():
             "finite number",
         ),
         (
+            '<decompose_mesh mesh_name="m" threshold=" "/>',
+            "decompose: [{mesh: m, threshold: ''}]",
+            "expected a number, got ''",
+        ),
+        (
+            '<camera site="l" name=" "/>',
+            "cameras: [{name: '', link: l}]",
+            "expected a non-empty string, got ''",
+        ),
+        (
             '<decompose_mesh mesh_name="m" threshold="0"/>',
             "decompose: [{mesh: m, threshold: 0}]",
             "should be greater than 0",
