@@ -1,15 +1,11 @@
 """Which geometry each link collides with, chosen by name patterns in robot.yaml.
 
 Every visual and every authored collision of a link is a *candidate*. Each candidate gets the
-policy of the first rule that matches it (by link name and/or mesh name), or the default:
-
-* ``authored`` - keep the URDF's own ``<collision>`` shapes (candidates that are collisions);
-* ``visual`` - collide with the visual shapes, as the mujoco_ros2_control converter did;
-* ``hull`` / ``decompose`` / ``primitive`` - take the link's *source* shapes (its collisions if
-  it has any, otherwise its visuals) and use, for each mesh, its convex hull, its CoACD convex
-  decomposition, or the best-fitting box, capsule, cylinder or sphere; primitives stay as they
-  are;
-* ``none`` - no collision geometry.
+policy of the first rule that matches it (by link name and/or mesh name), or the default.
+:data:`POLICIES` is the one list of policies: each has its name, its description (robot.yaml's
+schema and the docs say it), which of a link's shapes it turns into collision geometry, what it
+needs of a mesh's task and the function that makes the geoms of a mesh. robot.yaml's policy
+names, the mesh roles, the decompositions and the geoms in ``mjcf.prepared`` all come from it.
 """
 
 from __future__ import annotations
@@ -17,13 +13,116 @@ from __future__ import annotations
 import fnmatch
 import hashlib
 import json
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import PurePath
+from typing import Any, Literal, Protocol
 
+from mjcfbuild.errors import InternalError
 from mjcfbuild.urdf.model import Link, Robot, Shape
 
-POLICIES = ("authored", "visual", "hull", "decompose", "primitive", "none")
-TRANSFORMING = ("hull", "decompose", "primitive")
+
+class MeshCollision(Protocol):
+    """The collision geoms one mesh shape can become (``mjcf.prepared`` makes them)."""
+
+    def mesh(self) -> list[Any]:
+        """The mesh itself (its collision product: simplified within the face budget)."""
+
+    def hull(self) -> list[Any]:
+        """The mesh's convex hull."""
+
+    def fitted_primitive(self) -> list[Any]:
+        """The box, capsule, cylinder or sphere that fits the mesh best."""
+
+    def decomposition(self) -> list[Any]:
+        """The parts of the mesh's CoACD decomposition (or its hull, where close enough)."""
+
+
+@dataclass(frozen=True)
+class CollisionPolicy:
+    """One collision policy: what it is called and says, and what it does."""
+
+    name: str
+    description: str  # robot.yaml's schema and docs/collision.md say it
+    # The shapes of a link it turns into collision geometry: the authored collisions, the
+    # visuals, the link's source shapes (its collisions if it has any, else its visuals), none.
+    shapes: Literal["collision", "visual", "source", "none"]
+    # What the mesh task must make of a mesh this policy collides with ("collision": the
+    # collision mesh, "hull": its convex hull; None for a policy that takes no shape).
+    mesh_role: Literal["collision", "hull"] | None
+    geoms: Callable[[MeshCollision], list[Any]]  # the geoms of one mesh shape
+    coacd: bool = False  # whether it takes CoACD parameters (collision.decompose)
+
+    def takes(self, shape: Shape, source_role: str) -> bool:
+        """Whether ``shape`` (of a link whose source shapes are ``source_role``) collides."""
+        if self.shapes == "source":
+            return shape.role == source_role
+        return shape.role == self.shapes
+
+
+POLICIES: dict[str, CollisionPolicy] = {
+    policy.name: policy
+    for policy in (
+        CollisionPolicy(
+            "authored",
+            "the URDF's collision elements",
+            "collision",
+            "collision",
+            lambda mesh: mesh.mesh(),
+        ),
+        CollisionPolicy(
+            "visual",
+            "the visual shapes, as the mujoco_ros2_control converter did",
+            "visual",
+            "collision",
+            lambda mesh: mesh.mesh(),
+        ),
+        CollisionPolicy(
+            "hull",
+            "each mesh's convex hull",
+            "source",
+            "hull",
+            lambda mesh: mesh.hull(),
+        ),
+        CollisionPolicy(
+            "decompose",
+            "each mesh's CoACD convex decomposition (its hull where close enough)",
+            "source",
+            "collision",
+            lambda mesh: mesh.decomposition(),
+            coacd=True,
+        ),
+        CollisionPolicy(
+            "primitive",
+            "the box, capsule, cylinder or sphere that fits each mesh best",
+            "source",
+            "hull",
+            lambda mesh: mesh.fitted_primitive(),
+        ),
+        CollisionPolicy("none", "no collision geometry", "none", None, lambda mesh: []),
+    )
+}
+POLICY_NAMES = tuple(POLICIES)
+
+
+def collision_policy(name: str) -> CollisionPolicy:
+    """The policy called ``name``; any other name is an error, never a default."""
+    try:
+        return POLICIES[name]
+    except KeyError:
+        raise InternalError(
+            f"unknown collision policy {name!r}", hint=f"known: {', '.join(POLICY_NAMES)}"
+        ) from None
+
+
+def policies_described() -> str:
+    """Every policy with its description, for robot.yaml's schema."""
+    listed = "; ".join(f"{policy.name}: {policy.description}" for policy in POLICIES.values())
+    sourced = [policy.name for policy in POLICIES.values() if policy.shapes == "source"]
+    return (
+        f"{listed}. {', '.join(sourced)} take a link's collision shapes, or its visuals where "
+        "it has none"
+    )
 
 
 @dataclass(frozen=True)
@@ -83,7 +182,7 @@ def rules_from_dicts(rules: list[dict]) -> list[Rule]:
     """Rules from their plain form (the manifest's ``collision.effective_rules``)."""
     return [
         Rule(
-            policy=rule["policy"],
+            policy=collision_policy(rule["policy"]).name,
             links=tuple(rule["links"]),
             meshes=tuple(rule["meshes"]),
             decompose=tuple(sorted(rule["decompose"].items())),
@@ -100,16 +199,12 @@ def choose_collisions(
     for link in robot.links:
         source_role = "collision" if link.collisions else "visual"
         for shape in link.collisions + link.visuals:
-            policy, params = _policy_for(link, shape, default, rules, default_decompose)
-            emit = (
-                (policy == "authored" and shape.role == "collision")
-                or (policy == "visual" and shape.role == "visual")
-                or (policy in TRANSFORMING and shape.role == source_role)
-            )
-            if emit:
-                decompose = tuple(sorted(params.items())) if policy == "decompose" else ()
+            name, params = _policy_for(link, shape, default, rules, default_decompose)
+            policy = collision_policy(name)
+            if policy.takes(shape, source_role):
+                decompose = tuple(sorted(params.items())) if policy.coacd else ()
                 choices.append(
-                    CollisionChoice(link.name, shape.role, shape.index, policy, decompose)
+                    CollisionChoice(link.name, shape.role, shape.index, policy.name, decompose)
                 )
     return choices
 
@@ -152,13 +247,8 @@ def mesh_roles(robot: Robot, choices: list[CollisionChoice]) -> dict[str, list[s
         shape = shapes[(choice.link, choice.role, choice.index)]
         if shape.geometry.kind != "mesh":
             continue
-        needed = {
-            "authored": "collision",
-            "visual": "collision",
-            "decompose": "collision",
-            "hull": "hull",
-            "primitive": "hull",
-        }[choice.policy]
+        needed = collision_policy(choice.policy).mesh_role
+        assert needed is not None, "a policy without a mesh role makes no choice"
         assert shape.geometry.mesh_id is not None, "resolve gives every mesh an id"
         roles.setdefault(shape.geometry.mesh_id, set()).add(needed)
     return {mesh_id: sorted(r) for mesh_id, r in sorted(roles.items())}
@@ -174,7 +264,7 @@ def decompositions(robot: Robot, choices: list[CollisionChoice]) -> dict[str, tu
     wanted: dict[str, dict[str, dict]] = {}
     for choice in choices:
         shape = shapes[(choice.link, choice.role, choice.index)]
-        if choice.policy == "decompose" and shape.geometry.kind == "mesh":
+        if collision_policy(choice.policy).coacd and shape.geometry.kind == "mesh":
             params = choice.decompose_params
             key = json.dumps(params, sort_keys=True)
             assert shape.geometry.mesh_id is not None, "resolve gives every mesh an id"

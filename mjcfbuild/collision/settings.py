@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from mjcfbuild.collision.policy import CollisionChoice
+    from mjcfbuild.inputs.processed import DecomposeInput
     from mjcfbuild.manifest.models import Manifest
     from mjcfbuild.steps.plan_record import PlannedInputs
     from mjcfbuild.urdf.model import Robot
@@ -42,10 +43,7 @@ def collision_settings(
     defaults = dict(settings.decompose_defaults)
     limit = manifest.meshes.max_hull_vertices
     thresholds: dict[str, float] = {}
-    for source in ("urdf", "file"):
-        for item in (plan_inputs.get(source) or {}).get("decompositions", []):
-            thresholds[item["mesh"]] = item["threshold"]
-    for item in manifest.mujoco_inputs.decompose:
+    for item in _decompose_inputs(manifest, plan_inputs):
         thresholds[item.mesh] = item.threshold
     rules = [dict(rule, decompose=dict(rule["decompose"])) for rule in settings.effective_rules] + [
         {
@@ -61,3 +59,16 @@ def collision_settings(
             if params:
                 params["max_ch_vertex"] = min(int(params["max_ch_vertex"]), limit)
     return EffectiveCollisionSettings(settings.default, rules, defaults)
+
+
+def _decompose_inputs(manifest: Manifest, plan_inputs: PlannedInputs) -> list[DecomposeInput]:
+    """The ``decompose_mesh`` inputs of the URDF, the inputs file and robot.yaml, in that order."""
+    from mjcfbuild.inputs.model import inputs_from_dict
+    from mjcfbuild.inputs.processed import DecomposeInput
+
+    items = []
+    for source in ("urdf", "file"):
+        data = plan_inputs.get(source)
+        if data:
+            items += inputs_from_dict(data).of(DecomposeInput)
+    return items + list(manifest.mujoco_inputs.decompose)

@@ -10,7 +10,7 @@ from mjcfbuild import __version__
 # Bump a step's number when its output for the same inputs changes.
 STEP_FORMATS = {
     "expand": 2,  # 2: the origins of the expanded lines
-    "plan": 7,  # 5: ros2_control <hardware>; 6: chains deeper than MuJoCo reads; 7: Gazebo sensors
+    "plan": 8,  # 6: chains deeper than MuJoCo reads; 7: Gazebo sensors; 8: processed inputs by tag
     "mesh": 5,
     "decompose": 3,
     "assemble": 12,  # 12: the Gazebo sensors' MJCF counterparts

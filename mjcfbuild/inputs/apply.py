@@ -2,8 +2,9 @@
 
 Raw sections are merged into the model's own sections: mjcfbuild's default classes take the
 attributes the inputs give them (with a warning where they differ), other sections gain the
-input elements. Cameras and lidars are placed at their links with poses computed here.
-Modifications set attributes on generated elements. Every name an input refers to is checked
+input elements. Each processed item applies itself (``inputs.processed``) through a
+:class:`ModelTarget`: cameras and lidars are placed at their links with poses computed here,
+modifications set attributes on generated elements. Every name an input refers to is checked
 before MuJoCo sees the model, so a typo is reported at the input's line with the names that do
 exist.
 """
@@ -19,6 +20,7 @@ from mjcfbuild.actuators import ACTUATOR_TAGS
 from mjcfbuild.errors import InputError
 from mjcfbuild.inputs.frames import camera_pose, lidar_body_pose, ray_count
 from mjcfbuild.inputs.model import SINGLE_SECTIONS, Inputs, RawElement, origin_location
+from mjcfbuild.inputs.processed import PROCESSED_INPUTS, ModifyInput
 from mjcfbuild.numbers import output, output_list
 from mjcfbuild.sources.packages import did_you_mean
 from mjcfbuild.urdf.transforms import Transform
@@ -66,6 +68,40 @@ def input_error(origin: str, message: str, hint: str | None = None) -> InputErro
     return InputError(message, file=file, line=line, hint=hint)
 
 
+@dataclass
+class ModelTarget:
+    """The model tree processed inputs are applied to, and what they need to find their place:
+    each link's place, each mesh's names."""
+
+    root: etree._Element
+    links: dict[str, LinkPlace]
+    mesh_aliases: dict[str, set[str]]
+    result: ApplyResult
+
+    def add_camera(self, name: str, link: str, attributes: dict[str, str], origin: str) -> None:
+        """A camera at ``link`` (a ROS optical frame), with its MuJoCo attributes."""
+        place = _link(self.links, link, origin, "camera")
+        element = etree.Element("camera", {"name": name})
+        set_pose(element, camera_pose(place.pose))
+        for key, value in attributes.items():
+            element.set(key, value)
+        insert_in_body(body_element(self.root, place.body), element)
+
+    def add_lidar(
+        self, sensor_name: str, link: str, angles: tuple[float, float, float], origin: str
+    ) -> None:
+        """A lidar's rays at ``link``; the rangefinders reading them become lidar sensors."""
+        place = _link(self.links, link, origin, "lidar")
+        add_lidar_sites(self.root, place, f"{link}_lidar_body", sensor_name, angles)
+        for sensor in self.root.iter("rangefinder"):
+            if sensor.get("site") == sensor_name and sensor.get("name"):
+                self.result.lidar_sensors.append(sensor.get("name"))
+
+    def modify_targets(self, modify: ModifyInput) -> list[etree._Element]:
+        """The generated elements ``modify`` names; none is an error listing those that exist."""
+        return _modify_targets(self.root, modify, self.mesh_aliases)
+
+
 def apply_inputs(
     root: etree._Element,
     inputs: Inputs,
@@ -77,32 +113,11 @@ def apply_inputs(
     tracked: list[tuple[etree._Element, str]] = []
     for item in inputs.raw:
         tracked += [(element, item.origin) for element in _merge_raw(root, item, result.warnings)]
-    for camera in inputs.cameras:
-        place = _link(links, camera.link, camera.origin, "camera")
-        pose = camera_pose(place.pose)
-        element = etree.Element("camera", {"name": camera.name})
-        set_pose(element, pose)
-        for key, value in camera.attributes.items():
-            element.set(key, value)
-        insert_in_body(body_element(root, place.body), element)
-    for lidar in inputs.lidars:
-        place = _link(links, lidar.link, lidar.origin, "lidar")
-        add_lidar_sites(
-            root,
-            place,
-            f"{lidar.link}_lidar_body",
-            lidar.sensor_name,
-            (lidar.min_angle, lidar.max_angle, lidar.angle_increment),
-        )
-        for sensor in root.iter("rangefinder"):
-            if sensor.get("site") == lidar.sensor_name and sensor.get("name"):
-                result.lidar_sensors.append(sensor.get("name"))
     result.warnings += _drop_mimics_the_inputs_couple(root, tracked)
-    for modify in inputs.modifications:
-        targets = _modify_targets(root, modify, mesh_aliases)
-        for element in targets:
-            for key, value in modify.attributes.items():
-                element.set(key, value)
+    target = ModelTarget(root, links, mesh_aliases, result)
+    for kind in PROCESSED_INPUTS:
+        for processed in inputs.of(kind):
+            processed.apply(target)
     check_references(root, tracked)
     return result
 
@@ -280,7 +295,9 @@ def _merge_attributes(target, source, where: str, origin: str, warnings: list[st
         target.set(key, value)
 
 
-def _modify_targets(root, modify, mesh_aliases: dict[str, set[str]]) -> list[etree._Element]:
+def _modify_targets(
+    root: etree._Element, modify: ModifyInput, mesh_aliases: dict[str, set[str]]
+) -> list[etree._Element]:
     if modify.type == "geom":
         meshes = {name for name, aliases in mesh_aliases.items() if modify.mesh in aliases}
         found = [
@@ -291,7 +308,7 @@ def _modify_targets(root, modify, mesh_aliases: dict[str, set[str]]) -> list[etr
         if not found:
             raise input_error(
                 modify.origin,
-                f"modify_element: no {modify.target()}",
+                f"modify_element: no {modify.describe()}",
                 hint=f"meshes: {_listing(mesh_aliases)}; classes: visual, collision",
             )
         return found

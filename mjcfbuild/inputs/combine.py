@@ -3,22 +3,16 @@
 Precedence, lowest first: ``<mujoco_inputs>`` in the URDF, the inputs file, robot.yaml. When
 two places say the same thing (the same named raw element, the same option attribute, a camera
 or lidar of the same name, the same attribute of the same modified element, the same mesh to
-decompose, a scene), the higher one wins and the build warns, naming both places.
+decompose, a scene), the higher one wins and the build warns, naming both places. How the
+processed items of each tag combine is the tag's own (``ProcessedInput.combine``).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import Protocol, TypeVar
-
 from lxml import etree
 
-from mjcfbuild.inputs.model import (
-    SINGLE_SECTIONS,
-    Inputs,
-    ModifyInput,
-    RawElement,
-)
+from mjcfbuild.inputs.model import SINGLE_SECTIONS, Inputs, RawElement
+from mjcfbuild.inputs.processed import PROCESSED_INPUTS
 
 
 def combine(sources: list[Inputs]) -> tuple[Inputs, list[str]]:
@@ -26,18 +20,8 @@ def combine(sources: list[Inputs]) -> tuple[Inputs, list[str]]:
     warnings: list[str] = []
     combined = Inputs()
     combined.raw = _combine_raw([item for s in sources for item in s.raw], warnings)
-    combined.cameras = _by_key(
-        [c for s in sources for c in s.cameras], lambda c: c.name, "camera", warnings
-    )
-    combined.lidars = _by_key(
-        [li for s in sources for li in s.lidars], lambda li: li.sensor_name, "lidar", warnings
-    )
-    combined.decompositions = _by_key(
-        [d for s in sources for d in s.decompositions], lambda d: d.mesh, "decompose_mesh", warnings
-    )
-    combined.modifications = _combine_modifications(
-        [m for s in sources for m in s.modifications], warnings
-    )
+    for kind in PROCESSED_INPUTS:
+        combined.processed += kind.combine([i for s in sources for i in s.of(kind)], warnings)
     scenes = [s.scene for s in sources if s.scene is not None]
     if len(scenes) > 1:
         warnings.append(
@@ -46,28 +30,6 @@ def combine(sources: list[Inputs]) -> tuple[Inputs, list[str]]:
         )
     combined.scene = scenes[-1] if scenes else None
     return combined, warnings
-
-
-class _Given(Protocol):
-    origin: str  # where the input was given, for warnings
-
-
-_Item = TypeVar("_Item", bound=_Given)
-
-
-def _by_key(
-    items: list[_Item], key: Callable[[_Item], str], what: str, warnings: list[str]
-) -> list[_Item]:
-    chosen: dict[str, _Item] = {}
-    for item in items:
-        name = key(item)
-        if name in chosen:
-            warnings.append(
-                f"{what} '{name}' given in {chosen[name].origin} and {item.origin}; "
-                f"using the one in {item.origin}"
-            )
-        chosen[name] = item
-    return list(chosen.values())
 
 
 def raw_identity(item: RawElement) -> tuple:
@@ -118,17 +80,3 @@ def _merge_single(low: RawElement, high: RawElement, warnings: list[str]) -> Raw
     for child in override:
         merged.append(child)
     return RawElement(high.section, etree.tostring(merged, encoding="unicode"), high.origin)
-
-
-def _combine_modifications(items: list[ModifyInput], warnings: list[str]) -> list[ModifyInput]:
-    seen: dict[tuple, ModifyInput] = {}
-    for item in items:
-        for attribute in item.attributes:
-            key = (item.type, item.name, item.mesh, item.geom_class, attribute)
-            if key in seen:
-                warnings.append(
-                    f"{item.target()} {attribute} set in {seen[key].origin} and {item.origin}; "
-                    f"using the value from {item.origin}"
-                )
-            seen[key] = item
-    return items  # applied in order, so the later (higher) value wins

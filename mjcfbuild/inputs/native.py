@@ -1,81 +1,34 @@
-"""The ``mujoco_inputs`` of robot.yaml as :class:`Inputs`, with origins in robot.yaml."""
+"""The ``mujoco_inputs`` of robot.yaml as :class:`Inputs`, with origins in robot.yaml.
+
+The processed items are the manifest's own models (inputs.processed); only the raw MJCF text is
+read here, as the reader of ``<raw_inputs>`` reads it.
+"""
 
 from __future__ import annotations
+
+from typing import TYPE_CHECKING
 
 from lxml import etree
 
 from mjcfbuild.errors import InputError
-from mjcfbuild.inputs.model import (
-    CameraInput,
-    DecomposeInput,
-    Inputs,
-    LidarInput,
-    ModifyInput,
-    SceneInput,
-)
+from mjcfbuild.inputs.model import Inputs
+from mjcfbuild.inputs.processed import PROCESSED_INPUTS
 from mjcfbuild.inputs.xml_inputs import read_raw_sections
 
-
-def _text(value) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, (list, tuple)):
-        return " ".join(_text(v) for v in value)
-    return str(value)
+if TYPE_CHECKING:
+    from mjcfbuild.manifest.models import MujocoInputs
 
 
-def native_inputs(settings: dict, manifest_label: str) -> Inputs:
-    """Inputs from the plain form of the manifest's ``mujoco_inputs``."""
+def native_inputs(settings: MujocoInputs, manifest_label: str) -> Inputs:
+    """Inputs from the manifest's ``mujoco_inputs``, each item given at its key path."""
     where = f"{manifest_label} mujoco_inputs"
     inputs = Inputs()
-    if settings.get("raw"):
-        inputs.raw = read_raw_sections(_wrap(settings["raw"], f"{where}.raw"), f"{where}.raw")
-    for index, camera in enumerate(settings.get("cameras", [])):
-        attributes = {k: _text(v) for k, v in camera.get("attributes", {}).items()}
-        for key in ("fovy", "mode", "resolution"):
-            if camera.get(key) is not None:
-                attributes[key] = _text(camera[key])
-        inputs.cameras.append(
-            CameraInput(camera["name"], camera["link"], attributes, f"{where}.cameras[{index}]")
-        )
-    for index, lidar in enumerate(settings.get("lidars", [])):
-        inputs.lidars.append(
-            LidarInput(
-                lidar["sensor_name"],
-                lidar["link"],
-                float(lidar["min_angle"]),
-                float(lidar["max_angle"]),
-                float(lidar["angle_increment"]),
-                f"{where}.lidars[{index}]",
-            )
-        )
-    for index, modify in enumerate(settings.get("modify", [])):
-        attributes = {k: _text(v) for k, v in modify["attributes"].items()}
-        inputs.modifications.append(
-            ModifyInput(
-                modify["type"],
-                attributes,
-                f"{where}.modify[{index}]",
-                name=modify.get("name"),
-                mesh=modify.get("mesh"),
-                geom_class=modify.get("geom_class"),
-            )
-        )
-    for index, decompose in enumerate(settings.get("decompose", [])):
-        inputs.decompositions.append(
-            DecomposeInput(
-                decompose["mesh"], float(decompose["threshold"]), f"{where}.decompose[{index}]"
-            )
-        )
+    if settings.raw:
+        inputs.raw = read_raw_sections(_wrap(settings.raw, f"{where}.raw"), f"{where}.raw")
+    for kind in PROCESSED_INPUTS:
+        for index, item in enumerate(getattr(settings, kind.manifest_key)):
+            inputs.processed.append(item.given_at(f"{where}.{kind.manifest_key}[{index}]"))
     return inputs
-
-
-def native_scene(mjcf: str | None, manifest_label: str) -> SceneInput | None:
-    """The manifest's ``scene.mjcf`` block, checked to be well-formed XML."""
-    if not mjcf:
-        return None
-    _wrap(mjcf, f"{manifest_label} scene.mjcf")
-    return SceneInput(mjcf, f"{manifest_label} scene.mjcf")
 
 
 def _wrap(text: str, label: str) -> etree._Element:

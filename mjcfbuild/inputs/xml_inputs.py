@@ -2,35 +2,24 @@
 
     <mujoco_inputs>
       <raw_inputs> option, default, asset, actuator, tendon, ... copied into the model </raw_inputs>
-      <processed_inputs> decompose_mesh, camera, lidar, modify_element </processed_inputs>
+      <processed_inputs> camera, lidar, decompose_mesh, modify_element </processed_inputs>
       <scene> statistic, visual, asset, worldbody ... copied into scene.xml </scene>
     </mujoco_inputs>
 
-Every item keeps ``file:line`` so later errors point at it.
+Every item keeps ``file:line`` so later errors point at it. The processed elements are read
+by their models (``inputs.processed``).
 """
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 from lxml import etree
 
 from mjcfbuild.errors import InputError
-from mjcfbuild.inputs.model import (
-    RAW_SECTIONS,
-    SINGLE_SECTIONS,
-    CameraInput,
-    DecomposeInput,
-    Inputs,
-    LidarInput,
-    ModifyInput,
-    RawElement,
-    SceneInput,
-)
+from mjcfbuild.inputs.model import RAW_SECTIONS, SINGLE_SECTIONS, Inputs, RawElement, SceneInput
+from mjcfbuild.inputs.processed import PROCESSED_INPUTS, processed_tag
 from mjcfbuild.urdf.parse import parse_xml
-
-PROCESSED = ("decompose_mesh", "camera", "lidar", "modify_element")
 
 
 def read_inputs_file(path: Path, label: str) -> Inputs:
@@ -123,85 +112,14 @@ def read_raw_sections(element: etree._Element, label: str) -> list[RawElement]:
     return result
 
 
-def _required(label: str, element: etree._Element, attribute: str) -> str:
-    value = element.get(attribute)
-    if value is None or not value.strip():
-        raise _error(label, element, f"<{element.tag}> needs a '{attribute}' attribute")
-    return value.strip()
-
-
-def _number(label: str, element: etree._Element, attribute: str, default: float | None = None):
-    text = element.get(attribute)
-    if text is None:
-        if default is None:
-            raise _error(label, element, f"<{element.tag}> needs a '{attribute}' attribute")
-        return default
-    try:
-        value = float(text)
-    except ValueError:
-        raise _error(
-            label, element, f'<{element.tag}> {attribute}="{text}" is not a number'
-        ) from None
-    if not math.isfinite(value):
-        raise _error(label, element, f'<{element.tag}> {attribute}="{text}" is not finite')
-    return value
-
-
 def _processed(element: etree._Element, label: str, inputs: Inputs) -> None:
     for child in _elements(element):
-        origin = _origin(label, child)
-        attributes = {str(k): str(v) for k, v in child.attrib.items()}
-        if child.tag == "decompose_mesh":
-            threshold = _number(label, child, "threshold", 0.05)
-            if not 0 < threshold <= 1:
-                raise _error(label, child, f"decompose_mesh threshold {threshold} is not in (0, 1]")
-            inputs.decompositions.append(
-                DecomposeInput(_required(label, child, "mesh_name"), threshold, origin)
-            )
-        elif child.tag == "camera":
-            link = _required(label, child, "site")
-            name = _required(label, child, "name")
-            extra = {k: v for k, v in attributes.items() if k not in ("site", "name")}
-            inputs.cameras.append(CameraInput(name, link, extra, origin))
-        elif child.tag == "lidar":
-            increment = _number(label, child, "angle_increment")
-            if increment <= 0:
-                raise _error(label, child, "lidar angle_increment must be greater than zero")
-            low, high = _number(label, child, "min_angle"), _number(label, child, "max_angle")
-            if high < low:
-                raise _error(label, child, "lidar max_angle is below min_angle")
-            inputs.lidars.append(
-                LidarInput(
-                    _required(label, child, "sensor_name"),
-                    _required(label, child, "ref_site"),
-                    low,
-                    high,
-                    increment,
-                    origin,
-                )
-            )
-        elif child.tag == "modify_element":
-            kind = _required(label, child, "type")
-            rest = {
-                k: v for k, v in attributes.items() if k not in ("type", "name", "mesh", "class")
-            }
-            if kind == "geom":
-                modify = ModifyInput(
-                    "geom",
-                    rest,
-                    origin,
-                    mesh=_required(label, child, "mesh"),
-                    geom_class=_required(label, child, "class"),
-                )
-            else:
-                modify = ModifyInput(kind, rest, origin, name=_required(label, child, "name"))
-            if not rest:
-                raise _error(label, child, "modify_element sets no attribute")
-            inputs.modifications.append(modify)
-        else:
+        kind = processed_tag(child.tag)
+        if kind is None:
             raise _error(
                 label,
                 child,
                 f"processed_inputs cannot hold <{child.tag}>",
-                f"allowed: {', '.join(PROCESSED)}",
+                f"allowed: {', '.join(kind.xml_tag for kind in PROCESSED_INPUTS)}",
             )
+        inputs.processed.append(kind.from_xml(child, label))

@@ -8,7 +8,7 @@ manifest's folder and resolved by :class:`mjcfbuild.engine.context.BuildContext`
 from __future__ import annotations
 
 import re
-from typing import Annotated, Any, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 from pydantic import (
     BaseModel,
@@ -20,6 +20,8 @@ from pydantic import (
     model_validator,
 )
 
+from mjcfbuild.collision.policy import POLICIES, POLICY_NAMES, policies_described
+from mjcfbuild.inputs.processed import CameraInput, DecomposeInput, LidarInput, ModifyInput
 from mjcfbuild.manifest.composition import Attachment, check_prefixes
 from mjcfbuild.manifest.motors import MotorSettings
 from mjcfbuild.manifest.simulation import (
@@ -222,7 +224,12 @@ class CoacdParams(StrictModel):
         return value
 
 
-Policy = Literal["authored", "visual", "hull", "decompose", "primitive", "none"]
+# The names of collision.policy.POLICIES (mypy sees a str; the schema, their enum).
+if TYPE_CHECKING:
+    Policy = str
+else:
+    Policy = Literal[POLICY_NAMES]
+DECOMPOSING = [name for name, policy in POLICIES.items() if policy.coacd]
 
 
 class CollisionRule(StrictModel):
@@ -236,7 +243,9 @@ class CollisionRule(StrictModel):
         description="Mesh patterns, matched against the file name, its stem, the URI and "
         "mjcfbuild's mesh name.",
     )
-    policy: Policy
+    policy: Policy = Field(
+        description=f"The geometry the matched shapes collide with: {policies_described()}."
+    )
     decompose: dict[str, float | int | bool | str] = Field(
         default_factory=dict,
         description="CoACD parameters for this rule, over those of collision.decompose.",
@@ -246,8 +255,10 @@ class CollisionRule(StrictModel):
     def _has_patterns(self) -> CollisionRule:
         if not self.links and not self.meshes:
             raise ValueError("a rule needs 'links' or 'meshes' patterns")
-        if self.decompose and self.policy != "decompose":
-            raise ValueError("decompose parameters only apply to policy: decompose")
+        if self.decompose and self.policy not in DECOMPOSING:
+            raise ValueError(
+                f"decompose parameters only apply to policy: {' or '.join(DECOMPOSING)}"
+            )
         unknown = sorted(set(self.decompose) - set(CoacdParams.model_fields))
         if unknown:
             raise ValueError(
@@ -268,10 +279,7 @@ class CollisionSettings(StrictModel):
 
     default: Policy = Field(
         "authored",
-        description=(
-            "Policy for every link and mesh no rule matches: authored (the URDF's collision "
-            "elements), visual, hull, decompose, primitive or none."
-        ),
+        description=(f"Policy for every link and mesh no rule matches: {policies_described()}."),
     )
     decompose: CoacdParams = Field(
         default_factory=CoacdParams, description="Default CoACD parameters."
@@ -300,7 +308,7 @@ class CollisionSettings(StrictModel):
                     "links": list(rule.links),
                     "meshes": list(rule.meshes),
                     "policy": rule.policy,
-                    "decompose": params.model_dump() if rule.policy == "decompose" else {},
+                    "decompose": params.model_dump() if rule.policy in DECOMPOSING else {},
                 }
             )
         return result
@@ -354,67 +362,6 @@ class CacheSettings(StrictModel):
         return value
 
 
-Attribute = str | float | int | bool
-
-
-class CameraInput(StrictModel):
-    """A camera at a link, which is a ROS optical frame (+z forward, +y down)."""
-
-    name: str = Field(min_length=1)
-    link: str = Field(min_length=1, description="The link (or site) the camera sits at.")
-    fovy: float | None = Field(None, gt=0, lt=180, description="Vertical field of view (degrees).")
-    mode: str | None = Field(None, description="MuJoCo camera mode, for example 'fixed'.")
-    resolution: tuple[int, int] | None = Field(None, description="Width and height in pixels.")
-    attributes: dict[str, Attribute] = Field(
-        default_factory=dict, description="Any other MuJoCo camera attribute."
-    )
-
-
-class LidarInput(StrictModel):
-    """A planar lidar: rangefinders from min_angle to max_angle about the link's +z axis."""
-
-    sensor_name: str = Field(
-        min_length=1, description="Name of the rangefinder sites (<name>-00, <name>-01, ...)."
-    )
-    link: str = Field(min_length=1, description="The lidar frame: +z up, first ray along +x.")
-    min_angle: float
-    max_angle: float
-    angle_increment: float = Field(gt=0)
-
-    @model_validator(mode="after")
-    def _ordered(self) -> LidarInput:
-        if self.max_angle < self.min_angle:
-            raise ValueError("max_angle is below min_angle")
-        return self
-
-
-class ModifyInput(StrictModel):
-    """Attributes to set on a generated element: by type and name, or a geom by mesh and class."""
-
-    model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
-
-    type: str = Field(pattern=r"^[a-z_]+$", description="MJCF element: joint, body, geom, ...")
-    name: str | None = None
-    mesh: str | None = Field(None, description="For geoms: the mesh (name or file stem).")
-    geom_class: str | None = Field(None, alias="class", description="For geoms: the class.")
-    attributes: dict[str, Attribute] = Field(min_length=1)
-
-    @model_validator(mode="after")
-    def _target(self) -> ModifyInput:
-        if self.type == "geom" and not (self.mesh and self.geom_class):
-            raise ValueError("a geom is found by 'mesh' and 'class'")
-        if self.type != "geom" and not self.name:
-            raise ValueError(f"a {self.type} is found by 'name'")
-        return self
-
-
-class DecomposeInput(StrictModel):
-    """Decompose a mesh with CoACD (the reference converter's decompose_mesh)."""
-
-    mesh: str = Field(min_length=1, description="Mesh file name, stem or mjcfbuild mesh name.")
-    threshold: float = Field(0.05, gt=0, le=1)
-
-
 class MujocoInputs(StrictModel):
     """What the model gets beyond the URDF, as the reference converter's inputs can say it.
 
@@ -431,6 +378,7 @@ class MujocoInputs(StrictModel):
         description="Raw MJCF copied into the model: option, size, default, asset, actuator, "
         "tendon, equality, sensor, contact, keyframe, custom, visual, statistic sections.",
     )
+    # One list per processed tag (inputs.processed.PROCESSED_INPUTS), named by its manifest_key.
     cameras: list[CameraInput] = Field(default_factory=list)
     lidars: list[LidarInput] = Field(default_factory=list)
     modify: list[ModifyInput] = Field(default_factory=list)

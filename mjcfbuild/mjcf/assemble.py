@@ -24,6 +24,7 @@ from mjcfbuild.control.stand_up import crouched_home, described_nothing, replace
 from mjcfbuild.errors import ModelError
 from mjcfbuild.inputs.gazebo import GazeboSensor
 from mjcfbuild.inputs.model import Inputs
+from mjcfbuild.inputs.processed import CameraInput
 from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.manifest.simulation import ActuatorSettings
 from mjcfbuild.meshes.product import MeshProduct
@@ -187,7 +188,7 @@ def _apply_additions(
     warnings += gazebo.warnings
     warnings += sensor_warnings(
         control,
-        [c.name for c in inputs.cameras] + gazebo.cameras,
+        [c.name for c in inputs.of(CameraInput)] + gazebo.cameras,
         result.lidar_sensors + gazebo.lidars,
     )
     add_control_sensors(root, control, links)

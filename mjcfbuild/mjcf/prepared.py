@@ -19,7 +19,7 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from mjcfbuild.collision.policy import CollisionChoice
+from mjcfbuild.collision.policy import CollisionChoice, collision_policy
 from mjcfbuild.errors import InputError
 from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.mjcf.bodies import Body, PlacedShape
@@ -288,8 +288,9 @@ class _Builder:
         return geoms
 
     def collision(self, placed: PlacedShape, body: Body, choice: CollisionChoice) -> list[_Geom]:
+        policy = collision_policy(choice.policy)  # an unknown name is an error, never a default
         geometry = placed.shape.geometry
-        record = self._record(placed, body, "collision", geometry.kind, choice.policy)
+        record = self._record(placed, body, "collision", geometry.kind, policy.name)
         if geometry.kind != "mesh":
             primitive = self._primitive(placed, "collision")
             return (
@@ -297,37 +298,7 @@ class _Builder:
             )
         if any(s == 0 for s in geometry.scale):
             return self._zero_size(placed, f"mesh scale {exact_list(geometry.scale)}", "collision")
-        mesh_id = geometry.mesh_id
-        assert mesh_id is not None, "resolve gives every mesh an id"
-        product = self.products[mesh_id]
-        if choice.policy in ("authored", "visual"):
-            file = product.collision
-            assert file is not None, "the mesh task was given the collision role"
-            stem = mesh_id if product.collision_is_whole else f"{mesh_id}_collision"
-            shell = abs(product.collision_volume) < 1e-9
-            use = self._use(mesh_id, file, product.files[file], stem, placed, shell)
-            return [_Geom("collision", placed.pose, record, mesh=use)]
-        if choice.policy == "hull":
-            assert product.hull is not None, "the mesh task was given the hull role"
-            use = self._use(
-                mesh_id, product.hull, product.files[product.hull], f"{mesh_id}_hull", placed
-            )
-            return [_Geom("collision", placed.pose, record, mesh=use)]
-        if choice.policy == "primitive":
-            return [self._fitted(placed, record, mesh_id, product)]
-        decomposition = self._decomposition(mesh_id, choice.decompose_params)
-        geoms = []
-        for index, part in enumerate(decomposition.parts):
-            part_record = self._record(placed, body, "collision", "mesh", "decompose")
-            use = self._use(
-                mesh_id,
-                str(decomposition.folder / part),
-                decomposition.files[part],
-                f"{mesh_id}_part{index}",
-                placed,
-            )
-            geoms.append(_Geom("collision", placed.pose, part_record, mesh=use))
-        return geoms
+        return policy.geoms(_MeshCollision(self, placed, body, record, choice))
 
     def _decomposition(self, mesh_id: str, params: dict) -> Decomposition:
         for decomposition in self.decompositions:
@@ -381,6 +352,71 @@ class _Builder:
             line=shape.line,
             hint="give it a positive size, or remove it",
         )
+
+
+class _MeshCollision:
+    """The collision geoms one mesh shape can become, for its policy to choose from
+    (``collision.policy.MeshCollision``)."""
+
+    def __init__(
+        self,
+        builder: _Builder,
+        placed: PlacedShape,
+        body: Body,
+        record: GeomRecord,
+        choice: CollisionChoice,
+    ) -> None:
+        mesh_id = placed.shape.geometry.mesh_id
+        assert mesh_id is not None, "resolve gives every mesh an id"
+        self.builder = builder
+        self.placed = placed
+        self.body = body
+        self.record = record
+        self.choice = choice
+        self.mesh_id = mesh_id
+        self.product = builder.products[mesh_id]
+
+    def mesh(self) -> list[_Geom]:
+        """The mesh's collision product."""
+        product, mesh_id = self.product, self.mesh_id
+        file = product.collision
+        assert file is not None, "the mesh task was given the collision role"
+        stem = mesh_id if product.collision_is_whole else f"{mesh_id}_collision"
+        shell = abs(product.collision_volume) < 1e-9
+        use = self.builder._use(mesh_id, file, product.files[file], stem, self.placed, shell)
+        return [_Geom("collision", self.placed.pose, self.record, mesh=use)]
+
+    def hull(self) -> list[_Geom]:
+        """The mesh's convex hull."""
+        product, mesh_id = self.product, self.mesh_id
+        assert product.hull is not None, "the mesh task was given the hull role"
+        use = self.builder._use(
+            mesh_id, product.hull, product.files[product.hull], f"{mesh_id}_hull", self.placed
+        )
+        return [_Geom("collision", self.placed.pose, self.record, mesh=use)]
+
+    def fitted_primitive(self) -> list[_Geom]:
+        """The primitive that fits the mesh's hull best."""
+        return [self.builder._fitted(self.placed, self.record, self.mesh_id, self.product)]
+
+    def decomposition(self) -> list[_Geom]:
+        """A geom per part of the mesh's decomposition with the choice's parameters."""
+        builder, mesh_id = self.builder, self.mesh_id
+        decomposition = builder._decomposition(mesh_id, self.choice.decompose_params)
+        geoms = []
+        for index, part in enumerate(decomposition.parts):
+            part_record = builder._record(
+                self.placed, self.body, "collision", "mesh", self.choice.policy
+            )
+            use = builder._use(
+                mesh_id,
+                str(decomposition.folder / part),
+                decomposition.files[part],
+                f"{mesh_id}_part{index}",
+                self.placed,
+            )
+            geoms.append(_Geom("collision", self.placed.pose, part_record, mesh=use))
+        return geoms
 
 
 def _primitive_xml(kind: str, size: tuple) -> str:

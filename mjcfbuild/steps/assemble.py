@@ -15,6 +15,7 @@ from mjcfbuild.fsutil import remove_stale_temp_files
 from mjcfbuild.inputs.combine import combine
 from mjcfbuild.inputs.model import Inputs, inputs_from_dict
 from mjcfbuild.inputs.native import native_inputs
+from mjcfbuild.manifest.models import MujocoInputs
 from mjcfbuild.manifest.simulation import ActuatorSettings
 from mjcfbuild.meshes.product import read_product
 from mjcfbuild.mjcf.assemble import Assembly, AssemblyOptions, assemble
@@ -132,7 +133,8 @@ def _inputs(request: AssemblePayload) -> tuple[Inputs, list[str]]:
     sources = [inputs_from_dict(request.inputs["urdf"])]
     if request.inputs["file"]:
         sources.append(inputs_from_dict(request.inputs["file"]))
-    sources.append(native_inputs(request.inputs["native"], request.manifest_label))
+    native = MujocoInputs.model_validate(request.inputs["native"])
+    sources.append(native_inputs(native, request.manifest_label))
     return combine(sources)
 
 

@@ -2,13 +2,27 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
+import pytest
+
 from mjcfbuild.collision.policy import (
+    POLICIES,
+    POLICY_NAMES,
+    CollisionChoice,
     Rule,
     choose_collisions,
+    collision_policy,
     decompositions,
     mesh_roles,
 )
+from mjcfbuild.errors import InternalError, ManifestError
+from mjcfbuild.manifest.loading import load_manifest
+from mjcfbuild.manifest.schema import manifest_schema
+from mjcfbuild.mjcf.bodies import build_bodies
+from mjcfbuild.mjcf.prepared import prepare
 from mjcfbuild.urdf.model import Geometry, Link, Pose, Robot, Shape
+from tests.conftest import ROOT, write
 
 DEFAULTS = {"threshold": 0.05, "seed": 0}
 
@@ -119,3 +133,47 @@ def test_one_mesh_with_two_parameter_sets_gets_two_named_decompositions():
     ]
     names = decompositions(shared, choose_collisions(shared, "authored", rules, DEFAULTS))
     assert len(names) == 2 and all(name.startswith("m-") for name in names)
+
+
+def test_an_unknown_policy_is_an_error_everywhere_never_decompose():
+    with pytest.raises(InternalError, match="unknown collision policy 'decompse'"):
+        collision_policy("decompse")
+    with pytest.raises(InternalError) as info:
+        choose_collisions(robot(), "decompse", [], DEFAULTS)
+    assert "(known: authored, visual, hull, decompose, primitive, none)" in info.value.one_line()
+    typo = CollisionChoice("arm", "collision", 0, "decompse")
+    for use in (mesh_roles, decompositions):
+        with pytest.raises(InternalError, match="decompse"):
+            use(robot(), [typo])
+    # the dispatch that makes the geoms: a box needs no mesh product, so only the name can fail
+    base = CollisionChoice("base", "collision", 0, "decompse")
+    bodies = build_bodies(robot(), fuse_static=False)
+    with pytest.raises(InternalError, match="decompse"):
+        prepare("r", bodies, {}, {}, [base], [], {}, "r.urdf", visuals=False)
+    assert prepare(
+        "r", bodies, {}, {}, [replace(base, policy="hull")], [], {}, "r.urdf", visuals=False
+    ).geoms
+
+
+def test_robot_yaml_names_exactly_the_registered_policies(tmp_path):
+    schema = manifest_schema()["$defs"]
+    for field in (
+        schema["CollisionRule"]["properties"]["policy"],
+        schema["CollisionSettings"]["properties"]["default"],
+    ):
+        assert field["enum"] == list(POLICY_NAMES)
+        assert all(
+            f"{name}: {POLICIES[name].description}" in field["description"] for name in POLICY_NAMES
+        )
+    write(
+        tmp_path / "robot.yaml", "name: r\nsource: {urdf: r.urdf}\ncollision: {default: decompse}\n"
+    )
+    with pytest.raises(ManifestError) as info:
+        load_manifest(tmp_path / "robot.yaml")
+    assert "'decompse' is not allowed; use one of 'authored', 'visual'" in info.value.one_line()
+
+
+def test_the_docs_table_is_the_registry():
+    text = (ROOT / "docs" / "collision.md").read_text()
+    rows = [line for line in text.splitlines() if line.startswith("| `")]
+    assert rows == [f"| `{p.name}` | {p.description} |" for p in POLICIES.values()]

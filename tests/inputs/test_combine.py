@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from mjcfbuild.inputs.combine import combine
-from mjcfbuild.inputs.model import CameraInput, DecomposeInput, Inputs, ModifyInput, RawElement
+from mjcfbuild.inputs.model import Inputs, RawElement
+from mjcfbuild.inputs.processed import CameraInput, DecomposeInput, ModifyInput
 
 
 def test_higher_precedence_wins_and_every_clash_is_warned():
@@ -13,20 +14,28 @@ def test_higher_precedence_wins_and_every_clash_is_warned():
             RawElement("actuator", '<motor name="m" joint="j"/>', "r.urdf:4"),
             RawElement("contact", '<exclude body1="a" body2="b"/>', "r.urdf:5"),
         ],
-        cameras=[CameraInput("cam", "head", {"fovy": "45"}, "r.urdf:6")],
-        decompositions=[DecomposeInput("hand", 0.05, "r.urdf:7")],
+        processed=[
+            CameraInput(name="cam", link="head", attributes={"fovy": "45"}).given_at("r.urdf:6"),
+            DecomposeInput(mesh="hand", threshold=0.05).given_at("r.urdf:7"),
+        ],
     )
     file = Inputs(
         raw=[
             RawElement("option", '<option timestep="0.001"/>', "in.xml:2"),
             RawElement("actuator", '<position name="m" joint="j"/>', "in.xml:3"),
         ],
-        cameras=[CameraInput("cam", "head", {"fovy": "60"}, "in.xml:4")],
+        processed=[
+            CameraInput(name="cam", link="head", attributes={"fovy": "60"}).given_at("in.xml:4")
+        ],
     )
     manifest = Inputs(
-        decompositions=[DecomposeInput("hand", 0.02, "robot.yaml mujoco_inputs.decompose[0]")],
-        modifications=[
-            ModifyInput("joint", {"damping": "1"}, "robot.yaml mujoco_inputs.modify[0]", name="j")
+        processed=[
+            DecomposeInput(mesh="hand", threshold=0.02).given_at(
+                "robot.yaml mujoco_inputs.decompose[0]"
+            ),
+            ModifyInput(type="joint", name="j", attributes={"damping": "1"}).given_at(
+                "robot.yaml mujoco_inputs.modify[0]"
+            ),
         ],
     )
     combined, warnings = combine([urdf, file, manifest])
@@ -35,8 +44,8 @@ def test_higher_precedence_wins_and_every_clash_is_warned():
     actuators = [item.xml for item in combined.raw if item.section == "actuator"]
     assert actuators == ['<position name="m" joint="j"/>']
     assert len([item for item in combined.raw if item.section == "contact"]) == 1
-    assert combined.cameras[0].attributes == {"fovy": "60"}
-    assert combined.decompositions[0].threshold == 0.02
+    assert combined.of(CameraInput)[0].attributes == {"fovy": "60"}
+    assert combined.of(DecomposeInput)[0].threshold == 0.02
     assert len(warnings) == 4
     assert any("option timestep given in r.urdf:3 and in.xml:2" in w for w in warnings)
     assert any(

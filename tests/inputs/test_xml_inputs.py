@@ -5,6 +5,7 @@ from __future__ import annotations
 import pytest
 
 from mjcfbuild.errors import InputError
+from mjcfbuild.inputs.processed import CameraInput, DecomposeInput, LidarInput, ModifyInput
 from mjcfbuild.inputs.xml_inputs import read_inputs_file
 from tests.conftest import EXAMPLES, write
 
@@ -14,12 +15,14 @@ def test_reference_inputs_file():
     sections = [item.section for item in inputs.raw]
     assert sections.count("actuator") == 3 and sections.count("sensor") == 4
     assert sections.count("default") == 2 and "option" in sections
-    assert [c.name for c in inputs.cameras] == ["camera"]
-    assert inputs.cameras[0].link == "camera_color_optical_frame"
-    assert inputs.cameras[0].attributes == {"fovy": "58", "mode": "fixed", "resolution": "640 480"}
-    assert (inputs.lidars[0].sensor_name, inputs.lidars[0].angle_increment) == ("rf", 0.025)
-    assert [m.target() for m in inputs.modifications] == ["joint 'joint1'", "body 'forearm'"]
-    assert inputs.modifications[0].attributes == {"frictionloss": "1.0", "damping": "2.0"}
+    (camera,) = inputs.of(CameraInput)
+    assert (camera.name, camera.link) == ("camera", "camera_color_optical_frame")
+    # the XML form's camera attributes are applied as written, not as robot.yaml's numbers
+    assert camera.attributes == {"fovy": "58", "mode": "fixed", "resolution": "640 480"}
+    (lidar,) = inputs.of(LidarInput)
+    assert (lidar.sensor_name, lidar.angle_increment) == ("rf", 0.025)
+    assert [m.describe() for m in inputs.of(ModifyInput)] == ["joint 'joint1'", "body 'forearm'"]
+    assert inputs.of(ModifyInput)[0].attributes == {"frictionloss": "1.0", "damping": "2.0"}
     assert inputs.raw[0].origin == "test_inputs.xml:5"
 
 
@@ -34,11 +37,11 @@ def inputs_file(tmp_path, body):
         ("<processed_inputs>\n<camera name='c'/></processed_inputs>", "needs a 'site' attribute"),
         (
             "<processed_inputs>\n<lidar ref_site='l' sensor_name='r' min_angle='0' max_angle='1' angle_increment='0'/></processed_inputs>",
-            "greater than zero",
+            "angle_increment: '0' should be greater than 0",
         ),
         (
             "<processed_inputs>\n<lidar ref_site='l' sensor_name='r' min_angle='x' max_angle='1' angle_increment='1'/></processed_inputs>",
-            "is not a number",
+            "min_angle: expected a number, got 'x'",
         ),
         (
             "<processed_inputs>\n<modify_element type='geom' mesh='m' damping='1'/></processed_inputs>",
@@ -50,7 +53,7 @@ def inputs_file(tmp_path, body):
         ),
         (
             "<processed_inputs>\n<decompose_mesh mesh_name='m' threshold='2'/></processed_inputs>",
-            "not in (0, 1]",
+            "threshold: '2' should be less than or equal to 1",
         ),
         (
             "<processed_inputs>\n<teleport/></processed_inputs>",
@@ -70,7 +73,7 @@ def test_decompose_mesh_threshold_defaults_to_0_05(tmp_path):
     path = inputs_file(
         tmp_path, "<processed_inputs><decompose_mesh mesh_name='forearm'/></processed_inputs>"
     )
-    (item,) = read_inputs_file(path, "inputs.xml").decompositions
+    (item,) = read_inputs_file(path, "inputs.xml").of(DecomposeInput)
     assert (item.mesh, item.threshold) == ("forearm", 0.05)
 
 
