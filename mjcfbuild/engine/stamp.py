@@ -17,8 +17,8 @@ appeared, a variable or package changed, no stamp - falls through to the full bu
 decides what to run. A full build removes the stamp before it starts, so an interrupted or
 failed build never leaves one behind.
 
-A file changed within two seconds of the stamp (``racy``, :func:`mjcfbuild.filesig.racy`)
-is always hashed: a later edit in the same timestamp tick would otherwise keep its signature.
+A file changed within the file system's timestamp tick before the stamp (``racy``,
+:func:`mjcfbuild.filesig.racy`: 0.1 s, or 2 s where times are coarse) is always hashed: a later edit in the same timestamp tick would otherwise keep its signature.
 """
 
 from __future__ import annotations
