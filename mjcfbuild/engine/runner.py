@@ -160,8 +160,9 @@ def run_build(
                 ctx.session.close()
                 progress.clear()
             _summarise(result, progress, ctx, started)
-            if ctx.noop_stamp and ctx.stamp_key and tasks and result.ok and not result.warnings:
-                stamp.record_build(ctx, tasks, len(result.ran) + len(result.up_to_date))
+            if ctx.noop_stamp and ctx.stamp_key and tasks and result.ok:
+                count = len(result.ran) + len(result.up_to_date)
+                stamp.record_build(ctx, tasks, count, _model_warnings(ctx))
     finally:
         ctx.session.close()  # for a build stopped before it took the lock; else it did nothing
         progress.clear()
@@ -216,6 +217,18 @@ def _summarise(result: BuildResult, progress: Progress, ctx: BuildContext, start
     result.warnings = warnings
     result.slowest = progress.slowest()
     result.seconds = max(time.perf_counter() - started, 1e-9)
+
+
+def _model_warnings(ctx: BuildContext) -> list[str]:
+    """The warnings of the tasks that made the outputs, whenever they ran, as the console
+    shows them (placed in the xacro source): what a no-op prints for the model."""
+    from mjcfbuild.engine.report import recorded_warnings
+
+    warnings = recorded_warnings(ctx)
+    for urdf in _expanded_urdfs(ctx):
+        label = ctx.label(urdf)
+        warnings = [point_warning_at_source(w, urdf, label, ctx.base_dir) for w in warnings]
+    return list(dict.fromkeys(warnings))
 
 
 def _run_stage(
