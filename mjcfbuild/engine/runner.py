@@ -148,7 +148,7 @@ def run_build(
             # included, is written while it holds the lock: a build that waited for it
             # removes what looks like a killed build's temporary files.
             try:
-                tasks = _build_locked(ctx, progress, result)
+                tasks = _build_locked(ctx, progress, result, started)
                 ctx.session.close()
             except OSError as exc:  # the folder's own files (state, hash cache, report)
                 unwritable = write_failure(exc)
@@ -171,8 +171,11 @@ def run_build(
     return result
 
 
-def _build_locked(ctx: BuildContext, progress: Progress, result: BuildResult) -> list[dict]:
-    """The build itself, under the folder's lock; the tasks of its second stage."""
+def _build_locked(
+    ctx: BuildContext, progress: Progress, result: BuildResult, started: float
+) -> list[dict]:
+    """The build itself, under the folder's lock; the tasks of its second stage. ``started``
+    (a ``perf_counter``): when the build began, for the line announcing the model."""
     tasks: list[dict] = []
     if ctx.stamp_key is not None:  # whichever way it was started
         stamp.discard(ctx.stamp_key, ctx.run_check)
@@ -185,6 +188,9 @@ def _build_locked(ctx: BuildContext, progress: Progress, result: BuildResult) ->
         doit_output = _run_stage(ctx, planning, progress, result)
         if not result.errors:
             tasks = build_tasks(ctx)
+            model_tasks = _model_tasks(ctx, tasks)
+            _after_the_model(ctx, tasks, model_tasks)
+            progress.announce_model(model_tasks, _model_line(ctx), started)
             doit_output += _run_stage(ctx, tasks, progress, result)
             if not result.errors:
                 remove_stale_products(ctx, tasks)
@@ -204,6 +210,33 @@ def _build_locked(ctx: BuildContext, progress: Progress, result: BuildResult) ->
         _prune_cache(ctx)
     result.engine_log = doit_output if result.errors else ""
     return tasks
+
+
+def _model_tasks(ctx: BuildContext, tasks: list[dict]) -> list[str]:
+    """The tasks that write the model and its assets, and the scene."""
+    written = {str(ctx.robot_path), str(ctx.scene_path)}
+    return [task["name"] for task in tasks if written & set(task["targets"])]
+
+
+def _after_the_model(ctx: BuildContext, tasks: list[dict], model_tasks: list[str]) -> None:
+    """Have every task that reads the model start only once all of it (assets and scene
+    included) is written, so that none of them - the check, previews, tuning report, page -
+    holds back the scene and the line announcing the model. Order only: a ``task_dep`` makes
+    no task rerun."""
+    for task in tasks:
+        if task["name"] not in model_tasks and str(ctx.robot_path) in task["file_dep"]:
+            task["task_dep"] = list(dict.fromkeys([*task.get("task_dep", []), *model_tasks]))
+
+
+def _model_line(ctx: BuildContext) -> str:
+    """The line that says the model can be opened, naming its files from the current folder
+    (absolute where that is shorter than climbing out of it)."""
+
+    def shown(path: Path) -> str:
+        relative = os.path.relpath(path)
+        return str(path) if relative.startswith("..") else relative
+
+    return f"mjcfbuild: model ready: {shown(ctx.robot_path)}, {shown(ctx.scene_path)}"
 
 
 def _summarise(result: BuildResult, progress: Progress, ctx: BuildContext, started: float) -> None:
