@@ -189,7 +189,7 @@ def _build_locked(
         if not result.errors:
             tasks = build_tasks(ctx)
             model_tasks = _model_tasks(ctx, tasks)
-            _after_the_model(ctx, tasks, model_tasks)
+            _after_the_model(tasks, model_tasks)
             progress.announce_model(model_tasks, _model_line(ctx), started)
             doit_output += _run_stage(ctx, tasks, progress, result)
             if not result.errors:
@@ -218,13 +218,24 @@ def _model_tasks(ctx: BuildContext, tasks: list[dict]) -> list[str]:
     return [task["name"] for task in tasks if written & set(task["targets"])]
 
 
-def _after_the_model(ctx: BuildContext, tasks: list[dict], model_tasks: list[str]) -> None:
-    """Have every task that reads the model start only once all of it (assets and scene
-    included) is written, so that none of them - the check, previews, tuning report, page -
-    holds back the scene and the line announcing the model. Order only: a ``task_dep`` makes
-    no task rerun."""
+def _after_the_model(tasks: list[dict], model_tasks: list[str]) -> None:
+    """Have every task the model does not need start only once all of it (assets and scene
+    included) is written, so that none of them - the check and its reference kinematics,
+    previews, tuning report, page - takes a core from the model or holds back the line
+    announcing it. Order only: a ``task_dep`` makes no task rerun."""
+    made_by = {target: task["name"] for task in tasks for target in task["targets"]}
+    needs = {
+        task["name"]: {*task.get("task_dep", []), *filter(None, map(made_by.get, task["file_dep"]))}
+        for task in tasks
+    }
+    needed, pending = set(model_tasks), list(model_tasks)
+    while pending:
+        for name in needs.get(pending.pop(), ()):
+            if name not in needed:
+                needed.add(name)
+                pending.append(name)
     for task in tasks:
-        if task["name"] not in model_tasks and str(ctx.robot_path) in task["file_dep"]:
+        if task["name"] not in needed:
             task["task_dep"] = list(dict.fromkeys([*task.get("task_dep", []), *model_tasks]))
 
 
