@@ -9,10 +9,14 @@ the modification time, a rename or a new link moves it to now. The inode and dev
 file replaced by another at the same path (a folder removed and extracted again).
 
 A signature recorded in the same timestamp tick as the file's last change cannot tell a later
-change in that tick (git's "racily clean" files): a file changed less than
-:data:`RACY_NS` before its record is hashed again next time rather than trusted. The margin
-covers file systems that keep coarse times (FAT: 2 s) and the kernel's file clock, which lags
-``time.time()`` by up to a tick.
+change in that tick (git's "racily clean" files): a file changed less than a margin before its
+record is hashed again next time rather than trusted. The margin is the file system's tick:
+:data:`RACY_NS` (2 s) where its times are coarse (FAT: 2 s; ext3, HFS+: 1 s; exFAT: 10 ms),
+told by a status-change time in whole milliseconds, and :data:`TICK_RACY_NS` (0.1 s) where
+they are finer: those file systems take times from the kernel's file clock, which moves once a
+tick (at most 10 ms on Linux, 15.6 ms on Windows) and lags ``time.time()`` by up to a tick. So
+the files a build wrote are trusted by the next no-op unless they were written in its last
+tenth of a second, where a 2 s margin had it hash most of a fast build's outputs again.
 
 Only the standard library is imported: the no-op path uses this before anything else.
 """
@@ -21,7 +25,8 @@ from __future__ import annotations
 
 import os
 
-RACY_NS = 2_000_000_000
+RACY_NS = 2_000_000_000  # file systems with coarse times
+TICK_RACY_NS = 100_000_000  # file systems with sub-millisecond times: a clock tick, with margin
 
 
 def signature(stat: os.stat_result) -> list[int]:
@@ -34,4 +39,9 @@ def racy(stat: os.stat_result, recorded_ns: int) -> bool:
     """Whether a signature of ``stat`` recorded at ``recorded_ns`` (``time.time_ns()``) could
     miss a later change: the file was modified (or its times set) too shortly before. A time in
     the future counts as racy too."""
-    return recorded_ns - max(stat.st_mtime_ns, stat.st_ctime_ns) < RACY_NS
+    # The status-change time is always the file system's clock (it cannot be set), so its
+    # resolution is the file system's; one in whole milliseconds is taken as coarse (a fine
+    # one lands there once in a million, and is only hashed again).
+    fine = stat.st_ctime_ns % 1_000_000 != 0
+    margin = min(RACY_NS, TICK_RACY_NS) if fine else RACY_NS
+    return recorded_ns - max(stat.st_mtime_ns, stat.st_ctime_ns) < margin

@@ -75,3 +75,23 @@ def test_a_time_in_the_future_is_racy(tmp_path):
     later = time.time_ns() + HOUR_NS
     os.utime(source, ns=(later, later))
     assert filesig.racy(os.stat(source), time.time_ns() + filesig.RACY_NS)
+
+
+def _stat(changed_ns: int) -> os.stat_result:
+    """A file's status whose modification and status-change times are ``changed_ns``."""
+    times = {"st_atime_ns": changed_ns, "st_mtime_ns": changed_ns, "st_ctime_ns": changed_ns}
+    return os.stat_result((0o100644, 1, 2, 1, 0, 0, 5, 0, 0, 0), times)
+
+
+def test_the_margin_is_a_tick_where_times_are_fine_and_two_seconds_where_coarse():
+    # A build's outputs written a fraction of a second before its stamp are trusted by the
+    # next no-op where the file system keeps fine times (the kernel's clock moves by ticks of
+    # at most 10 ms there), not hashed again.
+    fine = 1_700_000_000_123_456_789
+    assert not filesig.racy(_stat(fine), fine + filesig.TICK_RACY_NS)
+    assert filesig.racy(_stat(fine), fine + filesig.TICK_RACY_NS - 1)
+    # Whole seconds (ext3, HFS+) or 2 s (FAT): a change a second later can keep the time.
+    coarse = 1_700_000_000_000_000_000
+    assert filesig.racy(_stat(coarse), coarse + filesig.TICK_RACY_NS)
+    assert filesig.racy(_stat(coarse), coarse + filesig.RACY_NS - 1)
+    assert not filesig.racy(_stat(coarse), coarse + filesig.RACY_NS)

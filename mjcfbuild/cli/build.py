@@ -130,7 +130,7 @@ def _nothing_changed(manifest: str, args: argparse.Namespace) -> dict | None:
     found: list[dict] = []
 
     def check() -> dict | None:
-        summary = stamp.nothing_to_do(manifest, run_check=not args.no_check)
+        summary = stamp.nothing_to_do(manifest, not args.no_check, args.allow_outside)
         found.extend([summary] if summary is not None else [])
         return summary
 
@@ -139,7 +139,9 @@ def _nothing_changed(manifest: str, args: argparse.Namespace) -> dict | None:
 
 def report_nothing_to_do(check: Callable[[], dict | None], quiet: bool) -> bool:
     """Run the no-op fast path's ``check`` (a stamp lookup); when it finds nothing to do,
-    print the line a build would and return True."""
+    print what a build would - the model's warnings, one line per kind, and the summary -
+    and return True."""
+    import os
     import time
 
     started = time.perf_counter()
@@ -147,10 +149,14 @@ def report_nothing_to_do(check: Callable[[], dict | None], quiet: bool) -> bool:
     if summary is None:
         return False
     if not quiet:
+        warnings = summary["warnings"]
+        report_warnings(warnings, os.path.relpath(summary["report"]) if warnings else "")
+        count = len(warnings)
+        counted = f", {count} warning{'s' if count > 1 else ''}" if count else ""
         seconds = time.perf_counter() - started
         print(
-            f"mjcfbuild: built {summary['robot']}: 0 run, {summary['tasks']} up to date "
-            f"in {seconds:.2f} s"
+            f"mjcfbuild: built {summary['robot']}: 0 run, {summary['tasks']} up to date"
+            f"{counted} in {seconds:.2f} s"
         )
     return True
 

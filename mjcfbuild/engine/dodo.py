@@ -72,12 +72,13 @@ class RobotTasks:
 
 def up_to_date(ctx: BuildContext) -> bool:
     """Whether a build of ``ctx`` would run nothing: the no-op stamp says so, or, where the
-    last build left no stamp (it warned), every task of its graph is up to date."""
+    last build left no stamp (it failed, or ran another way), every task of its graph is up
+    to date."""
     from mjcfbuild.engine import stamp
     from mjcfbuild.engine.status import build_statuses
 
     assert ctx.manifest_file is not None
-    if stamp.nothing_to_do(ctx.manifest_file, ctx.run_check) is not None:
+    if stamp.nothing_to_do(ctx.manifest_file, ctx.run_check, ctx.allow_outside) is not None:
         return True
     statuses, complete = build_statuses(ctx)
     return complete and all(status.up_to_date for status in statuses)

@@ -4,9 +4,9 @@ doit's stock MD5 checker re-hashes every file whose mtime moved, on every run, u
 runs again. A fresh git checkout or a ``touch`` moves every mtime, so that would re-read every
 mesh on every no-op build. This cache records the hash of each file against its signature
 (:func:`mjcfbuild.filesig.signature`: size, mtime, ctime, inode, device); a file whose
-signature is unchanged is not read again. Files changed in the last two seconds
-(:func:`mjcfbuild.filesig.racy`) are hashed but not remembered, so a write within the file
-system's timestamp granularity is never missed.
+signature is unchanged is not read again. Files changed within the file system's timestamp
+tick (:func:`mjcfbuild.filesig.racy`) are hashed but not remembered, so a write within the
+file system's timestamp granularity is never missed.
 """
 
 from __future__ import annotations

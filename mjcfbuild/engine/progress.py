@@ -4,6 +4,12 @@ On a terminal one status line is redrawn in place; elsewhere (CI logs, pre-commi
 that runs prints one plain line when it finishes. doit calls a reporter object; the
 :class:`Progress` behind it lives across both stages of a build, so the summary counts each
 task once.
+
+The model is announced the moment the tasks that write it (the model and its assets, the
+scene) have finished, one of them having run: a line naming the files to open, printed while
+the check, previews, tuning report and page still run. doit reports a task's end from its
+main thread before it hands out the tasks that depend on it, so the line always comes before
+any task that reads the model starts.
 """
 
 from __future__ import annotations
@@ -12,6 +18,7 @@ import shutil
 import sys
 import threading
 import time
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any, TextIO
 
@@ -41,6 +48,33 @@ class Progress:
         self._running: dict[str, float] = {}
         self._lock = threading.Lock()
         self._line_shown = False
+        self._model_tasks: frozenset[str] = frozenset()
+        self._model_line = ""
+        self._since = time.perf_counter()
+        self.model_ready: float | None = None  # seconds from the build's start to the model
+
+    def announce_model(self, tasks: Iterable[str], line: str, since: float) -> None:
+        """Print ``line`` (with the seconds from ``since``, a ``perf_counter``) once every one
+        of ``tasks`` has finished well and one of them ran: the model is written."""
+        with self._lock:
+            self._model_tasks = frozenset(tasks)
+            self._model_line = line
+            self._since = since
+            self._announce()
+
+    def _announce(self) -> None:
+        outcomes = [self.status.get(name) for name in self._model_tasks]
+        if not outcomes or self.model_ready is not None or RAN not in outcomes:
+            return
+        if any(outcome not in (RAN, UP_TO_DATE) for outcome in outcomes):
+            return
+        self.model_ready = time.perf_counter() - self._since
+        if self.quiet:
+            return
+        self.clear()
+        self.stream.write(f"{self.prefix}{self._model_line} ({self.model_ready:.2f} s)\n")
+        self.stream.flush()
+        self._redraw()
 
     def known(self, names: list[str]) -> None:
         """The tasks of the current stage (for the [done/total] counter)."""
@@ -66,6 +100,7 @@ class Progress:
             if start is not None and not self.quiet and not self.live:
                 self._print_line(name, outcome)
             self._redraw()
+            self._announce()
 
     def _print_line(self, name: str, outcome: str) -> None:
         done = sum(1 for s in self.status.values() if s != BLOCKED)

@@ -148,7 +148,7 @@ def run_build(
             # included, is written while it holds the lock: a build that waited for it
             # removes what looks like a killed build's temporary files.
             try:
-                tasks = _build_locked(ctx, progress, result)
+                tasks = _build_locked(ctx, progress, result, started)
                 ctx.session.close()
             except OSError as exc:  # the folder's own files (state, hash cache, report)
                 unwritable = write_failure(exc)
@@ -160,8 +160,9 @@ def run_build(
                 ctx.session.close()
                 progress.clear()
             _summarise(result, progress, ctx, started)
-            if ctx.noop_stamp and ctx.stamp_key and tasks and result.ok and not result.warnings:
-                stamp.record_build(ctx, tasks, len(result.ran) + len(result.up_to_date))
+            if ctx.noop_stamp and ctx.stamp_key and tasks and result.ok:
+                count = len(result.ran) + len(result.up_to_date)
+                stamp.record_build(ctx, tasks, count, _model_warnings(ctx))
     finally:
         ctx.session.close()  # for a build stopped before it took the lock; else it did nothing
         progress.clear()
@@ -170,8 +171,11 @@ def run_build(
     return result
 
 
-def _build_locked(ctx: BuildContext, progress: Progress, result: BuildResult) -> list[dict]:
-    """The build itself, under the folder's lock; the tasks of its second stage."""
+def _build_locked(
+    ctx: BuildContext, progress: Progress, result: BuildResult, started: float
+) -> list[dict]:
+    """The build itself, under the folder's lock; the tasks of its second stage. ``started``
+    (a ``perf_counter``): when the build began, for the line announcing the model."""
     tasks: list[dict] = []
     if ctx.stamp_key is not None:  # whichever way it was started
         stamp.discard(ctx.stamp_key, ctx.run_check)
@@ -184,6 +188,9 @@ def _build_locked(ctx: BuildContext, progress: Progress, result: BuildResult) ->
         doit_output = _run_stage(ctx, planning, progress, result)
         if not result.errors:
             tasks = build_tasks(ctx)
+            model_tasks = _model_tasks(ctx, tasks)
+            _after_the_model(tasks, model_tasks)
+            progress.announce_model(model_tasks, _model_line(ctx), started)
             doit_output += _run_stage(ctx, tasks, progress, result)
             if not result.errors:
                 remove_stale_products(ctx, tasks)
@@ -205,6 +212,44 @@ def _build_locked(ctx: BuildContext, progress: Progress, result: BuildResult) ->
     return tasks
 
 
+def _model_tasks(ctx: BuildContext, tasks: list[dict]) -> list[str]:
+    """The tasks that write the model and its assets, and the scene."""
+    written = {str(ctx.robot_path), str(ctx.scene_path)}
+    return [task["name"] for task in tasks if written & set(task["targets"])]
+
+
+def _after_the_model(tasks: list[dict], model_tasks: list[str]) -> None:
+    """Have every task the model does not need start only once all of it (assets and scene
+    included) is written, so that none of them - the check and its reference kinematics,
+    previews, tuning report, page - takes a core from the model or holds back the line
+    announcing it. Order only: a ``task_dep`` makes no task rerun."""
+    made_by = {target: task["name"] for task in tasks for target in task["targets"]}
+    needs = {
+        task["name"]: {*task.get("task_dep", []), *filter(None, map(made_by.get, task["file_dep"]))}
+        for task in tasks
+    }
+    needed, pending = set(model_tasks), list(model_tasks)
+    while pending:
+        for name in needs.get(pending.pop(), ()):
+            if name not in needed:
+                needed.add(name)
+                pending.append(name)
+    for task in tasks:
+        if task["name"] not in needed:
+            task["task_dep"] = list(dict.fromkeys([*task.get("task_dep", []), *model_tasks]))
+
+
+def _model_line(ctx: BuildContext) -> str:
+    """The line that says the model can be opened, naming its files from the current folder
+    (absolute where that is shorter than climbing out of it)."""
+
+    def shown(path: Path) -> str:
+        relative = os.path.relpath(path)
+        return str(path) if relative.startswith("..") else relative
+
+    return f"mjcfbuild: model ready: {shown(ctx.robot_path)}, {shown(ctx.scene_path)}"
+
+
 def _summarise(result: BuildResult, progress: Progress, ctx: BuildContext, started: float) -> None:
     result.ran = progress.names(RAN)
     result.up_to_date = progress.names(UP_TO_DATE)
@@ -216,6 +261,18 @@ def _summarise(result: BuildResult, progress: Progress, ctx: BuildContext, start
     result.warnings = warnings
     result.slowest = progress.slowest()
     result.seconds = max(time.perf_counter() - started, 1e-9)
+
+
+def _model_warnings(ctx: BuildContext) -> list[str]:
+    """The warnings of the tasks that made the outputs, whenever they ran, as the console
+    shows them (placed in the xacro source): what a no-op prints for the model."""
+    from mjcfbuild.engine.report import recorded_warnings
+
+    warnings = recorded_warnings(ctx)
+    for urdf in _expanded_urdfs(ctx):
+        label = ctx.label(urdf)
+        warnings = [point_warning_at_source(w, urdf, label, ctx.base_dir) for w in warnings]
+    return list(dict.fromkeys(warnings))
 
 
 def _run_stage(

@@ -1,12 +1,15 @@
 """The no-op fast path: decide "nothing changed" from a stamp, before importing the engine.
 
-A successful build without warnings writes a *stamp*: every file the build read (the manifest,
+A successful build writes a *stamp*: every file the build read (the manifest,
 each task's file dependencies, what xacro and mesh steps discovered), every file it wrote
 (targets, products, assets, report, its own state), the files it looked for and did not find,
 the environment variables that can change a build, the folders Python imports packages from
 (their mtime moves when a package is installed or upgraded) and mjcfbuild's own source files.
 Each file is recorded with its signature (:mod:`mjcfbuild.filesig`: size, mtime and ctime
-to the nanosecond, inode, device) and MD5.
+to the nanosecond, inode, device) and MD5. The stamp also keeps the warnings of the tasks that
+made the outputs (the state folder's ``warnings.json``), which the fast path prints as the
+build did, and whether the output folder is outside the manifest's tree by ``--allow-outside``
+alone: a later run without the flag is refused by the full build's guard, never "up to date".
 
 The next ``mjcfbuild build`` of the same manifest checks the stamp first, importing nothing
 but the standard library. A file whose signature is unchanged is unchanged; one whose size
@@ -17,8 +20,9 @@ appeared, a variable or package changed, no stamp - falls through to the full bu
 decides what to run. A full build removes the stamp before it starts, so an interrupted or
 failed build never leaves one behind.
 
-A file changed within two seconds of the stamp (``racy``, :func:`mjcfbuild.filesig.racy`)
-is always hashed: a later edit in the same timestamp tick would otherwise keep its signature.
+A file changed within the file system's timestamp tick before the stamp (``racy``,
+:func:`mjcfbuild.filesig.racy`: 0.1 s, or 2 s where times are coarse) is always hashed: a
+later edit in the same timestamp tick would otherwise keep its signature.
 """
 
 from __future__ import annotations
@@ -39,7 +43,7 @@ if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext
     from mjcfbuild.engine.hashes import HashCache
 
-FORMAT = 3  # 3: files recorded by their whole signature, not by size and mtime
+FORMAT = 4  # 4: warnings to replay, and whether the folder needed --allow-outside
 # Set to any value to skip the fast path (benchmarks of the full path, debugging).
 DISABLE_VARIABLE = "MJCFBUILD_FULL_BUILD"
 # Variables read by the build besides those a depfile records; every MJCFBUILD_* counts too.
@@ -113,16 +117,22 @@ def command_key(command: str, cwd: str, options: dict) -> str:
     return f"{command}\0{cwd}\0{json.dumps(options, sort_keys=True)}"
 
 
-def nothing_to_do(manifest: str | os.PathLike, run_check: bool) -> dict | None:
+def nothing_to_do(
+    manifest: str | os.PathLike, run_check: bool, allow_outside: bool = False
+) -> dict | None:
     """The stamp's summary if nothing changed since the last successful build, else None.
 
-    ``{"robot": <model file name>, "tasks": <tasks of that build>}``. Never raises: any
-    problem reading the stamp means the full build decides.
+    ``{"robot": <model file name>, "tasks": <tasks of that build>, "warnings": <to print>,
+    "report": <report.md, which lists them all>}``. ``allow_outside``: whether this run
+    passes ``--allow-outside``; without it, the stamp of a build whose output folder needed
+    it is not used (the full build's guard refuses the folder). Never raises: any problem
+    reading the stamp means the full build decides.
     """
-    return nothing_to_do_for(Path(os.path.normpath(os.path.abspath(manifest))), run_check)
+    key = Path(os.path.normpath(os.path.abspath(manifest)))
+    return nothing_to_do_for(key, run_check, allow_outside)
 
 
-def nothing_to_do_for(key: Path | str, run_check: bool) -> dict | None:
+def nothing_to_do_for(key: Path | str, run_check: bool, allow_outside: bool = False) -> dict | None:
     """:func:`nothing_to_do` for the build whose stamp key is ``key`` (a normalised manifest
     path, or a :func:`command_key`)."""
     if os.environ.get(DISABLE_VARIABLE):
@@ -132,6 +142,8 @@ def nothing_to_do_for(key: Path | str, run_check: bool) -> dict | None:
     if stamp is None:
         return None
     try:
+        if stamp["outside"] and not allow_outside:
+            return None
         started = time.time_ns()
         if not _same_environment(stamp["environment"]):
             return None
@@ -236,11 +248,13 @@ def write(
     variables: Iterable[str],
     hashes: HashCache,
     next_build: dict | None = None,
+    outside: bool = False,
 ) -> None:
     """Record the state a successful build left, for :func:`nothing_to_do`.
 
     ``hashes`` is the build's :class:`~mjcfbuild.engine.hashes.HashCache`, so files hashed by
-    the build are not read again; ``next_build`` is kept for :func:`previous_build`.
+    the build are not read again; ``next_build`` is kept for :func:`previous_build`;
+    ``outside``: the output folder may be written only with ``--allow-outside``.
     """
     now = time.time_ns()
     files: dict[str, list] = {}
@@ -264,6 +278,7 @@ def write(
         "absent": sorted(set(absent)),
         "files": files,
         "next_build": next_build,
+        "outside": outside,
     }
     _write(stamp_path(manifest, run_check), stamp)
 
@@ -290,8 +305,11 @@ def mjcfbuild_sources() -> list[Path]:
     return sorted([*package.rglob("*.py"), *package.rglob("*.yaml")])
 
 
-def record_build(ctx: BuildContext, tasks: list[dict], task_count: int) -> None:
-    """Write the stamp of the successful build of ``ctx`` that ran ``tasks``."""
+def record_build(
+    ctx: BuildContext, tasks: list[dict], task_count: int, warnings: list[str]
+) -> None:
+    """Write the stamp of the successful build of ``ctx`` that ran ``tasks``; ``warnings``
+    are those of the tasks that made its outputs, for the fast path to print."""
     from mjcfbuild.engine.depfile import Depfile
     from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, SOURCE_DEPS
 
@@ -318,11 +336,14 @@ def record_build(ctx: BuildContext, tasks: list[dict], task_count: int) -> None:
     if ctx.urdf_path is not None:
         outputs.append(ctx.urdf_path)
     from mjcfbuild.engine.published import published_files
+    from mjcfbuild.engine.tasks import report_dir
 
     summary = {
         "robot": ctx.robot_path.name,
         "tasks": task_count,
         "outputs": [str(path) for path in published_files(ctx)],  # for --fail-on-change
+        "warnings": warnings,
+        "report": str(report_dir(ctx) / "report.md"),
     }
     write(
         manifest,
@@ -338,4 +359,22 @@ def record_build(ctx: BuildContext, tasks: list[dict], task_count: int) -> None:
             "assembly_report": str(ctx.state(ASSEMBLY_REPORT)),
             "checks": ctx.session.checks,
         },
+        _needs_allow_outside(ctx),
     )
+
+
+def _needs_allow_outside(ctx: BuildContext) -> bool:
+    """Whether the output folder of ``ctx`` is one the guard allows only because the command
+    line said ``--allow-outside``."""
+    from dataclasses import replace
+
+    from mjcfbuild.engine.guard import check_output_folder
+    from mjcfbuild.errors import OutputError
+
+    if not ctx.allow_outside:
+        return False
+    try:
+        check_output_folder(replace(ctx, allow_outside=False))
+    except OutputError:
+        return True
+    return False

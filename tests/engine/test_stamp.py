@@ -169,3 +169,42 @@ def test_a_no_op_imports_no_engine_doit_pydantic_or_heavy_module(built_arm):
     assert "0 run, 9 up to date" in done.stdout
     [imported] = [line for line in done.stdout.splitlines() if line.startswith("imported:")]
     assert imported.strip() == "imported:"
+
+
+def test_a_build_that_warned_leaves_a_stamp_and_its_no_op_prints_the_warnings(tmp_path):
+    from tests.cli.test_warning_groups import padded_robot, warning_lines
+
+    folder = padded_robot(tmp_path)
+    built = run_cli("build", "--no-check", cwd=folder)
+    assert built.code == 0 and "8 warnings" in built.stdout
+    assert fast_path_skips(folder)
+    again = run_cli("build", "--no-check", cwd=folder)
+    assert again.code == 0, again.stderr
+    assert warning_lines(again.stderr) == warning_lines(built.stderr) != []
+    assert re.search(r": 0 run, \d+ up to date, 8 warnings in ", again.stdout)
+    # The warnings are the model's, whichever task gave them: a build that runs only the
+    # check (the assembly that warned is up to date) leaves its no-op printing them still.
+    checked = run_cli("build", cwd=folder)
+    assert checked.code == 0 and "8 warnings" not in checked.stdout
+    noop = run_cli("build", cwd=folder)
+    assert ": 0 run, " in noop.stdout
+    assert set(warning_lines(built.stderr)) <= set(warning_lines(noop.stderr))
+    urdf = folder / "robot.urdf"  # fixed: the next no-op is silent
+    urdf.write_text(urdf.read_text().replace('size="0 0 0"', 'size="0.1 0.1 0.1"'))
+    assert run_cli("build", "--no-check", "-q", cwd=folder).code == 0
+    quiet = run_cli("build", "--no-check", cwd=folder)
+    assert quiet.stderr == "" and "warning" not in quiet.stdout
+
+
+def test_a_stamp_written_with_allow_outside_does_not_skip_the_guard(arm):
+    from mjcfbuild.errors import EXIT_OUTPUT
+
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace("  folder: mjcf\n", "  folder: ../out\n"))
+    assert run_cli("build", "-q", "--no-check", "--allow-outside", cwd=arm).code == 0
+    allowed = run_cli("build", "--no-check", "--allow-outside", cwd=arm)
+    assert allowed.code == 0 and ": 0 run, " in allowed.stdout  # the fast path, with the flag
+    refused = run_cli("build", "--no-check", cwd=arm)
+    assert refused.code == EXIT_OUTPUT, refused.stdout
+    assert "'../out'" in refused.stderr and "is outside" in refused.stderr
+    assert "up to date" not in refused.stdout
