@@ -108,6 +108,28 @@ def arm(tmp_path: Path) -> Path:
     return copy_example("arm", tmp_path)
 
 
+@pytest.fixture(scope="module")
+def built_examples(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The examples with the arm built by ``mjcfbuild build -q --no-check``, once per test
+    module (in a cache of its own); tests take copies of it (:func:`built_arm`), never it."""
+    folder = tmp_path_factory.mktemp("built-arm")
+    arm = copy_example("arm", folder)
+    cache = {"MJCFBUILD_CACHE_DIR": str(folder / "cache")}
+    result = run_cli("build", "-q", "--no-check", cwd=arm, env=cache)
+    assert result.code == 0, result.stderr
+    return folder / "examples"
+
+
+@pytest.fixture
+def built_arm(built_examples: Path, tmp_path: Path) -> Path:
+    """A private copy of the example arm with the outputs ``build -q --no-check`` wrote, for
+    tests of what is done with a built folder (clean). The build's records name the files it
+    wrote relative to the output folder, but its database names them by absolute path: a
+    build in the copy runs every task again, as in a moved folder."""
+    shutil.copytree(built_examples, tmp_path / "examples", symlinks=True)
+    return tmp_path / "examples" / "arm"
+
+
 @pytest.fixture
 def demo(tmp_path: Path) -> Path:
     """A copy of the reference converter's demo robot."""
