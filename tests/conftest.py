@@ -20,8 +20,22 @@ def pytest_configure(config):
     and their workers to themselves."""
     import tempfile
 
+    # Under pytest-xdist (CI runs ``-n 2``) each worker is a process of its own that inherits
+    # the controller's environment: it makes its own cache, so no test sees a cache entry that a
+    # test running at the same time in the other worker is writing.
+    # (A variable of its own to mark the controller's cache would be an MJCFBUILD_* variable,
+    # which the no-op stamp records, so the folder's name marks it.)
+    worker = os.environ.get("PYTEST_XDIST_WORKER")
+    prefix = f"mjcfbuild-test-cache-{worker}-" if worker else "mjcfbuild-test-cache-"
+    inherited = Path(os.environ.get("MJCFBUILD_CACHE_DIR", "")).name
+    if (
+        worker
+        and inherited.startswith("mjcfbuild-test-cache-")
+        and not inherited.startswith(prefix)
+    ):
+        del os.environ["MJCFBUILD_CACHE_DIR"]
     if "MJCFBUILD_CACHE_DIR" not in os.environ:
-        os.environ["MJCFBUILD_CACHE_DIR"] = tempfile.mkdtemp(prefix="mjcfbuild-test-cache-")
+        os.environ["MJCFBUILD_CACHE_DIR"] = tempfile.mkdtemp(prefix=prefix)
         config._mjcfbuild_cache = os.environ["MJCFBUILD_CACHE_DIR"]
     # Every build starts its own workers: a worker that stayed after one test's build would
     # serve the next test's. tests/engine/test_resident.py turns them on where it tests them.
