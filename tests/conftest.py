@@ -20,8 +20,22 @@ def pytest_configure(config):
     and their workers to themselves."""
     import tempfile
 
+    # Under pytest-xdist (CI runs ``-n 2``) each worker is a process of its own that inherits
+    # the controller's environment: it makes its own cache, so no test sees a cache entry that a
+    # test running at the same time in the other worker is writing.
+    # (A variable of its own to mark the controller's cache would be an MJCFBUILD_* variable,
+    # which the no-op stamp records, so the folder's name marks it.)
+    worker = os.environ.get("PYTEST_XDIST_WORKER")
+    prefix = f"mjcfbuild-test-cache-{worker}-" if worker else "mjcfbuild-test-cache-"
+    inherited = Path(os.environ.get("MJCFBUILD_CACHE_DIR", "")).name
+    if (
+        worker
+        and inherited.startswith("mjcfbuild-test-cache-")
+        and not inherited.startswith(prefix)
+    ):
+        del os.environ["MJCFBUILD_CACHE_DIR"]
     if "MJCFBUILD_CACHE_DIR" not in os.environ:
-        os.environ["MJCFBUILD_CACHE_DIR"] = tempfile.mkdtemp(prefix="mjcfbuild-test-cache-")
+        os.environ["MJCFBUILD_CACHE_DIR"] = tempfile.mkdtemp(prefix=prefix)
         config._mjcfbuild_cache = os.environ["MJCFBUILD_CACHE_DIR"]
     # Every build starts its own workers: a worker that stayed after one test's build would
     # serve the next test's. tests/engine/test_resident.py turns them on where it tests them.
@@ -106,6 +120,28 @@ def copy_example(name: str, destination: Path) -> Path:
 def arm(tmp_path: Path) -> Path:
     """A copy of the example arm."""
     return copy_example("arm", tmp_path)
+
+
+@pytest.fixture(scope="module")
+def built_examples(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The examples with the arm built by ``mjcfbuild build -q --no-check``, once per test
+    module (in a cache of its own); tests take copies of it (:func:`built_arm`), never it."""
+    folder = tmp_path_factory.mktemp("built-arm")
+    arm = copy_example("arm", folder)
+    cache = {"MJCFBUILD_CACHE_DIR": str(folder / "cache")}
+    result = run_cli("build", "-q", "--no-check", cwd=arm, env=cache)
+    assert result.code == 0, result.stderr
+    return folder / "examples"
+
+
+@pytest.fixture
+def built_arm(built_examples: Path, tmp_path: Path) -> Path:
+    """A private copy of the example arm with the outputs ``build -q --no-check`` wrote, for
+    tests of what is done with a built folder (clean). The build's records name the files it
+    wrote relative to the output folder, but its database names them by absolute path: a
+    build in the copy runs every task again, as in a moved folder."""
+    shutil.copytree(built_examples, tmp_path / "examples", symlinks=True)
+    return tmp_path / "examples" / "arm"
 
 
 @pytest.fixture

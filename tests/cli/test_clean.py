@@ -31,8 +31,8 @@ def test_clean_with_nothing_built(arm):
     assert result.code == 0 and result.stdout.strip() == "mjcfbuild: removed nothing"
 
 
-def test_the_manifest_is_a_positional_argument(arm, tmp_path):
-    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+def test_the_manifest_is_a_positional_argument(built_arm, tmp_path):
+    arm = built_arm
     result = run_cli("clean", str(arm / "robot.yaml"), cwd=tmp_path)
     assert result.code == 0, result.stderr
     assert not (arm / "mjcf").exists()
@@ -56,8 +56,8 @@ def _files_below(folder):
     return sorted(str(p.relative_to(folder)) for p in folder.rglob("*") if not p.is_dir())
 
 
-def test_files_the_user_put_among_the_outputs_stay(arm):
-    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+def test_files_the_user_put_among_the_outputs_stay(built_arm):
+    arm = built_arm
     out = arm / "mjcf"
     (out / "assets" / "my_texture.png").write_bytes(b"my own picture")
     (out / "report" / "notes.md").write_text("my notes\n")
@@ -84,8 +84,8 @@ def test_an_output_folder_up_a_level_keeps_the_parents_own_files(arm):
     assert (parent / "assets" / "logo.png").read_bytes() == b"the parent's"
 
 
-def test_a_dry_run_lists_what_would_go_and_removes_nothing(arm):
-    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+def test_a_dry_run_lists_what_would_go_and_removes_nothing(built_arm):
+    arm = built_arm
     (arm / "mjcf" / "NOTES.md").write_text("mine\n")
     before = _files_below(arm / "mjcf")
     result = run_cli("clean", "--dry-run", cwd=arm)
@@ -113,8 +113,8 @@ def test_every_optional_output_goes_and_the_folder_with_them(arm):
     assert not (arm / "mjcf").exists()
 
 
-def test_a_link_put_in_place_of_an_output_is_not_followed(arm, tmp_path):
-    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+def test_a_link_put_in_place_of_an_output_is_not_followed(built_arm, tmp_path):
+    arm = built_arm
     mine = tmp_path / "my_scene.xml"
     mine.write_text("<mujoco/>")
     scene = arm / "mjcf" / "scene.xml"
@@ -126,8 +126,8 @@ def test_a_link_put_in_place_of_an_output_is_not_followed(arm, tmp_path):
     assert "kept mjcf/scene.xml" in result.stdout
 
 
-def test_a_linked_assets_folder_is_refused_and_nothing_outside_goes(arm, tmp_path):
-    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+def test_a_linked_assets_folder_is_refused_and_nothing_outside_goes(built_arm, tmp_path):
+    arm = built_arm
     elsewhere = tmp_path / "elsewhere"
     shutil.copytree(arm / "mjcf" / "assets", elsewhere)
     shutil.rmtree(arm / "mjcf" / "assets")
@@ -139,8 +139,8 @@ def test_a_linked_assets_folder_is_refused_and_nothing_outside_goes(arm, tmp_pat
     assert (elsewhere / "base.obj").is_file() and (arm / "mjcf" / "example_arm.xml").is_file()
 
 
-def test_a_folder_built_without_a_record_is_left_with_a_warning(arm):
-    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+def test_a_folder_built_without_a_record_is_left_with_a_warning(built_arm):
+    arm = built_arm
     (arm / "mjcf" / ".mjcfbuild" / "written.json").unlink()
     before = _files_below(arm / "mjcf")
     result = run_cli("clean", cwd=arm)
@@ -149,10 +149,10 @@ def test_a_folder_built_without_a_record_is_left_with_a_warning(arm):
     assert _files_below(arm / "mjcf") == before
 
 
-def test_the_state_folder_goes_while_clean_still_holds_the_lock(arm):
+def test_the_state_folder_goes_while_clean_still_holds_the_lock(built_arm):
     """A real clean, stopped where it still holds the lock: the state folder is gone already,
     so a build that takes the lock after it keeps the state folder it makes."""
-    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    arm = built_arm
     cleaning = subprocess.Popen(
         [sys.executable, "-m", "mjcfbuild", "clean"],
         cwd=arm,

@@ -48,6 +48,15 @@ def project_commit():
     return head.stdout.strip()
 
 
+@pytest.fixture(scope="module")
+def hook_repository_home(tmp_path_factory) -> Path:
+    """One PRE_COMMIT_HOME for the tests whose hook repository is this checkout: the first
+    test's `pre-commit install --install-hooks` clones it and installs mjcfbuild into an
+    environment (about 20 s); the next test's install of the same repository and rev finds
+    them there, as a user's second description repo does."""
+    return tmp_path_factory.mktemp("pre-commit-home")
+
+
 def readme_configs() -> list[str]:
     """The two .pre-commit-config.yaml blocks the README shows, as written there."""
     readme = (ROOT / "README.md").read_text()
@@ -105,8 +114,10 @@ def install_and_commit_an_edit(repo: Path, config: str, env: dict | None = None)
     return second.stdout + second.stderr
 
 
-def test_readme_config_with_a_local_clone_and_rev(tmp_path, project_commit, monkeypatch):
-    monkeypatch.setenv("PRE_COMMIT_HOME", str(tmp_path / "pre-commit-home"))
+def test_readme_config_with_a_local_clone_and_rev(
+    tmp_path, project_commit, hook_repository_home, monkeypatch
+):
+    monkeypatch.setenv("PRE_COMMIT_HOME", str(hook_repository_home))
     config = readme_configs()[0]
     assert "https://github.com/<owner>/mjcfbuild" in config and "<tag or commit>" in config
     config = config.replace("https://github.com/<owner>/mjcfbuild", str(ROOT))
@@ -174,9 +185,9 @@ def test_the_first_run_fails_when_it_creates_the_model_repo_local(tmp_path, monk
 
 
 def test_the_first_run_fails_when_it_creates_the_model_hook_repository(
-    tmp_path, project_commit, monkeypatch
+    tmp_path, project_commit, hook_repository_home, monkeypatch
 ):
-    monkeypatch.setenv("PRE_COMMIT_HOME", str(tmp_path / "pre-commit-home"))
+    monkeypatch.setenv("PRE_COMMIT_HOME", str(hook_repository_home))
     config = readme_configs()[0].replace("https://github.com/<owner>/mjcfbuild", str(ROOT))
     config = config.replace("<tag or commit>", project_commit)
     first_commit_fails_until_the_model_is_added(repo_without_model(tmp_path), config, None)
