@@ -77,9 +77,10 @@ def test_reports_are_the_same_bytes_when_built_by_absolute_path_from_elsewhere(t
     compared = ["report/report.md", "report/report.json", ".mjcfbuild/check.json"]
     _, mismatch, errors = filecmp.cmpfiles(first, second, compared, shallow=False)
     assert mismatch == [] and errors == []
-    assert "robot.yaml mujoco_inputs.raw:16: the joint equality" in (
-        first / "report/report.md"
-    ).read_text()
+    assert (
+        "robot.yaml mujoco_inputs.raw:16: the joint equality"
+        in (first / "report/report.md").read_text()
+    )
     for path in first.rglob("*"):
         if path.is_file() and ".mjcfbuild" not in path.relative_to(first).parts:
             assert str(tmp_path).encode() not in path.read_bytes(), path
