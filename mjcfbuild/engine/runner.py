@@ -196,9 +196,13 @@ def _build_locked(ctx: BuildContext, progress: Progress, result: BuildResult) ->
                 write_report(ctx)
             write_stats(ctx)
     finally:
-        # A failed or interrupted build wrote files too: clean must know them.
-        targets = [target for task in [*planning, *tasks] for target in task["targets"]]
-        written.record(ctx, [*targets, *ctx.session.written])
+        # A failed or interrupted build wrote files too: clean must know them. The targets
+        # of tasks that ran or were intact hold what the build wrote; the others may not.
+        done = {*progress.names(RAN), *progress.names(UP_TO_DATE)}
+        every = [*planning, *tasks]
+        vouched = [target for task in every if task["name"] in done for target in task["targets"]]
+        owned = [target for task in every if task["name"] not in done for target in task["targets"]]
+        written.record(ctx, [*vouched, *ctx.session.written], owned)
     if ctx.session.cache_grew:
         _prune_cache(ctx)
     result.engine_log = doit_output if result.errors else ""
