@@ -201,9 +201,10 @@ def test_the_record_drops_files_that_are_gone_and_hashes_what_was_written(arm):
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
     record = arm / "mjcf" / ".mjcfbuild" / "written.json"
     files = json.loads(record.read_text())["files"]
-    assert files["example_arm.xml"] == hashlib.md5(
-        (arm / "mjcf" / "example_arm.xml").read_bytes()
-    ).hexdigest()
+    assert (
+        files["example_arm.xml"]
+        == hashlib.md5((arm / "mjcf" / "example_arm.xml").read_bytes()).hexdigest()
+    )
     # An entry an earlier build left of a file that is gone (a mesh renamed since).
     files["assets/renamed_long_ago.obj"] = "0" * 32
     record.write_text(json.dumps({"files": files}))
