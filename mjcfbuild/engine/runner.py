@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 from mjcfbuild.engine import stamp, written
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.guard import check_output_folder
+from mjcfbuild.engine.guard import check_output_folder, check_outputs_are_not_inputs
 from mjcfbuild.engine.loader import DATABASE, run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.report import record_warnings, write_report, write_stats
@@ -184,6 +184,9 @@ def _build_locked(ctx: BuildContext, progress: Progress, result: BuildResult) ->
         doit_output = _run_stage(ctx, planning, progress, result)
         if not result.errors:
             tasks = build_tasks(ctx)
+            # Only now are the files xacro included known; nothing outside the state
+            # folder has been written yet.
+            check_outputs_are_not_inputs(ctx, [*planning, *tasks])
             doit_output += _run_stage(ctx, tasks, progress, result)
             if not result.errors:
                 remove_stale_products(ctx, tasks)
