@@ -625,6 +625,7 @@ def _mesh_task(
         depfile=str(_mesh_depfile(ctx, mesh_id)),
         cache=ctx.cache_settings(),
         evidence=[u.to_dict() for u in mesh_uses(robot, mesh_id)] if up_axis == "auto" else [],
+        label=ctx.portable_label(path),
     )
     return _task(
         ctx,
