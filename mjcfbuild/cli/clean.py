@@ -81,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
     with build_lock(ctx, Progress(quiet=True)):
         for path in files:
             path.unlink(missing_ok=True)
-        _remove_empty_folders(out, names)
+        _remove_empty_folders(out, list(names))
         # Still holding the lock: a build waiting for it finds the folder gone and makes a
         # new one, never loses the state it has just made (the guard refused a link there).
         shutil.rmtree(ctx.state_dir, ignore_errors=True)
