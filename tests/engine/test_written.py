@@ -5,7 +5,14 @@ from __future__ import annotations
 import json
 
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.written import WRITTEN, edited, record, recorded, written_file
+from mjcfbuild.engine.written import (
+    WRITTEN,
+    edited,
+    record,
+    recorded,
+    remove_written,
+    written_file,
+)
 from mjcfbuild.fsutil import md5_file
 
 
@@ -79,3 +86,16 @@ def test_only_regular_files_reached_without_a_link_count(tmp_path):
     assert not written_file(out, "file_link.obj")
     assert not written_file(out, "assets")
     assert not written_file(out, "missing.obj")
+
+
+def test_removing_a_folder_the_build_wrote_keeps_an_edited_file(arm):
+    ctx = _ctx(arm)
+    ctx.state_dir.mkdir(parents=True)
+    page = ctx.out_dir / "report" / "page"
+    page.mkdir(parents=True)
+    (page / "tables.js").write_text("built")
+    (page / "app.js").write_text("built")
+    record(ctx, [page / "tables.js", page / "app.js"])
+    (page / "app.js").write_text("edited by hand")
+    assert remove_written(ctx, page) == ["report/page/tables.js"]
+    assert (page / "app.js").read_text() == "edited by hand"
