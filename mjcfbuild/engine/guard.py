@@ -185,7 +185,7 @@ def _refuse(
     from mjcfbuild.manifest.pinpoint import pinpoint
 
     step = task.split(":", 1)[0]
-    what = next(
+    what = _named_inputs(ctx).get(_real(path)) or next(
         (words for kind, words in _INPUT_KINDS.items() if step.endswith(kind)),
         f"an input of its {step} step",
     )
@@ -203,6 +203,17 @@ def _refuse(
     if ctx.manifest_file is not None:
         pinpoint(error, ctx.manifest_label, ctx.manifest_file)
     raise error
+
+
+def _named_inputs(ctx: BuildContext) -> dict[Path, str]:
+    """The inputs robot.yaml names by a field of their own, with what they are."""
+    manifest = ctx.manifest
+    named = {_real(ctx.resolve(name)): f"motor file {name}" for name in manifest.motors.files}
+    if manifest.mujoco_inputs.file:
+        named[_real(ctx.resolve(manifest.mujoco_inputs.file))] = "the mujoco_inputs file"
+    if manifest.scene.file:
+        named[_real(ctx.resolve(manifest.scene.file))] = "the scene file"
+    return named
 
 
 # What a task's dependencies are, by its step (the end of its name before any ":").

@@ -153,3 +153,15 @@ def test_a_folder_the_build_fills_that_holds_meshes_is_refused(arm):
         "into meshes/, which holds meshes/upper_arm.dae, a file the build reads (a mesh or a "
         "file it references)"
     ), result.stderr
+
+
+def test_the_model_over_the_mujoco_inputs_file_is_refused(arm):
+    (arm / "extra.xml").write_text("<mujoco_inputs/>\n")
+    _output_folder(arm, ".", "  robot: extra.xml\n")
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "mujoco_inputs:\n  file: extra.xml\n")
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    _refused_as_input(
+        result, _output_line(arm) + 1, "output.robot", "extra.xml", "the mujoco_inputs file"
+    )
+    assert (arm / "extra.xml").read_text() == "<mujoco_inputs/>\n"
