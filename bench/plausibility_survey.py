@@ -14,7 +14,9 @@ import sys
 import tempfile
 from pathlib import Path
 
-ROBOTS = Path.home() / ".cache/mjcfbuild-dev/erd_full/cmeel.prefix/share/example-robot-data/robots"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from bench import robot_data
 
 
 def main(filters: list[str]) -> int:
@@ -22,17 +24,22 @@ def main(filters: list[str]) -> int:
     from mjcfbuild.check.loading import asset_sources, compile_model
     from mjcfbuild.check.plausibility import check_plausibility
 
-    urdfs = sorted(ROBOTS.glob("*/*/*.urdf"))
+    # The wheel's descriptions, unpacked where the other benchmarks unpack them.
+    robots = robot_data.unpack_all()
+    urdfs = sorted(robots.glob("*/*/*.urdf"))
     urdfs = [u for u in urdfs if not filters or any(f in str(u) for f in filters)]
+    if not urdfs:
+        print(f"no URDF under {robots} matches {' '.join(filters)}", file=sys.stderr)
+        return 1
     cache = Path(tempfile.gettempdir()) / "plausibility-survey"
     for urdf in urdfs:
-        name = urdf.relative_to(ROBOTS).as_posix()
+        name = urdf.relative_to(robots).as_posix()
         folder = cache / name.replace("/", "_")
         folder.mkdir(parents=True, exist_ok=True)
         manifest = folder / "robot.yaml"
         manifest.write_text(
             f"name: {urdf.stem.replace('-', '_')}\nsource:\n  urdf: {urdf}\n"
-            f"packages:\n  example-robot-data: {ROBOTS.parent}\n"
+            f"packages:\n  example-robot-data: {robots.parent}\n"
         )
         try:
             result = mjcfbuild.build(manifest, jobs=1, check=False)

@@ -130,19 +130,34 @@ def package_root() -> Path:
 
 def unpack(robot: Robot) -> Path:
     """Unpack the robot's description folder (once); the path of its URDF."""
+    _unpack_folder("/".join(robot.urdf.split("/")[:2]) + "/")
+    return package_root() / robot.urdf
+
+
+def unpack_all() -> Path:
+    """Unpack every description folder of the wheel (once each); the ``robots`` folder."""
+    with zipfile.ZipFile(wheel()) as archive:
+        names = [m[len(_PREFIX) :] for m in archive.namelist() if m.startswith(_PREFIX)]
+    for top in sorted({"/".join(n.split("/")[:2]) + "/" for n in names if n.count("/") >= 2}):
+        _unpack_folder(top)
+    return package_root() / "robots"
+
+
+def _unpack_folder(top: str) -> None:
+    """Unpack the wheel's folder ``top`` (``robots/<name>/``) under :func:`package_root`."""
     root = package_root()
-    top = "/".join(robot.urdf.split("/")[:2]) + "/"
     marker = root / top / ".unpacked"
-    if not marker.exists():
-        with zipfile.ZipFile(wheel()) as archive:
-            for member in archive.namelist():
-                if member.startswith(_PREFIX + top) and not member.endswith("/"):
-                    target = root / member[len(_PREFIX) :]
-                    target.parent.mkdir(parents=True, exist_ok=True)
-                    with archive.open(member) as source, open(target, "wb") as out:
-                        shutil.copyfileobj(source, out)
-        marker.write_text("")
-    return root / robot.urdf
+    if marker.exists():
+        return
+    with zipfile.ZipFile(wheel()) as archive:
+        for member in archive.namelist():
+            if member.startswith(_PREFIX + top) and not member.endswith("/"):
+                target = root / member[len(_PREFIX) :]
+                target.parent.mkdir(parents=True, exist_ok=True)
+                with archive.open(member) as source, open(target, "wb") as out:
+                    shutil.copyfileobj(source, out)
+    marker.parent.mkdir(parents=True, exist_ok=True)
+    marker.write_text("")
 
 
 def copy_robot(robot: Robot, destination: Path) -> tuple[Path, Path]:

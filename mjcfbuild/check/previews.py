@@ -34,9 +34,17 @@ from typing import Any
 from mjcfbuild.check.drawn import drawn_model_xml
 from mjcfbuild.check.loading import spec_reading_sources
 from mjcfbuild.errors import ModelError
+from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import atomic_write, md5_file
 
 KINDS = ("visual", "collision")
+
+
+class OffscreenUnavailable(Exception):
+    """No OpenGL context to draw in: no EGL or GPU driver, or a ``MUJOCO_GL`` backend that is
+    not installed. Any other failure while drawing is not this."""
+
+
 SKY_TOP = (150, 190, 232)
 SKY_BOTTOM = (236, 242, 250)
 COLLISION_RGBA = (0.9, 0.45, 0.15, 1.0)
@@ -118,6 +126,7 @@ def render_previews(
     sky = _sky(height * SUPERSAMPLING, width * SUPERSAMPLING)
     with _Offscreen(model, width * SUPERSAMPLING, height * SUPERSAMPLING) as offscreen:
         for name in to_draw:
+            failpoint("previews-draw")  # the tests fail a drawing here, as a bug would
             view_name, kind = pictures[name]
             view = views[view_name]
             camera = mujoco.MjvCamera()
@@ -210,9 +219,13 @@ class _Offscreen:
         # without resolving samples, a step whose first use costs 0.04 s in every process.
         model.vis.quality.shadowsize = SHADOW_MAP_SIZE
         model.vis.quality.offsamples = 0
-        self.gl = _gl_context(width, height)
-        self.gl.make_current()
-        self.context = mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_150)
+        try:
+            self.gl = _gl_context(width, height)
+            self.gl.make_current()
+            self.context = mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_150)
+        except Exception as exc:  # mujoco's backends raise ImportError, RuntimeError, ...
+            message = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+            raise OffscreenUnavailable(message or type(exc).__name__) from exc
         mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN, self.context)
         self.context.readDepthMap = mujoco.mjtDepthMap.mjDEPTH_ZEROFAR  # the far plane reads 0
         self.scene = mujoco.MjvScene(model, maxgeom=10000)

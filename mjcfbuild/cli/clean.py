@@ -31,9 +31,9 @@ def add_parser(commands) -> None:
         description=(
             "Remove the files builds wrote into the output folder (the robot and scene files, "
             "what they wrote in assets/, report/ and the other folders, and .mjcfbuild/), as "
-            "builds recorded them, and the folders that leave empty. Files builds did not write "
-            "are left alone wherever they are, links are not followed, and so is the shared "
-            "cache (see mjcfbuild cache)."
+            "builds recorded them, and the folders that leave empty. Files builds did not write, "
+            "and files they wrote that were edited since, are left alone and named; links are "
+            "not followed, and neither is the shared cache touched (see mjcfbuild cache)."
         ),
     )
     manifest_argument(parser)
@@ -66,18 +66,22 @@ def run(args: argparse.Namespace) -> int:
         )
         _say(args, "removed nothing" if not args.dry_run else "would remove nothing")
         return EXIT_OK
-    files = [out / name for name in names if written.written_file(out, name)]
+    present = [name for name in names if written.written_file(out, name)]
+    # A file the user edited since the build wrote it is theirs now.
+    edited = [out / name for name in present if written.edited(out, name, names[name])]
+    files = [out / name for name in present if out / name not in edited]
     if args.dry_run:
         if not args.quiet:
             print("mjcfbuild: would remove:")
             for path in [*files, ctx.state_dir]:
                 print(f"  {ctx.label(path)}{'/' if path == ctx.state_dir else ''}")
-            _say_kept(ctx, set(files))
+            _say_edited(ctx, edited)
+            _say_kept(ctx, {*files, *edited})
         return EXIT_OK
     with build_lock(ctx, Progress(quiet=True)):
         for path in files:
             path.unlink(missing_ok=True)
-        _remove_empty_folders(out, names)
+        _remove_empty_folders(out, list(names))
         # Still holding the lock: a build waiting for it finds the folder gone and makes a
         # new one, never loses the state it has just made (the guard refused a link there).
         shutil.rmtree(ctx.state_dir, ignore_errors=True)
@@ -87,7 +91,8 @@ def run(args: argparse.Namespace) -> int:
         failpoint("clean-removed")  # the tests stop here, the lock still held
     _say(args, "removed " + ", ".join([*_grouped(ctx, files), ctx.label(ctx.state_dir) + "/"]))
     if out.is_dir() and not args.quiet:
-        _say_kept(ctx, set())
+        _say_edited(ctx, edited)
+        _say_kept(ctx, set(edited))
     return EXIT_OK
 
 
@@ -126,12 +131,19 @@ def _grouped(ctx, files: list[Path]) -> list[str]:
     return [*top, *grouped]
 
 
-def _say_kept(ctx, removed: set[Path]) -> None:
-    """Name the files left in the output folder (not written by builds), a few of them."""
+def _say_edited(ctx, edited: list[Path]) -> None:
+    """Name every file a build wrote that the user edited since, which stays."""
+    for path in edited:
+        print(f"mjcfbuild: kept {ctx.label(path)} (edited since mjcfbuild wrote it)")
+
+
+def _say_kept(ctx, listed: set[Path]) -> None:
+    """Name the files left in the output folder that no build wrote, a few of them (those in
+    ``listed`` are named already)."""
     kept = [
         path
         for path in _files_below(ctx.out_dir)
-        if path not in removed and ctx.state_dir not in path.parents
+        if path not in listed and ctx.state_dir not in path.parents
     ]
     if kept:
         shown = ", ".join(ctx.label(path) for path in kept[:_SHOWN])

@@ -17,9 +17,17 @@ from lxml import etree
 from mjcfbuild.errors import InputError, ManifestError
 from mjcfbuild.sources.packages import did_you_mean
 
-# Top-level URDF elements a part keeps; the others (gazebo, mujoco, mujoco_inputs) describe
-# the part's own simulation and are left out, with a warning.
-_KEPT = ("link", "joint", "material", "transmission", "ros2_control")
+# Top-level URDF elements a part keeps; the others (mujoco, mujoco_inputs, and a <gazebo>
+# without a reference: plugins of the part's own simulation) are left out, with a warning.
+# A <gazebo reference> (the sensors on a link) and a URDF <sensor> are kept, their names and
+# the link or joint they are on prefixed, so the plan reads them as the main source's.
+_KEPT = ("link", "joint", "material", "transmission", "ros2_control", "gazebo", "sensor")
+
+
+def _kept(element: etree._Element) -> bool:
+    if not isinstance(element.tag, str) or element.tag not in _KEPT:
+        return False
+    return element.tag != "gazebo" or bool((element.get("reference") or "").strip())
 
 
 @dataclass
@@ -149,14 +157,21 @@ def _join(root: etree._Element, part: Part, base_dir: Path, source: int) -> list
             hint=f"fix the part of {part.key}",
         )
     _check_collisions(root, tree, part)
-    dropped = sorted({str(child.tag) for child in tree if isinstance(child.tag, str)} - set(_KEPT))
+    dropped = sorted(
+        {
+            f"<{child.tag}>{' without a reference' if child.tag == 'gazebo' else ''}"
+            for child in tree
+            if isinstance(child.tag, str) and not _kept(child)
+        }
+    )
     if dropped:
         warnings.append(
-            f"{part.label}: the part's <{'>, <'.join(dropped)}> left out (only its links, "
-            "joints, materials, transmissions and ros2_control are attached)"
+            f"{part.label}: the part's {', '.join(dropped)} left out (only its links, "
+            "joints, materials, transmissions, ros2_control, sensors and the <gazebo> elements "
+            "of its links are attached)"
         )
     for element in list(tree):
-        if not isinstance(element.tag, str) or element.tag not in _KEPT:
+        if not _kept(element):
             continue
         _prefix_element(element, part.prefix)
         _rebase_files(element, part, base_dir)
@@ -188,10 +203,20 @@ def _check_collisions(root: etree._Element, tree: etree._Element, part: Part) ->
 def _prefix_element(element: etree._Element, prefix: str) -> None:
     """Prefix the names ``element`` defines and the links, joints and materials it refers to."""
     tag = element.tag
-    if tag in ("link", "joint", "material"):
+    if tag in ("link", "joint", "material", "sensor"):
         element.set("name", prefix + element.get("name", ""))
+    if tag == "gazebo":
+        element.set("reference", prefix + (element.get("reference") or "").strip())
     for sub in element.iter():
         if sub is element:
+            continue
+        if tag == "sensor" and sub.tag == "parent":
+            for key in ("link", "joint"):
+                if sub.get(key) is not None:
+                    sub.set(key, prefix + sub.get(key, ""))
+            continue
+        if tag == "gazebo" and sub.tag == "sensor" and sub.get("name"):
+            sub.set("name", prefix + sub.get("name", ""))
             continue
         if sub.tag in ("parent", "child") and tag == "joint":
             sub.set("link", prefix + sub.get("link", ""))

@@ -124,6 +124,15 @@ class BuildContext:
         return Path(os.path.relpath(Path(path), self.base_dir)).as_posix()
 
     @property
+    def manifest_output_label(self) -> str:
+        """How what a step writes (warnings, origins) names the manifest: relative to its own
+        folder (``robot.yaml``), so that reports are the same bytes whichever folder and
+        current directory the build runs in; the console label without a manifest file."""
+        if self.manifest_file is None:
+            return self.manifest_label
+        return self.portable_label(self.manifest_file)
+
+    @property
     def out_dir(self) -> Path:
         """The output folder."""
         if self.output_override is not None:

@@ -88,3 +88,139 @@ def build_folders(ctx: BuildContext) -> list[Path]:
         parts = name.split("/")[:-1]
         folders += [out.joinpath(*parts[:depth]) for depth in range(1, len(parts) + 1)]
     return list(dict.fromkeys(folders))
+
+
+def check_outputs_are_not_inputs(ctx: BuildContext, tasks: list[dict]) -> None:
+    """Raise :class:`ManifestError` when the build would write a file it reads: a file some task
+    depends on (the source, a file it includes, a mesh, an inputs file, the SRDF, a motor
+    file, ...) that another task writes without coming before it, that the manifest names as
+    an output, or that lies in a folder the build fills (``assets/``, ``report/``, the package,
+    the exported URDF's meshes). The error names the manifest field that chose the output."""
+    from mjcfbuild.engine.written import recorded
+
+    outputs = _output_fields(ctx)
+    named = {_real(path): field for path, (field, folder) in outputs.items() if not folder}
+    folders = [(_real(path), field) for path, (field, folder) in outputs.items() if folder]
+    writer = {_real(target): task["name"] for task in tasks for target in task["targets"]}
+    before = _upstream(tasks, writer)
+    # What builds wrote in the folders they fill (previews, ...) is theirs, not an input.
+    built = {_real(ctx.out_dir / name) for name in recorded(ctx) or {}}
+    state = _real(ctx.state_dir)
+    for task in tasks:
+        for dependency in sorted(task["file_dep"]):
+            path = _real(dependency)
+            if state in path.parents or path in built:
+                continue
+            if path in writer:
+                maker = writer[path]
+                if maker in before[task["name"]] and task["name"] not in before[maker]:
+                    continue  # made by a task that runs first: a product, not an input
+                field = named.get(path, "output.folder")
+            elif path in named:
+                field = named[path]
+            else:
+                filled = [(f, d) for d, f in folders if d in path.parents and path.exists()]
+                if filled:
+                    field, folder = filled[0]
+                    _refuse(ctx, field, Path(dependency), task["name"], folder)
+                continue
+            _refuse(ctx, field, Path(dependency), task["name"])
+
+
+def _upstream(tasks: list[dict], writer: dict[Path, str]) -> dict[str, set[str]]:
+    """Each task's name -> the tasks that come before it (whose targets it reads, or that it
+    names in ``task_dep``), transitively."""
+    direct: dict[str, set[str]] = {}
+    for task in tasks:
+        found = direct.setdefault(task["name"], set())
+        found.update(writer[p] for p in map(_real, task["file_dep"]) if p in writer)
+        found.update(task.get("task_dep", []))
+        found.discard(task["name"])
+    closed: dict[str, set[str]] = {}
+    for name in direct:
+        seen: set[str] = set()
+        stack = list(direct[name])
+        while stack:
+            other = stack.pop()
+            if other not in seen:
+                seen.add(other)
+                stack.extend(direct.get(other, ()))
+        closed[name] = seen
+    return closed
+
+
+def _real(path: str | os.PathLike) -> Path:
+    return Path(os.path.realpath(path))
+
+
+def _output_fields(ctx: BuildContext) -> dict[Path, tuple[str, bool]]:
+    """The paths the manifest makes the build write, each with the field that chose it and
+    whether it is a folder the build fills."""
+    from mjcfbuild.engine.tasks import PACKAGE_FOLDER, report_dir
+
+    output = ctx.manifest.output
+    fields: dict[Path, tuple[str, bool]] = {
+        ctx.state_dir: ("output.folder", True),
+        ctx.assets_dir: ("output.folder", True),
+        report_dir(ctx): ("output.folder", True),
+        ctx.robot_path: ("output.robot" if output.robot else "name", False),
+        ctx.scene_path: ("output.scene", False),
+    }
+    if output.package:
+        fields[ctx.out_dir / PACKAGE_FOLDER] = ("output.package", True)
+    if ctx.urdf_path is not None and ctx.urdf_mesh_dir is not None:
+        fields[ctx.urdf_path] = ("output.urdf", False)
+        fields[ctx.urdf_mesh_dir] = ("output.urdf", True)
+    training = ctx.manifest.training_files
+    if training is not None:
+        fields[ctx.out_dir / training[0]] = ("output.training.file", False)
+        fields[ctx.out_dir / training[1]] = ("output.training.scene", False)
+    return fields
+
+
+def _refuse(
+    ctx: BuildContext, field: str, path: Path, task: str, folder: Path | None = None
+) -> None:
+    from mjcfbuild.errors import ManifestError
+    from mjcfbuild.manifest.pinpoint import pinpoint
+
+    step = task.split(":", 1)[0]
+    what = _named_inputs(ctx).get(_real(path)) or next(
+        (words for kind, words in _INPUT_KINDS.items() if step.endswith(kind)),
+        f"an input of its {step} step",
+    )
+    error = ManifestError(
+        (
+            f"would write {ctx.label(path)}, which the build reads ({what}); "
+            "the build would overwrite its own input"
+            if folder is None
+            else f"would write into {ctx.label(folder)}/, which holds {ctx.label(path)}, a file "
+            f"the build reads ({what}); the build would overwrite or remove its own inputs"
+        ),
+        file=f"{ctx.manifest_label} {field}",
+        hint="choose another file name or output folder",
+    )
+    if ctx.manifest_file is not None:
+        pinpoint(error, ctx.manifest_label, ctx.manifest_file)
+    raise error
+
+
+def _named_inputs(ctx: BuildContext) -> dict[Path, str]:
+    """The inputs robot.yaml names by a field of their own, with what they are."""
+    manifest = ctx.manifest
+    named = {_real(ctx.resolve(name)): f"motor file {name}" for name in manifest.motors.files}
+    if manifest.mujoco_inputs.file:
+        named[_real(ctx.resolve(manifest.mujoco_inputs.file))] = "the mujoco_inputs file"
+    if manifest.scene.file:
+        named[_real(ctx.resolve(manifest.scene.file))] = "the scene file"
+    return named
+
+
+# What a task's dependencies are, by its step (the end of its name before any ":").
+_INPUT_KINDS = {
+    "expand": "the source or a file it includes",
+    "mesh": "a mesh or a file it references",
+    "srdf": "the SRDF",
+    "compose": "an attach: part",
+    "part": "an attach: part or one of its files",
+}

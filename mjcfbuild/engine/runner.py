@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 from mjcfbuild.engine import stamp, written
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.guard import check_output_folder
+from mjcfbuild.engine.guard import check_output_folder, check_outputs_are_not_inputs
 from mjcfbuild.engine.loader import DATABASE, run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.report import record_warnings, write_report, write_stats
@@ -188,6 +188,9 @@ def _build_locked(
         doit_output = _run_stage(ctx, planning, progress, result)
         if not result.errors:
             tasks = build_tasks(ctx)
+            # Only now are the files xacro included known; nothing outside the state
+            # folder has been written yet.
+            check_outputs_are_not_inputs(ctx, [*planning, *tasks])
             model_tasks = _model_tasks(ctx, tasks)
             _after_the_model(tasks, model_tasks)
             progress.announce_model(model_tasks, _model_line(ctx), started)
@@ -203,9 +206,13 @@ def _build_locked(
                 write_report(ctx)
             write_stats(ctx)
     finally:
-        # A failed or interrupted build wrote files too: clean must know them.
-        targets = [target for task in [*planning, *tasks] for target in task["targets"]]
-        written.record(ctx, [*targets, *ctx.session.written])
+        # A failed or interrupted build wrote files too: clean must know them. The targets
+        # of tasks that ran or were intact hold what the build wrote; the others may not.
+        done = {*progress.names(RAN), *progress.names(UP_TO_DATE)}
+        every = [*planning, *tasks]
+        vouched = [target for task in every if task["name"] in done for target in task["targets"]]
+        owned = [target for task in every if task["name"] not in done for target in task["targets"]]
+        written.record(ctx, [*vouched, *ctx.session.written], owned)
     if ctx.session.cache_grew:
         _prune_cache(ctx)
     result.engine_log = doit_output if result.errors else ""

@@ -1,10 +1,14 @@
 """The record of the files builds wrote into the output folder: what ``mjcfbuild clean`` may
 remove, and nothing else.
 
-Each build adds to ``.mjcfbuild/written.json`` the files it wrote (every task's targets, the
-files its steps reported writing, the report), as paths relative to the output folder. The
-record only grows: a file a later build stops writing is still one mjcfbuild wrote. A file the
-user put in the folder, even in ``assets/`` or ``report/``, is never in it.
+Each build records in ``.mjcfbuild/written.json`` the files it wrote (every task's targets, the
+files its steps reported writing, the report), as paths relative to the output folder, each
+with the MD5 of the bytes it wrote. ``clean`` removes a file only while it still holds those
+bytes: one the user edited since is kept, and said so. A file the user put in the folder, even
+in ``assets/`` or ``report/``, is never in the record. An entry stays while its file is there
+(a file a later build stops writing but leaves is still mjcfbuild's); entries of files that
+are gone are dropped. A record from an mjcfbuild before the hashes lists names alone: those
+files are taken as unedited.
 """
 
 from __future__ import annotations
@@ -16,7 +20,7 @@ from collections.abc import Iterable
 from pathlib import Path, PurePosixPath
 from typing import TYPE_CHECKING
 
-from mjcfbuild.fsutil import write_if_changed
+from mjcfbuild.fsutil import md5_file, write_if_changed
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext
@@ -33,32 +37,75 @@ def _relative(out_dir: Path, path: str | os.PathLike) -> str | None:
     return "/".join(parts)
 
 
-def recorded(ctx: BuildContext) -> list[str] | None:
-    """The recorded files (relative to the output folder, sorted); None without a record (a
-    folder no build wrote, or one an mjcfbuild from before the record built)."""
+def recorded(ctx: BuildContext) -> dict[str, str | None] | None:
+    """The recorded files (relative to the output folder, sorted), each with the MD5 of what
+    the build wrote (None in a record made before the hashes); None without a record (a folder
+    no build wrote, or one an mjcfbuild from before the record built)."""
     try:
         data = json.loads(ctx.state(WRITTEN).read_text())
     except (OSError, ValueError):
         return None
-    if not isinstance(data, dict) or not isinstance(data.get("files"), list):
+    files = data.get("files") if isinstance(data, dict) else None
+    if isinstance(files, list):  # names alone: the record before the hashes
+        files = dict.fromkeys(files)
+    if not isinstance(files, dict):
         return None
     # The record is a file in the folder: accept only names that stay below it.
-    return sorted(
-        name
-        for name in data["files"]
+    kept = {
+        name: digest if isinstance(digest, str) else None
+        for name, digest in files.items()
         if isinstance(name, str) and _relative(ctx.out_dir, ctx.out_dir / name) == name
-    )
+    }
+    return dict(sorted(kept.items()))
 
 
-def record(ctx: BuildContext, paths: Iterable[str | os.PathLike]) -> None:
-    """Add ``paths`` (those in the output folder, outside its state folder) to the record."""
-    names = set(recorded(ctx) or [])
-    for path in paths:
-        name = _relative(ctx.out_dir, path)
-        if name is not None and name.split("/", 1)[0] != ctx.state_dir.name:
-            names.add(name)
-    text = json.dumps({"files": sorted(names)}, indent=1) + "\n"
+def record(
+    ctx: BuildContext, wrote: Iterable[str | os.PathLike], owned: Iterable[str | os.PathLike] = ()
+) -> None:
+    """Record the files in ``wrote`` (those in the output folder, outside its state folder) with
+    the bytes they hold now, which the build wrote or found intact. ``owned`` are the build's
+    files it did not vouch for (targets of tasks that failed or did not run): an earlier entry
+    stays as it was, so a file the user edited is not taken for the build's; a file without
+    one is recorded as it is. Entries of files that are gone are dropped."""
+    out = ctx.out_dir
+    before = recorded(ctx) or {}
+    entries = {name: digest for name, digest in before.items() if written_file(out, name)}
+    for path in owned:
+        name = _name(ctx, path)
+        if name is not None and name not in entries and written_file(out, name):
+            entries[name] = _digest(ctx, name)
+    for path in wrote:
+        name = _name(ctx, path)
+        if name is not None and written_file(out, name):
+            entries[name] = _digest(ctx, name)
+    text = json.dumps({"files": dict(sorted(entries.items()))}, indent=1) + "\n"
     write_if_changed(ctx.state(WRITTEN), text.encode())
+
+
+def _name(ctx: BuildContext, path: str | os.PathLike) -> str | None:
+    """The record's name of ``path``: None outside the output folder or in its state folder."""
+    name = _relative(ctx.out_dir, path)
+    if name is None or name.split("/", 1)[0] == ctx.state_dir.name:
+        return None
+    return name
+
+
+def _digest(ctx: BuildContext, name: str) -> str | None:
+    try:
+        return ctx.session.hashes.md5(ctx.out_dir / name)
+    except OSError:
+        return None
+
+
+def edited(out_dir: Path, name: str, digest: str | None) -> bool:
+    """Whether the file ``name`` no longer holds the bytes recorded as written (``digest``);
+    a record without a hash, or a file that cannot be read, counts as unedited."""
+    if digest is None:
+        return False
+    try:
+        return md5_file(out_dir / name) != digest
+    except OSError:
+        return False
 
 
 def written_file(out_dir: Path, name: str) -> bool:
@@ -78,13 +125,16 @@ def written_file(out_dir: Path, name: str) -> bool:
 
 def remove_written(ctx: BuildContext, below: Path) -> list[str]:
     """Remove the files builds recorded writing under ``below`` (a folder in the output folder)
-    and the folders left empty there; a file the user put there stays. The names removed."""
+    and the folders left empty there; a file the user put or edited there stays. The names
+    removed."""
     prefix = _relative(ctx.out_dir, below)
     if prefix is None:
         return []
     removed = []
-    for name in recorded(ctx) or []:
-        if (name == prefix or name.startswith(prefix + "/")) and written_file(ctx.out_dir, name):
+    for name, digest in (recorded(ctx) or {}).items():
+        if not (name == prefix or name.startswith(prefix + "/")):
+            continue
+        if written_file(ctx.out_dir, name) and not edited(ctx.out_dir, name, digest):
             (ctx.out_dir / name).unlink()
             removed.append(name)
     if below.is_dir() and not below.is_symlink():

@@ -146,3 +146,30 @@ def _not_modelled(sensor: etree._Element) -> list[str]:
         if element is not None and (element.text or "").strip() not in ("", "1"):
             notes.append(f"vertical scan of {(element.text or '').strip()} samples (one plane)")
     return notes
+
+
+def urdf_sensor_warnings(
+    root: etree._Element, label: str, gazebo: list[GazeboSensor], described: set[str]
+) -> list[str]:
+    """One warning per kind of the URDF's own top-level ``<sensor>`` elements (the URDF sensor
+    spec: iCub's accelerometers, gyroscopes and force-torque sensors) that no MJCF sensor is
+    made for: those a modelled Gazebo sensor, or a ros2_control sensor in ``described``,
+    describes under the same name are made from that one."""
+    covered = {sensor.name for sensor in gazebo if sensor.kind is not None} | described
+    by_kind: dict[str, list[etree._Element]] = {}
+    for sensor in root.findall("sensor"):
+        if (sensor.get("name") or "").strip() not in covered:
+            by_kind.setdefault((sensor.get("type") or "").strip() or "(no type)", []).append(sensor)
+    warnings = []
+    for kind, sensors in sorted(by_kind.items()):
+        count = len(sensors)
+        names = [(s.get("name") or "").strip() or f"line {s.sourceline}" for s in sensors]
+        shown = ", ".join(names[:8]) + (", ..." if count > 8 else "")
+        many = count > 1
+        warnings.append(
+            f"{label}:{sensors[0].sourceline}: {count} URDF <sensor> element{'s' if many else ''} "
+            f"of kind {kind} {'are' if many else 'is'} not modelled: {shown} (MuJoCo sensors are "
+            "made from Gazebo sensors, <gazebo reference><sensor>, and ros2_control sensors; "
+            f"describe {'them' if many else 'it'} there or in mujoco_inputs)"
+        )
+    return warnings

@@ -48,9 +48,21 @@ def key_line(manifest_file: Path | None, dotted: str) -> int | None:
 def pinpoint(error: MjcfbuildError, manifest_label: str, manifest_file: Path) -> MjcfbuildError:
     """Give ``error`` the manifest's line and column when its file is ``LABEL KEY.PATH``."""
     location = error.location
-    if location is None or not location.file.startswith(manifest_label + " "):
+    if location is None:
         return error
-    path = key_path(location.file[len(manifest_label) + 1 :])
+    # Steps name the manifest relative to its own folder (the same in every folder), the
+    # engine as the command line gave it.
+    label = next(
+        (
+            name
+            for name in (manifest_label, manifest_file.name)
+            if location.file.startswith(name + " ")
+        ),
+        None,
+    )
+    if label is None:
+        return error
+    path = key_path(location.file[len(label) + 1 :])
     if path is None:
         return error
     from mjcfbuild.manifest.yamlpos import YamlSyntaxError, load_with_positions
@@ -74,6 +86,6 @@ def pinpoint(error: MjcfbuildError, manifest_label: str, manifest_file: Path) ->
         if found is None:
             return error
         location.line, location.column = found
-    error.message = f"{location.file[len(manifest_label) + 1 :]}: {error.message}"
+    error.message = f"{location.file[len(label) + 1 :]}: {error.message}"
     location.file = manifest_file.name
     return error

@@ -575,18 +575,26 @@ def _texture_file(reader: _Reader, effect, sampler_sid: str | None) -> Path | No
 
 def referenced_files(path: Path) -> list[Path]:
     """Texture files a DAE refers to (only those that exist)."""
+    return [p for p in named_files(path) if p.is_file()]
+
+
+def named_files(path: Path) -> list[Path]:
+    """The files a DAE's images name (``<image><init_from>``, or its ``<ref>`` in COLLADA
+    1.5), whether they exist or not."""
     try:
         reader = _Reader(path)
     except InputError:
         return []
     found = []
-    for init in reader.root.iter(reader.tag("init_from")):
-        text = unquote((init.text or "").strip())
-        if not text or text.startswith("#") or "." not in text:
+    for image in reader.root.iter(reader.tag("image")):
+        init = next(image.iter(reader.tag("init_from")), None)
+        if init is None:
+            continue
+        ref = next(init.iter(reader.tag("ref")), None)
+        text = unquote(((ref.text if ref is not None else init.text) or "").strip())
+        if not text or text.startswith("#"):
             continue
         if text.startswith("file://"):
             text = text[len("file://") :]
-        candidate = Path(text) if Path(text).is_absolute() else path.parent / text
-        if candidate.is_file():
-            found.append(candidate)
+        found.append(Path(text) if Path(text).is_absolute() else path.parent / text)
     return sorted(set(found))

@@ -20,21 +20,35 @@ _MAP = re.compile(
 
 def referenced_files(path: Path) -> list[Path]:
     """Existing files ``path`` refers to, sorted."""
+    return sorted({p for _, p in _references(path) if p.is_file() and p != path})
+
+
+def missing_references(path: Path) -> list[str]:
+    """What ``path`` refers to that is not there (an OBJ's ``mtllib`` or a texture its
+    material names, a DAE's or a glTF's image), each once as ``name (what it is)``, sorted."""
+    return sorted({f"{p.name} ({kind})" for kind, p in _references(path) if not p.is_file()})
+
+
+def missing_paths(path: Path) -> list[Path]:
+    """The files of :func:`missing_references`, for a task to rerun when one appears."""
+    return sorted({p for _, p in _references(path) if not p.exists()})
+
+
+def _references(path: Path) -> list[tuple[str, Path]]:
+    """Each file ``path`` refers to, there or not, with what it is for."""
     suffix = path.suffix.lower()
     if suffix == ".obj":
-        found = _obj_references(path)
-    elif suffix == ".dae":
-        from mjcfbuild.meshes.collada import referenced_files as collada_references
+        return _obj_references(path)
+    if suffix == ".dae":
+        from mjcfbuild.meshes.collada import named_files
 
-        found = collada_references(path)
-    elif suffix == ".gltf":
-        found = _gltf_references(path)
-    else:
-        found = []
-    return sorted({p for p in found if p.is_file() and p != path})
+        return [("texture", p) for p in named_files(path)]
+    if suffix == ".gltf":
+        return _gltf_references(path)
+    return []
 
 
-def _obj_references(path: Path) -> list[Path]:
+def _obj_references(path: Path) -> list[tuple[str, Path]]:
     try:
         data = path.read_bytes()
     except OSError:
@@ -43,22 +57,22 @@ def _obj_references(path: Path) -> list[Path]:
     for match in _MTLLIB.finditer(data):
         name = match.group(1).decode("utf-8", "replace")
         library = path.parent / name
-        if not library.is_file():
-            continue
-        found.append(library)
-        text = library.read_text(errors="replace")
-        found += [library.parent / m.group(1) for m in _MAP.finditer(text)]
+        found.append(("material library", library))
+        if library.is_file():
+            text = library.read_text(errors="replace")
+            found += [("texture", library.parent / m.group(1)) for m in _MAP.finditer(text)]
     return found
 
 
-def _gltf_references(path: Path) -> list[Path]:
+def _gltf_references(path: Path) -> list[tuple[str, Path]]:
     try:
         document = json.loads(path.read_text())
     except (OSError, ValueError):
         return []
     found = []
-    for item in document.get("buffers", []) + document.get("images", []):
-        uri = item.get("uri") if isinstance(item, dict) else None
-        if uri and not uri.startswith("data:"):
-            found.append(path.parent / unquote(uri))
+    for key, kind in (("buffers", "buffer"), ("images", "image")):
+        for item in document.get(key, []):
+            uri = item.get("uri") if isinstance(item, dict) else None
+            if uri and not uri.startswith("data:"):
+                found.append((kind, path.parent / unquote(uri)))
     return found

@@ -12,7 +12,7 @@ from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.meshes.product import MeshProduct
-from mjcfbuild.meshes.references import referenced_files
+from mjcfbuild.meshes.references import missing_paths, missing_references, referenced_files
 from mjcfbuild.meshes.upaxis import UpAxisDecision
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import MeshPayload
@@ -42,17 +42,32 @@ def run(payload: dict) -> dict:
     # The decision's reason follows this build's evidence; the product follows only its verdict.
     summary = dataclasses.replace(summary, up_axis=decision.to_dict() if decision else None)
     failpoint("mesh")
-    Depfile([str(p) for p in references], [], {}).write(Path(request.depfile))
+    # A file the mesh names that is not there reruns the task when it appears.
+    missing = [str(p) for p in missing_paths(source)]
+    Depfile([str(p) for p in references], missing, {}).write(Path(request.depfile))
     outputs = {str(product_dir / name): digest for name, digest in summary.files.items()}
     write_output(Path(request.summary), summary.text(), outputs)
     return {
         "outputs": outputs,
         "discovered": [str(p) for p in references],
-        "warnings": summary.warnings,
+        "warnings": [*_missing_warning(source, request.label), *summary.warnings],
         "cached": cached,
         "stored": not cached and store is not None,
         "dropped": len(store.dropped) if store else 0,
     }
+
+
+def _missing_warning(source: Path, label: str) -> list[str]:
+    """One warning naming what ``source`` refers to that is not there, or none."""
+    missing = missing_references(source)
+    if not missing:
+        return []
+    them = "it" if len(missing) == 1 else "them"
+    return [
+        f"{label or source.name}: refers to {', '.join(missing)}, not found beside it; the "
+        f"model shows the mesh without {them} (add the file{'s' if them == 'them' else ''}, "
+        "or remove the reference from the mesh)"
+    ]
 
 
 def cache_key(request: MeshPayload, references: list[Path] | None = None) -> str:

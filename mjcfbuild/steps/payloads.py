@@ -204,6 +204,7 @@ class MeshPayload(Payload):
     cache: CacheSettings
     # A DAE file's up axis under ``auto``: what the links using it say (meshes.upaxis).
     evidence: list[dict[str, Any]] = dataclasses.field(default_factory=list)  # MeshUse
+    label: MessageLabel = ""  # the mesh file as warnings name it (relative to robot.yaml)
 
 
 @dataclass(frozen=True)

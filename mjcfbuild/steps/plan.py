@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from mjcfbuild.errors import InputError
-from mjcfbuild.inputs.gazebo import read_gazebo_sensors
+from mjcfbuild.inputs.gazebo import read_gazebo_sensors, urdf_sensor_warnings
 from mjcfbuild.inputs.ros2_control import read_ros2_control
 from mjcfbuild.inputs.xml_inputs import inputs_in_urdf, read_inputs_file
 from mjcfbuild.mjcf.depth import refuse_deep_chains
@@ -42,6 +42,8 @@ def run(payload: dict) -> dict:
         urdf_inputs = inputs_in_urdf(root, display)
         control = read_ros2_control(root, display)
         gazebo = read_gazebo_sensors(root, display)
+        described = {sensor.name for sensor in control.sensors}
+        sensor_warnings = urdf_sensor_warnings(root, display, gazebo, described)
     except InputError as exc:
         if request.expanded_from and exc.hint is None:
             exc.hint = f"the line is in the expansion of {request.expanded_from}"
@@ -68,4 +70,4 @@ def run(payload: dict) -> dict:
     )
     outputs: dict[str, str] = {}
     write_output(Path(request.output), plan.text(), outputs)
-    return {"outputs": outputs, "warnings": robot.warnings}
+    return {"outputs": outputs, "warnings": [*robot.warnings, *sensor_warnings]}

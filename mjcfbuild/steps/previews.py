@@ -12,7 +12,7 @@ import json
 from pathlib import Path
 
 from mjcfbuild.check.loading import asset_sources
-from mjcfbuild.check.previews import render_previews
+from mjcfbuild.check.previews import OffscreenUnavailable, render_previews
 from mjcfbuild.errors import MjcfbuildError, ModelError, write_failure
 from mjcfbuild.fsutil import md5_file
 from mjcfbuild.steps.outputs import record_output, write_output
@@ -32,15 +32,26 @@ def run(payload: dict) -> dict:
         return {"outputs": {}}
     except MjcfbuildError:
         raise
-    except Exception as exc:  # no EGL, no GPU driver...: the build itself is fine
-        unwritable = write_failure(exc)  # but a picture that cannot be written is no EGL's
-        if unwritable is not None:
-            raise unwritable from None
+    except OffscreenUnavailable as exc:  # no EGL, no GPU driver...: the build itself is fine
         return {
             "outputs": {},
             "warnings": [
-                f"no preview pictures: offscreen rendering failed ({str(exc).splitlines()[0]}); "
+                f"no preview pictures: no OpenGL context to draw them in ({exc}); "
                 "on Linux install libegl1 and libegl-mesa0, or set check.previews: false"
+            ],
+        }
+    except Exception as exc:
+        unwritable = write_failure(exc)  # a picture that cannot be written: a full disk...
+        if unwritable is not None:
+            raise unwritable from None
+        # Anything else is no driver's: say what it is. The model itself is built.
+        said = str(exc).strip().splitlines()
+        return {
+            "outputs": {},
+            "warnings": [
+                f"no preview pictures: drawing them failed with {type(exc).__name__}"
+                f"{': ' + said[0] if said else ''} (a bug in mjcfbuild or MuJoCo; please report "
+                "it with the model, or set check.previews: false)"
             ],
         }
     for stale in folder.glob("*.png"):  # pictures of views no longer drawn

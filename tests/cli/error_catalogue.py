@@ -1186,11 +1186,18 @@ CASES: list[Case] = [
         args=EXPORT_ARGS,
     ),
     Case(
-        "export-urdf: --limits-from a xacro file",
+        "export-urdf: --limits-from a xacro file with an argument it does not declare",
         {"model.xml": EXPORT_MODEL, "original.urdf": ARG_XACRO},
-        EXIT_INPUT,
-        ["original.urdf", "xacro", "expand it with xacro first"],
-        args=EXPORT_ARGS,
+        EXIT_USAGE,
+        ["with_cmaera", "with_camera"],
+        args=[*EXPORT_ARGS, "--xacro-arg", "with_cmaera:=false"],
+    ),
+    Case(
+        "export-urdf: --xacro-arg with a URDF",
+        {"model.xml": EXPORT_MODEL, "original.urdf": urdf()},
+        EXIT_USAGE,
+        ["--xacro-arg needs a xacro file", "original.urdf is not one"],
+        args=[*EXPORT_ARGS, "--xacro-arg", "a:=1"],
     ),
     Case(
         "export-urdf: --limits-from a malformed URDF",

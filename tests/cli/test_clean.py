@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import hashlib
+import json
 import os
 import shutil
 import signal
@@ -176,3 +178,35 @@ def test_the_state_folder_goes_while_clean_still_holds_the_lock(built_arm):
     assert (arm / "mjcf" / ".mjcfbuild" / "lock").exists()
     again = run_cli("build", "--no-check", cwd=arm)
     assert again.code == 0 and " 0 run," in again.stdout, again.stdout
+
+
+def test_a_file_the_build_wrote_and_the_user_edited_stays_and_is_named(arm):
+    _output_setting(arm, "output:\n  folder: mjcf\n  package: true\n")
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    changelog = arm / "mjcf" / "package" / "CHANGELOG.md"
+    changelog.write_text(changelog.read_text() + "\n- my own note\n")
+    kept = "mjcfbuild: kept mjcf/package/CHANGELOG.md (edited since mjcfbuild wrote it)"
+    dry = run_cli("clean", "-n", cwd=arm)
+    assert dry.code == 0, dry.stderr
+    assert kept in dry.stdout.splitlines(), dry.stdout
+    assert "  mjcf/package/CHANGELOG.md" not in dry.stdout.splitlines()
+    result = run_cli("clean", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert kept in result.stdout.splitlines()
+    assert _files_below(arm / "mjcf") == ["package/CHANGELOG.md"]
+    assert changelog.read_text().endswith("- my own note\n")
+
+
+def test_the_record_drops_files_that_are_gone_and_hashes_what_was_written(arm):
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    record = arm / "mjcf" / ".mjcfbuild" / "written.json"
+    files = json.loads(record.read_text())["files"]
+    assert (
+        files["example_arm.xml"]
+        == hashlib.md5((arm / "mjcf" / "example_arm.xml").read_bytes()).hexdigest()
+    )
+    # An entry an earlier build left of a file that is gone (a mesh renamed since).
+    files["assets/renamed_long_ago.obj"] = "0" * 32
+    record.write_text(json.dumps({"files": files}))
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    assert "assets/renamed_long_ago.obj" not in json.loads(record.read_text())["files"]

@@ -12,7 +12,7 @@ import pytest
 
 import mjcfbuild
 from mjcfbuild.errors import EXIT_MANIFEST, EXIT_OK
-from tests.conftest import copy_example, run_cli
+from tests.conftest import copy_example, run_cli, simple_manifest, two_link_urdf, write
 
 
 @pytest.fixture(scope="module")
@@ -134,3 +134,41 @@ def test_bad_attachments_are_one_line_errors_and_write_nothing(tmp_path, old, ne
     assert error[0].startswith(f"mjcfbuild: error: robot.yaml:{line}:"), error[0]
     assert not (folder / "mjcf" / "arm_with_gripper.xml").exists()
     assert "Traceback" not in done.stderr
+
+
+# A part with a camera on its link and an IMU (Gazebo sensors), a <gazebo> plugin without a
+# reference, and a URDF-level accelerometer no Gazebo sensor describes.
+HAND = """<robot name="hand">
+  <link name="palm"><inertial><mass value="0.2"/>
+    <inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.05 0.05 0.02"/></geometry></collision></link>
+  <gazebo reference="palm">
+    <sensor name="palm_camera" type="camera"><pose>0 0 0.02 0 0 0</pose>
+      <camera><horizontal_fov>1.2</horizontal_fov><image><width>64</width>
+      <height>48</height></image></camera></sensor>
+    <sensor name="palm_imu" type="imu"/>
+  </gazebo>
+  <gazebo><plugin name="hand_plugin" filename="libhand.so"/></gazebo>
+  <sensor name="palm_acc" type="accelerometer"><parent link="palm"/></sensor>
+</robot>
+"""
+
+
+def test_an_attached_parts_gazebo_sensors_are_built_and_its_urdf_sensors_named(tmp_path):
+    write(tmp_path / "robot.urdf", two_link_urdf())
+    write(tmp_path / "hand.urdf", HAND)
+    simple_manifest(
+        tmp_path,
+        extra="attach:\n  - source: {urdf: hand.urdf}\n    to: arm\n    prefix: hand_\n",
+    )
+    result = run_cli("build", "-q", "--no-check", cwd=tmp_path)
+    assert result.code == EXIT_OK, result.stdout + result.stderr
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "mjcf" / "robot.xml"))
+    assert model.cam_resolution[model.camera("hand_palm_camera").id].tolist() == [64, 48]
+    sensors = {model.sensor(i).name for i in range(model.nsensor)}
+    assert {"hand_palm_imu_quat", "hand_palm_imu_gyro", "hand_palm_imu_accel"} <= sensors
+    warnings = json.loads((tmp_path / "mjcf" / "report" / "report.json").read_text())["warnings"]
+    plugin = [w for w in warnings if "<gazebo> without a reference left out" in w]
+    accelerometer = [w for w in warnings if "of kind accelerometer is not modelled" in w]
+    assert len(plugin) == 1 and plugin[0].startswith("hand.urdf: ")
+    assert len(accelerometer) == 1 and "hand_palm_acc" in accelerometer[0]

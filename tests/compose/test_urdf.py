@@ -29,7 +29,9 @@ HAND = b"""<robot name="hand">
   <link name="jaw2"/>
   <ros2_control name="hand" type="system"><joint name="jaw_joint">
     <command_interface name="position"/></joint></ros2_control>
-  <gazebo reference="palm"/>
+  <gazebo reference="palm"><sensor name="palm_camera" type="camera"/></gazebo>
+  <gazebo><plugin name="hand_controller" filename="libhand.so"/></gazebo>
+  <sensor name="jaw_ft" type="force_torque"><parent joint="jaw_joint"/></sensor>
 </robot>"""
 
 
@@ -74,7 +76,19 @@ def test_part_names_get_the_prefix_and_a_fixed_joint_holds_its_root(tmp_path):
     assert root.find("material").get("name") == "hand_grey"
     assert root.find("link[@name='hand_palm']/visual/material").get("name") == "hand_grey"
     assert root.find("ros2_control/joint").get("name") == "hand_jaw_joint"
-    assert root.find("gazebo") is None and "<gazebo>" in warnings[0]
+    # The Gazebo sensors of the part's links and its URDF sensors come along, prefixed; a
+    # <gazebo> without a reference (the part's own simulation plugins) does not.
+    (gazebo,) = root.findall("gazebo")
+    assert gazebo.get("reference") == "hand_palm"
+    assert gazebo.find("sensor").get("name") == "hand_palm_camera"
+    sensor = root.find("sensor")
+    assert sensor.get("name") == "hand_jaw_ft"
+    assert sensor.find("parent").get("joint") == "hand_jaw_joint"
+    assert warnings == [
+        "hand.urdf: the part's <gazebo> without a reference left out (only its links, joints, "
+        "materials, transmissions, ros2_control, sensors and the <gazebo> elements of its "
+        "links are attached)"
+    ]
 
 
 def test_part_files_become_paths_relative_to_the_main_source(tmp_path):

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import filecmp
 
+import pytest
+
 from mjcfbuild.errors import EXIT_OK
 from tests.conftest import copy_example, run_cli
 
@@ -57,3 +59,28 @@ def test_outputs_hold_no_absolute_paths(tmp_path):
     for path in output_files(mjcf):
         data = (mjcf / path).read_bytes()
         assert str(tmp_path).encode() not in data, path
+
+
+@pytest.mark.slow
+def test_reports_are_the_same_bytes_when_built_by_absolute_path_from_elsewhere(tmp_path):
+    """The manifest named by its absolute path, from another current folder: the warning the
+    native demo's inputs give (a joint equality replacing a <mimic>) names robot.yaml as it
+    lies in its own folder, so the reports do not depend on where the build ran."""
+    reports = []
+    for name in ("one", "two"):
+        folder = copy_example("reference_demo_native", tmp_path / name)
+        env = {"MJCFBUILD_CACHE_DIR": str(tmp_path / f"cache-{name}")}
+        result = run_cli("build", "-q", str(folder / "robot.yaml"), cwd=tmp_path, env=env)
+        assert result.code == EXIT_OK, result.stdout + result.stderr
+        reports.append(folder / "mjcf")
+    first, second = reports
+    compared = ["report/report.md", "report/report.json", ".mjcfbuild/check.json"]
+    _, mismatch, errors = filecmp.cmpfiles(first, second, compared, shallow=False)
+    assert mismatch == [] and errors == []
+    assert (
+        "robot.yaml mujoco_inputs.raw:16: the joint equality"
+        in (first / "report/report.md").read_text()
+    )
+    for path in first.rglob("*"):
+        if path.is_file() and ".mjcfbuild" not in path.relative_to(first).parts:
+            assert str(tmp_path).encode() not in path.read_bytes(), path

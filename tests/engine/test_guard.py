@@ -3,7 +3,8 @@ link. Every refusal comes before anything is written."""
 
 from __future__ import annotations
 
-from mjcfbuild.errors import EXIT_OUTPUT
+from mjcfbuild.errors import EXIT_MANIFEST, EXIT_OUTPUT
+from tests.cli.error_catalogue import urdf
 from tests.conftest import run_cli
 
 
@@ -109,3 +110,58 @@ def test_check_refuses_a_folder_linked_after_the_build(arm, tmp_path):
     assert result.code == EXIT_OUTPUT and len(result.stderr.splitlines()) == 1, result.stderr
     assert result.stderr.startswith("mjcfbuild: error: mjcf/report: is a symbolic link")
     assert sorted(p.name for p in elsewhere.iterdir()) == before
+
+
+def _refused_as_input(result, line: int, field: str, file: str, what: str) -> None:
+    assert result.code == EXIT_MANIFEST, result.stdout + result.stderr
+    assert "Traceback" not in result.stderr and len(result.stderr.splitlines()) == 1
+    assert result.stderr.startswith(
+        f"mjcfbuild: error: robot.yaml:{line}:3: {field}: would write {file}, "
+        f"which the build reads ({what})"
+    ), result.stderr
+
+
+def test_an_exported_urdf_over_the_source_urdf_is_refused(tmp_path):
+    source = tmp_path / "robot.urdf"
+    source.write_text(urdf())
+    (tmp_path / "robot.yaml").write_text(
+        "name: robot\nsource:\n  urdf: robot.urdf\noutput:\n  folder: .\n  urdf: robot.urdf\n"
+    )
+    result = run_cli("build", "-q", "--no-check", cwd=tmp_path)
+    _refused_as_input(result, 6, "output.urdf", "robot.urdf", "the source or a file it includes")
+    assert source.read_text() == urdf()
+    assert not (tmp_path / "robot.xml").exists()
+
+
+def test_an_output_over_a_file_xacro_includes_is_refused(arm):
+    _output_folder(arm, "urdf", "  urdf: finger.xacro\n")
+    include = (arm / "urdf" / "finger.xacro").read_bytes()
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    line = _output_line(arm) + 1
+    _refused_as_input(
+        result, line, "output.urdf", "urdf/finger.xacro", "the source or a file it includes"
+    )
+    assert (arm / "urdf" / "finger.xacro").read_bytes() == include
+
+
+def test_a_folder_the_build_fills_that_holds_meshes_is_refused(arm):
+    _output_folder(arm, ".", "  urdf: {file: exported.urdf, meshes: meshes}\n")
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert result.code == EXIT_MANIFEST, result.stdout + result.stderr
+    assert result.stderr.startswith(
+        f"mjcfbuild: error: robot.yaml:{_output_line(arm) + 1}:3: output.urdf: would write "
+        "into meshes/, which holds meshes/upper_arm.dae, a file the build reads (a mesh or a "
+        "file it references)"
+    ), result.stderr
+
+
+def test_the_model_over_the_mujoco_inputs_file_is_refused(arm):
+    (arm / "extra.xml").write_text("<mujoco_inputs/>\n")
+    _output_folder(arm, ".", "  robot: extra.xml\n")
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "mujoco_inputs:\n  file: extra.xml\n")
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    _refused_as_input(
+        result, _output_line(arm) + 1, "output.robot", "extra.xml", "the mujoco_inputs file"
+    )
+    assert (arm / "extra.xml").read_text() == "<mujoco_inputs/>\n"

@@ -49,3 +49,45 @@ def test_limits_from_the_original_urdf(tmp_path):
     without = run_cli(*args)
     assert without.code == 0, without.stderr
     assert 'velocity="1.5"' not in out.read_text()
+
+
+XACRO = ORIGINAL.replace(
+    '<robot name="original">',
+    '<robot name="original" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+    '  <xacro:arg name="yaw_speed" default="1.5"/>',
+).replace('effort="5" velocity="1.5"', 'effort="5" velocity="$(arg yaw_speed)"')
+
+
+def _velocities(out) -> dict[str, str]:
+    root = etree.parse(str(out)).getroot()
+    return {
+        joint.get("name"): joint.find("limit").get("velocity")
+        for joint in root.iter("joint")
+        if joint.find("limit") is not None
+    }
+
+
+def test_limits_from_a_xacro_file_expanded_with_its_arguments(tmp_path):
+    model = write_model(tmp_path / "model")
+    (tmp_path / "original.urdf.xacro").write_text(XACRO)
+    out = tmp_path / "out" / "robot.urdf"
+    args = ["export-urdf", str(model), "-o", str(out), "--no-sites"]
+    source = ["--limits-from", str(tmp_path / "original.urdf.xacro")]
+    assert run_cli(*args, *source).code == 0
+    assert _velocities(out)["yaw"] == "1.5"  # the argument's default
+    result = run_cli(*args, *source, "--xacro-arg", "yaw_speed:=2.5")
+    assert result.code == 0, result.stderr
+    assert _velocities(out)["yaw"] == "2.5" and _velocities(out)["finger_a"] == "0.2"
+
+
+def test_limits_from_a_robot_yaml_take_its_source_args(tmp_path):
+    model = write_model(tmp_path / "model")
+    (tmp_path / "original.urdf.xacro").write_text(XACRO)
+    (tmp_path / "robot.yaml").write_text(
+        "name: original\nsource:\n  xacro: original.urdf.xacro\n  args: {yaw_speed: '3.5'}\n"
+    )
+    out = tmp_path / "out" / "robot.urdf"
+    args = ["export-urdf", str(model), "-o", str(out), "--no-sites"]
+    result = run_cli(*args, "--limits-from", str(tmp_path / "robot.yaml"))
+    assert result.code == 0, result.stderr
+    assert _velocities(out)["yaw"] == "3.5"

@@ -1,0 +1,38 @@
+"""Errors about a manifest key get the manifest's line, whichever way the manifest is named."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from mjcfbuild.errors import InputError
+from mjcfbuild.manifest.pinpoint import pinpoint
+
+MANIFEST = """name: arm
+source:
+  urdf: robot.urdf
+mujoco_inputs:
+  raw: |
+    <option integrator="implicitfast"/>
+    <actuator><motor joint='hinge'>
+"""
+
+
+@pytest.mark.parametrize("named", ["command line", "own folder"])
+def test_a_raw_block_error_points_at_its_line(tmp_path: Path, named: str):
+    manifest = tmp_path / "robot.yaml"
+    manifest.write_text(MANIFEST)
+    # The engine names the manifest as the command line did; steps name it as "robot.yaml".
+    label = str(manifest) if named == "command line" else "robot.yaml"
+    error = InputError("malformed XML", file=f"{label} mujoco_inputs.raw", line=2)
+    pinpoint(error, str(manifest), manifest)
+    assert error.one_line() == "robot.yaml:7: mujoco_inputs.raw: malformed XML"
+
+
+def test_an_error_about_another_file_is_left_alone(tmp_path: Path):
+    manifest = tmp_path / "robot.yaml"
+    manifest.write_text(MANIFEST)
+    error = InputError("bad", file="robot.urdf", line=3)
+    pinpoint(error, str(manifest), manifest)
+    assert error.one_line() == "robot.urdf:3: bad"

@@ -1,0 +1,32 @@
+"""The mesh step warns of the files a mesh refers to that are missing, and converts the mesh
+again when they appear."""
+
+from __future__ import annotations
+
+import json
+
+from mjcfbuild.errors import EXIT_OK
+from tests.conftest import run_cli
+
+WARNING = (
+    "meshes/forearm.obj: refers to forearm_colours.mtl (material library), not found beside it; "
+    "the model shows the mesh without it"
+)
+
+
+def _warnings(arm) -> list[str]:
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert result.code == EXIT_OK, result.stdout + result.stderr
+    return json.loads((arm / "mjcf" / "report" / "report.json").read_text())["warnings"]
+
+
+def test_a_missing_material_library_is_named_once_and_its_return_rebuilds(arm):
+    library = arm / "meshes" / "forearm_colours.mtl"
+    kept = library.read_bytes()
+    library.unlink()
+    warned = [w for w in _warnings(arm) if "forearm_colours.mtl" in w]
+    assert len(warned) == 1 and warned[0].startswith(WARNING), warned
+    library.write_bytes(kept)
+    assert not [w for w in _warnings(arm) if "forearm_colours.mtl" in w]
+    product = json.loads((arm / "mjcf" / ".mjcfbuild" / "products" / "forearm.json").read_text())
+    assert len(product["parts"]) > 1  # the library's materials split the mesh again
