@@ -55,6 +55,7 @@ def build_all(tree: Path, into: Path, robots: list[str]) -> None:
             manifest = subprocess.run(
                 [sys.executable, "-c", script, str(bench.parent), name, str(into / name)],
                 env=env,
+                cwd=into,
                 check=True,
                 capture_output=True,
                 text=True,
@@ -86,6 +87,7 @@ def _build(manifest: Path, env: dict[str, str]) -> None:
     done = subprocess.run(
         [sys.executable, "-m", "mjcfbuild", "build", str(manifest), "-q", "-j", "2"],
         env=env,
+        cwd=manifest.parent,  # never a source tree: `python -m` puts the working folder first
         capture_output=True,
         text=True,
     )
