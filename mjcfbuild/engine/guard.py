@@ -67,7 +67,7 @@ def _check_inside(ctx: BuildContext) -> None:
 
 def build_folders(ctx: BuildContext) -> list[Path]:
     """The folders below the output folder that builds write into, whether they exist or not."""
-    from mjcfbuild.engine.tasks import PACKAGE_FOLDER, report_dir
+    from mjcfbuild.outputs import PACKAGE_FOLDER, report_dir
 
     out = ctx.out_dir
     report = report_dir(ctx)

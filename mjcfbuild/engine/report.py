@@ -19,7 +19,8 @@ from pathlib import Path
 
 from mjcfbuild.check.report_page import markdown
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.tasks import (
+from mjcfbuild.fsutil import md5_file, write_if_changed
+from mjcfbuild.outputs import (
     ASSEMBLY_REPORT,
     CHECK_RESULTS,
     TRAINING_RECORD,
@@ -28,7 +29,6 @@ from mjcfbuild.engine.tasks import (
     report_dir,
     training_paths,
 )
-from mjcfbuild.fsutil import md5_file, write_if_changed
 
 STATS = "build-stats.json"  # in the state folder: what changes from run to run
 WARNINGS = "warnings.json"  # in the state folder: each task's warnings when it last ran

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.report import TRAINING_WARP
-from mjcfbuild.engine.tasks import TRAINING_RECORD, training_paths
+from mjcfbuild.outputs import TRAINING_RECORD, training_paths
 
 
 def remove_stale_variant(ctx: BuildContext) -> list[Path]:
