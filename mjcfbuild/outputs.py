@@ -29,6 +29,7 @@ ASSEMBLY_REPORT = "assembly.json"
 FLOOR_RECORD = "floor.json"
 URDF_EXPORT_RECORD = "urdf_export.json"
 TRAINING_RECORD = "training.json"
+TRAINING_WARP = "training_warp.json"  # what check --warp measured of the variant
 CHECK_RESULTS = "check.json"
 PREVIEWS_RECORD = "previews.json"
 TUNING_RECORD = "tuning.json"

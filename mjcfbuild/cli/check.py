@@ -363,10 +363,10 @@ def _prove_training_variant(ctx) -> int:
 
     from mjcfbuild.check.warp_variant import gpu_device, prove_on_gpu, prove_variant
     from mjcfbuild.engine.progress import Progress
-    from mjcfbuild.engine.report import TRAINING_WARP, write_report
+    from mjcfbuild.engine.report import write_report
     from mjcfbuild.engine.runner import build_lock
     from mjcfbuild.fsutil import md5_file
-    from mjcfbuild.outputs import training_paths
+    from mjcfbuild.outputs import TRAINING_WARP, training_paths
 
     variant, scene = training_paths(ctx)
     if not scene.exists():

@@ -21,15 +21,15 @@ from mjcfbuild.engine.family import Family, discovered_inputs, file_task, ros_en
 from mjcfbuild.errors import ManifestError, MjcfbuildError
 from mjcfbuild.families.expand import expand_file_task
 from mjcfbuild.fsutil import unreadable_file
-from mjcfbuild.manifest.composition import Attachment
 from mjcfbuild.outputs import COMPOSED_URDF, SOURCE_URDF, mjcf_part_paths, part_urdf
 from mjcfbuild.sources.packages import did_you_mean
 from mjcfbuild.steps.payloads import ComposePayload, MjcfPartFiles, MjcfPartPayload, PartEntry
-from mjcfbuild.urdf.model import Robot
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext
     from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.manifest.composition import Attachment
+    from mjcfbuild.urdf.model import Robot
 
 
 def _mjcf_part_tasks(graph: Graph) -> list[dict]:

@@ -12,6 +12,7 @@ so nothing here imports doit, MuJoCo or numpy at module level.
 
 from __future__ import annotations
 
+import json
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
@@ -39,7 +40,7 @@ class Family:
     ``tasks`` makes the family's doit tasks from the graph being built (none where the
     manifest does not ask for them); the registry's order is the order tasks are listed in,
     which is the order doit starts ready ones. ``verify`` (optional) refuses settings before
-    any task of the build is made.
+    any task of the build is made; ``report`` (optional) is its part of report.json.
     """
 
     name: str  # the task's step name: its versions' key and its format's label
@@ -56,6 +57,10 @@ class Family:
     # its module is preloaded with the check's, and freshness does not count it.
     report_only: bool = False
     verify: Callable[[Graph], None] | None = None
+    # What it adds to report.json, read from what its tasks recorded (never from what ran this
+    # time, so an up-to-date build reports the same bytes); objects given under one key by
+    # two families are merged.
+    report: Callable[[BuildContext], dict[str, Any]] | None = None
 
     @property
     def module(self) -> str:
@@ -179,6 +184,14 @@ def discovered_inputs(ctx: BuildContext, depfile: Path) -> tuple[list[Path], lis
     files = [Path(f) for f in recorded.files if Path(f).exists()]
     stale = recorded.stale_reason(ctx.environ)
     return files, [always_stale(stale)] if stale else []
+
+
+def read_record(path: Path) -> dict:
+    """A task's JSON record; empty when it is absent or unreadable (the task did not run)."""
+    try:
+        return json.loads(path.read_text())
+    except (OSError, ValueError):
+        return {}
 
 
 def require_file(ctx: BuildContext, path: Path, what: str, key: str) -> None:

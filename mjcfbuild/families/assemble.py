@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from mjcfbuild.compose.tasks import part_robot
-from mjcfbuild.engine.family import Family, file_task
+from mjcfbuild.engine.family import Family, file_task, read_record
 from mjcfbuild.errors import ManifestError, MjcfbuildError
 from mjcfbuild.families.decompose import decomposition_files
 from mjcfbuild.families.selfcollision import self_collision_matrix
@@ -154,6 +154,19 @@ def _refuse_unknown_link(robot: Robot, link: str, key: str, ctx: BuildContext) -
         )
 
 
+def _report(ctx: BuildContext) -> dict:
+    """The model's size, files, repairs, readiness to control and collision matrix."""
+    assembly = read_record(ctx.state(ASSEMBLY_REPORT))
+    return {
+        "repairs": assembly.get("repairs", []),
+        "bodies": assembly.get("bodies"),
+        "geoms": assembly.get("geoms"),
+        "assets": assembly.get("assets", []),
+        "readiness": assembly.get("readiness") or {},
+        "self_collision": assembly.get("self_collision"),
+    }
+
+
 FAMILY = Family(
     name="assemble",
     step="mjcfbuild.steps.assemble:run",
@@ -163,4 +176,5 @@ FAMILY = Family(
     tasks=_tasks,
     compiles_model=True,
     verify=_verify,
+    report=_report,
 )

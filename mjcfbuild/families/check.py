@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, file_task
+from mjcfbuild.engine.family import Family, file_task, read_record
 from mjcfbuild.outputs import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN, REFERENCE
 from mjcfbuild.steps.payloads import CheckPayload, MjcfPartFiles
 
@@ -66,6 +66,10 @@ def _tasks(graph: Graph) -> list[dict]:
     return [task]
 
 
+def _report(ctx: BuildContext) -> dict:
+    return {"check": read_record(ctx.state(CHECK_RESULTS))}
+
+
 FAMILY = Family(
     name="check",
     step="mjcfbuild.steps.check:run",
@@ -75,4 +79,5 @@ FAMILY = Family(
     tasks=_tasks,
     compiles_model=True,
     report_only=True,
+    report=_report,
 )

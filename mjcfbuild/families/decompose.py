@@ -3,9 +3,10 @@ where close enough, else CoACD's decomposition)."""
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, file_task, largest_first
+from mjcfbuild.engine.family import Family, file_task, largest_first, read_record
 from mjcfbuild.outputs import decomposition_dir, product_summary
 from mjcfbuild.steps.payloads import DecomposePayload, DecompositionFiles
 
@@ -60,6 +61,32 @@ def decomposition_files(
     ]
 
 
+def decomposition_summaries(ctx: BuildContext) -> list[tuple[Path, dict]]:
+    """Each decomposition's record, by name."""
+    found = []
+    for path in sorted(decomposition_dir(ctx, "any").parent.glob("*.json")):
+        summary = read_record(path)
+        if "parts" in summary:
+            found.append((path, summary))
+    return found
+
+
+def _report(ctx: BuildContext) -> dict:
+    """Per decomposition of this build: hull kept or CoACD, parts, concavities (its seconds
+    are in build-stats.json)."""
+    rows = [
+        {
+            "name": path.stem,
+            "method": summary.get("method", "coacd"),
+            "parts": len(summary["parts"]),
+            "hull_concavity": summary.get("hull_concavity"),
+            "concavity": summary.get("concavity"),
+        }
+        for path, summary in decomposition_summaries(ctx)
+    ]
+    return {"decompositions": rows, "products": {"decompositions": len(rows)}}
+
+
 FAMILY = Family(
     name="decompose",
     step="mjcfbuild.steps.decompose:run",
@@ -67,4 +94,5 @@ FAMILY = Family(
     format=3,
     tools=("coacd", "trimesh", "numpy", "scipy"),
     tasks=_tasks,
+    report=_report,
 )

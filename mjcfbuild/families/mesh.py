@@ -7,7 +7,13 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, discovered_inputs, file_task, largest_first
+from mjcfbuild.engine.family import (
+    Family,
+    discovered_inputs,
+    file_task,
+    largest_first,
+    read_record,
+)
 from mjcfbuild.outputs import mesh_depfile, product_summary
 from mjcfbuild.steps.payloads import MeshOptions, MeshPayload
 
@@ -79,6 +85,26 @@ def up_axis_mode(mode: str, files: Mapping[str, str], path: str) -> str:
     return mode
 
 
+def mesh_products(ctx: BuildContext) -> list[Path]:
+    """The records of the mesh products of this build (``products/<id>.json`` beside the
+    product's folder)."""
+    return [p for p in sorted(ctx.products_dir.glob("*.json")) if (p.parent / p.stem).is_dir()]
+
+
+def up_axis_decisions(ctx: BuildContext) -> list[dict]:
+    """Per DAE file tagged other than Z-up: its mesh, whether it was turned, and why."""
+    rows = []
+    for path in mesh_products(ctx):
+        decision = read_record(path).get("up_axis")
+        if isinstance(decision, dict):
+            rows.append({"mesh": path.stem, **decision})
+    return rows
+
+
+def _report(ctx: BuildContext) -> dict:
+    return {"up_axis": up_axis_decisions(ctx), "products": {"meshes": len(mesh_products(ctx))}}
+
+
 FAMILY = Family(
     name="mesh",
     step="mjcfbuild.steps.mesh:run",
@@ -86,4 +112,5 @@ FAMILY = Family(
     format=5,
     tools=("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"),
     tasks=_tasks,
+    report=_report,
 )

@@ -10,7 +10,19 @@ from mjcfbuild.outputs import ASSEMBLY_REPORT, PREVIEWS_RECORD, report_dir
 from mjcfbuild.steps.payloads import PreviewsPayload
 
 if TYPE_CHECKING:
+    from mjcfbuild.engine.context import BuildContext
     from mjcfbuild.engine.tasks import Graph
+
+
+ORDER = (
+    "three_quarter_visual",
+    "side_visual",
+    "top_visual",
+    "closeup_visual",
+    "three_quarter_collision",
+    "side_collision",
+    "closeup_collision",
+)
 
 
 def _tasks(graph: Graph) -> list[dict]:
@@ -41,6 +53,15 @@ def _tasks(graph: Graph) -> list[dict]:
     return [task]
 
 
+def _report(ctx: BuildContext) -> dict:
+    """The pictures in the report folder, in the order the report shows them."""
+    pictures = sorted(
+        (p.name for p in (report_dir(ctx) / "previews").glob("*.png")),
+        key=lambda n: ORDER.index(n[:-4]) if n[:-4] in ORDER else 99,
+    )
+    return {"previews": [f"previews/{name}" for name in pictures]}
+
+
 FAMILY = Family(
     name="previews",
     step="mjcfbuild.steps.previews:run",
@@ -50,4 +71,5 @@ FAMILY = Family(
     tasks=_tasks,
     compiles_model=True,
     report_only=True,
+    report=_report,
 )

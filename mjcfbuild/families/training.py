@@ -5,14 +5,22 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, file_task
+from mjcfbuild.engine.family import Family, file_task, read_record
 from mjcfbuild.families.decompose import decomposition_files
 from mjcfbuild.families.scene import scene_payload
 from mjcfbuild.families.selfcollision import self_collision_matrix
-from mjcfbuild.outputs import FLOOR_RECORD, TRAINING_RECORD, product_summary, training_paths
+from mjcfbuild.fsutil import md5_file
+from mjcfbuild.outputs import (
+    FLOOR_RECORD,
+    TRAINING_RECORD,
+    TRAINING_WARP,
+    product_summary,
+    training_paths,
+)
 from mjcfbuild.steps.payloads import TrainingPayload
 
 if TYPE_CHECKING:
+    from mjcfbuild.engine.context import BuildContext
     from mjcfbuild.engine.tasks import Graph
 
 
@@ -78,6 +86,31 @@ def _tasks(graph: Graph) -> list[dict]:
     return [task]
 
 
+def training_summary(ctx: BuildContext) -> dict | None:
+    """The training variant's record, with what ``check --warp`` measured of it while the
+    variant is the one it measured (by content)."""
+    if ctx.manifest.training is None:
+        return None
+    record = read_record(ctx.state(TRAINING_RECORD))
+    if not record:
+        return None
+    variant, _ = training_paths(ctx)
+    warp = read_record(ctx.state(TRAINING_WARP))
+    try:
+        current = md5_file(variant)
+    except OSError:
+        current = None
+    return {
+        **record,
+        "file": variant.name,
+        "warp": warp if warp and warp.get("variant_md5") == current else None,
+    }
+
+
+def _report(ctx: BuildContext) -> dict:
+    return {"training": training_summary(ctx)}
+
+
 FAMILY = Family(
     name="training",
     step="mjcfbuild.steps.training:run",
@@ -86,4 +119,5 @@ FAMILY = Family(
     tools=("mujoco", "numpy", "scipy", "trimesh", "lxml"),
     tasks=_tasks,
     compiles_model=True,  # compiles the full model before making the variant
+    report=_report,
 )

@@ -4,11 +4,12 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, file_task
+from mjcfbuild.engine.family import Family, file_task, read_record
 from mjcfbuild.outputs import ASSEMBLY_REPORT, TUNING_RECORD, report_dir
 from mjcfbuild.steps.payloads import TuningPayload
 
 if TYPE_CHECKING:
+    from mjcfbuild.engine.context import BuildContext
     from mjcfbuild.engine.tasks import Graph
 
 
@@ -39,6 +40,10 @@ def _tasks(graph: Graph) -> list[dict]:
     return [task]
 
 
+def _report(ctx: BuildContext) -> dict:
+    return {"tuning": read_record(ctx.state(TUNING_RECORD)) if ctx.manifest.check.tuning else {}}
+
+
 FAMILY = Family(
     name="tuning",
     step="mjcfbuild.steps.tuning:run",
@@ -48,4 +53,5 @@ FAMILY = Family(
     tasks=_tasks,
     compiles_model=True,
     report_only=True,
+    report=_report,
 )
