@@ -25,6 +25,7 @@ from mjcfbuild.families.registry import (
     STEP_FORMATS,
     STEP_TOOLS,
 )
+from mjcfbuild.sharing.coordinator import SHARED_STEPS
 from tests.conftest import EXAMPLES
 from tests.families.toy_step import ToyPayload
 
@@ -101,6 +102,10 @@ def test_the_derived_tables_are_the_ones_the_engine_kept_before():
         "mjcfbuild.steps.previews",
         "mjcfbuild.steps.tuning",
     )
+    assert SHARED_STEPS == {
+        "mjcfbuild.steps.mesh:run": "mesh",
+        "mjcfbuild.steps.decompose:run": "decompose",
+    }
     version = registry.step_versions("mesh")
     assert version["mjcfbuild-step"] == "mesh-5" and version["mjcfbuild"] == mjcfbuild.__version__
     assert list(version)[:6] == list(BEFORE_TOOLS["mesh"])
