@@ -16,13 +16,13 @@ from typing import TYPE_CHECKING, Any
 
 from mjcfbuild.errors import InternalError, MjcfbuildError, write_failure
 from mjcfbuild.families import assemble
+
+# The steps that compile the built model with MuJoCo: each runs where one ran before, or where
+# the model's meshes were warmed while it was assembled, and finds them processed (check.loading).
 from mjcfbuild.families.registry import COMPILES_MODEL
 
 ASSEMBLE = assemble.FAMILY.step
 WARM = "mjcfbuild.steps.warm:run"
-# Steps that compile the built model with MuJoCo (COMPILES_MODEL): each runs where one ran
-# before, or where the model's meshes were warmed while it was assembled, and finds them
-# processed (check.loading).
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext
