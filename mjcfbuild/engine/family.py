@@ -1,4 +1,4 @@
-"""A task family: one kind of build task, declared once, beside its step.
+"""A task family: one kind of build task, declared once, in a module of its own.
 
 A :class:`Family` says everything the engine needs of one kind of task: the step it runs, the
 payload the step is given, the format number and tools that make its output what it is, where
@@ -53,8 +53,8 @@ class Family:
     # Compiles the built model with MuJoCo: runs in the worker that last compiled it, or where
     # its meshes were warmed while it was assembled (engine.session).
     compiles_model: bool = False
-    # Writes only to the report (check, previews, tuning): runs only when the build checks,
-    # its module is preloaded with the check's, and freshness does not count it.
+    # Writes only to the report (check, previews, tuning): workers of a build that checks
+    # preload its module with the check's, and freshness does not count its tasks.
     report_only: bool = False
     verify: Callable[[Graph], None] | None = None
     # What it adds to report.json, read from what its tasks recorded (never from what ran this
