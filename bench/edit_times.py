@@ -180,7 +180,7 @@ def measure(
 def time_reference(template: str, manifest: Path, repeat: int) -> float:
     """Median wall-clock seconds of the reference converter's command on this robot."""
     from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import planned_urdf
+    from mjcfbuild.outputs import planned_urdf
 
     urdf = planned_urdf(BuildContext.from_manifest_file(manifest))  # written by the cold build
     times = []

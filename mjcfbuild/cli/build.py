@@ -250,7 +250,7 @@ def report_md(ctx) -> str:
     """Where a build's report lists every warning, as the console names it."""
     import os
 
-    from mjcfbuild.engine.tasks import report_dir
+    from mjcfbuild.outputs import report_dir
 
     return os.path.relpath(report_dir(ctx) / "report.md")
 

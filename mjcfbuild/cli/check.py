@@ -202,7 +202,8 @@ def _manifest(ctx, args) -> int:
     from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.report import write_report
     from mjcfbuild.engine.runner import build_lock
-    from mjcfbuild.engine.tasks import CHECK_RESULTS, PLAN, REFERENCE, check_payload, planned_urdf
+    from mjcfbuild.families.check import check_payload
+    from mjcfbuild.outputs import CHECK_RESULTS, PLAN, REFERENCE, planned_urdf
     from mjcfbuild.steps.check import check_built, write_results
     from mjcfbuild.steps.plan_record import read_plan
 
@@ -252,10 +253,10 @@ def _prove_training_variant(ctx) -> int:
 
     from mjcfbuild.check.warp_variant import gpu_device, prove_on_gpu, prove_variant
     from mjcfbuild.engine.progress import Progress
-    from mjcfbuild.engine.report import TRAINING_WARP, write_report
+    from mjcfbuild.engine.report import write_report
     from mjcfbuild.engine.runner import build_lock
-    from mjcfbuild.engine.tasks import training_paths
     from mjcfbuild.fsutil import md5_file
+    from mjcfbuild.outputs import TRAINING_WARP, training_paths
 
     variant, scene = training_paths(ctx)
     if not scene.exists():

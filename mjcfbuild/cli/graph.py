@@ -23,7 +23,8 @@ def add_parser(commands) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the graph."""
-    from mjcfbuild.engine.tasks import PLAN, build_tasks, planning_tasks
+    from mjcfbuild.engine.tasks import build_tasks, planning_tasks
+    from mjcfbuild.outputs import PLAN
 
     ctx = load_context(chosen_manifest(args), args)
     tasks = build_tasks(ctx) if ctx.state(PLAN).exists() else planning_tasks(ctx)

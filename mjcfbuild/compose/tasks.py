@@ -1,4 +1,5 @@
-"""The tasks of ``attach:`` parts: one task per part, then the composition.
+"""The tasks of ``attach:`` parts: one task per part, then the composition (the ``mjcfpart``
+and ``compose`` task families).
 
 Each URDF or xacro part is expanded by a task of its own (``expand:<prefix>``), so editing a
 gripper's xacro re-expands the gripper alone; the ``compose`` task joins the expanded parts to
@@ -14,34 +15,38 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.context import BuildContext
+from mjcfbuild.engine.family import Family, discovered_inputs, file_task, ros_environment
 from mjcfbuild.errors import ManifestError, MjcfbuildError
+from mjcfbuild.families.expand import expand_file_task
 from mjcfbuild.fsutil import unreadable_file
-from mjcfbuild.manifest.composition import Attachment
-from mjcfbuild.manifest.models import Manifest
-from mjcfbuild.sources.packages import ENV_VARIABLES, did_you_mean
+from mjcfbuild.outputs import COMPOSED_URDF, SOURCE_URDF, mjcf_part_paths, part_urdf
+from mjcfbuild.sources.packages import did_you_mean
 from mjcfbuild.steps.payloads import ComposePayload, MjcfPartFiles, MjcfPartPayload, PartEntry
-from mjcfbuild.urdf.model import Robot
 
-PARTS_DIR = "attach"
-
-
-def has_urdf_parts(manifest: Manifest) -> bool:
-    """Whether URDF or xacro parts are joined to the main source (into composed.urdf)."""
-    return any(part.source.kind != "mjcf" for part in manifest.attach)
+if TYPE_CHECKING:
+    from mjcfbuild.engine.context import BuildContext
+    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.manifest.composition import Attachment
+    from mjcfbuild.urdf.model import Robot
 
 
-def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
-    """The part tasks and the ``compose`` task; none without ``attach:``."""
-    from mjcfbuild.engine.tasks import COMPOSED_URDF, SOURCE_URDF, _task, expand_file_task
-    from mjcfbuild.sources.origins import origins_file
-
-    tasks = [
-        _mjcf_part_task(ctx, prefix, index, part)
-        for index, part in enumerate(ctx.manifest.attach)
+def _mjcf_part_tasks(graph: Graph) -> list[dict]:
+    """One ``part:`` task per MJCF part; none without them."""
+    return [
+        _mjcf_part_task(graph.ctx, graph.prefix, index, part)
+        for index, part in enumerate(graph.ctx.manifest.attach)
         if part.source.kind == "mjcf"
     ]
+
+
+def _composition_tasks(graph: Graph) -> list[dict]:
+    """An ``expand:`` task per URDF or xacro part, and the ``compose`` task; none without."""
+    from mjcfbuild.sources.origins import origins_file
+
+    ctx, prefix = graph.ctx, graph.prefix
+    tasks: list[dict] = []
     parts = [(i, part) for i, part in enumerate(ctx.manifest.attach) if part.source.kind != "mjcf"]
     if not parts:
         return tasks
@@ -83,17 +88,17 @@ def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
         ),
         base_dir=str(ctx.source_base_dir),
         parts=entries,
-        environment={key: ctx.environ.get(key, "") for key in ENV_VARIABLES},
+        environment=ros_environment(ctx),
         output=str(ctx.state(COMPOSED_URDF)),
         origins=str(origins_file(ctx.state(COMPOSED_URDF))),
     )
     inputs = [ctx.state(SOURCE_URDF), *(Path(e.urdf) for e in entries)]
     tasks.append(
-        _task(
+        file_task(
             ctx,
+            COMPOSE,
             f"{prefix}compose",
             f"attach {', '.join(part.prefix for _, part in parts)}",
-            "compose",
             payload,
             in_worker=False,
             # The inputs' origins too: a xacro line that moved moves the composed origins.
@@ -104,11 +109,6 @@ def composition_tasks(ctx: BuildContext, prefix: str) -> list[dict]:
         )
     )
     return tasks
-
-
-def part_urdf(ctx: BuildContext, index: int) -> Path:
-    """Where the expanded URDF of part ``index`` is kept."""
-    return ctx.state_dir / PARTS_DIR / f"{index}.urdf"
 
 
 def part_folders(ctx: BuildContext) -> list[Path]:
@@ -163,33 +163,10 @@ def _pinpointed(ctx: BuildContext, error: MjcfbuildError) -> MjcfbuildError:
     return error
 
 
-def mjcf_part_paths(ctx: BuildContext, index: int) -> dict[str, Path]:
-    """Where the ``part:`` task of part ``index`` writes its normalised XML, summary, depfile
-    and (shared by every part, content-addressed) asset copies."""
-    folder = ctx.state_dir / PARTS_DIR
-    return {
-        "xml": folder / f"{index}.mjcf.xml",
-        "summary": folder / f"{index}.mjcf.json",
-        "depfile": folder / f"{index}.mjcf.deps.json",
-        "assets_dir": folder / "assets",
-    }
-
-
 def _mjcf_part_task(ctx: BuildContext, prefix: str, index: int, part: Attachment) -> dict:
-    from mjcfbuild.engine.depfile import Depfile
-    from mjcfbuild.engine.tasks import _task
-    from mjcfbuild.engine.uptodate import always_stale
-
     source = _part_source(ctx, index, part)
     paths = mjcf_part_paths(ctx, index)
-    file_dep = [source]
-    extra = []
-    depfile = Depfile.read(paths["depfile"])
-    if depfile is not None:
-        file_dep += [Path(f) for f in depfile.files if Path(f).exists()]
-        stale = depfile.stale_reason(ctx.environ)
-        if stale:
-            extra.append(always_stale(stale))
+    read, stale = discovered_inputs(ctx, paths["depfile"])
     payload = MjcfPartPayload(
         source=str(source),
         label=ctx.label(source),
@@ -198,16 +175,16 @@ def _mjcf_part_task(ctx: BuildContext, prefix: str, index: int, part: Attachment
         summary=str(paths["summary"]),
         depfile=str(paths["depfile"]),
     )
-    return _task(
+    return file_task(
         ctx,
+        MJCFPART,
         f"{prefix}part:{part.prefix}",
         f"part {ctx.label(source)}",
-        "mjcfpart",
         payload,
         in_worker=True,
-        file_dep=file_dep,
+        file_dep=[source, *read],
         targets=[paths["xml"], paths["summary"]],
-        extra_uptodate=extra,
+        extra_uptodate=stale,
     )
 
 
@@ -328,3 +305,23 @@ def urdf_home(robot: Robot, home: dict[str, float]) -> dict[str, float]:
         for pattern, value in home.items()
         if any(matches(name, [pattern]) for name in moving)
     }
+
+
+MJCFPART = Family(
+    name="mjcfpart",
+    step="mjcfbuild.steps.mjcfpart:run",
+    payload=MjcfPartPayload,
+    format=1,
+    tools=("mujoco", "lxml"),
+    tasks=_mjcf_part_tasks,
+    stage="planning",
+)
+COMPOSE = Family(
+    name="compose",
+    step="mjcfbuild.steps.compose:run",
+    payload=ComposePayload,
+    format=2,  # 2: the origins of the composed lines
+    tools=("lxml",),
+    tasks=_composition_tasks,
+    stage="planning",
+)

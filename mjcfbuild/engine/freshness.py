@@ -15,9 +15,8 @@ from pathlib import Path
 
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.loader import DATABASE
-from mjcfbuild.engine.tasks import PLAN
-
-REPORT_TASKS = ("check", "previews", "tuning")
+from mjcfbuild.families.registry import REPORT_TASKS
+from mjcfbuild.outputs import PLAN
 
 
 def stale_outputs(ctx: BuildContext) -> list[str]:

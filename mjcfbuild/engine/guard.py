@@ -67,7 +67,7 @@ def _check_inside(ctx: BuildContext) -> None:
 
 def build_folders(ctx: BuildContext) -> list[Path]:
     """The folders below the output folder that builds write into, whether they exist or not."""
-    from mjcfbuild.engine.tasks import PACKAGE_FOLDER, report_dir
+    from mjcfbuild.outputs import PACKAGE_FOLDER, report_dir
 
     out = ctx.out_dir
     report = report_dir(ctx)
@@ -156,7 +156,7 @@ def _real(path: str | os.PathLike) -> Path:
 def _output_fields(ctx: BuildContext) -> dict[Path, tuple[str, bool]]:
     """The paths the manifest makes the build write, each with the field that chose it and
     whether it is a folder the build fills."""
-    from mjcfbuild.engine.tasks import PACKAGE_FOLDER, report_dir
+    from mjcfbuild.outputs import PACKAGE_FOLDER, report_dir
 
     output = ctx.manifest.output
     fields: dict[Path, tuple[str, bool]] = {

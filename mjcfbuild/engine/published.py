@@ -25,7 +25,7 @@ def published_files(ctx: BuildContext) -> list[Path]:
     """The files a build of ``ctx`` publishes now: the model, the scene, the exported URDF,
     and what is under assets/, report/ and the URDF's mesh folder (not the state folder)."""
     from mjcfbuild.engine.stamp import files_under
-    from mjcfbuild.engine.tasks import report_dir
+    from mjcfbuild.outputs import report_dir
 
     files = [p for p in (ctx.robot_path, ctx.scene_path, ctx.urdf_path) if p and p.is_file()]
     for folder in (ctx.assets_dir, report_dir(ctx), ctx.urdf_mesh_dir):

@@ -1,11 +1,11 @@
 """The build report: ``report/report.json`` and ``report/report.md`` in the output folder.
 
-This module gathers what the build steps recorded - the check results, inertia repairs,
-the warnings of the tasks that made the outputs, mesh statistics, the products and the preview
-pictures - into one machine-readable file; :mod:`mjcfbuild.check.report_page` renders the page
-people read. Both are made from what the outputs' tasks recorded, never from what ran this
-time, so the same inputs give the same bytes whether a build ran every task, none (up to date)
-or waited for another build of the folder.
+This module gathers what the build steps recorded - each task family's part (its ``report``:
+the check results, inertia repairs, mesh statistics, the products, the preview pictures), and
+the warnings of the tasks that made the outputs - into one machine-readable file;
+:mod:`mjcfbuild.check.report_page` renders the page people read. Both are made from what the
+outputs' tasks recorded, never from what ran this time, so the same inputs give the same bytes
+whether a build ran every task, none (up to date) or waited for another build of the folder.
 
 What does change from run to run - the time each task took when it last ran, where this build's
 products came from (the cache counters), how long each decomposition took - goes to
@@ -16,31 +16,18 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import Any
 
 from mjcfbuild.check.report_page import markdown
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.tasks import (
-    ASSEMBLY_REPORT,
-    CHECK_RESULTS,
-    TRAINING_RECORD,
-    TUNING_RECORD,
-    decomposition_dir,
-    report_dir,
-    training_paths,
-)
-from mjcfbuild.fsutil import md5_file, write_if_changed
+from mjcfbuild.engine.family import read_record
+from mjcfbuild.families import registry
+from mjcfbuild.families.decompose import decomposition_summaries
+from mjcfbuild.fsutil import write_if_changed
+from mjcfbuild.outputs import report_dir
 
 STATS = "build-stats.json"  # in the state folder: what changes from run to run
 WARNINGS = "warnings.json"  # in the state folder: each task's warnings when it last ran
-PREVIEW_ORDER = (
-    "three_quarter_visual",
-    "side_visual",
-    "top_visual",
-    "closeup_visual",
-    "three_quarter_collision",
-    "side_collision",
-    "closeup_collision",
-)
 
 
 def write_stats(ctx: BuildContext) -> Path:
@@ -49,14 +36,14 @@ def write_stats(ctx: BuildContext) -> Path:
     decomposition's seconds, and this build's warnings that no task gave (a remote cache out
     of reach, an object it rejected); its path."""
     path = ctx.state(STATS)
-    times = _read(path).get("times") or {}
+    times = read_record(path).get("times") or {}
     times.update({name: round(seconds, 3) for name, seconds in ctx.session.timings.items()})
     stats = {
         "times": dict(sorted(times.items())),
         "cache": ctx.session.cache_report,
         "warnings": _build_warnings(ctx),
         "decomposition_seconds": {
-            record.stem: summary.get("seconds") for record, summary in _decomposition_summaries(ctx)
+            record.stem: summary.get("seconds") for record, summary in decomposition_summaries(ctx)
         },
     }
     write_if_changed(path, (json.dumps(stats, indent=1, sort_keys=True) + "\n").encode())
@@ -74,7 +61,7 @@ def record_warnings(ctx: BuildContext, tasks: list[str]) -> None:
     """Keep the warnings of the tasks that ran in this build, by task, beside those of the
     tasks that were up to date; ``tasks`` (every task of the build, in order) decides which
     records stay and their order."""
-    recorded = _read(ctx.state(WARNINGS))
+    recorded = read_record(ctx.state(WARNINGS))
     recorded.update(ctx.session.task_warnings)
     kept = {name: list(recorded[name]) for name in tasks if recorded.get(name)}
     write_if_changed(ctx.state(WARNINGS), (json.dumps(kept, indent=1) + "\n").encode())
@@ -82,7 +69,7 @@ def record_warnings(ctx: BuildContext, tasks: list[str]) -> None:
 
 def recorded_warnings(ctx: BuildContext) -> list[str]:
     """The warnings of the tasks that made the outputs, in task order, each once."""
-    recorded = _read(ctx.state(WARNINGS))
+    recorded = read_record(ctx.state(WARNINGS))
     return list(dict.fromkeys(w for warnings in recorded.values() for w in warnings))
 
 
@@ -97,35 +84,19 @@ def write_report(ctx: BuildContext) -> Path:
         folder / ".gitignore",
         b"# previews are rendered on this machine; git add -f report.md report.json\n*\n",
     )
-    check = _read(ctx.state(CHECK_RESULTS))
-    assembly = _read(ctx.state(ASSEMBLY_REPORT))
-    previews = sorted(
-        (p.name for p in (folder / "previews").glob("*.png")),
-        key=lambda n: PREVIEW_ORDER.index(n[:-4]) if n[:-4] in PREVIEW_ORDER else 99,
-    )
-    decomposed = decompositions(ctx)
-    report = {
+    report: dict[str, Any] = {
         "robot": ctx.manifest.name,
         "model": ctx.manifest.robot_file,
         "scene": ctx.manifest.output.scene,
-        "check": check,
-        "repairs": assembly.get("repairs", []),
         "warnings": recorded_warnings(ctx),
-        "bodies": assembly.get("bodies"),
-        "geoms": assembly.get("geoms"),
-        "assets": assembly.get("assets", []),
-        "readiness": assembly.get("readiness") or {},
-        "self_collision": assembly.get("self_collision"),
-        "decompositions": decomposed,
-        "up_axis": up_axis_decisions(ctx),
-        "products": {
-            "meshes": len(mesh_products(ctx)),
-            "decompositions": len(decomposed),
-        },
-        "previews": [f"previews/{name}" for name in previews],
-        "tuning": _read(ctx.state(TUNING_RECORD)) if ctx.manifest.check.tuning else {},
-        "training": training_summary(ctx),
     }
+    for family in registry.FAMILIES:
+        if family.report is not None:
+            for key, value in family.report(ctx).items():
+                given = report.get(key)
+                if isinstance(given, dict) and isinstance(value, dict):
+                    value = {**given, **value}  # products: a count from each family
+                report[key] = value
     write_if_changed(
         folder / "report.json", (json.dumps(report, indent=1, sort_keys=True) + "\n").encode()
     )
@@ -150,75 +121,3 @@ def _page_tables(ctx: BuildContext, folder: Path, report: dict) -> None:
 
     remove_written(ctx, folder / "index.html")
     remove_written(ctx, folder / "page")
-
-
-def decompositions(ctx: BuildContext) -> list[dict]:
-    """Per decomposition of this build: hull kept or CoACD, parts, concavities (its seconds
-    are in build-stats.json)."""
-    return [
-        {
-            "name": path.stem,
-            "method": summary.get("method", "coacd"),
-            "parts": len(summary["parts"]),
-            "hull_concavity": summary.get("hull_concavity"),
-            "concavity": summary.get("concavity"),
-        }
-        for path, summary in _decomposition_summaries(ctx)
-    ]
-
-
-def _decomposition_summaries(ctx: BuildContext) -> list[tuple[Path, dict]]:
-    """Each decomposition's record, by name."""
-    found = []
-    for path in sorted(decomposition_dir(ctx, "any").parent.glob("*.json")):
-        summary = _read(path)
-        if "parts" in summary:
-            found.append((path, summary))
-    return found
-
-
-def mesh_products(ctx: BuildContext) -> list[Path]:
-    """The records of the mesh products of this build (``products/<id>.json`` beside the
-    product's folder)."""
-    return [p for p in sorted(ctx.products_dir.glob("*.json")) if (p.parent / p.stem).is_dir()]
-
-
-def up_axis_decisions(ctx: BuildContext) -> list[dict]:
-    """Per DAE file tagged other than Z-up: its mesh, whether it was turned, and why."""
-    rows = []
-    for path in mesh_products(ctx):
-        decision = _read(path).get("up_axis")
-        if isinstance(decision, dict):
-            rows.append({"mesh": path.stem, **decision})
-    return rows
-
-
-TRAINING_WARP = "training_warp.json"  # what check --warp measured of the variant
-
-
-def training_summary(ctx: BuildContext) -> dict | None:
-    """The training variant's record, with what ``check --warp`` measured of it while the
-    variant is the one it measured (by content)."""
-    if ctx.manifest.training is None:
-        return None
-    record = _read(ctx.state(TRAINING_RECORD))
-    if not record:
-        return None
-    variant, _ = training_paths(ctx)
-    warp = _read(ctx.state(TRAINING_WARP))
-    try:
-        current = md5_file(variant)
-    except OSError:
-        current = None
-    return {
-        **record,
-        "file": variant.name,
-        "warp": warp if warp and warp.get("variant_md5") == current else None,
-    }
-
-
-def _read(path: Path) -> dict:
-    try:
-        return json.loads(path.read_text())
-    except (OSError, ValueError):
-        return {}

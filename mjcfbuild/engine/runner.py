@@ -18,11 +18,12 @@ from mjcfbuild.engine.guard import check_output_folder, check_outputs_are_not_in
 from mjcfbuild.engine.loader import DATABASE, run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.report import record_warnings, write_report, write_stats
-from mjcfbuild.engine.tasks import SOURCE_URDF, build_tasks, planned_urdf, planning_tasks
+from mjcfbuild.engine.tasks import build_tasks, planning_tasks
 from mjcfbuild.engine.training_files import remove_stale_variant
 from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError, write_failure
 from mjcfbuild.fsutil import TEMP_SUFFIX, remove_stale_temp_files, write_if_changed
 from mjcfbuild.manifest.pinpoint import pinpoint
+from mjcfbuild.outputs import SOURCE_URDF, planned_urdf
 from mjcfbuild.sources.origins import point_at_source, point_warning_at_source
 
 if TYPE_CHECKING:

@@ -15,19 +15,14 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from mjcfbuild.errors import InternalError, MjcfbuildError, write_failure
+from mjcfbuild.families import assemble
 
-ASSEMBLE = "mjcfbuild.steps.assemble:run"
+# The steps that compile the built model with MuJoCo: each runs where one ran before, or where
+# the model's meshes were warmed while it was assembled, and finds them processed (check.loading).
+from mjcfbuild.families.registry import COMPILES_MODEL
+
+ASSEMBLE = assemble.FAMILY.step
 WARM = "mjcfbuild.steps.warm:run"
-# Steps that compile the built model with MuJoCo: each runs where one ran before, or where the
-# model's meshes were warmed while it was assembled, and finds them processed (check.loading).
-COMPILES_MODEL = {
-    "mjcfbuild.steps.selfcollision:run",
-    ASSEMBLE,
-    "mjcfbuild.steps.check:run",
-    "mjcfbuild.steps.previews:run",
-    "mjcfbuild.steps.tuning:run",
-    "mjcfbuild.steps.training:run",  # compiles the full model before making the variant
-}
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext

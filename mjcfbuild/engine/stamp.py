@@ -311,7 +311,7 @@ def record_build(
     """Write the stamp of the successful build of ``ctx`` that ran ``tasks``; ``warnings``
     are those of the tasks that made its outputs, for the fast path to print."""
     from mjcfbuild.engine.depfile import Depfile
-    from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, SOURCE_DEPS
+    from mjcfbuild.outputs import ASSEMBLY_REPORT, SOURCE_DEPS
 
     manifest = ctx.stamp_key
     assert manifest is not None, "a stamp is kept only for a build with a stamp key"
@@ -336,7 +336,7 @@ def record_build(
     if ctx.urdf_path is not None:
         outputs.append(ctx.urdf_path)
     from mjcfbuild.engine.published import published_files
-    from mjcfbuild.engine.tasks import report_dir
+    from mjcfbuild.outputs import report_dir
 
     summary = {
         "robot": ctx.robot_path.name,

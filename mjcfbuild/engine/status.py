@@ -95,7 +95,8 @@ def build_statuses(ctx: BuildContext) -> tuple[list[TaskStatus], bool]:
     When the planning tasks are stale (or never ran), the later tasks depend on a plan that
     does not exist yet, so only the planning tasks are reported (and ``False``).
     """
-    from mjcfbuild.engine.tasks import PLAN, build_tasks, planning_tasks
+    from mjcfbuild.engine.tasks import build_tasks, planning_tasks
+    from mjcfbuild.outputs import PLAN
 
     planning = task_statuses(ctx, planning_tasks(ctx))
     if not ctx.state(PLAN).exists() or not all(s.up_to_date for s in planning):

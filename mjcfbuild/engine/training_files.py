@@ -14,8 +14,7 @@ import json
 from pathlib import Path
 
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.report import TRAINING_WARP
-from mjcfbuild.engine.tasks import TRAINING_RECORD, training_paths
+from mjcfbuild.outputs import TRAINING_RECORD, TRAINING_WARP, training_paths
 
 
 def remove_stale_variant(ctx: BuildContext) -> list[Path]:

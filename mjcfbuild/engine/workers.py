@@ -39,6 +39,7 @@ from typing import TYPE_CHECKING
 from mjcfbuild.engine.worker_main import MESHES_VARIABLE, PRELOAD_VARIABLE, process_state
 from mjcfbuild.errors import InternalError, MjcfbuildError, TaskCrashed
 from mjcfbuild.failpoints import BUILD_PID
+from mjcfbuild.families.registry import CHECK_MODULES  # the report-only families' steps
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.resident import Resident
@@ -49,7 +50,6 @@ if TYPE_CHECKING:
 MESH_MODULES = ("numpy", "lxml.etree", "mjcfbuild.steps.mesh")
 MODEL_MODULES = ("mujoco", "mjcfbuild.steps.selfcollision", "mjcfbuild.steps.assemble")
 BUILD_MODULES = MESH_MODULES + MODEL_MODULES
-CHECK_MODULES = ("mjcfbuild.steps.check", "mjcfbuild.steps.previews", "mjcfbuild.steps.tuning")
 # The check's reader of the URDF (yourdfpy, with trimesh and scipy: a second of CPU) runs only
 # when the URDF's kinematics change: a first build preloads it, a rebuild imports it if needed.
 REFERENCE_MODULES = ("yourdfpy", "mjcfbuild.steps.reference")

@@ -14,13 +14,14 @@ from collections.abc import Callable
 from pathlib import Path
 
 from mjcfbuild.engine.store import ProductStore, open_store
+from mjcfbuild.families import decompose, mesh
 from mjcfbuild.sharing import stats as stats_file
 from mjcfbuild.sharing.settings import ExecutorSpec, RemoteSpec
 from mjcfbuild.sharing.stats import ShareStats
 from mjcfbuild.steps.payloads import DecomposePayload, MeshPayload
 
-# step function -> product kind
-SHARED_STEPS = {"mjcfbuild.steps.mesh:run": "mesh", "mjcfbuild.steps.decompose:run": "decompose"}
+# step function -> product kind (the family's name, which sharing.compute's KINDS lists)
+SHARED_STEPS = {family.step: family.name for family in (mesh.FAMILY, decompose.FAMILY)}
 
 
 class ProductSharing:

@@ -8,9 +8,9 @@ from typing import Any
 
 from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.engine.store import open_store, product_key
-from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
 from mjcfbuild.failpoints import failpoint
+from mjcfbuild.families.mesh import FAMILY
 from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.meshes.references import missing_paths, missing_references, referenced_files
 from mjcfbuild.meshes.upaxis import UpAxisDecision
@@ -79,7 +79,7 @@ def cache_key(request: MeshPayload, references: list[Path] | None = None) -> str
 
 
 def _key(params: dict[str, Any], source: Path, references: list[Path]) -> str:
-    return product_key("mesh", {**params, "versions": step_versions("mesh")}, [source, *references])
+    return product_key("mesh", {**params, "versions": FAMILY.versions()}, [source, *references])
 
 
 def conversion_options(request: MeshPayload) -> tuple[dict[str, Any], UpAxisDecision | None]:

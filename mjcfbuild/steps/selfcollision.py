@@ -157,7 +157,7 @@ def _matrix(
     import tempfile
 
     from mjcfbuild.engine.store import open_store, product_key
-    from mjcfbuild.engine.versions import step_versions
+    from mjcfbuild.families.selfcollision import FAMILY
     from mjcfbuild.fsutil import md5_file
 
     store = open_store(request.cache)
@@ -172,7 +172,7 @@ def _matrix(
         "free_joint": request.free_joint,
         "home": [float(v) for v in qpos],
         "settings": request.settings,
-        "versions": step_versions("selfcollision"),
+        "versions": FAMILY.versions(),
         "parts": [[p.prefix, p.to, p.pos, p.quat] for p in request.mjcf_parts],
         "part_digests": request.part_digests,
     }

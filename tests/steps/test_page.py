@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from mjcfbuild.engine.tasks import PAGE_FILES
+from mjcfbuild.outputs import PAGE_FILES
 from tests.conftest import EXAMPLES, copy_example, run_cli
 from tests.page.chromium import Browser, require_chromium
 from tests.page.hostile import (

@@ -8,7 +8,7 @@ import json
 import pytest
 
 import mjcfbuild
-from mjcfbuild.engine import tasks
+from mjcfbuild.families import scene
 from mjcfbuild.steps import payloads
 from mjcfbuild.steps.payloads import (
     AssemblePayload,
@@ -111,5 +111,5 @@ def test_a_field_added_to_a_payload_reruns_its_task(tmp_path, monkeypatch):
     class SceneWithNewOption(ScenePayload):
         lighting: str = "studio"
 
-    monkeypatch.setattr(tasks, "ScenePayload", SceneWithNewOption)
+    monkeypatch.setattr(scene, "ScenePayload", SceneWithNewOption)
     assert mjcfbuild.build(manifest, jobs=1, check=False).ran == ["scene"]

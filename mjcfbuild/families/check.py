@@ -1,0 +1,83 @@
+"""The ``check`` family: the model against the URDF and each MJCF part alone, and ready to
+control (``check.enabled``)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from mjcfbuild.engine.family import Family, file_task, read_record
+from mjcfbuild.outputs import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN, REFERENCE
+from mjcfbuild.steps.payloads import CheckPayload, MjcfPartFiles
+
+if TYPE_CHECKING:
+    from mjcfbuild.engine.context import BuildContext
+    from mjcfbuild.engine.tasks import Graph
+
+
+def check_payload(
+    ctx: BuildContext, parts: list[MjcfPartFiles], options: dict | None = None
+) -> CheckPayload:
+    """What the check is given: the build's ``check`` task and ``mjcfbuild check`` alike
+    (``options``, CheckOptions' fields, replace the manifest's check settings)."""
+    settings = ctx.manifest.check
+    return CheckPayload(
+        options=options
+        or {
+            "configurations": settings.configurations,
+            "position_tolerance": settings.position_tolerance,
+            "rotation_tolerance": settings.rotation_tolerance,
+            "steps": settings.steps,
+            "hold_tolerance": settings.hold_tolerance,
+            "seed": 0,
+        },
+        plan=str(ctx.state(PLAN)),
+        assembly_report=str(ctx.state(ASSEMBLY_REPORT)),
+        model=str(ctx.robot_path),
+        model_label=ctx.label(ctx.robot_path),
+        scene=str(ctx.scene_path),
+        reference=str(ctx.state(REFERENCE)),
+        output=str(ctx.state(CHECK_RESULTS)),
+        mjcf_parts=parts,  # each compared with the part compiled alone
+    )
+
+
+def _tasks(graph: Graph) -> list[dict]:
+    if not graph.checks:
+        return []
+    ctx, parts = graph.ctx, graph.parts
+    task = file_task(
+        ctx,
+        FAMILY,
+        f"{graph.prefix}check",
+        f"check {ctx.manifest.robot_file}",
+        check_payload(ctx, parts),
+        in_worker=True,
+        file_dep=[
+            ctx.robot_path,
+            ctx.scene_path,
+            ctx.state(PLAN),
+            ctx.state(ASSEMBLY_REPORT),
+            ctx.state(REFERENCE),
+            *(Path(path) for part in parts for path in (part.xml, part.summary)),
+        ],
+        targets=[ctx.state(CHECK_RESULTS)],
+    )
+    return [task]
+
+
+def _report(ctx: BuildContext) -> dict:
+    return {"check": read_record(ctx.state(CHECK_RESULTS))}
+
+
+FAMILY = Family(
+    name="check",
+    step="mjcfbuild.steps.check:run",
+    payload=CheckPayload,
+    format=9,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts
+    tools=("mujoco", "numpy"),
+    tasks=_tasks,
+    compiles_model=True,
+    report_only=True,
+    report=_report,
+)

@@ -1,0 +1,102 @@
+"""The ``expand`` family: xacro expanded, or a URDF read, into the URDF text the plan reads."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from mjcfbuild.engine.family import (
+    Family,
+    discovered_inputs,
+    file_task,
+    package_folders,
+    require_file,
+    ros_environment,
+)
+from mjcfbuild.outputs import SOURCE_DEPS, SOURCE_URDF
+from mjcfbuild.steps.payloads import ExpandPayload
+
+if TYPE_CHECKING:
+    from mjcfbuild.engine.context import BuildContext
+    from mjcfbuild.engine.tasks import Graph
+
+
+def _tasks(graph: Graph) -> list[dict]:
+    ctx = graph.ctx
+    source = ctx.source_path
+    require_file(ctx, source, "source file", f"source.{ctx.source_kind}")
+    return [
+        expand_file_task(
+            ctx,
+            f"{graph.prefix}expand",
+            source,
+            ctx.source_kind,
+            ctx.manifest.source.xacro_args,
+            ctx.resolver.explicit,
+            ctx.state(SOURCE_URDF),
+            ctx.state(SOURCE_DEPS),
+            args_key=_args_key(ctx, "source.args"),
+        )
+    ]
+
+
+def _args_key(ctx: BuildContext, key: str) -> str:
+    """Where xacro arguments were given, for the error about one no file declares."""
+    from mjcfbuild.sources.expand import COMMAND_LINE
+
+    if ctx.manifest_file is None and ctx.manifest_label == COMMAND_LINE:
+        return COMMAND_LINE  # convert's NAME:=VALUE
+    return f"{ctx.manifest_label} {key}"
+
+
+def expand_file_task(
+    ctx: BuildContext,
+    name: str,
+    source: Path,
+    kind: str,
+    args: dict[str, str],
+    packages: dict[str, Path],
+    output: Path,
+    deps: Path,
+    args_key: str | None = None,
+) -> dict:
+    """The task expanding (xacro) or reading (URDF) ``source`` into ``output``; the files it
+    read are listed in ``deps`` and checked from the next build on, where each line's element
+    was written in :func:`~mjcfbuild.sources.origins.origins_file`. ``args_key`` is where
+    ``args`` were given (:func:`~mjcfbuild.sources.expand.expand_xacro`)."""
+    from mjcfbuild.sources.origins import origins_file
+
+    read, stale = discovered_inputs(ctx, deps)
+    payload = ExpandPayload(
+        kind=kind,
+        source=str(source),
+        args=args,
+        packages=package_folders(packages),
+        environment=ros_environment(ctx),
+        output=str(output),
+        depfile=str(deps),
+        origins=str(origins_file(output)),
+        args_key=args_key or "",
+    )
+    return file_task(
+        ctx,
+        FAMILY,
+        name,
+        f"expand {ctx.label(source)}",
+        payload,
+        in_worker=kind == "xacro",
+        file_dep=[source, *read],
+        targets=[output, deps, origins_file(output)],
+        extra_uptodate=stale,
+    )
+
+
+FAMILY = Family(
+    name="expand",
+    step="mjcfbuild.steps.expand:run",
+    payload=ExpandPayload,
+    format=2,  # 2: the origins of the expanded lines
+    tools=("xacro",),
+    tasks=_tasks,
+    stage="planning",
+)

@@ -1,0 +1,117 @@
+"""The ``mesh`` family: one task per mesh file, converting it into the products the model uses
+(OBJ parts, a collision mesh, a hull); products are shared through the cache."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from mjcfbuild.engine.family import (
+    Family,
+    discovered_inputs,
+    file_task,
+    largest_first,
+    read_record,
+)
+from mjcfbuild.outputs import mesh_depfile, product_summary
+from mjcfbuild.steps.payloads import MeshOptions, MeshPayload
+
+if TYPE_CHECKING:
+    from mjcfbuild.engine.context import BuildContext
+    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.urdf.model import Robot
+
+
+def _tasks(graph: Graph) -> list[dict]:
+    paths, roles = graph.paths, graph.roles
+    return [
+        _mesh_task(graph.ctx, mesh_id, paths[mesh_id], roles[mesh_id], graph.prefix, graph.robot)
+        for mesh_id in largest_first(roles, lambda mesh_id: paths[mesh_id])
+    ]
+
+
+def _mesh_task(
+    ctx: BuildContext, mesh_id: str, path: str, roles: list[str], prefix: str, robot: Robot
+) -> dict:
+    from mjcfbuild.meshes.upaxis import mesh_uses
+
+    read, stale = discovered_inputs(ctx, mesh_depfile(ctx, mesh_id))
+    meshes = ctx.manifest.meshes
+    up_axis = up_axis_mode(meshes.collada_up_axis, meshes.collada_up_axis_files, path)
+    options = MeshOptions(
+        roles=roles,
+        max_faces=meshes.max_faces,
+        collada_up_axis=up_axis,
+        # Each budget only for the product it shapes, so other products keep their cache keys.
+        collision_max_faces=meshes.collision_max_faces if "collision" in roles else None,
+        max_hull_vertices=meshes.max_hull_vertices if "hull" in roles else None,
+    )
+    payload = MeshPayload(
+        options=options,
+        max_file_bytes=int(meshes.max_file_mb * 1e6),
+        source=path,
+        product_dir=str(ctx.products_dir / mesh_id),
+        summary=str(product_summary(ctx, mesh_id)),
+        depfile=str(mesh_depfile(ctx, mesh_id)),
+        cache=ctx.cache_settings(),
+        evidence=[u.to_dict() for u in mesh_uses(robot, mesh_id)] if up_axis == "auto" else [],
+        label=ctx.portable_label(path),
+    )
+    return file_task(
+        ctx,
+        FAMILY,
+        f"{prefix}mesh:{mesh_id}",
+        f"mesh {mesh_id}",
+        payload,
+        in_worker=True,
+        file_dep=[Path(path), *read],
+        targets=[product_summary(ctx, mesh_id)],
+        extra_uptodate=stale,
+    )
+
+
+def up_axis_mode(mode: str, files: Mapping[str, str], path: str) -> str:
+    """The up-axis option of one mesh file: a ``collada_up_axis_files`` entry matching the end
+    of its path, else ``mode``; only DAE files are ever ``auto`` (other formats have no tag,
+    and keep the product keys they had before ``auto`` existed)."""
+    from fnmatch import fnmatchcase
+
+    posix = path.replace("\\", "/")
+    for pattern, choice in sorted(files.items()):
+        if fnmatchcase(posix, pattern) or fnmatchcase(posix, "*/" + pattern.lstrip("/")):
+            return choice
+    if mode == "auto" and not posix.lower().endswith(".dae"):
+        return "ignore"
+    return mode
+
+
+def mesh_products(ctx: BuildContext) -> list[Path]:
+    """The records of the mesh products of this build (``products/<id>.json`` beside the
+    product's folder)."""
+    return [p for p in sorted(ctx.products_dir.glob("*.json")) if (p.parent / p.stem).is_dir()]
+
+
+def up_axis_decisions(ctx: BuildContext) -> list[dict]:
+    """Per DAE file tagged other than Z-up: its mesh, whether it was turned, and why."""
+    rows = []
+    for path in mesh_products(ctx):
+        decision = read_record(path).get("up_axis")
+        if isinstance(decision, dict):
+            rows.append({"mesh": path.stem, **decision})
+    return rows
+
+
+def _report(ctx: BuildContext) -> dict:
+    return {"up_axis": up_axis_decisions(ctx), "products": {"meshes": len(mesh_products(ctx))}}
+
+
+FAMILY = Family(
+    name="mesh",
+    step="mjcfbuild.steps.mesh:run",
+    payload=MeshPayload,
+    format=5,
+    tools=("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"),
+    tasks=_tasks,
+    report=_report,
+)

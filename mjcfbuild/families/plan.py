@@ -1,0 +1,77 @@
+"""The ``plan`` family: the URDF parsed, every file it names resolved, the meshes listed; the
+plan decides which mesh and decomposition tasks the build stage makes."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from mjcfbuild.compose.tasks import part_folders
+from mjcfbuild.engine.family import (
+    Family,
+    file_task,
+    package_folders,
+    require_file,
+    ros_environment,
+)
+from mjcfbuild.engine.uptodate import planned_meshes_exist
+from mjcfbuild.outputs import PLAN, SOURCE_URDF, planned_urdf
+from mjcfbuild.steps.payloads import PlanPayload
+
+if TYPE_CHECKING:
+    from mjcfbuild.engine.context import BuildContext
+    from mjcfbuild.engine.tasks import Graph
+
+
+def _tasks(graph: Graph) -> list[dict]:
+    ctx = graph.ctx
+    urdf = planned_urdf(ctx)
+    inputs_file = None
+    if ctx.manifest.mujoco_inputs.file:
+        inputs_file = ctx.resolve(ctx.manifest.mujoco_inputs.file)
+        require_file(ctx, inputs_file, "inputs file", "mujoco_inputs.file")
+    expanded = ctx.source_kind == "xacro" or urdf != ctx.state(SOURCE_URDF)
+    prebuilt = ctx.prebuilt_mesh_dir  # convert -a
+    payload = PlanPayload(
+        urdf=str(urdf),
+        display=ctx.label(urdf if expanded else ctx.source_path),
+        expanded_from=ctx.label(ctx.source_path) if expanded else None,
+        base_dir=str(ctx.source_base_dir),
+        packages=package_folders(ctx.resolver.explicit),
+        environment=ros_environment(ctx),
+        inputs_file=str(inputs_file) if inputs_file else None,
+        inputs_file_label=ctx.label(inputs_file) if inputs_file else None,
+        output=str(ctx.state(PLAN)),
+        prebuilt_meshes=str(prebuilt) if prebuilt is not None else None,
+        roots=None if ctx.manifest.source.read_outside else _description_roots(ctx),
+    )
+    task = file_task(
+        ctx,
+        FAMILY,
+        f"{graph.prefix}plan",
+        "plan",
+        payload,
+        in_worker=False,
+        file_dep=[urdf, *([inputs_file] if inputs_file else [])],
+        targets=[ctx.state(PLAN)],
+        extra_uptodate=[planned_meshes_exist(ctx.state(PLAN))],
+    )
+    return [task]
+
+
+def _description_roots(ctx: BuildContext) -> list[str]:
+    """The folders a description reads from without a warning: robot.yaml's, the source
+    file's, the packages robot.yaml names, and those of the parts it attaches."""
+    folders = [ctx.base_dir, ctx.source_base_dir, *ctx.resolver.explicit.values()]
+    return sorted({str(ctx.resolve(str(folder))) for folder in [*folders, *part_folders(ctx)]})
+
+
+FAMILY = Family(
+    name="plan",
+    step="mjcfbuild.steps.plan:run",
+    payload=PlanPayload,
+    # 5: ros2_control <hardware>; 6: chains deeper than MuJoCo reads; 7: Gazebo sensors
+    format=8,  # 6: chains deeper than MuJoCo reads; 7: Gazebo sensors; 8: processed inputs by tag
+    tools=("lxml",),
+    tasks=_tasks,
+    stage="planning",
+)

@@ -1,0 +1,50 @@
+"""The ``reference`` family: the check's independent reading of the URDF's kinematics."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from mjcfbuild.engine.family import Family, file_task
+from mjcfbuild.outputs import REFERENCE, planned_urdf
+from mjcfbuild.steps.payloads import ReferencePayload
+
+if TYPE_CHECKING:
+    from mjcfbuild.engine.tasks import Graph
+
+
+def _tasks(graph: Graph) -> list[dict]:
+    """Reruns only when the URDF's kinematics change (check.reference.kinematic_digest), not
+    for a damping or inertia edit; listed first, since it needs only the URDF and runs beside
+    the meshes instead of after them."""
+    if not graph.checks:
+        return []
+    from mjcfbuild.check.reference import kinematic_digest
+
+    ctx = graph.ctx
+    urdf = planned_urdf(ctx)
+    payload = ReferencePayload(
+        urdf=str(urdf),
+        kinematics=kinematic_digest(urdf.read_bytes()),
+        output=str(ctx.state(REFERENCE)),
+    )
+    task = file_task(
+        ctx,
+        FAMILY,
+        f"{graph.prefix}reference",
+        "reference kinematics",
+        payload,
+        in_worker=True,
+        file_dep=[],
+        targets=[ctx.state(REFERENCE)],
+    )
+    return [task]
+
+
+FAMILY = Family(
+    name="reference",
+    step="mjcfbuild.steps.reference:run",
+    payload=ReferencePayload,
+    format=1,
+    tools=("yourdfpy", "numpy", "lxml"),
+    tasks=_tasks,
+)

@@ -1,0 +1,94 @@
+"""The ``srdf`` family: the SRDF robot.yaml names (or, for a floating robot, the one shipped
+beside its description) read for its collision pairs and its home pose."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from mjcfbuild.engine.family import (
+    Family,
+    file_task,
+    package_folders,
+    require_file,
+    ros_environment,
+)
+from mjcfbuild.outputs import SRDF_SUMMARY
+from mjcfbuild.steps.payloads import SrdfPayload
+
+if TYPE_CHECKING:
+    from mjcfbuild.engine.context import BuildContext
+    from mjcfbuild.engine.tasks import Graph
+
+
+def srdf_home_state(ctx: BuildContext) -> str | None:
+    """The SRDF group state that is the home pose, when an SRDF is read."""
+    settings = ctx.manifest.self_collision
+    return settings.home_state if settings != "none" and settings.srdf else None
+
+
+def _named_srdf(ctx: BuildContext) -> Path | None:
+    """The SRDF robot.yaml names (self_collision.srdf)."""
+    settings = ctx.manifest.self_collision
+    if settings == "none" or settings.srdf is None:
+        return None
+    return ctx.resolve(settings.srdf)
+
+
+def srdf_source(ctx: BuildContext) -> Path | None:
+    """The SRDF the build reads: the one robot.yaml names, else, for a floating robot whose
+    home robot.yaml does not give, the one shipped beside the description (for its standing
+    pose; see selfcollision.discover)."""
+    named = _named_srdf(ctx)
+    if named is not None:
+        return named
+    if not ctx.manifest.options.free_joint or ctx.source_kind == "description":
+        return None
+    from mjcfbuild.selfcollision.discover import find_srdf
+
+    return find_srdf(ctx.source_path)
+
+
+def srdf_summary(ctx: BuildContext) -> Path | None:
+    """What the ``srdf`` task writes, when the build reads an SRDF."""
+    return ctx.state(SRDF_SUMMARY) if srdf_source(ctx) else None
+
+
+def _tasks(graph: Graph) -> list[dict]:
+    ctx = graph.ctx
+    source = srdf_source(ctx)
+    if source is None:
+        return []
+    named = _named_srdf(ctx) is not None
+    if named:
+        require_file(ctx, source, "SRDF", "self_collision.srdf")
+    payload = SrdfPayload(
+        source=str(source),
+        label=ctx.label(source),
+        args=ctx.manifest.source.xacro_args if named else {},
+        packages=package_folders(ctx.resolver.explicit),
+        environment=ros_environment(ctx),
+        output=str(ctx.state(SRDF_SUMMARY)),
+        discovered=not named,
+    )
+    task = file_task(
+        ctx,
+        FAMILY,
+        f"{graph.prefix}srdf",
+        f"srdf {ctx.label(source)}",
+        payload,
+        in_worker=source.name.endswith(".xacro"),
+        file_dep=[source],
+        targets=[ctx.state(SRDF_SUMMARY)],
+    )
+    return [task]
+
+
+FAMILY = Family(
+    name="srdf",
+    step="mjcfbuild.steps.srdf:run",
+    payload=SrdfPayload,
+    format=2,
+    tools=("xacro", "lxml"),
+    tasks=_tasks,
+)
