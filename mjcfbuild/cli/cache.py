@@ -35,7 +35,7 @@ def add_parser(commands) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Show, prune or clear."""
-    from mjcfbuild.engine.store import ProductStore, parse_size
+    from mjcfbuild.products.store import ProductStore, parse_size
 
     try:
         max_bytes = parse_size(args.max_size) if args.max_size else None

@@ -176,9 +176,9 @@ def mjcf_part_paths(ctx: BuildContext, index: int) -> dict[str, Path]:
 
 
 def _mjcf_part_task(ctx: BuildContext, prefix: str, index: int, part: Attachment) -> dict:
-    from mjcfbuild.engine.depfile import Depfile
     from mjcfbuild.engine.tasks import _task
     from mjcfbuild.engine.uptodate import always_stale
+    from mjcfbuild.steps.depfile import Depfile
 
     source = _part_source(ctx, index, part)
     paths = mjcf_part_paths(ctx, index)

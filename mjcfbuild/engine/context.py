@@ -216,7 +216,7 @@ class BuildContext:
 
     def cache_settings(self) -> dict:
         """The shared product cache as build steps get it: on/off, folder, size cap."""
-        from mjcfbuild.engine.store import default_cache_folder, default_max_bytes, parse_size
+        from mjcfbuild.products.store import default_cache_folder, default_max_bytes, parse_size
 
         settings = self.manifest.cache
         folder = self.resolve(settings.folder) if settings.folder else default_cache_folder()

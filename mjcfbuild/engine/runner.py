@@ -291,7 +291,7 @@ def prepare_state(ctx: BuildContext) -> None:
 
 def _prune_cache(ctx: BuildContext) -> None:
     """Keep the shared cache under its size cap after a build added to it."""
-    from mjcfbuild.engine.store import ProductStore
+    from mjcfbuild.products.store import ProductStore
 
     settings = ctx.cache_settings()
     ProductStore(Path(settings["folder"]), settings["max_bytes"]).prune()

@@ -292,8 +292,8 @@ def mjcfbuild_sources() -> list[Path]:
 
 def record_build(ctx: BuildContext, tasks: list[dict], task_count: int) -> None:
     """Write the stamp of the successful build of ``ctx`` that ran ``tasks``."""
-    from mjcfbuild.engine.depfile import Depfile
     from mjcfbuild.engine.tasks import ASSEMBLY_REPORT, SOURCE_DEPS
+    from mjcfbuild.steps.depfile import Depfile
 
     manifest = ctx.stamp_key
     assert manifest is not None, "a stamp is kept only for a build with a stamp key"

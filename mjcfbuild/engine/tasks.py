@@ -23,7 +23,6 @@ from doit.exceptions import TaskFailed
 from mjcfbuild.collision.policy import decompositions, mesh_roles
 from mjcfbuild.collision.settings import collision_settings
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.engine.render_inputs import RenderInputsUnchanged
 from mjcfbuild.engine.uptodate import (
     ParamsUnchanged,
@@ -31,11 +30,11 @@ from mjcfbuild.engine.uptodate import (
     outputs_intact,
     planned_meshes_exist,
 )
-from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
 from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.meshes.upaxis import mesh_uses
 from mjcfbuild.sources.packages import ENV_VARIABLES, did_you_mean
+from mjcfbuild.steps.depfile import Depfile
 from mjcfbuild.steps.payloads import (
     AssemblePayload,
     CheckPayload,
@@ -59,6 +58,7 @@ from mjcfbuild.steps.payloads import (
     TuningPayload,
 )
 from mjcfbuild.steps.plan_record import Plan, read_plan
+from mjcfbuild.steps.versions import step_versions
 
 if TYPE_CHECKING:
     from mjcfbuild.collision.policy import CollisionChoice
@@ -885,8 +885,8 @@ def _tuning_task(ctx: BuildContext, prefix: str) -> dict:
 
 
 def _package_task(ctx: BuildContext, prefix: str, checked: bool) -> dict:
-    from mjcfbuild.engine.versions import tool_version
     from mjcfbuild.package.documents import find_license, git_revision
+    from mjcfbuild.steps.versions import tool_version
 
     folder = ctx.out_dir / PACKAGE_FOLDER
     revision, remote = git_revision(ctx.base_dir)

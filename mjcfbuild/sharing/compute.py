@@ -19,7 +19,7 @@ KINDS = ("mesh", "decompose")
 
 def worker_versions() -> dict[str, dict[str, str]]:
     """Everything a product depends on besides its inputs, per kind (tool versions, formats)."""
-    from mjcfbuild.engine.versions import step_versions
+    from mjcfbuild.steps.versions import step_versions
 
     return {kind: step_versions(kind) for kind in KINDS}
 

@@ -13,7 +13,7 @@ import os
 from collections.abc import Callable
 from pathlib import Path
 
-from mjcfbuild.engine.store import ProductStore, open_store
+from mjcfbuild.products.store import ProductStore, open_store
 from mjcfbuild.sharing import stats as stats_file
 from mjcfbuild.sharing.settings import ExecutorSpec, RemoteSpec
 from mjcfbuild.sharing.stats import ShareStats

@@ -5,12 +5,12 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from mjcfbuild.engine.store import open_store, product_key
-from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.meshes.product import read_product
+from mjcfbuild.products.store import open_store, product_key
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import DecomposePayload
+from mjcfbuild.steps.versions import step_versions
 
 
 def run(payload: dict) -> dict:

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.sources.expand import expand_source
 from mjcfbuild.sources.origins import write_origins
+from mjcfbuild.steps.depfile import Depfile
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import ExpandPayload
 

@@ -6,16 +6,16 @@ import dataclasses
 from pathlib import Path
 from typing import Any
 
-from mjcfbuild.engine.depfile import Depfile
-from mjcfbuild.engine.store import open_store, product_key
-from mjcfbuild.engine.versions import step_versions
 from mjcfbuild.errors import InputError
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.meshes.references import referenced_files
 from mjcfbuild.meshes.upaxis import UpAxisDecision
+from mjcfbuild.products.store import open_store, product_key
+from mjcfbuild.steps.depfile import Depfile
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import MeshPayload
+from mjcfbuild.steps.versions import step_versions
 
 
 def run(payload: dict) -> dict:

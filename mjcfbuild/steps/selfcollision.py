@@ -156,9 +156,9 @@ def _matrix(
     import contextlib
     import tempfile
 
-    from mjcfbuild.engine.store import open_store, product_key
-    from mjcfbuild.engine.versions import step_versions
     from mjcfbuild.fsutil import md5_file
+    from mjcfbuild.products.store import open_store, product_key
+    from mjcfbuild.steps.versions import step_versions
 
     store = open_store(request.cache)
     robot = json.loads(json.dumps(request.robot))

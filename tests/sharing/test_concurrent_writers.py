@@ -7,7 +7,7 @@ import threading
 
 import pytest
 
-from mjcfbuild.engine.store import ProductStore
+from mjcfbuild.products.store import ProductStore
 from mjcfbuild.sharing.blob import verify
 from mjcfbuild.sharing.remote import RemoteCache, object_name
 from mjcfbuild.sharing.settings import parse_remote

@@ -205,7 +205,7 @@ def test_a_server_that_stops_answering_at_upload_is_given_up_after_the_deadline(
     import os
     import signal
 
-    from mjcfbuild.engine.store import ProductStore
+    from mjcfbuild.products.store import ProductStore
     from mjcfbuild.sharing.remote import RemoteCache
     from mjcfbuild.sharing.settings import parse_remote
     from mjcfbuild.sharing.stats import ShareStats
