@@ -12,10 +12,9 @@ from mjcfbuild.cli import (
     chosen_manifests,
     load_context,
     manifest_argument,
-    report_error,
-    report_warnings,
     timeout_argument,
 )
+from mjcfbuild.console import report_error, report_warnings
 from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, CheckError, MjcfbuildError, UsageError
 
 
