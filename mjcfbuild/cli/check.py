@@ -305,9 +305,9 @@ def _manifest(ctx, args) -> int:
     from pathlib import Path
 
     from mjcfbuild.check.reference import read_kinematics
-    from mjcfbuild.compose.tasks import mjcf_parts
     from mjcfbuild.engine import written
     from mjcfbuild.engine.guard import check_output_folder
+    from mjcfbuild.engine.part_tasks import mjcf_parts
     from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.report import write_report
     from mjcfbuild.engine.runner import build_lock

@@ -90,14 +90,14 @@ PAGE_FILES = (
 
 def planning_tasks(ctx: BuildContext, prefix: str = "") -> list[dict]:
     """The tasks that decide what else gets built."""
-    from mjcfbuild.compose.tasks import composition_tasks
+    from mjcfbuild.engine.part_tasks import composition_tasks
 
     return [_expand_task(ctx, prefix), *composition_tasks(ctx, prefix), _plan_task(ctx, prefix)]
 
 
 def build_tasks(ctx: BuildContext, prefix: str = "", with_planning: bool = True) -> list[dict]:
     """Every task of the build; reads the plan the planning tasks wrote."""
-    from mjcfbuild.compose.tasks import mjcf_parts, part_robot
+    from mjcfbuild.engine.part_tasks import mjcf_parts, part_robot
 
     plan = read_plan(ctx.state(PLAN))
     robot = plan.robot_model()
@@ -302,7 +302,7 @@ def _selfcollision_task(
     prefix: str,
     parts: list[MjcfPartFiles] | None = None,
 ) -> dict:
-    from mjcfbuild.compose.tasks import urdf_home
+    from mjcfbuild.engine.part_tasks import urdf_home
     from mjcfbuild.selfcollision.parts import collision_digest
     from mjcfbuild.selfcollision.robot import collision_robot
 
@@ -542,7 +542,7 @@ def expand_file_task(
 def planned_urdf(ctx: BuildContext) -> Path:
     """The URDF the plan reads and the check compares with: the expanded source, or with
     ``attach:`` parts, the source with the parts joined to it."""
-    from mjcfbuild.compose.tasks import has_urdf_parts
+    from mjcfbuild.engine.part_tasks import has_urdf_parts
 
     return ctx.state(COMPOSED_URDF) if has_urdf_parts(ctx.manifest) else ctx.state(SOURCE_URDF)
 
@@ -584,7 +584,7 @@ def _plan_task(ctx: BuildContext, prefix: str) -> dict:
 def _description_roots(ctx: BuildContext) -> list[str]:
     """The folders a description reads from without a warning: robot.yaml's, the source
     file's, the packages robot.yaml names, and those of the parts it attaches."""
-    from mjcfbuild.compose.tasks import part_folders
+    from mjcfbuild.engine.part_tasks import part_folders
 
     folders = [ctx.base_dir, ctx.source_base_dir, *ctx.resolver.explicit.values()]
     return sorted({str(ctx.resolve(str(folder))) for folder in [*folders, *part_folders(ctx)]})
