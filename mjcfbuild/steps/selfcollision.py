@@ -18,7 +18,7 @@ from mjcfbuild.errors import InputError, ManifestError
 from mjcfbuild.inputs.ros2_control import ControlJoint, Ros2Control
 from mjcfbuild.meshes.product import read_product
 from mjcfbuild.mjcf.assemble import compile_error, floats, spec_meshes
-from mjcfbuild.mjcf.bodies import Body, build_bodies
+from mjcfbuild.mjcf.bodies import Body, build_bodies, link_places
 from mjcfbuild.mjcf.depth import refuse_deep_bodies
 from mjcfbuild.mjcf.prepared import Decomposition, prepare
 from mjcfbuild.selfcollision.matrix import (
@@ -206,7 +206,7 @@ def _attach_parts(
     parts: list[AttachedPart] = [
         AttachedPart.from_dict(entry.to_dict()) for entry in request.mjcf_parts
     ]
-    attach_parts(spec, bodies, parts)
+    attach_parts(spec, link_places(bodies), parts)
     return parts
 
 
