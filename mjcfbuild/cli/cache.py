@@ -68,8 +68,8 @@ def _show_remotes(folder: Path) -> None:
     """What remote caches gave and took, as recorded by builds using this cache."""
     import os
 
-    from mjcfbuild.sharing.settings import REMOTE_VARIABLE, redact
     from mjcfbuild.sharing.stats import read
+    from mjcfbuild.sharing_settings import REMOTE_VARIABLE, redact
 
     configured = os.environ.get(REMOTE_VARIABLE, "").strip()
     if configured:

@@ -14,7 +14,7 @@ from mjcfbuild.fsutil import normalise
 
 if TYPE_CHECKING:
     from mjcfbuild.manifest.models import Manifest
-    from mjcfbuild.sharing.settings import SharingChoice
+    from mjcfbuild.sharing_settings import SharingChoice
     from mjcfbuild.sources.packages import PackageResolver
 
 STATE_DIR = ".mjcfbuild"
@@ -232,7 +232,7 @@ class BuildContext:
         Standard library only: a build with nothing to compute imports no fsspec or dask.
         """
         from mjcfbuild.manifest.pinpoint import pinpoint
-        from mjcfbuild.sharing.settings import choose
+        from mjcfbuild.sharing_settings import choose
 
         try:
             return choose(

@@ -344,7 +344,7 @@ class CacheSettings(StrictModel):
     @field_validator("remote")
     @classmethod
     def _remote_address(cls, value: str | None) -> str | None:
-        from mjcfbuild.sharing.settings import AddressError, parse_remote
+        from mjcfbuild.sharing_settings import AddressError, parse_remote
 
         if value is not None:
             try:
@@ -746,7 +746,7 @@ class Manifest(StrictModel):
     @field_validator("executor")
     @classmethod
     def _executor_address(cls, value: str | None) -> str | None:
-        from mjcfbuild.sharing.settings import AddressError, parse_executor
+        from mjcfbuild.sharing_settings import AddressError, parse_executor
 
         if value is not None:
             try:

@@ -15,8 +15,8 @@ from pathlib import Path
 
 from mjcfbuild.products.store import ProductStore, open_store
 from mjcfbuild.sharing import stats as stats_file
-from mjcfbuild.sharing.settings import ExecutorSpec, RemoteSpec
 from mjcfbuild.sharing.stats import ShareStats
+from mjcfbuild.sharing_settings import ExecutorSpec, RemoteSpec
 from mjcfbuild.steps.payloads import DecomposePayload, MeshPayload
 
 # step function -> product kind

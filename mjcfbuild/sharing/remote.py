@@ -26,8 +26,8 @@ from typing import Protocol, TypeVar
 from mjcfbuild.products.store import ProductStore
 from mjcfbuild.products.usable import product_problem
 from mjcfbuild.sharing.blob import BadObject, pack, unpack, verify
-from mjcfbuild.sharing.settings import RemoteSpec, remote_timeout, signing_key
 from mjcfbuild.sharing.stats import ShareStats
+from mjcfbuild.sharing_settings import RemoteSpec, remote_timeout, signing_key
 
 LAYOUT = "products-v1"
 _SECRET_VARIABLES = (
