@@ -32,7 +32,6 @@ from mjcfbuild.engine.uptodate import (
 )
 from mjcfbuild.errors import InputError
 from mjcfbuild.fsutil import unreadable_file
-from mjcfbuild.meshes.upaxis import mesh_uses
 from mjcfbuild.sources.packages import ENV_VARIABLES, did_you_mean
 from mjcfbuild.steps.depfile import Depfile
 from mjcfbuild.steps.payloads import (
@@ -59,6 +58,7 @@ from mjcfbuild.steps.payloads import (
 )
 from mjcfbuild.steps.plan_record import Plan, read_plan
 from mjcfbuild.steps.versions import step_versions
+from mjcfbuild.urdf.mesh_uses import mesh_uses
 
 if TYPE_CHECKING:
     from mjcfbuild.collision.policy import CollisionChoice
