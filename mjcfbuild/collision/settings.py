@@ -9,13 +9,19 @@ caps the vertices of CoACD's parts too.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 if TYPE_CHECKING:
     from mjcfbuild.collision.policy import CollisionChoice
     from mjcfbuild.manifest.models import Manifest
-    from mjcfbuild.steps.plan_record import PlannedInputs
     from mjcfbuild.urdf.model import Robot
+
+
+class FoundInputs(Protocol):
+    """The MuJoCo inputs a plan found (steps.plan_record.PlannedInputs): those of the URDF and
+    of the inputs file, by ``where``. Collision sits below the steps, so it names only this."""
+
+    def get(self, where: str) -> dict[str, Any] | None: ...
 
 
 @dataclass(frozen=True)
@@ -34,9 +40,7 @@ class EffectiveCollisionSettings:
         return choose_collisions(robot, self.default, rules_from_dicts(self.rules), self.decompose)
 
 
-def collision_settings(
-    manifest: Manifest, plan_inputs: PlannedInputs
-) -> EffectiveCollisionSettings:
+def collision_settings(manifest: Manifest, plan_inputs: FoundInputs) -> EffectiveCollisionSettings:
     """The collision settings of ``manifest`` with the ``decompose_mesh`` inputs of the plan."""
     settings = manifest.collision
     defaults = dict(settings.decompose_defaults)
