@@ -9,7 +9,6 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import NoReturn
 
-from mjcfbuild import __version__
 from mjcfbuild.console import report_error
 from mjcfbuild.errors import (
     EXIT_CODES,
@@ -21,6 +20,7 @@ from mjcfbuild.errors import (
     MjcfbuildError,
     write_failure,
 )
+from mjcfbuild.version import __version__
 
 EXAMPLES: dict[str, str] = {
     "build": "mjcfbuild build robots/arm/robot.yaml",

@@ -5,7 +5,7 @@ from __future__ import annotations
 from functools import cache
 from importlib import metadata
 
-from mjcfbuild import __version__
+from mjcfbuild.version import __version__
 
 # Bump a step's number when its output for the same inputs changes.
 STEP_FORMATS = {
