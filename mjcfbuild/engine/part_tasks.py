@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.errors import ManifestError, MjcfbuildError
@@ -23,6 +24,9 @@ from mjcfbuild.manifest.models import Manifest
 from mjcfbuild.sources.packages import ENV_VARIABLES, did_you_mean
 from mjcfbuild.steps.payloads import ComposePayload, MjcfPartFiles, MjcfPartPayload, PartEntry
 from mjcfbuild.urdf.model import Robot
+
+if TYPE_CHECKING:
+    from mjcfbuild.compose.mjcf import PartSummary
 
 PARTS_DIR = "attach"
 
@@ -257,7 +261,11 @@ def mjcf_parts(ctx: BuildContext, robot: Robot) -> list[MjcfPartFiles]:
 
 
 def _check_names(
-    ctx: BuildContext, index: int, part: Attachment, summary, known: dict[str, set[str]]
+    ctx: BuildContext,
+    index: int,
+    part: Attachment,
+    summary: PartSummary,
+    known: dict[str, set[str]],
 ) -> None:
     for kind, seen in known.items():
         names = {part.prefix + name for name in summary.names.get(kind, [])}

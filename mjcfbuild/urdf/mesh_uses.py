@@ -8,13 +8,14 @@ plain Python, called by the task graph while it plans.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING
 
 from mjcfbuild.meshes.upaxis import MeshUse
-from mjcfbuild.urdf.transforms import apply, rpy_to_matrix, transpose
+from mjcfbuild.urdf.transforms import Matrix, apply, rpy_to_matrix, transpose
 
 if TYPE_CHECKING:
-    from mjcfbuild.urdf.model import Geometry, Robot
+    from mjcfbuild.urdf.model import Geometry, Robot, Vec3
 
 _PRIMITIVES = ("box", "cylinder", "sphere", "capsule")
 
@@ -59,20 +60,22 @@ def mesh_uses(robot: Robot, mesh_id: str) -> list[MeshUse]:
     return uses
 
 
-def _into_mesh_frame(xyz, rotation, geometry: Geometry):
+def _into_mesh_frame(
+    xyz: Vec3, rotation: Matrix, geometry: Geometry
+) -> Callable[[Sequence[float]], list[float]] | None:
     scale = geometry.scale
     if any(abs(s) < 1e-12 for s in scale):
         return None
     back = transpose(rotation)
 
-    def into(point) -> list[float]:
+    def into(point: Sequence[float]) -> list[float]:
         local = apply(back, (point[0] - xyz[0], point[1] - xyz[1], point[2] - xyz[2]))
         return [local[i] / scale[i] for i in range(3)]
 
     return into
 
 
-def _corners(xyz, rpy, geometry: Geometry) -> list[tuple[float, float, float]]:
+def _corners(xyz: Vec3, rpy: Vec3, geometry: Geometry) -> list[tuple[float, float, float]]:
     size = geometry.size
     if geometry.kind == "box":
         half = (size[0] / 2, size[1] / 2, size[2] / 2)
