@@ -1,14 +1,12 @@
 """Every task family of a build, in the order their tasks are listed in the graph (doit starts
 ready tasks in that order), and the tables the engine derives from them.
 
-Adding a family: write its module (a :class:`~mjcfbuild.engine.family.Family` named
+Adding a family: write its module (a :class:`~mjcfbuild.graph.family.Family` named
 ``FAMILY``), its step in :mod:`mjcfbuild.steps`, and list it here (docs/architecture.md).
 """
 
 from __future__ import annotations
 
-from mjcfbuild.compose.tasks import COMPOSE, MJCFPART
-from mjcfbuild.engine.family import Family
 from mjcfbuild.families import (
     assemble,
     check,
@@ -27,6 +25,8 @@ from mjcfbuild.families import (
     training,
     tuning,
 )
+from mjcfbuild.families.attach import COMPOSE, MJCFPART
+from mjcfbuild.graph.family import Family
 
 FAMILIES: tuple[Family, ...] = (
     # planning: what they write decides which build tasks exist

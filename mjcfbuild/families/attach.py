@@ -17,17 +17,17 @@ import json
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, discovered_inputs, file_task, ros_environment
 from mjcfbuild.errors import ManifestError, MjcfbuildError
 from mjcfbuild.families.expand import expand_file_task
 from mjcfbuild.fsutil import unreadable_file
+from mjcfbuild.graph.family import Family, discovered_inputs, file_task, ros_environment
 from mjcfbuild.outputs import COMPOSED_URDF, SOURCE_URDF, mjcf_part_paths, part_urdf
 from mjcfbuild.sources.packages import did_you_mean
 from mjcfbuild.steps.payloads import ComposePayload, MjcfPartFiles, MjcfPartPayload, PartEntry
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
     from mjcfbuild.manifest.composition import Attachment
     from mjcfbuild.urdf.model import Robot
 
@@ -111,7 +111,7 @@ def _composition_tasks(graph: Graph) -> list[dict]:
     return tasks
 
 
-def part_folders(ctx: BuildContext) -> list[Path]:
+def part_folders(ctx: GraphContext) -> list[Path]:
     """The folders the URDF and xacro parts read their files from: each part file's folder
     and the packages robot.yaml names for it."""
     folders: list[Path] = []
@@ -122,7 +122,7 @@ def part_folders(ctx: BuildContext) -> list[Path]:
     return folders
 
 
-def _part_source(ctx: BuildContext, index: int, part: Attachment) -> Path:
+def _part_source(ctx: GraphContext, index: int, part: Attachment) -> Path:
     source = ctx.resolve(part.source.file)
     problem = unreadable_file(source)
     if problem:
@@ -137,7 +137,7 @@ def _part_source(ctx: BuildContext, index: int, part: Attachment) -> Path:
     return source
 
 
-def _part_packages(ctx: BuildContext, index: int, part: Attachment) -> dict[str, Path]:
+def _part_packages(ctx: GraphContext, index: int, part: Attachment) -> dict[str, Path]:
     """The build's packages with the part's own over them."""
     packages = dict(ctx.resolver.explicit)
     for name, folder in sorted(part.packages.items()):
@@ -155,7 +155,7 @@ def _part_packages(ctx: BuildContext, index: int, part: Attachment) -> dict[str,
     return packages
 
 
-def _pinpointed(ctx: BuildContext, error: MjcfbuildError) -> MjcfbuildError:
+def _pinpointed(ctx: GraphContext, error: MjcfbuildError) -> MjcfbuildError:
     from mjcfbuild.manifest.pinpoint import pinpoint
 
     if ctx.manifest_file is not None:
@@ -163,7 +163,7 @@ def _pinpointed(ctx: BuildContext, error: MjcfbuildError) -> MjcfbuildError:
     return error
 
 
-def _mjcf_part_task(ctx: BuildContext, prefix: str, index: int, part: Attachment) -> dict:
+def _mjcf_part_task(ctx: GraphContext, prefix: str, index: int, part: Attachment) -> dict:
     source = _part_source(ctx, index, part)
     paths = mjcf_part_paths(ctx, index)
     read, stale = discovered_inputs(ctx, paths["depfile"])
@@ -188,7 +188,7 @@ def _mjcf_part_task(ctx: BuildContext, prefix: str, index: int, part: Attachment
     )
 
 
-def mjcf_parts(ctx: BuildContext, robot: Robot) -> list[MjcfPartFiles]:
+def mjcf_parts(ctx: GraphContext, robot: Robot) -> list[MjcfPartFiles]:
     """The MJCF parts as the assemble and check tasks take them, in the order they can be
     attached (a part may attach to a body of another). Refuses, before anything is built, a
     ``to`` that names nothing of the model, parts attached to each other in a cycle and a
@@ -234,7 +234,7 @@ def mjcf_parts(ctx: BuildContext, robot: Robot) -> list[MjcfPartFiles]:
 
 
 def _check_names(
-    ctx: BuildContext, index: int, part: Attachment, summary, known: dict[str, set[str]]
+    ctx: GraphContext, index: int, part: Attachment, summary, known: dict[str, set[str]]
 ) -> None:
     for kind, seen in known.items():
         names = {part.prefix + name for name in summary.names.get(kind, [])}
@@ -252,7 +252,7 @@ def _check_names(
         seen |= names
 
 
-def _unplaceable(ctx: BuildContext, pending: list, targets: list[str]) -> ManifestError:
+def _unplaceable(ctx: GraphContext, pending: list, targets: list[str]) -> ManifestError:
     """Why none of ``pending`` can be attached: an unknown ``to``, or a cycle."""
     from mjcfbuild.control.choose import listing
 
@@ -281,7 +281,7 @@ def _unplaceable(ctx: BuildContext, pending: list, targets: list[str]) -> Manife
     )
 
 
-def part_robot(ctx: BuildContext, robot: Robot, parts: list[MjcfPartFiles]) -> Robot:
+def part_robot(ctx: GraphContext, robot: Robot, parts: list[MjcfPartFiles]) -> Robot:
     """``robot`` with the MJCF parts' hinge and slide joints, as home patterns and actuator
     rules may name them."""
     from dataclasses import replace
