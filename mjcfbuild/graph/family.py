@@ -6,8 +6,9 @@ it runs, and the doit tasks it adds to the graph. :mod:`mjcfbuild.families.regis
 them; the engine derives its tables (versions, workers' preloads, freshness, what compiles the
 model) from that list. :func:`file_task` is the one way a family makes a doit task.
 
-Light on purpose: a worker imports a family module for its versions (the product cache's keys),
-so nothing here imports doit, MuJoCo or numpy at module level.
+Light on purpose: a cluster worker imports the registry for the versions it computes products
+under (mjcfbuild.sharing.compute), so nothing here imports doit, MuJoCo or numpy at module
+level.
 """
 
 from __future__ import annotations
