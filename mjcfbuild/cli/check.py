@@ -200,8 +200,8 @@ def _manifest(ctx, args) -> int:
     from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.report import write_report
     from mjcfbuild.engine.runner import build_lock
-    from mjcfbuild.families.attach import mjcf_parts
     from mjcfbuild.families.check import check_payload
+    from mjcfbuild.families.mjcfpart import mjcf_parts
     from mjcfbuild.outputs import CHECK_RESULTS, PLAN, REFERENCE, planned_urdf
     from mjcfbuild.steps.check import check_built, write_results
     from mjcfbuild.steps.plan_record import read_plan

@@ -331,7 +331,7 @@ def _database_failure(ctx: BuildContext) -> MjcfbuildError | None:
 def _expanded_urdfs(ctx: BuildContext) -> list[Path]:
     """The URDFs a build makes that errors may point at: the expanded source, the parts'
     and the composed one."""
-    from mjcfbuild.families.attach import part_urdf
+    from mjcfbuild.outputs import part_urdf
 
     parts = [part_urdf(ctx, index) for index in range(len(ctx.manifest.attach))]
     return [ctx.state(SOURCE_URDF), planned_urdf(ctx), *parts]

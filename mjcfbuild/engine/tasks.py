@@ -19,7 +19,7 @@ optionally with a name prefix.
 from __future__ import annotations
 
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.families.attach import mjcf_parts
+from mjcfbuild.families.mjcfpart import mjcf_parts
 from mjcfbuild.families.registry import build_families, planning_families
 from mjcfbuild.graph.graph import Graph
 

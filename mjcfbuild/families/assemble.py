@@ -8,8 +8,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from mjcfbuild.errors import ManifestError, MjcfbuildError
-from mjcfbuild.families.attach import part_robot
 from mjcfbuild.families.decompose import decomposition_files
+from mjcfbuild.families.mjcfpart import part_robot
 from mjcfbuild.families.selfcollision import self_collision_matrix
 from mjcfbuild.families.srdf import srdf_home_state, srdf_summary
 from mjcfbuild.graph.family import Family, file_task, read_record

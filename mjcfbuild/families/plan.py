@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from mjcfbuild.families.attach import part_folders
+from mjcfbuild.families.parts import part_folders
 from mjcfbuild.graph.family import (
     Family,
     file_task,

@@ -10,10 +10,12 @@ from __future__ import annotations
 from mjcfbuild.families import (
     assemble,
     check,
+    compose,
     decompose,
     expand,
     export_urdf,
     mesh,
+    mjcfpart,
     package,
     page,
     plan,
@@ -25,14 +27,13 @@ from mjcfbuild.families import (
     training,
     tuning,
 )
-from mjcfbuild.families.attach import COMPOSE, MJCFPART
 from mjcfbuild.graph.family import Family
 
 FAMILIES: tuple[Family, ...] = (
     # planning: what they write decides which build tasks exist
     expand.FAMILY,
-    MJCFPART,
-    COMPOSE,
+    mjcfpart.FAMILY,
+    compose.FAMILY,
     plan.FAMILY,
     # build; the reference first: it needs only the URDF, and runs beside the meshes
     reference.FAMILY,

@@ -23,7 +23,7 @@ def self_collision_matrix(graph: Graph) -> Path | None:
 
 def _tasks(graph: Graph) -> list[dict]:
     # Here, not above: the step imports this module for its versions, without the manifest.
-    from mjcfbuild.families.attach import urdf_home
+    from mjcfbuild.families.parts import urdf_home
     from mjcfbuild.selfcollision.parts import collision_digest
     from mjcfbuild.selfcollision.robot import collision_robot
 
