@@ -7,7 +7,7 @@ trimesh and numpy are only imported by the build steps that need them.
 
 from __future__ import annotations
 
-__version__ = "0.1.0"
+from mjcfbuild.version import __version__
 
 __all__ = ["__version__", "build", "load_manifest"]
 

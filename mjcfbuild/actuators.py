@@ -25,12 +25,9 @@ from __future__ import annotations
 
 import re
 from dataclasses import asdict, dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 from mjcfbuild.numbers import output_list
-
-if TYPE_CHECKING:
-    from mjcfbuild.manifest.simulation import ActuatorRule, ActuatorSettings
 
 POSITION = "position"
 VELOCITY = "velocity"
@@ -119,13 +116,48 @@ class ActuatorChoice:
         return asdict(self)
 
 
+class ActuatorDefaults(Protocol):
+    """robot.yaml's ``actuators:`` as a choice reads it (manifest.simulation.ActuatorSettings,
+    which sits above this module)."""
+
+    @property
+    def frequency(self) -> float: ...
+    @property
+    def damping_ratio(self) -> float: ...
+    @property
+    def speed_limits(self) -> bool: ...
+
+
+class ActuatorRuleFields(Protocol):
+    """One ``actuators.rules`` entry as a choice reads it (manifest.simulation.ActuatorRule)."""
+
+    @property
+    def kp(self) -> float | None: ...
+    @property
+    def kv(self) -> float | None: ...
+    @property
+    def frequency(self) -> float | None: ...
+    @property
+    def damping_ratio(self) -> float | None: ...
+    @property
+    def armature(self) -> float | None: ...
+    @property
+    def damping(self) -> float | None: ...
+    @property
+    def frictionloss(self) -> float | None: ...
+    @property
+    def forcerange(self) -> tuple[float, float] | None: ...
+    @property
+    def gravcomp(self) -> bool | None: ...
+
+
 def resolve_choice(
     joint: str,
     kind: str,
     source: str,
-    settings: ActuatorSettings,
+    settings: ActuatorDefaults,
     index: int | None,
-    rule: ActuatorRule | None,
+    rule: ActuatorRuleFields | None,
     effort_range: tuple[float, float] | None,
     speed: float | None,
 ) -> ActuatorChoice:

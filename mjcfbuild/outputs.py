@@ -9,10 +9,9 @@ declarations import it on every build.
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
     from mjcfbuild.manifest.models import Manifest
 
 SOURCE_URDF = "source.urdf"
@@ -46,39 +45,53 @@ PAGE_FILES = (
 )
 
 
-def report_dir(ctx: BuildContext) -> Path:
+class Folders(Protocol):
+    """Where a build writes (mjcfbuild.graph.context.Folders): outputs.py sits below it."""
+
+    @property
+    def manifest(self) -> Manifest: ...
+    @property
+    def out_dir(self) -> Path: ...
+    @property
+    def state_dir(self) -> Path: ...
+    @property
+    def products_dir(self) -> Path: ...
+    def state(self, name: str) -> Path: ...
+
+
+def report_dir(ctx: Folders) -> Path:
     """Where the human report, report.json and the previews go."""
     return ctx.out_dir / "report"
 
 
-def product_summary(ctx: BuildContext, mesh_id: str) -> Path:
+def product_summary(ctx: Folders, mesh_id: str) -> Path:
     """Where the summary of a mesh's product is written."""
     return ctx.products_dir / f"{mesh_id}.json"
 
 
-def mesh_depfile(ctx: BuildContext, mesh_id: str) -> Path:
+def mesh_depfile(ctx: Folders, mesh_id: str) -> Path:
     """The files a mesh's conversion read besides the mesh (a DAE's textures, an OBJ's MTL)."""
     return ctx.products_dir / f"{mesh_id}.deps.json"
 
 
-def decomposition_dir(ctx: BuildContext, name: str) -> Path:
+def decomposition_dir(ctx: Folders, name: str) -> Path:
     """Where the parts of a decomposition are written."""
     return ctx.state_dir / "decompositions" / name
 
 
-def training_paths(ctx: BuildContext) -> tuple[Path, Path]:
+def training_paths(ctx: Folders) -> tuple[Path, Path]:
     """The training variant's file and its scene's."""
     files = ctx.manifest.training_files
     assert files is not None, "asked only when robot.yaml sets output.training"
     return ctx.out_dir / files[0], ctx.out_dir / files[1]
 
 
-def part_urdf(ctx: BuildContext, index: int) -> Path:
+def part_urdf(ctx: Folders, index: int) -> Path:
     """Where the expanded URDF of ``attach:`` part ``index`` is kept."""
     return ctx.state_dir / PARTS_DIR / f"{index}.urdf"
 
 
-def mjcf_part_paths(ctx: BuildContext, index: int) -> dict[str, Path]:
+def mjcf_part_paths(ctx: Folders, index: int) -> dict[str, Path]:
     """Where the ``part:`` task of MJCF part ``index`` writes its normalised XML, summary,
     depfile and (shared by every part, content-addressed) asset copies."""
     folder = ctx.state_dir / PARTS_DIR
@@ -95,7 +108,7 @@ def has_urdf_parts(manifest: Manifest) -> bool:
     return any(part.source.kind != "mjcf" for part in manifest.attach)
 
 
-def planned_urdf(ctx: BuildContext) -> Path:
+def planned_urdf(ctx: Folders) -> Path:
     """The URDF the plan reads and the check compares with: the expanded source, or with
     ``attach:`` parts, the source with the parts joined to it."""
     return ctx.state(COMPOSED_URDF) if has_urdf_parts(ctx.manifest) else ctx.state(SOURCE_URDF)

@@ -3,12 +3,24 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import Protocol
 
-if TYPE_CHECKING:
-    from mjcfbuild.steps.payloads import MjcfPartFiles
+
+class PartFiles(Protocol):
+    """An ``attach:`` MJCF part as the check step passes it (steps.payloads.MjcfPartFiles):
+    the check sits below the steps, so it names only what it reads."""
+
+    @property
+    def prefix(self) -> str: ...
+
+    @property
+    def label(self) -> str: ...
+
+    @property
+    def summary(self) -> str: ...
 
 
 @dataclass
@@ -87,7 +99,7 @@ def split_by_part(
     return model_pairs, inside
 
 
-def part_bodies(parts: list[MjcfPartFiles]) -> dict[str, set[str]]:
+def part_bodies(parts: Iterable[PartFiles]) -> dict[str, set[str]]:
     """Each MJCF part's bodies as the model names them, by the part's prefix and file."""
     from mjcfbuild.compose.mjcf import PartSummary
 

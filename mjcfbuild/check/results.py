@@ -167,7 +167,7 @@ class Hold:
 
 @dataclass(frozen=True)
 class Stand:
-    """A floating robot holding home's ctrl for 5 s on the floor (check.control.StandTest)."""
+    """A floating robot holding home's ctrl for 5 s on the floor (control.stand_test.StandTest)."""
 
     seconds: float = 0.0
     max_tilt: float = 0.0

@@ -220,7 +220,8 @@ def behaviour(scene_path: str, hold_tolerance: float, device: str = "cpu") -> tu
     import mujoco
     import numpy as np
 
-    from mjcfbuild.check.control import STAND_SECONDS, STAND_SINK, STAND_TILT, TEST_SECONDS
+    from mjcfbuild.check.control import TEST_SECONDS
+    from mjcfbuild.control.stand_test import STAND_SECONDS, STAND_SINK, STAND_TILT
     from mjcfbuild.control.standing import stance
 
     mjw, wp = load_warp()

@@ -9,7 +9,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import NoReturn
 
-from mjcfbuild import __version__
+from mjcfbuild.console import report_error
 from mjcfbuild.errors import (
     EXIT_CODES,
     EXIT_INTERNAL,
@@ -20,6 +20,7 @@ from mjcfbuild.errors import (
     MjcfbuildError,
     write_failure,
 )
+from mjcfbuild.version import __version__
 
 EXAMPLES: dict[str, str] = {
     "build": "mjcfbuild build robots/arm/robot.yaml",
@@ -163,36 +164,6 @@ def run(argv: Sequence[str] | None = None) -> int:
         )
         report_error(internal, debug=args.debug)
         return EXIT_INTERNAL
-
-
-def report_error(error: MjcfbuildError, debug: bool, base_dir: Path | None = None) -> None:
-    """Print one error as ``mjcfbuild: error: file:line: message (hint)``."""
-    if base_dir is not None:
-        error.relocate(base_dir, Path.cwd())
-    text = error.one_line()
-    if isinstance(error, InternalError) and not debug:
-        text += " (an internal error: run again with --debug and report the output)"
-    print(f"mjcfbuild: error: {text}", file=sys.stderr)
-    if debug:
-        details = error.traceback_text()
-        if details:
-            print(details.rstrip(), file=sys.stderr)
-
-
-def report_warning(text: str) -> None:
-    """Print one warning line."""
-    print(f"mjcfbuild: warning: {text}", file=sys.stderr)
-
-
-def report_warnings(warnings: list[str], listed_in: str = "", prefix: str = "") -> None:
-    """Print warnings one line per kind (:mod:`mjcfbuild.cli.warning_groups`), each after
-    ``prefix``; ``listed_in`` names the file that lists them all, for a kind with more
-    subjects than a line shows."""
-    from mjcfbuild.cli.warning_groups import group_warnings
-
-    more = f"all in {listed_in}" if listed_in else ""
-    for line in group_warnings(warnings, more):
-        report_warning(prefix + line)
 
 
 def jobs_argument(parser: argparse.ArgumentParser) -> None:

@@ -15,10 +15,9 @@ from mjcfbuild.cli import (
     jobs_argument,
     load_context,
     manifest_argument,
-    report_error,
-    report_warnings,
     timeout_argument,
 )
+from mjcfbuild.console import report_error, report_warnings
 from mjcfbuild.errors import EXIT_OK, CheckError, MjcfbuildError
 
 if TYPE_CHECKING:

@@ -35,7 +35,7 @@ def add_parser(commands) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Show, prune or clear."""
-    from mjcfbuild.engine.store import ProductStore, parse_size
+    from mjcfbuild.products.store import ProductStore, parse_size
 
     try:
         max_bytes = parse_size(args.max_size) if args.max_size else None
@@ -68,8 +68,8 @@ def _show_remotes(folder: Path) -> None:
     """What remote caches gave and took, as recorded by builds using this cache."""
     import os
 
-    from mjcfbuild.sharing.settings import REMOTE_VARIABLE, redact
     from mjcfbuild.sharing.stats import read
+    from mjcfbuild.sharing_settings import REMOTE_VARIABLE, redact
 
     configured = os.environ.get(REMOTE_VARIABLE, "").strip()
     if configured:

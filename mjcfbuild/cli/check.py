@@ -13,10 +13,9 @@ from mjcfbuild.cli import (
     chosen_manifests,
     load_context,
     manifest_argument,
-    report_error,
-    report_warnings,
     timeout_argument,
 )
+from mjcfbuild.console import report_error, report_warnings
 from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, CheckError, MjcfbuildError, UsageError
 
 if TYPE_CHECKING:
@@ -196,13 +195,13 @@ def _manifest(ctx, args) -> int:
     from pathlib import Path
 
     from mjcfbuild.check.reference import read_kinematics
-    from mjcfbuild.compose.tasks import mjcf_parts
     from mjcfbuild.engine import written
     from mjcfbuild.engine.guard import check_output_folder
     from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.report import write_report
     from mjcfbuild.engine.runner import build_lock
     from mjcfbuild.families.check import check_payload
+    from mjcfbuild.families.mjcfpart import mjcf_parts
     from mjcfbuild.outputs import CHECK_RESULTS, PLAN, REFERENCE, planned_urdf
     from mjcfbuild.steps.check import check_built, write_results
     from mjcfbuild.steps.plan_record import read_plan

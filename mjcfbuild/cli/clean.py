@@ -14,9 +14,9 @@ from mjcfbuild.cli import (
     chosen_manifest,
     load_context,
     manifest_argument,
-    report_warning,
     timeout_argument,
 )
+from mjcfbuild.console import report_warning
 from mjcfbuild.errors import EXIT_OK
 from mjcfbuild.failpoints import failpoint
 

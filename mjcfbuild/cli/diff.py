@@ -94,7 +94,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _print_warnings(warnings: dict[str, list[str]]) -> None:
     """Each side's warnings, one line per kind; once for both where the sides agree."""
-    from mjcfbuild.cli import report_warnings
+    from mjcfbuild.console import report_warnings
 
     sides = [(label, found) for label, found in warnings.items() if found]
     if len(sides) == 2 and sides[0][1] == sides[1][1]:

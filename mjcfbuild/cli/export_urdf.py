@@ -56,7 +56,7 @@ def add_parser(commands) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Export, write, and print a summary line."""
-    from mjcfbuild.cli import report_warnings
+    from mjcfbuild.console import report_warnings
     from mjcfbuild.export import ExportOptions, export_urdf
     from mjcfbuild.export.publish import default_asset_prefix, publish
 

@@ -16,7 +16,6 @@ from lxml import etree
 
 from mjcfbuild.compose.mjcf import PartSummary
 from mjcfbuild.errors import ManifestError
-from mjcfbuild.mjcf.bodies import WORLD, Body
 from mjcfbuild.urdf.transforms import Transform, matrix_to_quat
 
 # Element kinds whose names must be unique in a model, as MjSpec collections.
@@ -37,6 +36,11 @@ _NAMED = (
     "sensors",
     "equalities",
 )
+
+
+# Where a link of the assembled model is: the name of the body its frame ended up in (None for
+# the world body) and the frame's pose in that body (mjcf.bodies.link_places makes them).
+LinkPlace = tuple[str | None, Transform]
 
 
 @dataclass
@@ -67,8 +71,9 @@ class AttachedPart:
         )
 
 
-def attach_parts(spec, bodies: list[Body], parts: list[AttachedPart]) -> dict[str, str]:
-    """Attach ``parts`` (in order) to ``spec``; the asset files they publish, by name."""
+def attach_parts(spec, places: dict[str, LinkPlace], parts: list[AttachedPart]) -> dict[str, str]:
+    """Attach ``parts`` (in order) to ``spec``, whose links are at ``places``; the asset files
+    they publish, by name."""
     import mujoco
 
     from mjcfbuild.mjcache import forget_earlier_builds
@@ -80,23 +85,20 @@ def attach_parts(spec, bodies: list[Body], parts: list[AttachedPart]) -> dict[st
     for part in parts:
         child = mujoco.MjSpec.from_file(str(part.xml))
         _refuse_collisions(spec, child, part)
-        target, position, quat = _place(spec, bodies, part)
+        target, position, quat = _place(spec, places, part)
         frame = target.add_frame(name=f"{part.prefix}attachment", pos=position, quat=quat)
         spec.attach(child, prefix=part.prefix, frame=frame)
         published.update(part.summary.assets)
     return published
 
 
-def _place(spec, bodies: list[Body], part: AttachedPart):
+def _place(spec, places: dict[str, LinkPlace], part: AttachedPart):
     """The body the part goes into, and its frame's pose there: where ``to`` is, then the
     part's offset."""
     link = None
-    for body in bodies:
-        for frame in body.links:
-            if frame.link == part.to:
-                at_world = body.parent is None and body.name == WORLD
-                target = spec.worldbody if at_world else spec.body(body.name)
-                link = frame.pose
+    if part.to in places:
+        body, link = places[part.to]
+        target = spec.worldbody if body is None else spec.body(body)
     if link is None:
         target = spec.body(part.to)
         link = Transform()

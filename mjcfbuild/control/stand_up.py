@@ -32,7 +32,7 @@ def stands(root: etree._Element, compile_tree: Callable[[etree._Element], Any]) 
     """Whether the robot of ``root`` (with its home keyframe) stands on a floor holding home."""
     import mujoco
 
-    from mjcfbuild.check.control import stand_test
+    from mjcfbuild.control.stand_test import stand_test
     from mjcfbuild.mjstopped import simulating
 
     trial = deepcopy(root)

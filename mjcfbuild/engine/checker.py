@@ -6,7 +6,7 @@ import os
 
 from doit.dependency import FileChangedChecker
 
-from mjcfbuild.engine.hashes import HashCache
+from mjcfbuild.graph.hashes import HashCache
 
 
 def checker_class(hashes: HashCache) -> type[FileChangedChecker]:

@@ -87,7 +87,7 @@ def up_to_date(ctx: BuildContext) -> bool:
 def build(ctx: BuildContext) -> bool:
     """Build ``ctx`` as ``mjcfbuild build`` does, each line naming the robot; False when it
     failed (doit then reports the task failed)."""
-    from mjcfbuild.cli import report_error, report_warnings
+    from mjcfbuild.console import report_error, report_warnings
     from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.runner import run_build
     from mjcfbuild.errors import MjcfbuildError

@@ -20,10 +20,10 @@ from typing import Any
 
 from mjcfbuild.check.report_page import markdown
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.family import read_record
 from mjcfbuild.families import registry
 from mjcfbuild.families.decompose import decomposition_summaries
 from mjcfbuild.fsutil import write_if_changed
+from mjcfbuild.graph.family import read_record
 from mjcfbuild.outputs import report_dir
 
 STATS = "build-stats.json"  # in the state folder: what changes from run to run

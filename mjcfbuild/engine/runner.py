@@ -331,7 +331,7 @@ def _database_failure(ctx: BuildContext) -> MjcfbuildError | None:
 def _expanded_urdfs(ctx: BuildContext) -> list[Path]:
     """The URDFs a build makes that errors may point at: the expanded source, the parts'
     and the composed one."""
-    from mjcfbuild.compose.tasks import part_urdf
+    from mjcfbuild.outputs import part_urdf
 
     parts = [part_urdf(ctx, index) for index in range(len(ctx.manifest.attach))]
     return [ctx.state(SOURCE_URDF), planned_urdf(ctx), *parts]
@@ -356,7 +356,7 @@ def prepare_state(ctx: BuildContext) -> None:
 
 def _prune_cache(ctx: BuildContext) -> None:
     """Keep the shared cache under its size cap after a build added to it."""
-    from mjcfbuild.engine.store import ProductStore
+    from mjcfbuild.products.store import ProductStore
 
     settings = ctx.cache_settings()
     ProductStore(Path(settings["folder"]), settings["max_bytes"]).prune()

@@ -26,8 +26,8 @@ WARM = "mjcfbuild.steps.warm:run"
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.hashes import HashCache
     from mjcfbuild.engine.workers import WorkerPool
+    from mjcfbuild.graph.hashes import HashCache
     from mjcfbuild.sharing.coordinator import ProductSharing
 
 
@@ -55,7 +55,7 @@ class BuildSession:
     def hashes(self) -> HashCache:
         """The :class:`HashCache` of the output folder."""
         if self._hashes is None:
-            from mjcfbuild.engine.hashes import HashCache
+            from mjcfbuild.graph.hashes import HashCache
 
             state = self.ctx.state_dir
             self._hashes = HashCache(state / "hashes.json" if state.is_dir() else None)

@@ -41,7 +41,7 @@ from mjcfbuild import filesig
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.hashes import HashCache
+    from mjcfbuild.graph.hashes import HashCache
 
 FORMAT = 4  # 4: warnings to replay, and whether the folder needed --allow-outside
 # Set to any value to skip the fast path (benchmarks of the full path, debugging).
@@ -252,7 +252,7 @@ def write(
 ) -> None:
     """Record the state a successful build left, for :func:`nothing_to_do`.
 
-    ``hashes`` is the build's :class:`~mjcfbuild.engine.hashes.HashCache`, so files hashed by
+    ``hashes`` is the build's :class:`~mjcfbuild.graph.hashes.HashCache`, so files hashed by
     the build are not read again; ``next_build`` is kept for :func:`previous_build`;
     ``outside``: the output folder may be written only with ``--allow-outside``.
     """
@@ -310,8 +310,8 @@ def record_build(
 ) -> None:
     """Write the stamp of the successful build of ``ctx`` that ran ``tasks``; ``warnings``
     are those of the tasks that made its outputs, for the fast path to print."""
-    from mjcfbuild.engine.depfile import Depfile
     from mjcfbuild.outputs import ASSEMBLY_REPORT, SOURCE_DEPS
+    from mjcfbuild.steps.depfile import Depfile
 
     manifest = ctx.stamp_key
     assert manifest is not None, "a stamp is kept only for a build with a stamp key"

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.uptodate import ParamsUnchanged
+from mjcfbuild.graph.uptodate import ParamsUnchanged
 
 
 @dataclass

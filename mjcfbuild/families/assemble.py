@@ -7,19 +7,19 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.compose.tasks import part_robot
-from mjcfbuild.engine.family import Family, file_task, read_record
 from mjcfbuild.errors import ManifestError, MjcfbuildError
 from mjcfbuild.families.decompose import decomposition_files
+from mjcfbuild.families.mjcfpart import part_robot
 from mjcfbuild.families.selfcollision import self_collision_matrix
 from mjcfbuild.families.srdf import srdf_home_state, srdf_summary
+from mjcfbuild.graph.family import Family, file_task, read_record
 from mjcfbuild.outputs import ASSEMBLY_REPORT, FLOOR_RECORD, PLAN, product_summary
 from mjcfbuild.sources.packages import did_you_mean
 from mjcfbuild.steps.payloads import AssemblePayload
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
     from mjcfbuild.urdf.model import Robot
 
 
@@ -110,7 +110,7 @@ def _verify(graph: Graph) -> None:
         raise
 
 
-def _motors(ctx: BuildContext) -> dict[str, dict]:
+def _motors(ctx: GraphContext) -> dict[str, dict]:
     """The motors the actuator rules name (control.catalogue), their datasheet values."""
     from mjcfbuild.control.catalogue import resolve_motors
 
@@ -122,7 +122,7 @@ def _motors(ctx: BuildContext) -> dict[str, dict]:
     )
 
 
-def _check_kept_pairs(robot: Robot, ctx: BuildContext) -> None:
+def _check_kept_pairs(robot: Robot, ctx: GraphContext) -> None:
     settings = ctx.manifest.self_collision
     if settings == "none":
         return
@@ -131,7 +131,7 @@ def _check_kept_pairs(robot: Robot, ctx: BuildContext) -> None:
             _refuse_unknown_link(robot, link, f"self_collision.keep[{index}]", ctx)
 
 
-def _check_floor_contacts(robot: Robot, ctx: BuildContext) -> None:
+def _check_floor_contacts(robot: Robot, ctx: GraphContext) -> None:
     settings = ctx.manifest.training
     if settings is None:
         return
@@ -141,7 +141,7 @@ def _check_floor_contacts(robot: Robot, ctx: BuildContext) -> None:
             _refuse_unknown_link(robot, link, where, ctx)
 
 
-def _refuse_unknown_link(robot: Robot, link: str, key: str, ctx: BuildContext) -> None:
+def _refuse_unknown_link(robot: Robot, link: str, key: str, ctx: GraphContext) -> None:
     """:class:`ManifestError` unless ``link``, given at manifest ``key``, is a robot link."""
     from mjcfbuild.control.choose import listing
 
@@ -154,7 +154,7 @@ def _refuse_unknown_link(robot: Robot, link: str, key: str, ctx: BuildContext) -
         )
 
 
-def _report(ctx: BuildContext) -> dict:
+def _report(ctx: GraphContext) -> dict:
     """The model's size, files, repairs, readiness to control and collision matrix."""
     assembly = read_record(ctx.state(ASSEMBLY_REPORT))
     return {

@@ -6,17 +6,17 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, file_task, read_record
+from mjcfbuild.graph.family import Family, file_task, read_record
 from mjcfbuild.outputs import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN, REFERENCE
 from mjcfbuild.steps.payloads import CheckPayload, MjcfPartFiles
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
 
 
 def check_payload(
-    ctx: BuildContext, parts: list[MjcfPartFiles], options: dict | None = None
+    ctx: GraphContext, parts: list[MjcfPartFiles], options: dict | None = None
 ) -> CheckPayload:
     """What the check is given: the build's ``check`` task and ``mjcfbuild check`` alike
     (``options``, CheckOptions' fields, replace the manifest's check settings)."""
@@ -66,7 +66,7 @@ def _tasks(graph: Graph) -> list[dict]:
     return [task]
 
 
-def _report(ctx: BuildContext) -> dict:
+def _report(ctx: GraphContext) -> dict:
     return {"check": read_record(ctx.state(CHECK_RESULTS))}
 
 

@@ -6,13 +6,14 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, file_task, largest_first, read_record
+from mjcfbuild.graph.family import Family, file_task, largest_first, read_record
 from mjcfbuild.outputs import decomposition_dir, product_summary
 from mjcfbuild.steps.payloads import DecomposePayload, DecompositionFiles
+from mjcfbuild.steps.versions import DECOMPOSE
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
 
 
 def _tasks(graph: Graph) -> list[dict]:
@@ -23,7 +24,7 @@ def _tasks(graph: Graph) -> list[dict]:
     ]
 
 
-def _decompose_task(ctx: BuildContext, name: str, mesh_id: str, params: dict, prefix: str) -> dict:
+def _decompose_task(ctx: GraphContext, name: str, mesh_id: str, params: dict, prefix: str) -> dict:
     folder = decomposition_dir(ctx, name)
     payload = DecomposePayload(
         params=params,
@@ -46,7 +47,7 @@ def _decompose_task(ctx: BuildContext, name: str, mesh_id: str, params: dict, pr
 
 
 def decomposition_files(
-    ctx: BuildContext, decomposed: dict[str, tuple[str, dict]]
+    ctx: GraphContext, decomposed: dict[str, tuple[str, dict]]
 ) -> list[DecompositionFiles]:
     """The decompositions as the tasks that read them are given them (their summaries are
     those tasks' file dependencies)."""
@@ -61,7 +62,7 @@ def decomposition_files(
     ]
 
 
-def decomposition_summaries(ctx: BuildContext) -> list[tuple[Path, dict]]:
+def decomposition_summaries(ctx: GraphContext) -> list[tuple[Path, dict]]:
     """Each decomposition's record, by name."""
     found = []
     for path in sorted(decomposition_dir(ctx, "any").parent.glob("*.json")):
@@ -71,7 +72,7 @@ def decomposition_summaries(ctx: BuildContext) -> list[tuple[Path, dict]]:
     return found
 
 
-def _report(ctx: BuildContext) -> dict:
+def _report(ctx: GraphContext) -> dict:
     """Per decomposition of this build: hull kept or CoACD, parts, concavities (its seconds
     are in build-stats.json)."""
     rows = [
@@ -91,8 +92,8 @@ FAMILY = Family(
     name="decompose",
     step="mjcfbuild.steps.decompose:run",
     payload=DecomposePayload,
-    format=3,
-    tools=("coacd", "trimesh", "numpy", "scipy"),
+    format=DECOMPOSE.format,  # declared beside the step, which keys its products by it
+    tools=DECOMPOSE.tools,
     tasks=_tasks,
     report=_report,
 )

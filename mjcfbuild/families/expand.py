@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import (
+from mjcfbuild.graph.family import (
     Family,
     discovered_inputs,
     file_task,
@@ -17,8 +17,8 @@ from mjcfbuild.outputs import SOURCE_DEPS, SOURCE_URDF
 from mjcfbuild.steps.payloads import ExpandPayload
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
 
 
 def _tasks(graph: Graph) -> list[dict]:
@@ -40,7 +40,7 @@ def _tasks(graph: Graph) -> list[dict]:
     ]
 
 
-def _args_key(ctx: BuildContext, key: str) -> str:
+def _args_key(ctx: GraphContext, key: str) -> str:
     """Where xacro arguments were given, for the error about one no file declares."""
     from mjcfbuild.sources.expand import COMMAND_LINE
 
@@ -50,7 +50,7 @@ def _args_key(ctx: BuildContext, key: str) -> str:
 
 
 def expand_file_task(
-    ctx: BuildContext,
+    ctx: GraphContext,
     name: str,
     source: Path,
     kind: str,

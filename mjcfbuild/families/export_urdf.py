@@ -4,12 +4,12 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, file_task
+from mjcfbuild.graph.family import Family, file_task
 from mjcfbuild.outputs import ASSEMBLY_REPORT, PLAN, URDF_EXPORT_RECORD
 from mjcfbuild.steps.payloads import ExportUrdfPayload
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.graph import Graph
 
 
 def _tasks(graph: Graph) -> list[dict]:

@@ -7,7 +7,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import (
+from mjcfbuild.graph.family import (
     Family,
     discovered_inputs,
     file_task,
@@ -16,10 +16,11 @@ from mjcfbuild.engine.family import (
 )
 from mjcfbuild.outputs import mesh_depfile, product_summary
 from mjcfbuild.steps.payloads import MeshOptions, MeshPayload
+from mjcfbuild.steps.versions import MESH
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
     from mjcfbuild.urdf.model import Robot
 
 
@@ -32,9 +33,9 @@ def _tasks(graph: Graph) -> list[dict]:
 
 
 def _mesh_task(
-    ctx: BuildContext, mesh_id: str, path: str, roles: list[str], prefix: str, robot: Robot
+    ctx: GraphContext, mesh_id: str, path: str, roles: list[str], prefix: str, robot: Robot
 ) -> dict:
-    from mjcfbuild.meshes.upaxis import mesh_uses
+    from mjcfbuild.urdf.mesh_uses import mesh_uses
 
     read, stale = discovered_inputs(ctx, mesh_depfile(ctx, mesh_id))
     meshes = ctx.manifest.meshes
@@ -86,13 +87,13 @@ def up_axis_mode(mode: str, files: Mapping[str, str], path: str) -> str:
     return mode
 
 
-def mesh_products(ctx: BuildContext) -> list[Path]:
+def mesh_products(ctx: GraphContext) -> list[Path]:
     """The records of the mesh products of this build (``products/<id>.json`` beside the
     product's folder)."""
     return [p for p in sorted(ctx.products_dir.glob("*.json")) if (p.parent / p.stem).is_dir()]
 
 
-def up_axis_decisions(ctx: BuildContext) -> list[dict]:
+def up_axis_decisions(ctx: GraphContext) -> list[dict]:
     """Per DAE file tagged other than Z-up: its mesh, whether it was turned, and why."""
     rows = []
     for path in mesh_products(ctx):
@@ -102,7 +103,7 @@ def up_axis_decisions(ctx: BuildContext) -> list[dict]:
     return rows
 
 
-def _report(ctx: BuildContext) -> dict:
+def _report(ctx: GraphContext) -> dict:
     return {"up_axis": up_axis_decisions(ctx), "products": {"meshes": len(mesh_products(ctx))}}
 
 
@@ -110,8 +111,8 @@ FAMILY = Family(
     name="mesh",
     step="mjcfbuild.steps.mesh:run",
     payload=MeshPayload,
-    format=5,
-    tools=("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"),
+    format=MESH.format,  # declared beside the step, which keys its products by it
+    tools=MESH.tools,
     tasks=_tasks,
     report=_report,
 )

@@ -5,8 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, file_task
-from mjcfbuild.engine.versions import tool_version
+from mjcfbuild.graph.family import Family, file_task
 from mjcfbuild.outputs import (
     ASSEMBLY_REPORT,
     CHECK_RESULTS,
@@ -15,10 +14,11 @@ from mjcfbuild.outputs import (
     report_dir,
 )
 from mjcfbuild.steps.payloads import PackagePayload
+from mjcfbuild.steps.versions import tool_version
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
 
 
 def _tasks(graph: Graph) -> list[dict]:
@@ -82,7 +82,7 @@ def _tasks(graph: Graph) -> list[dict]:
     return [task]
 
 
-def _license_label(ctx: BuildContext, license_file: Path | None) -> str:
+def _license_label(ctx: GraphContext, license_file: Path | None) -> str:
     """How the README names the license file: relative to robot.yaml when inside its folder,
     else by its folder and name (``panda_description/LICENSE``), the same on every machine."""
     if license_file is None:

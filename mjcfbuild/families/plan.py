@@ -5,21 +5,21 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from mjcfbuild.compose.tasks import part_folders
-from mjcfbuild.engine.family import (
+from mjcfbuild.families.parts import part_folders
+from mjcfbuild.graph.family import (
     Family,
     file_task,
     package_folders,
     require_file,
     ros_environment,
 )
-from mjcfbuild.engine.uptodate import planned_meshes_exist
+from mjcfbuild.graph.uptodate import planned_meshes_exist
 from mjcfbuild.outputs import PLAN, SOURCE_URDF, planned_urdf
 from mjcfbuild.steps.payloads import PlanPayload
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
 
 
 def _tasks(graph: Graph) -> list[dict]:
@@ -58,7 +58,7 @@ def _tasks(graph: Graph) -> list[dict]:
     return [task]
 
 
-def _description_roots(ctx: BuildContext) -> list[str]:
+def _description_roots(ctx: GraphContext) -> list[str]:
     """The folders a description reads from without a warning: robot.yaml's, the source
     file's, the packages robot.yaml names, and those of the parts it attaches."""
     folders = [ctx.base_dir, ctx.source_base_dir, *ctx.resolver.explicit.values()]

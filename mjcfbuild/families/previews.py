@@ -4,14 +4,14 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, file_task
-from mjcfbuild.engine.render_inputs import RenderInputsUnchanged
+from mjcfbuild.graph.family import Family, file_task
+from mjcfbuild.graph.render_inputs import RenderInputsUnchanged
 from mjcfbuild.outputs import ASSEMBLY_REPORT, PREVIEWS_RECORD, report_dir
 from mjcfbuild.steps.payloads import PreviewsPayload
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
 
 
 ORDER = (
@@ -53,7 +53,7 @@ def _tasks(graph: Graph) -> list[dict]:
     return [task]
 
 
-def _report(ctx: BuildContext) -> dict:
+def _report(ctx: GraphContext) -> dict:
     """The pictures in the report folder, in the order the report shows them."""
     pictures = sorted(
         (p.name for p in (report_dir(ctx) / "previews").glob("*.png")),

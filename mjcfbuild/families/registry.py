@@ -1,21 +1,21 @@
 """Every task family of a build, in the order their tasks are listed in the graph (doit starts
 ready tasks in that order), and the tables the engine derives from them.
 
-Adding a family: write its module (a :class:`~mjcfbuild.engine.family.Family` named
+Adding a family: write its module (a :class:`~mjcfbuild.graph.family.Family` named
 ``FAMILY``), its step in :mod:`mjcfbuild.steps`, and list it here (docs/architecture.md).
 """
 
 from __future__ import annotations
 
-from mjcfbuild.compose.tasks import COMPOSE, MJCFPART
-from mjcfbuild.engine.family import Family
 from mjcfbuild.families import (
     assemble,
     check,
+    compose,
     decompose,
     expand,
     export_urdf,
     mesh,
+    mjcfpart,
     package,
     page,
     plan,
@@ -27,12 +27,13 @@ from mjcfbuild.families import (
     training,
     tuning,
 )
+from mjcfbuild.graph.family import Family
 
 FAMILIES: tuple[Family, ...] = (
     # planning: what they write decides which build tasks exist
     expand.FAMILY,
-    MJCFPART,
-    COMPOSE,
+    mjcfpart.FAMILY,
+    compose.FAMILY,
     plan.FAMILY,
     # build; the reference first: it needs only the URDF, and runs beside the meshes
     reference.FAMILY,

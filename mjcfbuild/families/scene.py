@@ -6,17 +6,17 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, file_task, require_file
+from mjcfbuild.graph.family import Family, file_task, require_file
 from mjcfbuild.outputs import FLOOR_RECORD
 from mjcfbuild.steps.payloads import ScenePayload
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
     from mjcfbuild.steps.plan_record import Plan
 
 
-def scene_payload(ctx: BuildContext, plan: Plan, robot_file: str, output: Path) -> ScenePayload:
+def scene_payload(ctx: GraphContext, plan: Plan, robot_file: str, output: Path) -> ScenePayload:
     """The scene around ``robot_file`` (the model, or the training variant)."""
     scene = ctx.manifest.scene
     source = ctx.resolve(scene.file) if scene.file else None

@@ -5,14 +5,15 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, file_task
 from mjcfbuild.families.decompose import decomposition_files
 from mjcfbuild.families.srdf import srdf_summary
+from mjcfbuild.graph.family import Family, file_task
 from mjcfbuild.outputs import SELF_COLLISION, product_summary
 from mjcfbuild.steps.payloads import SelfCollisionPayload
+from mjcfbuild.steps.versions import SELFCOLLISION
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.graph import Graph
 
 
 def self_collision_matrix(graph: Graph) -> Path | None:
@@ -22,7 +23,7 @@ def self_collision_matrix(graph: Graph) -> Path | None:
 
 def _tasks(graph: Graph) -> list[dict]:
     # Here, not above: the step imports this module for its versions, without the manifest.
-    from mjcfbuild.compose.tasks import urdf_home
+    from mjcfbuild.families.parts import urdf_home
     from mjcfbuild.selfcollision.parts import collision_digest
     from mjcfbuild.selfcollision.robot import collision_robot
 
@@ -83,8 +84,8 @@ FAMILY = Family(
     name="selfcollision",
     step="mjcfbuild.steps.selfcollision:run",
     payload=SelfCollisionPayload,
-    format=3,
-    tools=("mujoco", "numpy"),
+    format=SELFCOLLISION.format,  # declared beside the step, which keys its products by it
+    tools=SELFCOLLISION.tools,
     tasks=_tasks,
     compiles_model=True,
 )

@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import (
+from mjcfbuild.graph.family import (
     Family,
     file_task,
     package_folders,
@@ -17,17 +17,17 @@ from mjcfbuild.outputs import SRDF_SUMMARY
 from mjcfbuild.steps.payloads import SrdfPayload
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
 
 
-def srdf_home_state(ctx: BuildContext) -> str | None:
+def srdf_home_state(ctx: GraphContext) -> str | None:
     """The SRDF group state that is the home pose, when an SRDF is read."""
     settings = ctx.manifest.self_collision
     return settings.home_state if settings != "none" and settings.srdf else None
 
 
-def _named_srdf(ctx: BuildContext) -> Path | None:
+def _named_srdf(ctx: GraphContext) -> Path | None:
     """The SRDF robot.yaml names (self_collision.srdf)."""
     settings = ctx.manifest.self_collision
     if settings == "none" or settings.srdf is None:
@@ -35,7 +35,7 @@ def _named_srdf(ctx: BuildContext) -> Path | None:
     return ctx.resolve(settings.srdf)
 
 
-def srdf_source(ctx: BuildContext) -> Path | None:
+def srdf_source(ctx: GraphContext) -> Path | None:
     """The SRDF the build reads: the one robot.yaml names, else, for a floating robot whose
     home robot.yaml does not give, the one shipped beside the description (for its standing
     pose; see selfcollision.discover)."""
@@ -49,7 +49,7 @@ def srdf_source(ctx: BuildContext) -> Path | None:
     return find_srdf(ctx.source_path)
 
 
-def srdf_summary(ctx: BuildContext) -> Path | None:
+def srdf_summary(ctx: GraphContext) -> Path | None:
     """What the ``srdf`` task writes, when the build reads an SRDF."""
     return ctx.state(SRDF_SUMMARY) if srdf_source(ctx) else None
 

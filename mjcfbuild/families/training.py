@@ -5,11 +5,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, file_task, read_record
 from mjcfbuild.families.decompose import decomposition_files
 from mjcfbuild.families.scene import scene_payload
 from mjcfbuild.families.selfcollision import self_collision_matrix
 from mjcfbuild.fsutil import md5_file
+from mjcfbuild.graph.family import Family, file_task, read_record
 from mjcfbuild.outputs import (
     FLOOR_RECORD,
     TRAINING_RECORD,
@@ -20,8 +20,8 @@ from mjcfbuild.outputs import (
 from mjcfbuild.steps.payloads import TrainingPayload
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
 
 
 def _tasks(graph: Graph) -> list[dict]:
@@ -86,7 +86,7 @@ def _tasks(graph: Graph) -> list[dict]:
     return [task]
 
 
-def training_summary(ctx: BuildContext) -> dict | None:
+def training_summary(ctx: GraphContext) -> dict | None:
     """The training variant's record, with what ``check --warp`` measured of it while the
     variant is the one it measured (by content)."""
     if ctx.manifest.training is None:
@@ -107,7 +107,7 @@ def training_summary(ctx: BuildContext) -> dict | None:
     }
 
 
-def _report(ctx: BuildContext) -> dict:
+def _report(ctx: GraphContext) -> dict:
     return {"training": training_summary(ctx)}
 
 

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from mjcfbuild.engine.family import Family, file_task, read_record
+from mjcfbuild.graph.family import Family, file_task, read_record
 from mjcfbuild.outputs import ASSEMBLY_REPORT, TUNING_RECORD, report_dir
 from mjcfbuild.steps.payloads import TuningPayload
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
 
 
 def _tasks(graph: Graph) -> list[dict]:
@@ -40,7 +40,7 @@ def _tasks(graph: Graph) -> list[dict]:
     return [task]
 
 
-def _report(ctx: BuildContext) -> dict:
+def _report(ctx: GraphContext) -> dict:
     return {"tuning": read_record(ctx.state(TUNING_RECORD)) if ctx.manifest.check.tuning else {}}
 
 

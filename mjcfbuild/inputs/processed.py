@@ -123,7 +123,7 @@ class ProcessedInput(BaseModel):
 
     @classmethod
     def _xml_message(cls, error: ValidationError) -> str:
-        from mjcfbuild.manifest.loading import describe
+        from mjcfbuild.schema_errors import describe_error
 
         first = error.errors()[0]
         names = {field: attribute for attribute, field in cls.xml_fields.items()}
@@ -135,8 +135,8 @@ class ProcessedInput(BaseModel):
         if field == "attributes":
             return f"<{cls.xml_tag}> sets no attribute"
         if field:
-            return f"<{cls.xml_tag}> {names.get(field, field)}: {describe(first)}"
-        return f"<{cls.xml_tag}>: {describe(first)}"
+            return f"<{cls.xml_tag}> {names.get(field, field)}: {describe_error(first, None)}"
+        return f"<{cls.xml_tag}>: {describe_error(first, None)}"
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready form: the tag, the fields and the origin."""

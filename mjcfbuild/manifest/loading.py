@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import difflib
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from mjcfbuild.errors import ManifestError
 
 if TYPE_CHECKING:
-    from pydantic import BaseModel, ValidationError
+    from pydantic import ValidationError
     from pydantic_core import ErrorDetails
 
     from mjcfbuild.manifest.models import Manifest
@@ -142,89 +141,8 @@ _REMOVED = {
 
 
 def describe(error: ErrorDetails) -> str:
-    """What is wrong, and what would be allowed, for one pydantic error."""
-    kind = error["type"]
-    loc = tuple(error["loc"])
-    value = error.get("input")
-    if kind == "extra_forbidden":
-        key = str(loc[-1]) if loc else "?"
-        if loc in _REMOVED:
-            return _REMOVED[loc]
-        allowed = _allowed_keys(loc[:-1])
-        suggestion = difflib.get_close_matches(key, allowed, n=1)
-        text = f"unknown key '{key}'"
-        if suggestion:
-            text += f"; did you mean '{suggestion[0]}'?"
-        if allowed:
-            text += f" allowed keys: {', '.join(allowed)}"
-        return text
-    if kind == "missing":
-        return "this key is required"
-    if kind == "literal_error":
-        expected = error.get("ctx", {}).get("expected", "")
-        return f"{_show(value)} is not allowed; use one of {expected}"
-    if kind in {"string_type", "string_too_short"}:
-        return f"expected a non-empty string, got {_show(value)}"
-    if kind == "string_pattern_mismatch":
-        return (
-            f"{_show(value)} is not a valid name; use letters, digits, '_', '-' and '.', "
-            "starting with a letter or digit"
-        )
-    if kind in {"bool_type", "bool_parsing"}:
-        return f"expected true or false, got {_show(value)}"
-    if kind in {"int_type", "int_parsing", "float_type", "float_parsing", "int_from_float"}:
-        return f"expected a number, got {_show(value)}"
-    if kind in {"dict_type", "model_type", "model_attributes_type"}:
-        return f"expected a mapping of keys, got {_show(value)}"
-    if kind in {"list_type", "tuple_type"}:
-        return f"expected a list, got {_show(value)}"
-    if kind in {"greater_than", "greater_than_equal", "less_than", "less_than_equal"}:
-        return error["msg"].lower().replace("input", f"{_show(value)}")
-    if kind == "value_error":
-        return str(error.get("ctx", {}).get("error", error["msg"]))
-    return error["msg"]
-
-
-def _show(value: object) -> str:
-    if isinstance(value, (dict, list)):
-        return "a mapping" if isinstance(value, dict) else "a list"
-    text = repr(value)
-    return text if len(text) <= 40 else text[:37] + "..."
-
-
-def _allowed_keys(loc: tuple) -> list[str]:
-    """The keys the model at ``loc`` accepts, walking the manifest models."""
-    import typing
-
+    """What is wrong, and what would be allowed, for one pydantic error of robot.yaml."""
     from mjcfbuild.manifest.models import Manifest
+    from mjcfbuild.schema_errors import describe_error
 
-    model: type[BaseModel] | None = Manifest
-    keyed = False  # the part before was a mapping of names to models (motors.define)
-    for part in loc:
-        if keyed:
-            keyed = False
-            continue
-        if isinstance(part, int):  # an item of a list of models: the model itself
-            continue
-        if model is None:
-            return []
-        field = model.model_fields.get(str(part))
-        if field is None:
-            return []
-        keyed = typing.get_origin(field.annotation) is dict
-        model = _model_of(field.annotation)
-    if model is None:
-        return []
-    return sorted(model.model_fields)
-
-
-def _model_of(annotation: object) -> type[BaseModel] | None:
-    from pydantic import BaseModel
-
-    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
-        return annotation
-    for arg in getattr(annotation, "__args__", ()) or ():
-        found = _model_of(arg)
-        if found is not None:
-            return found
-    return None
+    return describe_error(error, Manifest, _REMOVED)

@@ -2,7 +2,7 @@
 
 Every model forbids unknown keys, so a typo is an error that names the key and lists the allowed
 ones instead of being silently ignored. Paths are kept as written; they are relative to the
-manifest's folder and resolved by :class:`mjcfbuild.engine.context.BuildContext`.
+manifest's folder and resolved by :class:`mjcfbuild.graph.context.GraphContext`.
 """
 
 from __future__ import annotations
@@ -352,7 +352,7 @@ class CacheSettings(StrictModel):
     @field_validator("remote")
     @classmethod
     def _remote_address(cls, value: str | None) -> str | None:
-        from mjcfbuild.sharing.settings import AddressError, parse_remote
+        from mjcfbuild.sharing_settings import AddressError, parse_remote
 
         if value is not None:
             try:
@@ -694,7 +694,7 @@ class Manifest(StrictModel):
     @field_validator("executor")
     @classmethod
     def _executor_address(cls, value: str | None) -> str | None:
-        from mjcfbuild.sharing.settings import AddressError, parse_executor
+        from mjcfbuild.sharing_settings import AddressError, parse_executor
 
         if value is not None:
             try:

@@ -12,8 +12,8 @@ how little the collision primitives' boxes overlap it. The file is turned only w
 reading fits clearly better; with no evidence, or no clear winner, the coordinates are kept as
 they are, as ROS tools draw them.
 
-:func:`mesh_uses` is plain Python (the task graph calls it while planning); :func:`decide`
-needs numpy and runs in the mesh step.
+:func:`mjcfbuild.urdf.mesh_uses.mesh_uses` gathers the evidence from the robot in plain Python
+(the task graph calls it while planning); :func:`decide` needs numpy and runs in the mesh step.
 """
 
 from __future__ import annotations
@@ -23,12 +23,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from mjcfbuild.records import Record
-from mjcfbuild.urdf.transforms import apply, rpy_to_matrix, transpose
 
 if TYPE_CHECKING:
     import numpy as np
-
-    from mjcfbuild.urdf.model import Geometry, Robot
 
 # Turn only when the tagged reading's misfit is at most this fraction of the untouched one's,
 # the untouched one misfits by at least MIN_MISFIT, and the tagged one fits well (at most
@@ -36,7 +33,6 @@ if TYPE_CHECKING:
 CLEAR_RATIO = 0.5
 MIN_MISFIT = 0.25
 FIT_PER_ITEM = 0.5
-_PRIMITIVES = ("box", "cylinder", "sphere", "capsule")
 
 
 @dataclass(frozen=True)
@@ -65,79 +61,6 @@ class UpAxisDecision(Record):
     tag: str
     turned: bool
     reason: str
-
-
-def mesh_uses(robot: Robot, mesh_id: str) -> list[MeshUse]:
-    """The evidence of every shape (visual or collision) of ``robot`` that uses ``mesh_id``."""
-    children = robot.child_joints()
-    parents = robot.parent_joint()
-    uses = []
-    for link in robot.links:
-        for shape in link.shapes:
-            geometry = shape.geometry
-            if geometry.kind != "mesh" or geometry.mesh_id != mesh_id:
-                continue
-            rotation = rpy_to_matrix(shape.origin.rpy)
-            into_mesh = _into_mesh_frame(shape.origin.xyz, rotation, geometry)
-            if into_mesh is None:
-                continue
-            points: list[list[float]] = []
-            kinds: list[str] = []
-            if link.name in parents:
-                points.append(into_mesh((0.0, 0.0, 0.0)))
-                kinds.append("joint")
-            for joint in children.get(link.name, []):
-                points.append(into_mesh(joint.origin.xyz))
-                kinds.append("child joint")
-            if link.inertial is not None and link.inertial.mass > 0:
-                points.append(into_mesh(link.inertial.origin.xyz))
-                kinds.append("centre of mass")
-            boxes = []
-            for other in link.collisions:
-                if other.geometry.kind in _PRIMITIVES and all(v > 0 for v in other.geometry.size):
-                    corners = _corners(other.origin.xyz, other.origin.rpy, other.geometry)
-                    moved = [into_mesh(c) for c in corners]
-                    boxes.append(
-                        [[min(p[i] for p in moved) for i in range(3)],
-                         [max(p[i] for p in moved) for i in range(3)]]
-                    )  # fmt: skip
-            use = MeshUse(link.name, points, kinds, boxes)
-            if not use.empty:
-                uses.append(use)
-    return uses
-
-
-def _into_mesh_frame(xyz, rotation, geometry: Geometry):
-    scale = geometry.scale
-    if any(abs(s) < 1e-12 for s in scale):
-        return None
-    back = transpose(rotation)
-
-    def into(point) -> list[float]:
-        local = apply(back, (point[0] - xyz[0], point[1] - xyz[1], point[2] - xyz[2]))
-        return [local[i] / scale[i] for i in range(3)]
-
-    return into
-
-
-def _corners(xyz, rpy, geometry: Geometry) -> list[tuple[float, float, float]]:
-    size = geometry.size
-    if geometry.kind == "box":
-        half = (size[0] / 2, size[1] / 2, size[2] / 2)
-    elif geometry.kind == "sphere":
-        half = (size[0],) * 3
-    elif geometry.kind == "cylinder":
-        half = (size[0], size[0], size[1] / 2)
-    else:  # capsule: radius, length between the caps' centres
-        half = (size[0], size[0], size[1] / 2 + size[0])
-    rotation = rpy_to_matrix(rpy)
-    corners = []
-    for sx in (-1, 1):
-        for sy in (-1, 1):
-            for sz in (-1, 1):
-                local = apply(rotation, (sx * half[0], sy * half[1], sz * half[2]))
-                corners.append((local[0] + xyz[0], local[1] + xyz[1], local[2] + xyz[2]))
-    return corners
 
 
 def read_up_axis(path: Path) -> str:

@@ -28,7 +28,7 @@ from mjcfbuild.inputs.processed import CameraInput
 from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.manifest.simulation import ActuatorSettings
 from mjcfbuild.meshes.product import MeshProduct
-from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies
+from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies, link_places
 from mjcfbuild.mjcf.depth import refuse_deep_bodies
 from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
 from mjcfbuild.mjcf.precise import precise_xml
@@ -129,7 +129,7 @@ def assemble(
             f"MuJoCo could not import the prepared URDF: {_first_line(exc)}", file=robot.source
         ) from None
     _finish(spec, prepared, bodies, robot, options)
-    published = attach_parts(spec, bodies, options.parts)
+    published = attach_parts(spec, link_places(bodies), options.parts)
     root = _write_with_shell_retries(spec, prepared, robot.source)
     _finish_xml(root, prepared, robot, options)
     publish_part_files(root, published)

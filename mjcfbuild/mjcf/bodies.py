@@ -63,6 +63,16 @@ class Body:
         return self.floating or (self.joint is not None and self.joint.moves)
 
 
+def link_places(bodies: list[Body]) -> dict[str, tuple[str | None, Transform]]:
+    """Each URDF link's place among ``bodies``: the body its frame is in (None for the world
+    body) and the frame's pose there."""
+    return {
+        frame.link: (None if body.parent is None and body.name == WORLD else body.name, frame.pose)
+        for body in bodies
+        for frame in body.links
+    }
+
+
 def build_bodies(robot: Robot, fuse_static: bool, float_from_world: bool = False) -> list[Body]:
     """The bodies of the model, parents before children, in URDF order.
 

@@ -13,11 +13,11 @@ import os
 from collections.abc import Callable
 from pathlib import Path
 
-from mjcfbuild.engine.store import ProductStore, open_store
 from mjcfbuild.families import decompose, mesh
+from mjcfbuild.products.store import ProductStore, open_store
 from mjcfbuild.sharing import stats as stats_file
-from mjcfbuild.sharing.settings import ExecutorSpec, RemoteSpec
 from mjcfbuild.sharing.stats import ShareStats
+from mjcfbuild.sharing_settings import ExecutorSpec, RemoteSpec
 from mjcfbuild.steps.payloads import DecomposePayload, MeshPayload
 
 # step function -> product kind (the family's name, which sharing.compute's KINDS lists)

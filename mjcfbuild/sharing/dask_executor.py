@@ -21,7 +21,7 @@ from mjcfbuild.errors import MjcfbuildError, TaskCrashed
 from mjcfbuild.failpoints import ONCE_DIR_VARIABLE, VARIABLE
 from mjcfbuild.sharing.blob import BadObject, verify
 from mjcfbuild.sharing.compute import compute_product, version_mismatch, worker_versions
-from mjcfbuild.sharing.settings import ExecutorSpec
+from mjcfbuild.sharing_settings import ExecutorSpec
 
 if TYPE_CHECKING:
     from distributed import Client

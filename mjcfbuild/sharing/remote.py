@@ -3,7 +3,7 @@
 A product missing from the local store is looked up here before it is computed; a product
 computed by this build is uploaded in the background and the build waits for the uploads
 before it returns. Objects are verified on download (:mod:`mjcfbuild.sharing.blob`) and checked
-for use (:mod:`mjcfbuild.engine.usable`: every file the summary names is there): a bad one is
+for use (:mod:`mjcfbuild.products.usable`: every file the summary names is there): a bad one is
 ignored, never stored, the product is rebuilt and uploaded again over it; with a signing key
 (``MJCFBUILD_CACHE_KEY``) so is an object it did not sign. A remote that cannot be reached,
 refuses access or does not answer within ``MJCFBUILD_REMOTE_TIMEOUT`` seconds (each call, and
@@ -23,11 +23,11 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Protocol, TypeVar
 
-from mjcfbuild.engine.store import ProductStore
-from mjcfbuild.engine.usable import product_problem
+from mjcfbuild.products.store import ProductStore
+from mjcfbuild.products.usable import product_problem
 from mjcfbuild.sharing.blob import BadObject, pack, unpack, verify
-from mjcfbuild.sharing.settings import RemoteSpec, remote_timeout, signing_key
 from mjcfbuild.sharing.stats import ShareStats
+from mjcfbuild.sharing_settings import RemoteSpec, remote_timeout, signing_key
 
 LAYOUT = "products-v1"
 _SECRET_VARIABLES = (
@@ -187,7 +187,7 @@ class RemoteCache:
 
     def fetch_into(self, key: str, store: ProductStore, kind: str | None = None) -> bool:
         """Download the product ``key`` (of ``kind``) into ``store``; whether it was there,
-        intact and usable (see :func:`~mjcfbuild.engine.usable.product_problem`)."""
+        intact and usable (see :func:`~mjcfbuild.products.usable.product_problem`)."""
         if self._disabled:
             return False
         try:

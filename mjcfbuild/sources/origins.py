@@ -20,14 +20,11 @@ def origins_file(urdf: Path) -> Path:
     return urdf.with_name(urdf.name.removesuffix(".urdf") + ".origins.json")
 
 
-def write_origins(path: Path, origins: dict[int, tuple[str, int]], outputs: dict) -> None:
-    """Write ``origins`` (line -> file, line) as JSON; an empty map for a plain URDF."""
-    from mjcfbuild.steps.outputs import write_output
-
+def origins_json(origins: dict[int, tuple[str, int]]) -> bytes:
+    """``origins`` (line -> file, line) as the bytes of the origins file; an empty map for a
+    plain URDF. The step that expanded the URDF writes them beside it."""
     data = {str(line): [file, written] for line, (file, written) in sorted(origins.items())}
-    write_output(
-        path, (json.dumps(data, sort_keys=True, separators=(",", ":")) + "\n").encode(), outputs
-    )
+    return (json.dumps(data, sort_keys=True, separators=(",", ":")) + "\n").encode()
 
 
 def written_at(urdf: Path, line: int) -> tuple[str, int] | None:

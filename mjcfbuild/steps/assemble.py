@@ -14,8 +14,8 @@ from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import remove_stale_temp_files
 from mjcfbuild.inputs.combine import combine
 from mjcfbuild.inputs.model import Inputs, inputs_from_dict
-from mjcfbuild.inputs.native import native_inputs
 from mjcfbuild.manifest.models import MujocoInputs
+from mjcfbuild.manifest.mujoco_inputs import native_inputs
 from mjcfbuild.manifest.simulation import ActuatorSettings
 from mjcfbuild.meshes.product import read_product
 from mjcfbuild.mjcf.assemble import Assembly, AssemblyOptions, assemble

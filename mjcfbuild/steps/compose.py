@@ -6,7 +6,7 @@ from functools import partial
 from pathlib import Path
 
 from mjcfbuild.compose.urdf import Part, compose
-from mjcfbuild.sources.origins import write_origins, written_at
+from mjcfbuild.sources.origins import origins_json, written_at
 from mjcfbuild.sources.packages import PackageResolver
 from mjcfbuild.sources.uris import resolve_uri
 from mjcfbuild.steps.outputs import write_output
@@ -47,7 +47,7 @@ def run(payload: dict) -> dict:
         urdf, label = inputs[source]
         # Through the input's own origins (a xacro), else its line as it is shown.
         origins[line] = written_at(Path(urdf), written) or (label, written)
-    write_origins(Path(request.origins), origins, outputs)
+    write_output(Path(request.origins), origins_json(origins), outputs)
     return {"outputs": outputs, "warnings": warnings}
 
 

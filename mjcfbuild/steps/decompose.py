@@ -5,12 +5,12 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from mjcfbuild.engine.store import open_store, product_key
 from mjcfbuild.failpoints import failpoint
-from mjcfbuild.families.decompose import FAMILY
 from mjcfbuild.meshes.product import read_product
+from mjcfbuild.products.store import open_store, product_key
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import DecomposePayload
+from mjcfbuild.steps.versions import DECOMPOSE
 
 
 def run(payload: dict) -> dict:
@@ -61,5 +61,5 @@ def collision_mesh(request: DecomposePayload) -> Path:
 
 def cache_key(request: DecomposePayload) -> str:
     """The product key of the decomposition ``request`` asks for (see :func:`product_key`)."""
-    params = {**request.params, "versions": FAMILY.versions()}
+    params = {**request.params, "versions": DECOMPOSE.versions()}
     return product_key("decompose", params, [collision_mesh(request)])

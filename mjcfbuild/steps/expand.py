@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.sources.expand import expand_source
-from mjcfbuild.sources.origins import write_origins
+from mjcfbuild.sources.origins import origins_json
+from mjcfbuild.steps.depfile import Depfile
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import ExpandPayload
 
@@ -25,7 +25,7 @@ def run(payload: dict) -> dict:
     )
     outputs: dict[str, str] = {}
     write_output(Path(request.output), expansion.urdf, outputs)
-    write_origins(Path(request.origins), expansion.origins, outputs)
+    write_output(Path(request.origins), origins_json(expansion.origins), outputs)
     depfile = Path(request.depfile)
     Depfile(expansion.files, expansion.missing, expansion.environment).write(depfile)
     return {"outputs": outputs, "discovered": [f for f in expansion.files if f != str(source)]}

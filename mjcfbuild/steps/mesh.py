@@ -6,16 +6,16 @@ import dataclasses
 from pathlib import Path
 from typing import Any
 
-from mjcfbuild.engine.depfile import Depfile
-from mjcfbuild.engine.store import open_store, product_key
 from mjcfbuild.errors import InputError
 from mjcfbuild.failpoints import failpoint
-from mjcfbuild.families.mesh import FAMILY
 from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.meshes.references import missing_paths, missing_references, referenced_files
 from mjcfbuild.meshes.upaxis import UpAxisDecision
+from mjcfbuild.products.store import open_store, product_key
+from mjcfbuild.steps.depfile import Depfile
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import MeshPayload
+from mjcfbuild.steps.versions import MESH
 
 
 def run(payload: dict) -> dict:
@@ -79,7 +79,7 @@ def cache_key(request: MeshPayload, references: list[Path] | None = None) -> str
 
 
 def _key(params: dict[str, Any], source: Path, references: list[Path]) -> str:
-    return product_key("mesh", {**params, "versions": FAMILY.versions()}, [source, *references])
+    return product_key("mesh", {**params, "versions": MESH.versions()}, [source, *references])
 
 
 def conversion_options(request: MeshPayload) -> tuple[dict[str, Any], UpAxisDecision | None]:

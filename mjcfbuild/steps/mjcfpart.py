@@ -20,9 +20,9 @@ from mjcfbuild.compose.mjcf import (
     normalise,
     summarise,
 )
-from mjcfbuild.engine.depfile import Depfile
 from mjcfbuild.errors import InputError
 from mjcfbuild.mjcf.precise import precise_xml
+from mjcfbuild.steps.depfile import Depfile
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import MjcfPartPayload
 

@@ -11,7 +11,6 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from mjcfbuild import __version__
 from mjcfbuild.check.results import CheckResults
 from mjcfbuild.diff.compare import compare
 from mjcfbuild.diff.render import change_line
@@ -22,6 +21,7 @@ from mjcfbuild.package.documents import Provenance, changelog, readme
 from mjcfbuild.package.format import format_model
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import PackagePayload
+from mjcfbuild.version import __version__
 
 CHANGELOG = "CHANGELOG.md"
 

@@ -18,7 +18,7 @@ from mjcfbuild.errors import InputError, ManifestError
 from mjcfbuild.inputs.ros2_control import ControlJoint, Ros2Control
 from mjcfbuild.meshes.product import read_product
 from mjcfbuild.mjcf.assemble import compile_error, floats, spec_meshes
-from mjcfbuild.mjcf.bodies import Body, build_bodies
+from mjcfbuild.mjcf.bodies import Body, build_bodies, link_places
 from mjcfbuild.mjcf.depth import refuse_deep_bodies
 from mjcfbuild.mjcf.prepared import Decomposition, prepare
 from mjcfbuild.selfcollision.matrix import (
@@ -156,9 +156,9 @@ def _matrix(
     import contextlib
     import tempfile
 
-    from mjcfbuild.engine.store import open_store, product_key
-    from mjcfbuild.families.selfcollision import FAMILY
     from mjcfbuild.fsutil import md5_file
+    from mjcfbuild.products.store import open_store, product_key
+    from mjcfbuild.steps.versions import SELFCOLLISION
 
     store = open_store(request.cache)
     robot = json.loads(json.dumps(request.robot))
@@ -172,7 +172,7 @@ def _matrix(
         "free_joint": request.free_joint,
         "home": [float(v) for v in qpos],
         "settings": request.settings,
-        "versions": FAMILY.versions(),
+        "versions": SELFCOLLISION.versions(),
         "parts": [[p.prefix, p.to, p.pos, p.quat] for p in request.mjcf_parts],
         "part_digests": request.part_digests,
     }
@@ -206,7 +206,7 @@ def _attach_parts(
     parts: list[AttachedPart] = [
         AttachedPart.from_dict(entry.to_dict()) for entry in request.mjcf_parts
     ]
-    attach_parts(spec, bodies, parts)
+    attach_parts(spec, link_places(bodies), parts)
     return parts
 
 

@@ -1152,7 +1152,7 @@ CASES: list[Case] = [
         ["robot.yaml", "not inside a git repository", "--folders"],
         args=["diff", "--base", "main"],
     ),
-    # ---- the remote cache and the executor (more in tests/sharing/test_settings.py) ------------
+    # ---- the remote cache and the executor (more in tests/test_sharing_settings.py) -----------
     Case(
         "malformed remote cache URL",
         {"robot.yaml": MANIFEST + "cache:\n  remote: 's3://'\n", "robot.urdf": urdf()},

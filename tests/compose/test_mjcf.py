@@ -102,7 +102,7 @@ def attached(part: dict, to: str, pos=(0.0, 0.0, 0.1), quat=(1.0, 0.0, 0.0, 0.0)
     spec = mujoco.MjSpec.from_string(ARM)
     summary = PartSummary.from_dict(json.loads(Path(part["summary"]).read_text()))
     entry = AttachedPart("robot.yaml attach[0]", "c_", to, pos, quat, Path(part["xml"]), summary)
-    published = attach_parts(spec, [], [entry])
+    published = attach_parts(spec, {}, [entry])
     assert list(published.values()) == list(summary.assets.values())
     return mujoco.MjModel.from_xml_string(etree.tostring(precise_xml(spec), encoding="unicode"))
 
@@ -142,7 +142,7 @@ def test_a_prefix_making_a_name_collide_names_the_setting(part):
         "robot.yaml attach[0]", "c_", "c_jaw", (0, 0, 0), (1, 0, 0, 0), Path(part["xml"]), summary
     )
     with pytest.raises(ManifestError, match="'c_jaw'") as caught:
-        attach_parts(spec, [], [entry])
+        attach_parts(spec, {}, [entry])
     assert caught.value.location.file == "robot.yaml attach[0].prefix"
 
 

@@ -10,9 +10,9 @@ import pytest
 
 from mjcfbuild import filesig
 from mjcfbuild.diff import revisions
-from mjcfbuild.engine.hashes import HashCache
 from mjcfbuild.errors import InputError, UsageError
 from mjcfbuild.fsutil import md5_file
+from mjcfbuild.graph.hashes import HashCache
 from tests.conftest import file_clock_past
 
 

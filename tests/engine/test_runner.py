@@ -14,8 +14,8 @@ from pathlib import Path
 from mjcfbuild import filesig
 from mjcfbuild.engine import runner, stamp
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.hashes import HashCache
 from mjcfbuild.engine.progress import Progress
+from mjcfbuild.graph.hashes import HashCache
 from tests.conftest import ROOT
 
 

@@ -13,7 +13,6 @@ import pytest
 import mjcfbuild
 from mjcfbuild.engine import stamp
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.family import Family, file_task
 from mjcfbuild.engine.tasks import build_tasks, planning_tasks
 from mjcfbuild.families import registry
 from mjcfbuild.families.registry import (
@@ -25,6 +24,7 @@ from mjcfbuild.families.registry import (
     STEP_FORMATS,
     STEP_TOOLS,
 )
+from mjcfbuild.graph.family import Family, file_task
 from mjcfbuild.sharing.coordinator import SHARED_STEPS
 from tests.conftest import EXAMPLES
 from tests.families.toy_step import ToyPayload

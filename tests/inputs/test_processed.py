@@ -9,7 +9,6 @@ from lxml import etree
 
 from mjcfbuild.errors import InputError, ManifestError
 from mjcfbuild.inputs.model import Inputs, inputs_from_dict
-from mjcfbuild.inputs.native import native_inputs
 from mjcfbuild.inputs.processed import (
     PROCESSED_INPUTS,
     CameraInput,
@@ -20,6 +19,7 @@ from mjcfbuild.inputs.processed import (
 )
 from mjcfbuild.manifest.loading import parse_manifest
 from mjcfbuild.manifest.models import MujocoInputs
+from mjcfbuild.manifest.mujoco_inputs import native_inputs
 
 # The same four items, as the reference converter's XML and as robot.yaml says them.
 XML = {

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 import mjcfbuild
-from mjcfbuild.meshes.upaxis import MeshUse, decide, mesh_uses, read_up_axis
+from mjcfbuild.meshes.upaxis import MeshUse, decide, read_up_axis
+from mjcfbuild.urdf.mesh_uses import mesh_uses
 from mjcfbuild.urdf.parse import parse_urdf
 from tests.conftest import simple_manifest, write
 

@@ -7,11 +7,11 @@ import threading
 
 import pytest
 
-from mjcfbuild.engine.store import ProductStore
+from mjcfbuild.products.store import ProductStore
 from mjcfbuild.sharing.blob import verify
 from mjcfbuild.sharing.remote import RemoteCache, object_name
-from mjcfbuild.sharing.settings import parse_remote
 from mjcfbuild.sharing.stats import ShareStats
+from mjcfbuild.sharing_settings import parse_remote
 from tests.sharing.conftest import s3_objects
 
 KEY = "5e" * 32

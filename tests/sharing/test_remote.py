@@ -205,10 +205,10 @@ def test_a_server_that_stops_answering_at_upload_is_given_up_after_the_deadline(
     import os
     import signal
 
-    from mjcfbuild.engine.store import ProductStore
+    from mjcfbuild.products.store import ProductStore
     from mjcfbuild.sharing.remote import RemoteCache
-    from mjcfbuild.sharing.settings import parse_remote
     from mjcfbuild.sharing.stats import ShareStats
+    from mjcfbuild.sharing_settings import parse_remote
     from tests.sharing.test_blob import KEY, product
 
     store = ProductStore(tmp_path / "store")

@@ -5,9 +5,9 @@ from __future__ import annotations
 from mjcfbuild.errors import InputError
 from mjcfbuild.sources.origins import (
     origins_file,
+    origins_json,
     point_at_source,
     point_warning_at_source,
-    write_origins,
     written_at,
 )
 
@@ -17,7 +17,7 @@ def test_an_error_inside_an_element_moves_to_where_the_element_was_written(tmp_p
     urdf.parent.mkdir(parents=True)
     urdf.write_text("<robot>\n<link>\n<visual/>\n</link>\n</robot>\n")
     xacro = tmp_path / "urdf" / "arm.xacro"
-    write_origins(origins_file(urdf), {1: (str(xacro), 3), 2: (str(xacro), 10)}, {})
+    origins_file(urdf).write_bytes(origins_json({1: (str(xacro), 3), 2: (str(xacro), 10)}))
     assert origins_file(urdf).name == "source.origins.json"
     assert written_at(urdf, 3) == (str(xacro), 10)  # line 3 has no element of its own
     error = InputError(
@@ -41,7 +41,7 @@ def test_a_warning_about_an_expanded_line_names_the_written_one(tmp_path, monkey
     monkeypatch.chdir(tmp_path)
     urdf = tmp_path / "mjcf" / ".mjcfbuild" / "source.urdf"
     urdf.parent.mkdir(parents=True)
-    write_origins(origins_file(urdf), {5: (str(tmp_path / "urdf" / "arm.xacro"), 12)}, {})
+    origins_file(urdf).write_bytes(origins_json({5: (str(tmp_path / "urdf" / "arm.xacro"), 12)}))
     label = "mjcf/.mjcfbuild/source.urdf"
     warning = f'{label}:5: <origin rpy="1, 0, 0"> uses commas between numbers; read them as spaces'
     assert point_warning_at_source(warning, urdf, label, tmp_path) == (

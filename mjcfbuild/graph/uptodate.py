@@ -13,7 +13,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from mjcfbuild.engine.hashes import HashCache
+from mjcfbuild.graph.hashes import HashCache
 
 
 class ParamsUnchanged:

@@ -7,7 +7,7 @@ import importlib.util
 
 import pytest
 
-from mjcfbuild.sharing.settings import (
+from mjcfbuild.sharing_settings import (
     AddressError,
     choose,
     parse_executor,

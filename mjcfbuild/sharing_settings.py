@@ -4,6 +4,8 @@
 ``executor`` (or ``--executor``/``$MJCFBUILD_EXECUTOR``) is ``local`` or ``dask://host:port``.
 Both are checked here with the standard library only, so a malformed address is a one-line
 error even on a build that has nothing to do, and such a build imports nothing heavy.
+This module is not in the sharing package: robot.yaml's validation uses it, and the manifest sits
+below the sharing package (docs/architecture.md, "Layers").
 """
 
 from __future__ import annotations

@@ -9,14 +9,20 @@ caps the vertices of CoACD's parts too.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 if TYPE_CHECKING:
     from mjcfbuild.collision.policy import CollisionChoice
     from mjcfbuild.inputs.processed import DecomposeInput
     from mjcfbuild.manifest.models import Manifest
-    from mjcfbuild.steps.plan_record import PlannedInputs
     from mjcfbuild.urdf.model import Robot
+
+
+class FoundInputs(Protocol):
+    """The MuJoCo inputs a plan found (steps.plan_record.PlannedInputs): those of the URDF and
+    of the inputs file, by ``where``. Collision sits below the steps, so it names only this."""
+
+    def get(self, where: str) -> dict[str, Any] | None: ...
 
 
 @dataclass(frozen=True)
@@ -35,9 +41,7 @@ class EffectiveCollisionSettings:
         return choose_collisions(robot, self.default, rules_from_dicts(self.rules), self.decompose)
 
 
-def collision_settings(
-    manifest: Manifest, plan_inputs: PlannedInputs
-) -> EffectiveCollisionSettings:
+def collision_settings(manifest: Manifest, plan_inputs: FoundInputs) -> EffectiveCollisionSettings:
     """The collision settings of ``manifest`` with the ``decompose_mesh`` inputs of the plan."""
     settings = manifest.collision
     defaults = dict(settings.decompose_defaults)
@@ -61,7 +65,7 @@ def collision_settings(
     return EffectiveCollisionSettings(settings.default, rules, defaults)
 
 
-def _decompose_inputs(manifest: Manifest, plan_inputs: PlannedInputs) -> list[DecomposeInput]:
+def _decompose_inputs(manifest: Manifest, plan_inputs: FoundInputs) -> list[DecomposeInput]:
     """The ``decompose_mesh`` inputs of the URDF, the inputs file and robot.yaml, in that order."""
     from mjcfbuild.inputs.model import inputs_from_dict
     from mjcfbuild.inputs.processed import DecomposeInput

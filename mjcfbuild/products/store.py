@@ -9,7 +9,7 @@ Layout: ``<cache>/products/<key[:2]>/<key>/`` holds the product's files and ``su
 Entries are written to a temporary folder and renamed into place, so a killed build never
 leaves a half-written entry. Using an entry refreshes its modification time; pruning removes
 the least recently used entries until the cache fits its size cap. A product is checked for
-use (mjcfbuild.engine.usable) before it is stored and before it is used: an unusable entry is
+use (mjcfbuild.products.usable) before it is stored and before it is used: an unusable entry is
 removed and the step computes the product again, so nothing in the cache can fail a build.
 """
 
@@ -26,8 +26,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from mjcfbuild.cachedir import user_cache_dir
-from mjcfbuild.engine.usable import product_problem
 from mjcfbuild.fsutil import md5_file
+from mjcfbuild.products.usable import product_problem
 
 DEFAULT_MAX_BYTES = 5 * 1024**3
 _SUMMARY = "summary.json"

@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from mjcfbuild.check.drawn import drawn_xml
-from mjcfbuild.engine.hashes import HashCache
+from mjcfbuild.graph.hashes import HashCache
 
 
 def render_digest(model: Path, assets: Path, hashes: HashCache) -> str | None:

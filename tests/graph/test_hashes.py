@@ -10,9 +10,9 @@ import time
 import pytest
 
 from mjcfbuild import filesig
-from mjcfbuild.engine import hashes as hashes_module
-from mjcfbuild.engine.hashes import HashCache
 from mjcfbuild.fsutil import md5_file
+from mjcfbuild.graph import hashes as hashes_module
+from mjcfbuild.graph.hashes import HashCache
 from tests.conftest import file_clock_past
 
 

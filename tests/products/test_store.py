@@ -9,7 +9,7 @@ import time
 
 import pytest
 
-from mjcfbuild.engine.store import ProductStore, parse_size, product_key
+from mjcfbuild.products.store import ProductStore, parse_size, product_key
 
 
 def product(folder, text):

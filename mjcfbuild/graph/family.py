@@ -6,8 +6,9 @@ it runs, and the doit tasks it adds to the graph. :mod:`mjcfbuild.families.regis
 them; the engine derives its tables (versions, workers' preloads, freshness, what compiles the
 model) from that list. :func:`file_task` is the one way a family makes a doit task.
 
-Light on purpose: a worker imports a family module for its versions (the product cache's keys),
-so nothing here imports doit, MuJoCo or numpy at module level.
+Light on purpose: a cluster worker imports the registry for the versions it computes products
+under (mjcfbuild.sharing.compute), so nothing here imports doit, MuJoCo or numpy at module
+level.
 """
 
 from __future__ import annotations
@@ -19,18 +20,17 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
 
-from mjcfbuild import __version__
-from mjcfbuild.engine.depfile import Depfile
-from mjcfbuild.engine.uptodate import ParamsUnchanged, always_stale, outputs_intact
-from mjcfbuild.engine.versions import tool_version
 from mjcfbuild.errors import InputError
 from mjcfbuild.fsutil import unreadable_file
+from mjcfbuild.graph.uptodate import ParamsUnchanged, always_stale, outputs_intact
 from mjcfbuild.sources.packages import ENV_VARIABLES
+from mjcfbuild.steps.depfile import Depfile
 from mjcfbuild.steps.payloads import Payload
+from mjcfbuild.steps.versions import StepFormat
 
 if TYPE_CHECKING:
-    from mjcfbuild.engine.context import BuildContext
-    from mjcfbuild.engine.tasks import Graph
+    from mjcfbuild.graph.context import GraphContext
+    from mjcfbuild.graph.graph import Graph
 
 
 @dataclass(frozen=True)
@@ -60,7 +60,7 @@ class Family:
     # What it adds to report.json, read from what its tasks recorded (never from what ran this
     # time, so an up-to-date build reports the same bytes); objects given under one key by
     # two families are merged.
-    report: Callable[[BuildContext], dict[str, Any]] | None = None
+    report: Callable[[GraphContext], dict[str, Any]] | None = None
 
     @property
     def module(self) -> str:
@@ -70,14 +70,11 @@ class Family:
     def versions(self) -> dict[str, str]:
         """What the step's output depends on besides its inputs: tool versions and its format
         (in a task's up-to-date parameters and in product cache keys)."""
-        versions = {name: tool_version(name) for name in self.tools}
-        versions["mjcfbuild-step"] = f"{self.name}-{self.format}"
-        versions["mjcfbuild"] = __version__
-        return versions
+        return StepFormat(self.name, self.format, self.tools).versions()
 
 
 def file_task(
-    ctx: BuildContext,
+    ctx: GraphContext,
     family: Family,
     name: str,
     title: str,
@@ -112,7 +109,7 @@ def file_task(
 
 
 def run_step(
-    ctx: BuildContext,
+    ctx: GraphContext,
     name: str,
     step: str,
     payload: dict,
@@ -174,7 +171,7 @@ def largest_first(names: Iterable[str], source: Callable[[str], str]) -> list[st
     return sorted(names, key=lambda name: (-size(name), name))
 
 
-def discovered_inputs(ctx: BuildContext, depfile: Path) -> tuple[list[Path], list[Callable]]:
+def discovered_inputs(ctx: GraphContext, depfile: Path) -> tuple[list[Path], list[Callable]]:
     """What the last run of a task recorded in ``depfile`` that it read (the files that still
     exist) and, when a file it looked for appeared or a variable it read changed, an
     up-to-date check that reruns it."""
@@ -194,7 +191,7 @@ def read_record(path: Path) -> dict:
         return {}
 
 
-def require_file(ctx: BuildContext, path: Path, what: str, key: str) -> None:
+def require_file(ctx: GraphContext, path: Path, what: str, key: str) -> None:
     """:class:`InputError` unless ``path``, named by manifest key ``key``, is a readable file."""
     problem = unreadable_file(path)
     if problem:
@@ -210,6 +207,6 @@ def package_folders(packages: dict[str, Path]) -> dict[str, str]:
     return {name: str(path) for name, path in packages.items()}
 
 
-def ros_environment(ctx: BuildContext) -> dict[str, str]:
+def ros_environment(ctx: GraphContext) -> dict[str, str]:
     """The ROS variables package lookup reads, as the build sees them."""
     return {key: ctx.environ.get(key, "") for key in ENV_VARIABLES}

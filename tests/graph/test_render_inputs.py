@@ -6,8 +6,8 @@ import json
 from pathlib import Path
 
 import mjcfbuild
-from mjcfbuild.engine.hashes import HashCache
-from mjcfbuild.engine.render_inputs import render_digest
+from mjcfbuild.graph.hashes import HashCache
+from mjcfbuild.graph.render_inputs import render_digest
 from tests.conftest import write
 
 MODEL = """<mujoco model="m">

@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.depfile import Depfile
-from mjcfbuild.engine.family import discovered_inputs, largest_first, read_record
+from mjcfbuild.graph.family import discovered_inputs, largest_first, read_record
+from mjcfbuild.steps.depfile import Depfile
 from tests.conftest import simple_manifest, two_link_urdf, write
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from mjcfbuild.engine.depfile import Depfile
+from mjcfbuild.steps.depfile import Depfile
 
 
 def test_round_trip_and_staleness(tmp_path):

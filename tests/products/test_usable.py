@@ -6,7 +6,7 @@ import hashlib
 
 import pytest
 
-from mjcfbuild.engine.usable import product_problem
+from mjcfbuild.products.usable import product_problem
 
 
 def files(folder, **contents: str) -> dict[str, str]:

@@ -1,0 +1,43 @@
+"""Errors and warnings as every front end prints them: ``mjcfbuild: error: ...`` and
+``mjcfbuild: warning: ...`` on stderr, one line each.
+
+The command line and the doit tasks of :mod:`mjcfbuild.engine.dodo` print through here, so a
+build reads the same whichever started it.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from mjcfbuild.errors import InternalError, MjcfbuildError
+
+
+def report_error(error: MjcfbuildError, debug: bool, base_dir: Path | None = None) -> None:
+    """Print one error as ``mjcfbuild: error: file:line: message (hint)``."""
+    if base_dir is not None:
+        error.relocate(base_dir, Path.cwd())
+    text = error.one_line()
+    if isinstance(error, InternalError) and not debug:
+        text += " (an internal error: run again with --debug and report the output)"
+    print(f"mjcfbuild: error: {text}", file=sys.stderr)
+    if debug:
+        details = error.traceback_text()
+        if details:
+            print(details.rstrip(), file=sys.stderr)
+
+
+def report_warning(text: str) -> None:
+    """Print one warning line."""
+    print(f"mjcfbuild: warning: {text}", file=sys.stderr)
+
+
+def report_warnings(warnings: list[str], listed_in: str = "", prefix: str = "") -> None:
+    """Print warnings one line per kind (:mod:`mjcfbuild.warning_groups`), each after
+    ``prefix``; ``listed_in`` names the file that lists them all, for a kind with more
+    subjects than a line shows."""
+    from mjcfbuild.warning_groups import group_warnings
+
+    more = f"all in {listed_in}" if listed_in else ""
+    for line in group_warnings(warnings, more):
+        report_warning(prefix + line)

@@ -1,0 +1,48 @@
+"""What a step's output depends on besides its inputs: the versions of its tools, read without
+importing them, and its format.
+
+Each family (:mod:`mjcfbuild.families`) declares its step's format and tools. The steps whose
+products the machine-wide cache keeps (mesh, decompose, selfcollision) key them by those
+versions, and the steps sit below the families, so their formats are declared here, where the
+step and its family both read them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cache
+from importlib import metadata
+
+from mjcfbuild.version import __version__
+
+
+@cache
+def tool_version(distribution: str) -> str:
+    """The installed version of a distribution, or 'missing'."""
+    try:
+        return metadata.version(distribution)
+    except metadata.PackageNotFoundError:
+        return "missing"
+
+
+@dataclass(frozen=True)
+class StepFormat:
+    """A step's name, its format (bumped when its output for the same inputs changes) and the
+    distributions whose versions make its output what it is."""
+
+    name: str
+    format: int
+    tools: tuple[str, ...]
+
+    def versions(self) -> dict[str, str]:
+        """Tool versions and the format (in a task's up-to-date parameters and in product
+        cache keys)."""
+        versions = {name: tool_version(name) for name in self.tools}
+        versions["mjcfbuild-step"] = f"{self.name}-{self.format}"
+        versions["mjcfbuild"] = __version__
+        return versions
+
+
+MESH = StepFormat("mesh", 5, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"))
+DECOMPOSE = StepFormat("decompose", 3, ("coacd", "trimesh", "numpy", "scipy"))
+SELFCOLLISION = StepFormat("selfcollision", 3, ("mujoco", "numpy"))
