@@ -1,7 +1,7 @@
 """Where users wait: cold, no-op (fast and full path), one mesh or one joint attribute changed.
 
     python bench/edit_times.py [--robots panda,go1,g1] [--repeat 5] [--cold-repeat 3] [--jobs 2]
-                               [--no-check] [--reference "COMMAND {urdf} {output}"]
+                               [--no-check] [--reference "COMMAND {urdf} {output}"] [--bare]
 
 Each robot is copied into a temporary folder and built with the ``mjcfbuild`` command line
 (check and previews included, unless ``--no-check``), timed from the outside as a user would
@@ -17,7 +17,10 @@ made ``--repeat`` times, alternating, once with the workers the last build left 
 workers, as in an edit-and-rebuild loop) and once with new workers
 (``MJCFBUILD_RESIDENT_WORKERS=0``, as after they left), and the medians are shown. The
 workers live in a private folder of the benchmark and are stopped at its end; each edit is
-made a second after the last build, as a person editing takes at least that. The
+made a second after the last build, as a person editing takes at least that. ``--bare`` also
+makes each cold build and each edit with new workers without the engine's head starts (no
+worker started before the manifest is read, none pre-warmed with its modules): what those
+save. The
 reference converter rebuilds everything on every run; its figures are the ones recorded on
 this machine (issue 14) unless ``--reference`` gives a command to time live, in which
 ``{urdf}`` is the robot's URDF (a xacro source expanded by the build) and ``{output}`` a
@@ -59,16 +62,30 @@ REFERENCE_RECORDED = {"panda": 5.4, "go1": 14.6, "g1": 3.5}
 
 MODEL_READY = "mjcfbuild: model ready:"
 
+# `--bare`: the command line with neither of the engine's head starts: no workers started
+# before the manifest is read (engine.early) and none started ahead of their first step with
+# its modules imported (BuildSession.warm_workers); workers start when a step needs one.
+BARE_LAUNCHER = (
+    "import sys\n"
+    "import mjcfbuild.engine.early as early\n"
+    "import mjcfbuild.engine.session as session\n"
+    "early.start_workers = lambda *args, **kwargs: None\n"
+    "session.BuildSession.warm_workers = lambda self, first_build: None\n"
+    "from mjcfbuild.cli import main\n"
+    "main(sys.argv[1:])\n"
+)
+
 
 def timed_build(
-    manifest: Path, jobs: int, env: dict, check: bool = True
+    manifest: Path, jobs: int, env: dict, check: bool = True, bare: bool = False
 ) -> tuple[float, str, float | None]:
-    """Wall-clock seconds of one ``mjcfbuild build``, its summary line, and the seconds until
-    it announced the model (None where it wrote no model: a no-op)."""
+    """Wall-clock seconds of one ``mjcfbuild build`` (``bare``: without early or pre-warmed
+    workers), its summary line, and the seconds until it announced the model (None where it
+    wrote no model: a no-op)."""
     started = time.perf_counter()
+    command = [sys.executable, "-c", BARE_LAUNCHER] if bare else [sys.executable, "-m", "mjcfbuild"]
     process = subprocess.Popen(
-        [sys.executable, "-m", "mjcfbuild", "build", str(manifest), "-j", str(jobs)]
-        + ([] if check else ["--no-check"]),
+        command + ["build", str(manifest), "-j", str(jobs)] + ([] if check else ["--no-check"]),
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
         text=True,
@@ -113,6 +130,7 @@ def measure(
     jobs: int,
     check: bool,
     reference: str,
+    bare: bool = False,
 ) -> dict:
     """The times of one robot (seconds) and which tasks ran after each edit; ``repeats``:
     how often each edit and each cold build is made."""
@@ -141,6 +159,19 @@ def measure(
             cold_models.append(model)
             # at once, as a script or a hook runs it: the files the build just wrote
             first_noops.append(timed_build(manifest, jobs, env, check)[0])
+        if bare:  # the same cold build, no worker started before its first step
+            bare_times, bare_models = [], []
+            for _ in range(cold_repeat):
+                shutil.rmtree(output, ignore_errors=True)
+                shutil.rmtree(cache)
+                os.mkdir(cache)
+                stop_workers(residents)
+                seconds, _, model = timed_build(manifest, jobs, new_workers, check, bare=True)
+                bare_times.append(seconds)
+                bare_models.append(model)
+            row["cold_bare"] = statistics.median(bare_times)
+            row["cold_model_bare"] = statistics.median(bare_models)
+            timed_build(manifest, jobs, env, check)  # the last build's stamp, as before
         row["cold"] = statistics.median(cold_times)
         row["cold_model"] = statistics.median(cold_models)
         row["noop_first"] = statistics.median(first_noops)
@@ -152,20 +183,23 @@ def measure(
         )
         times: dict[str, list[float]] = {}
         for _ in range(repeat):
-            for workers, environment in (("", env), ("_new", new_workers)):
+            variants = [("", env, False), ("_new", new_workers, False)]
+            if bare:
+                variants.append(("_bare", new_workers, True))
+            for workers, environment, launch_bare in variants:
                 # A second between builds, as an edit takes: the workers the last build left
                 # tidy up before they wait, and would otherwise compete with the next build.
                 time.sleep(1.0)
                 nudge_mesh(mesh)
                 seconds, row["mesh_summary"], model = timed_build(
-                    manifest, jobs, environment, check
+                    manifest, jobs, environment, check, launch_bare
                 )
                 times.setdefault("mesh" + workers, []).append(seconds)
                 times.setdefault("mesh_model" + workers, []).append(model)
                 time.sleep(1.0)
                 edit_joint(manifest)
                 seconds, row["joint_summary"], model = timed_build(
-                    manifest, jobs, environment, check
+                    manifest, jobs, environment, check, launch_bare
                 )
                 times.setdefault("joint" + workers, []).append(seconds)
                 times.setdefault("joint_model" + workers, []).append(model)
@@ -237,6 +271,23 @@ def print_table(rows: list[dict], jobs: int, check: bool) -> None:
             f"| {row['joint_model_new']:.2f} | {row['noop_first']:.3f} "
             f"| {ratio(row['cold_model'])} | {ratio(row['mesh_model'])} |"
         )
+    if "cold_bare" in rows[0]:
+        print(
+            "\nNew workers without the engine's head starts (none started before the manifest "
+            "is read, none pre-warmed; `--bare`), against the same with them:\n"
+        )
+        print(
+            "| robot | to the model, cold | same, bare | one mesh, new workers | same, bare "
+            "| one joint, new workers | same, bare | cold | cold, bare |"
+        )
+        print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+        for row in rows:
+            print(
+                f"| {row['robot']} | {row['cold_model']:.2f} | {row['cold_model_bare']:.2f} "
+                f"| {row['mesh_model_new']:.2f} | {row['mesh_model_bare']:.2f} "
+                f"| {row['joint_model_new']:.2f} | {row['joint_model_bare']:.2f} "
+                f"| {row['cold']:.2f} | {row['cold_bare']:.2f} |"
+            )
     print()
     for row in rows:
         print(f"- {row['robot']}, one mesh changed: {row['mesh_summary']}")
@@ -253,6 +304,11 @@ def main() -> None:
     parser.add_argument(
         "--reference", default="", help="the reference converter's command: {urdf}, {output}"
     )
+    parser.add_argument(
+        "--bare",
+        action="store_true",
+        help="also build with neither early nor pre-warmed workers (what those two save)",
+    )
     args = parser.parse_args()
     check = not args.no_check
     compile_package()
@@ -262,11 +318,15 @@ def main() -> None:
         manifest, mesh, _ = case_example(folder / "example")
         repeats = (args.repeat, args.cold_repeat)
         rows.append(
-            measure("example arm", manifest, mesh, repeats, args.jobs, check, args.reference)
+            measure(
+                "example arm", manifest, mesh, repeats, args.jobs, check, args.reference, args.bare
+            )
         )
         for name in [n for n in args.robots.split(",") if n]:
             manifest, mesh, _ = case_robot(name, folder / name)
-            rows.append(measure(name, manifest, mesh, repeats, args.jobs, check, args.reference))
+            rows.append(
+                measure(name, manifest, mesh, repeats, args.jobs, check, args.reference, args.bare)
+            )
             print(f"measured {name}", file=sys.stderr)
         shutil.rmtree(folder, ignore_errors=True)
     print_table(rows, args.jobs, check)
