@@ -136,25 +136,17 @@ class BuildSession:
             return self._pool
 
     def warm_workers(self, first_build: bool) -> None:
-        """Start worker processes now, unless the build adopted some (:meth:`adopt`); they
-        import the steps' modules while they wait. A first build starts all, with every
-        module it will use (the check's URDF reader in one only); another starts two (see
+        """Start worker processes now, unless the build adopted some (:meth:`adopt`) or this
+        is the folder's first build; they import the steps' modules while they wait: two (see
         :func:`~mjcfbuild.engine.workers.rebuild_preloads`). A step goes to an idle worker
         that preloads its module (see WorkerPool)."""
-        from mjcfbuild.engine.workers import (
-            BUILD_MODULES,
-            CHECK_MODULES,
-            REFERENCE_MODULES,
-            rebuild_preloads,
-        )
+        from mjcfbuild.engine.workers import rebuild_preloads
 
         if first_build:
-            checking = CHECK_MODULES if self.checks else ()
-            if self.checks:
-                # One worker imports the check's URDF reader (a second of CPU) for the one
-                # step that uses it; while it does, a mesh step sent there would wait.
-                self._workers().warm(BUILD_MODULES + checking + REFERENCE_MODULES, count=1)
-            self._workers().warm(BUILD_MODULES + checking)
+            # A first build's workers start when its first step needs one. Started ahead,
+            # importing what the check and its URDF reader use, they took CPU from the mesh
+            # steps: the model came 0.07-0.28 s later on the example arm, panda, go1 and g1,
+            # and the whole build no sooner (bench/edit_times.py --bare, docs/benchmarks.md).
             return
         first, second = rebuild_preloads(self.checks)
         self._workers().warm(first, count=1)

@@ -49,10 +49,6 @@ if TYPE_CHECKING:
 # the formats of nearly every description, are read without it; the step imports it if needed.
 MESH_MODULES = ("numpy", "lxml.etree", "mjcfbuild.steps.mesh")
 MODEL_MODULES = ("mujoco", "mjcfbuild.steps.selfcollision", "mjcfbuild.steps.assemble")
-BUILD_MODULES = MESH_MODULES + MODEL_MODULES
-# The check's reader of the URDF (yourdfpy, with trimesh and scipy: a second of CPU) runs only
-# when the URDF's kinematics change: a first build preloads it, a rebuild imports it if needed.
-REFERENCE_MODULES = ("yourdfpy", "mjcfbuild.steps.reference")
 
 
 def rebuild_preloads(checks: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
