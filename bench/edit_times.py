@@ -31,6 +31,7 @@ installed."""
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import re
 import shlex
@@ -40,6 +41,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Iterable
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -74,6 +76,14 @@ BARE_LAUNCHER = (
     "from mjcfbuild.cli import main\n"
     "main(sys.argv[1:])\n"
 )
+
+
+def median(values: Iterable[float | None]) -> float:
+    """The median of ``values``; NaN (printed ``nan``) where one is missing, as the time to
+    the model is from a tree older than its "model ready" line."""
+    listed = list(values)
+    present = [value for value in listed if value is not None]
+    return statistics.median(present) if present and len(present) == len(listed) else math.nan
 
 
 def timed_build(
@@ -169,16 +179,14 @@ def measure(
                 seconds, _, model = timed_build(manifest, jobs, new_workers, check, bare=True)
                 bare_times.append(seconds)
                 bare_models.append(model)
-            row["cold_bare"] = statistics.median(bare_times)
-            row["cold_model_bare"] = statistics.median(bare_models)
+            row["cold_bare"] = median(bare_times)
+            row["cold_model_bare"] = median(bare_models)
             timed_build(manifest, jobs, env, check)  # the last build's stamp, as before
-        row["cold"] = statistics.median(cold_times)
-        row["cold_model"] = statistics.median(cold_models)
-        row["noop_first"] = statistics.median(first_noops)
-        row["noop"] = statistics.median(
-            timed_build(manifest, jobs, env, check)[0] for _ in range(repeat)
-        )
-        row["noop_full"] = statistics.median(
+        row["cold"] = median(cold_times)
+        row["cold_model"] = median(cold_models)
+        row["noop_first"] = median(first_noops)
+        row["noop"] = median(timed_build(manifest, jobs, env, check)[0] for _ in range(repeat))
+        row["noop_full"] = median(
             timed_build(manifest, jobs, full, check)[0] for _ in range(repeat)
         )
         times: dict[str, list[float]] = {}
@@ -203,7 +211,7 @@ def measure(
                 )
                 times.setdefault("joint" + workers, []).append(seconds)
                 times.setdefault("joint_model" + workers, []).append(model)
-        row.update({name: statistics.median(values) for name, values in times.items()})
+        row.update({name: median(values) for name, values in times.items()})
         stop_workers(residents)
     row["reference"] = (
         time_reference(reference, manifest, repeat) if reference else REFERENCE_RECORDED.get(label)
@@ -227,7 +235,7 @@ def time_reference(template: str, manifest: Path, repeat: int) -> float:
             times.append(time.perf_counter() - started)
             if done.returncode != 0:
                 raise SystemExit(f"the reference command failed:\n{command}\n{done.stderr}")
-    return statistics.median(times)
+    return median(times)
 
 
 def print_table(rows: list[dict], jobs: int, check: bool) -> None:

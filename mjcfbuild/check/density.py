@@ -114,9 +114,14 @@ def _closed(triangles) -> bool:
     import numpy as np
 
     edges = np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]])
-    edges.sort(axis=1)
-    _, counts = np.unique(edges, axis=0, return_counts=True)
-    return bool(np.all(counts == 2))
+    # One integer per undirected edge, sorted: closed means the keys come in pairs, each
+    # pair different from the next (a row-wise np.unique took 0.2 s on panda's meshes).
+    low, high = edges.min(axis=1), edges.max(axis=1)
+    keys = np.sort(low * (int(high.max()) + 1) + high)
+    if len(keys) % 2:
+        return False
+    firsts, seconds = keys[0::2], keys[1::2]
+    return bool(np.all(firsts == seconds) and np.all(seconds[:-1] < firsts[1:]))
 
 
 def density_problem(mass: float, volume: Volume) -> tuple[str, float] | None:

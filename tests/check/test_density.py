@@ -56,6 +56,20 @@ def test_an_open_mesh_encloses_nothing_for_sure(tmp_path):
     assert volume.low == 0 and volume.high == pytest.approx(1e-3)
 
 
+def test_closed_means_every_edge_in_exactly_two_triangles():
+    import numpy as np
+
+    from mjcfbuild.check.density import _closed
+
+    box = np.asarray(trimesh.creation.box().faces, dtype=np.int64)
+    assert _closed(box)
+    assert not _closed(box[1:])  # one triangle missing: three edges in one triangle only
+    assert not _closed(np.concatenate([box, box[:1]]))  # one edge in three triangles
+    assert not _closed(np.concatenate([box, box]))  # every edge in four
+    fin = np.concatenate([box, [[0, 1, 8]]])  # a fin on an edge of the box
+    assert not _closed(fin)
+
+
 def test_visual_and_collision_geometry_are_bounded_apart(tmp_path):
     # The collision box and the visual box describe the same part: not twice its volume.
     model = compiled(
