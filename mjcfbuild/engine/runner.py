@@ -359,7 +359,7 @@ def _prune_cache(ctx: BuildContext) -> None:
     from mjcfbuild.products.store import ProductStore
 
     settings = ctx.cache_settings()
-    ProductStore(Path(settings["folder"]), settings["max_bytes"]).prune()
+    ProductStore(Path(settings["folder"]), settings["max_bytes"]).prune_if_full()
 
 
 def stale_products(ctx: BuildContext, tasks: list[dict]) -> list[Path]:

@@ -55,6 +55,42 @@ def test_prune_removes_least_recently_used_first(tmp_path):
     assert store.clear() == 2 and store.usage().entries == 0
 
 
+def test_a_build_measures_the_cache_only_when_it_may_have_outgrown_its_cap(tmp_path):
+    store = ProductStore(tmp_path / "cache", max_bytes=3500)
+    keys = ["aa" * 32, "bb" * 32, "cc" * 32, "dd" * 32]
+    for key in keys[:2]:
+        store.store(key, tmp_path / key[:2], product(tmp_path / key[:2], "x" * 1000))
+    assert store.estimated_bytes() is None  # never measured: the first build measures
+    assert store.prune_if_full() == 0
+    measured = store.estimated_bytes()
+    assert measured is not None and measured == store.usage().bytes
+    # Each entry stored since adds its size to the estimate, without a measurement.
+    store.store(keys[2], tmp_path / "cc", product(tmp_path / "cc", "x" * 1000))
+    assert store.estimated_bytes() == store.usage().bytes
+    # Under the cap by the estimate: nothing is measured, even where a program outside the
+    # store (here, this test) made the cache larger behind its back.
+    (store.folder / "bb" / keys[1] / "extra.bin").write_bytes(b"x" * 5000)
+    assert store.prune_if_full() == 0 and store.usage().entries == 3
+    # Over the cap by the estimate: measured and pruned, least recently used first.
+    store.store(keys[3], tmp_path / "dd", product(tmp_path / "dd", "x" * 1000))
+    assert store.prune_if_full() >= 1
+    assert store.usage().bytes <= 3500 and store.estimated_bytes() == store.usage().bytes
+
+
+def test_a_measurement_an_hour_old_is_not_trusted(tmp_path):
+    store = ProductStore(tmp_path / "cache", max_bytes=1500)
+    for key in ["aa" * 32, "bb" * 32]:
+        store.store(key, tmp_path / key[:2], product(tmp_path / key[:2], "x" * 1000))
+        store.prune()
+    usage = store.folder / ".usage.json"
+    record = json.loads(usage.read_text())
+    assert record["bytes"] <= 1500
+    (store.folder / "bb" / ("bb" * 32) / "extra.bin").write_bytes(b"x" * 5000)
+    usage.write_text(json.dumps({**record, "measured": time.time() - 3601}))
+    assert store.estimated_bytes() is None
+    assert store.prune_if_full() == 1 and store.usage().bytes <= 1500
+
+
 def test_parse_size():
     assert parse_size("512") == 512
     assert parse_size("2K") == 2048
