@@ -5,6 +5,8 @@ from __future__ import annotations
 import re
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from mjcfbuild.markup import (
     html_text,
@@ -12,6 +14,8 @@ from mjcfbuild.markup import (
     markdown_code,
     markdown_target,
     markdown_text,
+    xml_attribute,
+    xml_text,
 )
 from mjcfbuild.page.tables import markdown_html
 from tests.page.hostile import NAMES, cells, markup_outside_code, unescaped
@@ -83,3 +87,19 @@ def test_a_picture_is_drawn_only_from_a_file_beside_the_page():
 
 def test_a_file_path_is_a_picture_address_whatever_its_name():
     assert markdown_target("tuning/a (b) [c].png") == "tuning/a%20%28b%29%20%5Bc%5D.png"
+
+
+@given(st.text())
+def test_xml_escaping_writes_what_the_standard_library_writes(text):
+    from xml.sax.saxutils import escape, quoteattr
+
+    assert xml_text(text) == escape(text)
+    assert xml_text(text, {'"': "&quot;"}) == escape(text, {'"': "&quot;"})
+    assert xml_attribute(text) == quoteattr(text)
+
+
+@pytest.mark.parametrize("text", ['a"b', "a'b", "a'\"b", "x\n\ty", "<&>"])
+def test_xml_attributes_choose_their_quotes_as_the_standard_library_does(text):
+    from xml.sax.saxutils import quoteattr
+
+    assert xml_attribute(text) == quoteattr(text)

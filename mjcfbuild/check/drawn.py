@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 from pathlib import Path
-from xml.sax.saxutils import escape
+
+from mjcfbuild.markup import xml_text
 
 # Elements with no effect on a picture of the model at its reference pose.
 _UNSEEN_ELEMENTS = {"actuator", "sensor", "contact", "equality", "keyframe", "option", "custom"}
@@ -67,10 +68,10 @@ def _serialised(root: ET.Element) -> bytes:
             parts.append(element)
             continue
         parts.append("<" + element.tag)
-        parts.extend(f' {k}="{escape(v, _ATTRIBUTE_ESCAPES)}"' for k, v in element.items())
-        tail = escape(element.tail) if element.tail else ""
+        parts.extend(f' {k}="{xml_text(v, _ATTRIBUTE_ESCAPES)}"' for k, v in element.items())
+        tail = xml_text(element.tail) if element.tail else ""
         if element.text or len(element):
-            parts.append(">" + (escape(element.text) if element.text else ""))
+            parts.append(">" + (xml_text(element.text) if element.text else ""))
             pending.append(f"</{element.tag}>{tail}")
             pending.extend(reversed(list(element)))
         else:

@@ -26,10 +26,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from xml.sax.saxutils import quoteattr
 
 from mjcfbuild.export.meshfiles import MeshFiles, colour_key, colour_text
 from mjcfbuild.export.model import BodyOut, GeomOut, JointOut, ModelOut
+from mjcfbuild.markup import xml_attribute
 from mjcfbuild.numbers import output_list
 from mjcfbuild.urdf.transforms import Transform, vec3
 
@@ -137,7 +137,7 @@ def write_urdf(model: ModelOut, options: ExportOptions) -> ExportResult:
     lines = ['<?xml version="1.0" encoding="utf-8"?>']
     if options.header:
         lines.append(f"<!-- {options.header} -->")
-    lines.append(f"<robot name={quoteattr(model.name)}>")
+    lines.append(f"<robot name={xml_attribute(model.name)}>")
     for colour in sorted(files.colours):
         rgba = files.colours[colour]
         lines.append(
@@ -146,7 +146,7 @@ def write_urdf(model: ModelOut, options: ExportOptions) -> ExportResult:
     for body in bodies:
         lines += body_lines[body.name]
     for name in extra_links + frames:
-        lines.append(f"  <link name={quoteattr(name)}/>")
+        lines.append(f"  <link name={xml_attribute(name)}/>")
     for joint in joints:
         lines += _joint_lines(joint)
     lines.append("</robot>")
@@ -266,7 +266,7 @@ def _moving(joint: JointOut, kind: str, anchor: Transform, limit) -> _Joint:
 def _link_lines(
     body: BodyOut, name: str, files: MeshFiles, options: ExportOptions, warnings: list[str]
 ) -> list[str]:
-    lines = [f"  <link name={quoteattr(name)}>"]
+    lines = [f"  <link name={xml_attribute(name)}>"]
     if body.mass > 0:
         i = body.inertia
         lines += [
@@ -282,7 +282,7 @@ def _link_lines(
             if role in geom.roles:
                 lines += _geom_lines(geom, role, files)
     if len(lines) == 1:
-        return [f"  <link name={quoteattr(name)}/>"]
+        return [f"  <link name={xml_attribute(name)}/>"]
     lines.append("  </link>")
     return lines
 
@@ -348,9 +348,9 @@ def _ellipsoid(size) -> tuple:
 
 def _joint_lines(joint: _Joint) -> list[str]:
     lines = [
-        f'  <joint name={quoteattr(joint.name)} type="{joint.kind}">',
-        f"    <parent link={quoteattr(joint.parent)}/>",
-        f"    <child link={quoteattr(joint.child)}/>",
+        f'  <joint name={xml_attribute(joint.name)} type="{joint.kind}">',
+        f"    <parent link={xml_attribute(joint.parent)}/>",
+        f"    <child link={xml_attribute(joint.child)}/>",
     ]
     origin = _origin(joint.origin)
     if origin:
@@ -371,7 +371,7 @@ def _joint_lines(joint: _Joint) -> list[str]:
     if joint.mimic is not None:
         leader, multiplier, offset = joint.mimic
         lines.append(
-            f'    <mimic joint={quoteattr(leader)} multiplier="{_n(multiplier)}" '
+            f'    <mimic joint={xml_attribute(leader)} multiplier="{_n(multiplier)}" '
             f'offset="{_n(offset)}"/>'
         )
     lines.append("  </joint>")

@@ -15,12 +15,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
 from mjcfbuild.collision.policy import CollisionChoice, collision_policy
 from mjcfbuild.errors import InputError
+from mjcfbuild.markup import xml_attribute
 from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.mjcf.bodies import Body, PlacedShape
 from mjcfbuild.numbers import exact_list
@@ -173,10 +173,10 @@ def prepare(
         geoms_of[body.name] = geoms
     names = _assign_names(builder.uses, builder.looks, prepared)
 
-    lines = [f"<robot name={quoteattr(robot_name)}>"]
+    lines = [f"<robot name={xml_attribute(robot_name)}>"]
     counter = 0
     for body in bodies:
-        lines.append(f"  <link name={quoteattr(body.name)}>")
+        lines.append(f"  <link name={xml_attribute(body.name)}>")
         if body.mass is not None and (body.mass.mass > 0 or body.moves):
             lines.extend(_inertial(body))
         for geom in geoms_of[body.name]:
@@ -195,7 +195,7 @@ def prepare(
                 geometry = geom.primitive
             prepared.geoms[temp] = record
             lines.append(
-                f"    <{geom.tag} name={quoteattr(temp)}>{_origin(geom.pose)}"
+                f"    <{geom.tag} name={xml_attribute(temp)}>{_origin(geom.pose)}"
                 f"<geometry>{geometry}</geometry></{geom.tag}>"
             )
         lines.append("  </link>")
@@ -203,7 +203,7 @@ def prepare(
             lines.extend(_joint(body, prepared.warnings, source))
     compiler = {k: v for k, v in user_compiler.items() if k not in IMPORT_COMPILER}
     compiler.update(IMPORT_COMPILER)
-    attributes = " ".join(f"{k}={quoteattr(v)}" for k, v in sorted(compiler.items()))
+    attributes = " ".join(f"{k}={xml_attribute(v)}" for k, v in sorted(compiler.items()))
     lines.append(f"  <mujoco><compiler {attributes}/></mujoco>")
     lines.append("</robot>")
     prepared.urdf = "\n".join(lines) + "\n"
@@ -330,11 +330,11 @@ class _Builder:
             self._zero_size(placed, f"{geometry.kind} size {exact_list(size)}", role)
             return None
         if geometry.kind == "box":
-            return f"<box size={quoteattr(exact_list(size))}/>"
+            return f"<box size={xml_attribute(exact_list(size))}/>"
         if geometry.kind == "sphere":
-            return f"<sphere radius={quoteattr(exact_list(size))}/>"
+            return f"<sphere radius={xml_attribute(exact_list(size))}/>"
         # cylinder, and capsule (imported as a cylinder, turned into a capsule after import)
-        radius, length = quoteattr(exact_list(size[:1])), quoteattr(exact_list(size[1:]))
+        radius, length = xml_attribute(exact_list(size[:1])), xml_attribute(exact_list(size[1:]))
         return f"<cylinder radius={radius} length={length}/>"
 
     def _zero_size(self, placed: PlacedShape, what: str, role: str | None = None) -> list:
@@ -422,10 +422,10 @@ class _MeshCollision:
 def _primitive_xml(kind: str, size: tuple) -> str:
     """URDF geometry XML for a fitted primitive given MuJoCo sizes (half extents)."""
     if kind == "box":
-        return f"<box size={quoteattr(exact_list([2 * s for s in size]))}/>"
+        return f"<box size={xml_attribute(exact_list([2 * s for s in size]))}/>"
     if kind == "sphere":
-        return f"<sphere radius={quoteattr(exact_list(size[:1]))}/>"
-    radius, length = quoteattr(exact_list(size[:1])), quoteattr(exact_list([2 * size[1]]))
+        return f"<sphere radius={xml_attribute(exact_list(size[:1]))}/>"
+    radius, length = xml_attribute(exact_list(size[:1])), xml_attribute(exact_list([2 * size[1]]))
     return f"<cylinder radius={radius} length={length}/>"
 
 
@@ -501,15 +501,16 @@ def _scale_suffix(scale: tuple) -> str:
 
 
 def _mesh_xml(asset: MeshAsset) -> str:
-    scale = quoteattr(exact_list(asset.scale))
-    return f"<mesh filename={quoteattr(asset.product_file)} scale={scale}/>"
+    scale = xml_attribute(exact_list(asset.scale))
+    return f"<mesh filename={xml_attribute(asset.product_file)} scale={scale}/>"
 
 
 def _origin(pose: Transform) -> str:
     if pose.is_identity:
         return ""
     rpy = matrix_to_rpy(pose.rotation)
-    return f"<origin xyz={quoteattr(exact_list(pose.position))} rpy={quoteattr(exact_list(rpy))}/>"
+    xyz = xml_attribute(exact_list(pose.position))
+    return f"<origin xyz={xyz} rpy={xml_attribute(exact_list(rpy))}/>"
 
 
 def _inertial(body: Body) -> list[str]:
@@ -524,11 +525,11 @@ def _inertial(body: Body) -> list[str]:
         "iyz": i[1][2],
         "izz": i[2][2],
     }
-    inertia = " ".join(f"{k}={quoteattr(exact_list([v]))}" for k, v in values.items())
+    inertia = " ".join(f"{k}={xml_attribute(exact_list([v]))}" for k, v in values.items())
     return [
         "    <inertial>",
-        f'      <origin xyz={quoteattr(exact_list(mass.com))} rpy="0 0 0"/>',
-        f"      <mass value={quoteattr(exact_list([mass.mass]))}/>",
+        f'      <origin xyz={xml_attribute(exact_list(mass.com))} rpy="0 0 0"/>',
+        f"      <mass value={xml_attribute(exact_list([mass.mass]))}/>",
         f"      <inertia {inertia}/>",
         "    </inertial>",
     ]
@@ -544,15 +545,15 @@ def _joint(body: Body, warnings: list[str], source: str) -> list[str]:
     assert joint is not None and body.parent is not None, "called only for a child body"
     kind = joint.kind
     lines = [
-        f"  <joint name={quoteattr(joint.name)} type={quoteattr(kind)}>",
-        f"    <parent link={quoteattr(body.parent)}/>",
-        f"    <child link={quoteattr(body.name)}/>",
+        f"  <joint name={xml_attribute(joint.name)} type={xml_attribute(kind)}>",
+        f"    <parent link={xml_attribute(body.parent)}/>",
+        f"    <child link={xml_attribute(body.name)}/>",
     ]
     origin = _origin(body.pose)
     if origin:
         lines.append(f"    {origin}")
     if kind != "fixed":
-        lines.append(f"    <axis xyz={quoteattr(exact_list(joint.axis))}/>")
+        lines.append(f"    <axis xyz={xml_attribute(exact_list(joint.axis))}/>")
     limit = joint.limit
     if limit is not None and kind in ("revolute", "prismatic", "continuous"):
         attributes = []
@@ -570,24 +571,24 @@ def _joint(body: Body, warnings: list[str], source: str) -> list[str]:
                     "ignore an empty range and leave the joint free"
                 )
                 lower, upper = lower - LOCKED_JOINT_HALF_RANGE, upper + LOCKED_JOINT_HALF_RANGE
-            attributes.append(f"lower={quoteattr(exact_list([lower]))}")
-            attributes.append(f"upper={quoteattr(exact_list([upper]))}")
+            attributes.append(f"lower={xml_attribute(exact_list([lower]))}")
+            attributes.append(f"upper={xml_attribute(exact_list([upper]))}")
         if limit.effort is not None:
-            attributes.append(f"effort={quoteattr(exact_list([limit.effort]))}")
+            attributes.append(f"effort={xml_attribute(exact_list([limit.effort]))}")
         if limit.velocity is not None:
-            attributes.append(f"velocity={quoteattr(exact_list([limit.velocity]))}")
+            attributes.append(f"velocity={xml_attribute(exact_list([limit.velocity]))}")
         lines.append(f"    <limit {' '.join(attributes)}/>")
     if joint.damping or joint.friction:
         lines.append(
-            f"    <dynamics damping={quoteattr(exact_list([joint.damping]))} "
-            f"friction={quoteattr(exact_list([joint.friction]))}/>"
+            f"    <dynamics damping={xml_attribute(exact_list([joint.damping]))} "
+            f"friction={xml_attribute(exact_list([joint.friction]))}/>"
         )
     if joint.mimic is not None:
         mimic = joint.mimic
         lines.append(
-            f"    <mimic joint={quoteattr(mimic.joint)} "
-            f"multiplier={quoteattr(exact_list([mimic.multiplier]))} "
-            f"offset={quoteattr(exact_list([mimic.offset]))}/>"
+            f"    <mimic joint={xml_attribute(mimic.joint)} "
+            f"multiplier={xml_attribute(exact_list([mimic.multiplier]))} "
+            f"offset={xml_attribute(exact_list([mimic.offset]))}/>"
         )
     lines.append("  </joint>")
     return lines

@@ -3,7 +3,7 @@ robot with a user's ``<scene>`` block."""
 
 from __future__ import annotations
 
-from xml.sax.saxutils import quoteattr
+from mjcfbuild.markup import xml_attribute
 
 _SCENE = """<mujoco model={model}>
   <include file={robot}/>
@@ -37,7 +37,7 @@ def default_scene(model: str, robot_file: str, floor: float = 0.0) -> str:
 
     where = f' pos="0 0 {output_list([floor])}"' if floor else ""
     return _SCENE.format(
-        model=quoteattr(f"{model} scene"), robot=quoteattr(robot_file), floor=where
+        model=xml_attribute(f"{model} scene"), robot=xml_attribute(robot_file), floor=where
     )
 
 
