@@ -9,9 +9,11 @@ step and its family both read them.
 
 from __future__ import annotations
 
+import os
+import re
+import sys
 from dataclasses import dataclass
 from functools import cache
-from importlib import metadata
 
 from mjcfbuild.version import __version__
 
@@ -19,10 +21,41 @@ from mjcfbuild.version import __version__
 @cache
 def tool_version(distribution: str) -> str:
     """The installed version of a distribution, or 'missing'."""
+    found = _installed_versions().get(_normalised(distribution))
+    if found is not None:
+        return found
+    # Not installed from a wheel (an egg, a source tree on the path): ask importlib, which
+    # reads the metadata, and costs every build's start 0.02 s of email-parsing imports.
+    from importlib import metadata
+
     try:
         return metadata.version(distribution)
     except metadata.PackageNotFoundError:
         return "missing"
+
+
+@cache
+def _installed_versions() -> dict[str, str]:
+    """Each distribution's version as its ``<name>-<version>.dist-info`` folder names it (what
+    installers write, and what importlib.metadata would read), the first on ``sys.path``
+    winning as it does there."""
+    versions: dict[str, str] = {}
+    for folder in sys.path:
+        try:
+            names = os.listdir(folder or ".")
+        except OSError:
+            continue
+        for name in names:
+            if name.endswith(".dist-info"):
+                distribution, _, version = name.removesuffix(".dist-info").rpartition("-")
+                if distribution and version:
+                    versions.setdefault(_normalised(distribution), version)
+    return versions
+
+
+def _normalised(name: str) -> str:
+    """A distribution name as PEP 503 compares them."""
+    return re.sub(r"[-_.]+", "-", name).lower()
 
 
 @dataclass(frozen=True)

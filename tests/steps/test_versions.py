@@ -37,6 +37,34 @@ def test_the_versions_are_the_installed_tools_the_format_and_mjcfbuild():
     assert tool_version("numpy") == metadata.version("numpy")
 
 
+def test_every_tool_a_family_declares_has_the_version_importlib_reads():
+    from mjcfbuild.families.registry import FAMILIES
+
+    tools = {tool for family in FAMILIES for tool in family.tools}
+    assert tools >= {"mujoco", "numpy", "trimesh"}
+    for tool in sorted(tools):
+        try:
+            expected = metadata.version(tool)
+        except metadata.PackageNotFoundError:
+            expected = "missing"
+        assert tool_version(tool) == expected, tool
+
+
+def test_a_version_is_read_from_a_dist_info_folder_first_on_the_path(tmp_path, monkeypatch):
+    from mjcfbuild.steps import versions
+
+    for folder, version in (("first", "1.2.3"), ("second", "9.9.9")):
+        (tmp_path / folder / f"toy_tool-{version}.dist-info").mkdir(parents=True)
+    monkeypatch.setattr("sys.path", [str(tmp_path / "first"), str(tmp_path / "second")])
+    versions._installed_versions.cache_clear()
+    versions.tool_version.cache_clear()
+    try:
+        assert tool_version("Toy.Tool") == "1.2.3"  # names compare as PEP 503 says
+    finally:
+        versions._installed_versions.cache_clear()
+        versions.tool_version.cache_clear()
+
+
 def test_a_mesh_format_bump_changes_the_key_its_products_are_kept_under(tmp_path, monkeypatch):
     source = tmp_path / "part.stl"
     source.write_text("solid part\nendsolid part\n")
