@@ -10,6 +10,7 @@ says it is meant. The folders a build writes below the output folder (its state,
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -98,17 +99,26 @@ def check_outputs_are_not_inputs(ctx: BuildContext, tasks: list[dict]) -> None:
     the exported URDF's meshes). The error names the manifest field that chose the output."""
     from mjcfbuild.engine.written import recorded
 
+    resolved: dict[str, Path] = {}  # a task's dependencies are often another's: once each
+
+    def real(path: str | os.PathLike) -> Path:
+        key = os.fspath(path)
+        found = resolved.get(key)
+        if found is None:
+            found = resolved[key] = real_path(key)
+        return found
+
     outputs = _output_fields(ctx)
-    named = {_real(path): field for path, (field, folder) in outputs.items() if not folder}
-    folders = [(_real(path), field) for path, (field, folder) in outputs.items() if folder]
-    writer = {_real(target): task["name"] for task in tasks for target in task["targets"]}
-    before = _upstream(tasks, writer)
+    named = {real(path): field for path, (field, folder) in outputs.items() if not folder}
+    folders = [(real(path), field) for path, (field, folder) in outputs.items() if folder]
+    writer = {real(target): task["name"] for task in tasks for target in task["targets"]}
+    before = _upstream(tasks, writer, real)
     # What builds wrote in the folders they fill (previews, ...) is theirs, not an input.
-    built = {_real(ctx.out_dir / name) for name in recorded(ctx) or {}}
-    state = _real(ctx.state_dir)
+    built = {real(ctx.out_dir / name) for name in recorded(ctx) or {}}
+    state = real(ctx.state_dir)
     for task in tasks:
         for dependency in sorted(task["file_dep"]):
-            path = _real(dependency)
+            path = real(dependency)
             if state in path.parents or path in built:
                 continue
             if path in writer:
@@ -127,13 +137,15 @@ def check_outputs_are_not_inputs(ctx: BuildContext, tasks: list[dict]) -> None:
             _refuse(ctx, field, Path(dependency), task["name"])
 
 
-def _upstream(tasks: list[dict], writer: dict[Path, str]) -> dict[str, set[str]]:
+def _upstream(
+    tasks: list[dict], writer: dict[Path, str], real: Callable[[str], Path]
+) -> dict[str, set[str]]:
     """Each task's name -> the tasks that come before it (whose targets it reads, or that it
-    names in ``task_dep``), transitively."""
+    names in ``task_dep``), transitively; ``real`` resolves a path."""
     direct: dict[str, set[str]] = {}
     for task in tasks:
         found = direct.setdefault(task["name"], set())
-        found.update(writer[p] for p in map(_real, task["file_dep"]) if p in writer)
+        found.update(writer[p] for p in map(real, task["file_dep"]) if p in writer)
         found.update(task.get("task_dep", []))
         found.discard(task["name"])
     closed: dict[str, set[str]] = {}
@@ -149,7 +161,8 @@ def _upstream(tasks: list[dict], writer: dict[Path, str]) -> dict[str, set[str]]
     return closed
 
 
-def _real(path: str | os.PathLike) -> Path:
+def real_path(path: str | os.PathLike) -> Path:
+    """``path`` with every link resolved."""
     return Path(os.path.realpath(path))
 
 
@@ -185,7 +198,7 @@ def _refuse(
     from mjcfbuild.manifest.pinpoint import pinpoint
 
     step = task.split(":", 1)[0]
-    what = _named_inputs(ctx).get(_real(path)) or next(
+    what = _named_inputs(ctx).get(real_path(path)) or next(
         (words for kind, words in _INPUT_KINDS.items() if step.endswith(kind)),
         f"an input of its {step} step",
     )
@@ -208,11 +221,11 @@ def _refuse(
 def _named_inputs(ctx: BuildContext) -> dict[Path, str]:
     """The inputs robot.yaml names by a field of their own, with what they are."""
     manifest = ctx.manifest
-    named = {_real(ctx.resolve(name)): f"motor file {name}" for name in manifest.motors.files}
+    named = {real_path(ctx.resolve(name)): f"motor file {name}" for name in manifest.motors.files}
     if manifest.mujoco_inputs.file:
-        named[_real(ctx.resolve(manifest.mujoco_inputs.file))] = "the mujoco_inputs file"
+        named[real_path(ctx.resolve(manifest.mujoco_inputs.file))] = "the mujoco_inputs file"
     if manifest.scene.file:
-        named[_real(ctx.resolve(manifest.scene.file))] = "the scene file"
+        named[real_path(ctx.resolve(manifest.scene.file))] = "the scene file"
     return named
 
 
