@@ -127,13 +127,11 @@ class ProcessedInput(BaseModel):
     def _unknown_attribute(cls, name: str) -> str:
         """The error for an attribute the tag does not have, with the closest it has (its
         robot.yaml key counts: ``mesh`` for ``mesh_name``)."""
-        import difflib
+        from mjcfbuild.sources.packages import did_you_mean
 
-        fields = {field: attribute for attribute, field in cls.xml_fields.items()}
-        closest = fields.get(name) or next(
-            iter(difflib.get_close_matches(name, sorted(cls.xml_fields), n=1)), None
-        )
-        guess = f"; did you mean '{closest}'?" if closest else ""
+        attributes = {field: attribute for attribute, field in cls.xml_fields.items()}
+        alias = attributes.get(name)
+        guess = f"; did you mean '{alias}'?" if alias else did_you_mean(name, set(cls.xml_fields))
         return f"<{cls.xml_tag}> has no attribute '{name}'{guess}"
 
     @classmethod

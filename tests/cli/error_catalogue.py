@@ -1017,6 +1017,28 @@ CASES: list[Case] = [
         ["robot.yaml:6:", "unknown key 'seed'; allowed keys: mesh, threshold"],
     ),
     Case(
+        "camera attribute MuJoCo does not have, in robot.yaml",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  cameras:\n    - name: eye\n      link: arm\n"
+            "      attributes: {fovyy: 40}\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["robot.yaml:6:", "camera 'eye' sets 'fovyy'", "did you mean 'fovy'?", "attributes: "],
+    ),
+    Case(
+        "modify attribute MuJoCo does not have, in robot.yaml",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  modify:\n    - type: joint\n      name: hinge\n"
+            "      attributes: {dampng: 1}\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["robot.yaml:6:", "joint 'hinge' sets 'dampng'", "did you mean 'damping'?"],
+    ),
+    Case(
         "camera on unknown link",
         {
             "robot.yaml": MANIFEST
