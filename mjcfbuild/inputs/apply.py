@@ -192,7 +192,7 @@ def _mujoco_has(attributes: Iterable[str], tag: str, what: str, origin: str) -> 
         raise input_error(
             origin,
             f"{what} sets '{unknown[0]}', which MuJoCo's <{tag}> does not have"
-            + did_you_mean(unknown[0], known),
+            + did_you_mean(unknown[0], set(known)),
             hint=f"<{tag}> attributes: {_listing(known, limit=len(known))}",
         )
 
