@@ -1,7 +1,9 @@
 """A pydantic validation error in words: what is wrong and what would be allowed.
 
 robot.yaml's errors (:mod:`mjcfbuild.manifest.loading`) and those of the MuJoCo inputs' XML
-elements (:mod:`mjcfbuild.inputs.processed`) are worded here, below both.
+elements (:mod:`mjcfbuild.inputs.processed`) are worded here, below both. A model whose keys
+have other names elsewhere (the XML inputs' attributes) gives them from a ``key_aliases()``
+class method, ``{other name: key}``; an unknown key that is one of them is pointed at its key.
 """
 
 from __future__ import annotations
@@ -29,13 +31,16 @@ def describe_error(
         key = str(loc[-1]) if loc else "?"
         if removed and loc in removed:
             return removed[loc]
-        allowed = _allowed_keys(root, loc[:-1])
-        suggestion = difflib.get_close_matches(key, allowed, n=1)
+        model = _model_at(root, loc[:-1])
+        allowed = sorted(model.model_fields) if model is not None else []
+        aliases = getattr(model, "key_aliases", None)
+        alias = aliases().get(key) if callable(aliases) else None
+        suggestion = [alias] if alias else difflib.get_close_matches(key, allowed, n=1)
         text = f"unknown key '{key}'"
         if suggestion:
             text += f"; did you mean '{suggestion[0]}'?"
         if allowed:
-            text += f" allowed keys: {', '.join(allowed)}"
+            text += f"{'' if suggestion else ';'} allowed keys: {', '.join(allowed)}"
         return text
     if kind == "missing":
         return "this key is required"
@@ -71,8 +76,8 @@ def _show(value: object) -> str:
     return text if len(text) <= 40 else text[:37] + "..."
 
 
-def _allowed_keys(root: type[BaseModel] | None, loc: tuple) -> list[str]:
-    """The keys the model at ``loc`` accepts, walking the models from ``root``."""
+def _model_at(root: type[BaseModel] | None, loc: tuple) -> type[BaseModel] | None:
+    """The model at ``loc``, walking the models from ``root``."""
     import typing
 
     model = root
@@ -84,15 +89,13 @@ def _allowed_keys(root: type[BaseModel] | None, loc: tuple) -> list[str]:
         if isinstance(part, int):  # an item of a list of models: the model itself
             continue
         if model is None:
-            return []
+            return None
         field = model.model_fields.get(str(part))
         if field is None:
-            return []
+            return None
         keyed = typing.get_origin(field.annotation) is dict
         model = _model_of(field.annotation)
-    if model is None:
-        return []
-    return sorted(model.model_fields)
+    return model
 
 
 def _model_of(annotation: object) -> type[BaseModel] | None:

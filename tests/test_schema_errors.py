@@ -39,6 +39,33 @@ def test_an_unknown_key_is_named_with_its_closest_key_and_the_keys_of_its_model(
     )
 
 
+def test_an_unknown_key_without_a_close_one_lists_the_keys_after_a_semicolon():
+    error = first_error(Cart, {"name": "c", "colour": "red"})
+
+    assert describe_error(error, Cart) == "unknown key 'colour'; allowed keys: name, wheels"
+
+
+class Axle(BaseModel):
+    """A model whose key ``width`` is named ``track`` elsewhere."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    width: float
+
+    @classmethod
+    def key_aliases(cls) -> dict[str, str]:
+        return {"track": "width"}
+
+
+def test_a_key_by_its_other_name_points_at_the_key():
+    error = first_error(Axle, {"width": 1, "track": 1}, "extra_forbidden")
+
+    assert (
+        describe_error(error, Axle)
+        == "unknown key 'track'; did you mean 'width'? allowed keys: width"
+    )
+
+
 def test_without_a_root_model_the_key_is_named_alone():
     error = first_error(Cart, {"name": "c", "colour": "red"})
 

@@ -41,7 +41,7 @@ def write_stats(ctx: BuildContext) -> Path:
     stats = {
         "times": dict(sorted(times.items())),
         "cache": ctx.session.cache_report,
-        "warnings": _build_warnings(ctx),
+        "warnings": build_warnings(ctx),
         "decomposition_seconds": {
             record.stem: summary.get("seconds") for record, summary in decomposition_summaries(ctx)
         },
@@ -51,19 +51,25 @@ def write_stats(ctx: BuildContext) -> Path:
     return path
 
 
-def _build_warnings(ctx: BuildContext) -> list[str]:
+def build_warnings(ctx: BuildContext) -> list[str]:
     """This build's warnings that came from no task (the product sharing's)."""
     given = {w for warnings in ctx.session.task_warnings.values() for w in warnings}
     return [w for w in dict.fromkeys(ctx.session.warnings) if w not in given]
+
+
+def task_warnings(ctx: BuildContext, tasks: list[str]) -> dict[str, list[str]]:
+    """The warnings of each of ``tasks`` that has any, in the order given: this build's for a
+    task that ran in it, else those recorded when it last ran."""
+    recorded = read_record(ctx.state(WARNINGS))
+    recorded.update(ctx.session.task_warnings)
+    return {name: list(recorded[name]) for name in tasks if recorded.get(name)}
 
 
 def record_warnings(ctx: BuildContext, tasks: list[str]) -> None:
     """Keep the warnings of the tasks that ran in this build, by task, beside those of the
     tasks that were up to date; ``tasks`` (every task of the build, in order) decides which
     records stay and their order."""
-    recorded = read_record(ctx.state(WARNINGS))
-    recorded.update(ctx.session.task_warnings)
-    kept = {name: list(recorded[name]) for name in tasks if recorded.get(name)}
+    kept = task_warnings(ctx, tasks)
     write_if_changed(ctx.state(WARNINGS), (json.dumps(kept, indent=1) + "\n").encode())
 
 

@@ -159,7 +159,7 @@ def run_build(
             finally:
                 ctx.session.close()
                 progress.clear()
-            _summarise(result, progress, ctx, started)
+            _summarise(result, progress, ctx, started, tasks)
             if ctx.noop_stamp and ctx.stamp_key and tasks and result.ok:
                 count = len(result.ran) + len(result.up_to_date)
                 stamp.record_build(ctx, tasks, count, _model_warnings(ctx))
@@ -167,15 +167,16 @@ def run_build(
         ctx.session.close()  # for a build stopped before it took the lock; else it did nothing
         progress.clear()
     if not result.seconds:
-        _summarise(result, progress, ctx, started)
+        _summarise(result, progress, ctx, started, [])
     return result
 
 
 def _build_locked(
     ctx: BuildContext, progress: Progress, result: BuildResult, started: float
 ) -> list[dict]:
-    """The build itself, under the folder's lock; the tasks of its second stage. ``started``
-    (a ``perf_counter``): when the build began, for the line announcing the model."""
+    """The build itself, under the folder's lock; every task of the build in graph order (the
+    planning tasks alone where planning failed). ``started`` (a ``perf_counter``): when the
+    build began, for the line announcing the model."""
     tasks: list[dict] = []
     if ctx.stamp_key is not None:  # whichever way it was started
         stamp.discard(ctx.stamp_key, ctx.run_check)
@@ -219,7 +220,8 @@ def _build_locked(
     if ctx.session.cache_grew:
         _prune_cache(ctx)
     result.engine_log = doit_output if result.errors else ""
-    return tasks
+    # The build stage makes the planning tasks again (to see them up to date): one of each.
+    return list({task["name"]: task for task in (*planning, *tasks)}.values())
 
 
 def _model_tasks(ctx: BuildContext, tasks: list[dict]) -> list[str]:
@@ -260,17 +262,30 @@ def _model_line(ctx: BuildContext) -> str:
     return f"mjcfbuild: model ready: {shown(ctx.robot_path)}, {shown(ctx.scene_path)}"
 
 
-def _summarise(result: BuildResult, progress: Progress, ctx: BuildContext, started: float) -> None:
+def _summarise(
+    result: BuildResult, progress: Progress, ctx: BuildContext, started: float, tasks: list[dict]
+) -> None:
     result.ran = progress.names(RAN)
     result.up_to_date = progress.names(UP_TO_DATE)
     result.blocked = progress.names(BLOCKED)
-    warnings = list(dict.fromkeys(ctx.session.warnings))
-    for urdf in _expanded_urdfs(ctx):
-        label = ctx.label(urdf)
-        warnings = [point_warning_at_source(w, urdf, label, ctx.base_dir) for w in warnings]
-    result.warnings = warnings
+    result.warnings = _shown_warnings(ctx, progress, tasks)
     result.slowest = progress.slowest()
     result.seconds = max(time.perf_counter() - started, 1e-9)
+
+
+def _shown_warnings(ctx: BuildContext, progress: Progress, tasks: list[dict]) -> list[str]:
+    """The warnings a build shows: those of every one of ``tasks`` it ran or found up to date
+    (as the task gave them when it last ran, like the report), in graph order, then the
+    build's own (the product sharing's). So a build that found the folder up to date says
+    what the no-op fast path says, and a rebuild still shows what the tasks it did not run
+    warned of; a task that failed or never ran shows nothing."""
+    from mjcfbuild.engine.report import build_warnings, task_warnings
+
+    done = {*progress.names(RAN), *progress.names(UP_TO_DATE)}
+    given = task_warnings(ctx, [task["name"] for task in tasks if task["name"] in done])
+    return _placed(
+        ctx, [*(w for warnings in given.values() for w in warnings), *build_warnings(ctx)]
+    )
 
 
 def _model_warnings(ctx: BuildContext) -> list[str]:
@@ -278,7 +293,11 @@ def _model_warnings(ctx: BuildContext) -> list[str]:
     shows them (placed in the xacro source): what a no-op prints for the model."""
     from mjcfbuild.engine.report import recorded_warnings
 
-    warnings = recorded_warnings(ctx)
+    return _placed(ctx, recorded_warnings(ctx))
+
+
+def _placed(ctx: BuildContext, warnings: list[str]) -> list[str]:
+    """``warnings`` placed in the xacro source they came from, each once."""
     for urdf in _expanded_urdfs(ctx):
         label = ctx.label(urdf)
         warnings = [point_warning_at_source(w, urdf, label, ctx.base_dir) for w in warnings]

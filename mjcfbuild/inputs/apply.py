@@ -81,6 +81,7 @@ class ModelTarget:
     def add_camera(self, name: str, link: str, attributes: dict[str, str], origin: str) -> None:
         """A camera at ``link`` (a ROS optical frame), with its MuJoCo attributes."""
         place = _link(self.links, link, origin, "camera")
+        _mujoco_has(attributes, "camera", f"camera '{name}'", origin)
         element = etree.Element("camera", {"name": name})
         set_pose(element, camera_pose(place.pose))
         for key, value in attributes.items():
@@ -178,6 +179,22 @@ def _link(links: dict[str, LinkPlace], name: str, origin: str, what: str) -> Lin
             hint=f"links: {_listing(links)}",
         )
     return links[name]
+
+
+def _mujoco_has(attributes: Iterable[str], tag: str, what: str, origin: str) -> None:
+    """Refuse, at the input's place, an attribute MuJoCo's ``<tag>`` does not have (MuJoCo
+    would refuse the assembled model without saying which input set it)."""
+    from mjcfbuild.inputs.mujoco_schema import mujoco_attributes
+
+    known = mujoco_attributes(tag)
+    unknown = [name for name in attributes if known and name not in known]
+    if unknown:
+        raise input_error(
+            origin,
+            f"{what} sets '{unknown[0]}', which MuJoCo's <{tag}> does not have"
+            + did_you_mean(unknown[0], set(known)),
+            hint=f"<{tag}> attributes: {_listing(known, limit=len(known))}",
+        )
 
 
 def _listing(names: Iterable[str], limit: int = 12) -> str:
@@ -298,6 +315,9 @@ def _merge_attributes(target, source, where: str, origin: str, warnings: list[st
 def _modify_targets(
     root: etree._Element, modify: ModifyInput, mesh_aliases: dict[str, set[str]]
 ) -> list[etree._Element]:
+    _mujoco_has(
+        modify.attributes, modify.type, f"modify_element {modify.describe()}", modify.origin
+    )
     if modify.type == "geom":
         meshes = {name for name, aliases in mesh_aliases.items() if modify.mesh in aliases}
         found = [

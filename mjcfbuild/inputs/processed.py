@@ -55,7 +55,7 @@ class ProcessedInput(BaseModel):
     manifest_key: ClassVar[str]  # its list in robot.yaml's mujoco_inputs
     # XML attribute -> field, for the attributes the XML form names differently or at all.
     xml_fields: ClassVar[dict[str, str]]
-    # Whether the element's other attributes are MuJoCo attributes (else they are ignored).
+    # Whether the element's other attributes are MuJoCo attributes (else they are refused).
     xml_attributes: ClassVar[bool] = False
     _origin: str = PrivateAttr("")
 
@@ -106,6 +106,13 @@ class ProcessedInput(BaseModel):
                 values[cls.xml_fields[key]] = value.strip()
             elif cls.xml_attributes:
                 extra[str(key)] = str(value)
+            else:
+                raise InputError(
+                    cls._unknown_attribute(str(key)),
+                    file=label,
+                    line=element.sourceline,
+                    hint=f"known attributes: {', '.join(sorted(cls.xml_fields))}",
+                )
         values = cls.xml_values(values)
         if cls.xml_attributes:
             values["attributes"] = extra
@@ -115,6 +122,25 @@ class ProcessedInput(BaseModel):
             raise InputError(cls._xml_message(error), file=label, line=element.sourceline) from None
         origin = f"{label}:{element.sourceline}" if element.sourceline else label
         return item.given_at(origin)
+
+    @classmethod
+    def _unknown_attribute(cls, name: str) -> str:
+        """The error for an attribute the tag does not have, with the closest it has (its
+        robot.yaml key counts: ``mesh`` for ``mesh_name``)."""
+        from mjcfbuild.sources.packages import did_you_mean
+
+        attributes = {field: attribute for attribute, field in cls.xml_fields.items()}
+        alias = attributes.get(name)
+        guess = f"; did you mean '{alias}'?" if alias else did_you_mean(name, set(cls.xml_fields))
+        return f"<{cls.xml_tag}> has no attribute '{name}'{guess}"
+
+    @classmethod
+    def key_aliases(cls) -> dict[str, str]:
+        """The XML form's names of the fields it names otherwise (``ref_site``: ``link``),
+        so that robot.yaml's errors can point from one to the other."""
+        return {
+            attribute: field for attribute, field in cls.xml_fields.items() if attribute != field
+        }
 
     @classmethod
     def xml_values(cls, values: dict[str, object]) -> dict[str, object]:

@@ -117,10 +117,17 @@ _UNION_TAG_HINTS = {"str", "int", "float", "bool", "list", "dict", "none", "lax-
 
 def _most_relevant(errors: list[ErrorDetails]) -> ErrorDetails:
     """Prefer errors about a specific key, then errors that are not just "wrong type" (of one
-    member of a union, when another member's error says more), over errors about a mapping."""
+    member of a union, when another member's error says more), over errors about a mapping;
+    a key given but unknown over one missing beside it (a misspelt key: ``mesh_name`` for
+    ``mesh`` says which to write)."""
     return sorted(
         errors,
-        key=lambda e: (e["type"] == "model_type", e["type"].endswith("_type"), -len(e["loc"])),
+        key=lambda e: (
+            e["type"] == "model_type",
+            e["type"].endswith("_type"),
+            -len(e["loc"]),
+            e["type"] == "missing",
+        ),
     )[0]
 
 

@@ -21,6 +21,7 @@ from pydantic import (
 )
 
 from mjcfbuild.collision.policy import POLICIES, POLICY_NAMES, policies_described
+from mjcfbuild.inputs.model import RAW_SECTIONS
 from mjcfbuild.inputs.processed import CameraInput, DecomposeInput, LidarInput, ModifyInput
 from mjcfbuild.manifest.composition import Attachment, check_prefixes
 from mjcfbuild.manifest.motors import MotorSettings
@@ -375,8 +376,7 @@ class MujocoInputs(StrictModel):
     )
     raw: str | None = Field(
         None,
-        description="Raw MJCF copied into the model: option, size, default, asset, actuator, "
-        "tendon, equality, sensor, contact, keyframe, custom, visual, statistic sections.",
+        description=f"Raw MJCF copied into the model: {', '.join(RAW_SECTIONS)} sections.",
     )
     # One list per processed tag (inputs.processed.PROCESSED_INPUTS), named by its manifest_key.
     cameras: list[CameraInput] = Field(default_factory=list)

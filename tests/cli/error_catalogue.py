@@ -971,6 +971,74 @@ CASES: list[Case] = [
         ["inputs.xml", "did you mean 'Inputs.XML'?"],
     ),
     Case(
+        "lidar attribute the reference converter does not have, in an inputs file",
+        {
+            "robot.yaml": MANIFEST + "mujoco_inputs:\n  file: inputs.xml\n",
+            "robot.urdf": urdf(),
+            "inputs.xml": "<mujoco_inputs>\n<processed_inputs>\n"
+            "<lidar ref_site='arm' sensor_name='rf' min_angle='0' max_angle='1' "
+            "angle_increment='0.1' max_range='5'/>\n</processed_inputs>\n</mujoco_inputs>\n",
+        },
+        EXIT_INPUT,
+        ["inputs.xml:3:", "<lidar> has no attribute 'max_range'", "known attributes: "],
+    ),
+    Case(
+        "decompose_mesh attribute misspelt, in the URDF's mujoco_inputs",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": urdf(
+                extra="<mujoco_inputs>\n<processed_inputs>\n"
+                "<decompose_mesh mesh_name='arm' treshold='0.1'/>\n"
+                "</processed_inputs>\n</mujoco_inputs>\n"
+            ),
+        },
+        EXIT_INPUT,
+        ["robot.urdf:", "<decompose_mesh> has no attribute 'treshold'; did you mean 'threshold'?"],
+    ),
+    Case(
+        "lidar key of the XML form in robot.yaml",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  lidars:\n    - {sensor_name: rf, ref_site: arm, min_angle: 0,"
+            " max_angle: 1, angle_increment: 0.1}\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:6:", "unknown key 'ref_site'; did you mean 'link'?"],
+    ),
+    Case(
+        "decompose key unknown in robot.yaml",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  decompose:\n    - {mesh: arm, threshold: 0.1, seed: 3}\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:6:", "unknown key 'seed'; allowed keys: mesh, threshold"],
+    ),
+    Case(
+        "camera attribute MuJoCo does not have, in robot.yaml",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  cameras:\n    - name: eye\n      link: arm\n"
+            "      attributes: {fovyy: 40}\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["robot.yaml:6:", "camera 'eye' sets 'fovyy'", "did you mean 'fovy'?", "attributes: "],
+    ),
+    Case(
+        "modify attribute MuJoCo does not have, in robot.yaml",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  modify:\n    - type: joint\n      name: hinge\n"
+            "      attributes: {dampng: 1}\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["robot.yaml:6:", "joint 'hinge' sets 'dampng'", "did you mean 'damping'?"],
+    ),
+    Case(
         "camera on unknown link",
         {
             "robot.yaml": MANIFEST

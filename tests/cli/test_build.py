@@ -33,7 +33,7 @@ def test_manifest_error_has_path_line_and_no_traceback(cli, tmp_path):
     result = cli("build", "robot/robot.yaml", cwd=tmp_path)
     assert result.code == EXIT_MANIFEST
     assert result.stderr.strip() == (
-        "mjcfbuild: error: robot/robot.yaml:4:3: source.bogus: unknown key 'bogus' "
+        "mjcfbuild: error: robot/robot.yaml:4:3: source.bogus: unknown key 'bogus'; "
         "allowed keys: args, description, read_outside, urdf, xacro"
     )
     assert "Traceback" not in result.stderr

@@ -183,12 +183,13 @@ def test_a_build_that_warned_leaves_a_stamp_and_its_no_op_prints_the_warnings(tm
     assert warning_lines(again.stderr) == warning_lines(built.stderr) != []
     assert re.search(r": 0 run, \d+ up to date, 8 warnings in ", again.stdout)
     # The warnings are the model's, whichever task gave them: a build that runs only the
-    # check (the assembly that warned is up to date) leaves its no-op printing them still.
+    # check (the assembly that warned is up to date) prints them, and so does its no-op.
     checked = run_cli("build", cwd=folder)
-    assert checked.code == 0 and "8 warnings" not in checked.stdout
+    assert checked.code == 0 and ": 4 run, 5 up to date, 8 warnings in " in checked.stdout
+    assert set(warning_lines(built.stderr)) <= set(warning_lines(checked.stderr))
     noop = run_cli("build", cwd=folder)
     assert ": 0 run, " in noop.stdout
-    assert set(warning_lines(built.stderr)) <= set(warning_lines(noop.stderr))
+    assert warning_lines(noop.stderr) == warning_lines(checked.stderr)
     urdf = folder / "robot.urdf"  # fixed: the next no-op is silent
     urdf.write_text(urdf.read_text().replace('size="0 0 0"', 'size="0.1 0.1 0.1"'))
     assert run_cli("build", "--no-check", "-q", cwd=folder).code == 0
@@ -208,3 +209,49 @@ def test_a_stamp_written_with_allow_outside_does_not_skip_the_guard(arm):
     assert refused.code == EXIT_OUTPUT, refused.stdout
     assert "'../out'" in refused.stderr and "is outside" in refused.stderr
     assert "up to date" not in refused.stdout
+
+
+def test_every_way_of_finding_the_folder_up_to_date_prints_the_same(tmp_path):
+    """The fast path, the full graph finding every task up to date (MJCFBUILD_FULL_BUILD, or
+    no stamp) and a rebuild of a task that did not warn print the same warning lines and the
+    same summary; with -q none of them prints anything."""
+    from tests.cli.test_warning_groups import padded_robot, warning_lines
+
+    folder = padded_robot(tmp_path)
+    built = run_cli("build", "--no-check", cwd=folder)
+    assert built.code == 0 and "8 warnings" in built.stdout, built.stdout
+    key = Path(os.path.normpath(folder / "robot.yaml"))
+
+    def printed(env: dict | None = None, *flags: str) -> tuple[list[str], str]:
+        done = run_cli("build", "--no-check", *flags, cwd=folder, env=env)
+        assert done.code == 0, done.stderr
+        other = [
+            line for line in done.stderr.splitlines() if line not in warning_lines(done.stderr)
+        ]
+        assert other == [], done.stderr
+        return warning_lines(done.stderr), re.sub(r"in \d+\.\d+ s", "in _ s", done.stdout)
+
+    fast = printed()
+    assert fast[0] == warning_lines(built.stderr) != []
+    assert re.fullmatch(
+        r"mjcfbuild: built robot\.xml: 0 run, 5 up to date, 8 warnings in _ s\n", fast[1]
+    )
+    assert printed(FULL) == fast
+    assert stamp.stamp_path(key, False).is_file()
+    stamp.discard(key, False)
+    assert not fast_path_skips(folder)
+    assert printed() == fast  # the full graph (it leaves the stamp again)
+    assert fast_path_skips(folder)
+    for env in ({}, FULL):
+        quiet = run_cli("build", "--no-check", "-q", cwd=folder, env=env)
+        assert (quiet.code, quiet.stdout, quiet.stderr) == (0, "", "")
+
+    # The scene reruns (another camera angle) while the assembly that warned is up to date.
+    manifest = folder / "robot.yaml"
+    manifest.write_text(
+        manifest.read_text() + "scene: {mjcf: '<visual><global azimuth=\"120\"/></visual>'}\n"
+    )
+    rebuilt = run_cli("build", "--no-check", cwd=folder)
+    assert rebuilt.code == 0, rebuilt.stderr
+    assert warning_lines(rebuilt.stderr) == fast[0]
+    assert re.search(r": [1-5] run, \d+ up to date, 8 warnings in ", rebuilt.stdout), rebuilt.stdout

@@ -58,6 +58,27 @@ def test_camera_at_unknown_link(tmp_path):
     )
 
 
+@pytest.mark.parametrize(
+    ("element", "says"),
+    [
+        (
+            '<camera site="arm" name="c" fovyy="40"/>',
+            "inputs.xml:2: camera 'c' sets 'fovyy', which MuJoCo's <camera> does not have; "
+            "did you mean 'fovy'? (<camera> attributes: axisangle, class, euler,",
+        ),
+        (
+            '<modify_element type="joint" name="hinge" dampng="1"/>',
+            "inputs.xml:2: modify_element joint 'hinge' sets 'dampng', which MuJoCo's <joint> "
+            "does not have; did you mean 'damping'? (<joint> attributes: actuatorfrclimited,",
+        ),
+    ],
+)
+def test_a_mujoco_attribute_mujoco_lacks_is_an_error_at_its_input(tmp_path, element, says):
+    """Not MuJoCo's "unrecognized attribute" about the assembled model, which names no input."""
+    text = error(tmp_path, f"<processed_inputs>\n{element}</processed_inputs>")
+    assert says in text, text
+
+
 def test_input_defaults_merge_into_mjcfbuilds_classes_and_new_classes_are_added(tmp_path):
     result = build(
         tmp_path,

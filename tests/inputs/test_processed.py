@@ -127,6 +127,71 @@ def test_both_forms_are_validated_by_the_one_model(xml, yaml, message):
     assert in_yaml in from_manifest.value.one_line()
 
 
+LIDAR = 'sensor_name="r" min_angle="0" max_angle="1" angle_increment="1"'
+LIDAR_YAML = "sensor_name: r, min_angle: 0, max_angle: 1, angle_increment: 1"
+
+
+@pytest.mark.parametrize(
+    ("xml", "yaml", "in_xml", "in_yaml"),
+    [
+        (
+            f'<lidar ref_site="l" {LIDAR} range="5"/>',
+            f"lidars: [{{link: l, {LIDAR_YAML}, range: 5}}]",
+            "<lidar> has no attribute 'range' (known attributes: angle_increment, max_angle, "
+            "min_angle, ref_site, sensor_name)",
+            "unknown key 'range'; allowed keys: angle_increment, link, max_angle, min_angle, "
+            "sensor_name",
+        ),
+        (  # each form's name for the frame, written in the other
+            f'<lidar link="l" {LIDAR}/>',
+            f"lidars: [{{ref_site: l, {LIDAR_YAML}}}]",
+            "<lidar> has no attribute 'link'; did you mean 'ref_site'?",
+            "unknown key 'ref_site'; did you mean 'link'?",
+        ),
+        (
+            f'<lidar ref_site="l" {LIDAR} angle_incrment="1"/>',
+            f"lidars: [{{link: l, {LIDAR_YAML}, angle_incrment: 1}}]",
+            "<lidar> has no attribute 'angle_incrment'; did you mean 'angle_increment'?",
+            "unknown key 'angle_incrment'; did you mean 'angle_increment'?",
+        ),
+        (
+            '<decompose_mesh mesh_name="m" treshold="0.1"/>',
+            "decompose: [{mesh: m, treshold: 0.1}]",
+            "<decompose_mesh> has no attribute 'treshold'; did you mean 'threshold'? "
+            "(known attributes: mesh_name, threshold)",
+            "unknown key 'treshold'; did you mean 'threshold'? allowed keys: mesh, threshold",
+        ),
+        (
+            '<decompose_mesh mesh="m"/>',
+            "decompose: [{mesh_name: m}]",
+            "<decompose_mesh> has no attribute 'mesh'; did you mean 'mesh_name'?",
+            "unknown key 'mesh_name'; did you mean 'mesh'?",
+        ),
+    ],
+)
+def test_lidar_and_decompose_refuse_what_they_do_not_know_in_both_forms(xml, yaml, in_xml, in_yaml):
+    with pytest.raises(InputError) as from_file:
+        from_xml(xml)
+    assert from_file.value.one_line().startswith(f"inputs.xml:2: {in_xml}")
+    with pytest.raises(ManifestError) as from_manifest:
+        parse_manifest(f"name: r\nsource: {{urdf: r.urdf}}\nmujoco_inputs:\n  {yaml}\n")
+    assert from_manifest.value.location.line == 4
+    assert in_yaml in from_manifest.value.one_line()
+
+
+@pytest.mark.parametrize("tag", ["lidar", "decompose_mesh"])
+def test_every_attribute_the_reference_converter_reads_is_known(tag):
+    """Its make_mjcf_from_robot_description reads these attributes of the two tags and no
+    other (ref_site, sensor_name, min_angle, max_angle, angle_increment; mesh_name, threshold)."""
+    reads = {
+        "lidar": ["ref_site", "sensor_name", "min_angle", "max_angle", "angle_increment"],
+        "decompose_mesh": ["mesh_name", "threshold"],
+    }[tag]
+    kind = processed_tag(tag)
+    assert kind is not None and sorted(kind.xml_fields) == sorted(reads)
+    assert from_xml(XML[tag]).origin == "inputs.xml:2"
+
+
 def test_robot_yaml_camera_settings_become_mjcf_text_after_the_attributes():
     camera = CameraInput(
         name="c",

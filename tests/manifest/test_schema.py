@@ -27,3 +27,11 @@ def test_schema_is_valid_json_schema_document():
     schema = json.loads(manifest_schema_text())
     assert schema["$schema"].startswith("https://json-schema.org/")
     assert set(schema["required"]) == {"name", "source"}
+
+
+def test_the_raw_key_names_the_sections_the_inputs_reader_accepts():
+    from mjcfbuild.inputs.model import RAW_SECTIONS
+
+    raw = manifest_schema()["$defs"]["MujocoInputs"]["properties"]["raw"]["description"]
+    named = raw.split(": ", 1)[1].removesuffix(" sections.").split(", ")
+    assert named == list(RAW_SECTIONS)
