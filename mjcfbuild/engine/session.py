@@ -91,8 +91,10 @@ class BuildSession:
         Mesh conversions and decompositions go through :class:`ProductSharing` first, which
         may fetch their product from the remote cache or compute it on a cluster.
         """
+        from mjcfbuild import interrupts
         from mjcfbuild.sharing.coordinator import SHARED_STEPS
 
+        interrupts.check()  # no step starts once SIGINT came, even if doit went on
         kind = SHARED_STEPS.get(step)
         if kind is None:
             return self._run_step(step, payload, task, in_worker)
