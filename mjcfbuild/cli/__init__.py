@@ -129,7 +129,11 @@ def main(argv: Sequence[str] | None = None) -> None:
     from mjcfbuild import interrupts
 
     interrupts.handle_sigint()  # this process is the command's: Ctrl-C stops it
-    sys.exit(run(argv))
+    try:
+        code = run(argv)
+    except KeyboardInterrupt:  # a second Ctrl-C while the first was being reported
+        code = EXIT_INTERRUPTED
+    sys.exit(code)
 
 
 def run(argv: Sequence[str] | None = None) -> int:
