@@ -121,3 +121,22 @@ def assert_recovers(arm, env: dict[str, str], stopped: CliResult, clean_build) -
     assert outputs(built) == outputs(clean_build)
     _, mismatch, errors = filecmp.cmpfiles(built, clean_build, outputs(built), shallow=False)
     assert mismatch == [] and errors == []
+
+
+def test_a_step_running_in_the_build_process_finishes_before_the_build_ends(tmp_path):
+    # A URDF is read in the build process, in one of doit's threads, which the interrupted
+    # stage leaves running: the step (here busy for two more seconds) writes its files before
+    # the build lets go of the folder, not after it or half-way as the process ends.
+    quadruped = copy_example("quadruped", tmp_path)
+    env = {"MJCFBUILD_CACHE_DIR": str(tmp_path / "cache")}
+    stopped = run_cli(
+        "build", "-j", "2", cwd=quadruped, env={**env, "MJCFBUILD_FAILPOINT": "expand:interrupt"}
+    )
+    assert_interrupted(stopped)
+    state = quadruped / "mjcf" / ".mjcfbuild"
+    assert (state / "source.urdf").read_text().rstrip().endswith("</robot>")
+    assert (state / "source.origins.json").is_file()
+    assert not list(quadruped.rglob("*.mjcfbuild-tmp"))
+
+    again = run_cli("build", "-q", "-j", "2", "--no-check", cwd=quadruped, env=env)
+    assert again.code == 0, again.stdout + again.stderr
