@@ -3,10 +3,12 @@
 The interruption tests kill real builds at chosen moments (during mesh conversion, during a
 decomposition, between publishing assets and writing the model, in the middle of writing a
 file) to prove the next build recovers. ``action`` is ``kill`` (SIGKILL to the build and the
-worker, as ``kill -9`` would), ``interrupt`` (SIGINT to the build, as Ctrl-C would) or ``raise``
-(an unexpected exception, as a bug in mjcfbuild would raise) or ``stop`` (SIGSTOP to the
-process that reached the point, so that a test can look at what it holds there and go on with
-SIGCONT). Without the variable, a failpoint does nothing.
+worker, as ``kill -9`` would), ``interrupt`` (SIGINT to the build, as Ctrl-C would),
+``interrupt-swallowed`` (SIGINT to the build process reaching the point, whose
+``KeyboardInterrupt`` is then caught there, as a finalizer or code that catches everything
+would: mjcfbuild.interrupts), ``raise`` (an unexpected exception, as a bug in mjcfbuild would
+raise) or ``stop`` (SIGSTOP to the process that reached the point, so that a test can look at
+what it holds there and go on with SIGCONT). Without the variable, a failpoint does nothing.
 """
 
 from __future__ import annotations
@@ -41,6 +43,13 @@ def failpoint(name: str, spec: str | None = None, once_dir: str | None = None) -
             raise RuntimeError(f"failpoint {name}")
         if action == "stop":
             os.kill(os.getpid(), signal.SIGSTOP)
+            return
+        if action == "interrupt-swallowed":
+            try:
+                os.kill(os.getpid(), signal.SIGINT)
+                time.sleep(2.0)  # the handler runs in the main thread by then
+            except KeyboardInterrupt:
+                pass
             return
         build = int(os.environ.get(BUILD_PID, os.getpid()))
         if action == "interrupt":

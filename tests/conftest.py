@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import signal
 import subprocess
 import sys
 from dataclasses import dataclass
@@ -85,8 +86,16 @@ def run_cli(*args: str, cwd: Path | None = None, stdin: str | None = None, env=N
         text=True,
         env=environment,
         timeout=600,
+        preexec_fn=sigint_at_default,
     )
     return CliResult(process.returncode, process.stdout, process.stderr)
+
+
+def sigint_at_default() -> None:
+    """Give SIGINT its default action in a process about to start a command: what a terminal
+    gives a command, whether this test run inherited SIGINT ignored (started in the background
+    by a script) or not, which the command would keep (mjcfbuild/interrupts.py)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 def file_clock_past(folder: Path, ns: int) -> None:

@@ -126,26 +126,38 @@ def global_flags(
 
 def main(argv: Sequence[str] | None = None) -> None:
     """Run the command line and exit with its code."""
-    sys.exit(run(argv))
+    from mjcfbuild import interrupts
+
+    interrupts.handle_sigint()  # this process is the command's: Ctrl-C stops it
+    try:
+        code = run(argv)
+    except KeyboardInterrupt:  # a second Ctrl-C while the first was being reported
+        code = EXIT_INTERRUPTED
+    sys.exit(code)
 
 
 def run(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the exit code instead of exiting."""
+    from mjcfbuild import interrupts
     from mjcfbuild.cli.suggest import unknown_arguments_line
 
+    interrupts.forget()
     parser = build_parser()
     args, unknown = parser.parse_known_args(argv)
     if unknown:
         print(unknown_arguments_line(parser, args.command, unknown), file=sys.stderr)
         return EXIT_USAGE
     try:
-        return args.handler(args)
+        code: int = args.handler(args)
+        interrupts.check()  # a SIGINT whose KeyboardInterrupt was lost: not a success
+        return code
     except MjcfbuildError as error:
+        if interrupts.received():  # an error of the stopping, after a lost KeyboardInterrupt
+            return _interrupted()
         report_error(error, debug=args.debug)
         return error.exit_code
     except KeyboardInterrupt:
-        print("mjcfbuild: interrupted", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return _interrupted()
     except BrokenPipeError:
         # The reader went away (`mjcfbuild graph --dot | head`): nothing left to say to it.
         # Point stdout at /dev/null so Python's final flush does not fail a second time.
@@ -164,6 +176,12 @@ def run(argv: Sequence[str] | None = None) -> int:
         )
         report_error(internal, debug=args.debug)
         return EXIT_INTERNAL
+
+
+def _interrupted() -> int:
+    """Say that the command was interrupted; its exit code."""
+    print("mjcfbuild: interrupted", file=sys.stderr)
+    return EXIT_INTERRUPTED
 
 
 def jobs_argument(parser: argparse.ArgumentParser) -> None:

@@ -46,7 +46,10 @@ class BuildLoader(TaskLoader2):
         }
 
     def load_tasks(self, cmd: Any, pos_args: list[str]) -> list:
-        return [dict_to_task(dict(task)) for task in self.tasks]
+        # Without capture, doit leaves sys.stdout and sys.stderr alone. With it, each of its
+        # threads swaps them for its task and puts back what it found: in any order, and
+        # after an interrupted stage has returned, so that the line saying so went nowhere.
+        return [dict_to_task({**task, "io": {"capture": False}}) for task in self.tasks]
 
 
 def run_doit(

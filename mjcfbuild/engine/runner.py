@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from mjcfbuild import interrupts
 from mjcfbuild.engine import stamp, written
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.guard import check_output_folder, check_outputs_are_not_inputs
@@ -20,6 +21,7 @@ from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.tasks import build_tasks, planning_tasks
 from mjcfbuild.engine.training_files import remove_stale_variant
 from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError, write_failure
+from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import TEMP_SUFFIX, remove_stale_temp_files, write_if_changed
 from mjcfbuild.manifest.pinpoint import pinpoint
 from mjcfbuild.outputs import SOURCE_URDF, planned_urdf
@@ -160,6 +162,10 @@ def run_build(
                 ctx.session.close()
                 progress.clear()
             _summarise(result, progress, ctx, started, tasks)
+            failpoint("stamp")
+            # No stamp saying the outputs are current if SIGINT came and its
+            # KeyboardInterrupt was lost (mjcfbuild.interrupts).
+            interrupts.check()
             if ctx.noop_stamp and ctx.stamp_key and tasks and result.ok:
                 count = len(result.ran) + len(result.up_to_date)
                 stamp.record_build(ctx, tasks, count, _model_warnings(ctx))
@@ -168,6 +174,7 @@ def run_build(
         progress.clear()
     if not result.seconds:
         _summarise(result, progress, ctx, started, [])
+    interrupts.check()  # nor a result that reads as a success
     return result
 
 
@@ -187,6 +194,7 @@ def _build_locked(
     planning = planning_tasks(ctx)
     try:
         doit_output = _run_stage(ctx, planning, progress, result)
+        failpoint("stages")  # between the two stages: the tests interrupt the build here
         if not result.errors:
             tasks = build_tasks(ctx)
             # Only now are the files xacro included known; nothing outside the state
@@ -202,6 +210,7 @@ def _build_locked(
             # on disk is an earlier one, which the report must not claim to describe.
             model_built = all(isinstance(e, CheckError) for e in result.errors)
             ctx.session.finish_sharing()  # uploads are done (or given up) before it returns
+            failpoint("report")
             # Imported here, after the model: the report's modules cost 0.02 s of the start.
             from mjcfbuild.engine.report import record_warnings, write_report, write_stats
 
@@ -307,7 +316,9 @@ def _placed(ctx: BuildContext, warnings: list[str]) -> list[str]:
 def _run_stage(
     ctx: BuildContext, tasks: list[dict], progress: Progress, result: BuildResult
 ) -> str:
+    interrupts.check()
     code, output = run_doit(ctx, tasks, progress, ["run"])
+    interrupts.check()  # doit stops handing out tasks at a KeyboardInterrupt: none failed
     failed = progress.names(FAILED)
     for name in failed:
         error = ctx.session.failures.get(name)

@@ -50,6 +50,9 @@ class BuildSession:
         self._sharing_lock = threading.Lock()
         self._pool_lock = threading.Lock()
         self._closed = False
+        # Steps running in this process (in doit's threads), which close() waits for.
+        self._here = 0
+        self._here_done = threading.Condition()
 
     @property
     def hashes(self) -> HashCache:
@@ -91,8 +94,10 @@ class BuildSession:
         Mesh conversions and decompositions go through :class:`ProductSharing` first, which
         may fetch their product from the remote cache or compute it on a cluster.
         """
+        from mjcfbuild import interrupts
         from mjcfbuild.sharing.coordinator import SHARED_STEPS
 
+        interrupts.check()  # no step starts once SIGINT came, even if doit went on
         kind = SHARED_STEPS.get(step)
         if kind is None:
             return self._run_step(step, payload, task, in_worker)
@@ -106,10 +111,17 @@ class BuildSession:
         if not in_worker:
             import importlib
 
-            module_name, _, function_name = step.partition(":")
-            function = getattr(importlib.import_module(module_name), function_name)
-            result: dict = function(payload)
-            return result
+            with self._here_done:
+                self._here += 1
+            try:
+                module_name, _, function_name = step.partition(":")
+                function = getattr(importlib.import_module(module_name), function_name)
+                result: dict = function(payload)
+                return result
+            finally:
+                with self._here_done:
+                    self._here -= 1
+                    self._here_done.notify_all()
         self.ctx.logs_dir.mkdir(parents=True, exist_ok=True)
         log = self.ctx.logs_dir / (re.sub(r"[^A-Za-z0-9_.-]+", "-", task) + ".log")
         affinity = str(self.ctx.robot_path) if step in COMPILES_MODEL else None
@@ -183,8 +195,9 @@ class BuildSession:
         return error
 
     def close(self) -> None:
-        """Stop workers, finish uploads and save the hash cache; once (the build calls it
-        under its folder's lock; a later call must not write the hash cache unlocked)."""
+        """Stop workers, finish uploads, wait for the steps running in this process and save
+        the hash cache; once (the build calls it under its folder's lock; a later call must
+        not write the hash cache unlocked)."""
         if self._closed:
             return
         self._closed = True
@@ -192,6 +205,13 @@ class BuildSession:
         if self._pool is not None:
             self._pool.close()
             self._pool = None
+        # After an interrupted stage, doit's threads may still be running a step of their
+        # own here: it finishes (its files are written atomically) before the build lets go
+        # of the folder, instead of writing after it, or dying half-way as the process ends.
+        # A second Ctrl-C stops the wait.
+        with self._here_done:
+            while self._here:
+                self._here_done.wait()
         if self._hashes is not None:
             if self._hashes.path is None and self.ctx.state_dir.is_dir():
                 self._hashes.path = self.ctx.state("hashes.json")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from mjcfbuild.failpoints import failpoint
 from mjcfbuild.sources.expand import expand_source
 from mjcfbuild.sources.origins import origins_json
 from mjcfbuild.steps.depfile import Depfile
@@ -24,6 +25,7 @@ def run(payload: dict) -> dict:
         request.args_key or None,
     )
     outputs: dict[str, str] = {}
+    failpoint("expand")  # in the build process for a URDF: the tests interrupt the build here
     write_output(Path(request.output), expansion.urdf, outputs)
     write_output(Path(request.origins), origins_json(expansion.origins), outputs)
     depfile = Path(request.depfile)
