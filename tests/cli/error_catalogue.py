@@ -621,6 +621,24 @@ CASES: list[Case] = [
         ],
     ),
     Case(
+        # rtb-data's ROS-Industrial KUKA and ABB xacros are kinematic only: the error named
+        # the expanded file in the state folder, which nobody wrote.
+        "xacro robot without any <inertial>",
+        {
+            "robot.yaml": XACRO_MANIFEST,
+            "robot.urdf.xacro": XACRO_OPEN
+            + '  <link name="base"/>\n  <link name="arm"/>\n'
+            + '  <joint name="shoulder" type="continuous">\n'
+            + '    <parent link="base"/><child link="arm"/></joint>\n</robot>\n',
+        },
+        EXIT_INPUT,
+        [
+            "error: robot.urdf.xacro: no link of the robot has a mass",
+            "[expanded: mjcf/.mjcfbuild/source.urdf]",
+            "add each link's <inertial>",
+        ],
+    ),
+    Case(
         "xacro entity expansion",
         {"robot.yaml": XACRO_MANIFEST, "robot.urdf.xacro": LAUGHS},
         EXIT_INPUT,
