@@ -805,7 +805,7 @@ CASES: list[Case] = [
         "lower limit above upper",
         {"robot.yaml": MANIFEST, "robot.urdf": urdf(('lower="-1.5"', 'lower="2"'))},
         EXIT_INPUT,
-        ["robot.urdf:13:", "lower limit 2 above its upper limit 1.5"],
+        ["robot.urdf:13:", "lower limit 2 above its upper limit 1.5", "(swap them; if they"],
     ),
     Case(
         "negative mass",

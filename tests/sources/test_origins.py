@@ -53,9 +53,7 @@ def test_a_warning_about_an_expanded_line_names_the_written_one(tmp_path, monkey
     )
 
 
-def test_an_error_about_the_whole_expanded_urdf_names_the_xacro_it_came_from(
-    tmp_path, monkeypatch
-):
+def test_an_error_about_the_whole_expanded_urdf_names_the_xacro_it_came_from(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     urdf = tmp_path / "mjcf" / ".mjcfbuild" / "source.urdf"
     urdf.parent.mkdir(parents=True)
