@@ -47,7 +47,7 @@ def unroll_lidar_rays(root: etree._Element) -> None:
             parent.insert(position + index, ray)
         readers = [] if section is None else [s for s in section if _reads(s, name)]
         for sensor in readers:
-            section.remove(sensor)  # type: ignore[union-attr]
+            section.remove(sensor)
         unrolled.append((name, suffixes, readers))
     # MuJoCo puts replicated sensors after the others: replicate by replicate, ray by ray,
     # each ray's sensors in their written order.
@@ -55,7 +55,7 @@ def unroll_lidar_rays(root: etree._Element) -> None:
         assert section is not None or not readers, "readers come from the sensor section"
         for suffix in suffixes:
             for sensor in readers:
-                copy = etree.SubElement(section, sensor.tag, dict(sensor.attrib))  # type: ignore[arg-type]
+                copy = etree.SubElement(section, sensor.tag, dict(sensor.attrib))
                 if copy.get("name"):
                     copy.set("name", copy.get("name", "") + suffix)
                 for attribute in ("site", "objname"):
