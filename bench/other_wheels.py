@@ -468,6 +468,25 @@ def package_folders(robot: WheelRobot) -> dict[str, str]:
     return {name: str(root / inside) for name, inside in robot.packages}
 
 
+# The ROS packages rtb-data's xacro files find, where they are in the wheel: those of the
+# robots above, and those of the files no robot above uses (the xacro parity test expands all).
+_RTB_PACKAGES = (
+    *((f"kuka_{arm}_support", f"{_KUKA}/kuka_{arm}") for arm in ("kr3", "kr6", "kr10", "kr150")),
+    ("abb_irb140", f"{_RTB}/abb_irb140_description"),
+    ("abb_irb140_support", f"{_RTB}/abb_irb140_description"),
+    ("qut_frankie_description", f"{_RTB}/qut_frankie_description"),
+)
+
+
+def wheel_packages(wheel: Wheel) -> dict[str, str]:
+    """Every ``package://`` root a file of ``wheel`` may name: its robots' packages (and for
+    rtb-data, the packages of its files that no robot here uses)."""
+    root = wheel_root(wheel)
+    pairs = [pair for robot in ROBOTS.values() if robot.wheel == wheel for pair in robot.packages]
+    pairs += _RTB_PACKAGES if wheel == RTB else ()
+    return {name: str(root / inside) for name, inside in pairs}
+
+
 def urdf_text(robot: WheelRobot) -> bytes:
     """The robot's URDF: the file itself, or its xacro expanded with the robot's args."""
     from mjcfbuild.sources.expand import expand_source
