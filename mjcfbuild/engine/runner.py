@@ -328,8 +328,10 @@ def _run_stage(
             ctx.session.failures[name] = error
         if ctx.manifest_file is not None:
             error = pinpoint(error, ctx.manifest_label, ctx.manifest_file)
+        xacro = ctx.source_path if ctx.source_kind == "xacro" else None
         for urdf in _expanded_urdfs(ctx):  # where their elements were written (xacro)
-            point_at_source(error, urdf, ctx.label(urdf), ctx.base_dir)
+            top = xacro if urdf == ctx.state(SOURCE_URDF) else None
+            point_at_source(error, urdf, ctx.label(urdf), ctx.base_dir, top)
         if error not in result.errors:
             result.errors.append(error)
     if code != 0 and not result.errors:

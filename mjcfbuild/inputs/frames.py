@@ -6,7 +6,8 @@ with +y up. The camera is the link frame turned half a turn about its x axis.
 A lidar link has +z up and the first ray along +x turned by ``min_angle`` about +z (a ROS
 LaserScan sweeps counterclockwise). MuJoCo rangefinders measure along their site's +z. The
 rays are the sites of a ``<replicate>`` that turns each copy by ``angle_increment`` about the
-y axis of a body whose y axis is the link's z axis and whose z axis is the first ray.
+y axis of a body whose y axis is the link's z axis and whose z axis is the first ray (written
+out site by site before the model is compiled: ``mjcfbuild.inputs.rays``).
 """
 
 from __future__ import annotations

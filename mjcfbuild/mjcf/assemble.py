@@ -169,6 +169,7 @@ def _apply_additions(
     from mjcfbuild.inputs.apply import LinkPlace, apply_inputs
     from mjcfbuild.inputs.control_sensors import add_control_sensors
     from mjcfbuild.inputs.gazebo_sensors import add_gazebo_sensors
+    from mjcfbuild.inputs.rays import unroll_lidar_rays
     from mjcfbuild.inputs.ros2_control import sensor_warnings
     from mjcfbuild.mjcf.arena import size_arena
     from mjcfbuild.selfcollision.excludes import write_excludes
@@ -193,6 +194,7 @@ def _apply_additions(
     )
     add_control_sensors(root, control, links)
     write_excludes(root, options.excludes)
+    unroll_lidar_rays(root)  # MuJoCo compiles a replicated lidar's rays in quadratic time
 
     def compile_tree(tree, drawing: bool = False) -> Any:
         copy = _reading_products(tree, prepared)

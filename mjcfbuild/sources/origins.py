@@ -42,24 +42,30 @@ def written_at(urdf: Path, line: int) -> tuple[str, int] | None:
     return str(file), int(written)
 
 
-def point_at_source(error: MjcfbuildError, urdf: Path, label: str, base_dir: Path) -> None:
+def point_at_source(
+    error: MjcfbuildError, urdf: Path, label: str, base_dir: Path, xacro: Path | None = None
+) -> None:
     """If ``error`` points at a line of the expanded URDF ``urdf`` (shown as ``label``,
     relative to ``base_dir``), point it where that element was written, and name the
-    expanded line in its message."""
+    expanded line in its message. An error about the whole expanded URDF (no line) points at
+    ``xacro``, the file it was expanded from, where one is given: the user never wrote the
+    expanded file."""
     location = error.location
-    if location is None or location.line is None or location.file != label:
+    if location is None or location.file != label:
+        return
+    expanded = os.path.relpath(urdf)
+    expanded = str(urdf) if expanded.startswith("..") else expanded
+    if location.line is None:
+        if xacro is not None:
+            error.message += f" [expanded: {expanded}]"
+            location.file = _shown(str(xacro), base_dir)
         return
     found = written_at(urdf, location.line)
     if found is None:
         return
-    expanded = os.path.relpath(urdf)
-    expanded = str(urdf) if expanded.startswith("..") else expanded
     error.message += f" [expanded: {expanded}:{location.line}]"
     file, line = found
-    try:
-        location.file = str(Path(file).relative_to(base_dir))
-    except ValueError:
-        location.file = file
+    location.file = _shown(file, base_dir)
     location.line, location.column = line, None
     if error.hint and error.hint.startswith("the line is in the expansion of"):
         error.hint = None
@@ -79,3 +85,11 @@ def point_warning_at_source(text: str, urdf: Path, label: str, base_dir: Path) -
     if error.location is None or error.location.file == label:
         return text
     return f"{error.location}: {error.message}"
+
+
+def _shown(file: str, base_dir: Path) -> str:
+    """``file`` relative to ``base_dir`` where it is inside it."""
+    try:
+        return str(Path(file).relative_to(base_dir))
+    except ValueError:
+        return file

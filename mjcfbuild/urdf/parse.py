@@ -1,9 +1,12 @@
 """Parsing URDF bytes into a :class:`Robot`, with errors that name the file and line.
 
 The XML is parsed as bytes (real files declare their encoding), with entity expansion and
-network access off. Two defects seen in real descriptions are repaired with a warning instead
-of failing: undeclared namespace prefixes (``drake:...``; the prefixed elements are ignored)
-and numbers separated by commas (``rpy="1.57, 0, 0"``).
+network access off. Three defects seen in real descriptions are repaired with a warning
+instead of failing: undeclared namespace prefixes (``drake:...``; the prefixed elements are
+ignored), numbers separated by commas (``rpy="1.57, 0, 0"``), and what MuJoCo's own URDF
+import and pybullet read although XML forbids it: an XML declaration after blank lines or
+with a version other than 1.0, and NUL bytes after the root element (pybullet_data's
+``biped2d_pybullet.urdf``, ``bike.urdf`` and ``humanoid.urdf``).
 """
 
 from __future__ import annotations
@@ -54,6 +57,8 @@ def parse_xml(data: bytes, display_file: str, warnings: list[str]) -> etree._Ele
     if not data.strip():
         raise InputError("the file is empty", file=display_file)
     refuse_entities(data, display_file)
+    data = _repair_declaration(data, display_file, warnings)
+    data = _drop_trailing_nuls(data, display_file, warnings)
     try:
         return etree.fromstring(data, secure_parser())
     except etree.XMLSyntaxError as exc:
@@ -85,6 +90,48 @@ def parse_xml(data: bytes, display_file: str, warnings: list[str]) -> etree._Ele
 
 
 _PREFIX = re.compile(r"Namespace prefix (\S+)")
+# An XML declaration after leading white space (XML allows nothing before it), and its version.
+_DECLARATION = re.compile(rb"\A(\s*)(<\?xml\s[^>]*?\?>)")
+_VERSION = re.compile(rb"""(\sversion\s*=\s*)(["'])([^"']*)\2""")
+
+
+def _repair_declaration(data: bytes, display_file: str, warnings: list[str]) -> bytes:
+    """``data`` with its XML declaration moved to the very start and its version made 1.0,
+    each with a warning; every element stays on its line (the blank lines follow the
+    declaration instead of preceding it)."""
+    found = _DECLARATION.match(data)
+    if found is None:
+        return data
+    space, declaration = found.group(1), found.group(2)
+    line = space.count(b"\n") + 1
+    version = _VERSION.search(declaration)
+    if version is not None and not version.group(3).startswith(b"1."):
+        written = version.group(3).decode("ascii", "replace")
+        start, end = version.span(3)
+        declaration = declaration[:start] + b"1.0" + declaration[end:]
+        warnings.append(
+            f"{display_file}:{line}: the XML declaration "
+            f'says version "{written}"; read as 1.0 (write version="1.0")'
+        )
+    if space:
+        warnings.append(
+            f"{display_file}:{line}: the XML declaration follows blank "
+            "lines; read as if it came first (remove what precedes it)"
+        )
+    return declaration + space + data[found.end() :]
+
+
+def _drop_trailing_nuls(data: bytes, display_file: str, warnings: list[str]) -> bytes:
+    """``data`` without the NUL bytes (and white space) at its end, with a warning: a C
+    string's terminator written into the file, which C parsers never see."""
+    kept = data.rstrip(b"\x00 \t\r\n")
+    if b"\x00" not in data[len(kept) :]:
+        return data
+    line = data[: data.index(b"\x00", len(kept))].count(b"\n") + 1
+    warnings.append(
+        f"{display_file}:{line}: NUL bytes after the end of the XML; ignored (remove them)"
+    )
+    return kept + b"\n"
 
 
 def _clean_xml_message(message: str) -> str:
@@ -325,6 +372,13 @@ def _missing(reader: _Reader, element: etree._Element, attribute: str) -> NoRetu
     raise reader.error(element, f"<{element.tag}> needs a '{attribute}' attribute")
 
 
+# pybullet's and MuJoCo's URDF readers take a ball joint (pybullet_data's humanoid.urdf).
+_SPHERICAL = (
+    "; 'spherical' is pybullet's extension, not URDF: write the ball joint as three revolute "
+    "joints through two small links"
+)
+
+
 def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
     name = reader.required(element, "name")
     kind = reader.required(element, "type")
@@ -332,7 +386,8 @@ def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
         raise reader.error(
             element,
             f"joint '{name}' has unknown type '{kind}'",
-            hint=f"use one of {', '.join(JOINT_TYPES)}",
+            hint=f"use one of {', '.join(JOINT_TYPES)}"
+            + (_SPHERICAL if kind == "spherical" else ""),
         )
     parent = element.find("parent")
     child = element.find("child")
@@ -363,7 +418,9 @@ def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
                 limit_element,
                 f"joint '{name}' has lower limit {limit.lower:g} above its upper limit "
                 f"{limit.upper:g}",
-                hint="swap them",
+                # pybullet_data's biped2d_pybullet.urdf writes lower 1, upper -1 for "free".
+                hint="swap them; if they mean 'no limit' (as pybullet reads them), make a "
+                "revolute joint continuous, or give a prismatic one the range it can travel",
             )
     damping = friction = 0.0
     dynamics = element.find("dynamics")

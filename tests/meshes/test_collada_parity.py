@@ -141,6 +141,11 @@ def test_the_comparison_sees_a_wrong_reading(tmp_path):
     assert triangle_mismatch(shifted, ours) is not None
     assert triangle_mismatch(ours[::-1, ::-1], ours) is not None  # winding reversed
     assert triangle_mismatch(ours[::-1], ours) is None  # order does not matter
+    # Corners equal but for rounding may start a triangle at another corner: the same triangle.
+    tied = np.array([[[0.0, 0.0, 0.2], [0.1, 0.0, 0.3], [0.0, 0.0, 0.1]]])
+    rounded = np.roll(tied, 1, axis=1)
+    rounded[0, 1, 0] -= 1e-17  # this reading's lowest corner is another one
+    assert triangle_mismatch(np.concatenate([ours, tied]), np.concatenate([ours, rounded])) is None
 
 
 def test_units_scale_the_document(tmp_path):
@@ -280,6 +285,9 @@ def test_a_second_index_list_is_refused_not_dropped(tmp_path):
 # pycollada skips these files' geometry after ignoring an error of its own (and so reads no
 # triangles): a texture surface the effect refers to is missing.
 PYCOLLADA_CANNOT_READ = {"anymal_b_simple_description/meshes/foot/anymal_foot.dae"}
+# Not XML: the tail of an older version follows </COLLADA> (no URDF names the file); both
+# readers refuse it, mjcfbuild with its name and line.
+NOT_XML = {"lbr_iiwa_14_r820/visual/base_link2.dae"}
 
 
 def _wheel_dae_files(tmp_path: Path) -> list[Path]:
@@ -305,6 +313,10 @@ def test_every_dae_of_the_description_wheels_reads_as_pycollada_reads_it(tmp_pat
     assert len(files) > 500
     mismatched, unreadable = [], set()
     for path in files:
+        if "/".join(path.parts[-3:]) in NOT_XML:
+            with pytest.raises(InputError, match="cannot read COLLADA file: Extra content"):
+                mjcfbuild_triangles(path)
+            continue
         ours = mjcfbuild_triangles(path)  # every file is read, whatever pycollada makes of it
         reference = pycollada_triangles(path)
         difference = triangle_mismatch(ours, reference.triangles)

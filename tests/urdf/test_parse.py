@@ -48,6 +48,53 @@ def test_encoding_declaration_is_accepted():
     assert parse('<?xml version="1.0" encoding="UTF-8"?>\n<robot name="a"><link name="l"/></robot>')
 
 
+def test_an_xml_declaration_after_blank_lines_is_read_with_a_warning():
+    # pybullet_data's biped2d_pybullet.urdf; MuJoCo's URDF import and pybullet read it.
+    text = (
+        '\n\n\n<?xml version="1.0"?>\n<robot name="a">\n<link name="l"/>\n<link name="l"/></robot>'
+    )
+    assert error_of(text).location.line == 7  # every element keeps its line
+    robot = parse(text.replace('<link name="l"/></robot>', "</robot>"))
+    assert [link.name for link in robot.links] == ["l"]
+    assert robot.warnings == [
+        "r.urdf:4: the XML declaration follows blank lines; read as if it came first "
+        "(remove what precedes it)"
+    ]
+
+
+def test_an_xml_declaration_of_another_version_is_read_as_1_0_with_a_warning():
+    # pybullet_data's bicycle/bike.urdf says version="0.0".
+    robot = parse('<?xml version=\'0.0\' ?>\n<robot name="a"><link name="l"/></robot>')
+    assert robot.name == "a"
+    assert robot.warnings == [
+        'r.urdf:1: the XML declaration says version "0.0"; read as 1.0 (write version="1.0")'
+    ]
+    assert parse('<?xml version="1.1"?>\n<robot name="a"><link name="l"/></robot>').warnings == []
+
+
+def test_nul_bytes_after_the_root_element_are_dropped_with_a_warning():
+    # pybullet_data's humanoid/humanoid.urdf ends in a NUL byte (a C string's terminator).
+    robot = parse('<robot name="a">\r\n<link name="l"/>\r\n</robot>\r\n\x00\x00')
+    assert [link.name for link in robot.links] == ["l"]
+    assert robot.warnings == ["r.urdf:4: NUL bytes after the end of the XML; ignored (remove them)"]
+    assert "malformed XML" in error_of('<robot name="a">\x00<link name="l"/></robot>').message
+
+
+def test_a_spherical_joint_says_how_to_write_it_in_urdf():
+    error = error_of(
+        "<robot name='r'><link name='a'/><link name='b'/>\n<joint name='j' type='spherical'>"
+        "<parent link='a'/><child link='b'/></joint></robot>"
+    )
+    assert error.hint is not None and error.hint.endswith(
+        "'spherical' is pybullet's extension, not URDF: write the ball joint as three revolute "
+        "joints through two small links"
+    )
+
+
+def test_text_before_the_xml_declaration_is_still_malformed():
+    assert "malformed XML" in error_of('x\n<?xml version="1.0"?>\n<robot name="a"/>').message
+
+
 def test_named_global_materials_are_resolved():
     robot = parse(
         '<robot name="a"><material name="blue"><color rgba="0 0 1 1"/></material>'
@@ -85,7 +132,7 @@ def test_undeclared_namespace_prefix_is_a_warning():
         (
             "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='spherical'>"
             "<parent link='a'/><child link='b'/></joint></robot>",
-            "unknown type 'spherical'",
+            "unknown type 'spherical'",  # pybullet_data's humanoid.urdf
             2,
         ),
         (
