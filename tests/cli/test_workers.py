@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import shutil
+import tempfile
+from pathlib import Path
+
 from mjcfbuild.engine import resident
 from mjcfbuild.errors import EXIT_OK
 from tests.conftest import copy_example, run_cli
@@ -31,10 +35,15 @@ def test_off_says_so(tmp_path):
     assert shown.code == EXIT_OK and "resident workers are off" in shown.stdout
 
 
-def test_a_folder_others_can_open_is_not_used_and_it_says_why(tmp_path):
-    shared = tmp_path / "shared"
-    shared.mkdir()
-    shared.chmod(0o755)
-    shown = run_cli("workers", env={resident.DIR_VARIABLE: str(shared), resident.VARIABLE: "60"})
-    assert shown.code == EXIT_OK
-    assert f"resident workers are off: {shared} may be opened by other users" in shown.stdout
+def test_a_folder_others_can_open_is_not_used_and_it_says_why():
+    # A short folder: a socket's path is limited, and pytest's own folders can be too long
+    # for one (under pytest-xdist), which the command reports first.
+    shared = Path(tempfile.mkdtemp(prefix="mjw-", dir="/tmp"))
+    try:
+        shared.chmod(0o755)
+        env = {resident.DIR_VARIABLE: str(shared), resident.VARIABLE: "60"}
+        shown = run_cli("workers", env=env)
+        assert shown.code == EXIT_OK
+        assert f"resident workers are off: {shared} may be opened by other users" in shown.stdout
+    finally:
+        shutil.rmtree(shared, ignore_errors=True)
