@@ -77,5 +77,5 @@ def test_readme_first_command_installs_no_test_extras_and_the_second_runs_the_te
     assert printed == [
         "python3 -m venv .venv && .venv/bin/pip install -e . && "
         ".venv/bin/mjcfbuild build examples/arm/robot.yaml",
-        '.venv/bin/pip install -e ".[test]" && .venv/bin/python -m pytest',
+        '.venv/bin/pip install -e ".[test]" && .venv/bin/python -m pytest -n 2 --dist loadfile',
     ]
