@@ -208,10 +208,10 @@ class BuildSession:
         # After an interrupted stage, doit's threads may still be running a step of their
         # own here: it finishes (its files are written atomically) before the build lets go
         # of the folder, instead of writing after it, or dying half-way as the process ends.
-        # A second Ctrl-C stops the wait.
+        # A second Ctrl-C stops the wait, and so does the step time limit: nothing waited for
+        # under the lock waits without one.
         with self._here_done:
-            while self._here:
-                self._here_done.wait()
+            self._here_done.wait_for(lambda: not self._here, timeout=self.ctx.step_timeout)
         if self._hashes is not None:
             if self._hashes.path is None and self.ctx.state_dir.is_dir():
                 self._hashes.path = self.ctx.state("hashes.json")
