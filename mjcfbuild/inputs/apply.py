@@ -256,6 +256,7 @@ def model_section(root: etree._Element, name: str) -> etree._Element:
 
 def _merge_raw(root: etree._Element, item: RawElement, warnings: list[str]) -> list[etree._Element]:
     element = etree.fromstring(item.xml)
+    _refuse_unknown_attributes(element, item.origin)
     if item.section in SINGLE_SECTIONS:
         existing = root.find(item.section)
         if existing is None:
@@ -271,6 +272,28 @@ def _merge_raw(root: etree._Element, item: RawElement, warnings: list[str]) -> l
         return _merge_default(section, element, item.origin, warnings)
     section.append(element)
     return list(element.iter())
+
+
+def _refuse_unknown_attributes(element: etree._Element, origin: str) -> None:
+    """Refuse, at the raw element's line, an attribute that MuJoCo's element of that name
+    has in none of its places (MuJoCo would refuse the assembled model without saying which
+    input set it); an element MuJoCo does not have is left to MuJoCo's own error."""
+    from mjcfbuild.inputs.mujoco_schema import mujoco_attributes_anywhere
+
+    for node in element.iter():
+        if not isinstance(node.tag, str):
+            continue
+        known = mujoco_attributes_anywhere(node.tag)
+        # A namespaced attribute ("{uri}name") is no MuJoCo attribute and no typo either.
+        unknown = [n for n in node.attrib if known and n not in known and not n.startswith("{")]
+        if unknown:
+            inside = "" if node is element else f" inside <{element.tag}>"
+            raise input_error(
+                origin,
+                f"<{node.tag}>{inside} has no attribute '{unknown[0]}'"
+                + did_you_mean(unknown[0], set(known)),
+                hint=f"MuJoCo's <{node.tag}> attributes: {_listing(known, limit=len(known))}",
+            )
 
 
 def _merge_default(

@@ -52,3 +52,10 @@ def mujoco_attributes(element: str) -> frozenset[str]:
     for an element MuJoCo does not have)."""
     in_body, anywhere = _schema()
     return in_body.get(element) or anywhere.get(element, frozenset())
+
+
+def mujoco_attributes_anywhere(element: str) -> frozenset[str]:
+    """The attributes MuJoCo accepts on ``element`` in any of its places (empty for an
+    element MuJoCo does not have): what raw MJCF, whose place this module does not follow,
+    may set without being refused wrongly."""
+    return _schema()[1].get(element, frozenset())

@@ -79,6 +79,42 @@ def test_a_mujoco_attribute_mujoco_lacks_is_an_error_at_its_input(tmp_path, elem
     assert says in text, text
 
 
+@pytest.mark.parametrize(
+    ("raw", "says"),
+    [
+        (
+            '<actuator>\n<position name="p" joint="hinge" kpp="30"/></actuator>',
+            "inputs.xml:3: <position> has no attribute 'kpp'; did you mean 'kp'? "
+            "(MuJoCo's <position> attributes: ",
+        ),
+        (
+            '<default>\n<default class="soft">\n<geom rbga="1 0 0 1"/></default></default>',
+            "inputs.xml:3: <geom> inside <default> has no attribute 'rbga'; did you mean "
+            "'rgba'?",
+        ),
+        (
+            '<option timestep="0.002" integrater="RK4"/>',
+            "inputs.xml:2: <option> has no attribute 'integrater'; did you mean 'integrator'?",
+        ),
+    ],
+)
+def test_a_raw_attribute_mujoco_lacks_is_an_error_at_its_input(tmp_path, raw, says):
+    """Not MuJoCo's "unrecognized attribute" about the assembled model, which names no input."""
+    text = error(tmp_path, f"<raw_inputs>\n{raw}</raw_inputs>")
+    assert says in text, text
+
+
+def test_raw_attributes_of_an_element_in_any_of_its_places_are_kept(tmp_path):
+    # <joint> in an equality has joint1 and polycoef, which a body's <joint> has not.
+    result = build(
+        tmp_path,
+        '<raw_inputs><equality><joint joint1="hinge" polycoef="0 1 0 0 0"/></equality>'
+        '<default><joint damping="0.5"/></default></raw_inputs>',
+    )
+    text = result.robot.read_text()
+    assert 'joint1="hinge"' in text and 'damping="0.5"' in text
+
+
 def test_input_defaults_merge_into_mjcfbuilds_classes_and_new_classes_are_added(tmp_path):
     result = build(
         tmp_path,
