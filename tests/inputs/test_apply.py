@@ -89,8 +89,7 @@ def test_a_mujoco_attribute_mujoco_lacks_is_an_error_at_its_input(tmp_path, elem
         ),
         (
             '<default>\n<default class="soft">\n<geom rbga="1 0 0 1"/></default></default>',
-            "inputs.xml:3: <geom> inside <default> has no attribute 'rbga'; did you mean "
-            "'rgba'?",
+            "inputs.xml:3: <geom> inside <default> has no attribute 'rbga'; did you mean 'rgba'?",
         ),
         (
             '<option timestep="0.002" integrater="RK4"/>',
