@@ -91,12 +91,23 @@ def _reads(sensor: etree._Element, site: str) -> bool:
 
 
 def _named_outside_sensors(root: etree._Element, name: str, section: etree._Element | None) -> bool:
-    """Whether anything but a sensor names the site ``name``."""
+    """Whether anything names the site ``name`` other than the site itself and the sensors
+    reading it (a sensor's ``site``, or its ``objname`` with ``objtype="site"``): a sensor's
+    ``refname``, an actuator's ``refsite``, an equality's ``site1``... which MuJoCo resolves
+    against its replicated sites, and which unrolled rays would leave dangling."""
     for element in root.iter():
+        parent = element.getparent()
         if not isinstance(element.tag, str):
             continue
-        if section is not None and element.getparent() is section:
-            continue
-        if name in (element.get("site"), element.get("objname")):
+        if element.tag == "site" and parent is not None and parent.tag == "replicate":
+            continue  # a replicated site itself
+        reader = section is not None and parent is section
+        for attribute, value in element.attrib.items():
+            if value != name or attribute == "name":  # a name defines, it does not refer
+                continue
+            if reader and attribute == "site":
+                continue
+            if reader and attribute == "objname" and element.get("objtype") == "site":
+                continue
             return True
     return False

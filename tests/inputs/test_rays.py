@@ -80,3 +80,25 @@ def test_a_replicate_the_lidar_did_not_write_is_left_to_mujoco():
     assert [s.get("name") for s in root.iter("site") if s.get("name", "").startswith("scan")] == [
         f"scan-{index}" for index in range(5)
     ]
+
+
+@pytest.mark.parametrize(
+    "reference",
+    [
+        '<sensor><framepos objtype="body" objname="head" reftype="site" refname="scan"/></sensor>',
+        '<actuator><motor site="imu" refsite="scan" gear="1 0 0 0 0 0"/></actuator>',
+    ],
+    ids=["a sensor's refname", "an actuator's refsite"],
+)
+def test_a_lidar_whose_site_something_else_names_is_left_to_mujoco(reference):
+    root = lidar_tree(3)
+    addition = etree.fromstring(reference)
+    existing = root.find(addition.tag)
+    if existing is None:
+        root.append(addition)
+    else:
+        existing.extend(list(addition))
+    unroll_lidar_rays(root)
+    # MuJoCo's replicate resolves the name; written-out rays would leave it dangling
+    assert [r.find("site").get("name") for r in root.iter("replicate")] == ["scan"]
+    compiled(root)  # MuJoCo takes it
