@@ -125,8 +125,8 @@ def _drop_trailing_nuls(data: bytes, display_file: str, warnings: list[str]) -> 
     """``data`` without the NUL bytes (and white space) at its end, with a warning: a C
     string's terminator written into the file, which C parsers never see."""
     kept = data.rstrip(b"\x00 \t\r\n")
-    if b"\x00" not in data[len(kept) :]:
-        return data
+    if b"\x00" not in data[len(kept) :] or b"\x00" in kept:
+        return data  # none, or NULs all through: UTF-16 or UTF-32, whose characters hold them
     line = data[: data.index(b"\x00", len(kept))].count(b"\n") + 1
     warnings.append(
         f"{display_file}:{line}: NUL bytes after the end of the XML; ignored (remove them)"

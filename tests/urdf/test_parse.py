@@ -72,6 +72,17 @@ def test_an_xml_declaration_of_another_version_is_read_as_1_0_with_a_warning():
     assert parse('<?xml version="1.1"?>\n<robot name="a"><link name="l"/></robot>').warnings == []
 
 
+@pytest.mark.parametrize("encoding", ["utf-16", "utf-16-le", "utf-32"])
+def test_a_urdf_in_utf_16_or_32_is_read_with_its_nul_bytes(encoding):
+    # Their characters hold NUL bytes, the last ones after the root element included.
+    declared = encoding.upper().removesuffix("-LE")
+    text = (
+        f'<?xml version="1.0" encoding="{declared}"?>\n<robot name="a"><link name="l"/></robot>\n'
+    )
+    robot = parse_urdf(text.encode(encoding), "r.urdf")
+    assert [link.name for link in robot.links] == ["l"] and robot.warnings == []
+
+
 def test_nul_bytes_after_the_root_element_are_dropped_with_a_warning():
     # pybullet_data's humanoid/humanoid.urdf ends in a NUL byte (a C string's terminator).
     robot = parse('<robot name="a">\r\n<link name="l"/>\r\n</robot>\r\n\x00\x00')
