@@ -214,6 +214,7 @@ def execute(
     ``workers`` were started for this build before its manifest was read; ``warnings``, when
     given, receives the warnings instead of the console (``diff`` prints them after its answer).
     """
+    from mjcfbuild import interrupts
     from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.runner import run_build
 
@@ -238,6 +239,7 @@ def execute(
     if debug and result.engine_log.strip():
         print(result.engine_log, file=sys.stderr)
     if not quiet or result.errors:
+        interrupts.check()  # a SIGINT while the warnings printed: no line saying "built"
         print(result.summary())
         if result.slowest and result.seconds > 2.0 and not quiet:
             slowest = ", ".join(f"{title} {seconds:.2f} s" for title, seconds in result.slowest)

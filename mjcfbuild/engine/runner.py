@@ -287,11 +287,16 @@ def _shown_warnings(ctx: BuildContext, progress: Progress, tasks: list[dict]) ->
     (as the task gave them when it last ran, like the report), in graph order, then the
     build's own (the product sharing's). So a build that found the folder up to date says
     what the no-op fast path says, and a rebuild still shows what the tasks it did not run
-    warned of; a task that failed or never ran shows nothing."""
+    warned of; a task that failed or never ran shows nothing. Without ``tasks`` (a build
+    stopped before or while it planned, or by a file it could not write), the warnings of the
+    tasks that ran."""
     from mjcfbuild.engine.report import build_warnings, task_warnings
 
     done = {*progress.names(RAN), *progress.names(UP_TO_DATE)}
-    given = task_warnings(ctx, [task["name"] for task in tasks if task["name"] in done])
+    if tasks:
+        given = task_warnings(ctx, [task["name"] for task in tasks if task["name"] in done])
+    else:
+        given = dict(ctx.session.task_warnings)
     return _placed(
         ctx, [*(w for warnings in given.values() for w in warnings), *build_warnings(ctx)]
     )

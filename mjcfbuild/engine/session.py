@@ -50,8 +50,8 @@ class BuildSession:
         self._sharing_lock = threading.Lock()
         self._pool_lock = threading.Lock()
         self._closed = False
-        # Steps running in this process (in doit's threads), which close() waits for.
-        self._here = 0
+        # The threads running a step in this process (doit's), which close() waits for.
+        self._here: set[int] = set()
         self._here_done = threading.Condition()
 
     @property
@@ -111,16 +111,17 @@ class BuildSession:
         if not in_worker:
             import importlib
 
-            with self._here_done:
-                self._here += 1
+            thread = threading.get_ident()
             try:
+                with self._here_done:
+                    self._here.add(thread)
                 module_name, _, function_name = step.partition(":")
                 function = getattr(importlib.import_module(module_name), function_name)
                 result: dict = function(payload)
                 return result
             finally:
                 with self._here_done:
-                    self._here -= 1
+                    self._here.discard(thread)
                     self._here_done.notify_all()
         self.ctx.logs_dir.mkdir(parents=True, exist_ok=True)
         log = self.ctx.logs_dir / (re.sub(r"[^A-Za-z0-9_.-]+", "-", task) + ".log")
@@ -210,8 +211,11 @@ class BuildSession:
         # of the folder, instead of writing after it, or dying half-way as the process ends.
         # A second Ctrl-C stops the wait, and so does the step time limit: nothing waited for
         # under the lock waits without one.
+        # This thread's own step (with -j 1 doit runs steps here) has ended: the interrupt
+        # came through it, whatever the set says.
+        this = threading.get_ident()
         with self._here_done:
-            self._here_done.wait_for(lambda: not self._here, timeout=self.ctx.step_timeout)
+            self._here_done.wait_for(lambda: not self._here - {this}, timeout=self.ctx.step_timeout)
         if self._hashes is not None:
             if self._hashes.path is None and self.ctx.state_dir.is_dir():
                 self._hashes.path = self.ctx.state("hashes.json")
