@@ -112,6 +112,7 @@ def _names(root: etree._Element, tag: str) -> list[str]:
 
 def _unplaceable(pending: list[Part], links: list[str]) -> ManifestError:
     """Why none of ``pending`` can be joined: an unknown link, or parts attached to each other."""
+    from mjcfbuild.compose.chain import stuck_chain
     from mjcfbuild.control.choose import listing
 
     owner = {
@@ -119,18 +120,14 @@ def _unplaceable(pending: list[Part], links: list[str]) -> ManifestError:
         for part in pending
         for name in _names(_parse(part.xml, part.label), "link")
     }
-    chain = [pending[0]]
-    while chain[-1].to in owner and owner[chain[-1].to] not in chain:
-        chain.append(owner[chain[-1].to])
-    last = chain[-1]
-    if last.to not in owner:
+    last, cycle = stuck_chain(pending[0], owner, lambda part: part.to)
+    if cycle is None:
         return ManifestError(
             f"'to' names link '{last.to}', which is not a link of the model"
             f"{did_you_mean(last.to, set(links))}",
             file=f"{last.key}.to",
             hint=f"links: {listing(links)}",
         )
-    cycle = chain[chain.index(owner[last.to]) :]
     steps = " -> ".join(f"{part.prefix} (to {part.to})" for part in cycle)
     return ManifestError(
         f"parts are attached to each other in a cycle: {steps}",

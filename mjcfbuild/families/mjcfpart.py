@@ -123,6 +123,7 @@ def _check_names(
 
 def _unplaceable(ctx: GraphContext, pending: list, targets: list[str]) -> ManifestError:
     """Why none of ``pending`` can be attached: an unknown ``to``, or a cycle."""
+    from mjcfbuild.compose.chain import stuck_chain
     from mjcfbuild.control.choose import listing
 
     owner = {
@@ -130,18 +131,16 @@ def _unplaceable(ctx: GraphContext, pending: list, targets: list[str]) -> Manife
         for index, part, _, summary in pending
         for name in (*summary.bodies, *summary.sites)
     }
-    chain = [(pending[0][0], pending[0][1])]
-    while chain[-1][1].to in owner and owner[chain[-1][1].to] not in chain:
-        chain.append(owner[chain[-1][1].to])
-    index, last = chain[-1]
-    if last.to not in owner:
+    (index, last), cycle = stuck_chain(
+        (pending[0][0], pending[0][1]), owner, lambda entry: entry[1].to
+    )
+    if cycle is None:
         return ManifestError(
             f"'to' names '{last.to}', which is not a link of the model nor a body or site of "
             f"an MJCF part{did_you_mean(last.to, set(targets))}",
             file=f"{ctx.manifest_label} attach[{index}].to",
             hint=f"links: {listing(targets)}",
         )
-    cycle = chain[chain.index(owner[last.to]) :]
     steps = " -> ".join(f"{part.prefix} (to {part.to})" for _, part in cycle)
     return ManifestError(
         f"parts are attached to each other in a cycle: {steps}",
