@@ -256,7 +256,7 @@ def model_section(root: etree._Element, name: str) -> etree._Element:
 
 def _merge_raw(root: etree._Element, item: RawElement, warnings: list[str]) -> list[etree._Element]:
     element = etree.fromstring(item.xml)
-    _refuse_unknown_attributes(element, item.origin)
+    _refuse_unknown_attributes(element, item)
     if item.section in SINGLE_SECTIONS:
         existing = root.find(item.section)
         if existing is None:
@@ -274,10 +274,10 @@ def _merge_raw(root: etree._Element, item: RawElement, warnings: list[str]) -> l
     return list(element.iter())
 
 
-def _refuse_unknown_attributes(element: etree._Element, origin: str) -> None:
-    """Refuse, at the raw element's line, an attribute that MuJoCo's element of that name
-    has in none of its places (MuJoCo would refuse the assembled model without saying which
-    input set it); an element MuJoCo does not have is left to MuJoCo's own error."""
+def _refuse_unknown_attributes(element: etree._Element, item: RawElement) -> None:
+    """Refuse, at its line, an attribute that MuJoCo's element of that name has in none of
+    its places (MuJoCo would refuse the assembled model without saying which input set it);
+    an element MuJoCo does not have is left to MuJoCo's own error."""
     from mjcfbuild.inputs.mujoco_schema import mujoco_attributes_anywhere
 
     for node in element.iter():
@@ -289,11 +289,22 @@ def _refuse_unknown_attributes(element: etree._Element, origin: str) -> None:
         if unknown:
             inside = "" if node is element else f" inside <{element.tag}>"
             raise input_error(
-                origin,
+                _line_of(node, element, item),
                 f"<{node.tag}>{inside} has no attribute '{unknown[0]}'"
                 + did_you_mean(unknown[0], set(known)),
                 hint=f"MuJoCo's <{node.tag}> attributes: {_listing(known, limit=len(known))}",
             )
+
+
+def _line_of(node: etree._Element, element: etree._Element, item: RawElement) -> str:
+    """The origin of ``node``, a descendant of the raw ``element`` (or itself): its own line
+    where the raw text kept the input's lines, else the raw element's."""
+    file, line = origin_location(item.origin)
+    if node is element or line is None or not item.lines_kept:
+        return item.origin
+    if node.sourceline is None or element.sourceline is None:
+        return item.origin
+    return f"{file}:{line + node.sourceline - element.sourceline}"
 
 
 def _merge_default(

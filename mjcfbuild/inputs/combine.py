@@ -79,4 +79,5 @@ def _merge_single(low: RawElement, high: RawElement, warnings: list[str]) -> Raw
         merged.set(key, value)
     for child in override:
         merged.append(child)
-    return RawElement(high.section, etree.tostring(merged, encoding="unicode"), high.origin)
+    text = etree.tostring(merged, encoding="unicode")
+    return RawElement(high.section, text, high.origin, lines_kept=False)

@@ -43,6 +43,9 @@ class RawElement:
     section: str
     xml: str
     origin: str
+    # Whether ``xml`` keeps the line breaks of the element at ``origin`` (not one merged from
+    # two inputs), so that a child's line there is the origin's plus its line in ``xml``.
+    lines_kept: bool = True
 
 
 @dataclass

@@ -89,7 +89,11 @@ def test_a_mujoco_attribute_mujoco_lacks_is_an_error_at_its_input(tmp_path, elem
         ),
         (
             '<default>\n<default class="soft">\n<geom rbga="1 0 0 1"/></default></default>',
-            "inputs.xml:3: <geom> inside <default> has no attribute 'rbga'; did you mean 'rgba'?",
+            "inputs.xml:4: <geom> inside <default> has no attribute 'rbga'; did you mean 'rgba'?",
+        ),
+        (  # a nested element's own line, not its raw element's
+            '<tendon>\n<fixed name="t">\n\n<joint joint="hinge" coeff="1"/>\n</fixed></tendon>',
+            "inputs.xml:5: <joint> inside <fixed> has no attribute 'coeff'; did you mean 'coef'?",
         ),
         (
             '<option timestep="0.002" integrater="RK4"/>',

@@ -41,6 +41,9 @@ def test_higher_precedence_wins_and_every_clash_is_warned():
     combined, warnings = combine([urdf, file, manifest])
     option = next(item for item in combined.raw if item.section == "option")
     assert 'timestep="0.001"' in option.xml and 'integrator="Euler"' in option.xml
+    # Merged from two inputs: a child's line in the text is no line of in.xml.
+    assert not option.lines_kept and option.origin == "in.xml:2"
+    assert all(item.lines_kept for item in combined.raw if item.section != "option")
     actuators = [item.xml for item in combined.raw if item.section == "actuator"]
     assert actuators == ['<position name="m" joint="j"/>']
     assert len([item for item in combined.raw if item.section == "contact"]) == 1
