@@ -210,7 +210,6 @@ def _apply_additions(
                 hint="check the mujoco_inputs and raw MJCF",
             ) from None
 
-    compile_tree(root)  # the user's inputs are at fault, not what follows
     parts = with_parts(robot, options.parts, options.actuators)
     choices = choose_actuators(
         parts.actuator_robot, control, options.actuators, user_driven_joints(root)
@@ -243,7 +242,13 @@ def _apply_additions(
             preset_ctrl=parts.preset_ctrl,
         )
 
-    readiness = ready(root, home)
+    try:
+        readiness = ready(root, home)
+    except ModelError:
+        # MuJoCo's complaint about the user's inputs alone, where they are at fault, rather
+        # than about them with the actuators added (a compile fewer when nothing is wrong).
+        compile_tree(pristine)
+        raise
     if options.free_joint and described_nothing(home) and not stands(root, compile_tree):
         # The description gives no pose the robot stands in: try a computed crouch.
         crouched = crouched_home(root, compile_tree, home, readiness)

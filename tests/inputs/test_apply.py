@@ -165,3 +165,13 @@ def test_scene_block_from_the_inputs(tmp_path):
     result = build(tmp_path, '<scene><option gravity="0 0 -1"/></scene>')
     scene = result.scene.read_text()
     assert '<include file="r.xml"/>' in scene and 'gravity="0 0 -1"' in scene
+
+
+def test_inputs_mujoco_rejects_are_named_in_mujocos_words(tmp_path):
+    """No compile of its own checks the inputs first: the first compile's failure is reported
+    as MuJoCo's complaint about the inputs."""
+    with pytest.raises(BuildFailed) as info:
+        build(tmp_path, '<raw_inputs><option timestep="fast"/></raw_inputs>')
+    text = info.value.one_line()
+    assert "MuJoCo rejected the model with its inputs" in text, text
+    assert "timestep" in text and "check the mujoco_inputs and raw MJCF" in text, text
