@@ -245,6 +245,7 @@ def parse_urdf(data: bytes, display_file: str = "robot.urdf") -> Robot:
     materials = _global_materials(root, reader)
     links = [_parse_link(element, reader, materials) for element in root.findall("link")]
     joints = [_parse_joint(element, reader) for element in root.findall("joint")]
+    links = _implicit_world(links, joints, reader)
     robot = Robot(
         name=(root.get("name") or "robot").strip() or "robot",
         links=links,
@@ -448,6 +449,27 @@ def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
         mimic=mimic,
         line=element.sourceline,
     )
+
+
+WORLD = "world"
+
+
+def _implicit_world(links: list[Link], joints: list[Joint], reader: _Reader) -> list[Link]:
+    """``links``, with an empty ``world`` link first when a joint's parent is a ``world`` the
+    URDF does not declare: Drake and Gazebo read that link as the ground (drake's
+    ``Acrobot.urdf`` welds its base to it), ROS's urdfdom refuses it, so it comes with a
+    warning."""
+    if any(link.name == WORLD for link in links):
+        return links
+    welded = [joint for joint in joints if joint.parent == WORLD]
+    if not welded:
+        return links
+    reader.warnings.append(
+        f"{reader.file}:{welded[0].line}: joint '{welded[0].name}' has the parent link "
+        f"'{WORLD}', which the URDF does not declare: taken as the ground, as Drake and "
+        f'Gazebo read it (add <link name="{WORLD}"/> for readers that refuse it, such as ROS)'
+    )
+    return [Link(WORLD), *links]
 
 
 def _mujoco_compiler(root: etree._Element) -> dict[str, str]:

@@ -70,6 +70,15 @@ def test_a_world_link_with_an_inertia_mujoco_refuses_builds(tmp_path):
     assert etree.fromstring(assembly.xml).find("worldbody/inertial") is None
 
 
+def test_a_base_welded_to_an_undeclared_world_is_fixed(tmp_path):
+    # drake's Acrobot.urdf: the parent 'world' is never declared; Drake and Gazebo weld to it
+    urdf = two_link_urdf(
+        extra='<joint name="w" type="fixed"><parent link="world"/><child link="base"/></joint>'
+    )
+    _, model = build(urdf, tmp_path)
+    assert model.nbody == 2 and model.nq == 1  # the base is fused into the world
+
+
 def test_mirrored_mesh_is_one_file_two_assets(tmp_path):
     meshes = EXAMPLES / "arm" / "meshes"
     urdf = f"""<robot name="r"><link name="a">{INERTIA}
