@@ -6,7 +6,8 @@ instead of failing: undeclared namespace prefixes (``drake:...``; the prefixed e
 ignored), numbers separated by commas (``rpy="1.57, 0, 0"``), and what MuJoCo's own URDF
 import and pybullet read although XML forbids it: an XML declaration after blank lines or
 with a version other than 1.0, and NUL bytes after the root element (pybullet_data's
-``biped2d_pybullet.urdf``, ``bike.urdf`` and ``humanoid.urdf``).
+``biped2d_pybullet.urdf``, ``bike.urdf`` and ``humanoid.urdf``). A joint whose parent is a
+``world`` link the URDF never declares is welded to the ground, as Drake and Gazebo read it.
 """
 
 from __future__ import annotations
