@@ -7,7 +7,7 @@ ignored), numbers separated by commas (``rpy="1.57, 0, 0"``), and what MuJoCo's 
 import and pybullet read although XML forbids it: an XML declaration after blank lines or
 with a version other than 1.0, and NUL bytes after the root element (pybullet_data's
 ``biped2d_pybullet.urdf``, ``bike.urdf`` and ``humanoid.urdf``). A joint whose parent is a
-``world`` link the URDF never declares is welded to the ground, as Drake and Gazebo read it.
+``world`` link the URDF never declares is welded to the ground, as Drake reads it.
 """
 
 from __future__ import annotations
@@ -457,7 +457,7 @@ WORLD = "world"
 
 def _implicit_world(links: list[Link], joints: list[Joint], reader: _Reader) -> list[Link]:
     """``links``, with an empty ``world`` link first when a joint's parent is a ``world`` the
-    URDF does not declare: Drake and Gazebo read that link as the ground (drake's
+    URDF does not declare: Drake reads that link as the ground (drake's
     ``Acrobot.urdf`` welds its base to it), ROS's urdfdom refuses it, so it comes with a
     warning."""
     if any(link.name == WORLD for link in links):
@@ -467,8 +467,9 @@ def _implicit_world(links: list[Link], joints: list[Joint], reader: _Reader) -> 
         return links
     reader.warnings.append(
         f"{reader.file}:{welded[0].line}: joint '{welded[0].name}' has the parent link "
-        f"'{WORLD}', which the URDF does not declare: taken as the ground, as Drake and "
-        f'Gazebo read it (add <link name="{WORLD}"/> for readers that refuse it, such as ROS)'
+        f"'{WORLD}', which the URDF does not declare: taken as the ground, as Drake reads "
+        f'it (add <link name="{WORLD}"/> for the readers that refuse it: ROS\'s urdfdom, '
+        "MuJoCo's own import)"
     )
     return [Link(WORLD), *links]
 

@@ -71,7 +71,7 @@ def test_a_world_link_with_an_inertia_mujoco_refuses_builds(tmp_path):
 
 
 def test_a_base_welded_to_an_undeclared_world_is_fixed(tmp_path):
-    # drake's Acrobot.urdf: the parent 'world' is never declared; Drake and Gazebo weld to it
+    # drake's Acrobot.urdf: the parent 'world' is never declared; Drake welds to it
     urdf = two_link_urdf(
         extra='<joint name="w" type="fixed"><parent link="world"/><child link="base"/></joint>'
     )

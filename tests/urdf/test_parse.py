@@ -92,7 +92,7 @@ def test_nul_bytes_after_the_root_element_are_dropped_with_a_warning():
 
 
 def test_an_undeclared_world_parent_is_the_ground_with_a_warning():
-    # drake's Acrobot.urdf welds its base to a 'world' it never declares, as Drake and Gazebo allow
+    # drake's Acrobot.urdf welds its base to a 'world' it never declares, as Drake allows
     robot = parse(
         '<robot name="a"><link name="base"/>\n<joint name="weld" type="fixed">'
         '<parent link="world"/><child link="base"/></joint></robot>'
@@ -101,8 +101,8 @@ def test_an_undeclared_world_parent_is_the_ground_with_a_warning():
     assert robot.root == "world"
     assert robot.warnings == [
         "r.urdf:2: joint 'weld' has the parent link 'world', which the URDF does not declare: "
-        "taken as the ground, as Drake and Gazebo read it "
-        '(add <link name="world"/> for readers that refuse it, such as ROS)'
+        'taken as the ground, as Drake reads it (add <link name="world"/> for the readers '
+        "that refuse it: ROS's urdfdom, MuJoCo's own import)"
     ]
     # any other undeclared link stays an error, and a declared world gets no second one
     assert (
