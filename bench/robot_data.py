@@ -104,9 +104,9 @@ def cache_dir() -> Path:
     return Path(base) / "mjcfbuild-dev"
 
 
-def download_wheel(name: str, version: str, stem: str) -> Path:
+def download_wheel(name: str, version: str, stem: str, pip_args: tuple[str, ...] = ()) -> Path:
     """The wheel of ``name`` ``version`` (file names start ``stem``), downloaded into the cache
-    with ``pip download`` on first use."""
+    with ``pip download`` (and ``pip_args``) on first use."""
     folder = cache_dir()
     pattern = f"{stem}-{version}-*.whl"
     found = sorted(folder.glob(pattern))
@@ -114,6 +114,7 @@ def download_wheel(name: str, version: str, stem: str) -> Path:
         return found[0]
     folder.mkdir(parents=True, exist_ok=True)
     command = [sys.executable, "-m", "pip", "download", "--no-deps", "--only-binary=:all:"]
+    command += pip_args
     subprocess.run([*command, "--quiet", f"{name}=={version}", "-d", str(folder)], check=True)
     return sorted(folder.glob(pattern))[0]
 

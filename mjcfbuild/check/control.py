@@ -26,6 +26,7 @@ from mjcfbuild.check.results import (
     MenagerieResult,
     Stand,
 )
+from mjcfbuild.check.simulation import dof_joint
 from mjcfbuild.control.stand_test import (
     base_tilt,
     floor_height,
@@ -402,7 +403,7 @@ def menagerie_test(model) -> MenagerieTest:
     fastest_joint, fastest_speed = None, 0.0
     if jointed.any():
         dof = int(np.argmax(np.where(jointed, top, -1.0)))
-        fastest_joint = _dof_joint(model, dof)
+        fastest_joint = dof_joint(model, dof)
         fastest_speed = float(top[dof])
     # MuJoCo records the DOF of an unstable acceleration: named if it is a joint's own (on a
     # free base it is the base, which only carries what the legs did; the fastest joint says
@@ -410,17 +411,9 @@ def menagerie_test(model) -> MenagerieTest:
     unstable = data.warning[mujoco.mjtWarning.mjWARN_BADQACC]
     dof = int(unstable.lastinfo)
     own = unstable.number and 0 <= dof < model.nv and jointed[dof]
-    unstable_joint = _dof_joint(model, dof) if own else None
-    tops = {_dof_joint(model, int(d)) or f"#{d}": float(top[d]) for d in np.flatnonzero(jointed)}
+    unstable_joint = dof_joint(model, dof) if own else None
+    tops = {dof_joint(model, int(d)) or f"#{d}": float(top[d]) for d in np.flatnonzero(jointed)}
     return MenagerieTest(warnings, finite, fastest_joint, fastest_speed, unstable_joint, tops)
-
-
-def _dof_joint(model, dof: int) -> str | None:
-    import mujoco
-
-    if not 0 <= dof < model.nv:
-        return None
-    return mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, model.dof_jntid[dof])
 
 
 def _floating(model) -> bool:

@@ -33,8 +33,29 @@ def simulate(model, steps: int = 2000) -> SimulationResult:
             break
     warnings = [
         f"{mujoco.mjtWarning(index).name.removeprefix('mjWARN_').lower()} "
-        f"(x{int(stat.number)}, last info {int(stat.lastinfo)})"
+        f"(x{int(stat.number)}, {_where(model, index, int(stat.lastinfo))})"
         for index, stat in enumerate(data.warning)
         if stat.number
     ]
     return SimulationResult(steps, finite, warnings)
+
+
+def _where(model, warning: int, info: int) -> str:
+    """Where MuJoCo's warning happened: the joint of the DOF it records for an unstable
+    velocity or acceleration (a bare index said nothing to a user), else its number."""
+    import mujoco
+
+    if warning in (mujoco.mjtWarning.mjWARN_BADQVEL, mujoco.mjtWarning.mjWARN_BADQACC):
+        joint = dof_joint(model, info)
+        if joint is not None:
+            return f"last at joint '{joint}'"
+    return f"last info {info}"
+
+
+def dof_joint(model, dof: int) -> str | None:
+    """The name of the joint that DOF ``dof`` belongs to; None for no such DOF or no name."""
+    import mujoco
+
+    if not 0 <= dof < model.nv:
+        return None
+    return mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, model.dof_jntid[dof])

@@ -87,12 +87,17 @@ def limit_notes(robot: Robot) -> list[str]:
                 f"(line {joint.line}): taken for no range, its servo gets no ctrlrange; give "
                 'the real limits, or type="continuous" for a joint without stops'
             )
-        for name, value in (("effort", limit.effort), ("velocity", limit.velocity)):
+        # What gives each limit in robot.yaml: a rule's forcerange bounds the force, only a
+        # drive (a rule's motor) gives a speed.
+        for name, value, other in (
+            ("effort", limit.effort, "a rule's forcerange"),
+            ("velocity", limit.velocity, "a rule's motor (its no_load_speed)"),
+        ):
             if value is not None and value <= 0:
                 notes.append(
                     f"joint '{joint.name}' has {name}=\"{value:g}\" in the URDF (line "
                     f"{joint.line}): not a limit, taken as unknown (no {name} limit); give "
-                    "the real one in the URDF or with a rule's forcerange"
+                    f"the real one in the URDF or with {other}"
                 )
     return notes
 

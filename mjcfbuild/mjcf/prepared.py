@@ -22,7 +22,7 @@ from mjcfbuild.collision.policy import CollisionChoice, collision_policy
 from mjcfbuild.errors import InputError
 from mjcfbuild.markup import xml_attribute
 from mjcfbuild.meshes.product import MeshProduct
-from mjcfbuild.mjcf.bodies import Body, PlacedShape
+from mjcfbuild.mjcf.bodies import WORLD, Body, PlacedShape
 from mjcfbuild.numbers import exact_list
 from mjcfbuild.urdf.limits import joint_range, unbounded_warning
 from mjcfbuild.urdf.transforms import Transform, matrix3, matrix_to_rpy, vec3
@@ -177,7 +177,11 @@ def prepare(
     counter = 0
     for body in bodies:
         lines.append(f"  <link name={xml_attribute(body.name)}>")
-        if body.mass is not None and (body.mass.mass > 0 or body.moves):
+        # A root link named world is MuJoCo's world body, which never moves: its mass means
+        # nothing, and an inertia MuJoCo would refuse there stopped the build (drake's
+        # Pendulum.urdf), though the repairs skip the world.
+        is_world = body.name == WORLD and body.parent is None
+        if body.mass is not None and (body.mass.mass > 0 or body.moves) and not is_world:
             lines.extend(_inertial(body))
         for geom in geoms_of[body.name]:
             counter += 1

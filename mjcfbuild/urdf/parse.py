@@ -6,7 +6,8 @@ instead of failing: undeclared namespace prefixes (``drake:...``; the prefixed e
 ignored), numbers separated by commas (``rpy="1.57, 0, 0"``), and what MuJoCo's own URDF
 import and pybullet read although XML forbids it: an XML declaration after blank lines or
 with a version other than 1.0, and NUL bytes after the root element (pybullet_data's
-``biped2d_pybullet.urdf``, ``bike.urdf`` and ``humanoid.urdf``).
+``biped2d_pybullet.urdf``, ``bike.urdf`` and ``humanoid.urdf``). A joint whose parent is a
+``world`` link the URDF never declares is welded to the ground, as Drake reads it.
 """
 
 from __future__ import annotations
@@ -245,6 +246,7 @@ def parse_urdf(data: bytes, display_file: str = "robot.urdf") -> Robot:
     materials = _global_materials(root, reader)
     links = [_parse_link(element, reader, materials) for element in root.findall("link")]
     joints = [_parse_joint(element, reader) for element in root.findall("joint")]
+    links = _implicit_world(links, joints, reader)
     robot = Robot(
         name=(root.get("name") or "robot").strip() or "robot",
         links=links,
@@ -448,6 +450,28 @@ def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
         mimic=mimic,
         line=element.sourceline,
     )
+
+
+WORLD = "world"
+
+
+def _implicit_world(links: list[Link], joints: list[Joint], reader: _Reader) -> list[Link]:
+    """``links``, with an empty ``world`` link first when a joint's parent is a ``world`` the
+    URDF does not declare: Drake reads that link as the ground (drake's
+    ``Acrobot.urdf`` welds its base to it), ROS's urdfdom refuses it, so it comes with a
+    warning."""
+    if any(link.name == WORLD for link in links):
+        return links
+    welded = [joint for joint in joints if joint.parent == WORLD]
+    if not welded:
+        return links
+    reader.warnings.append(
+        f"{reader.file}:{welded[0].line}: joint '{welded[0].name}' has the parent link "
+        f"'{WORLD}', which the URDF does not declare: taken as the ground, as Drake reads "
+        f'it (add <link name="{WORLD}"/> for the readers that refuse it: ROS\'s urdfdom, '
+        "MuJoCo's own import)"
+    )
+    return [Link(WORLD), *links]
 
 
 def _mujoco_compiler(root: etree._Element) -> dict[str, str]:

@@ -56,6 +56,29 @@ def test_free_joint_when_the_root_is_world(tmp_path):
     assert model.nq == 8
 
 
+def test_a_world_link_with_an_inertia_mujoco_refuses_builds(tmp_path):
+    # drake's Pendulum.urdf gives its root link 'world' the moments 0.01, 0, 0 (a stub for a
+    # viewer): the world never moves, so its mass is left out instead of stopping the build
+    urdf = two_link_urdf(
+        extra='<link name="world"><inertial><mass value="0.01"/>'
+        '<inertia ixx="0.01" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial></link>'
+        '<joint name="w" type="fixed"><parent link="world"/><child link="base"/></joint>'
+    )
+    assembly, model = build(urdf, tmp_path, fuse_static=False)
+    assert model.nbody == 3  # the world, the base welded to it, the arm
+    assert model.body_mass[0] == 0
+    assert etree.fromstring(assembly.xml).find("worldbody/inertial") is None
+
+
+def test_a_base_welded_to_an_undeclared_world_is_fixed(tmp_path):
+    # drake's Acrobot.urdf: the parent 'world' is never declared; Drake welds to it
+    urdf = two_link_urdf(
+        extra='<joint name="w" type="fixed"><parent link="world"/><child link="base"/></joint>'
+    )
+    _, model = build(urdf, tmp_path)
+    assert model.nbody == 2 and model.nq == 1  # the base is fused into the world
+
+
 def test_mirrored_mesh_is_one_file_two_assets(tmp_path):
     meshes = EXAMPLES / "arm" / "meshes"
     urdf = f"""<robot name="r"><link name="a">{INERTIA}

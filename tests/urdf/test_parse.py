@@ -91,6 +91,36 @@ def test_nul_bytes_after_the_root_element_are_dropped_with_a_warning():
     assert "malformed XML" in error_of('<robot name="a">\x00<link name="l"/></robot>').message
 
 
+def test_an_undeclared_world_parent_is_the_ground_with_a_warning():
+    # drake's Acrobot.urdf welds its base to a 'world' it never declares, as Drake allows
+    robot = parse(
+        '<robot name="a"><link name="base"/>\n<joint name="weld" type="fixed">'
+        '<parent link="world"/><child link="base"/></joint></robot>'
+    )
+    assert [link.name for link in robot.links] == ["world", "base"]
+    assert robot.root == "world"
+    assert robot.warnings == [
+        "r.urdf:2: joint 'weld' has the parent link 'world', which the URDF does not declare: "
+        'taken as the ground, as Drake reads it (add <link name="world"/> for the readers '
+        "that refuse it: ROS's urdfdom, MuJoCo's own import)"
+    ]
+    # any other undeclared link stays an error, and a declared world gets no second one
+    assert (
+        "link 'ground', which does not exist"
+        in error_of(
+            '<robot><link name="b"/><joint name="j" type="fixed">'
+            '<parent link="ground"/><child link="b"/></joint></robot>'
+        ).message
+    )
+    declared = parse(
+        two_link_urdf(
+            extra='<link name="world"/><joint name="w" type="fixed">'
+            '<parent link="world"/><child link="base"/></joint>'
+        )
+    )
+    assert [link.name for link in declared.links].count("world") == 1 and not declared.warnings
+
+
 def test_a_spherical_joint_says_how_to_write_it_in_urdf():
     error = error_of(
         "<robot name='r'><link name='a'/><link name='b'/>\n<joint name='j' type='spherical'>"
