@@ -52,6 +52,25 @@ def test_unknown_package_points_at_the_urdf_line(tmp_path):
     assert "unknown package 'nope'" in info.value.message
 
 
+def test_a_build_names_the_line_of_a_package_uri_with_no_file(tmp_path):
+    write(
+        tmp_path / "wheel.obj", (ROOT / "examples" / "arm" / "meshes" / "forearm.obj").read_text()
+    )
+    box = '<box size="0.2 0.2 0.1"/>'
+    write(
+        tmp_path / "robot.urdf",
+        two_link_urdf().replace(box, '<mesh filename="package://wheel.obj"/>'),
+    )
+    simple_manifest(tmp_path)
+    result = run_cli("build", "--no-check", cwd=tmp_path)
+    assert result.code == EXIT_INPUT, result.stderr
+    assert [line for line in result.stderr.splitlines() if "error" in line][:1] == [
+        "mjcfbuild: error: robot.urdf:4: 'package://wheel.obj' names package 'wheel.obj' but "
+        "no file in it ('wheel.obj' is a file beside the URDF: write filename=\"wheel.obj\")"
+    ]
+    assert "Traceback" not in result.stderr
+
+
 def _robot_reading(*uris: str):
     """One link with a visual and a collision of each URI, each pair on its own line (2, 3...)."""
     shapes = "".join(
