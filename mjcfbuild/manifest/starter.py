@@ -16,7 +16,7 @@ from mjcfbuild.sources.infer import (
     package_references,
 )
 from mjcfbuild.sources.kind import not_a_description, xacro_evidence
-from mjcfbuild.sources.packages import find_enclosing_package
+from mjcfbuild.sources.packages import PackageResolver, find_enclosing_package
 
 _ARG = re.compile(rb"<xacro:arg\s+name=\"([^\"]+)\"(?:\s+default=\"([^\"]*)\")?")
 _PACKAGE_URI = re.compile(rb"package://([A-Za-z0-9_.-]+)/")
@@ -128,12 +128,13 @@ def starter_manifest_text(
         if package in notes:
             lines.append(notes[package])
         lines.append(f"  {package}: {_relative(Path(known[package]), manifest_dir)}")
-    if unresolved:
+    missing = _not_in_the_environment(unresolved)
+    if missing:
         warnings.append(
-            f"{source}: package{'s' if len(unresolved) > 1 else ''} "
-            f"{', '.join(repr(p) for p in unresolved)} not found; the manifest lists "
-            f"{'them' if len(unresolved) > 1 else 'it'} commented out under packages: give "
-            f"{'each' if len(unresolved) > 1 else 'it'} its folder (or pass --package NAME=DIR)"
+            f"{source}: package{'s' if len(missing) > 1 else ''} "
+            f"{', '.join(repr(p) for p in missing)} not found; the manifest lists "
+            f"{'them' if len(missing) > 1 else 'it'} commented out under packages: give "
+            f"{'each' if len(missing) > 1 else 'it'} its folder (or pass --package NAME=DIR)"
         )
     free_joint, unread = _free_joint_lines(source, is_xacro, known, data)
     if unread is not None:
@@ -190,6 +191,19 @@ def _inferred_note(package: str, found: InferredPackage) -> str:
         f"  # {package}: inferred {where}; its package.xml names it '{found.package_xml}', "
         "which the description does not use"
     )
+
+
+def _not_in_the_environment(packages: list[str]) -> list[str]:
+    """Those of ``packages`` that ROS_PACKAGE_PATH and AMENT_PREFIX_PATH do not hold either
+    (the build finds those that they hold)."""
+    resolver = PackageResolver({}, os.environ)
+    missing = []
+    for package in packages:
+        try:
+            resolver.find(package)
+        except InputError:
+            missing.append(package)
+    return missing
 
 
 def _free_joint_lines(

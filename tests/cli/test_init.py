@@ -326,3 +326,19 @@ def test_init_of_a_readable_description_warns_of_nothing(cli, tmp_path):
     source = EXAMPLES / "arm" / "urdf" / "arm.urdf.xacro"
     result = cli("init", str(source), cwd=tmp_path)
     assert result.code == EXIT_OK and result.stderr == ""
+
+
+def test_init_does_not_warn_of_a_package_the_ros_environment_holds(cli, tmp_path):
+    from tests.conftest import two_link_urdf, write
+
+    box = '<box size="0.2 0.2 0.1"/>'
+    mesh = '<mesh filename="package://robot_meshes/base.stl"/>'
+    write(tmp_path / "robot.urdf", two_link_urdf().replace(box, mesh))
+    write(
+        tmp_path / "ros" / "robot_meshes" / "package.xml",
+        "<package><name>robot_meshes</name></package>",
+    )
+    result = cli(
+        "init", "robot.urdf", cwd=tmp_path, env={"ROS_PACKAGE_PATH": str(tmp_path / "ros")}
+    )
+    assert result.code == EXIT_OK and result.stderr == ""
