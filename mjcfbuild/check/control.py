@@ -361,13 +361,16 @@ class MenagerieTest:
     top_speeds: dict[str, float] = field(default_factory=dict)  # issue 33: joint -> top speed
 
 
-def menagerie_test(model) -> MenagerieTest:
-    """1 s of Halton-sequence control over each ctrlrange from the default state."""
+def menagerie_test(model, qpos=None) -> MenagerieTest:
+    """1 s of Halton-sequence control over each ctrlrange from the default state (or from it
+    with ``qpos``)."""
     import mujoco
     import numpy as np
 
     data = mujoco.MjData(model)
     mujoco.mj_resetData(model, data)
+    if qpos is not None:
+        data.qpos[:] = qpos
     centre = np.zeros(model.nu)
     radius = np.ones(model.nu)
     limited = model.actuator_ctrllimited.astype(bool)
@@ -414,6 +417,25 @@ def menagerie_test(model) -> MenagerieTest:
     unstable_joint = dof_joint(model, dof) if own else None
     tops = {dof_joint(model, int(d)) or f"#{d}": float(top[d]) for d in np.flatnonzero(jointed)}
     return MenagerieTest(warnings, finite, fastest_joint, fastest_speed, unstable_joint, tops)
+
+
+def outside_at_qpos0(model) -> tuple[list[str], list[float]]:
+    """The limited hinges and slides whose qpos0 lies outside their range, and qpos0 with
+    each of them clipped into its range."""
+    import mujoco
+
+    qpos = [float(value) for value in model.qpos0]
+    outside = []
+    hinged = {int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE)}
+    for joint in range(model.njnt):
+        if int(model.jnt_type[joint]) not in hinged or not model.jnt_limited[joint]:
+            continue
+        low, high = (float(bound) for bound in model.jnt_range[joint])
+        address = int(model.jnt_qposadr[joint])
+        if not low <= qpos[address] <= high:
+            outside.append(mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, joint) or "")
+            qpos[address] = min(max(qpos[address], low), high)
+    return outside, qpos
 
 
 def _floating(model) -> bool:

@@ -218,17 +218,18 @@ class Speeds:
     driven_multiple: float = 0.0
     free_multiple: float = 0.0
     over_limit: list[JointSpeed] = field(default_factory=list)
+    measured_from: str = ""  # where the test began, when not at qpos0
 
     def to_dict(self) -> dict[str, Any]:
         """The two keys of check.json."""
-        return {
-            "max_joint_speed": to_plain(self.fastest),
-            "speed_bound": {
-                "driven_multiple": self.driven_multiple,
-                "free_multiple": self.free_multiple,
-                "over_limit": to_plain(self.over_limit),
-            },
+        bound = {
+            "driven_multiple": self.driven_multiple,
+            "free_multiple": self.free_multiple,
+            "over_limit": to_plain(self.over_limit),
         }
+        if self.measured_from:
+            bound["measured_from"] = self.measured_from
+        return {"max_joint_speed": to_plain(self.fastest), "speed_bound": bound}
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Speeds | None:

@@ -14,7 +14,8 @@ m/s for a slide). How far past it a joint may go depends on what the model knows
   times the velocity limits of the real arms and legs of docs/robots.md and up to 37 times
   those of grippers and lifts (talos's fingers: 1 rad/s), while a runaway servo (a
   placeholder effort, a nearly massless body) reaches hundreds of times its limit. A joint
-  that starts the test outside its range (qpos0 is zero) is thrown back by the limit.
+  that starts the test outside its range (qpos0 is zero) is thrown back by the limit; where
+  that throws a joint past its bound, the check measures again from inside the ranges.
   Past 1 time its limit a joint is listed in check.json's ``speed_bound``, not failed.
 """
 
@@ -116,13 +117,16 @@ def _advice(speed: JointSpeed) -> str:
     )
 
 
-def speed_results(speeds: list[JointSpeed]) -> tuple[Speeds, list[str]]:
+def speed_results(speeds: list[JointSpeed], start: str = "") -> tuple[Speeds, list[str]]:
     """check.json's ``max_joint_speed`` (the fastest joint, with its limit) and
-    ``speed_bound`` entries, and the failures."""
+    ``speed_bound`` entries, and the failures; ``start`` says where the test that measured
+    ``speeds`` began when not at qpos0."""
     from mjcfbuild.check.results import FastestJoint, Speeds
 
     failures = [
-        f"joint '{s.joint}' reached {s.speed:.3g} {s.unit} under pseudorandom control, more "
+        f"joint '{s.joint}' reached {s.speed:.3g} {s.unit} under pseudorandom control"
+        + (" from inside the joint ranges" if start else "")
+        + f", more "
         f"than {s.multiple:g} times its velocity limit {s.limit:g} {s.unit} ({s.limit_from}); "
         + _advice(s)
         for s in speeds
@@ -134,5 +138,6 @@ def speed_results(speeds: list[JointSpeed]) -> tuple[Speeds, list[str]]:
         driven_multiple=DRIVEN_MULTIPLE,
         free_multiple=FREE_MULTIPLE,
         over_limit=[s for s in speeds if s.exceeds_limit],
+        measured_from=start,
     )
     return bound, failures

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 
 
 def add_parser(commands) -> None:
@@ -31,8 +32,10 @@ def run(args: argparse.Namespace) -> int:
     from mjcfbuild.cli.convert import parse_packages
     from mjcfbuild.manifest.starter import write_starter_manifest
 
-    path = write_starter_manifest(
+    path, warnings = write_starter_manifest(
         args.source, parse_packages(args.package), args.output, force=args.force
     )
+    for warning in warnings:
+        print(f"mjcfbuild: warning: {warning}", file=sys.stderr)
     print(f"mjcfbuild: wrote {path}; build it with: mjcfbuild build {path}")
     return 0

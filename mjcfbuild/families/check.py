@@ -74,7 +74,8 @@ FAMILY = Family(
     name="check",
     step="mjcfbuild.steps.check:run",
     payload=CheckPayload,
-    format=9,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts
+    format=10,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
+    # measured again from inside the joint ranges
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

@@ -6,7 +6,7 @@ import os
 import re
 from pathlib import Path
 
-from mjcfbuild.errors import InputError, OutputError, UsageError
+from mjcfbuild.errors import InputError, MjcfbuildError, OutputError, UsageError
 from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.manifest.models import NAME_PATTERN
 from mjcfbuild.sources.infer import (
@@ -16,7 +16,7 @@ from mjcfbuild.sources.infer import (
     package_references,
 )
 from mjcfbuild.sources.kind import not_a_description, xacro_evidence
-from mjcfbuild.sources.packages import find_enclosing_package
+from mjcfbuild.sources.packages import PackageResolver, find_enclosing_package
 
 _ARG = re.compile(rb"<xacro:arg\s+name=\"([^\"]+)\"(?:\s+default=\"([^\"]*)\")?")
 _PACKAGE_URI = re.compile(rb"package://([A-Za-z0-9_.-]+)/")
@@ -26,8 +26,9 @@ _ROBOT_NAME = re.compile(rb"<robot[^>]*\sname=\"([^\"]+)\"")
 
 def write_starter_manifest(
     source: str, packages: dict[str, str], output: str, force: bool = False
-) -> Path:
-    """Write a manifest for ``source`` to ``output``; return its path."""
+) -> tuple[Path, list[str]]:
+    """Write a manifest for ``source`` to ``output``; return its path and what the build will
+    stop at unless the user acts (one line each, see :func:`starter_warnings`)."""
     source_path = Path(source).resolve()
     if not source_path.is_file():
         raise InputError(f"source file {unreadable_file(source) or 'not found'}", file=source)
@@ -40,19 +41,29 @@ def write_starter_manifest(
     manifest_path = Path(output).resolve()
     if manifest_path.exists() and not force:
         raise UsageError(f"{output} already exists", hint="pass --force to overwrite it")
-    text = starter_manifest_text(source_path, packages, manifest_path.parent, Path(output).name)
+    warnings: list[str] = []
+    text = starter_manifest_text(
+        source_path, packages, manifest_path.parent, Path(output).name, warnings
+    )
     try:
         manifest_path.parent.mkdir(parents=True, exist_ok=True)
         manifest_path.write_text(text)
     except OSError as exc:
         raise OutputError(f"cannot write the manifest: {exc.strerror}", file=output) from None
-    return Path(output)
+    return Path(output), warnings
 
 
 def starter_manifest_text(
-    source: Path, packages: dict[str, str], manifest_dir: Path, manifest_name: str = "robot.yaml"
+    source: Path,
+    packages: dict[str, str],
+    manifest_dir: Path,
+    manifest_name: str = "robot.yaml",
+    warnings: list[str] | None = None,
 ) -> str:
-    """The manifest text: source, packages it needs, xacro args with their defaults."""
+    """The manifest text: source, packages it needs, xacro args with their defaults.
+    ``warnings`` receives what the first build would stop at: packages the description names
+    that were not found, and the error that kept the description from being read."""
+    warnings = [] if warnings is None else warnings
     data = source.read_bytes()
     # By what the file uses: a URDF that only declares the xacro namespace is read as it is
     # (through xacro, errors would cite lines of an expanded copy).
@@ -117,7 +128,17 @@ def starter_manifest_text(
         if package in notes:
             lines.append(notes[package])
         lines.append(f"  {package}: {_relative(Path(known[package]), manifest_dir)}")
-    free_joint = _free_joint_lines(source, is_xacro, known, data)
+    missing = _not_in_the_environment(unresolved)
+    if missing:
+        warnings.append(
+            f"{source}: package{'s' if len(missing) > 1 else ''} "
+            f"{', '.join(repr(p) for p in missing)} not found; the manifest lists "
+            f"{'them' if len(missing) > 1 else 'it'} commented out under packages: give "
+            f"{'each' if len(missing) > 1 else 'it'} its folder (or pass --package NAME=DIR)"
+        )
+    free_joint, unread = _free_joint_lines(source, is_xacro, known, data)
+    if unread is not None:
+        warnings.append(f"{unread}; the build stops there until the description is fixed")
     lines += [
         "",
         "options:",
@@ -172,9 +193,25 @@ def _inferred_note(package: str, found: InferredPackage) -> str:
     )
 
 
-def _free_joint_lines(source: Path, is_xacro: bool, packages: dict[str, str], data: bytes) -> list:
+def _not_in_the_environment(packages: list[str]) -> list[str]:
+    """Those of ``packages`` that ROS_PACKAGE_PATH and AMENT_PREFIX_PATH do not hold either
+    (the build finds those that they hold)."""
+    resolver = PackageResolver({}, os.environ)
+    missing = []
+    for package in packages:
+        try:
+            resolver.find(package)
+        except InputError:
+            missing.append(package)
+    return missing
+
+
+def _free_joint_lines(
+    source: Path, is_xacro: bool, packages: dict[str, str], data: bytes
+) -> tuple[list[str], str | None]:
     """The manifest's free_joint line, decided from the robot's kinematics and geometry
-    (urdf.base); from its names only where the description cannot be read here."""
+    (urdf.base); from its names only where the description cannot be read here, with the
+    error (one line) that kept it from being read."""
     from mjcfbuild.urdf.base import classify_base
 
     try:
@@ -183,21 +220,25 @@ def _free_joint_lines(source: Path, is_xacro: bool, packages: dict[str, str], da
 
         expansion = expand_source(source, is_xacro, {}, packages, dict(os.environ))
         kind = classify_base(parse_urdf(expansion.urdf, str(source)))
-    except Exception:  # an unreadable description: init still writes a starting manifest
+    except Exception as exc:  # an unreadable description: init still writes a starting manifest
+        # The build reports anything else itself; a user error is worth telling now.
+        unread = exc.one_line() if isinstance(exc, MjcfbuildError) else None
         legs = _leg_words(data)
         if legs:
             return [
                 f"  # Names like {', '.join(legs)} suggest a walking robot (the description",
                 "  # could not be read to tell): its base floats.",
                 "  free_joint: true",
-            ]
-        return ["  free_joint: false   # true for a floating base (legged robots, humanoids)"]
+            ], unread
+        return [
+            "  free_joint: false   # true for a floating base (legged robots, humanoids)"
+        ], unread
     if kind.floating:
         return [
             f"  # Its base floats: {kind.why}. The build stands it on the floor at home.",
             "  free_joint: true",
-        ]
-    return [f"  free_joint: false   # {kind.why}; true for a floating base"]
+        ], None
+    return [f"  free_joint: false   # {kind.why}; true for a floating base"], None
 
 
 _LEG_WORDS = ("hip", "thigh", "knee", "calf", "shank", "ankle", "foot", "HFE", "KFE", "HAA")

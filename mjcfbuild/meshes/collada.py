@@ -254,6 +254,8 @@ def _controlled_geometry(reader: _Reader, instance):
 def _node_transform(reader: _Reader, node) -> np.ndarray:
     transform = np.eye(4)
     for child in node:
+        if not isinstance(child.tag, str):
+            continue  # comments (a transform commented out), processing instructions
         tag = etree.QName(child).localname
         values = _floats(child.text)
         if tag == "matrix" and len(values) == 16:

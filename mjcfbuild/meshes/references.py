@@ -8,6 +8,7 @@ product is only reused when they are unchanged too.
 from __future__ import annotations
 
 import json
+import os
 import re
 from pathlib import Path
 from urllib.parse import unquote
@@ -25,8 +26,15 @@ def referenced_files(path: Path) -> list[Path]:
 
 def missing_references(path: Path) -> list[str]:
     """What ``path`` refers to that is not there (an OBJ's ``mtllib`` or a texture its
-    material names, a DAE's or a glTF's image), each once as ``name (what it is)``, sorted."""
-    return sorted({f"{p.name} ({kind})" for kind, p in _references(path) if not p.is_file()})
+    material names, a DAE's or a glTF's image), each once as ``name (what it is)``, sorted;
+    the name is the path from the mesh's folder (``../textures/wood.png``), where the file
+    was looked for."""
+    missing = {(kind, p) for kind, p in _references(path) if not p.is_file()}
+    return sorted({f"{_from_folder(p, path.parent)} ({kind})" for kind, p in missing})
+
+
+def _from_folder(path: Path, folder: Path) -> str:
+    return Path(os.path.relpath(path, folder)).as_posix()
 
 
 def missing_paths(path: Path) -> list[Path]:

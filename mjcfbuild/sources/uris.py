@@ -28,6 +28,11 @@ def resolve_uri(uri: str, base_dir: Path, packages: PackageResolver) -> Path:
         package, inner = named
         if not package:
             raise InputError(f"'{uri}' names no package")
+        if not inner.strip("/"):
+            raise InputError(
+                f"'{uri}' names package '{package}' but no file in it",
+                hint=_no_file_hint(package, base_dir),
+            )
         return normalise(packages.find(package) / unquote(inner))
     if text.startswith(_REMOTE_SCHEMES):
         raise InputError(
@@ -47,6 +52,14 @@ def uri_package_folder(uri: str, packages: PackageResolver) -> Path | None:
     URIs. Call it after :func:`resolve_uri` succeeded (the package is found)."""
     named = _package_part(uri.strip())
     return normalise(packages.find(named[0])) if named and named[0] else None
+
+
+def _no_file_hint(package: str, base_dir: Path) -> str:
+    """What to write instead of ``package://<package>``: pybullet (and Genesis) read
+    ``package://name.obj`` as the file ``name.obj`` beside the URDF; MuJoCo's import does not."""
+    if (base_dir / unquote(package)).is_file():
+        return f"'{package}' is a file beside the URDF: write filename=\"{package}\""
+    return f"write package://{package}/<the file's path inside it>"
 
 
 def _package_part(text: str) -> tuple[str, str] | None:

@@ -63,8 +63,10 @@ def _missing_warning(source: Path, label: str) -> list[str]:
     if not missing:
         return []
     them = "it" if len(missing) == 1 else "them"
+    beside = all("/" not in name for name in missing)
     return [
-        f"{label or source.name}: refers to {', '.join(missing)}, not found beside it; the "
+        f"{label or source.name}: refers to {', '.join(missing)}, not found "
+        f"{'beside it' if beside else 'where it says'}; the "
         f"model shows the mesh without {them} (add the file{'s' if them == 'them' else ''}, "
         "or remove the reference from the mesh)"
     ]

@@ -91,7 +91,8 @@ def _warn_outside(
             continue
         warned.add(uri)
         where = f"{robot.source}:{line}" if line is not None else robot.source
-        read = "" if uri.strip() == str(path) else f" ({path})"
+        # The path quoted: warnings that differ only in quoted parts print as one line.
+        read = "" if uri.strip() == str(path) else f" ('{path}')"
         robot.warnings.append(
             f"{where}: '{uri}'{read} is outside every package folder and robot.yaml's folder, "
             "and the model publishes it; move the file into the description, or set "

@@ -88,6 +88,53 @@ def test_the_urdf_speed_line_keeps_the_same_joint_near_its_limit(tmp_path):
     assert '<dcmotor name="hinge" joint="hinge" input="pos"' in model
 
 
+# An elbow whose range leaves out zero (jaco's, from differentiable-robot-model): the test
+# starts at qpos0, 2 rad outside the range, and the limit throws the light arm back at 70
+# times its 0.2 rad/s, which no servo setting can help.
+_OUTSIDE_AT_ZERO = """<robot name="r">
+  <link name="root"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision></link>
+  <link name="arm"><inertial><origin xyz="0 0 0.1"/><mass value="0.05"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-5" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><origin xyz="0 0 0.1"/><geometry><cylinder radius="0.02" length="0.2"/></geometry></collision></link>
+  <joint name="elbow" type="revolute"><parent link="root"/><child link="arm"/>
+    <origin xyz="0 0 0.2"/><axis xyz="0 1 0"/>
+    <limit lower="2" upper="2.5" effort="5" velocity="0.2"/></joint>
+</robot>"""
+
+
+def test_speeds_thrown_by_a_limit_at_qpos0_are_measured_again_inside_the_ranges(tmp_path):
+    import mujoco
+
+    from mjcfbuild.check.control import menagerie_test, outside_at_qpos0
+
+    write(tmp_path / "robot.urdf", _OUTSIDE_AT_ZERO)
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\n")
+    result = run_cli("build", str(tmp_path / "robot.yaml"))
+    assert result.code == 0, result.stderr
+    check = json.loads((tmp_path / "mjcf/.mjcfbuild/check.json").read_text())
+    assert check["passes"], check["failures"]
+    assert check["speed_bound"]["measured_from"] == (
+        "qpos0 clipped into the joint ranges (elbow outside at qpos0)"
+    )
+    assert check["max_joint_speed"]["speed"] < DRIVEN_MULTIPLE * 0.2
+    # From qpos0 itself the same model fails the bound: the limit's throw, not the servo.
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "mjcf/scene.xml"))
+    assert menagerie_test(model).top_speeds["elbow"] > FREE_MULTIPLE * 0.2
+    outside, clipped = outside_at_qpos0(model)
+    assert outside == ["elbow"] and clipped == [2.0]
+
+
+def test_speeds_within_the_bound_keep_the_measurement_from_qpos0(tmp_path):
+    # Outside its range at qpos0 too, but thrown back within the bound: measured once, as
+    # before (panda's and go1's reports stay the same).
+    write(tmp_path / "robot.urdf", _urdf(lower=1.0, upper=1.4))
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\n")
+    assert run_cli("build", str(tmp_path / "robot.yaml")).code == 0
+    check = json.loads((tmp_path / "mjcf/.mjcfbuild/check.json").read_text())
+    assert "measured_from" not in check["speed_bound"]
+    assert 1.0 < check["max_joint_speed"]["speed"] < FREE_MULTIPLE * 1.0  # the limit's throw
+
+
 def test_a_joint_without_an_effort_is_told_its_servo_has_no_line():
     (speed,) = joint_speeds(
         {"lift": 6.0}, {"lift": 0.05}, {"lift": "slide"}, [{"joint": "lift", "type": "position"}]

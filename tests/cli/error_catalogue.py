@@ -939,6 +939,16 @@ CASES: list[Case] = [
         ["robot.urdf:6:", "unknown package 'ghost'", "packages"],
     ),
     Case(
+        "mesh package URI names no file in the package",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": mesh_urdf("package://arm.obj"),
+            "arm.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+        },
+        EXIT_INPUT,
+        ["robot.urdf:6:", "names package 'arm.obj' but no file in it", 'filename="arm.obj"'],
+    ),
+    Case(
         "mesh package name escapes",
         {"robot.yaml": MANIFEST, "robot.urdf": mesh_urdf("package://../../etc/arm.stl")},
         EXIT_INPUT,

@@ -292,3 +292,53 @@ def test_a_sibling_package_is_found_by_its_package_xml(cli, tmp_path):
     ]
     assert "inferred" not in text
     assert cli("build", "-q", "--no-check", cwd=tmp_path).code == EXIT_OK
+
+
+def test_init_says_what_the_first_build_will_stop_at(cli, tmp_path):
+    # gaikpy's NICO (a lower limit above the upper) and pib-sdk's pib (meshes in a package the
+    # wheel lacks): init wrote the manifest and said nothing; the build then stopped.
+    from tests.conftest import two_link_urdf, write
+
+    urdf = two_link_urdf().replace('lower="-1.5" upper="1.5"', 'lower="0.3" upper="-1.5"')
+    urdf = urdf.replace(
+        '<box size="0.2 0.2 0.1"/>', '<mesh filename="package://robot_meshes/base.stl"/>'
+    )
+    write(tmp_path / "robot.urdf", urdf)
+    result = cli("init", "robot.urdf", cwd=tmp_path)
+    assert result.code == EXIT_OK, result.stderr
+    line = next(n for n, text in enumerate(urdf.splitlines(), 1) if "<limit" in text)
+    assert result.stderr.splitlines() == [
+        f"mjcfbuild: warning: {tmp_path / 'robot.urdf'}: package 'robot_meshes' not found; the "
+        "manifest lists it commented out under packages: give it its folder (or pass "
+        "--package NAME=DIR)",
+        f"mjcfbuild: warning: {tmp_path / 'robot.urdf'}:{line}: joint 'hinge' has lower limit "
+        "0.3 above its upper limit -1.5 (swap them; if they mean 'no limit' (as pybullet reads "
+        "them), make a revolute joint continuous, or give a prismatic one the range it can "
+        "travel); the build stops there until the description is fixed",
+    ]
+    assert "#   robot_meshes: path/to/robot_meshes" in (tmp_path / "robot.yaml").read_text()
+    built = cli("build", "--no-check", cwd=tmp_path)
+    assert built.code == EXIT_INPUT  # where init said
+    assert f"robot.urdf:{line}: joint 'hinge' has lower limit 0.3 above" in built.stderr
+
+
+def test_init_of_a_readable_description_warns_of_nothing(cli, tmp_path):
+    source = EXAMPLES / "arm" / "urdf" / "arm.urdf.xacro"
+    result = cli("init", str(source), cwd=tmp_path)
+    assert result.code == EXIT_OK and result.stderr == ""
+
+
+def test_init_does_not_warn_of_a_package_the_ros_environment_holds(cli, tmp_path):
+    from tests.conftest import two_link_urdf, write
+
+    box = '<box size="0.2 0.2 0.1"/>'
+    mesh = '<mesh filename="package://robot_meshes/base.stl"/>'
+    write(tmp_path / "robot.urdf", two_link_urdf().replace(box, mesh))
+    write(
+        tmp_path / "ros" / "robot_meshes" / "package.xml",
+        "<package><name>robot_meshes</name></package>",
+    )
+    result = cli(
+        "init", "robot.urdf", cwd=tmp_path, env={"ROS_PACKAGE_PATH": str(tmp_path / "ros")}
+    )
+    assert result.code == EXIT_OK and result.stderr == ""

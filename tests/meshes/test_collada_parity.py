@@ -132,6 +132,21 @@ def test_ids_reused_in_every_geometry_read_as_pycollada_reads_them(tmp_path):
     np.testing.assert_allclose(np.ptp(box.vertices, axis=0), [0.002, 0.001, 0.003], atol=1e-12)
 
 
+def test_a_comment_among_a_nodes_transforms_is_skipped_as_pycollada_skips_it(tmp_path):
+    # roboschool's multisense head_camera.dae comments out a <matrix> inside a <node>: the
+    # comment was taken for an element and the conversion stopped with a ValueError.
+    nodes = (
+        '<node id="cam"><!--matrix sid="matrix">1 0 0 9 0 1 0 9 0 0 1 9 0 0 0 1</matrix-->'
+        f"<translate>0 0 5</translate><?pi ignored?>{instance('box')}</node>"
+    )
+    path = write(tmp_path / "camera.dae", document(SOLIDS, nodes))
+    ours = mjcfbuild_triangles(path)
+    assert len(ours) == 12
+    assert triangle_mismatch(ours, pycollada_triangles(path).triangles) is None
+    (box,) = read_collada(path).parts
+    np.testing.assert_allclose(box.vertices[:, 2].min(), 0.005)  # the translate, in mm
+
+
 def test_the_comparison_sees_a_wrong_reading(tmp_path):
     """The differential check can fail: another geometry's vertices are a mismatch."""
     path = write(tmp_path / "leg.dae", document(SOLIDS, NODES, FOOT))

@@ -40,7 +40,10 @@ def test_a_dae_image_that_is_missing_and_image_ids_that_are_no_files(tmp_path):
     dae.write_text(DAE)
     (tmp_path / "here.png").write_bytes(b"png")
     assert referenced_files(dae) == [tmp_path / "here.png"]
-    assert missing_references(dae) == ["wood.png (texture)"]
+    # the path from the mesh's folder, where it was looked for (roboschool's atlas meshes
+    # name ../materials/textures/*.png; "extremities_diffuse.png, not found beside it" sent
+    # the user to the wrong folder)
+    assert missing_references(dae) == ["textures/wood.png (texture)"]
     assert missing_paths(dae) == [tmp_path / "textures" / "wood.png"]
 
 

@@ -40,6 +40,20 @@ def test_remote_and_empty_references_are_errors(tmp_path, resolver):
         resolve_uri("package://", tmp_path, resolver)
 
 
+def test_a_package_uri_naming_no_file_in_its_package(tmp_path, resolver):
+    # Genesis' fancy_wheel.urdf writes package://fancy_wheel.obj for the OBJ beside it (as
+    # pybullet reads it); it was "unknown package 'fancy_wheel.obj'", to be added as a package.
+    (tmp_path / "wheel.obj").write_text("v 0 0 0\n")
+    with pytest.raises(InputError) as info:
+        resolve_uri("package://wheel.obj", tmp_path, resolver)
+    assert info.value.message == "'package://wheel.obj' names package 'wheel.obj' but no file in it"
+    assert info.value.hint == "'wheel.obj' is a file beside the URDF: write filename=\"wheel.obj\""
+    with pytest.raises(InputError) as info:
+        resolve_uri("package://pkg/", tmp_path, resolver)
+    assert info.value.message == "'package://pkg/' names package 'pkg' but no file in it"
+    assert info.value.hint == "write package://pkg/<the file's path inside it>"
+
+
 def test_package_uri_with_an_extra_slash(tmp_path, resolver):
     assert resolve_uri("package:///pkg/a.stl", tmp_path, resolver) == tmp_path / "pkg" / "a.stl"
 

@@ -30,3 +30,18 @@ def test_a_missing_material_library_is_named_once_and_its_return_rebuilds(arm):
     assert not [w for w in _warnings(arm) if "forearm_colours.mtl" in w]
     product = json.loads((arm / "mjcf" / ".mjcfbuild" / "products" / "forearm.json").read_text())
     assert len(product["parts"]) > 1  # the library's materials split the mesh again
+
+
+def test_a_texture_named_in_another_folder_is_named_by_its_path_from_the_mesh(tmp_path):
+    from mjcfbuild.steps.mesh import _missing_warning
+    from tests.meshes.test_references import DAE
+
+    dae = tmp_path / "meshes" / "part.dae"
+    dae.parent.mkdir()
+    dae.write_text(DAE.replace("textures/wood.png", "../materials/wood.png"))
+    (dae.parent / "here.png").write_bytes(b"png")
+    assert _missing_warning(dae, "meshes/part.dae") == [
+        "meshes/part.dae: refers to ../materials/wood.png (texture), not found where it says; "
+        "the model shows the mesh without it (add the file, or remove the reference from the "
+        "mesh)"
+    ]

@@ -52,6 +52,25 @@ def test_unknown_package_points_at_the_urdf_line(tmp_path):
     assert "unknown package 'nope'" in info.value.message
 
 
+def test_a_build_names_the_line_of_a_package_uri_with_no_file(tmp_path):
+    write(
+        tmp_path / "wheel.obj", (ROOT / "examples" / "arm" / "meshes" / "forearm.obj").read_text()
+    )
+    box = '<box size="0.2 0.2 0.1"/>'
+    write(
+        tmp_path / "robot.urdf",
+        two_link_urdf().replace(box, '<mesh filename="package://wheel.obj"/>'),
+    )
+    simple_manifest(tmp_path)
+    result = run_cli("build", "--no-check", cwd=tmp_path)
+    assert result.code == EXIT_INPUT, result.stderr
+    assert [line for line in result.stderr.splitlines() if "error" in line][:1] == [
+        "mjcfbuild: error: robot.urdf:4: 'package://wheel.obj' names package 'wheel.obj' but "
+        "no file in it ('wheel.obj' is a file beside the URDF: write filename=\"wheel.obj\")"
+    ]
+    assert "Traceback" not in result.stderr
+
+
 def _robot_reading(*uris: str):
     """One link with a visual and a collision of each URI, each pair on its own line (2, 3...)."""
     shapes = "".join(
@@ -75,13 +94,13 @@ def test_files_outside_the_description_are_warned_about_once_per_uri(tmp_path):
     robot = _robot_reading("package://pkg/../elsewhere/m.stl", str(far), f"file://{far}")
     resolve_files(robot, tmp_path / "pkg", packages, roots=[project])
     assert robot.warnings == [
-        f"r.urdf:2: 'package://pkg/../elsewhere/m.stl' ({far}) is outside every package "
+        f"r.urdf:2: 'package://pkg/../elsewhere/m.stl' ('{far}') is outside every package "
         "folder and robot.yaml's folder, and the model publishes it; move the file into the "
         "description, or set source.read_outside: true if it is meant",
         f"r.urdf:3: '{far}' is outside every package folder and robot.yaml's folder, and the "
         "model publishes it; move the file into the description, or set "
         "source.read_outside: true if it is meant",
-        f"r.urdf:4: 'file://{far}' ({far}) is outside every package folder and "
+        f"r.urdf:4: 'file://{far}' ('{far}') is outside every package folder and "
         "robot.yaml's folder, and the model publishes it; move the file into the "
         "description, or set source.read_outside: true if it is meant",
     ]
@@ -139,6 +158,32 @@ def test_a_build_warns_and_the_setting_silences_it(tmp_path):
     simple_manifest(project, "urdf: robot.urdf\n  read_outside: true")
     result = run_cli("build", "--no-check", cwd=project)
     assert result.code == 0 and "outside every package" not in result.stderr, result.stderr
+
+
+def test_meshes_beside_the_urdfs_folder_are_warned_about_in_one_line(tmp_path):
+    # genesis-world's go2 and anymal_c: urdf/robot.urdf names ../meshes/*.dae, no package.xml;
+    # one warning per mesh, each quoting a different path, printed a line each (10 for anymal_c).
+    mesh = (ROOT / "examples" / "arm" / "meshes" / "forearm.obj").read_text()
+    for name in ("base", "arm"):
+        write(tmp_path / "description" / "meshes" / f"{name}.obj", mesh)
+    urdf = two_link_urdf().replace(
+        '<box size="0.2 0.2 0.1"/>', '<mesh filename="../meshes/base.obj"/>'
+    )
+    urdf = urdf.replace(
+        '<cylinder radius="0.03" length="0.5"/>', '<mesh filename="../meshes/arm.obj"/>', 1
+    )
+    write(tmp_path / "description" / "urdf" / "robot.urdf", urdf)
+    project = tmp_path / "project"
+    simple_manifest(project, "urdf: ../description/urdf/robot.urdf")
+    result = run_cli("build", "--no-check", cwd=project)
+    assert result.code == 0, result.stderr
+    warnings = [line for line in result.stderr.splitlines() if "outside every package" in line]
+    assert len(warnings) == 1, result.stderr
+    assert warnings[0].startswith("mjcfbuild: warning: ")
+    assert "robot.urdf:4: 2 × '…' ('…') is outside every package folder" in warnings[0]
+    assert warnings[0].endswith("if it is meant: ../meshes/base.obj, ../meshes/arm.obj")
+    report = (project / "mjcf" / "report" / "report.md").read_text()
+    assert str(tmp_path / "description" / "meshes" / "arm.obj") in report  # each in full there
 
 
 @pytest.mark.parametrize(
