@@ -1,8 +1,8 @@
 """The speed bound of the model test: how fast each joint went under MuJoCo Menagerie's
 pseudorandom control, against the speed the real joint can reach.
 
-A joint's limit is its URDF ``<limit velocity>``; where the URDF gives none (or a placeholder
-0 or -1), the no-load speed of the motor that drives it, else :data:`DEFAULT_LIMIT` (rad/s, or
+A joint's limit is its URDF ``<limit velocity>``; where the URDF gives none (or a placeholder:
+0, -1, or :data:`PLACEHOLDER_SPEED` and above, as 1e9 is written for "no limit"), the no-load speed of the motor that drives it, else :data:`DEFAULT_LIMIT` (rad/s, or
 m/s for a slide). How far past it a joint may go depends on what the model knows:
 
 - a joint driven by a motor with a torque-speed line (``motors:``) cannot drive itself past the
@@ -30,6 +30,9 @@ if TYPE_CHECKING:
 DRIVEN_MULTIPLE = 1.5
 FREE_MULTIPLE = 50.0
 DEFAULT_LIMIT = {"hinge": 100.0, "slide": 10.0}  # rad/s, m/s: joints with no limit anywhere
+# A URDF velocity limit this high (rad/s or m/s) stands for "no limit": no motor turns at nearly ten
+# million rpm (descriptions write 1e8, 1e9 or 1e16), and held to it, a runaway would never fail.
+PLACEHOLDER_SPEED = 1e6
 
 
 @dataclass(frozen=True)
@@ -59,6 +62,11 @@ class JointSpeed:
         return asdict(self)
 
 
+def _real_speed(limit: float | None) -> bool:
+    """Whether ``limit`` is a velocity limit, not a placeholder for none."""
+    return limit is not None and 0 < limit < PLACEHOLDER_SPEED
+
+
 def joint_speeds(
     top_speeds: dict[str, float],
     urdf_limits: dict[str, float | None],
@@ -86,11 +94,12 @@ def joint_speeds(
     }
     result = []
     for joint, speed in sorted(top_speeds.items()):
-        limit = urdf_limits.get(joint)
-        source = "urdf"
-        if not limit or limit <= 0:
-            if joint in drives:
-                limit, source = float(drives[joint]["no_load_speed"]), "motor"
+        limit, source = urdf_limits.get(joint), "urdf"
+        if not _real_speed(limit):
+            # A line drawn from the URDF's limits has that placeholder as its no-load speed.
+            drive = float(drives[joint]["no_load_speed"]) if joint in drives else None
+            if _real_speed(drive):
+                limit, source = drive, "motor"
             else:
                 limit, source = DEFAULT_LIMIT.get(kinds.get(joint, "hinge"), 100.0), "default"
         multiple = DRIVEN_MULTIPLE if joint in named else FREE_MULTIPLE

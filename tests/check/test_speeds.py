@@ -9,6 +9,7 @@ import pytest
 
 from mjcfbuild.check.results import FastestJoint
 from mjcfbuild.check.speeds import DRIVEN_MULTIPLE, FREE_MULTIPLE, joint_speeds, speed_results
+from mjcfbuild.control.motors import URDF_LIMITS
 from tests.conftest import run_cli, write
 from tests.control.test_home import _urdf
 
@@ -33,12 +34,19 @@ def test_a_driven_joint_is_held_to_its_limit_and_a_free_one_to_a_multiple():
     assert len(failures) == 1 and f"more than {DRIVEN_MULTIPLE:g} times" in failures[0]
 
 
-@pytest.mark.parametrize("placeholder", [None, 0.0, -1.0])
+@pytest.mark.parametrize("placeholder", [None, 0.0, -1.0, 1e9, 1e16])
 def test_a_joint_without_a_limit_takes_its_motors_no_load_speed_else_the_default(placeholder):
     (driven,) = joint_speeds({"knee": 1.0}, {"knee": placeholder}, {}, [DRIVE])
     assert (driven.limit, driven.limit_from) == (20.0, "motor")
     (slide,) = joint_speeds({"rail": 1.0}, {"rail": placeholder}, {"rail": "slide"}, [])
     assert (slide.limit, slide.limit_from, slide.unit) == (10.0, "default", "m/s")
+
+
+def test_a_placeholder_speed_in_a_line_drawn_from_the_urdf_is_no_limit_either():
+    # prius's steering joint: velocity="1000000", so its URDF line's no-load speed is 1e6 too.
+    line = {"joint": "steer", "motor": {"motor": URDF_LIMITS, "no_load_speed": 1e6}}
+    (steer,) = joint_speeds({"steer": 62.0}, {"steer": 1e6}, {}, [line])
+    assert (steer.limit, steer.limit_from) == (100.0, "default")
 
 
 def test_a_runaway_joint_fails_the_build_naming_it_and_its_limit(tmp_path):
