@@ -2,8 +2,9 @@
 pseudorandom control, against the speed the real joint can reach.
 
 A joint's limit is its URDF ``<limit velocity>``; where the URDF gives none (or a placeholder:
-0, -1, or :data:`PLACEHOLDER_SPEED` and above, as 1e9 is written for "no limit"), the no-load speed of the motor that drives it, else :data:`DEFAULT_LIMIT` (rad/s, or
-m/s for a slide). How far past it a joint may go depends on what the model knows:
+0, -1, or :data:`PLACEHOLDER_SPEED` and above, as 1e9 is written for "no limit"), the no-load
+speed of the motor that drives it, else :data:`DEFAULT_LIMIT` (rad/s, or m/s for a slide). How
+far past it a joint may go depends on what the model knows:
 
 - a joint driven by a motor with a torque-speed line (``motors:``) cannot drive itself past the
   line's no-load speed; only what moves it from outside (its neighbours, a falling base) can,

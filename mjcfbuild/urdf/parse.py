@@ -38,6 +38,10 @@ from mjcfbuild.urdf.transforms import vec3
 from mjcfbuild.xmlguard import refuse_entities
 
 _SEPARATORS = re.compile(r"[\s,]+")
+# A number as C's strtod reads it in the C locale, which urdfdom (ROS's URDF parser) requires:
+# Python's float() also takes digits of other scripts ("١") and underscores ("1_000").
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_NUMBER_HINT = "write it with the digits 0-9, as ROS's URDF parser (urdfdom) requires"
 
 
 def secure_parser(recover: bool = False) -> etree.XMLParser:
@@ -204,9 +208,13 @@ class _Reader:
             try:
                 value = float(part)
             except ValueError:
+                value = None
+            if value is None or (_NUMBER.fullmatch(part) is None and math.isfinite(value)):
                 raise self.error(
-                    element, f"<{element.tag}> {attribute}=\"{text}\": '{part}' is not a number"
-                ) from None
+                    element,
+                    f"<{element.tag}> {attribute}=\"{text}\": '{part}' is not a number",
+                    hint=_NUMBER_HINT if value is not None else None,
+                )
             if not math.isfinite(value):
                 raise self.error(
                     element, f'<{element.tag}> {attribute}="{text}" is not a finite number'
@@ -395,12 +403,7 @@ def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
     child = element.find("child")
     if parent is None or child is None:
         raise reader.error(element, f"joint '{name}' needs <parent link=...> and <child link=...>")
-    axis_element = element.find("axis")
-    axis = (1.0, 0.0, 0.0)
-    if axis_element is not None:
-        axis = reader.numbers(axis_element, "xyz", 3, axis)
-        if kind != "fixed" and all(abs(a) < 1e-12 for a in axis):
-            raise reader.error(axis_element, f"joint '{name}' has a zero axis")
+    axis = _axis(element.find("axis"), name, kind, reader)
     limit = None
     limit_element = element.find("limit")
     if limit_element is not None:
@@ -410,20 +413,7 @@ def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
             reader.number(limit_element, "effort"),
             reader.number(limit_element, "velocity"),
         )
-        if (
-            kind in ("revolute", "prismatic")
-            and limit.lower is not None
-            and limit.upper is not None
-            and limit.lower > limit.upper
-        ):
-            raise reader.error(
-                limit_element,
-                f"joint '{name}' has lower limit {limit.lower:g} above its upper limit "
-                f"{limit.upper:g}",
-                # pybullet_data's biped2d_pybullet.urdf writes lower 1, upper -1 for "free".
-                hint="swap them; if they mean 'no limit' (as pybullet reads them), make a "
-                "revolute joint continuous, or give a prismatic one the range it can travel",
-            )
+        _check_bounds(name, kind, limit, limit_element, reader)
     damping = friction = 0.0
     dynamics = element.find("dynamics")
     if dynamics is not None:
@@ -472,6 +462,55 @@ def _implicit_world(links: list[Link], joints: list[Joint], reader: _Reader) -> 
         "MuJoCo's own import)"
     )
     return [Link(WORLD), *links]
+
+
+def _check_bounds(
+    joint: str, kind: str, limit: Limit, element: etree._Element, reader: _Reader
+) -> None:
+    """Refuse a revolute or prismatic joint whose lower bound lies above its upper one, a
+    missing bound being 0 as in the URDF specification (and urdfdom): MuJoCo would leave such
+    a joint unlimited."""
+    if kind not in ("revolute", "prismatic") or (limit.lower is None and limit.upper is None):
+        return
+    lower, upper = limit.lower or 0.0, limit.upper or 0.0
+    if lower <= upper:
+        return
+    message = f"joint '{joint}' has lower limit {lower:g} above its upper limit {upper:g}"
+    if limit.lower is None or limit.upper is None:
+        missing = "lower" if limit.lower is None else "upper"
+        raise reader.error(
+            element,
+            f"{message} (it gives no {missing}, which URDF reads as 0)",
+            hint=f"give the {missing} limit too",
+        )
+    raise reader.error(
+        element,
+        message,
+        # pybullet_data's biped2d_pybullet.urdf writes lower 1, upper -1 for "free".
+        hint="swap them; if they mean 'no limit' (as pybullet reads them), make a "
+        "revolute joint continuous, or give a prismatic one the range it can travel",
+    )
+
+
+def _axis(element: etree._Element | None, joint: str, kind: str, reader: _Reader) -> Vec3:
+    """The joint's axis (x where none is given). A fixed or floating joint has no axis: ROS's
+    URDF parser does not read one there, and mjcfbuild only warns when it cannot either."""
+    axis = (1.0, 0.0, 0.0)
+    if element is None:
+        return axis
+    if kind in ("fixed", "floating"):
+        try:
+            return reader.numbers(element, "xyz", 3, axis)
+        except InputError as error:
+            reader.warnings.append(
+                f"{reader.file}:{element.sourceline}: {error.message}; ignored, as a {kind} "
+                "joint has no axis (remove the <axis>)"
+            )
+            return axis
+    axis = reader.numbers(element, "xyz", 3, axis)
+    if all(abs(a) < 1e-12 for a in axis):
+        raise reader.error(element, f"joint '{joint}' has a zero axis")
+    return axis
 
 
 def _mujoco_compiler(root: etree._Element) -> dict[str, str]:

@@ -22,6 +22,8 @@ import weakref
 from pathlib import Path
 from typing import Any
 
+from tests.executables import require
+
 NAMES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")
 FLAGS = (
     "--headless",
@@ -48,15 +50,9 @@ def find_chromium() -> str | None:
 def require_chromium() -> str:
     """The browser for a test; without one the test is skipped, or fails in CI (``CI=true``,
     where .ci/run installs it)."""
-    import pytest
-
-    executable = find_chromium()
-    if executable is None:
-        reason = "no chromium on PATH (apt-get install chromium, or set MJCFBUILD_CHROMIUM)"
-        if os.environ.get("CI") == "true":
-            pytest.fail(f"CI: {reason}")
-        pytest.skip(reason)
-    return executable
+    return require(
+        find_chromium(), "no chromium on PATH (apt-get install chromium, or set MJCFBUILD_CHROMIUM)"
+    )
 
 
 class Browser:

@@ -218,6 +218,26 @@ def test_undeclared_namespace_prefix_is_a_warning():
             "zero axis",
             2,
         ),
+        # Python's float() reads these; C's strtod, and so urdfdom (ROS), does not.
+        (
+            "<robot><link name='a'>\n<inertial><mass value='1_000'/></inertial></link></robot>",
+            "'1_000' is not a number",
+            2,
+        ),
+        (
+            "<robot><link name='a'>\n<visual><geometry><box size='1 \u0661 1'/></geometry>"
+            "</visual></link></robot>",
+            "'\u0661' is not a number",
+            2,
+        ),
+        # A missing bound is 0 (URDF, urdfdom): lower 1 alone is an empty range.
+        (
+            "<robot><link name='a'/><link name='b'/><joint name='j' type='revolute'>"
+            "<parent link='a'/><child link='b'/>\n<limit lower='1' effort='1' velocity='1'/>"
+            "</joint></robot>",
+            "lower limit 1 above its upper limit 0 (it gives no upper",
+            2,
+        ),
         (
             "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='revolute'>"
             "<parent link='a'/><child link='b'/><mimic joint='k'/></joint></robot>",
@@ -231,6 +251,22 @@ def test_defects_are_errors_with_lines(text, message, line):
     assert message in error.message
     assert error.location.file == "r.urdf"
     assert error.location.line == line
+
+
+def test_an_unreadable_axis_of_a_fixed_or_floating_joint_is_ignored_with_a_warning():
+    # urdfdom (ROS) reads no axis there; a moving joint's axis must still be a number.
+    for kind in ("fixed", "floating"):
+        robot = parse_urdf(
+            b"<robot name='r'><link name='a'/><link name='b'/><joint name='j' type='"
+            + kind.encode()
+            + b"'><parent link='a'/><child link='b'/>\n<axis xyz='0 0 1_0'/></joint></robot>",
+            "r.urdf",
+        )
+        assert robot.joints[0].axis == (1.0, 0.0, 0.0)
+        assert robot.warnings == [
+            "r.urdf:2: <axis> xyz=\"0 0 1_0\": '1_0' is not a number; ignored, as a "
+            f"{kind} joint has no axis (remove the <axis>)"
+        ]
 
 
 def test_entity_declarations_are_refused():
