@@ -42,14 +42,19 @@ def simulate(model, steps: int = 2000) -> SimulationResult:
 
 def _where(model, warning: int, info: int) -> str:
     """Where MuJoCo's warning happened: the joint of the DOF it records for an unstable
-    velocity or acceleration (a bare index said nothing to a user), else its number."""
+    velocity or acceleration (a bare index said nothing to a user), else its number. A
+    floating base's DOFs come first and move with any runaway, so MuJoCo records them on a
+    floating robot whichever joint ran away: they are not named as the culprit."""
     import mujoco
 
-    if warning in (mujoco.mjtWarning.mjWARN_BADQVEL, mujoco.mjtWarning.mjWARN_BADQACC):
-        joint = dof_joint(model, info)
-        if joint is not None:
-            return f"last at joint '{joint}'"
-    return f"last info {info}"
+    if warning not in (mujoco.mjtWarning.mjWARN_BADQVEL, mujoco.mjtWarning.mjWARN_BADQACC):
+        return f"last info {info}"
+    joint = dof_joint(model, info)
+    if joint is None:
+        return f"last info {info}"
+    if int(model.jnt_type[model.dof_jntid[info]]) == int(mujoco.mjtJoint.mjJNT_FREE):
+        return f"last at the floating base '{joint}', which any joint's runaway moves"
+    return f"last at joint '{joint}'"
 
 
 def dof_joint(model, dof: int) -> str | None:

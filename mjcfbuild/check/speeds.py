@@ -63,9 +63,9 @@ class JointSpeed:
         return asdict(self)
 
 
-def _real_speed(limit: float | None) -> bool:
+def _real_speed(limit: float) -> bool:
     """Whether ``limit`` is a velocity limit, not a placeholder for none."""
-    return limit is not None and 0 < limit < PLACEHOLDER_SPEED
+    return 0 < limit < PLACEHOLDER_SPEED
 
 
 def joint_speeds(
@@ -95,14 +95,15 @@ def joint_speeds(
     }
     result = []
     for joint, speed in sorted(top_speeds.items()):
-        limit, source = urdf_limits.get(joint), "urdf"
-        if not _real_speed(limit):
-            # A line drawn from the URDF's limits has that placeholder as its no-load speed.
-            drive = float(drives[joint]["no_load_speed"]) if joint in drives else None
-            if _real_speed(drive):
-                limit, source = drive, "motor"
-            else:
-                limit, source = DEFAULT_LIMIT.get(kinds.get(joint, "hinge"), 100.0), "default"
+        given = urdf_limits.get(joint)
+        # A line drawn from the URDF's limits has the URDF's placeholder as its no-load speed.
+        drive = float(drives[joint]["no_load_speed"]) if joint in drives else None
+        if given is not None and _real_speed(given):
+            limit, source = given, "urdf"
+        elif drive is not None and _real_speed(drive):
+            limit, source = drive, "motor"
+        else:
+            limit, source = DEFAULT_LIMIT.get(kinds.get(joint, "hinge"), 100.0), "default"
         multiple = DRIVEN_MULTIPLE if joint in named else FREE_MULTIPLE
         unit = "m/s" if kinds.get(joint) == "slide" else "rad/s"
         result.append(

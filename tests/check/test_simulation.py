@@ -21,6 +21,14 @@ def test_an_unstable_acceleration_names_its_joint_not_a_dof_index():
     assert result.warnings == ["badqacc (x1, last at joint 'elbow')"]
 
 
+def test_on_a_floating_base_the_base_is_not_named_as_the_culprit():
+    # MuJoCo records the base's DOF 0 whichever joint ran away (r8_6 with free_joint: true).
+    result = simulate(mujoco.MjModel.from_xml_string(RUNAWAY.format(joint="elbow")), steps=5)
+    assert not result.passes
+    (warning,) = result.warnings
+    assert "floating base 'float'" in warning and "last at joint" not in warning, warning
+
+
 def test_a_dof_names_its_joint():
     model = mujoco.MjModel.from_xml_string(RUNAWAY.format(joint="elbow"))
     assert [dof_joint(model, dof) for dof in range(model.nv)] == ["float"] * 6 + ["elbow"]
