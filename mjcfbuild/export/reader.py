@@ -13,9 +13,9 @@ from mjcfbuild.actuators import dcmotor_of
 from mjcfbuild.errors import InputError, ModelError
 from mjcfbuild.export.model import BodyOut, GeomOut, JointOut, MeshOut, MimicOut, ModelOut
 from mjcfbuild.fsutil import unreadable_file
+from mjcfbuild.urdf.model import WORLD
 from mjcfbuild.urdf.transforms import Transform, matmul, matrix3, quat_to_matrix, transpose
 
-WORLD = "world"
 DEFAULT_GEOM_RGBA = (0.5, 0.5, 0.5, 1.0)
 # Actuator dynamics whose activation settles at the control (none, filter, filterexact).
 _STEADY_DYNAMICS = (0, 2, 3)

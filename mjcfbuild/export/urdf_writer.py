@@ -31,9 +31,9 @@ from mjcfbuild.export.meshfiles import MeshFiles, colour_key, colour_text
 from mjcfbuild.export.model import BodyOut, GeomOut, JointOut, ModelOut
 from mjcfbuild.markup import xml_attribute
 from mjcfbuild.numbers import output_list
+from mjcfbuild.urdf.model import WORLD
 from mjcfbuild.urdf.transforms import Transform, vec3
 
-WORLD = "world"
 UNLIMITED_SLIDE = 1000.0
 BALL_AXES = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}
 ELLIPSOID_SEGMENTS = 24

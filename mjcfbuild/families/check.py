@@ -75,7 +75,8 @@ FAMILY = Family(
     step="mjcfbuild.steps.check:run",
     payload=CheckPayload,
     format=10,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
-    # measured again from inside the joint ranges
+    # measured again from inside the joint ranges, velocity limits of 1e6 and above taken for
+    # none, unstable-state warnings naming their joint
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

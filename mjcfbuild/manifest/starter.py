@@ -22,13 +22,15 @@ _ARG = re.compile(rb"<xacro:arg\s+name=\"([^\"]+)\"(?:\s+default=\"([^\"]*)\")?"
 _PACKAGE_URI = re.compile(rb"package://([A-Za-z0-9_.-]+)/")
 _FIND = re.compile(rb"\$\(find\s+([A-Za-z0-9_.-]+)\)")
 _ROBOT_NAME = re.compile(rb"<robot[^>]*\sname=\"([^\"]+)\"")
+_COMMENT = re.compile(rb"<!--.*?-->", re.S)
 
 
 def write_starter_manifest(
     source: str, packages: dict[str, str], output: str, force: bool = False
 ) -> tuple[Path, list[str]]:
     """Write a manifest for ``source`` to ``output``; return its path and what the build will
-    stop at unless the user acts (one line each, see :func:`starter_warnings`)."""
+    stop at unless the user acts, one line each: packages the description names that were not
+    found, and the error that kept the description from being read."""
     source_path = Path(source).resolve()
     if not source_path.is_file():
         raise InputError(f"source file {unreadable_file(source) or 'not found'}", file=source)
@@ -43,7 +45,7 @@ def write_starter_manifest(
         raise UsageError(f"{output} already exists", hint="pass --force to overwrite it")
     warnings: list[str] = []
     text = starter_manifest_text(
-        source_path, packages, manifest_path.parent, Path(output).name, warnings
+        source_path, packages, manifest_path.parent, Path(output).name, warnings, label=source
     )
     try:
         manifest_path.parent.mkdir(parents=True, exist_ok=True)
@@ -59,12 +61,17 @@ def starter_manifest_text(
     manifest_dir: Path,
     manifest_name: str = "robot.yaml",
     warnings: list[str] | None = None,
+    label: str | None = None,
 ) -> str:
     """The manifest text: source, packages it needs, xacro args with their defaults.
     ``warnings`` receives what the first build would stop at: packages the description names
-    that were not found, and the error that kept the description from being read."""
+    that were not found, and the error that kept the description from being read, naming the
+    source as ``label`` (as the user gave it; by default its path)."""
     warnings = [] if warnings is None else warnings
+    label = label or str(source)
     data = source.read_bytes()
+    # What a comment mentions is no reference (its line breaks kept, for the lines below).
+    live = _COMMENT.sub(lambda comment: b"\n" * comment.group().count(b"\n"), data)
     # By what the file uses: a URDF that only declares the xacro namespace is read as it is
     # (through xacro, errors would cite lines of an expanded copy).
     is_xacro = xacro_evidence(data) is not None
@@ -73,7 +80,7 @@ def starter_manifest_text(
     raw_name = match.group(1).decode() if match else source.name.split(".")[0]
     name = _valid_name(raw_name if "$" not in raw_name else source.name.split(".")[0])
 
-    needed = sorted({m.decode() for m in _PACKAGE_URI.findall(data) + _FIND.findall(data)})
+    needed = sorted({m.decode() for m in _PACKAGE_URI.findall(live) + _FIND.findall(live)})
     known = dict(packages)
     notes: dict[str, str] = {}
     references = package_references(data)
@@ -131,13 +138,15 @@ def starter_manifest_text(
     missing = _not_in_the_environment(unresolved)
     if missing:
         warnings.append(
-            f"{source}: package{'s' if len(missing) > 1 else ''} "
-            f"{', '.join(repr(p) for p in missing)} not found; the manifest lists "
-            f"{'them' if len(missing) > 1 else 'it'} commented out under packages: give "
-            f"{'each' if len(missing) > 1 else 'it'} its folder (or pass --package NAME=DIR)"
+            f"{label}:{_first_line_naming(live, missing[0])}: package"
+            f"{'s' if len(missing) > 1 else ''} {', '.join(repr(p) for p in missing)} not "
+            f"found; the manifest lists {'them' if len(missing) > 1 else 'it'} commented out "
+            f"under packages: give {'each' if len(missing) > 1 else 'it'} its folder (or pass "
+            "--package NAME=DIR)"
         )
-    free_joint, unread = _free_joint_lines(source, is_xacro, known, data)
-    if unread is not None:
+    free_joint, unread = _free_joint_lines(source, is_xacro, known, data, label)
+    # A package not found is what kept the description from being read: said once, above.
+    if unread is not None and not any(f"'{package}'" in unread for package in missing):
         warnings.append(f"{unread}; the build stops there until the description is fixed")
     lines += [
         "",
@@ -206,8 +215,15 @@ def _not_in_the_environment(packages: list[str]) -> list[str]:
     return missing
 
 
+def _first_line_naming(data: bytes, package: str) -> int:
+    """The line of the first ``package://`` URI or ``$(find)`` naming ``package`` in ``data``."""
+    name = re.escape(package.encode())
+    match = re.search(rb"package://" + name + rb"/|\$\(find\s+" + name + rb"\)", data)
+    return data[: match.start()].count(b"\n") + 1 if match else 1
+
+
 def _free_joint_lines(
-    source: Path, is_xacro: bool, packages: dict[str, str], data: bytes
+    source: Path, is_xacro: bool, packages: dict[str, str], data: bytes, label: str
 ) -> tuple[list[str], str | None]:
     """The manifest's free_joint line, decided from the robot's kinematics and geometry
     (urdf.base); from its names only where the description cannot be read here, with the
@@ -219,7 +235,7 @@ def _free_joint_lines(
         from mjcfbuild.urdf.parse import parse_urdf
 
         expansion = expand_source(source, is_xacro, {}, packages, dict(os.environ))
-        kind = classify_base(parse_urdf(expansion.urdf, str(source)))
+        kind = classify_base(parse_urdf(expansion.urdf, label))
     except Exception as exc:  # an unreadable description: init still writes a starting manifest
         # The build reports anything else itself; a user error is worth telling now.
         unread = exc.one_line() if isinstance(exc, MjcfbuildError) else None

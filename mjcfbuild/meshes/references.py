@@ -28,13 +28,22 @@ def missing_references(path: Path) -> list[str]:
     """What ``path`` refers to that is not there (an OBJ's ``mtllib`` or a texture its
     material names, a DAE's or a glTF's image), each once as ``name (what it is)``, sorted;
     the name is the path from the mesh's folder (``../textures/wood.png``), where the file
-    was looked for."""
+    was looked for, or the name of a file outside the mesh's description (an absolute
+    ``file:///opt/textures/wood.png``): a path from the mesh up to the root would depend on
+    the folder the description sits in."""
     missing = {(kind, p) for kind, p in _references(path) if not p.is_file()}
     return sorted({f"{_from_folder(p, path.parent)} ({kind})" for kind, p in missing})
 
 
+# A relative path climbing this many folders is no description's own (../../materials is).
+_CLIMB = 3
+
+
 def _from_folder(path: Path, folder: Path) -> str:
-    return Path(os.path.relpath(path, folder)).as_posix()
+    relative = Path(os.path.relpath(path, folder))
+    if relative.parts[:_CLIMB] == ("..",) * _CLIMB:
+        return path.name
+    return relative.as_posix()
 
 
 def missing_paths(path: Path) -> list[Path]:

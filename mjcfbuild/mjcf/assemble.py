@@ -242,13 +242,9 @@ def _apply_additions(
             preset_ctrl=parts.preset_ctrl,
         )
 
-    try:
-        readiness = ready(root, home)
-    except ModelError:
-        # MuJoCo's complaint about the user's inputs alone, where they are at fault, rather
-        # than about them with the actuators added (a compile fewer when nothing is wrong).
-        compile_tree(pristine)
-        raise
+    # No compile of its own checks the inputs first: this one's failure, with the joints'
+    # dynamics set, is MuJoCo's complaint about them (the same words).
+    readiness = ready(root, home)
     if options.free_joint and described_nothing(home) and not stands(root, compile_tree):
         # The description gives no pose the robot stands in: try a computed crouch.
         crouched = crouched_home(root, compile_tree, home, readiness)

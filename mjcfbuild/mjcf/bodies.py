@@ -10,10 +10,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from mjcfbuild.urdf.model import Joint, Robot, Shape
+from mjcfbuild.urdf.model import WORLD, Joint, Robot, Shape
 from mjcfbuild.urdf.transforms import Matrix, Transform, matmul, matrix3, transpose, vec3
-
-WORLD = "world"
 
 
 @dataclass

@@ -63,7 +63,7 @@ def _missing_warning(source: Path, label: str) -> list[str]:
     if not missing:
         return []
     them = "it" if len(missing) == 1 else "them"
-    beside = all("/" not in name for name in missing)
+    beside = all(path.parent == source.parent for path in missing_paths(source))
     return [
         f"{label or source.name}: refers to {', '.join(missing)}, not found "
         f"{'beside it' if beside else 'where it says'}; the "

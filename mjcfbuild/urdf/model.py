@@ -14,6 +14,8 @@ RGBA = tuple[float, float, float, float]
 
 SHAPE_KINDS = ("box", "cylinder", "sphere", "capsule", "mesh")
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
+# The link that stands for the ground: MuJoCo's world body, ROS's and Drake's fixed frame.
+WORLD = "world"
 
 
 @dataclass

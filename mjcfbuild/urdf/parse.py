@@ -22,6 +22,7 @@ from mjcfbuild.errors import InputError
 from mjcfbuild.urdf.model import (
     JOINT_TYPES,
     RGBA,
+    WORLD,
     Geometry,
     Inertial,
     Joint,
@@ -440,9 +441,6 @@ def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
         mimic=mimic,
         line=element.sourceline,
     )
-
-
-WORLD = "world"
 
 
 def _implicit_world(links: list[Link], joints: list[Joint], reader: _Reader) -> list[Link]:

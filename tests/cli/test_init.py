@@ -307,11 +307,12 @@ def test_init_says_what_the_first_build_will_stop_at(cli, tmp_path):
     result = cli("init", "robot.urdf", cwd=tmp_path)
     assert result.code == EXIT_OK, result.stderr
     line = next(n for n, text in enumerate(urdf.splitlines(), 1) if "<limit" in text)
+    uri = next(n for n, text in enumerate(urdf.splitlines(), 1) if "package://" in text)
     assert result.stderr.splitlines() == [
-        f"mjcfbuild: warning: {tmp_path / 'robot.urdf'}: package 'robot_meshes' not found; the "
+        f"mjcfbuild: warning: robot.urdf:{uri}: package 'robot_meshes' not found; the "
         "manifest lists it commented out under packages: give it its folder (or pass "
         "--package NAME=DIR)",
-        f"mjcfbuild: warning: {tmp_path / 'robot.urdf'}:{line}: joint 'hinge' has lower limit "
+        f"mjcfbuild: warning: robot.urdf:{line}: joint 'hinge' has lower limit "
         "0.3 above its upper limit -1.5 (swap them; if they mean 'no limit' (as pybullet reads "
         "them), make a revolute joint continuous, or give a prismatic one the range it can "
         "travel); the build stops there until the description is fixed",
@@ -320,6 +321,36 @@ def test_init_says_what_the_first_build_will_stop_at(cli, tmp_path):
     built = cli("build", "--no-check", cwd=tmp_path)
     assert built.code == EXIT_INPUT  # where init said
     assert f"robot.urdf:{line}: joint 'hinge' has lower limit 0.3 above" in built.stderr
+
+
+def test_init_takes_no_package_a_comment_mentions(cli, tmp_path):
+    from tests.conftest import two_link_urdf, write
+
+    old = '<!-- <mesh filename="package://old_meshes/base.stl"/> -->\n'
+    write(tmp_path / "robot.urdf", two_link_urdf().replace("<link", old + "<link", 1))
+    result = cli("init", "robot.urdf", cwd=tmp_path)
+    assert result.code == EXIT_OK and result.stderr == "", result.stderr
+    assert "old_meshes" not in (tmp_path / "robot.yaml").read_text()
+
+
+def test_a_xacro_stopped_by_a_missing_package_is_warned_about_once(cli, tmp_path):
+    from tests.conftest import write
+
+    write(
+        tmp_path / "robot.urdf.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="$(find ghost_description)/urdf/parts.xacro"/>\n'
+        '  <link name="base"><visual><geometry>\n'
+        '    <mesh filename="package://ghost_description/meshes/base.stl"/>\n'
+        "  </geometry></visual></link>\n</robot>\n",
+    )
+    result = cli("init", "robot.urdf.xacro", cwd=tmp_path)
+    assert result.code == EXIT_OK, result.stderr
+    assert result.stderr.splitlines() == [
+        "mjcfbuild: warning: robot.urdf.xacro:2: package 'ghost_description' not found; the "
+        "manifest lists it commented out under packages: give it its folder (or pass "
+        "--package NAME=DIR)"
+    ]
 
 
 def test_init_of_a_readable_description_warns_of_nothing(cli, tmp_path):

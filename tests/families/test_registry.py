@@ -35,11 +35,11 @@ from tests.families.toy_step import ToyPayload
 BEFORE_FORMATS = {
     "expand": 2,
     "plan": 8,
-    "mesh": 5,
+    "mesh": 6,
     "decompose": 3,
     "assemble": 12,
     "scene": 3,
-    "check": 9,
+    "check": 10,
     "reference": 1,
     "previews": 5,
     "tuning": 1,
@@ -107,7 +107,7 @@ def test_the_derived_tables_are_the_ones_the_engine_kept_before():
         "mjcfbuild.steps.decompose:run": "decompose",
     }
     version = registry.step_versions("mesh")
-    assert version["mjcfbuild-step"] == "mesh-5" and version["mjcfbuild"] == mjcfbuild.__version__
+    assert version["mjcfbuild-step"] == "mesh-6" and version["mjcfbuild"] == mjcfbuild.__version__
     assert list(version)[:6] == list(BEFORE_TOOLS["mesh"])
 
 

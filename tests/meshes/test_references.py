@@ -50,3 +50,14 @@ def test_a_dae_image_that_is_missing_and_image_ids_that_are_no_files(tmp_path):
 def test_nothing_missing(tmp_path):
     obj = samples.obj_with_named_mtl_and_texture(tmp_path)
     assert missing_references(obj) == [] and missing_paths(obj) == []
+
+
+def test_a_missing_file_far_outside_the_mesh_is_named_without_the_way_there(tmp_path):
+    # file:///opt/textures/wood.png from m1/a/b/part.dae: a path of ../ up to the root would
+    # depend on where the description sits, and differ between folders.
+    folder = tmp_path / "m1" / "a" / "b"
+    folder.mkdir(parents=True)
+    dae = folder / "part.dae"
+    far = tmp_path.parent / "elsewhere" / "textures" / "wood.png"
+    dae.write_text(DAE.replace("textures/wood.png", far.as_uri()).replace("here.png", "x.png"))
+    assert missing_references(dae) == ["wood.png (texture)", "x.png (texture)"]
