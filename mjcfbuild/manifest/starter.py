@@ -23,6 +23,7 @@ _PACKAGE_URI = re.compile(rb"package://([A-Za-z0-9_.-]+)/")
 _FIND = re.compile(rb"\$\(find\s+([A-Za-z0-9_.-]+)\)")
 _ROBOT_NAME = re.compile(rb"<robot[^>]*\sname=\"([^\"]+)\"")
 _COMMENT = re.compile(rb"<!--.*?-->", re.S)
+_CAD_NAME = re.compile(r"\.(SLDASM|SLDPRT|STEP|STP|IAM|IPT)$", re.IGNORECASE)
 
 
 def write_starter_manifest(
@@ -77,8 +78,11 @@ def starter_manifest_text(
     is_xacro = xacro_evidence(data) is not None
     relative = _relative(source, manifest_dir)
     match = _ROBOT_NAME.search(data)
-    raw_name = match.group(1).decode() if match else source.name.split(".")[0]
-    name = _valid_name(raw_name if "$" not in raw_name else source.name.split(".")[0])
+    stem = source.name.split(".")[0]
+    raw_name = match.group(1).decode() if match else stem
+    # A substitution, or a CAD assembly's name (SolidWorks' exporter writes
+    # "SO_5DOF_ARM100_8j_URDF.SLDASM"): the file's own name reads better.
+    name = _valid_name(stem if "$" in raw_name or _CAD_NAME.search(raw_name) else raw_name)
 
     needed = sorted({m.decode() for m in _PACKAGE_URI.findall(live) + _FIND.findall(live)})
     known = dict(packages)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import pytest
 
 from mjcfbuild.errors import EXIT_INPUT, EXIT_OK, EXIT_USAGE
@@ -16,6 +18,20 @@ def test_init_then_build(cli, tmp_path):
     built = cli("build", "-q", cwd=tmp_path)
     assert built.code == EXIT_OK, built.stderr
     assert (tmp_path / "mjcf" / "example_arm.xml").exists()
+
+
+@pytest.mark.parametrize(
+    ("robot", "name"),
+    [("SO_5DOF_ARM100_8j_URDF.SLDASM", "so100"), ("arm_v2", "arm_v2"), ("$(arg name)", "so100")],
+)
+def test_init_names_the_model_after_the_robot_not_a_cad_assembly(cli, tmp_path, robot, name):
+    # mani-skill's so100.urdf names its robot after the SolidWorks assembly it was exported from
+    from tests.conftest import two_link_urdf, write
+
+    text = two_link_urdf()
+    write(tmp_path / "so100.urdf", re.sub(r'<robot name="[^"]*"', f'<robot name="{robot}"', text))
+    assert cli("init", "so100.urdf", cwd=tmp_path).code == EXIT_OK
+    assert f"\nname: {name}\n" in (tmp_path / "robot.yaml").read_text()
 
 
 def test_init_does_not_overwrite_without_force(cli, tmp_path):

@@ -157,95 +157,96 @@ def test_undeclared_namespace_prefix_is_a_warning():
     assert [j.name for j in robot.joints] == ["hinge"]
 
 
-@pytest.mark.parametrize(
-    ("text", "message", "line"),
-    [
-        ("<robot><link name='a'>\n</robot>", "malformed XML", 2),
-        ("<model name='x'/>", "root element is <model>", 1),
-        ("<robot name='a'/>", "no links", 1),
-        ("<robot>\n<link name='a'/>\n<link name='a'/>\n</robot>", "link 'a' is defined twice", 3),
-        (
-            "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='fixed'>"
-            "<parent link='a'/><child link='c'/></joint></robot>",
-            "refers to link 'c', which does not exist",
-            2,
-        ),
-        (
-            "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='spherical'>"
-            "<parent link='a'/><child link='b'/></joint></robot>",
-            "unknown type 'spherical'",  # pybullet_data's humanoid.urdf
-            2,
-        ),
-        (
-            "<robot><link name='a'/><link name='b'/><link name='c'/>\n"
-            "<joint name='j' type='fixed'><parent link='a'/><child link='b'/></joint></robot>",
-            "2 root links",
-            1,
-        ),
-        (
-            "<robot><link name='a'/><link name='b'/>\n"
-            "<joint name='j1' type='fixed'><parent link='a'/><child link='b'/></joint>\n"
-            "<joint name='j2' type='fixed'><parent link='b'/><child link='a'/></joint></robot>",
-            "cycle",
-            2,
-        ),
-        (
-            "<robot><link name='a'>\n<visual><geometry><cone radius='1'/></geometry></visual>"
-            "</link></robot>",
-            "unknown geometry <cone>",
-            2,
-        ),
-        (
-            "<robot><link name='a'>\n<visual><geometry><box size='1 1'/></geometry></visual>"
-            "</link></robot>",
-            "needs 3 numbers, found 2",
-            2,
-        ),
-        (
-            "<robot><link name='a'>\n<visual><geometry><box size='1 nan 1'/></geometry></visual>"
-            "</link></robot>",
-            "not a finite number",
-            2,
-        ),
-        (
-            "<robot><link name='a'>\n<inertial><mass value='x'/></inertial></link></robot>",
-            "'x' is not a number",
-            2,
-        ),
-        (
-            "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='revolute'>"
-            "<parent link='a'/><child link='b'/><axis xyz='0 0 0'/></joint></robot>",
-            "zero axis",
-            2,
-        ),
-        # Python's float() reads these; C's strtod, and so urdfdom (ROS), does not.
-        (
-            "<robot><link name='a'>\n<inertial><mass value='1_000'/></inertial></link></robot>",
-            "'1_000' is not a number",
-            2,
-        ),
-        (
-            "<robot><link name='a'>\n<visual><geometry><box size='1 \u0661 1'/></geometry>"
-            "</visual></link></robot>",
-            "'\u0661' is not a number",
-            2,
-        ),
-        # A missing bound is 0 (URDF, urdfdom): lower 1 alone is an empty range.
-        (
-            "<robot><link name='a'/><link name='b'/><joint name='j' type='revolute'>"
-            "<parent link='a'/><child link='b'/>\n<limit lower='1' effort='1' velocity='1'/>"
-            "</joint></robot>",
-            "lower limit 1 above its upper limit 0 (it gives no upper",
-            2,
-        ),
-        (
-            "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='revolute'>"
-            "<parent link='a'/><child link='b'/><mimic joint='k'/></joint></robot>",
-            "mimics joint 'k', which does not exist",
-            2,
-        ),
-    ],
-)
+# Each defect: the URDF text, what the error says (the test's id), and the line it names.
+DEFECTS = [
+    ("<robot><link name='a'>\n</robot>", "malformed XML", 2),
+    ("<model name='x'/>", "root element is <model>", 1),
+    ("<robot name='a'/>", "no links", 1),
+    ("<robot>\n<link name='a'/>\n<link name='a'/>\n</robot>", "link 'a' is defined twice", 3),
+    (
+        "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='fixed'>"
+        "<parent link='a'/><child link='c'/></joint></robot>",
+        "refers to link 'c', which does not exist",
+        2,
+    ),
+    (
+        "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='spherical'>"
+        "<parent link='a'/><child link='b'/></joint></robot>",
+        "unknown type 'spherical'",  # pybullet_data's humanoid.urdf
+        2,
+    ),
+    (
+        "<robot><link name='a'/><link name='b'/><link name='c'/>\n"
+        "<joint name='j' type='fixed'><parent link='a'/><child link='b'/></joint></robot>",
+        "2 root links",
+        1,
+    ),
+    (
+        "<robot><link name='a'/><link name='b'/>\n"
+        "<joint name='j1' type='fixed'><parent link='a'/><child link='b'/></joint>\n"
+        "<joint name='j2' type='fixed'><parent link='b'/><child link='a'/></joint></robot>",
+        "cycle",
+        2,
+    ),
+    (
+        "<robot><link name='a'>\n<visual><geometry><cone radius='1'/></geometry></visual>"
+        "</link></robot>",
+        "unknown geometry <cone>",
+        2,
+    ),
+    (
+        "<robot><link name='a'>\n<visual><geometry><box size='1 1'/></geometry></visual>"
+        "</link></robot>",
+        "needs 3 numbers, found 2",
+        2,
+    ),
+    (
+        "<robot><link name='a'>\n<visual><geometry><box size='1 nan 1'/></geometry></visual>"
+        "</link></robot>",
+        "not a finite number",
+        2,
+    ),
+    (
+        "<robot><link name='a'>\n<inertial><mass value='x'/></inertial></link></robot>",
+        "'x' is not a number",
+        2,
+    ),
+    (
+        "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='revolute'>"
+        "<parent link='a'/><child link='b'/><axis xyz='0 0 0'/></joint></robot>",
+        "zero axis",
+        2,
+    ),
+    # Python's float() reads these; C's strtod, and so urdfdom (ROS), does not.
+    (
+        "<robot><link name='a'>\n<inertial><mass value='1_000'/></inertial></link></robot>",
+        "'1_000' is not a number",
+        2,
+    ),
+    (
+        "<robot><link name='a'>\n<visual><geometry><box size='1 \u0661 1'/></geometry>"
+        "</visual></link></robot>",
+        "'\u0661' is not a number",
+        2,
+    ),
+    # A missing bound is 0 (URDF, urdfdom): lower 1 alone is an empty range.
+    (
+        "<robot><link name='a'/><link name='b'/><joint name='j' type='revolute'>"
+        "<parent link='a'/><child link='b'/>\n<limit lower='1' effort='1' velocity='1'/>"
+        "</joint></robot>",
+        "lower limit 1 above its upper limit 0 (it gives no upper",
+        2,
+    ),
+    (
+        "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='revolute'>"
+        "<parent link='a'/><child link='b'/><mimic joint='k'/></joint></robot>",
+        "mimics joint 'k', which does not exist",
+        2,
+    ),
+]
+
+
+@pytest.mark.parametrize(("text", "message", "line"), DEFECTS, ids=[d[1] for d in DEFECTS])
 def test_defects_are_errors_with_lines(text, message, line):
     error = error_of(text)
     assert message in error.message
