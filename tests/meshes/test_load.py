@@ -44,6 +44,24 @@ def test_merge_vertices_keeps_first_appearance_order():
     assert merged.faces.tolist() == [[0, 1, 2], [0, 1, 2]]
 
 
+def test_merge_vertices_tells_apart_vertices_whose_hashes_collide():
+    """Vertices are grouped by a hash of their bits; two different ones with the same hash
+    stay two vertices (grouped by their bytes instead)."""
+    multiplier = np.uint64(0x9E3779B97F4A7C15)
+    first = np.array([1.0, 2.0, 3.0]).view(np.uint64)
+    other = first.copy()
+    other[0] = np.array([1.5]).view(np.uint64)[0]
+    # the same hash: ((x * m) ^ y) * m ^ z equal when (x * m) ^ y is (arrays: wrapping)
+    other[1:2] = (first[0:1] * multiplier) ^ first[1:2] ^ (other[0:1] * multiplier)
+    assert ((first[0:1] * multiplier) ^ first[1:2]) == ((other[0:1] * multiplier) ^ other[1:2])
+    vertices = np.vstack([first, other, first, [0, 0, 0]]).astype(np.uint64).view(np.float64)
+    assert np.isfinite(vertices).all() and not np.array_equal(vertices[0], vertices[1])
+    merged = merge_vertices(MeshPart(vertices, np.array([[0, 1, 3], [2, 1, 3]]), None))
+    assert len(merged.vertices) == 3
+    assert merged.faces.tolist() == [[0, 1, 2], [0, 1, 2]]
+    assert merged.vertices[1].tobytes() == vertices[1].tobytes()
+
+
 def test_merge_vertices_keeps_texture_seams_and_drops_unused_vertices():
     vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 0], [5, 5, 5]], dtype=float)
     uv = np.array([[0, 0], [1, 0], [0, 1], [0.5, 0.5], [0, 0]], dtype=float)
