@@ -129,8 +129,9 @@ def make_ready(
     qpos = _home_qpos(model, home, preset_qpos)
     if floating:
         readiness.base_height = _stand_on_floor(root, model, data, qpos)
-        model = compile_tree(root)
-        data = mujoco.MjData(model)
+        if readiness.base_height is not None and not _move_free_bodies(model, data, root):
+            model = compile_tree(root)
+            data = mujoco.MjData(model)
         qpos = _home_qpos(model, home, preset_qpos)
     data.qpos[:] = qpos
     mujoco.mj_forward(model, data)
@@ -400,6 +401,42 @@ def _stand_on_floor(root, model, data, qpos) -> float | None:
             position[2] += lift
             body.set("pos", output_list(position))
     return lift
+
+
+def _move_free_bodies(model, data, root) -> bool:
+    """Give the compiled ``model`` its free bodies' positions from ``root`` (as
+    :func:`_stand_on_floor` raised them): each body's position and its free joint's reference
+    pose, then the constants MuJoCo derives from the reference pose, which is what compiling
+    ``root`` again gives (a compile of g1 less). False, with ``model`` unchanged, where a free
+    body has no name to find it by."""
+    import mujoco
+
+    moves = []
+    for body in root.iter("body"):
+        if body.find("freejoint") is None and not any(
+            j.get("type") == "free" for j in body.findall("joint")
+        ):
+            continue
+        index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, body.get("name") or "")
+        if index < 0:
+            return False
+        free = [
+            j
+            for j in range(
+                model.body_jntadr[index], model.body_jntadr[index] + model.body_jntnum[index]
+            )
+            if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE
+        ]
+        if len(free) != 1:
+            return False
+        position = [float(v) for v in (body.get("pos") or "0 0 0").split()]
+        moves.append((index, model.jnt_qposadr[free[0]], position))
+    for index, address, position in moves:
+        model.body_pos[index] = position
+        model.qpos0[address : address + 3] = position
+        model.qpos_spring[address : address + 3] = position
+    mujoco.mj_setConst(model, data)
+    return True
 
 
 # A weight-bearing servo's natural frequency times the time step at most (with armature added
