@@ -18,7 +18,7 @@ from mjcfbuild.check.control import check_control, menagerie_test, outside_at_qp
 from mjcfbuild.check.findings import Problem, structural_first
 from mjcfbuild.check.joints import compare_joints
 from mjcfbuild.check.kinematics import compare_kinematics
-from mjcfbuild.check.loading import compile_model
+from mjcfbuild.check.loading import AssetSource, compile_model
 from mjcfbuild.check.masses import compare_masses
 from mjcfbuild.check.meshstats import mesh_statistics
 from mjcfbuild.check.precision import relative_tolerance
@@ -61,7 +61,7 @@ def check_model(
     options: CheckOptions | None = None,
     readiness: dict | None = None,
     reference: dict | None = None,
-    sources: dict[str, Path] | None = None,
+    sources: dict[str, AssetSource] | None = None,
     part_bodies: dict[str, set[str]] | None = None,
 ) -> CheckResults:
     """Check the model at ``model_path`` against ``robot``; simulate ``simulate_path`` (the
@@ -204,7 +204,7 @@ def check_model(
 def _check_plausibility(
     model,
     results: CheckResults,
-    sources: dict[str, Path] | None,
+    sources: dict[str, AssetSource] | None,
     robot: Robot,
     repaired: set[str],
 ) -> CheckResults:

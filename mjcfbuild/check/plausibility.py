@@ -38,6 +38,8 @@ if TYPE_CHECKING:
     import mujoco
     import numpy as np
 
+    from mjcfbuild.check.loading import AssetSource
+
 # A centre of mass this far outside its body's box (a fraction of the box's diagonal, plus an
 # absolute slack for small links) is not inside it.
 COM_MARGIN = 0.2
@@ -93,7 +95,7 @@ class _Geom:
 
 def check_plausibility(
     model: mujoco.MjModel,
-    sources: dict[str, Path] | None = None,
+    sources: dict[str, AssetSource] | None = None,
     skip: set[str] | None = None,
     robot: Robot | None = None,
 ) -> Plausibility:
@@ -136,7 +138,9 @@ def check_plausibility(
     return result
 
 
-def _tagged_meshes(model: mujoco.MjModel, sources: dict[str, Path] | None) -> set[str] | None:
+def _tagged_meshes(
+    model: mujoco.MjModel, sources: dict[str, AssetSource] | None
+) -> set[str] | None:
     """The meshes of ``model`` converted from a DAE file tagged Y_UP or X_UP (their product
     summary records the tag), or None when the model's meshes are not mjcfbuild products."""
     import json
@@ -151,7 +155,8 @@ def _tagged_meshes(model: mujoco.MjModel, sources: dict[str, Path] | None) -> se
         if start < 0:
             continue
         path = Path(raw[start : raw.index(b"\0", start)].decode())
-        for candidate in (path, sources.get(path.name)):
+        source = sources.get(path.name)
+        for candidate in (path, source.product if source else None):
             if candidate is None:
                 continue
             summary = candidate.parent.with_suffix(".json")

@@ -32,7 +32,7 @@ from pathlib import Path
 from typing import Any
 
 from mjcfbuild.check.drawn import drawn_model_xml
-from mjcfbuild.check.loading import spec_reading_sources
+from mjcfbuild.check.loading import AssetSource, spec_reading_sources
 from mjcfbuild.errors import ModelError
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import atomic_write, md5_file
@@ -73,7 +73,7 @@ def render_previews(
     folder: Path,
     width: int = 480,
     height: int = 360,
-    sources: dict[str, Path] | None = None,
+    sources: dict[str, AssetSource] | None = None,
     drawn: Mapping[str, str] | None = None,
 ) -> dict[str, str | None]:
     """Write the pictures ``<view>_<kind>.png`` into ``folder``; each picture's name and the
@@ -148,7 +148,7 @@ def render_previews(
     return shown
 
 
-def _model_to_draw(model_path: Path, sources: dict[str, Path]) -> tuple[Any, Any]:
+def _model_to_draw(model_path: Path, sources: dict[str, AssetSource]) -> tuple[Any, Any]:
     """The model as the pictures show it (its MjSpec and MjModel): without its skybox
     textures, which they do not draw and the renderer would otherwise upload (Menagerie's
     gradient: six 512 x 512 faces with their mipmaps, 0.06-0.09 s of panda's previews in

@@ -104,8 +104,8 @@ def _preload(module: str) -> None:
 def _queue_meshes(report: str, work: IdleWork) -> None:
     from mjcfbuild.check.loading import asset_sources
 
-    for product in sorted(set(asset_sources(Path(report)).values())):
-        work.append(partial(_warm, str(product)))
+    for read in sorted({source.read for source in asset_sources(Path(report)).values()}):
+        work.append(partial(_warm, str(read)))
 
 
 # Mesh files processed while idle, with what identified them then (mjcfbuild.filesig).
@@ -170,7 +170,8 @@ def note_products(request: dict) -> None:
     if isinstance(report, str) and report:
         from mjcfbuild.check.loading import asset_sources
 
-        files += [str(path) for path in asset_sources(Path(report)).values()]
+        for source in asset_sources(Path(report)).values():
+            files += [str(path) for path in (source.product, source.copy) if path is not None]
     for name in files:
         identity = _identity(name)
         if identity is not None:

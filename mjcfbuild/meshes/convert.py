@@ -24,6 +24,7 @@ import numpy as np
 
 from mjcfbuild.fsutil import write_if_changed
 from mjcfbuild.meshes.load import MeshPart, load_parts
+from mjcfbuild.meshes.mshfile import copy_name, float32_vertices, msh_bytes
 from mjcfbuild.meshes.objfile import obj_bytes
 from mjcfbuild.meshes.product import PRODUCT_FORMAT, WHOLE_MESH, MeshProduct, ProductPart
 
@@ -55,6 +56,14 @@ def convert_mesh(
         files[name] = hashlib.md5(data, usedforsecurity=False).hexdigest()
         return name
 
+    def store_mesh(name: str, vertices: np.ndarray, faces: np.ndarray, uv=None) -> str:
+        # The OBJ file from float32 values, so that its binary copy compiles the same.
+        exact = float32_vertices(vertices)
+        store(name, obj_bytes(exact, faces, uv))
+        if uv is None and len(exact) and len(faces):
+            store(copy_name(name), msh_bytes(exact, faces))
+        return name
+
     textures: dict[str, str] = {}
     summary_parts = []
     single = len(parts) == 1
@@ -65,7 +74,10 @@ def convert_mesh(
             if texture_file is None:
                 texture_file = store(f"texture{len(textures)}.png", part.texture.png)
                 textures[part.texture.key] = texture_file
-        name = store(WHOLE_MESH if single else f"part{index}.obj", _obj(part))
+        uv = part.uv if part.texture is not None else None
+        name = store_mesh(
+            WHOLE_MESH if single else f"part{index}.obj", part.vertices, part.faces, uv
+        )
         summary_parts.append(
             ProductPart(
                 file=name,
@@ -80,10 +92,10 @@ def convert_mesh(
     collision = None
     if "collision" in roles:
         same = single and whole_parts is parts  # no budget made them differ
-        collision = WHOLE_MESH if same else store("collision.obj", obj_bytes(vertices, faces))
+        collision = WHOLE_MESH if same else store_mesh("collision.obj", vertices, faces)
     hull = None
     if "hull" in roles:
-        hull = store("hull.obj", _hull_obj(_whole(original)[0], max_hull_vertices))
+        hull = store_mesh("hull.obj", *_hull(_whole(original)[0], max_hull_vertices))
     for stale in product_dir.iterdir():
         if stale.name not in files:
             stale.unlink()
@@ -128,10 +140,6 @@ def _within_budget(
     return simplified
 
 
-def _obj(part: MeshPart) -> bytes:
-    return obj_bytes(part.vertices, part.faces, part.uv if part.texture is not None else None)
-
-
 def _whole(parts: list[MeshPart]) -> tuple[np.ndarray, np.ndarray]:
     offsets = np.cumsum([0] + [len(p.vertices) for p in parts[:-1]])
     vertices = np.concatenate([p.vertices for p in parts])
@@ -145,7 +153,8 @@ def _volume(vertices: np.ndarray, faces: np.ndarray) -> float:
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
 
 
-def _hull_obj(vertices: np.ndarray, max_vertices: int | None = None) -> bytes:
+def _hull(vertices: np.ndarray, max_vertices: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """The convex hull of ``vertices`` (at most ``max_vertices``), in a reproducible order."""
     import trimesh
 
     hull = trimesh.Trimesh(vertices=vertices, process=False).convex_hull
@@ -157,7 +166,7 @@ def _hull_obj(vertices: np.ndarray, max_vertices: int | None = None) -> bytes:
     rank[order] = np.arange(len(order))
     faces = rank[hull.faces]
     faces = faces[np.lexsort(np.sort(faces, axis=1).T[::-1])]
-    return obj_bytes(hull.vertices[order], faces)
+    return np.asarray(hull.vertices)[order], faces
 
 
 def farthest_points(points: np.ndarray, count: int) -> np.ndarray:

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from mjcfbuild.records import Record
 
-PRODUCT_FORMAT = 2
+PRODUCT_FORMAT = 3
 # The whole mesh, when it has a single look: drawn, and collided with, from one file.
 WHOLE_MESH = "mesh.obj"
 

@@ -79,12 +79,14 @@ class Assembly:
     """The assembled model and what must be published with it."""
 
     xml: bytes
-    assets: dict[str, str]
+    assets: dict[str, str]  # published name -> the product file published under it
     repairs: list[Repair]
     warnings: list[str]
     bodies: int
     geoms: int
     readiness: Readiness | None = None
+    # published name -> (file, MD5) the build's compiles read for it (mjcfbuild.meshes.mshfile)
+    reads: dict[str, tuple[str, str]] = field(default_factory=dict)
 
 
 def assemble(
@@ -151,6 +153,7 @@ def assemble(
         bodies=len(bodies),
         geoms=len(prepared.geoms),
         readiness=readiness,
+        reads=dict(prepared.reads),
     )
 
 
@@ -271,9 +274,10 @@ def _apply_additions(
 
 
 def _reading_products(root: etree._Element, prepared: Prepared) -> etree._Element:
-    """A copy of the model that reads each asset from the file it is published from.
+    """A copy of the model that reads each asset from the file it is published from, or from
+    that product's binary copy (mjcfbuild.meshes.mshfile).
 
-    The same bytes as the published assets, under the names the first compile (of the
+    The same meshes as the published assets, under the names the first compile (of the
     prepared URDF) read them by: MuJoCo caches processed meshes by file name, so every later
     compile of this build skips processing them again (seconds for a detailed robot).
     """
@@ -282,7 +286,8 @@ def _reading_products(root: etree._Element, prepared: Prepared) -> etree._Elemen
         compiler.attrib.pop("meshdir", None)
         compiler.attrib.pop("texturedir", None)
     for element in (*copy.iter("mesh"), *copy.iter("texture")):
-        source = prepared.files.get(element.get("file") or "")
+        name = element.get("file") or ""
+        source = prepared.reads[name][0] if name in prepared.reads else prepared.files.get(name)
         if source is not None:
             element.set("file", str(source))
     return copy
@@ -423,10 +428,10 @@ def spec_meshes(spec, prepared: Prepared) -> list[MeshAsset]:
     matched by file, so that its errors can name the description's file."""
     from dataclasses import replace
 
-    by_file = {Path(asset.product_file).name: asset for asset in prepared.meshes}
+    by_file = {asset.read_file: asset for asset in prepared.meshes}
     named = []
     for mesh in spec.meshes:
-        asset = by_file.get(Path(mesh.file).name)
+        asset = by_file.get(mesh.file)
         if asset is not None:
             named.append(replace(asset, name=mesh.name))
     return named
@@ -467,7 +472,7 @@ def _finish(
         if material.texture is not None:
             added.textures[mujoco.mjtTextureRole.mjTEXROLE_RGB] = material.texture
 
-    by_file = {(asset.product_file, tuple(asset.scale)): asset for asset in prepared.meshes}
+    by_file = {(asset.read_file, tuple(asset.scale)): asset for asset in prepared.meshes}
     for mesh in spec.meshes:
         asset = by_file[(mesh.file, tuple(float(s) for s in mesh.scale))]
         old, mesh.name = mesh.name, asset.name

@@ -21,6 +21,7 @@ import numpy as np
 from mjcfbuild.collision.policy import CollisionChoice, collision_policy
 from mjcfbuild.errors import InputError
 from mjcfbuild.markup import xml_attribute
+from mjcfbuild.meshes.mshfile import read_file
 from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.mjcf.bodies import WORLD, Body, PlacedShape
 from mjcfbuild.numbers import exact_list
@@ -65,6 +66,7 @@ class MeshAsset:
     uri: str = ""
     shell: bool = False
     mesh_id: str = ""
+    read_file: str = ""  # what compiles read: the product's binary copy, else product_file
 
 
 @dataclass
@@ -85,7 +87,9 @@ class Prepared:
     meshes: list[MeshAsset] = field(default_factory=list)
     materials: list[Material] = field(default_factory=list)
     textures: dict[str, str] = field(default_factory=dict)
-    files: dict[str, str] = field(default_factory=dict)
+    files: dict[str, str] = field(default_factory=dict)  # published name -> product file
+    # published name -> (file, MD5) compiles read for it, where not the product file itself
+    reads: dict[str, tuple[str, str]] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
 
 
@@ -112,6 +116,8 @@ class _MeshUse:
     uri: str
     shell: bool = False
     mesh_id: str = ""
+    read_file: str = ""
+    read_md5: str = ""
 
 
 @dataclass
@@ -239,7 +245,13 @@ class _Builder:
         )
 
     def _use(self, mesh_id: str, file: str, md5: str, stem: str, placed: PlacedShape, shell=False):
-        path = str(self.product_dirs[mesh_id] / file) if not Path(file).is_absolute() else file
+        if Path(file).is_absolute():  # a decomposition's part
+            path, read, read_md5 = file, file, md5
+        else:
+            folder, files = self.product_dirs[mesh_id], self.products[mesh_id].files
+            path = str(folder / file)
+            read = str(folder / read_file(file, files))
+            read_md5 = files[read_file(file, files)]
         scale = tuple(placed.shape.geometry.scale)
         key = (path, scale)
         if key not in self.uses:
@@ -252,6 +264,8 @@ class _Builder:
                 placed.shape.geometry.uri or "",
                 shell,
                 mesh_id,
+                read,
+                read_md5,
             )
         return self.uses[key]
 
@@ -464,6 +478,8 @@ def _assign_names(uses: dict, looks: dict, prepared: Prepared) -> _AssetNames:
     by_file: dict[str, list[_MeshUse]] = {}
     for use in sorted(uses.values(), key=lambda u: (u.stem, u.scale)):
         published = names.publish(use.md5, use.stem, ".obj", use.product_file)
+        if use.read_file != use.product_file:
+            prepared.reads[published] = (use.read_file, use.read_md5)
         by_file.setdefault(published, []).append(use)
     for published, file_uses in sorted(by_file.items()):
         scales = sorted({use.scale for use in file_uses})
@@ -482,6 +498,7 @@ def _assign_names(uses: dict, looks: dict, prepared: Prepared) -> _AssetNames:
                 uri=use.uri,
                 shell=use.shell,
                 mesh_id=use.mesh_id,
+                read_file=use.read_file,
             )
             names.asset_by_key[key] = asset
             prepared.meshes.append(asset)
@@ -506,7 +523,7 @@ def _scale_suffix(scale: tuple) -> str:
 
 def _mesh_xml(asset: MeshAsset) -> str:
     scale = xml_attribute(exact_list(asset.scale))
-    return f"<mesh filename={xml_attribute(asset.product_file)} scale={scale}/>"
+    return f"<mesh filename={xml_attribute(asset.read_file)} scale={scale}/>"
 
 
 def _origin(pose: Transform) -> str:

@@ -6,7 +6,7 @@ import json
 import os
 from pathlib import Path
 
-from mjcfbuild.check.loading import SOURCES_KEY, source_entries
+from mjcfbuild.check.loading import COPIES_KEY, SOURCES_KEY, copy_entries, source_entries
 from mjcfbuild.collision.policy import CollisionChoice
 from mjcfbuild.compose.attach import AttachedPart
 from mjcfbuild.errors import CheckError
@@ -101,6 +101,7 @@ def run(payload: dict) -> dict:
         "asset_md5": {name: outputs[str(assets_dir / name)] for name in sorted(assembly.assets)},
         # Lets the check and previews read the products MuJoCo has cached (check.loading).
         SOURCES_KEY: source_entries(assembly.assets, report_path.parent),
+        COPIES_KEY: copy_entries(assembly.reads, report_path.parent),
         "repairs": [repair.__dict__ for repair in assembly.repairs],
         "warnings": assembly.warnings,
         "bodies": assembly.bodies,

@@ -6,7 +6,7 @@ import json
 from pathlib import Path
 
 from mjcfbuild.check.contacts import part_bodies
-from mjcfbuild.check.loading import asset_sources, compile_model
+from mjcfbuild.check.loading import AssetSource, asset_sources, compile_model
 from mjcfbuild.check.model_check import CheckOptions, check_model
 from mjcfbuild.check.results import CheckResults, GazeboSensor, Runtime
 from mjcfbuild.errors import CheckError
@@ -87,7 +87,7 @@ def write_results(results: CheckResults, path: Path, outputs: dict[str, str]) ->
 
 
 def add_runtime_check(
-    results: CheckResults, model_path: Path, control: Ros2Control, sources: dict[str, Path]
+    results: CheckResults, model_path: Path, control: Ros2Control, sources: dict[str, AssetSource]
 ) -> CheckResults:
     """The mujoco_ros2_control section, where the description has a <ros2_control> block."""
     if not results.loads or not (control.joints or control.sensors):
@@ -125,7 +125,7 @@ def _check_parts(
     model_path: Path,
     parts: list[MjcfPartFiles],
     options: dict,
-    sources: dict[str, Path],
+    sources: dict[str, AssetSource],
 ) -> CheckResults:
     """Compare every MJCF part with the part compiled alone; add results and failures."""
     from mjcfbuild.check.parts import PartReference, PartResult, check_part

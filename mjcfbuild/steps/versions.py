@@ -76,6 +76,6 @@ class StepFormat:
         return versions
 
 
-MESH = StepFormat("mesh", 6, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"))
+MESH = StepFormat("mesh", 7, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"))
 DECOMPOSE = StepFormat("decompose", 3, ("coacd", "trimesh", "numpy", "scipy"))
 SELFCOLLISION = StepFormat("selfcollision", 3, ("mujoco", "numpy"))

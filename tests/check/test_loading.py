@@ -7,10 +7,13 @@ import json
 from pathlib import Path
 
 import mujoco
+import numpy as np
 
 import mjcfbuild
 from mjcfbuild.check.loading import (
+    COPIES_KEY,
     SOURCES_KEY,
+    AssetSource,
     asset_sources,
     collision_files,
     compile_model,
@@ -39,9 +42,9 @@ def published_model(folder: Path) -> tuple[Path, Path]:
 
 def test_an_identical_asset_is_read_from_its_product(tmp_path):
     model, product = published_model(tmp_path)
-    spec = spec_reading_sources(model, {"part.obj": product})
+    spec = spec_reading_sources(model, {"part.obj": AssetSource(product)})
     assert spec.meshes[0].file == str(product)
-    built = compile_model(model, {"part.obj": product})
+    built = compile_model(model, {"part.obj": AssetSource(product)})
     plain = mujoco.MjModel.from_xml_path(str(model))
     assert built.mesh_vertnum.tolist() == plain.mesh_vertnum.tolist() == [4]
 
@@ -49,10 +52,34 @@ def test_an_identical_asset_is_read_from_its_product(tmp_path):
 def test_an_asset_that_differs_from_its_product_is_read_as_published(tmp_path):
     model, product = published_model(tmp_path)
     (tmp_path / "assets" / "part.obj").write_text(PRISM)  # edited after the build
-    assert spec_reading_sources(model, {"part.obj": product}).meshes[0].file == "part.obj"
-    assert compile_model(model, {"part.obj": product}).mesh_vertnum.tolist() == [5]
+    sources = {"part.obj": AssetSource(product)}
+    assert spec_reading_sources(model, sources).meshes[0].file == "part.obj"
+    assert compile_model(model, sources).mesh_vertnum.tolist() == [5]
     product.unlink()  # and a product gone since is no source either
-    assert compile_model(model, {"part.obj": product}).mesh_vertnum.tolist() == [5]
+    assert compile_model(model, sources).mesh_vertnum.tolist() == [5]
+
+
+def test_an_identical_asset_is_read_from_its_products_copy_while_that_is_intact(tmp_path):
+    import hashlib
+
+    from mjcfbuild.meshes.mshfile import msh_bytes
+
+    model, product = published_model(tmp_path)
+    vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    faces = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    data = msh_bytes(vertices, faces)
+    copy = product.with_suffix(".msh")
+    copy.write_bytes(data)
+    md5 = hashlib.md5(data, usedforsecurity=False).hexdigest()
+    sources = {"part.obj": AssetSource(product, copy, md5)}
+    assert spec_reading_sources(model, sources).meshes[0].file == str(copy)
+    assert compile_model(model, sources).mesh_vertnum.tolist() == [4]
+    # A copy that is not what the build wrote (a conversion stopped between the two files)
+    # is not read: the product is.
+    copy.write_bytes(msh_bytes(vertices * 2, faces))
+    assert spec_reading_sources(model, sources).meshes[0].file == str(product)
+    copy.unlink()
+    assert spec_reading_sources(model, sources).meshes[0].file == str(product)
 
 
 def test_the_sources_record_is_relative_and_optional(tmp_path):
@@ -61,7 +88,13 @@ def test_the_sources_record_is_relative_and_optional(tmp_path):
     entries = source_entries({"part.obj": str(product)}, report.parent)
     assert entries == {"part.obj": "products/part/mesh.obj"}
     write(report, json.dumps({SOURCES_KEY: entries}))
-    assert asset_sources(report) == {"part.obj": report.parent / "products/part/mesh.obj"}
+    product = report.parent / "products/part/mesh.obj"
+    assert asset_sources(report) == {"part.obj": AssetSource(product)}
+    copies = {"part.obj": ["products/part/mesh.msh", "0123"]}
+    write(report, json.dumps({SOURCES_KEY: entries, COPIES_KEY: copies}))
+    copy = report.parent / "products/part/mesh.msh"
+    assert asset_sources(report) == {"part.obj": AssetSource(product, copy, "0123")}
+    assert asset_sources(report)["part.obj"].read == copy
     write(report, "{}")  # a report written before the record existed
     assert asset_sources(report) == {}
     assert asset_sources(tmp_path / "missing.json") == {}
@@ -119,4 +152,11 @@ def test_a_build_records_the_product_of_every_asset(tmp_path, monkeypatch):
     assets = sorted(path.name for path in (output / "assets").iterdir())
     assert sorted(sources) == assets
     for asset, source in sources.items():
-        assert source.read_bytes() == (output / "assets" / asset).read_bytes()
+        assert source.product.read_bytes() == (output / "assets" / asset).read_bytes()
+    # the meshes without texture coordinates are read from their products' binary copies
+    copied = sorted(name for name, source in sources.items() if source.copy)
+    assert copied == sorted(name for name in assets if name.endswith(".obj"))
+    published = compile_model(result.robot)
+    from_copies = compile_model(result.robot, sources)
+    assert published.mesh_vert.tobytes() == from_copies.mesh_vert.tobytes()
+    assert published.mesh_face.tobytes() == from_copies.mesh_face.tobytes()

@@ -35,9 +35,9 @@ from tests.families.toy_step import ToyPayload
 BEFORE_FORMATS = {
     "expand": 2,
     "plan": 8,
-    "mesh": 6,
+    "mesh": 7,
     "decompose": 3,
-    "assemble": 12,
+    "assemble": 13,
     "scene": 3,
     "check": 10,
     "reference": 1,
@@ -107,7 +107,7 @@ def test_the_derived_tables_are_the_ones_the_engine_kept_before():
         "mjcfbuild.steps.decompose:run": "decompose",
     }
     version = registry.step_versions("mesh")
-    assert version["mjcfbuild-step"] == "mesh-6" and version["mjcfbuild"] == mjcfbuild.__version__
+    assert version["mjcfbuild-step"] == "mesh-7" and version["mjcfbuild"] == mjcfbuild.__version__
     assert list(version)[:6] == list(BEFORE_TOOLS["mesh"])
 
 

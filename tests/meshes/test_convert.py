@@ -21,7 +21,15 @@ def test_two_materials_give_two_parts_and_a_merged_collision_file(tmp_path):
     )
     assert [p.file for p in summary.parts] == ["part0.obj", "part1.obj"]
     assert summary.collision == "collision.obj"
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["collision.obj", "part0.obj", "part1.obj"]
+    # each OBJ file with its binary copy for the build's compiles (meshes.mshfile)
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "collision.msh",
+        "collision.obj",
+        "part0.msh",
+        "part0.obj",
+        "part1.msh",
+        "part1.obj",
+    ]
 
 
 def test_visual_only_mesh_has_no_collision_file_and_stale_files_go(tmp_path):
