@@ -15,13 +15,14 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from mjcfbuild.errors import InternalError, MjcfbuildError, write_failure
-from mjcfbuild.families import assemble
+from mjcfbuild.families import assemble, selfcollision
 
 # The steps that compile the built model with MuJoCo: each runs where one ran before, or where
 # the model's meshes were warmed while it was assembled, and finds them processed (check.loading).
 from mjcfbuild.families.registry import COMPILES_MODEL
 
 ASSEMBLE = assemble.FAMILY.step
+SELFCOLLISION = selfcollision.FAMILY.step
 WARM = "mjcfbuild.steps.warm:run"
 
 if TYPE_CHECKING:
@@ -126,9 +127,30 @@ class BuildSession:
         self.ctx.logs_dir.mkdir(parents=True, exist_ok=True)
         log = self.ctx.logs_dir / (re.sub(r"[^A-Za-z0-9_.-]+", "-", task) + ".log")
         affinity = str(self.ctx.robot_path) if step in COMPILES_MODEL else None
-        if step == ASSEMBLE and self.checks:
+        if step == SELFCOLLISION and self._workers().first_use(ASSEMBLE.partition(":")[0]):
+            self._prepare_assembly_worker(payload)
+        elif step == ASSEMBLE and self.checks:
             self._warm_second_worker(payload)
         return self._workers().run(step, payload, task, log, self.ctx.step_timeout, affinity)
+
+    def _prepare_assembly_worker(self, matrix_payload: dict) -> None:
+        """While the self-collision matrix is computed, an idle worker imports the assembly's
+        modules and processes the model's mesh products, drawn ones included, so that the
+        assembly, which waits for the matrix, starts there with nothing left to load (g1:
+        0.3 s sooner). The other worker would otherwise wait idle, and the matrix's worker
+        has processed only the collision meshes. The products are those converted by now: a
+        drawn mesh still converting beside the matrix is left to the assembly."""
+        from mjcfbuild.steps.payloads import SelfCollisionPayload, WarmPayload
+
+        request = SelfCollisionPayload.from_dict(matrix_payload)
+        products = self.ctx.products_dir
+        folders = [str(f) for f in products.iterdir() if f.is_dir()] if products.is_dir() else []
+        folders += [d.folder for d in request.decompositions]
+        module = ASSEMBLE.partition(":")[0]
+        warm = WarmPayload(folders=sorted(folders), modules=["mujoco", module]).to_dict()
+        self._workers().warm_for(
+            str(self.ctx.robot_path), WARM, warm, self.ctx.step_timeout, prepares=(module,)
+        )
 
     def _warm_second_worker(self, assemble_payload: dict) -> None:
         """While the model is assembled, an idle worker processes its mesh products, so that

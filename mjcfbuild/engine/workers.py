@@ -97,6 +97,9 @@ class _Worker:
         # step it ran that had one), and the affinity of the step it is running now.
         self.holds: str | None = resident.holds if resident is not None else None
         self.running: str | None = None
+        # The step modules a warm-up running here is for, and those one was for (warm_for).
+        self.preparing: tuple[str, ...] = ()
+        self.prepared: tuple[str, ...] = ()
         self.calling = False
         self.process = process
         self.resident = resident
@@ -330,11 +333,19 @@ class WorkerPool:
                 return None
         return _Worker(preload, meshes_from, None, resident)
 
-    def warm_for(self, affinity: str, step: str, payload: dict, timeout: float | None) -> None:
+    def warm_for(
+        self,
+        affinity: str,
+        step: str,
+        payload: dict,
+        timeout: float | None,
+        prepares: tuple[str, ...] = (),
+    ) -> None:
         """Run ``step`` in the background on an idle worker that does not hold ``affinity``,
         which holds it afterwards: it prepares a second worker for the steps that will compile
-        the model (see :func:`mjcfbuild.check.loading.warm_meshes`). Nothing happens when no
-        worker is idle; a failure only loses the head start."""
+        the model (see :func:`mjcfbuild.check.loading.warm_meshes`), and those of the modules
+        ``prepares`` (the warm-up imported them) go to it before a worker that holds the model
+        too. Nothing happens when no worker is idle; a failure only loses the head start."""
         with self._condition:
             idle = [w for w in self._idle if w.holds != affinity and w.alive()]
             if self._closed or not idle:
@@ -342,6 +353,7 @@ class WorkerPool:
             worker = idle[-1]
             self._idle.remove(worker)
             worker.running = affinity
+            worker.preparing = prepares
 
         def warm() -> None:
             healthy = warmed = False
@@ -352,15 +364,16 @@ class WorkerPool:
             except MjcfbuildError:  # crashed or too slow: the worker is replaced as usual
                 pass
             finally:
-                self._release(worker, healthy, affinity if warmed else None)
+                held = affinity if warmed else None
+                self._release(worker, healthy, held, prepares if warmed else ())
 
         threading.Thread(target=warm, daemon=True).start()
 
     def _acquire(self, module: str, affinity: str | None = None) -> _Worker:
-        """A worker for a step of ``module``: an idle one holding ``affinity`` (preferably
-        preloading ``module``), or, if one holding it is busy with its model, that one when it
-        is done; else an idle one, preferably preloading ``module``; else a new one if the pool
-        has room; else wait."""
+        """A worker for a step of ``module``: the one a warm-up is preparing for it, when that
+        is done; else an idle one holding ``affinity`` (preferably preloading ``module``), or,
+        if one holding it is busy with its model, that one when it is done; else an idle one,
+        preferably preloading ``module``; else a new one if the pool has room; else wait."""
         with self._condition:
             while True:
                 if self._closed:
@@ -369,13 +382,17 @@ class WorkerPool:
                 for worker in dead:  # died while idle (killed from outside): make room
                     self._idle.remove(worker)
                     self._started -= 1
+                if any(module in w.preparing for w in self._all):
+                    self._condition.wait()  # it has everything the step loads (warm_for)
+                    continue
                 holders = [w for w in self._all if affinity and w.holds == affinity]
                 ready = [w for w in holders if w in self._idle]
                 if not ready and any(w.running == affinity for w in holders):
                     self._condition.wait()  # a compile in a cold worker costs more
                     continue
                 ready = (
-                    [w for w in ready if module in w.preload]
+                    [w for w in ready if module in w.prepared]
+                    or [w for w in ready if module in w.preload]
                     or ready
                     or [w for w in self._idle if module in w.preload]
                     or self._idle
@@ -393,9 +410,17 @@ class WorkerPool:
         worker.running = affinity
         return worker
 
-    def _release(self, worker: _Worker, healthy: bool, affinity: str | None = None) -> None:
+    def _release(
+        self,
+        worker: _Worker,
+        healthy: bool,
+        affinity: str | None = None,
+        prepared: tuple[str, ...] = (),
+    ) -> None:
         with self._condition:
             worker.running = None
+            worker.preparing = ()
+            worker.prepared = prepared or worker.prepared
             if healthy and worker.alive() and not self._closed:
                 worker.holds = affinity or worker.holds
                 self._idle.append(worker)
@@ -403,6 +428,12 @@ class WorkerPool:
                 worker.kill()
                 self._started -= 1
             self._condition.notify_all()
+
+    def first_use(self, module: str) -> bool:
+        """Whether no worker of this pool was started to import ``module`` or prepared for it:
+        so in a folder's first build, whose workers start with nothing loaded."""
+        with self._condition:
+            return not any(module in (*w.preload, *w.prepared) for w in self._all)
 
     def close(self) -> None:
         """Let go of every worker at once: every reply is in and every step's log flushed,

@@ -328,9 +328,11 @@ class AssemblePayload(Payload):
 
 @dataclass(frozen=True)
 class WarmPayload(Payload):
-    """``warm`` (not a task): the folders of the mesh products a model is assembled from."""
+    """``warm`` (not a task): the folders of the mesh products a model is assembled from, and
+    the modules of the steps the warmed worker is prepared for (imported first)."""
 
     folders: list[str]
+    modules: list[str] = dataclasses.field(default_factory=list)
 
 
 @dataclass(frozen=True)

@@ -1,10 +1,13 @@
-"""Step ``warm``: MuJoCo processes a model's mesh products in a second worker while the model is
-assembled in the first, so that the check or the previews compile it there quickly (see
-mjcfbuild.check.loading). Not a task: the build starts it beside ``assemble``, and it writes
-nothing."""
+"""Step ``warm``: a second worker is prepared for the steps that will compile the model while
+the first is busy: it imports their modules and has MuJoCo process the model's mesh products
+(see mjcfbuild.check.loading). Not a task: the build starts it beside the self-collision
+matrix (for the assembly) and beside the assembly (for the check and the previews), and it
+writes nothing."""
 
 from __future__ import annotations
 
+import contextlib
+import importlib
 from pathlib import Path
 
 from mjcfbuild.check.loading import warm_meshes
@@ -12,8 +15,12 @@ from mjcfbuild.steps.payloads import WarmPayload
 
 
 def run(payload: dict) -> dict:
-    """Process every mesh file in the payload's folders into this worker's MuJoCo cache."""
+    """Import the payload's modules, then process every mesh file in its folders into this
+    worker's MuJoCo cache."""
     request = WarmPayload.from_dict(payload)
+    for module in request.modules:
+        with contextlib.suppress(Exception):  # the step that imports it reports the error
+            importlib.import_module(module)
     files = [
         str(path)
         for folder in request.folders

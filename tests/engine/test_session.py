@@ -18,15 +18,18 @@ def test_model_steps_carry_the_model_and_a_second_worker_is_warmed(tmp_path, mon
     lock = threading.Lock()
     run, warm_for = WorkerPool.run, WorkerPool.warm_for
 
+    payloads: dict[str, dict] = {}
+
     def recording_run(self, step, payload, label, log, timeout, affinity=None):
         with lock:
             asked.append((label, affinity))
+            payloads[label] = payload
         return run(self, step, payload, label, log, timeout, affinity)
 
-    def recording_warm_for(self, affinity, step, payload, timeout):
+    def recording_warm_for(self, affinity, step, payload, timeout, prepares=()):
         with lock:
             warmed.append((affinity, step, payload))
-        return warm_for(self, affinity, step, payload, timeout)
+        return warm_for(self, affinity, step, payload, timeout, prepares)
 
     monkeypatch.setattr(WorkerPool, "run", recording_run)
     monkeypatch.setattr(WorkerPool, "warm_for", recording_warm_for)
@@ -43,9 +46,19 @@ def test_model_steps_carry_the_model_and_a_second_worker_is_warmed(tmp_path, mon
         "tuning",
     }
     assert all(affinities[label] is None for label in affinities if label.startswith("mesh:"))
-    [(affinity, step, payload)] = warmed
-    assert (affinity, step) == (model, "mjcfbuild.steps.warm:run")
-    assert payload["folders"] and all(Path(f).is_dir() for f in payload["folders"])
+    # A first build prepares the second worker for the assembly while the matrix is computed
+    # (its modules and every mesh product, drawn ones too), then for the check and previews.
+    [for_assembly, for_check] = warmed
+    for affinity, step, payload in warmed:
+        assert (affinity, step) == (model, "mjcfbuild.steps.warm:run")
+        assert payload["folders"] and all(Path(f).is_dir() for f in payload["folders"])
+    assert for_assembly[2]["modules"] == ["mujoco", "mjcfbuild.steps.assemble"]
+    assert for_check[2]["modules"] == []
+    # (the products converted by then, every one the matrix reads among them: a drawn mesh
+    # may still be converting beside the matrix)
+    products = set(for_assembly[2]["folders"])
+    assert set(payloads["selfcollision"]["product_dirs"].values()) <= products
+    assert products <= set(for_check[2]["folders"])
 
     # Without the check there is nothing to warm a second worker for.
     warmed.clear()

@@ -225,3 +225,23 @@ def test_warm_for_prepares_a_second_worker_for_the_model(two_workers, tmp_path):
     _wait_for(lambda: len(pool._idle) == 2)
     assert not any(w.holds == "third.xml" for w in pool._all)
     assert pool.run(f"{STEPS}:echo", {}, "echo", None, 60)["pid"] in {second, first_pid[0]["pid"]}
+
+
+def test_a_step_waits_for_the_warm_up_preparing_a_worker_for_it(two_workers, tmp_path):
+    """In a first build the assembly waits for the worker warmed for it while the matrix ran,
+    rather than take the matrix's worker, which has only the collision meshes loaded."""
+    pool = two_workers
+    holder = pool.run(f"{STEPS}:echo", {}, "matrix", None, 60, affinity="robot.xml")["pid"]
+    until = tmp_path / "go"
+    pool.warm_for("robot.xml", f"{STEPS}:pause", {"until": str(until)}, 60, prepares=(STEPS,))
+    _wait_for(lambda: any(w.preparing for w in pool._all))
+    waiting, pid = _in_thread(
+        lambda: pool.run(f"{STEPS}:echo", {}, "assemble", None, 60, affinity="robot.xml")
+    )
+    _wait_for(lambda: len(pool._condition._waiters) == 1)  # type: ignore[attr-defined]
+    assert waiting.is_alive() and len(pool._idle) == 1  # the holder is idle, and not taken
+    until.touch()
+    waiting.join(60)
+    prepared = [w for w in pool._all if w.process.pid != holder]
+    assert pid == [{"pid": prepared[0].process.pid}]
+    assert prepared[0].holds == "robot.xml" and not prepared[0].preparing
