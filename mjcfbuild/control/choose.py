@@ -21,12 +21,15 @@ from __future__ import annotations
 
 import fnmatch
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 from mjcfbuild.actuators import ActuatorChoice, resolve_choice
 from mjcfbuild.errors import ManifestError
 from mjcfbuild.inputs.ros2_control import Ros2Control
-from mjcfbuild.manifest.simulation import ActuatorRule, ActuatorSettings
 from mjcfbuild.urdf.model import Joint, Robot
+
+if TYPE_CHECKING:  # pydantic's models: a worker that only reads settings from a payload skips them
+    from mjcfbuild.manifest.simulation import ActuatorRule, ActuatorSettings
 
 # ros2_control command interfaces (and transmission hardware interfaces) as MuJoCo actuators.
 # torque and force are effort to mujoco_ros2_control.

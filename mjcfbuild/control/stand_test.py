@@ -123,10 +123,13 @@ def stand_test(model, key: int, passive: set[str], seconds: float = STAND_SECOND
     home = data.qpos.copy()
     tilt = sink = worst = 0.0
     worst_joint = None
+    # What base_tilt and floor_height look up, once: the loop runs 1,500 times a trial.
+    floor = floor_height(model)
     for _ in range(round(seconds / model.opt.timestep)):
         mujoco.mj_step(model, data)
-        tilt = max(tilt, base_tilt(model, data))
-        sink = max(sink, height - (float(data.xpos[root][2]) - floor_height(model)))
+        if root:  # base_tilt of the free body (the world's is 0)
+            tilt = max(tilt, _tilt(data.xmat[root][8]))
+        sink = max(sink, height - (float(data.xpos[root][2]) - floor))
         roll = max(roll, float(np.linalg.norm(data.xpos[root][:2] - start)))
         if len(addresses):
             deviation = np.abs(data.qpos[addresses] - home[addresses])
@@ -217,9 +220,13 @@ def base_tilt(model, data) -> float:
 
     for joint in range(model.njnt):
         if model.jnt_type[joint] == mujoco.mjtJoint.mjJNT_FREE:
-            up = data.xmat[model.jnt_bodyid[joint]].reshape(3, 3)[2, 2]
-            return float(math.acos(max(-1.0, min(1.0, up))))
+            return _tilt(data.xmat[model.jnt_bodyid[joint]][8])
     return 0.0
+
+
+def _tilt(up: float) -> float:
+    """The angle whose cosine is ``up`` (a body's z axis's world z component)."""
+    return float(math.acos(max(-1.0, min(1.0, up))))
 
 
 def round_up(value: float) -> str:

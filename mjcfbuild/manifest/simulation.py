@@ -18,8 +18,6 @@ ActuatorType = Literal["position", "velocity", "motor", "none"]
 DEFAULT_FREQUENCY = 10.0
 DEFAULT_DAMPING_RATIO = 1.0
 DEFAULT_SAMPLES = 1000
-# MoveIt's Setup Assistant calls a pair "always in collision" from this fraction of samples on.
-ALWAYS_FRACTION = 0.95
 
 
 class _Strict(BaseModel):

@@ -145,3 +145,10 @@ def combine_masses(robot: Robot, body: Body) -> MassProperties | None:
         inertia=matrix3(inertia),
         links=[name for name, _, _, _ in parts],
     )
+
+
+def floats(body: Body) -> bool:
+    """Whether a free joint goes on ``body``: the root, or what a ``world`` root holds fixed."""
+    if body.parent is None:
+        return body.name != WORLD
+    return body.parent == WORLD and (body.joint is None or not body.joint.moves)

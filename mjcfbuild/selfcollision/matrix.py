@@ -11,9 +11,9 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass
 
-from mjcfbuild.manifest.simulation import ALWAYS_FRACTION
-
 EXCLUDED_BY_DEFAULT = ("adjacent", "home", "always")
+# MoveIt's Setup Assistant calls a pair "always in collision" from this fraction of samples on.
+ALWAYS_FRACTION = 0.95
 
 
 @dataclass(frozen=True)

@@ -17,8 +17,8 @@ from mjcfbuild.control.home import home_values
 from mjcfbuild.errors import InputError, ManifestError
 from mjcfbuild.inputs.ros2_control import ControlJoint, Ros2Control
 from mjcfbuild.meshes.product import read_product
-from mjcfbuild.mjcf.assemble import compile_error, floats, spec_meshes
-from mjcfbuild.mjcf.bodies import Body, build_bodies, link_places
+from mjcfbuild.mjcf.bodies import Body, build_bodies, floats, link_places
+from mjcfbuild.mjcf.compile_errors import compile_error, spec_meshes
 from mjcfbuild.mjcf.depth import refuse_deep_bodies
 from mjcfbuild.mjcf.prepared import Decomposition, prepare
 from mjcfbuild.selfcollision.matrix import (
@@ -214,7 +214,7 @@ def _compile(spec: mujoco.MjSpec) -> mujoco.MjModel:
     """Compile, giving meshes MuJoCo finds too thin for volume inertia shell inertia."""
     import mujoco
 
-    from mjcfbuild.mjcf.assemble import too_thin_mesh
+    from mjcfbuild.mjcf.compile_errors import too_thin_mesh
 
     for _ in range(len(spec.meshes) + 1):
         try:

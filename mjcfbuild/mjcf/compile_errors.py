@@ -1,0 +1,76 @@
+"""MuJoCo's compile errors about a prepared URDF, as one line that names the description's
+file, line and mesh (MuJoCo names its own asset names and the prepared file)."""
+
+from __future__ import annotations
+
+from mjcfbuild.errors import ModelError
+from mjcfbuild.mjcf.prepared import MeshAsset, Prepared
+
+# What to do about the MuJoCo compile errors a URDF can cause, by a phrase of their message.
+_COMPILE_HINTS = {
+    "free joint can only be used on top level": (
+        "MuJoCo allows a floating joint only on a link attached to a root link named 'world'; "
+        "use a fixed joint there, or set options.free_joint to let the whole robot float"
+    ),
+    "repeated in equality constraint": "a joint cannot <mimic> itself",
+}
+
+
+def compile_error(exc: Exception, source: str, meshes: list[MeshAsset] | None = None) -> ModelError:
+    """A MuJoCo compile error as one line, pointing at the URDF line in the element's info
+    (or at the URDF itself when MuJoCo names no element). A mesh MuJoCo names by its internal
+    asset name (``mesh4``) is named by its file and URDF line from ``meshes``."""
+    text = str(exc).strip().replace("Error: ", "", 1)
+    lines = text.splitlines()
+    message = lines[0] if lines else "compile failed"
+    hint = next((h for phrase, h in _COMPILE_HINTS.items() if phrase in message), None)
+    asset = _named_mesh(message, meshes or [])
+    if asset is not None:
+        message = message.replace(f"mesh '{asset.name}'", f"mesh '{asset.uri or asset.file}'")
+        if asset.line is not None:
+            return ModelError(f"MuJoCo: {message}", file=source, line=asset.line, hint=hint)
+    for line in lines[1:]:
+        if "Element" in line and ", " in line:
+            origin = line.split(", ")[-1]
+            if ":" in origin and not origin.startswith("id "):
+                file, _, rest = origin.partition(":")
+                number, _, what = rest.partition(" ")
+                if number.isdigit():
+                    return ModelError(
+                        f"MuJoCo: {message} ({what.strip()})",
+                        file=file,
+                        line=int(number),
+                        hint=hint,
+                    )
+            message = f"{message} ({line.strip()})"
+    return ModelError(f"MuJoCo: {message}", file=source, hint=hint)
+
+
+def spec_meshes(spec, prepared: Prepared) -> list[MeshAsset]:
+    """The prepared mesh assets under the names MuJoCo's URDF import gave them (``mesh4``),
+    matched by file, so that its errors can name the description's file."""
+    from dataclasses import replace
+
+    by_file = {asset.read_file: asset for asset in prepared.meshes}
+    named = []
+    for mesh in spec.meshes:
+        asset = by_file.get(mesh.file)
+        if asset is not None:
+            named.append(replace(asset, name=mesh.name))
+    return named
+
+
+def _named_mesh(message: str, meshes: list[MeshAsset]) -> MeshAsset | None:
+    """The mesh asset a MuJoCo message names (``mesh 'mesh4' ...``), if one."""
+    for asset in meshes:
+        if f"mesh '{asset.name}'" in message:
+            return asset
+    return None
+
+
+def too_thin_mesh(text: str) -> str | None:
+    """The mesh a MuJoCo 'mesh volume is too small' error names, if it is one."""
+    marker = "mesh volume is too small: "
+    if marker not in text:
+        return None
+    return text.split(marker, 1)[1].split(" ", 1)[0].split("\n", 1)[0].strip(" .")
