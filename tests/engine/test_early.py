@@ -1,5 +1,5 @@
-"""A rebuild starts its workers before reading the manifest, from the last build's stamp, and
-the build uses them."""
+"""A build starts its workers before reading the manifest: a rebuild's from the last build's
+stamp, a first build's for its mesh steps; the build uses them."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import mjcfbuild
 from mjcfbuild.cli import run
 from mjcfbuild.engine.early import start_workers
 from mjcfbuild.engine.session import BuildSession
-from mjcfbuild.engine.workers import rebuild_preloads
+from mjcfbuild.engine.workers import MESH_MODULES, rebuild_preloads
 from tests.conftest import copy_example
 
 
@@ -26,7 +26,6 @@ def built_arm(tmp_path, monkeypatch):
 def test_the_workers_of_a_rebuild_start_from_the_stamp(built_arm):
     state = built_arm / "mjcf" / ".mjcfbuild"
     pool = start_workers(built_arm / "robot.yaml", run_check=True, jobs=2)
-    assert pool is not None
     try:
         assert pool.cwd == built_arm and pool.log_dir == state / "logs"
         assert [w.preload for w in pool._all] == list(rebuild_preloads(True))
@@ -34,7 +33,18 @@ def test_the_workers_of_a_rebuild_start_from_the_stamp(built_arm):
     finally:
         pool.close()
     # The stamp of a build with the check says nothing about one without it.
-    assert start_workers(built_arm / "robot.yaml", run_check=False, jobs=2) is None
+    _assert_first_build_workers(start_workers(built_arm / "robot.yaml", run_check=False, jobs=2))
+
+
+def _assert_first_build_workers(pool) -> None:
+    """``pool`` is a first build's: two workers importing the mesh step's modules, what they
+    print kept in the cache folder's logs (the build's state folder is not known yet)."""
+    try:
+        assert [w.preload for w in pool._all] == [MESH_MODULES, MESH_MODULES]
+        assert [w.meshes_from for w in pool._all] == [None, None]
+        assert pool.log_dir.name == "logs" and pool.log_dir.parent.name == "cache"
+    finally:
+        pool.close()
 
 
 def test_after_a_mesh_edit_the_mesh_worker_only_imports(built_arm):
@@ -42,18 +52,17 @@ def test_after_a_mesh_edit_the_mesh_worker_only_imports(built_arm):
     mesh = built_arm / "meshes" / "forearm.obj"
     mesh.write_text(mesh.read_text().replace(" 0.240000", " 0.250000"))
     pool = start_workers(built_arm / "robot.yaml", run_check=True, jobs=2)
-    assert pool is not None
     try:
         assert [w.meshes_from for w in pool._all] == [state / "assembly.json", None]
     finally:
         pool.close()
 
 
-def test_no_workers_without_a_stamp_or_its_folder(built_arm, tmp_path):
+def test_first_build_workers_without_a_stamp_or_its_folder(built_arm, tmp_path):
     other = copy_example("arm", tmp_path / "other")
-    assert start_workers(other / "robot.yaml", run_check=True, jobs=2) is None
+    _assert_first_build_workers(start_workers(other / "robot.yaml", run_check=True, jobs=2))
     shutil.rmtree(built_arm / "mjcf")
-    assert start_workers(built_arm / "robot.yaml", run_check=True, jobs=2) is None
+    _assert_first_build_workers(start_workers(built_arm / "robot.yaml", run_check=True, jobs=2))
     assert not (built_arm / "mjcf").exists()  # nothing made where the old build was
 
 
