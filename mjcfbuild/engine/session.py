@@ -51,6 +51,8 @@ class BuildSession:
         self._sharing_lock = threading.Lock()
         self._pool_lock = threading.Lock()
         self._closed = False
+        # Whether the output folder had no build before (no worker has its meshes processed).
+        self.first_build = False
         # The threads running a step in this process (doit's), which close() waits for.
         self._here: set[int] = set()
         self._here_done = threading.Condition()
@@ -127,7 +129,7 @@ class BuildSession:
         self.ctx.logs_dir.mkdir(parents=True, exist_ok=True)
         log = self.ctx.logs_dir / (re.sub(r"[^A-Za-z0-9_.-]+", "-", task) + ".log")
         affinity = str(self.ctx.robot_path) if step in COMPILES_MODEL else None
-        if step == SELFCOLLISION and self._workers().first_use(ASSEMBLE.partition(":")[0]):
+        if step == SELFCOLLISION and self.first_build:
             self._prepare_assembly_worker(payload)
         elif step == ASSEMBLE and self.checks:
             self._warm_second_worker(payload)
@@ -177,6 +179,7 @@ class BuildSession:
         that preloads its module (see WorkerPool)."""
         from mjcfbuild.engine.workers import rebuild_preloads
 
+        self.first_build = first_build
         if first_build:
             # A first build's workers start when its first step needs one, unless the command
             # started them with the mesh step's modules (engine.early.first_build_workers).

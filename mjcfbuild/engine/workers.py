@@ -429,12 +429,6 @@ class WorkerPool:
                 self._started -= 1
             self._condition.notify_all()
 
-    def first_use(self, module: str) -> bool:
-        """Whether no worker of this pool was started to import ``module`` or prepared for it:
-        so in a folder's first build, whose workers start with nothing loaded."""
-        with self._condition:
-            return not any(module in (*w.preload, *w.prepared) for w in self._all)
-
     def close(self) -> None:
         """Let go of every worker at once: every reply is in and every step's log flushed,
         so nothing is lost. Resident workers wait for the next build; the others stop, even
