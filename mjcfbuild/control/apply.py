@@ -407,10 +407,17 @@ def _move_free_bodies(model, data, root) -> bool:
     """Give the compiled ``model`` its free bodies' positions from ``root`` (as
     :func:`_stand_on_floor` raised them): each body's position and its free joint's reference
     pose, then the constants MuJoCo derives from the reference pose, which is what compiling
-    ``root`` again gives (a compile of g1 less). False, with ``model`` unchanged, where a free
-    body has no name to find it by."""
+    ``root`` again gives (a compile of g1 less) but for the statistics MuJoCo draws with.
+    False, with ``model`` unchanged, where a compile could give more: a free body with no
+    name to find it by or not in the world body itself (a frame would move it), keyframes
+    (one without qpos takes the reference pose), tendons (a spring length taken from it),
+    constraints other than between joints (a weld's pose taken from it)."""
     import mujoco
 
+    if model.nkey or model.ntendon:
+        return False
+    if any(kind != mujoco.mjtEq.mjEQ_JOINT for kind in model.eq_type):
+        return False
     moves = []
     for body in root.iter("body"):
         if body.find("freejoint") is None and not any(
@@ -418,7 +425,8 @@ def _move_free_bodies(model, data, root) -> bool:
         ):
             continue
         index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, body.get("name") or "")
-        if index < 0:
+        parent = body.getparent()
+        if index < 0 or parent is None or parent.tag != "worldbody":
             return False
         free = [
             j

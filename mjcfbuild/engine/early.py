@@ -28,7 +28,7 @@ if TYPE_CHECKING:
     from mjcfbuild.engine.workers import WorkerPool
 
 
-def start_workers(manifest: str | os.PathLike, run_check: bool, jobs: int) -> WorkerPool:
+def start_workers(manifest: str | os.PathLike, run_check: bool, jobs: int) -> WorkerPool | None:
     """The workers of a build of ``manifest`` with ``jobs`` jobs, started now: a rebuild's,
     or where no earlier build of it left a stamp whose state folder still exists, a first
     build's (:func:`first_build_workers`)."""
@@ -50,18 +50,24 @@ def start_workers(manifest: str | os.PathLike, run_check: bool, jobs: int) -> Wo
     return pool
 
 
-def first_build_workers(manifest: str | os.PathLike, jobs: int) -> WorkerPool:
+def first_build_workers(manifest: str | os.PathLike, jobs: int) -> WorkerPool | None:
     """The workers of a folder's first build, started now, each importing the mesh step's
     modules: its first steps convert meshes, and a worker started when the first of them is
     due takes 0.15 s to begin (g1: the model 0.06-0.08 s sooner, the example arm no later).
     Only those modules: importing the check's and the URDF reader's too took the CPU the
     manifest and the mesh steps needed. The build's state folder is not known before its
-    manifest is read, so what the workers print goes to the cache folder's ``logs/`` until
-    the build adopts them."""
+    manifest is read, so what these workers print outside their steps (each step has a log
+    of its own) goes to ``logs/workers.log`` in the cache folder. None where that cannot be
+    written: the build starts its workers when a step needs one (a read-only cache never
+    fails a build)."""
     from mjcfbuild.cachedir import user_cache_dir
     from mjcfbuild.engine.workers import MESH_MODULES, WorkerPool
     from mjcfbuild.fsutil import normalise
 
     pool = WorkerPool(jobs, normalise(manifest).parent, user_cache_dir() / "logs")
-    pool.warm(MESH_MODULES)
+    try:
+        pool.warm(MESH_MODULES)
+    except OSError:
+        pool.close()
+        return None
     return pool

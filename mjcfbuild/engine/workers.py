@@ -25,6 +25,7 @@ starts stay for the next build when this one lets go of them (:meth:`WorkerPool.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import select
@@ -33,6 +34,7 @@ import subprocess
 import sys
 import threading
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -256,17 +258,22 @@ class WorkerPool:
         log: Path | None,
         timeout: float | None,
         affinity: str | None = None,
+        started: Callable[[], None] | None = None,
     ) -> dict:
         """Run ``step`` ("module:function") with ``payload`` in a worker; its result dict.
 
         Steps that compile the same model give the same ``affinity``: such a step goes to a
         worker that ran one before (MuJoCo has the model's meshes cached there), waiting for
-        it while it runs one. Errors the step raises come back as the same
-        :class:`MjcfbuildError` class.
+        it while it runs one. ``started`` is called once the step has its worker (to prepare
+        another one beside it, :meth:`warm_for`, which must not take the step's). Errors the
+        step raises come back as the same :class:`MjcfbuildError` class.
         """
         worker = self._acquire(step.partition(":")[0], affinity)
         healthy = False
         try:
+            if started is not None:
+                with contextlib.suppress(Exception):  # a later step's head start, never a failure
+                    started()
             request = {"step": step, "payload": payload, "log": str(log) if log else None}
             reply = worker.call({**request, "affinity": affinity}, label, timeout)
             healthy = True
@@ -340,16 +347,23 @@ class WorkerPool:
         payload: dict,
         timeout: float | None,
         prepares: tuple[str, ...] = (),
-    ) -> None:
-        """Run ``step`` in the background on an idle worker that does not hold ``affinity``,
-        which holds it afterwards: it prepares a second worker for the steps that will compile
-        the model (see :func:`mjcfbuild.check.loading.warm_meshes`), and those of the modules
-        ``prepares`` (the warm-up imported them) go to it before a worker that holds the model
-        too. Nothing happens when no worker is idle; a failure only loses the head start."""
+        holders_too: bool = False,
+    ) -> bool:
+        """Run ``step`` in the background on an idle worker that does not hold ``affinity``
+        (``holders_too``: or one that does, but was not prepared by a warm-up), which holds it
+        afterwards: it prepares a second worker for the steps that will compile the model (see
+        :func:`mjcfbuild.check.loading.warm_meshes`), and those of the modules ``prepares``
+        (the warm-up imported them) go to it before a worker that holds the model too.
+        Whether a worker took it: none does when none is idle; a failure only loses the head
+        start."""
         with self._condition:
-            idle = [w for w in self._idle if w.holds != affinity and w.alive()]
+            idle = [
+                w
+                for w in self._idle
+                if (w.holds != affinity or (holders_too and not w.prepared)) and w.alive()
+            ]
             if self._closed or not idle:
-                return
+                return False
             worker = idle[-1]
             self._idle.remove(worker)
             worker.running = affinity
@@ -367,7 +381,12 @@ class WorkerPool:
                 held = affinity if warmed else None
                 self._release(worker, healthy, held, prepares if warmed else ())
 
-        threading.Thread(target=warm, daemon=True).start()
+        try:
+            threading.Thread(target=warm, daemon=True).start()
+        except RuntimeError:  # no thread to be had: the worker goes back, prepared for nothing
+            self._release(worker, True)
+            return False
+        return True
 
     def _acquire(self, module: str, affinity: str | None = None) -> _Worker:
         """A worker for a step of ``module``: the one a warm-up is preparing for it, when that

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import mujoco
 import numpy as np
+import pytest
 from lxml import etree
 
 from mjcfbuild.control.apply import _move_free_bodies, _stand_on_floor
@@ -21,9 +22,10 @@ TREE = """<mujoco>
       </body>
     </body>
     <body name="crate" pos="1 0 0.3"><freejoint/><geom type="box" size="0.1 0.1 0.1"/></body>
+    <camera name="follow" mode="trackcom" pos="0 -2 1" xyaxes="1 0 0 0 0.5 1"/>
+    <light name="spot" mode="targetbody" target="trunk" pos="0 0 3"/>
   </worldbody>
   <actuator><position joint="hip" kp="20"/></actuator>
-  <keyframe><key name="rest" qpos="0 0 0.5 1 0 0 0 0.2 1 0 0.3 1 0 0 0"/></keyframe>
 </mujoco>"""
 
 
@@ -53,8 +55,33 @@ def test_raising_the_compiled_model_gives_the_model_compiled_again():
     assert model.qpos0[2] == again.qpos0[2] == float(root.find(".//body").get("pos").split()[2])
 
 
-def test_a_free_body_without_a_name_is_left_to_a_compile():
-    tree = TREE.replace('<body name="crate"', "<body")
+CRATE = '<body name="crate" pos="1 0 0.3"><freejoint/><geom type="box" size="0.1 0.1 0.1"/></body>'
+ENDS = "</actuator>"
+FOOT_TO_ANCHOR = '<spatial springlength="-1"><site site="foot"/><site site="anchor"/></spatial>'
+
+
+@pytest.mark.parametrize(
+    "replacements",
+    [
+        [('<body name="crate"', "<body")],  # nothing to find the body by
+        [(CRATE, f'<frame pos="0 0 0.4">{CRATE}</frame>')],
+        [(ENDS, ENDS + '<keyframe><key name="k" qvel="0 0 1 0 0 0 0 0 0 0 0 0 0"/></keyframe>')],
+        [
+            ("<worldbody>", '<worldbody><site name="anchor" pos="0 0 2"/>'),
+            (ENDS, ENDS + f"<tendon>{FOOT_TO_ANCHOR}</tendon>"),
+        ],
+        [(ENDS, ENDS + '<equality><weld body1="trunk"/></equality>')],
+    ],
+    ids=["unnamed", "in a frame", "keyframe", "tendon", "weld"],
+)
+def test_what_a_compile_could_give_otherwise_is_left_to_one(replacements):
+    """Where compiling again could give more than the moved bodies (a frame moves the body, a
+    keyframe without qpos, a tendon's spring length and a weld take the reference pose), the
+    model is left untouched and the caller compiles."""
+    tree = TREE
+    for old, new in replacements:
+        assert old in tree
+        tree = tree.replace(old, new, 1)
     root = etree.fromstring(tree)
     model = mujoco.MjModel.from_xml_string(tree)
     before = model.qpos0.copy()

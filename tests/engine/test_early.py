@@ -95,3 +95,16 @@ def test_a_rebuild_adopts_them_and_builds_what_a_fresh_build_does(built_arm, tmp
     # timing; test_worker_main covers that case deterministically.)
     for name in ("example_arm.xml", "scene.xml", ".mjcfbuild/assembly.json"):
         assert (built_arm / "mjcf" / name).read_bytes() == (fresh / "mjcf" / name).read_bytes()
+
+
+def test_a_cache_folder_that_cannot_be_written_leaves_the_workers_to_the_build(
+    tmp_path, monkeypatch
+):
+    """A first build's early workers print to the cache folder: where it cannot be made, the
+    build starts its own workers, and builds (a read-only cache never fails a build)."""
+    blocker = tmp_path / "a file"
+    blocker.write_text("")
+    monkeypatch.setenv("MJCFBUILD_CACHE_DIR", str(blocker / "cache"))
+    folder = copy_example("arm", tmp_path)
+    assert start_workers(folder / "robot.yaml", run_check=False, jobs=2) is None
+    assert run(["build", str(folder / "robot.yaml"), "-j", "2", "-q", "--no-check"]) == 0

@@ -20,16 +20,19 @@ def test_model_steps_carry_the_model_and_a_second_worker_is_warmed(tmp_path, mon
 
     payloads: dict[str, dict] = {}
 
-    def recording_run(self, step, payload, label, log, timeout, affinity=None):
+    holders: list[bool] = []
+
+    def recording_run(self, step, payload, label, log, timeout, affinity=None, started=None):
         with lock:
             asked.append((label, affinity))
             payloads[label] = payload
-        return run(self, step, payload, label, log, timeout, affinity)
+        return run(self, step, payload, label, log, timeout, affinity, started)
 
-    def recording_warm_for(self, affinity, step, payload, timeout, prepares=()):
+    def recording_warm_for(self, affinity, step, payload, timeout, prepares=(), holders_too=False):
         with lock:
             warmed.append((affinity, step, payload))
-        return warm_for(self, affinity, step, payload, timeout, prepares)
+            holders.append(holders_too)
+        return warm_for(self, affinity, step, payload, timeout, prepares, holders_too)
 
     monkeypatch.setattr(WorkerPool, "run", recording_run)
     monkeypatch.setattr(WorkerPool, "warm_for", recording_warm_for)
@@ -54,6 +57,8 @@ def test_model_steps_carry_the_model_and_a_second_worker_is_warmed(tmp_path, mon
         assert payload["folders"] and all(Path(f).is_dir() for f in payload["folders"])
     assert for_assembly[2]["modules"] == ["mujoco", "mjcfbuild.steps.assemble"]
     assert for_check[2]["modules"] == []
+    # the check's may take the matrix's worker: it holds the model, collision meshes only
+    assert holders == [False, True]
     # (the products converted by then, every one the matrix reads among them: a drawn mesh
     # may still be converting beside the matrix)
     products = set(for_assembly[2]["folders"])

@@ -245,3 +245,39 @@ def test_a_step_waits_for_the_warm_up_preparing_a_worker_for_it(two_workers, tmp
     prepared = [w for w in pool._all if w.process.pid != holder]
     assert pid == [{"pid": prepared[0].process.pid}]
     assert prepared[0].holds == "robot.xml" and not prepared[0].preparing
+
+
+def test_a_warm_up_started_with_a_step_never_takes_the_steps_worker(two_workers, tmp_path):
+    """The matrix prepares the assembly's worker once it has its own: with the other worker
+    busy (a mesh still converting), the warm-up finds none and the matrix does not wait."""
+    pool = two_workers
+    until = tmp_path / "go"
+    busy, _ = _in_thread(
+        lambda: pool.run(f"{STEPS}:pause", {"until": str(until)}, "mesh:m", None, 60)
+    )
+    _wait_for(lambda: len(pool._idle) == 1)
+    took: list[bool] = []
+
+    def prepare() -> None:
+        took.append(pool.warm_for("robot.xml", f"{STEPS}:echo", {}, 60, prepares=(STEPS,)))
+
+    pool.run(f"{STEPS}:echo", {}, "matrix", None, 60, affinity="robot.xml", started=prepare)
+    assert took == [False]
+    until.touch()
+    busy.join(60)
+
+
+def test_the_checks_warm_up_may_take_a_holder_no_warm_up_prepared(two_workers, tmp_path):
+    """In a first build the matrix's worker holds the model with its collision meshes only:
+    the check's warm-up may take it (``holders_too``), never the worker a warm-up prepared."""
+    pool = two_workers
+    matrix = pool.run(f"{STEPS}:echo", {}, "matrix", None, 60, affinity="robot.xml")["pid"]
+    assert pool.warm_for("robot.xml", f"{STEPS}:echo", {}, 60, prepares=(STEPS,))
+    _wait_for(lambda: len(pool._idle) == 2 and all(w.holds == "robot.xml" for w in pool._all))
+    assert not pool.warm_for("robot.xml", f"{STEPS}:echo", {}, 60)  # every idle one holds it
+    until = tmp_path / "go"
+    assert pool.warm_for("robot.xml", f"{STEPS}:pause", {"until": str(until)}, 60, holders_too=True)
+    [taken] = [w for w in pool._all if w not in pool._idle]
+    assert taken.process.pid == matrix and not taken.prepared
+    until.touch()
+    _wait_for(lambda: len(pool._idle) == 2)
