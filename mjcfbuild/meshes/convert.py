@@ -24,7 +24,7 @@ import numpy as np
 
 from mjcfbuild.fsutil import write_if_changed
 from mjcfbuild.meshes.load import MeshPart, load_parts
-from mjcfbuild.meshes.mshfile import copy_name, float32_vertices, msh_bytes
+from mjcfbuild.meshes.mshfile import copy_name, msh_bytes, text_values
 from mjcfbuild.meshes.objfile import obj_bytes
 from mjcfbuild.meshes.product import PRODUCT_FORMAT, WHOLE_MESH, MeshProduct, ProductPart
 
@@ -57,11 +57,11 @@ def convert_mesh(
         return name
 
     def store_mesh(name: str, vertices: np.ndarray, faces: np.ndarray, uv=None) -> str:
-        # The OBJ file from float32 values, so that its binary copy compiles the same.
-        exact = float32_vertices(vertices)
-        store(name, obj_bytes(exact, faces, uv))
-        if uv is None and len(exact) and len(faces):
-            store(copy_name(name), msh_bytes(exact, faces))
+        # Numbers that read back as the float32 values the binary copy holds: both compile
+        # to the same model.
+        store(name, obj_bytes(text_values(vertices), faces, uv))
+        if uv is None and len(vertices) and len(faces):
+            store(copy_name(name), msh_bytes(vertices, faces))
         return name
 
     textures: dict[str, str] = {}

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from mjcfbuild.meshes.convert import convert_mesh
-from mjcfbuild.meshes.mshfile import copy_name, float32_vertices, msh_bytes, read_file
+from mjcfbuild.meshes.mshfile import copy_name, msh_bytes, read_file, text_values
 from mjcfbuild.meshes.objfile import obj_bytes
 from tests.conftest import EXAMPLES
 
@@ -57,13 +57,26 @@ def _random_mesh(seed: int) -> tuple[np.ndarray, np.ndarray]:
 @pytest.mark.parametrize("seed", range(8))
 def test_a_copy_compiles_to_the_model_of_its_obj_file(tmp_path, seed):
     vertices, faces = _random_mesh(seed)
-    exact = float32_vertices(vertices)
     obj = tmp_path / "mesh.obj"
-    obj.write_bytes(obj_bytes(exact, faces))
+    obj.write_bytes(obj_bytes(text_values(vertices), faces))
     copy = tmp_path / copy_name("mesh.obj")
-    copy.write_bytes(msh_bytes(exact, faces))
+    copy.write_bytes(msh_bytes(vertices, faces))
     for colliding in (True, False):
         assert _differing_arrays(_compiled([obj], colliding), _compiled([copy], colliding)) == []
+
+
+def test_the_obj_text_keeps_its_numbers_where_they_read_back_as_their_float32():
+    """An STL file's float32 values and a text format's short decimals are written as they
+    are; a value nearer the middle between two float32 values is written as its float32."""
+    stl = np.array([0.1, -2.5, 1e-3], dtype=np.float32).astype(np.float64)
+    assert text_values(stl).tolist() == stl.tolist()
+    assert text_values(np.array([0.235, 0.0, -0.0, 12.5])).tolist() == [0.235, 0.0, -0.0, 12.5]
+    below, above = np.float32(0.3), np.nextafter(np.float32(0.3), np.float32(1))
+    middle = (float(below) + float(above)) / 2 - 1e-17  # rounds down, barely
+    assert text_values(np.array([middle]))[0] == float(below)
+    values = np.random.default_rng(1).normal(size=20000) * 10.0 ** np.arange(-4, 4).repeat(2500)
+    written = np.array([float(f"{v:.9g}") for v in text_values(values)])
+    assert np.array_equal(written.astype(np.float32), values.astype(np.float32))
 
 
 def test_the_products_of_the_examples_compile_the_same_from_their_copies(tmp_path):
