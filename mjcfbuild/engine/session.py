@@ -135,18 +135,24 @@ class BuildSession:
             started = partial(self._prepare_assembly_worker, payload)
         elif step == ASSEMBLE and self.checks:
             started = partial(self._warm_second_worker, payload)
-        return self._workers().run(
-            step, payload, task, log, self.ctx.step_timeout, affinity, started
-        )
+        try:
+            return self._workers().run(
+                step, payload, task, log, self.ctx.step_timeout, affinity, started
+            )
+        finally:
+            if step == SELFCOLLISION:  # a warm-up not started by now would hold up the assembly
+                self._workers().forget_warm_up()
 
     def _prepare_assembly_worker(self, matrix_payload: dict) -> None:
         """While the self-collision matrix is computed, an idle worker imports the assembly's
         modules and processes the model's mesh products, drawn ones included, so that the
         assembly, which waits for the matrix, starts there with nothing left to load (g1: the
-        assembly 0.52-0.55 s instead of 0.75). Called once the matrix has its worker, so the
-        warm-up never takes it. The other worker would otherwise wait idle, and the matrix's worker
-        has processed only the collision meshes. The products are those converted by now: a
-        drawn mesh still converting beside the matrix is left to the assembly."""
+        assembly 0.52-0.55 s instead of 0.75). The other worker would otherwise wait idle, and
+        the matrix's worker has processed only the collision meshes. Called once the matrix
+        has its worker, so the warm-up never takes it; where the other worker is still busy
+        (converting a drawn mesh), it takes that one when it falls idle before the matrix
+        ends. The products are those converted by now: a drawn mesh converting beside the
+        matrix is left to the assembly."""
         from mjcfbuild.steps.payloads import SelfCollisionPayload, WarmPayload
 
         request = SelfCollisionPayload.from_dict(matrix_payload)
@@ -156,7 +162,12 @@ class BuildSession:
         module = ASSEMBLE.partition(":")[0]
         warm = WarmPayload(folders=sorted(folders), modules=["mujoco", module]).to_dict()
         self._workers().warm_for(
-            str(self.ctx.robot_path), WARM, warm, self.ctx.step_timeout, prepares=(module,)
+            str(self.ctx.robot_path),
+            WARM,
+            warm,
+            self.ctx.step_timeout,
+            prepares=(module,),
+            until_idle=True,  # the other worker may still be converting a drawn mesh
         )
 
     def _warm_second_worker(self, assemble_payload: dict) -> None:

@@ -35,6 +35,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -232,6 +233,24 @@ def _tail(path: Path, limit: int = 200) -> str:
     return lines[-1][:limit] if lines else ""
 
 
+@dataclass(frozen=True)
+class _WarmUp:
+    """A warm-up :meth:`WorkerPool.warm_for` runs on an idle worker."""
+
+    affinity: str
+    step: str
+    payload: dict
+    timeout: float | None
+    prepares: tuple[str, ...]
+    holders_too: bool
+
+    def fits(self, worker: _Worker) -> bool:
+        """Whether ``worker`` may take it: one without the model, or (``holders_too``) one
+        holding it that no warm-up prepared."""
+        free = worker.holds != self.affinity or (self.holders_too and not worker.prepared)
+        return free and worker.alive()
+
+
 class WorkerPool:
     """Up to ``size`` worker processes, started by :meth:`warm` or when first needed."""
 
@@ -249,6 +268,8 @@ class WorkerPool:
         self._all: list[_Worker] = []
         self._condition = threading.Condition()
         self._closed = False
+        self._steps_waiting = 0  # threads in _acquire waiting for a worker
+        self._waiting_warm_up: _WarmUp | None = None  # warm_for's, until a worker falls idle
 
     def run(
         self,
@@ -348,38 +369,48 @@ class WorkerPool:
         timeout: float | None,
         prepares: tuple[str, ...] = (),
         holders_too: bool = False,
+        until_idle: bool = False,
     ) -> bool:
         """Run ``step`` in the background on an idle worker that does not hold ``affinity``
         (``holders_too``: or one that does, but was not prepared by a warm-up), which holds it
         afterwards: it prepares a second worker for the steps that will compile the model (see
         :func:`mjcfbuild.check.loading.warm_meshes`), and those of the modules ``prepares``
         (the warm-up imported them) go to it before a worker that holds the model too.
-        Whether a worker took it: none does when none is idle; a failure only loses the head
-        start."""
+        Whether a worker took it now. Where none is idle, ``until_idle`` keeps the warm-up for
+        the next worker that falls idle while no step waits for one, until
+        :meth:`forget_warm_up`; a failure only loses the head start."""
+        warm_up = _WarmUp(affinity, step, payload, timeout, prepares, holders_too)
         with self._condition:
-            idle = [
-                w
-                for w in self._idle
-                if (w.holds != affinity or (holders_too and not w.prepared)) and w.alive()
-            ]
+            idle = [w for w in self._idle if warm_up.fits(w)]
             if self._closed or not idle:
+                self._waiting_warm_up = warm_up if until_idle and not self._closed else None
                 return False
-            worker = idle[-1]
-            self._idle.remove(worker)
-            worker.running = affinity
-            worker.preparing = prepares
+            return self._launch(idle[-1], warm_up)
+
+    def forget_warm_up(self) -> None:
+        """Drop the warm-up :meth:`warm_for` keeps for a worker to fall idle, if none took it:
+        the step it was to run beside has ended."""
+        with self._condition:
+            self._waiting_warm_up = None
+
+    def _launch(self, worker: _Worker, warm_up: _WarmUp) -> bool:
+        """Start ``warm_up`` on the idle ``worker`` (the caller holds the lock)."""
+        self._idle.remove(worker)
+        worker.running = warm_up.affinity
+        worker.preparing = warm_up.prepares
 
         def warm() -> None:
             healthy = warmed = False
             try:
-                request = {"step": step, "payload": payload, "affinity": affinity}
-                warmed = worker.call(request, "warm", timeout)["ok"]
+                request = {"step": warm_up.step, "payload": warm_up.payload}
+                request["affinity"] = warm_up.affinity
+                warmed = worker.call(request, "warm", warm_up.timeout)["ok"]
                 healthy = True
             except MjcfbuildError:  # crashed or too slow: the worker is replaced as usual
                 pass
             finally:
-                held = affinity if warmed else None
-                self._release(worker, healthy, held, prepares if warmed else ())
+                held = warm_up.affinity if warmed else None
+                self._release(worker, healthy, held, warm_up.prepares if warmed else ())
 
         try:
             threading.Thread(target=warm, daemon=True).start()
@@ -402,12 +433,12 @@ class WorkerPool:
                     self._idle.remove(worker)
                     self._started -= 1
                 if any(module in w.preparing for w in self._all):
-                    self._condition.wait()  # it has everything the step loads (warm_for)
+                    self._wait()  # it has everything the step loads (warm_for)
                     continue
                 holders = [w for w in self._all if affinity and w.holds == affinity]
                 ready = [w for w in holders if w in self._idle]
                 if not ready and any(w.running == affinity for w in holders):
-                    self._condition.wait()  # a compile in a cold worker costs more
+                    self._wait()  # a compile in a cold worker costs more
                     continue
                 ready = (
                     [w for w in ready if module in w.prepared]
@@ -424,10 +455,19 @@ class WorkerPool:
                 if self._started < self.size:
                     self._started += 1
                     break
-                self._condition.wait()
+                self._wait()
         worker = self._start()
         worker.running = affinity
         return worker
+
+    def _wait(self) -> None:
+        """Wait for a worker to change state, counted as a step waiting (the caller holds the
+        lock): a warm-up kept for an idle worker never takes one a step waits for."""
+        self._steps_waiting += 1
+        try:
+            self._condition.wait()
+        finally:
+            self._steps_waiting -= 1
 
     def _release(
         self,
@@ -443,6 +483,10 @@ class WorkerPool:
             if healthy and worker.alive() and not self._closed:
                 worker.holds = affinity or worker.holds
                 self._idle.append(worker)
+                warm_up = self._waiting_warm_up
+                if warm_up is not None and not self._steps_waiting and warm_up.fits(worker):
+                    self._waiting_warm_up = None
+                    self._launch(worker, warm_up)
             else:
                 worker.kill()
                 self._started -= 1

@@ -28,11 +28,13 @@ def test_model_steps_carry_the_model_and_a_second_worker_is_warmed(tmp_path, mon
             payloads[label] = payload
         return run(self, step, payload, label, log, timeout, affinity, started)
 
-    def recording_warm_for(self, affinity, step, payload, timeout, prepares=(), holders_too=False):
+    def recording_warm_for(
+        self, affinity, step, payload, timeout, prepares=(), holders_too=False, until_idle=False
+    ):
         with lock:
             warmed.append((affinity, step, payload))
             holders.append(holders_too)
-        return warm_for(self, affinity, step, payload, timeout, prepares, holders_too)
+        return warm_for(self, affinity, step, payload, timeout, prepares, holders_too, until_idle)
 
     monkeypatch.setattr(WorkerPool, "run", recording_run)
     monkeypatch.setattr(WorkerPool, "warm_for", recording_warm_for)

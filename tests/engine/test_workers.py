@@ -281,3 +281,54 @@ def test_the_checks_warm_up_may_take_a_holder_no_warm_up_prepared(two_workers, t
     assert taken.process.pid == matrix and not taken.prepared
     until.touch()
     _wait_for(lambda: len(pool._idle) == 2)
+
+
+def test_a_kept_warm_up_takes_the_next_worker_to_fall_idle(two_workers, tmp_path):
+    """The matrix started while the other worker still converts a mesh: the assembly's
+    warm-up waits for that worker to fall idle, then prepares it."""
+    pool = two_workers
+    mesh, matrix = tmp_path / "mesh", tmp_path / "matrix"
+    busy, _ = _in_thread(lambda: pool.run(f"{STEPS}:pause", {"until": str(mesh)}, "m", None, 60))
+    _wait_for(lambda: len(pool._idle) == 1)
+    took: list[bool] = []
+
+    def prepare() -> None:
+        took.append(pool.warm_for("robot.xml", f"{STEPS}:echo", {}, 60, (STEPS,), until_idle=True))
+
+    running, ran = _in_thread(
+        lambda: pool.run(
+            f"{STEPS}:pause", {"until": str(matrix)}, "matrix", None, 60, "robot.xml", prepare
+        )
+    )
+    _wait_for(lambda: took == [False])  # both busy: kept for the mesh's worker
+    mesh.touch()
+    busy.join(60)
+    _wait_for(lambda: any(w.prepared == (STEPS,) for w in pool._all))
+    matrix.touch()
+    running.join(60)
+    [prepared] = [w for w in pool._all if w.prepared]
+    assert prepared.process.pid != ran[0]["pid"] and prepared.holds == "robot.xml"
+
+
+def test_a_kept_warm_up_yields_to_a_waiting_step_and_can_be_forgotten(two_workers, tmp_path):
+    """A worker that falls idle while a step waits for one goes to the step (the warm-up
+    takes the next one to fall idle unclaimed); one forgotten takes none."""
+    pool = two_workers
+    first, second = tmp_path / "first", tmp_path / "second"
+    one, _ = _in_thread(lambda: pool.run(f"{STEPS}:pause", {"until": str(first)}, "a", None, 60))
+    two, _ = _in_thread(lambda: pool.run(f"{STEPS}:pause", {"until": str(second)}, "b", None, 60))
+    _wait_for(lambda: not pool._idle and len(pool._all) == 2)
+    assert not pool.warm_for("robot.xml", f"{STEPS}:echo", {}, 60, until_idle=True)
+    gate = tmp_path / "gate"
+    waiting, _ = _in_thread(lambda: pool.run(f"{STEPS}:pause", {"until": str(gate)}, "c", None, 60))
+    _wait_for(lambda: pool._steps_waiting == 1)
+    first.touch()
+    _wait_for(lambda: pool._steps_waiting == 0)
+    assert pool._waiting_warm_up is not None  # the freed worker went to the waiting step
+    pool.forget_warm_up()
+    second.touch()
+    gate.touch()
+    for thread in (one, two, waiting):
+        thread.join(60)
+    _wait_for(lambda: len(pool._idle) == 2)
+    assert not any(w.holds == "robot.xml" for w in pool._all)
