@@ -43,10 +43,10 @@ def start_workers(manifest: str | os.PathLike, run_check: bool, jobs: int) -> Wo
 
     pool = WorkerPool(jobs, normalise(manifest).parent, Path(logs))
     first, second = rebuild_preloads(bool(hint.get("checks")))
-    pool.warm(first, count=1, meshes_from=Path(report))
     # The second worker runs the mesh steps: when a mesh changed, its first step comes soon
     # and would wait for whichever mesh the worker is processing.
-    pool.warm(second, count=2, meshes_from=None if hint["meshes_moved"] else Path(report))
+    second_meshes = None if hint["meshes_moved"] else Path(report)
+    pool.warm_in_background((first, 1, Path(report)), (second, 2, second_meshes))
     return pool
 
 
@@ -66,8 +66,11 @@ def first_build_workers(manifest: str | os.PathLike, jobs: int) -> WorkerPool | 
 
     pool = WorkerPool(jobs, normalise(manifest).parent, user_cache_dir() / "logs")
     try:
-        pool.warm(MESH_MODULES)
+        pool.log_dir.mkdir(parents=True, exist_ok=True)
+        with open(pool.log_dir / "workers.log", "ab"):
+            pass
     except OSError:
         pool.close()
         return None
+    pool.warm_in_background((MESH_MODULES, None, None))
     return pool

@@ -212,8 +212,7 @@ class BuildSession:
             # go1 and g1, and the whole build no sooner (bench/edit_times.py --bare).
             return
         first, second = rebuild_preloads(self.checks)
-        self._workers().warm(first, count=1)
-        self._workers().warm(second, count=2)
+        self._workers().warm_in_background((first, 1, None), (second, 2, None))
 
     @property
     def checks(self) -> bool:

@@ -270,6 +270,7 @@ class WorkerPool:
         self._closed = False
         self._steps_waiting = 0  # threads in _acquire waiting for a worker
         self._waiting_warm_up: _WarmUp | None = None  # warm_for's, until a worker falls idle
+        self._warming: list[threading.Thread] = []  # warm_in_background's
 
     def run(
         self,
@@ -319,10 +320,46 @@ class WorkerPool:
                 if self._closed or self._started >= limit:
                     return
                 self._started += 1
-            worker = self._start(preload, meshes_from)
+            try:
+                worker = self._start(preload, meshes_from)
+            except BaseException:
+                with self._condition:  # the place is free again: a step starts its own
+                    self._started -= 1
+                    self._condition.notify_all()
+                raise
             with self._condition:
-                self._idle.append(worker)
-                self._condition.notify()
+                closed = self._closed
+                if closed:  # closed while this one started: it missed close()
+                    self._all.remove(worker)
+                else:
+                    self._idle.append(worker)
+                    self._condition.notify_all()
+            if closed:
+                worker.let_go()
+
+    def warm_in_background(self, *plan: tuple[tuple[str, ...], int | None, Path | None]) -> None:
+        """:meth:`warm` with each ``(preload, count, meshes_from)`` of ``plan`` in turn, in a
+        thread: starting a worker process is mostly waiting for it to answer (0.05-0.1 s
+        each, a new interpreter more), which this process spends reading the manifest and
+        planning instead. A step that needs a worker meanwhile waits for the one starting;
+        a worker that cannot start leaves its place to the steps, which start their own."""
+
+        def start_all() -> None:
+            # Whatever stops a start here (a folder it cannot write, a bad MJCFBUILD_* value)
+            # stops the build's own start of a worker too, which reports it.
+            with contextlib.suppress(Exception):
+                for preload, count, meshes_from in plan:
+                    self.warm(preload, count, meshes_from)
+
+        thread = threading.Thread(target=start_all, name="mjcfbuild-workers", daemon=True)
+        self._warming.append(thread)
+        thread.start()
+
+    def wait_started(self) -> None:
+        """Wait until the workers :meth:`warm_in_background` is starting have started (or
+        failed to)."""
+        for thread in list(self._warming):
+            thread.join()
 
     def _start(self, preload: tuple[str, ...] = (), meshes_from: Path | None = None) -> _Worker:
         worker = None

@@ -27,6 +27,7 @@ def test_the_workers_of_a_rebuild_start_from_the_stamp(built_arm):
     state = built_arm / "mjcf" / ".mjcfbuild"
     pool = start_workers(built_arm / "robot.yaml", run_check=True, jobs=2)
     try:
+        pool.wait_started()
         assert pool.cwd == built_arm and pool.log_dir == state / "logs"
         assert [w.preload for w in pool._all] == list(rebuild_preloads(True))
         assert [w.meshes_from for w in pool._all] == [state / "assembly.json"] * 2
@@ -40,6 +41,7 @@ def _assert_first_build_workers(pool) -> None:
     """``pool`` is a first build's: two workers importing the mesh step's modules, what they
     print kept in the cache folder's logs (the build's state folder is not known yet)."""
     try:
+        pool.wait_started()
         assert [w.preload for w in pool._all] == [MESH_MODULES, MESH_MODULES]
         assert [w.meshes_from for w in pool._all] == [None, None]
         assert pool.log_dir.name == "logs" and pool.log_dir.parent.name == "cache"
@@ -53,6 +55,7 @@ def test_after_a_mesh_edit_the_mesh_worker_only_imports(built_arm):
     mesh.write_text(mesh.read_text().replace(" 0.240000", " 0.250000"))
     pool = start_workers(built_arm / "robot.yaml", run_check=True, jobs=2)
     try:
+        pool.wait_started()
         assert [w.meshes_from for w in pool._all] == [state / "assembly.json", None]
     finally:
         pool.close()
