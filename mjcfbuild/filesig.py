@@ -24,9 +24,13 @@ Only the standard library is imported: the no-op path uses this before anything 
 from __future__ import annotations
 
 import os
+import sys
+import time
 
 RACY_NS = 2_000_000_000  # file systems with coarse times
 TICK_RACY_NS = 100_000_000  # file systems with sub-millisecond times: a clock tick, with margin
+_TICK_NS = 16_000_000  # the longest tick of a kernel's file clock (Windows: 15.6 ms)
+_CLOCK_REALTIME_COARSE = 5  # Linux's clock id (not in Python's time module)
 
 
 def signature(stat: os.stat_result) -> list[int]:
@@ -45,3 +49,22 @@ def racy(stat: os.stat_result, recorded_ns: int) -> bool:
     fine = stat.st_ctime_ns % 1_000_000 != 0
     margin = min(RACY_NS, TICK_RACY_NS) if fine else RACY_NS
     return recorded_ns - max(stat.st_mtime_ns, stat.st_ctime_ns) < margin
+
+
+def file_clock_ns() -> int:
+    """Now, by the clock the file system stamps status-change times with where that is known
+    (Linux: the coarse real-time clock, which lags ``time.time_ns()`` by up to a tick), else
+    ``time.time_ns()`` less a tick: a file changed from now on has a status-change time no
+    earlier, on a file system whose times are fine."""
+    if sys.platform.startswith("linux"):
+        return time.clock_gettime_ns(_CLOCK_REALTIME_COARSE)
+    return time.time_ns() - _TICK_NS
+
+
+def changed_since(stat: os.stat_result, since_ns: int) -> bool:
+    """Whether the file of ``stat`` may have changed at or after ``since_ns``
+    (:func:`file_clock_ns`): its status-change time (which every change moves, and nothing
+    can set back) is that late, or within :data:`RACY_NS` of it where times are coarse. The
+    modification time says nothing here: ``touch -d`` sets it anywhere."""
+    fine = stat.st_ctime_ns % 1_000_000 != 0
+    return stat.st_ctime_ns >= (since_ns if fine else since_ns - RACY_NS)

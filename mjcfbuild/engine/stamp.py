@@ -35,7 +35,7 @@ import sys
 import time
 from collections.abc import Iterable
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 from mjcfbuild import filesig
 
@@ -43,7 +43,9 @@ if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext
     from mjcfbuild.graph.hashes import HashCache
 
-FORMAT = 4  # 4: warnings to replay, and whether the folder needed --allow-outside
+# 4: warnings to replay, and whether the folder needed --allow-outside; 5: which files the
+# build wrote (mjcfbuild watch)
+FORMAT = 5
 # Set to any value to skip the fast path (benchmarks of the full path, debugging).
 DISABLE_VARIABLE = "MJCFBUILD_FULL_BUILD"
 # Variables read by the build besides those a depfile records; every MJCFBUILD_* counts too.
@@ -174,6 +176,32 @@ def previous_build(manifest: str | os.PathLike, run_check: bool) -> dict | None:
     return {**stamp["next_build"], "meshes_moved": _meshes_moved(stamp.get("files"))}
 
 
+class Recorded(NamedTuple):
+    """What a stamp says the last successful build depends on."""
+
+    files: dict[str, list]  # name -> [signature, MD5, racy]: every file it read or wrote
+    written: list[str]  # those of them it wrote
+    absent: list[str]  # files it looked for and did not find
+    python_folders: dict[str, int | None]  # where packages are imported from -> mtime
+
+
+def recorded(manifest: str | os.PathLike, run_check: bool) -> Recorded | None:
+    """The files and folders the last successful build of ``manifest`` depends on, as its
+    stamp records them; None without a readable stamp."""
+    stamp = _read(stamp_path(Path(os.path.normpath(os.path.abspath(manifest))), run_check))
+    if stamp is None:
+        return None
+    try:
+        return Recorded(
+            dict(stamp["files"]),
+            list(stamp["written"]),
+            list(stamp["absent"]),
+            dict(stamp["python_folders"]),
+        )
+    except (KeyError, TypeError, ValueError):
+        return None
+
+
 def _meshes_moved(files: object) -> bool:
     from mjcfbuild.meshes.formats import mesh_format
 
@@ -249,14 +277,21 @@ def write(
     hashes: HashCache,
     next_build: dict | None = None,
     outside: bool = False,
+    started_ns: int | None = None,
 ) -> None:
     """Record the state a successful build left, for :func:`nothing_to_do`.
 
     ``hashes`` is the build's :class:`~mjcfbuild.graph.hashes.HashCache`, so files hashed by
     the build are not read again; ``next_build`` is kept for :func:`previous_build`;
-    ``outside``: the output folder may be written only with ``--allow-outside``.
+    ``outside``: the output folder may be written only with ``--allow-outside``. No stamp is
+    written when an input the build did not write itself changed after ``started_ns``, when
+    the build began reading: a step may have read it before the change, and the stamp would
+    then call the older model current (the next build takes the full path, which knows).
     """
     now = time.time_ns()
+    inputs, outputs = list(inputs), list(outputs)
+    if started_ns is not None and _changed_during(inputs, outputs, started_ns):
+        return
     files: dict[str, list] = {}
     for name in sorted({os.fspath(p) for p in [*inputs, *outputs]}):
         try:
@@ -277,10 +312,25 @@ def write(
         "python_folders": _python_folders(),
         "absent": sorted(set(absent)),
         "files": files,
+        "written": sorted({os.fspath(p) for p in outputs} & set(files)),
         "next_build": next_build,
         "outside": outside,
     }
     _write(stamp_path(manifest, run_check), stamp)
+
+
+def _changed_during(
+    inputs: Iterable[Path | str], outputs: Iterable[Path | str], started_ns: int
+) -> bool:
+    """Whether one of ``inputs`` that is not one of ``outputs`` changed after ``started_ns``."""
+    written = {os.fspath(p) for p in outputs}
+    for name in {os.fspath(p) for p in inputs} - written:
+        try:
+            if filesig.changed_since(os.stat(name), started_ns):
+                return True
+        except OSError:
+            continue  # gone: the stamp records no such file, and the fast path falls through
+    return False
 
 
 def files_under(folder: Path, skip: Iterable[str] = ()) -> list[Path]:
@@ -360,6 +410,7 @@ def record_build(
             "checks": ctx.session.checks,
         },
         _needs_allow_outside(ctx),
+        ctx.started_ns,
     )
 
 

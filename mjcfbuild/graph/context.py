@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol, Self
 
 from mjcfbuild.errors import MjcfbuildError
+from mjcfbuild.filesig import file_clock_ns
 from mjcfbuild.fsutil import normalise
 
 if TYPE_CHECKING:
@@ -80,6 +81,9 @@ class GraphContext:
     use_remote: bool = True
     executor_override: str | None = None
     allow_outside: bool = False  # --allow-outside: output.folder may leave the manifest's tree
+    # When the build began reading its inputs (filesig.file_clock_ns()): a stamp never
+    # vouches for an input changed since (mjcfbuild.engine.stamp).
+    started_ns: int = field(default_factory=file_clock_ns)
     session: Session = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -92,6 +96,7 @@ class GraphContext:
         from mjcfbuild.manifest.loading import load_manifest
 
         path = Path(path)
+        kwargs.setdefault("started_ns", file_clock_ns())
         manifest = load_manifest(path)
         ctx = cls(
             manifest,

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import re
+import signal
 import subprocess
 import sys
 import time
@@ -255,3 +256,26 @@ def test_every_way_of_finding_the_folder_up_to_date_prints_the_same(tmp_path):
     assert rebuilt.code == 0, rebuilt.stderr
     assert warning_lines(rebuilt.stderr) == fast[0]
     assert re.search(r": [1-5] run, \d+ up to date, 8 warnings in ", rebuilt.stdout), rebuilt.stdout
+
+
+def test_an_input_edited_while_the_build_runs_leaves_no_stamp(arm, tmp_path):
+    """The build stops where it would write its stamp and the mesh is edited there: a step may
+    have read the mesh before the edit, so no stamp may call the model current. The next
+    build takes the full path and converts the mesh again."""
+    process = subprocess.Popen(
+        [sys.executable, "-m", "mjcfbuild", "build", "--no-check", "-q"],
+        cwd=arm,
+        env={**os.environ, "MJCFBUILD_FAILPOINT": "stamp:stop"},
+    )
+    _, status = os.waitpid(process.pid, os.WUNTRACED)
+    assert os.WIFSTOPPED(status)
+    mesh = arm / "meshes" / "forearm.obj"
+    mesh.write_text(mesh.read_text().replace(" 0.240000", " 0.250000"))
+    os.kill(process.pid, signal.SIGCONT)
+    assert process.wait(timeout=600) == 0
+    assert not stamp.stamp_path(arm / "robot.yaml", False).exists()
+    assert not fast_path_skips(arm)
+    rebuilt = run_cli("build", "--no-check", cwd=arm)
+    assert rebuilt.code == 0, rebuilt.stderr
+    assert "mesh forearm" in rebuilt.stdout
+    assert fast_path_skips(arm)  # that build changed nothing on the way: it left a stamp
