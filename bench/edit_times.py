@@ -17,7 +17,9 @@ made ``--repeat`` times, alternating, once with the workers the last build left 
 workers, as in an edit-and-rebuild loop) and once with new workers
 (``MJCFBUILD_RESIDENT_WORKERS=0``, as after they left), and the medians are shown. The
 workers live in a private folder of the benchmark and are stopped at its end; each edit is
-made a second after the last build, as a person editing takes at least that. ``--bare`` also
+made a second after the last build, as a person editing takes at least that. The same edits
+are then made ``--repeat`` times under ``mjcfbuild watch``, timed from the edit to the
+watch's "model ready" line (its polling included). ``--bare`` also
 makes each cold build and each edit with new workers without the engine's head starts (no
 worker started before the manifest is read, none pre-warmed with its modules): what those
 save. The
@@ -36,6 +38,7 @@ import os
 import re
 import shlex
 import shutil
+import signal
 import statistics
 import subprocess
 import sys
@@ -212,12 +215,56 @@ def measure(
                 times.setdefault("joint" + workers, []).append(seconds)
                 times.setdefault("joint_model" + workers, []).append(model)
         row.update({name: median(values) for name, values in times.items()})
+        row["mesh_watch"], row["joint_watch"] = watched_edits(
+            manifest, mesh, repeat, jobs, env, check
+        )
         stop_workers(residents)
     row["reference"] = (
         time_reference(reference, manifest, repeat) if reference else REFERENCE_RECORDED.get(label)
     )
     row["reference_live"] = bool(reference)
     return row
+
+
+def watched_edits(
+    manifest: Path, mesh: Path, repeat: int, jobs: int, env: dict, check: bool
+) -> tuple[float, float]:
+    """Median seconds from each edit (one mesh, one joint; ``repeat`` times each) to the
+    "model ready" line of the build ``mjcfbuild watch`` starts for it, on the workers the
+    last build left (the watch's own first build is a no-op)."""
+    command = [sys.executable, "-m", "mjcfbuild", "watch", str(manifest), "-j", str(jobs)]
+    process = subprocess.Popen(
+        command + ([] if check else ["--no-check"]),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        env=env,
+    )
+    assert process.stdout is not None
+
+    def until(prefix: str) -> float:
+        for line in process.stdout:
+            if line.startswith(prefix):
+                return time.perf_counter()
+            if "error:" in line:
+                raise SystemExit(f"mjcfbuild watch failed: {line.strip()}")
+        raise SystemExit("mjcfbuild watch ended")
+
+    edits = {"mesh": lambda: nudge_mesh(mesh), "joint": lambda: edit_joint(manifest)}
+    times: dict[str, list[float]] = {kind: [] for kind in edits}
+    try:
+        until("mjcfbuild: watching")
+        for _ in range(repeat):
+            for kind, edit in edits.items():
+                time.sleep(1.0)
+                started = time.perf_counter()
+                edit()
+                times[kind].append(until(MODEL_READY) - started)
+                until("mjcfbuild: watching")  # the check and previews are done
+    finally:
+        process.send_signal(signal.SIGINT)
+        process.wait()
+    return median(times["mesh"]), median(times["joint"])
 
 
 def time_reference(template: str, manifest: Path, repeat: int) -> float:
@@ -263,10 +310,10 @@ def print_table(rows: list[dict], jobs: int, check: bool) -> None:
     )
     print(
         "| robot | to the model, cold | one mesh changed | one joint changed | one mesh, new "
-        "workers | one joint, new workers | first no-op | cold / reference | one mesh / "
-        "reference |"
+        "workers | one joint, new workers | one mesh, watch | one joint, watch | first no-op "
+        "| cold / reference | one mesh / reference | one mesh, watch / reference |"
     )
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for row in rows:
         reference = row["reference"]
 
@@ -276,8 +323,10 @@ def print_table(rows: list[dict], jobs: int, check: bool) -> None:
         print(
             f"| {row['robot']} | {row['cold_model']:.2f} | {row['mesh_model']:.2f} "
             f"| {row['joint_model']:.2f} | {row['mesh_model_new']:.2f} "
-            f"| {row['joint_model_new']:.2f} | {row['noop_first']:.3f} "
-            f"| {ratio(row['cold_model'])} | {ratio(row['mesh_model'])} |"
+            f"| {row['joint_model_new']:.2f} | {row['mesh_watch']:.2f} "
+            f"| {row['joint_watch']:.2f} | {row['noop_first']:.3f} "
+            f"| {ratio(row['cold_model'])} | {ratio(row['mesh_model'])} "
+            f"| {ratio(row['mesh_watch'])} |"
         )
     if "cold_bare" in rows[0]:
         print(

@@ -35,6 +35,7 @@ EXAMPLES: dict[str, str] = {
     "schema": "mjcfbuild schema > robot.schema.json",
     "cache": "mjcfbuild cache prune --max-size 2G",
     "workers": "mjcfbuild workers stop",
+    "watch": "mjcfbuild watch robots/arm/robot.yaml",
 }
 """One invocation per command, shown at the end of its ``--help``."""
 
@@ -44,6 +45,7 @@ QUIET: dict[str, str] = {
     "clean": "print errors only, not what was removed",
     "diff": "print errors and the answer only: no building lines, warnings or page line",
     "export-urdf": "print errors only: no warnings or summary",
+    "watch": "print errors only: no progress, warnings, summaries or what changed",
 }
 """What ``-q`` leaves out, per command; commands not named print only what they are asked
 for already, and take ``-q`` so that it can go anywhere on a command line."""
@@ -75,6 +77,7 @@ def build_parser() -> Parser:
         graph,
         init,
         schema,
+        watch,
         workers,
     )
 
@@ -89,8 +92,8 @@ def build_parser() -> Parser:
     global_flags(parser, default=False)
     commands = parser.add_subparsers(title="commands", dest="command", metavar="COMMAND")
     commands.required = True
-    commands_in_order = (build, check, explain, graph, clean, convert, export_urdf, init, schema)
-    for module in (*commands_in_order, diff, cache, workers):
+    commands_in_order = [build, watch, check, explain, graph, clean, convert, export_urdf, init]
+    for module in (*commands_in_order, schema, diff, cache, workers):
         module.add_parser(commands)
     parser.commands = dict(commands.choices)
     for name, command in parser.commands.items():

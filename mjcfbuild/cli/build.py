@@ -31,6 +31,23 @@ def add_parser(commands) -> None:
         help="build the models described by manifests (robot.yaml)",
         description="Build the model of each manifest. Only tasks whose inputs changed run.",
     )
+    build_options(parser)
+    parser.add_argument(
+        "-n", "--dry-run", action="store_true", help="say what would run, and why; run nothing"
+    )
+    parser.add_argument(
+        "--fail-on-change",
+        action="store_true",
+        help="exit 6 when the build created or changed a published file (model, scene, "
+        "assets, report), or one is not tracked by git: the pre-commit hook's way to make "
+        "you git add them",
+    )
+    parser.set_defaults(handler=run)
+
+
+def build_options(parser: argparse.ArgumentParser) -> None:
+    """The options of a build, which ``build`` and ``watch`` share: manifests, jobs, time
+    limit, output folder, check, remote cache and executor."""
     manifest_argument(parser, several=True)
     jobs_argument(parser)
     timeout_argument(parser)
@@ -55,53 +72,47 @@ def add_parser(commands) -> None:
         help="where mesh conversions and decompositions run: local, or dask://host:port "
         "(default: $MJCFBUILD_EXECUTOR, else robot.yaml's executor, else local)",
     )
-    parser.add_argument(
-        "-n", "--dry-run", action="store_true", help="say what would run, and why; run nothing"
-    )
-    parser.add_argument(
-        "--fail-on-change",
-        action="store_true",
-        help="exit 6 when the build created or changed a published file (model, scene, "
-        "assets, report), or one is not tracked by git: the pre-commit hook's way to make "
-        "you git add them",
-    )
-    parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
     """Build every manifest; the exit code of the first that failed."""
     code = EXIT_OK
     if args.verbose and not args.quiet:
-        _say_why_workers_are_off()
+        say_why_workers_are_off()
     for manifest in chosen_manifests(args):
-        if not args.dry_run:
-            summary = _nothing_changed(manifest, args)
-            if summary is not None:
-                if args.fail_on_change:  # nothing created or changed; all of it added?
-                    published = summary.get("outputs", [])
-                    code = code or _report_unadded([], [], published, args.debug)
-                continue
-        workers = None if args.dry_run else _start_workers(manifest, args)
-        try:
-            ctx = load_context(manifest, args)
-            ctx = replace(ctx, noop_stamp=ctx.manifest.source.description != "-")
-            if args.dry_run:
-                result = dry_run(ctx)
-            elif args.fail_on_change:
-                result = _build_and_compare(ctx, args, workers)
-            else:
-                result = execute(ctx, args.quiet, args.debug, workers=workers)
-        except MjcfbuildError as error:
-            report_error(error, args.debug)
-            result = error.exit_code
-        finally:
-            if workers is not None:
-                workers.close()  # the build closed them already, unless it never started
+        result = build_manifest(manifest, args)
         code = code or result
     return code
 
 
-def _say_why_workers_are_off() -> None:
+def build_manifest(manifest: str, args: argparse.Namespace) -> int:
+    """Build one manifest as ``mjcfbuild build`` does (the no-op fast path first); its exit
+    code, with any error printed."""
+    if not args.dry_run:
+        summary = _nothing_changed(manifest, args)
+        if summary is not None:
+            if args.fail_on_change:  # nothing created or changed; added?
+                published = summary.get("outputs", [])
+                return _report_unadded([], [], published, args.debug)
+            return EXIT_OK
+    workers = None if args.dry_run else _start_workers(manifest, args)
+    try:
+        ctx = load_context(manifest, args)
+        ctx = replace(ctx, noop_stamp=ctx.manifest.source.description != "-")
+        if args.dry_run:
+            return dry_run(ctx)
+        if args.fail_on_change:
+            return _build_and_compare(ctx, args, workers)
+        return execute(ctx, args.quiet, args.debug, workers=workers)
+    except MjcfbuildError as error:
+        report_error(error, args.debug)
+        return error.exit_code
+    finally:
+        if workers is not None:
+            workers.close()  # the build closed them already, unless it never started
+
+
+def say_why_workers_are_off() -> None:
     """Print, once, why builds here start their own workers instead of resident ones."""
     import os
 

@@ -1,0 +1,190 @@
+"""``mjcfbuild watch``: build, then build again whenever a file the model depends on changes.
+
+The command stays running, so each rebuild skips what starting ``mjcfbuild build`` costs
+(Python, the imports, 0.3-0.4 s) and goes straight to the tasks whose inputs changed, on the
+resident workers the last build left. What it watches: :mod:`mjcfbuild.engine.watched`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from mjcfbuild import interrupts
+from mjcfbuild.cli import chosen_manifests
+from mjcfbuild.errors import EXIT_OK
+
+if TYPE_CHECKING:
+    from mjcfbuild.engine.watched import Watched
+
+# How long a changed file must stay as it is before the build starts: an editor or exporter
+# writing a large mesh is seen part-way, and building that would only be undone.
+SETTLE_SECONDS = 0.05
+# At most this long waiting for files that keep changing (a long export, a git checkout).
+MOST_SETTLE_SECONDS = 2.0
+
+
+def add_parser(commands) -> None:
+    """Register the subcommand."""
+    from mjcfbuild.cli.build import build_options
+
+    parser = commands.add_parser(
+        "watch",
+        help="build, then build again whenever a file the model depends on changes",
+        description="Build each manifest, then watch every file its build read or wrote "
+        "(after a failed build: every file below the manifest's folder) and build again when "
+        "one changes, in this process, until Ctrl-C. Exit code: the last build's.",
+    )
+    build_options(parser)
+    parser.add_argument(
+        "--interval",
+        type=_positive_seconds,
+        default=0.1,
+        metavar="SECONDS",
+        help="how often to look at the watched files (default: 0.1)",
+    )
+    parser.set_defaults(handler=run, dry_run=False, fail_on_change=False)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Build the manifests, then again on each change until Ctrl-C; the last build's code."""
+    from mjcfbuild.cli.build import say_why_workers_are_off
+
+    if args.verbose and not args.quiet:
+        say_why_workers_are_off()
+    manifests = [_Manifest(name, args) for name in chosen_manifests(args)]
+    for manifest in manifests:
+        manifest.build()
+    _say(args, f"watching {_count(manifests)} for changes (Ctrl-C to stop)")
+    try:
+        _watch(manifests, args)
+    except _Waiting:
+        # Ctrl-C while waiting is how the command ends: not an interrupted build.
+        interrupts.forget()
+        _say(args, "stopped watching")
+    return _last_code(manifests)
+
+
+class _Waiting(Exception):
+    """Ctrl-C came while no build ran."""
+
+
+def _watch(manifests: list[_Manifest], args: argparse.Namespace) -> None:
+    """Build each manifest again when what it depends on changes, until Ctrl-C (raised as
+    :class:`_Waiting` when no build runs) or a change to mjcfbuild's own code."""
+    while True:
+        try:
+            time.sleep(args.interval)
+            due = [(m, m.watched.changed()) for m in manifests]
+            due = [(m, changed) for m, changed in due if changed and not m.unchanged()]
+            due = [(m, _settled(m.watched, changed)) for m, changed in due]
+        except KeyboardInterrupt:
+            raise _Waiting() from None
+        for manifest, changed in due:
+            code = sorted(set(changed) & manifest.watched.code)
+            if code:
+                _say(
+                    args,
+                    f"{_shown(code)} changed: mjcfbuild or an installed package is no "
+                    "longer what this command started with; start it again",
+                    always=True,
+                )
+                return
+            named = manifest.watched.edited(changed) or changed
+            _say(args, f"{_shown(named)} changed: building {manifest.name}")
+            manifest.build()  # Ctrl-C here interrupts the build: exit code 130
+            _say(args, f"watching {_count(manifests)} for changes")
+
+
+class _Manifest:
+    """One watched manifest: what its builds depend on, and its last build's exit code."""
+
+    def __init__(self, name: str, args: argparse.Namespace) -> None:
+        from mjcfbuild.engine.watched import Watched
+
+        self.name = name
+        self.args = args
+        self.code = EXIT_OK
+        self.watched = Watched()
+        self.last_good: Watched | None = None  # what the last build with a stamp watched
+
+    def build(self) -> None:
+        """Build it (the no-op fast path first, as ``mjcfbuild build``), then watch what that
+        build depends on (:mod:`mjcfbuild.engine.watched`)."""
+        from mjcfbuild.cli.build import build_manifest
+        from mjcfbuild.engine.watched import Watched, around, from_stamp, without_stamp
+
+        path = Path(self.name)
+        before = Watched.take(around(path, self.last_good))
+        self.code = build_manifest(self.name, self.args)
+        found = from_stamp(path, not self.args.no_check) if self.code == EXIT_OK else None
+        if found is not None:
+            self.watched = self.last_good = found
+        else:
+            self.watched = without_stamp(path, self.last_good, before)
+
+    def unchanged(self) -> bool:
+        """Whether the stamp still says nothing changed (a file touched but not edited, one the
+        build wrote as it recorded it); if so, watch the files as they are now."""
+        from mjcfbuild.engine import stamp
+        from mjcfbuild.engine.watched import from_stamp
+
+        if self.last_good is not self.watched:
+            return False
+        run_check, outside = not self.args.no_check, self.args.allow_outside
+        if stamp.nothing_to_do(self.name, run_check, outside) is None:
+            return False
+        self.watched = self.last_good = from_stamp(Path(self.name), run_check) or self.watched
+        return True
+
+
+def _last_code(manifests: list[_Manifest]) -> int:
+    return next((m.code for m in manifests if m.code != EXIT_OK), EXIT_OK)
+
+
+def _settled(watched: Watched, changed: list[str]) -> list[str]:
+    """The files changed since ``watched`` was taken, once none has changed for
+    :data:`SETTLE_SECONDS` (or after :data:`MOST_SETTLE_SECONDS`)."""
+    give_up = time.monotonic() + MOST_SETTLE_SECONDS
+    while time.monotonic() < give_up:
+        now = watched.again()
+        time.sleep(SETTLE_SECONDS)
+        later = now.changed()
+        changed = sorted({*changed, *later})
+        if not later:
+            break
+    return changed
+
+
+def _say(args: argparse.Namespace, text: str, always: bool = False) -> None:
+    if always or not args.quiet:
+        print(f"mjcfbuild: {text}", flush=True)
+
+
+def _count(manifests: list[_Manifest]) -> str:
+    """How many files are watched, not counting mjcfbuild's own and the package folders."""
+    files = len(
+        {path for m in manifests for path in m.watched.records if path not in m.watched.code}
+    )
+    return f"{files} file{'s' if files != 1 else ''}"
+
+
+def _shown(paths: list[str]) -> str:
+    """The first changed file, from the current folder where that is shorter, and how many
+    more."""
+    relative = os.path.relpath(paths[0])
+    first = paths[0] if relative.startswith("..") else relative
+    return first + (f" and {len(paths) - 1} more" if len(paths) > 1 else "")
+
+
+def _positive_seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds") from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError("must be more than 0")
+    return value

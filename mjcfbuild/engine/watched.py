@@ -1,0 +1,180 @@
+"""What ``mjcfbuild watch`` watches between builds, and how it tells that something changed.
+
+After a build that left a stamp (:mod:`mjcfbuild.engine.stamp`), the watched files are the ones
+the stamp lists - every file the build read or wrote, and those it looked for and did not find
+- each as the stamp recorded it. The stamp records an input as the build found it (no stamp is
+written when an input changed while the build ran), so an edit made during a build is seen as
+a change afterwards, and the build's own outputs as they were written. The folders Python
+imports packages from are watched too.
+
+Without a stamp (the build failed, or could not write one), what the build read is not fully
+known: every file below the manifest's folder is watched, with the last stamp's files, except
+what a build writes - output folders (those holding a build's state folder), the files the
+last stamp lists as written, MuJoCo's log - each compared with what it was before the build
+started, so that a fix saved while a failing build still ran is not missed.
+
+A file counts as changed when its signature (:mod:`mjcfbuild.filesig`) moves, as for the no-op
+fast path; one recorded within the file system's tick of its last change is compared by its
+bytes too, once that tick has passed. Only the standard library is imported.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from mjcfbuild import filesig
+
+STATE_DIR = ".mjcfbuild"  # mjcfbuild.graph.context.STATE_DIR: it marks an output folder
+# Never watched below the manifest's folder: version control, caches, environments.
+SKIPPED_FOLDERS = frozenset({".git", ".hg", ".svn", "__pycache__", "node_modules", ".venv"})
+# What MuJoCo writes in the current folder (a build's workers run in the manifest's) on errors.
+MUJOCO_LOG = "MUJOCO_LOG.TXT"
+# At most this many files below the manifest's folder (a manifest at the top of a monorepo).
+MOST_TREE_FILES = 20_000
+
+
+@dataclass
+class Record:
+    """One file as last seen: its signature (None when absent), its MD5 where known, and
+    whether that signature may still miss a change made in the same clock tick (``racy``:
+    the MD5 decides once the tick has passed)."""
+
+    signature: list[int] | None
+    md5: str | None = None
+    racy: bool = False
+
+
+@dataclass
+class Watched:
+    """Files and what they were; ``code``: those whose change means mjcfbuild itself or an
+    installed package changed (the command must start again to use them)."""
+
+    records: dict[str, Record] = field(default_factory=dict)
+    code: frozenset[str] = frozenset()
+    written: frozenset[str] = frozenset()  # those the build wrote (from its stamp)
+
+    @classmethod
+    def take(cls, paths: list[str], code: frozenset[str] = frozenset()) -> Watched:
+        """``paths`` as they are now."""
+        now = time.time_ns()
+        return cls({path: record_now(path, now) for path in paths}, code)
+
+    def changed(self) -> list[str]:
+        """The files that changed since they were recorded (or appeared, or went), sorted;
+        a record whose tick has passed with the same bytes is trusted from now on."""
+        now = time.time_ns()
+        found = []
+        for path, before in self.records.items():
+            stat = _stat(path)
+            signature = None if stat is None else filesig.signature(stat)
+            if signature != before.signature:
+                found.append(path)
+            elif before.racy and stat is not None and not filesig.racy(stat, now):
+                if _md5(path) != before.md5:
+                    found.append(path)
+                else:
+                    self.records[path] = Record(signature, before.md5)
+        return sorted(found)
+
+    def edited(self, changed: list[str]) -> list[str]:
+        """Those of ``changed`` whose bytes are not the recorded ones (where the MD5 was
+        recorded; the others count as edited): what to name, rather than files only touched."""
+        return [
+            path
+            for path in changed
+            if path not in self.records
+            or self.records[path].md5 is None
+            or _md5(path) != self.records[path].md5
+        ]
+
+    def again(self) -> Watched:
+        """The same files, as they are now."""
+        return Watched.take(list(self.records), self.code)
+
+
+def from_stamp(manifest: Path, run_check: bool) -> Watched | None:
+    """The files the stamp of the last successful build of ``manifest`` lists, as it recorded
+    them, and the package folders as they are now; None without a stamp."""
+    from mjcfbuild.engine import stamp
+
+    found = stamp.recorded(manifest, run_check)
+    if found is None:
+        return None
+    records = {
+        name: Record(signature, digest, racy)
+        for name, (signature, digest, racy) in found.files.items()
+    }
+    records.update({name: Record(None) for name in found.absent})
+    now = time.time_ns()
+    records.update({folder: record_now(folder, now) for folder in found.python_folders})
+    package = str(Path(stamp.__file__).resolve().parents[1]) + os.sep
+    code = {name for name in found.files if name.startswith(package)}
+    code |= set(found.python_folders)
+    return Watched(records, frozenset(code), frozenset(found.written))
+
+
+def without_stamp(manifest: Path, last_good: Watched | None, before: Watched) -> Watched:
+    """What to watch after a build of ``manifest`` that left no stamp (:func:`around`), each
+    file as it was in ``before`` (taken when the build started) where it was there."""
+    now = time.time_ns()
+    records = {
+        path: before.records.get(path) or record_now(path, now)
+        for path in around(manifest, last_good)
+    }
+    if last_good is None:
+        return Watched(records)
+    return Watched(records, last_good.code, last_good.written)
+
+
+def around(manifest: Path, last_good: Watched | None) -> list[str]:
+    """The manifest, every file below its folder and the files of ``last_good``, except what
+    a build writes: output folders (below the manifest's, holding a state folder), the files
+    ``last_good`` lists as written, MuJoCo's log."""
+    folder = manifest.resolve().parent
+    outputs: list[str] = []
+    found = [str(manifest.resolve())]
+    for top, folders, files in os.walk(folder):
+        if STATE_DIR in folders and top != str(folder):
+            outputs.append(top + os.sep)
+            folders[:] = []
+            continue
+        folders[:] = sorted(name for name in folders if name not in SKIPPED_FOLDERS | {STATE_DIR})
+        found += [os.path.join(top, name) for name in sorted(files) if name != MUJOCO_LOG]
+        if len(found) >= MOST_TREE_FILES:
+            break
+    written: frozenset[str] = frozenset()
+    if last_good is not None:
+        found += last_good.records
+        written = last_good.written
+    return sorted(
+        path for path in set(found) if path not in written and not path.startswith(tuple(outputs))
+    )
+
+
+def record_now(path: str, now_ns: int) -> Record:
+    """What ``path`` is at ``now_ns`` (``time.time_ns()``)."""
+    stat = _stat(path)
+    if stat is None:
+        return Record(None)
+    if not filesig.racy(stat, now_ns):
+        return Record(filesig.signature(stat))
+    return Record(filesig.signature(stat), _md5(path), racy=True)
+
+
+def _stat(path: str) -> os.stat_result | None:
+    try:
+        return os.stat(path)
+    except OSError:
+        return None
+
+
+def _md5(path: str) -> str | None:
+    try:
+        with open(path, "rb") as file:
+            return hashlib.file_digest(file, "md5").hexdigest()
+    except OSError:
+        return None

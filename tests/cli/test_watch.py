@@ -1,0 +1,164 @@
+"""``mjcfbuild watch``: a real watching process on the example arm, edited as a user would."""
+
+from __future__ import annotations
+
+import os
+import queue
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+from mjcfbuild.cli import run
+from tests.conftest import ROOT, copy_example, sigint_at_default
+
+# Generous: a line comes when a build ends, and CI machines are slow and busy.
+LINE_SECONDS = 120
+
+
+class Watching:
+    """A ``mjcfbuild watch`` process and the lines it printed, read as they come."""
+
+    def __init__(self, folder: Path, *args: str, env: dict | None = None) -> None:
+        self.process = subprocess.Popen(
+            [sys.executable, "-m", "mjcfbuild", "watch", "--no-check", *args],
+            cwd=folder,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+            env={**os.environ, "PYTHONPATH": str(ROOT), **(env or {})},
+            preexec_fn=sigint_at_default,
+        )
+        self.lines: list[str] = []
+        self._queue: queue.Queue[str | None] = queue.Queue()
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self) -> None:
+        assert self.process.stdout is not None
+        for line in self.process.stdout:
+            self._queue.put(line.rstrip("\n"))
+        self._queue.put(None)
+
+    def until(self, pattern: str) -> list[str]:
+        """The lines printed up to and including the next one matching ``pattern``."""
+        seen = []
+        deadline = time.monotonic() + LINE_SECONDS
+        while True:
+            try:
+                line = self._queue.get(timeout=max(0.0, deadline - time.monotonic()))
+            except queue.Empty:
+                pytest.fail(f"no line matching {pattern!r}; printed: {self.lines}")
+            if line is None:
+                pytest.fail(f"watch ended before {pattern!r}; printed: {self.lines}")
+            self.lines.append(line)
+            seen.append(line)
+            if re.search(pattern, line):
+                return seen
+
+    def stop(self) -> int:
+        """Ctrl-C, as at the terminal; the exit code."""
+        if self.process.poll() is None:
+            os.kill(self.process.pid, signal.SIGCONT)
+            self.process.send_signal(signal.SIGINT)
+        return self.process.wait(timeout=LINE_SECONDS)
+
+
+@pytest.fixture
+def watching(arm):
+    started: list[Watching] = []
+
+    def start(*args: str, env: dict | None = None) -> Watching:
+        started.append(Watching(arm, *args, env=env))
+        return started[-1]
+
+    yield start
+    for process in started:
+        if process.process.poll() is None:
+            process.process.kill()
+            process.process.wait()
+
+
+def _longer_forearm(arm: Path) -> None:
+    mesh = arm / "meshes" / "forearm.obj"
+    mesh.write_text(mesh.read_text().replace(" 0.240000", " 0.250000"))
+
+
+def _forearm_assets(arm: Path) -> dict[str, bytes]:
+    """The published forearm meshes (one per material) and their bytes."""
+    return {path.name: path.read_bytes() for path in (arm / "mjcf" / "assets").glob("forearm*")}
+
+
+def test_it_builds_each_edit_says_what_failed_and_stops_at_ctrl_c(arm, watching):
+    watch = watching()
+    first = watch.until(r"^mjcfbuild: watching \d+ files for changes \(Ctrl-C to stop\)$")
+    assert any(line.startswith("mjcfbuild: built example_arm.xml") for line in first)
+    before = _forearm_assets(arm)
+
+    # Touched with the same bytes: the stamp still holds, so that alone builds nothing (a
+    # build it started would print no "model ready") and it is not named; the edit that
+    # follows is built.
+    for mesh in (arm / "meshes").iterdir():
+        os.utime(mesh)
+    _longer_forearm(arm)
+    rebuild = watch.until(r"^mjcfbuild: watching \d+ files for changes$")
+    assert rebuild[0] == "mjcfbuild: meshes/forearm.obj changed: building robot.yaml"
+    assert any(line.startswith("mjcfbuild: model ready: mjcf/example_arm.xml") for line in rebuild)
+    after = _forearm_assets(arm)
+    assert before and after.keys() == before.keys() and after != before
+
+    xacro = arm / "urdf" / "arm.urdf.xacro"
+    text = xacro.read_text()
+    xacro.write_text(text.replace("<robot ", "<robotx ", 1))
+    failed = watch.until(r"^mjcfbuild: watching \d+ files for changes$")
+    assert any(re.match(r"mjcfbuild: error: urdf/arm\.urdf\.xacro:\d+", line) for line in failed)
+    xacro.write_text(text)  # fixed: built again, from the same watch
+    fixed = watch.until(r"^mjcfbuild: watching \d+ files for changes$")
+    assert any(line.startswith("mjcfbuild: built example_arm.xml") for line in fixed)
+
+    assert watch.stop() == 0  # Ctrl-C while waiting ends it: the last build succeeded
+    watch.until(r"^mjcfbuild: stopped watching$")
+
+
+def test_an_edit_made_while_a_build_runs_is_built(arm, watching, tmp_path):
+    """The first build stops where it would write its stamp; the mesh is edited there. That
+    build may have read the mesh before the edit, so it leaves no stamp and the watch builds
+    again with the edit (a stamp written then would call the older model current)."""
+    watch = watching(
+        env={
+            "MJCFBUILD_FAILPOINT": "stamp:stop-once",
+            "MJCFBUILD_FAILPOINT_ONCE_DIR": str(tmp_path),
+        }
+    )
+    _, status = os.waitpid(watch.process.pid, os.WUNTRACED)
+    assert os.WIFSTOPPED(status)
+    _longer_forearm(arm)
+    os.kill(watch.process.pid, signal.SIGCONT)
+    watch.until(r"^mjcfbuild: watching \d+ files for changes \(Ctrl-C to stop\)$")
+    rebuild = watch.until(r"^mjcfbuild: watching \d+ files for changes$")
+    assert rebuild[0] == "mjcfbuild: meshes/forearm.obj changed: building robot.yaml"
+    # What a build from nothing makes of the edited mesh.
+    fresh = copy_example("arm", tmp_path / "fresh")
+    shutil.copy(arm / "meshes" / "forearm.obj", fresh / "meshes" / "forearm.obj")
+    assert run(["build", str(fresh / "robot.yaml"), "-q", "--no-check"]) == 0
+    assert _forearm_assets(arm) == _forearm_assets(fresh)
+    assert watch.stop() == 0
+
+
+def test_a_change_to_mjcfbuild_itself_ends_it(arm, watching, tmp_path):
+    """The watch runs the code it started with: when a watched file of mjcfbuild's own or
+    of an installed package changes, it says so and ends (it would otherwise build with old
+    code). Shown with a package folder of its own on PYTHONPATH, which it watches."""
+    packages = tmp_path / "packages"
+    packages.mkdir()
+    watch = watching(env={"PYTHONPATH": os.pathsep.join([str(ROOT), str(packages)])})
+    watch.until(r"^mjcfbuild: watching")
+    (packages / "new_package.py").write_text("")  # an installed package
+    ended = watch.until(r"start it again$")
+    assert ended[-1].startswith(f"mjcfbuild: {packages} changed: mjcfbuild or an installed")
+    assert watch.process.wait(timeout=LINE_SECONDS) == 0

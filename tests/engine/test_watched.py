@@ -1,0 +1,66 @@
+"""What ``mjcfbuild watch`` watches: a real build's stamp, or the files around the manifest."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import mjcfbuild
+from mjcfbuild.cli import run
+from mjcfbuild.engine.watched import MUJOCO_LOG, Watched, around, from_stamp, without_stamp
+
+
+def test_after_a_build_it_watches_what_the_stamp_lists_as_recorded(arm):
+    assert run(["build", str(arm / "robot.yaml"), "-q", "--no-check"]) == 0
+    watched = from_stamp(arm / "robot.yaml", run_check=False)
+    assert watched is not None and watched.changed() == []
+    names = set(watched.records)
+    xacro, model = str(arm / "urdf" / "arm.urdf.xacro"), str(arm / "mjcf" / "example_arm.xml")
+    assert {xacro, str(arm / "meshes" / "forearm.obj"), model} <= names
+    assert model in watched.written and xacro not in watched.written
+    package = Path(mjcfbuild.__file__).parent
+    assert str(package / "cli" / "watch.py") in watched.code  # its own code ends the watch
+    assert xacro not in watched.code
+
+    for path in (arm / "meshes").iterdir():
+        os.utime(path)  # touched: changed, but not edited
+    mesh = arm / "meshes" / "forearm.obj"
+    mesh.write_text(mesh.read_text().replace(" 0.240000", " 0.250000"))
+    changed = watched.changed()
+    assert str(mesh) in changed and len(changed) == len(list((arm / "meshes").iterdir()))
+    assert watched.edited(changed) == [str(mesh)]
+    assert from_stamp(arm / "no-such.yaml", run_check=False) is None
+
+
+def test_without_a_stamp_it_watches_the_folder_but_not_what_builds_write(tmp_path):
+    robot = tmp_path / "robot"
+    for name in (
+        "robot.yaml",
+        "urdf/robot.urdf",
+        "meshes/a.stl",
+        ".git/HEAD",  # version control
+        "mjcf/robot.xml",  # an output folder: it holds a build's state folder
+        "mjcf/.mjcfbuild/plan.json",
+        MUJOCO_LOG,
+        "exported/robot.urdf",  # written by the last good build
+    ):
+        (robot / name).parent.mkdir(parents=True, exist_ok=True)
+        (robot / name).write_text(name)
+    elsewhere = tmp_path / "shared" / "common.xacro"  # read by the last good build
+    elsewhere.parent.mkdir()
+    elsewhere.write_text("")
+    last_good = Watched.take([str(elsewhere), str(robot / "exported/robot.urdf")])
+    last_good.written = frozenset({str(robot / "exported/robot.urdf")})
+    kept = (robot / "robot.yaml", robot / "urdf/robot.urdf", robot / "meshes/a.stl", elsewhere)
+    assert around(robot / "robot.yaml", last_good) == sorted(str(path) for path in kept)
+
+
+def test_without_a_stamp_a_file_is_compared_with_what_it_was_when_the_build_began(tmp_path):
+    """A fix saved while a failing build still ran is seen afterwards."""
+    manifest = tmp_path / "robot.yaml"
+    manifest.write_text("name: a\n")
+    before = Watched.take(around(manifest, None))
+    manifest.write_text("name: robot\n")  # during the build
+    (tmp_path / "new.urdf").write_text("<robot/>")  # made during the build: as it is now
+    watched = without_stamp(manifest, None, before)
+    assert watched.changed() == [str(manifest)]
