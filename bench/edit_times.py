@@ -242,12 +242,15 @@ def watched_edits(
     )
     assert process.stdout is not None
 
+    printed: list[str] = []
+
     def until(prefix: str) -> float:
         for line in process.stdout:
+            printed.append(line)
             if line.startswith(prefix):
                 return time.perf_counter()
             if "error:" in line:
-                raise SystemExit(f"mjcfbuild watch failed: {line.strip()}")
+                raise SystemExit("mjcfbuild watch failed:\n" + "".join(printed[-40:]))
         raise SystemExit("mjcfbuild watch ended")
 
     edits = {"mesh": lambda: nudge_mesh(mesh), "joint": lambda: edit_joint(manifest)}

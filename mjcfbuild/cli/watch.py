@@ -147,16 +147,25 @@ def _last_code(manifests: list[_Manifest]) -> int:
 
 def _settled(watched: Watched, changed: list[str]) -> list[str]:
     """The files changed since ``watched`` was taken, once none has changed for
-    :data:`SETTLE_SECONDS` (or after :data:`MOST_SETTLE_SECONDS`)."""
+    :data:`SETTLE_SECONDS` and none of them is empty (or after :data:`MOST_SETTLE_SECONDS`).
+
+    Saving truncates a file and then writes it; a program writing a large file, or one
+    waiting for the CPU on a busy machine, can leave it empty for longer than the settling
+    time (measured: a benchmark's URDF edit, with the last build's workers tidying up)."""
     give_up = time.monotonic() + MOST_SETTLE_SECONDS
     while time.monotonic() < give_up:
         now = watched.again()
         time.sleep(SETTLE_SECONDS)
         later = now.changed()
         changed = sorted({*changed, *later})
-        if not later:
+        if not later and not any(_empty(now, path) for path in changed):
             break
     return changed
+
+
+def _empty(watched: Watched, path: str) -> bool:
+    record = watched.records.get(path)
+    return record is not None and record.signature is not None and record.signature[0] == 0
 
 
 def _say(args: argparse.Namespace, text: str, always: bool = False) -> None:

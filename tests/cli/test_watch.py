@@ -162,3 +162,25 @@ def test_a_change_to_mjcfbuild_itself_ends_it(arm, watching, tmp_path):
     ended = watch.until(r"start it again$")
     assert ended[-1].startswith(f"mjcfbuild: {packages} changed: mjcfbuild or an installed")
     assert watch.process.wait(timeout=LINE_SECONDS) == 0
+
+
+def test_a_build_waits_while_a_changed_file_is_empty(tmp_path, monkeypatch):
+    """Saving truncates a file and writes it after: the build waits for the bytes (a
+    benchmark's URDF edit was once built empty, on a busy machine)."""
+    from mjcfbuild.cli import watch
+    from mjcfbuild.engine.watched import Watched
+
+    urdf = tmp_path / "robot.urdf"
+    urdf.write_text("<robot/>")
+    watched = Watched.take([str(urdf)])
+    urdf.write_text("")
+    pauses: list[float] = []
+
+    def pause(seconds: float) -> None:
+        pauses.append(seconds)
+        if len(pauses) == 3:
+            urdf.write_text('<robot name="arm"/>')  # written at last, during the third
+
+    monkeypatch.setattr(watch.time, "sleep", pause)
+    assert watch._settled(watched, [str(urdf)]) == [str(urdf)]
+    assert len(pauses) == 4  # empty, empty, written, then unchanged for one pause
