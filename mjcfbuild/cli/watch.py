@@ -44,7 +44,8 @@ def add_parser(commands) -> None:
         type=_positive_seconds,
         default=0.1,
         metavar="SECONDS",
-        help="how often to look at the watched files (default: 0.1)",
+        help="how often to look at the watched files (default: 0.1; less often where looking "
+        "takes more than a tenth of that, as after a failed build in a large folder)",
     )
     parser.set_defaults(handler=run, dry_run=False, fail_on_change=False)
 
@@ -75,10 +76,15 @@ class _Waiting(Exception):
 def _watch(manifests: list[_Manifest], args: argparse.Namespace) -> None:
     """Build each manifest again when what it depends on changes, until Ctrl-C (raised as
     :class:`_Waiting` when no build runs) or a change to mjcfbuild's own code."""
+    looked = 0.0  # how long the last look at the files took
     while True:
         try:
-            time.sleep(args.interval)
+            # Looking takes at most a tenth of the time: after a failed build a large
+            # folder's files are all watched (a stat each: 5 us, 0.1 s for 20,000).
+            time.sleep(max(args.interval, 9 * looked))
+            started = time.monotonic()
             due = [(m, m.watched.changed()) for m in manifests]
+            looked = time.monotonic() - started
             due = [(m, changed) for m, changed in due if changed and not m.unchanged()]
             due = [(m, _settled(m.watched, changed)) for m, changed in due]
         except KeyboardInterrupt:
