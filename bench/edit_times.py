@@ -239,6 +239,9 @@ def watched_edits(
         stderr=subprocess.STDOUT,
         text=True,
         env=env,
+        # SIGINT as at a terminal, even where this benchmark runs in the background (`&`):
+        # a command started with it ignored keeps ignoring it, and Ctrl-C is how it ends.
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     assert process.stdout is not None
 
@@ -266,7 +269,11 @@ def watched_edits(
                 until("mjcfbuild: watching")  # the check and previews are done
     finally:
         process.send_signal(signal.SIGINT)
-        process.wait()
+        try:
+            process.wait(timeout=60)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
     return median(times["mesh"]), median(times["joint"])
 
 

@@ -57,39 +57,38 @@ def run(args: argparse.Namespace) -> int:
     if args.verbose and not args.quiet:
         say_why_workers_are_off()
     manifests = [_Manifest(name, args) for name in chosen_manifests(args)]
-    for manifest in manifests:
-        manifest.build()
-    _say(args, f"watching {_count(manifests)} for changes (Ctrl-C to stop)")
     try:
+        for manifest in manifests:
+            manifest.build()
+        _say(args, f"watching {_count(manifests)} for changes (Ctrl-C to stop)")
         _watch(manifests, args)
-    except _Waiting:
-        # Ctrl-C while waiting is how the command ends: not an interrupted build.
+    except _BuildInterrupted:
+        raise KeyboardInterrupt from None  # the command's: exit code 130, "interrupted"
+    except KeyboardInterrupt:
+        # Ctrl-C while no build runs is how the command ends: not an interruption.
         interrupts.forget()
         _say(args, "stopped watching")
     return _last_code(manifests)
 
 
-class _Waiting(Exception):
-    """Ctrl-C came while no build ran."""
+class _BuildInterrupted(Exception):
+    """Ctrl-C came while a build ran."""
 
 
 def _watch(manifests: list[_Manifest], args: argparse.Namespace) -> None:
-    """Build each manifest again when what it depends on changes, until Ctrl-C (raised as
-    :class:`_Waiting` when no build runs) or a change to mjcfbuild's own code."""
+    """Build each manifest again when what it depends on changes, until Ctrl-C or a change to
+    mjcfbuild's own code."""
     looked = 0.0  # how long the last look at the files took
     while True:
-        try:
-            # Looking takes at most a tenth of the time: after a failed build a large
-            # folder's files are all watched (a stat each: 5 us, 0.1 s for 20,000).
-            time.sleep(max(args.interval, 9 * looked))
-            started = time.monotonic()
-            due = [(m, m.watched.changed()) for m in manifests]
-            looked = time.monotonic() - started
-            due = [(m, changed) for m, changed in due if changed and not m.unchanged()]
-            due = [(m, _settled(m.watched, changed)) for m, changed in due]
-        except KeyboardInterrupt:
-            raise _Waiting() from None
+        # Looking takes at most a tenth of the time: after a failed build a large folder's
+        # files are all watched (a stat each: 5 us, 0.1 s for 20,000).
+        time.sleep(max(args.interval, 9 * looked))
+        started = time.monotonic()
+        due = [(m, m.watched.changed()) for m in manifests]
+        looked = time.monotonic() - started
+        due = [(m, changed) for m, changed in due if changed and not m.unchanged()]
         for manifest, changed in due:
+            changed = _settled(manifest.watched, changed)
             code = sorted(set(changed) & manifest.watched.code)
             if code:
                 _say(
@@ -101,7 +100,7 @@ def _watch(manifests: list[_Manifest], args: argparse.Namespace) -> None:
                 return
             named = manifest.watched.edited(changed) or changed
             _say(args, f"{_shown(named)} changed: building {manifest.name}")
-            manifest.build()  # Ctrl-C here interrupts the build: exit code 130
+            manifest.build()
             _say(args, f"watching {_count(manifests)} for changes")
 
 
@@ -125,7 +124,10 @@ class _Manifest:
 
         path = Path(self.name)
         before = Watched.take(around(path, self.last_good))
-        self.code = build_manifest(self.name, self.args)
+        try:
+            self.code = build_manifest(self.name, self.args)
+        except KeyboardInterrupt:
+            raise _BuildInterrupted() from None
         found = from_stamp(path, not self.args.no_check) if self.code == EXIT_OK else None
         if found is not None:
             self.watched = self.last_good = found

@@ -204,6 +204,8 @@ class BuildSession:
         from mjcfbuild.engine.workers import rebuild_preloads
 
         self.first_build = first_build
+        if self._pool is not None:
+            return  # adopted: the command started them (mjcfbuild.engine.early)
         if first_build:
             # A first build's workers start when its first step needs one, unless the command
             # started them with the mesh step's modules (engine.early.first_build_workers).

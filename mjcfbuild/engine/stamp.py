@@ -322,14 +322,16 @@ def write(
 def _changed_during(
     inputs: Iterable[Path | str], outputs: Iterable[Path | str], started_ns: int
 ) -> bool:
-    """Whether one of ``inputs`` that is not one of ``outputs`` changed after ``started_ns``."""
+    """Whether one of ``inputs`` that is not one of ``outputs`` changed after ``started_ns``,
+    or is gone (the build read it: it went while the build ran, and a stamp without it would
+    never look at it again)."""
     written = {os.fspath(p) for p in outputs}
     for name in {os.fspath(p) for p in inputs} - written:
         try:
             if filesig.changed_since(os.stat(name), started_ns):
                 return True
         except OSError:
-            continue  # gone: the stamp records no such file, and the fast path falls through
+            return True
     return False
 
 

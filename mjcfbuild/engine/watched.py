@@ -8,14 +8,16 @@ a change afterwards, and the build's own outputs as they were written. The folde
 imports packages from are watched too.
 
 Without a stamp (the build failed, or could not write one), what the build read is not fully
-known: every file below the manifest's folder is watched, with the last stamp's files, except
+known: every file below the manifest's folder, its source's folder and its packages' folders
+is watched (:data:`MOST_TREE_FILES` at most), with the last stamp's files, except
 what a build writes - output folders (those holding a build's state folder), the files the
 last stamp lists as written, MuJoCo's log - each compared with what it was before the build
 started, so that a fix saved while a failing build still ran is not missed.
 
 A file counts as changed when its signature (:mod:`mjcfbuild.filesig`) moves, as for the no-op
 fast path; one recorded within the file system's tick of its last change is compared by its
-bytes too, once that tick has passed. Only the standard library is imported.
+bytes too, once that tick has passed. Only the standard library is imported here (and PyYAML
+where a failed build's manifest is read).
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ from mjcfbuild import filesig
 
 STATE_DIR = ".mjcfbuild"  # mjcfbuild.graph.context.STATE_DIR: it marks an output folder
 # Never watched below the manifest's folder: version control, caches, environments.
-SKIPPED_FOLDERS = frozenset({".git", ".hg", ".svn", "__pycache__", "node_modules", ".venv"})
+SKIPPED = frozenset({".git", ".hg", ".svn", "__pycache__", "node_modules", ".venv"})
 # What MuJoCo writes in the current folder (a build's workers run in the manifest's) on errors.
 MUJOCO_LOG = "MUJOCO_LOG.TXT"
 # At most this many files below the manifest's folder (a manifest at the top of a monorepo).
@@ -131,21 +133,26 @@ def without_stamp(manifest: Path, last_good: Watched | None, before: Watched) ->
 
 
 def around(manifest: Path, last_good: Watched | None) -> list[str]:
-    """The manifest, every file below its folder and the files of ``last_good``, except what
-    a build writes: output folders (below the manifest's, holding a state folder), the files
+    """The manifest, every file below its folder, its source's and its packages' folders
+    (at most :data:`MOST_TREE_FILES` in all), and the files of ``last_good``, except what a
+    build writes: output folders (below those folders, holding a state folder), the files
     ``last_good`` lists as written, MuJoCo's log."""
-    folder = manifest.resolve().parent
     outputs: list[str] = []
     found = [str(manifest.resolve())]
-    for top, folders, files in os.walk(folder):
-        if STATE_DIR in folders and top != str(folder):
-            outputs.append(top + os.sep)
-            folders[:] = []
+    walked: list[Path] = []
+    for folder in [manifest.resolve().parent, *declared_folders(manifest)]:
+        if len(found) >= MOST_TREE_FILES or any(folder.is_relative_to(w) for w in walked):
             continue
-        folders[:] = sorted(name for name in folders if name not in SKIPPED_FOLDERS | {STATE_DIR})
-        found += [os.path.join(top, name) for name in sorted(files) if name != MUJOCO_LOG]
-        if len(found) >= MOST_TREE_FILES:
-            break
+        walked.append(folder)
+        for top, folders, files in os.walk(folder):
+            if STATE_DIR in folders and top != str(folder):
+                outputs.append(top + os.sep)
+                folders[:] = []
+                continue
+            folders[:] = sorted(name for name in folders if name not in SKIPPED | {STATE_DIR})
+            found += [os.path.join(top, name) for name in sorted(files) if name != MUJOCO_LOG]
+            if len(found) >= MOST_TREE_FILES:
+                break
     written: frozenset[str] = frozenset()
     if last_good is not None:
         found += last_good.records
@@ -153,6 +160,33 @@ def around(manifest: Path, last_good: Watched | None) -> list[str]:
     return sorted(
         path for path in set(found) if path not in written and not path.startswith(tuple(outputs))
     )
+
+
+def declared_folders(manifest: Path) -> list[Path]:
+    """The folders ``manifest`` names, read as plainly as can be (it may be what failed): its
+    source's folder and its packages' folders, relative to it; none where it cannot be read."""
+    import yaml
+
+    try:
+        data = yaml.safe_load(manifest.read_text(encoding="utf-8"))
+    except (OSError, UnicodeError, yaml.YAMLError):
+        return []
+    if not isinstance(data, dict):
+        return []
+    base = manifest.resolve().parent
+    named: list[object] = []
+    source, packages = data.get("source"), data.get("packages")
+    if isinstance(source, dict):
+        named += [Path(str(source[k])).parent for k in ("urdf", "xacro") if source.get(k)]
+    if isinstance(packages, dict):
+        named += list(packages.values())
+    folders = []
+    for entry in named:
+        if isinstance(entry, str | Path):
+            folder = (base / entry).resolve()
+            if folder.is_dir() and folder not in folders:
+                folders.append(folder)
+    return folders
 
 
 def record_now(path: str, now_ns: int) -> Record:

@@ -271,6 +271,7 @@ class WorkerPool:
         self._steps_waiting = 0  # threads in _acquire waiting for a worker
         self._waiting_warm_up: _WarmUp | None = None  # warm_for's, until a worker falls idle
         self._warming: list[threading.Thread] = []  # warm_in_background's
+        self._warming_now = 0  # of them, those still starting workers
 
     def run(
         self,
@@ -329,8 +330,9 @@ class WorkerPool:
                 raise
             with self._condition:
                 closed = self._closed
-                if closed:  # closed while this one started: it missed close()
-                    self._all.remove(worker)
+                if closed:  # closed while this one started: close() may have missed it
+                    if worker in self._all:
+                        self._all.remove(worker)
                 else:
                     self._idle.append(worker)
                     self._condition.notify_all()
@@ -345,15 +347,26 @@ class WorkerPool:
         a worker that cannot start leaves its place to the steps, which start their own."""
 
         def start_all() -> None:
-            # Whatever stops a start here (a folder it cannot write, a bad MJCFBUILD_* value)
-            # stops the build's own start of a worker too, which reports it.
-            with contextlib.suppress(Exception):
-                for preload, count, meshes_from in plan:
-                    self.warm(preload, count, meshes_from)
+            try:
+                # Whatever stops a start here (a folder it cannot write, a bad MJCFBUILD_*
+                # value) stops the build's own start of a worker too, which reports it.
+                with contextlib.suppress(Exception):
+                    for preload, count, meshes_from in plan:
+                        self.warm(preload, count, meshes_from)
+            finally:
+                with self._condition:
+                    self._warming_now -= 1
+                    self._condition.notify_all()
 
         thread = threading.Thread(target=start_all, name="mjcfbuild-workers", daemon=True)
+        with self._condition:
+            self._warming_now += 1
         self._warming.append(thread)
-        thread.start()
+        try:
+            thread.start()
+        except RuntimeError:  # no thread to be had: the steps start their workers
+            with self._condition:
+                self._warming_now -= 1
 
     def wait_started(self) -> None:
         """Wait until the workers :meth:`warm_in_background` is starting have started (or
@@ -489,10 +502,10 @@ class WorkerPool:
                     self._idle.remove(worker)
                     worker.running = affinity
                     return worker
-                if self._started < self.size:
+                if self._started < self.size and not self._warming_now:
                     self._started += 1
                     break
-                self._wait()
+                self._wait()  # for a worker, or for the one warm_in_background is starting
         worker = self._start()
         worker.running = affinity
         return worker

@@ -16,6 +16,7 @@ from pathlib import Path
 import pytest
 
 from mjcfbuild.cli import run
+from mjcfbuild.engine import stamp
 from tests.conftest import ROOT, copy_example, sigint_at_default
 
 # Generous: a line comes when a build ends, and CI machines are slow and busy.
@@ -100,11 +101,17 @@ def test_it_builds_each_edit_says_what_failed_and_stops_at_ctrl_c(arm, watching)
     assert any(line.startswith("mjcfbuild: built example_arm.xml") for line in first)
     before = _forearm_assets(arm)
 
-    # Touched with the same bytes: the stamp still holds, so that alone builds nothing (a
-    # build it started would print no "model ready") and it is not named; the edit that
-    # follows is built.
+    # Touched with the same bytes: the stamp still holds, so that alone builds nothing. The
+    # watch asks the stamp, which then records the new times: once it has, the watch has
+    # decided (a build would have discarded the stamp first), and the edit follows.
+    stamp_file = stamp.stamp_path(arm / "robot.yaml", False)
+    recorded = stamp_file.read_bytes()
     for mesh in (arm / "meshes").iterdir():
         os.utime(mesh)
+    while stamp_file.exists() and stamp_file.read_bytes() == recorded:
+        assert watch.process.poll() is None
+        time.sleep(0.01)
+    assert stamp_file.exists() and watch.lines == first
     _longer_forearm(arm)
     rebuild = watch.until(r"^mjcfbuild: watching \d+ files for changes$")
     assert rebuild[0] == "mjcfbuild: meshes/forearm.obj changed: building robot.yaml"

@@ -258,10 +258,12 @@ def test_every_way_of_finding_the_folder_up_to_date_prints_the_same(tmp_path):
     assert re.search(r": [1-5] run, \d+ up to date, 8 warnings in ", rebuilt.stdout), rebuilt.stdout
 
 
-def test_an_input_edited_while_the_build_runs_leaves_no_stamp(arm, tmp_path):
-    """The build stops where it would write its stamp and the mesh is edited there: a step may
-    have read the mesh before the edit, so no stamp may call the model current. The next
-    build takes the full path and converts the mesh again."""
+@pytest.mark.parametrize("how", ["edited", "moved away"])
+def test_an_input_changed_while_the_build_runs_leaves_no_stamp(arm, tmp_path, how):
+    """The build stops where it would write its stamp and the mesh is edited there (or moved
+    away, and back edited after the build): a step may have read the mesh before, so no stamp
+    may call the model current. The next build takes the full path and converts the mesh
+    again."""
     process = subprocess.Popen(
         [sys.executable, "-m", "mjcfbuild", "build", "--no-check", "-q"],
         cwd=arm,
@@ -270,9 +272,14 @@ def test_an_input_edited_while_the_build_runs_leaves_no_stamp(arm, tmp_path):
     _, status = os.waitpid(process.pid, os.WUNTRACED)
     assert os.WIFSTOPPED(status)
     mesh = arm / "meshes" / "forearm.obj"
-    mesh.write_text(mesh.read_text().replace(" 0.240000", " 0.250000"))
+    edited = mesh.read_text().replace(" 0.240000", " 0.250000")
+    if how == "edited":
+        mesh.write_text(edited)
+    else:
+        mesh.rename(tmp_path / "forearm.obj")
     os.kill(process.pid, signal.SIGCONT)
     assert process.wait(timeout=600) == 0
+    mesh.write_text(edited)
     assert not stamp.stamp_path(arm / "robot.yaml", False).exists()
     assert not fast_path_skips(arm)
     rebuilt = run_cli("build", "--no-check", cwd=arm)

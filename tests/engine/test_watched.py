@@ -55,6 +55,25 @@ def test_without_a_stamp_it_watches_the_folder_but_not_what_builds_write(tmp_pat
     assert around(robot / "robot.yaml", last_good) == sorted(str(path) for path in kept)
 
 
+def test_without_a_stamp_it_watches_the_source_and_package_folders_it_names(tmp_path):
+    """A fix in a package beside the manifest's folder is seen too, even when the manifest is
+    what failed validation (it is read as plain YAML); one that is not YAML names none."""
+    robot, arm = tmp_path / "robot", tmp_path / "arm"
+    (arm / "urdf").mkdir(parents=True)
+    (arm / "urdf" / "arm.urdf.xacro").write_text("<robot/>")
+    (arm / "meshes" / "mjcf" / ".mjcfbuild").mkdir(parents=True)  # an output folder there
+    (arm / "meshes" / "mjcf" / "model.xml").write_text("")
+    robot.mkdir()
+    manifest = robot / "robot.yaml"
+    manifest.write_text(
+        "name: arm\nsource: {xacro: ../arm/urdf/arm.urdf.xacro}\n"
+        "packages: {arm_description: ../arm, gone: ../nowhere}\noptions: {no_such_option: 1}\n"
+    )
+    assert around(manifest, None) == [str(arm / "urdf" / "arm.urdf.xacro"), str(manifest)]
+    manifest.write_text(manifest.read_text() + "scene: [\n")  # not YAML any more
+    assert around(manifest, None) == [str(manifest)]
+
+
 def test_without_a_stamp_a_file_is_compared_with_what_it_was_when_the_build_began(tmp_path):
     """A fix saved while a failing build still ran is seen afterwards."""
     manifest = tmp_path / "robot.yaml"

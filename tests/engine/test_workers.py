@@ -332,3 +332,31 @@ def test_a_kept_warm_up_yields_to_a_waiting_step_and_can_be_forgotten(two_worker
         thread.join(60)
     _wait_for(lambda: len(pool._idle) == 2)
     assert not any(w.holds == "robot.xml" for w in pool._all)
+
+
+def test_a_step_waits_for_the_workers_starting_in_the_background(tmp_path):
+    """A step that comes while the command's workers are still starting takes one of them
+    (importing its module) rather than starting a worker of its own, and the pool never
+    holds more workers than its size."""
+    from tests.conftest import ROOT
+
+    pool = WorkerPool(2, ROOT, tmp_path / "logs")
+    try:
+        pool.warm_in_background(((STEPS,), 1, None), (("json",), 2, None))
+        pid = pool.run(f"{STEPS}:echo", {}, "echo", None, timeout=60)["pid"]
+        pool.wait_started()
+        preloads = {worker.process.pid: worker.preload for worker in pool._all}
+        assert sorted(preloads.values()) == [("json",), (STEPS,)]
+        assert preloads[pid] == (STEPS,)
+    finally:
+        pool.close()
+
+
+def test_a_pool_closed_while_its_workers_start_keeps_none(tmp_path):
+    from tests.conftest import ROOT
+
+    pool = WorkerPool(2, ROOT, tmp_path / "logs")
+    pool.warm_in_background((("json",), None, None))
+    pool.close()
+    pool.wait_started()
+    assert pool._all == [] and pool._idle == []
