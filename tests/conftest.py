@@ -7,6 +7,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import time
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -122,7 +123,19 @@ def copy_example(name: str, destination: Path) -> Path:
     without build outputs; the example's folder."""
     target = destination / "examples"
     shutil.copytree(EXAMPLES, target, ignore=shutil.ignore_patterns("mjcf", "__pycache__"))
+    file_clock_past_changes(target)
     return target / name
+
+
+def file_clock_past_changes(folder: Path) -> None:
+    """Return once the file clock is past the last change below ``folder``: a build started
+    now finds no input changed since it began (one that does leaves no no-op stamp,
+    mjcfbuild.engine.stamp), as when a person or a script's next command builds it."""
+    from mjcfbuild.filesig import file_clock_ns
+
+    newest = max(os.stat(path).st_ctime_ns for path in [folder, *folder.rglob("*")])
+    while file_clock_ns() <= newest:
+        time.sleep(0.001)
 
 
 @pytest.fixture
