@@ -361,12 +361,13 @@ class WorkerPool:
         thread = threading.Thread(target=start_all, name="mjcfbuild-workers", daemon=True)
         with self._condition:
             self._warming_now += 1
-        self._warming.append(thread)
         try:
             thread.start()
         except RuntimeError:  # no thread to be had: the steps start their workers
             with self._condition:
                 self._warming_now -= 1
+            return
+        self._warming.append(thread)
 
     def wait_started(self) -> None:
         """Wait until the workers :meth:`warm_in_background` is starting have started (or
