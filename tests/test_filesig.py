@@ -95,3 +95,21 @@ def test_the_margin_is_a_tick_where_times_are_fine_and_two_seconds_where_coarse(
     assert filesig.racy(_stat(coarse), coarse + filesig.TICK_RACY_NS)
     assert filesig.racy(_stat(coarse), coarse + filesig.RACY_NS - 1)
     assert not filesig.racy(_stat(coarse), coarse + filesig.RACY_NS)
+
+
+def test_a_file_changed_after_the_file_clock_was_read_counts_as_changed_since(tmp_path):
+    """Checked against the file system itself: every write, rename and time change made after
+    ``file_clock_ns`` gives the file a status-change time the stamp counts as a change (its
+    clock is the one the kernel stamps files with, which lags ``time.time_ns()``)."""
+    path = tmp_path / "robot.urdf"
+    path.write_text("<robot/>")
+    for turn in range(300):
+        since = filesig.file_clock_ns()
+        if turn % 3 == 0:
+            path.write_text(f"<robot name='r{turn}'/>")
+        elif turn % 3 == 1:
+            os.utime(path, ns=(0, 0))  # a time set back: the status-change time still moves
+        else:
+            (tmp_path / "new").write_text("<robot/>")
+            os.replace(tmp_path / "new", path)
+        assert filesig.changed_since(os.stat(path), since), turn
