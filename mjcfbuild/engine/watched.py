@@ -16,8 +16,7 @@ started, so that a fix saved while a failing build still ran is not missed.
 
 A file counts as changed when its signature (:mod:`mjcfbuild.filesig`) moves, as for the no-op
 fast path; one recorded within the file system's tick of its last change is compared by its
-bytes too, once that tick has passed. Only the standard library is imported here (and PyYAML
-where a failed build's manifest is read).
+bytes too, once that tick has passed.
 """
 
 from __future__ import annotations
@@ -29,8 +28,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from mjcfbuild import filesig
+from mjcfbuild.graph.context import STATE_DIR  # a folder holding one is an output folder
 
-STATE_DIR = ".mjcfbuild"  # mjcfbuild.graph.context.STATE_DIR: it marks an output folder
 # Never watched below the manifest's folder: version control, caches, environments.
 SKIPPED = frozenset({".git", ".hg", ".svn", "__pycache__", "node_modules", ".venv"})
 # What MuJoCo writes in the current folder (a build's workers run in the manifest's) on errors.
