@@ -1,7 +1,8 @@
 """Workers started with the command, before the manifest is read.
 
-A folder's first build starts workers that import the mesh step's modules
-(:func:`first_build_workers`); a rebuild starts the workers it will need, as follows.
+A folder's first build starts workers that import the mesh step's modules, two of them then
+MuJoCo and a model step's (:func:`first_build_workers`); a rebuild starts the workers it will
+need, as follows.
 
 Reading and validating the manifest and importing the engine take a rebuild 0.3-0.5 s, during
 which one of the machine's cores is idle. When the no-op path finds that something changed,
@@ -54,14 +55,16 @@ def first_build_workers(manifest: str | os.PathLike, jobs: int) -> WorkerPool | 
     """The workers of a folder's first build, started now, each importing the mesh step's
     modules: its first steps convert meshes, and a worker started when the first of them is
     due takes 0.15 s to begin (g1: the model 0.06-0.08 s sooner, the example arm no later).
-    Only those modules: importing the check's and the URDF reader's too took the CPU the
-    manifest and the mesh steps needed. The build's state folder is not known before its
-    manifest is read, so what these workers print outside their steps (each step has a log
-    of its own) goes to ``logs/workers.log`` in the cache folder. None where that cannot be
-    written: the build starts its workers when a step needs one (a read-only cache never
-    fails a build)."""
+    The first two then import MuJoCo and the matrix's or the assembly's step
+    (:func:`~mjcfbuild.engine.workers.first_build_preloads`; g1's model came 0.08 and 0.18 s
+    sooner in the medians of two A/B runs of eight cold builds each way); not the check's or
+    the URDF reader's modules, which took the CPU the manifest and the mesh steps needed. The
+    build's state folder is not known before its manifest is read, so what these workers
+    print outside their steps (each step has a log of its own) goes to ``logs/workers.log``
+    in the cache folder. None where that cannot be written: the build starts its workers
+    when a step needs one (a read-only cache never fails a build)."""
     from mjcfbuild.cachedir import user_cache_dir
-    from mjcfbuild.engine.workers import MESH_MODULES, WorkerPool
+    from mjcfbuild.engine.workers import MESH_MODULES, WorkerPool, first_build_preloads
     from mjcfbuild.fsutil import normalise
 
     pool = WorkerPool(jobs, normalise(manifest).parent, user_cache_dir() / "logs")
@@ -72,5 +75,6 @@ def first_build_workers(manifest: str | os.PathLike, jobs: int) -> WorkerPool | 
     except OSError:
         pool.close()
         return None
-    pool.warm_in_background((MESH_MODULES, None, None))
+    first, second = first_build_preloads()
+    pool.warm_in_background((first, 1, None), (second, 2, None), (MESH_MODULES, None, None))
     return pool

@@ -11,7 +11,7 @@ import mjcfbuild
 from mjcfbuild.cli import run
 from mjcfbuild.engine.early import start_workers
 from mjcfbuild.engine.session import BuildSession
-from mjcfbuild.engine.workers import MESH_MODULES, rebuild_preloads
+from mjcfbuild.engine.workers import MESH_MODULES, first_build_preloads, rebuild_preloads
 from tests.conftest import copy_example
 
 
@@ -38,11 +38,16 @@ def test_the_workers_of_a_rebuild_start_from_the_stamp(built_arm):
 
 
 def _assert_first_build_workers(pool) -> None:
-    """``pool`` is a first build's: two workers importing the mesh step's modules, what they
-    print kept in the cache folder's logs (the build's state folder is not known yet)."""
+    """``pool`` is a first build's: two workers importing the mesh step's modules first, then
+    MuJoCo and the matrix's or the assembly's step, what they print kept in the cache
+    folder's logs (the build's state folder is not known yet)."""
     try:
         pool.wait_started()
-        assert [w.preload for w in pool._all] == [MESH_MODULES, MESH_MODULES]
+        first, second = first_build_preloads()
+        assert [w.preload for w in pool._all] == [first, second]
+        assert first[: len(MESH_MODULES)] == second[: len(MESH_MODULES)] == MESH_MODULES
+        assert first[-1] == "mjcfbuild.steps.selfcollision"
+        assert second[-1] == "mjcfbuild.steps.assemble"
         assert [w.meshes_from for w in pool._all] == [None, None]
         assert pool.log_dir.name == "logs" and pool.log_dir.parent.name == "cache"
     finally:
@@ -111,3 +116,24 @@ def test_a_cache_folder_that_cannot_be_written_leaves_the_workers_to_the_build(
     folder = copy_example("arm", tmp_path)
     assert start_workers(folder / "robot.yaml", run_check=False, jobs=2) is None
     assert run(["build", str(folder / "robot.yaml"), "-j", "2", "-q", "--no-check"]) == 0
+
+
+def test_a_first_build_with_more_jobs_starts_the_rest_with_the_mesh_step_only(tmp_path):
+    """Only two model steps are due at once; the other workers convert meshes."""
+    folder = copy_example("arm", tmp_path / "arm")
+    pool = start_workers(folder / "robot.yaml", run_check=True, jobs=4)
+    try:
+        pool.wait_started()
+        assert [w.preload for w in pool._all] == [
+            *first_build_preloads(),
+            MESH_MODULES,
+            MESH_MODULES,
+        ]
+    finally:
+        pool.close()
+    pool = start_workers(folder / "robot.yaml", run_check=True, jobs=1)
+    try:
+        pool.wait_started()
+        assert [w.preload for w in pool._all] == [first_build_preloads()[0]]
+    finally:
+        pool.close()
