@@ -257,6 +257,7 @@ def model_section(root: etree._Element, name: str) -> etree._Element:
 def _merge_raw(root: etree._Element, item: RawElement, warnings: list[str]) -> list[etree._Element]:
     element = etree.fromstring(item.xml)
     _refuse_unknown_attributes(element, item)
+    _refuse_impossible_timestep(element, item)
     if item.section in SINGLE_SECTIONS:
         existing = root.find(item.section)
         if existing is None:
@@ -293,6 +294,28 @@ def _refuse_unknown_attributes(element: etree._Element, item: RawElement) -> Non
                 f"<{node.tag}>{inside} has no attribute '{unknown[0]}'"
                 + did_you_mean(unknown[0], set(known)),
                 hint=f"MuJoCo's <{node.tag}> attributes: {_listing(known, limit=len(known))}",
+            )
+
+
+def _refuse_impossible_timestep(element: etree._Element, item: RawElement) -> None:
+    """Refuse, at its line, an ``<option timestep>`` that is not a positive number of seconds.
+    MuJoCo compiles any value; the build's trials, the check and the tuning report then
+    simulate with it (a negative one failed the tuning report with an internal error)."""
+    import math
+
+    for node in element.iter("option"):
+        text = node.get("timestep")
+        if text is None:
+            continue
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if not (math.isfinite(value) and value > 0):
+            raise input_error(
+                _line_of(node, element, item),
+                f'<option timestep="{text}">: the timestep must be a positive number of seconds',
+                hint="MuJoCo's default is 0.002",
             )
 
 

@@ -1132,6 +1132,15 @@ CASES: list[Case] = [
         ["robot.yaml:6:", "names a joint that does not exist; did you mean 'hinge'?"],
     ),
     Case(
+        "raw option timestep negative",
+        {
+            "robot.yaml": MANIFEST + "mujoco_inputs:\n  raw: |\n    <option timestep='-1'/>\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        ["robot.yaml:6:", "the timestep must be a positive number of seconds"],
+    ),
+    Case(
         "attached part's link misspelt",
         {
             "robot.yaml": MANIFEST

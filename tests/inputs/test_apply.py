@@ -107,6 +107,16 @@ def test_a_raw_attribute_mujoco_lacks_is_an_error_at_its_input(tmp_path, raw, sa
     assert says in text, text
 
 
+@pytest.mark.parametrize("timestep", ["-1", "0", "nan", "inf", "fast"])
+def test_a_raw_timestep_that_is_no_positive_number_is_an_error_at_its_input(tmp_path, timestep):
+    """MuJoCo compiles any timestep; the build's trials and reports cannot simulate with it."""
+    text = error(tmp_path, f'<raw_inputs>\n<option timestep="{timestep}"/></raw_inputs>')
+    assert (
+        f'inputs.xml:2: <option timestep="{timestep}">: the timestep must be a positive number '
+        "of seconds (MuJoCo's default is 0.002)"
+    ) in text, text
+
+
 def test_raw_attributes_of_an_element_in_any_of_its_places_are_kept(tmp_path):
     # <joint> in an equality has joint1 and polycoef, which a body's <joint> has not.
     result = build(
