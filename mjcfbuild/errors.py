@@ -20,6 +20,7 @@ EXIT_MODEL = 5
 EXIT_CHECK = 6
 EXIT_OUTPUT = 7
 EXIT_INTERNAL = 70
+EXIT_RESTART = 75  # sysexits' EX_TEMPFAIL: try again
 EXIT_INTERRUPTED = 130
 
 EXIT_CODES: dict[int, str] = {
@@ -33,6 +34,7 @@ EXIT_CODES: dict[int, str] = {
     EXIT_OUTPUT: "an output could not be written (a full disk, no permission), or another build "
     "held the output folder past --timeout",
     EXIT_INTERNAL: "internal error in mjcfbuild (please report it, with --debug output)",
+    EXIT_RESTART: "watch ended: mjcfbuild or an installed package changed; start it again",
     EXIT_INTERRUPTED: "interrupted",
 }
 

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 from mjcfbuild import interrupts
 from mjcfbuild.cli import chosen_manifests
-from mjcfbuild.errors import EXIT_OK
+from mjcfbuild.errors import EXIT_OK, EXIT_RESTART
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.watched import Watched
@@ -36,7 +36,8 @@ def add_parser(commands) -> None:
         help="build, then build again whenever a file the model depends on changes",
         description="Build each manifest, then watch every file its build read or wrote "
         "(after a failed build: every file below the manifest's folder) and build again when "
-        "one changes, in this process, until Ctrl-C. Exit code: the last build's.",
+        "one changes, in this process, until Ctrl-C. Exit code: the last build's; 75 when "
+        "mjcfbuild or an installed package changed (start it again).",
     )
     build_options(parser)
     parser.add_argument(
@@ -51,7 +52,8 @@ def add_parser(commands) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Build the manifests, then again on each change until Ctrl-C; the last build's code."""
+    """Build the manifests, then again on each change until Ctrl-C; the last build's code, or
+    :data:`EXIT_RESTART` when mjcfbuild's code or an installed package changed."""
     from mjcfbuild.cli.build import say_why_workers_are_off
 
     if args.verbose and not args.quiet:
@@ -61,7 +63,8 @@ def run(args: argparse.Namespace) -> int:
         for manifest in manifests:
             manifest.build()
         _say(args, f"watching {_count(manifests)} for changes (Ctrl-C to stop)")
-        _watch(manifests, args)
+        if _watch(manifests, args):
+            return EXIT_RESTART
     except _BuildInterrupted:
         raise KeyboardInterrupt from None  # the command's: exit code 130, "interrupted"
     except KeyboardInterrupt:
@@ -75,9 +78,10 @@ class _BuildInterrupted(Exception):
     """Ctrl-C came while a build ran."""
 
 
-def _watch(manifests: list[_Manifest], args: argparse.Namespace) -> None:
+def _watch(manifests: list[_Manifest], args: argparse.Namespace) -> bool:
     """Build each manifest again when what it depends on changes, until Ctrl-C or a change to
-    mjcfbuild's own code."""
+    mjcfbuild's own code or an installed package (then True: the command must start again,
+    which a script running it in a loop tells by its exit code)."""
     looked = 0.0  # how long the last look at the files took
     while True:
         # Looking takes at most a tenth of the time: after a failed build a large folder's
@@ -97,7 +101,7 @@ def _watch(manifests: list[_Manifest], args: argparse.Namespace) -> None:
                     "longer what this command started with; start it again",
                     always=True,
                 )
-                return
+                return True
             named = manifest.watched.edited(changed) or changed
             _say(args, f"{_shown(named)} changed: building {manifest.name}")
             manifest.build()
