@@ -208,7 +208,8 @@ class BuildSession:
             return  # adopted: the command started them (mjcfbuild.engine.early)
         if first_build:
             # A first build's workers start when its first step needs one, unless the command
-            # started them with the mesh step's modules (engine.early.first_build_workers).
+            # started them with the mesh step's and the model steps' modules
+            # (engine.early.first_build_workers).
             # Started here, importing what the check and its URDF reader use, they took CPU
             # from the mesh steps: the model came 0.07-0.28 s later on the example arm, panda,
             # go1 and g1, and the whole build no sooner (bench/edit_times.py --bare).
