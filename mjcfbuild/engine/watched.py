@@ -10,8 +10,9 @@ imports packages from are watched too.
 Without a stamp (the build failed, or could not write one), what the build read is not fully
 known: every file below the manifest's folder, its source's folder and its packages' folders
 is watched (:data:`MOST_TREE_FILES` at most), with the last stamp's files, except
-what a build writes - output folders (those holding a build's state folder), the files the
-last stamp lists as written, MuJoCo's log - each compared with what it was before the build
+what a build writes - output folders (those holding a build's state folder; where that is
+the manifest's folder itself, the files its builds recorded writing), the files the last
+stamp lists as written, MuJoCo's log - each compared with what it was before the build
 started, so that a fix saved while a failing build still ran is not missed.
 
 A file counts as changed when its signature (:mod:`mjcfbuild.filesig`) moves, as for the no-op
@@ -28,6 +29,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from mjcfbuild import filesig
+from mjcfbuild.engine.written import WRITTEN
 from mjcfbuild.graph.context import STATE_DIR  # a folder holding one is an output folder
 
 # Never watched below the manifest's folder: version control, caches, environments.
@@ -134,9 +136,11 @@ def without_stamp(manifest: Path, last_good: Watched | None, before: Watched) ->
 def around(manifest: Path, last_good: Watched | None) -> list[str]:
     """The manifest, every file below its folder, its source's and its packages' folders
     (at most :data:`MOST_TREE_FILES` in all), and the files of ``last_good``, except what a
-    build writes: output folders (below those folders, holding a state folder), the files
-    ``last_good`` lists as written, MuJoCo's log."""
+    build writes: output folders (below those folders, holding a state folder; the files
+    builds recorded writing where one of those folders is an output folder itself), the
+    files ``last_good`` lists as written, MuJoCo's log."""
     outputs: list[str] = []
+    recorded: set[str] = set()
     found = [str(manifest.resolve())]
     walked: list[Path] = []
     for folder in [manifest.resolve().parent, *declared_folders(manifest)]:
@@ -148,17 +152,33 @@ def around(manifest: Path, last_good: Watched | None) -> list[str]:
                 outputs.append(top + os.sep)
                 folders[:] = []
                 continue
+            if STATE_DIR in folders:  # the output folder is this folder itself
+                recorded |= _recorded_as_written(Path(top))
             folders[:] = sorted(name for name in folders if name not in SKIPPED | {STATE_DIR})
             found += [os.path.join(top, name) for name in sorted(files) if name != MUJOCO_LOG]
             if len(found) >= MOST_TREE_FILES:
                 break
-    written: frozenset[str] = frozenset()
+    written: set[str] = recorded
     if last_good is not None:
         found += last_good.records
-        written = last_good.written
+        written |= last_good.written
     return sorted(
         path for path in set(found) if path not in written and not path.startswith(tuple(outputs))
     )
+
+
+def _recorded_as_written(out_dir: Path) -> set[str]:
+    """The files builds recorded writing in ``out_dir`` (its state folder's written.json,
+    :mod:`mjcfbuild.engine.written`, which a failed build updates too), read plainly: none
+    where it cannot be read."""
+    import json
+
+    try:
+        files = json.loads((out_dir / STATE_DIR / WRITTEN).read_text(encoding="utf-8"))["files"]
+    except (OSError, ValueError, TypeError, KeyError):
+        return set()
+    names = files if isinstance(files, list | dict) else []
+    return {str(out_dir / name) for name in names if isinstance(name, str)}
 
 
 def declared_folders(manifest: Path) -> list[Path]:

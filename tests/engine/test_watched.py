@@ -55,6 +55,24 @@ def test_without_a_stamp_it_watches_the_folder_but_not_what_builds_write(tmp_pat
     assert around(robot / "robot.yaml", last_good) == sorted(str(path) for path in kept)
 
 
+def test_without_a_stamp_what_builds_wrote_into_the_manifests_own_folder_is_not_watched(arm):
+    """output.folder '.': the outputs lie beside the inputs. A build that fails after writing
+    them (a failed check) must not count as an edit that starts the next build: what builds
+    recorded writing there is left out, the rest is watched."""
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace("folder: mjcf", "folder: ."))
+    assert run(["build", str(manifest), "-q", "--no-check"]) == 0
+    watched = around(manifest, None)
+    assert str(arm / "example_arm.xml") not in watched
+    assert str(arm / "scene.xml") not in watched
+    assert not any(path.startswith(str(arm / "assets")) for path in watched)
+    assert {str(manifest), str(arm / "urdf" / "arm.urdf.xacro")} <= set(watched)
+    assert str(arm / "meshes" / "forearm.obj") in watched
+    # A record that cannot be read leaves out nothing but the state folder.
+    (arm / ".mjcfbuild" / "written.json").write_text("[")
+    assert str(arm / "example_arm.xml") in around(manifest, None)
+
+
 def test_without_a_stamp_it_watches_the_source_and_package_folders_it_names(tmp_path):
     """A fix in a package beside the manifest's folder is seen too, even when the manifest is
     what failed validation (it is read as plain YAML); one that is not YAML names none."""
