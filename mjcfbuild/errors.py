@@ -182,6 +182,10 @@ _WRITE_FAILURES: dict[str, tuple[str, str]] = {
     "EROFS": ("read-only file system", "build in a folder that can be written"),
     "EACCES": ("permission denied", "check the permissions of the file and its folder"),
     "EPERM": ("permission denied", "check the permissions of the file and its folder"),
+    "ENAMETOOLONG": (
+        "file name too long for its file system",
+        "shorten the name robot.yaml gives it (name:, output:)",
+    ),
 }
 
 

@@ -59,13 +59,13 @@ def add_parser(commands) -> None:
     )
     parser.add_argument(
         "--configurations",
-        type=int,
+        type=_configurations,
         default=None,
         help="how many joint configurations the link-pose check compares (default: 20)",
     )
     parser.add_argument(
         "--tolerance",
-        type=float,
+        type=_tolerance,
         default=None,
         help="for every quantity: link poses in metres and radians, axes, ranges, masses and "
         "inertias relative to their size (default 1e-6; axes to inertias no finer than the "
@@ -309,3 +309,29 @@ def _up_to_date(ctx) -> int:
         file=sys.stderr,
     )
     return EXIT_CHECK
+
+
+def _tolerance(text: str) -> float:
+    """A tolerance: a positive number (nan compared false with every error and passed all)."""
+    import math
+
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError("must be a positive number, such as 1e-6")
+    return value
+
+
+def _configurations(text: str) -> int:
+    """A count of configurations: 1 to MOST_CONFIGURATIONS."""
+    from mjcfbuild.manifest.models import MOST_CONFIGURATIONS
+
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    if not 1 <= value <= MOST_CONFIGURATIONS:
+        raise argparse.ArgumentTypeError(f"must be from 1 to {MOST_CONFIGURATIONS}")
+    return value

@@ -12,8 +12,9 @@ known: every file below the manifest's folder, its source's folder and its packa
 is watched (:data:`MOST_TREE_FILES` at most), with the last stamp's files, except
 what a build writes - output folders (those holding a build's state folder; where that is
 the manifest's folder itself, the files its builds recorded writing), the files the last
-stamp lists as written, MuJoCo's log - each compared with what it was before the build
-started, so that a fix saved while a failing build still ran is not missed.
+stamp lists as written, MuJoCo's log, the file the watch's own output goes to - each
+compared with what it was before the build started, so that a fix saved while a failing
+build still ran is not missed.
 
 A file counts as changed when its signature (:mod:`mjcfbuild.filesig`) moves, as for the no-op
 fast path; one recorded within the file system's tick of its last change is compared by its
@@ -27,6 +28,7 @@ import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+from stat import S_ISREG
 
 from mjcfbuild import filesig
 from mjcfbuild.engine.written import WRITTEN
@@ -138,7 +140,7 @@ def around(manifest: Path, last_good: Watched | None) -> list[str]:
     (at most :data:`MOST_TREE_FILES` in all), and the files of ``last_good``, except what a
     build writes: output folders (below those folders, holding a state folder; the files
     builds recorded writing where one of those folders is an output folder itself), the
-    files ``last_good`` lists as written, MuJoCo's log."""
+    files ``last_good`` lists as written, MuJoCo's log, and the files this process prints to."""
     outputs: list[str] = []
     recorded: set[str] = set()
     found = [str(manifest.resolve())]
@@ -162,9 +164,34 @@ def around(manifest: Path, last_good: Watched | None) -> list[str]:
     if last_good is not None:
         found += last_good.records
         written |= last_good.written
+    own = _own_output()
     return sorted(
-        path for path in set(found) if path not in written and not path.startswith(tuple(outputs))
+        path
+        for path in set(found)
+        if path not in written
+        and not path.startswith(tuple(outputs))
+        and not (own and _identity(path) in own)
     )
+
+
+def _own_output() -> set[tuple[int, int]]:
+    """The files this process's output goes to (``mjcfbuild watch > watch.txt`` in the
+    robot's folder), by device and inode: each line it prints would change one, and every
+    change start another build, without end."""
+    identities = set()
+    for descriptor in (1, 2):
+        try:
+            stat = os.fstat(descriptor)
+        except OSError:
+            continue
+        if S_ISREG(stat.st_mode):
+            identities.add((stat.st_dev, stat.st_ino))
+    return identities
+
+
+def _identity(path: str) -> tuple[int, int] | None:
+    stat = _stat(path)
+    return None if stat is None else (stat.st_dev, stat.st_ino)
 
 
 def _recorded_as_written(out_dir: Path) -> set[str]:

@@ -297,10 +297,18 @@ def _refuse_unknown_attributes(element: etree._Element, item: RawElement) -> Non
             )
 
 
+# The timesteps a build simulates with: MuJoCo compiles any value, but the build's trials, its
+# check and its tuning report simulate seconds of motion. Below, a build takes hours (1e-9: a
+# billion steps a second); above, a 1 s hold is a step or two and proves nothing (a 1 s
+# timestep passed the check with a servo swinging outside its range), and a robot's contacts
+# and servos do not hold. Menagerie's models use 0.002-0.005 s.
+SHORTEST_TIMESTEP = 1e-5
+LONGEST_TIMESTEP = 0.05
+
+
 def _refuse_impossible_timestep(element: etree._Element, item: RawElement) -> None:
-    """Refuse, at its line, an ``<option timestep>`` that is not a positive number of seconds.
-    MuJoCo compiles any value; the build's trials, the check and the tuning report then
-    simulate with it (a negative one failed the tuning report with an internal error)."""
+    """Refuse, at its line, an ``<option timestep>`` outside the timesteps a build can
+    simulate with (:data:`SHORTEST_TIMESTEP` to :data:`LONGEST_TIMESTEP`)."""
     import math
 
     for node in element.iter("option"):
@@ -316,6 +324,13 @@ def _refuse_impossible_timestep(element: etree._Element, item: RawElement) -> No
                 _line_of(node, element, item),
                 f'<option timestep="{text}">: the timestep must be a positive number of seconds',
                 hint="MuJoCo's default is 0.002",
+            )
+        if not SHORTEST_TIMESTEP <= value <= LONGEST_TIMESTEP:
+            raise input_error(
+                _line_of(node, element, item),
+                f'<option timestep="{text}">: a build simulates with timesteps from '
+                f"{SHORTEST_TIMESTEP:g} to {LONGEST_TIMESTEP:g} s",
+                hint="MuJoCo's default is 0.002; MuJoCo Menagerie's models use 0.002-0.005",
             )
 
 

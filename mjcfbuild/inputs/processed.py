@@ -230,6 +230,14 @@ class LidarInput(ProcessedInput):
     def _ordered(self) -> LidarInput:
         if self.max_angle < self.min_angle:
             raise ValueError("max_angle is below min_angle")
+        from mjcfbuild.inputs.frames import ray_count
+
+        rays = ray_count(self.min_angle, self.max_angle, self.angle_increment)
+        if rays > MOST_RAYS:
+            raise ValueError(
+                f"{rays} rays from min_angle to max_angle by angle_increment; at most "
+                f"{MOST_RAYS} (a real planar lidar has a few thousand)"
+            )
         return self
 
     def identity(self) -> str:
@@ -244,6 +252,10 @@ class LidarInput(ProcessedInput):
             (self.min_angle, self.max_angle, self.angle_increment),
             self.origin,
         )
+
+
+# Each ray is a rangefinder site the model carries and casts at every step.
+MOST_RAYS = 20_000
 
 
 class DecomposeInput(ProcessedInput):

@@ -385,6 +385,10 @@ class MujocoInputs(StrictModel):
     decompose: list[DecomposeInput] = Field(default_factory=list)
 
 
+# More link-pose configurations than this is no more evidence, only minutes of waiting.
+MOST_CONFIGURATIONS = 10_000
+
+
 class CheckSettings(StrictModel):
     """The check that ends every build (also ``mjcfbuild check``)."""
 
@@ -396,11 +400,14 @@ class CheckSettings(StrictModel):
         "(docs/simulation.md, the tuning report).",
     )
     configurations: int = Field(
-        20, ge=1, description="Random joint configurations for the kinematics check."
+        20,
+        ge=1,
+        le=MOST_CONFIGURATIONS,
+        description="Random joint configurations for the kinematics check.",
     )
     position_tolerance: float = Field(1e-6, gt=0, description="Largest link position error (m).")
     rotation_tolerance: float = Field(1e-6, gt=0, description="Largest link rotation error (rad).")
-    steps: int = Field(2000, ge=1, description="Zero-control simulation steps.")
+    steps: int = Field(2000, ge=1, le=1_000_000, description="Zero-control simulation steps.")
     hold_tolerance: float = Field(
         0.05,
         gt=0,

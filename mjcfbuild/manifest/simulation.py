@@ -116,7 +116,10 @@ class SelfCollisionSettings(_Strict):
     """Which pairs of robot bodies may collide (a collision matrix, as MoveIt computes it)."""
 
     samples: int = Field(
-        DEFAULT_SAMPLES, gt=0, description="Random joint configurations sampled (seeded)."
+        DEFAULT_SAMPLES,
+        gt=0,
+        le=100_000,  # each is a collision pass over the robot: 1e9 asked for 45 GB
+        description="Random joint configurations sampled (seeded).",
     )
     seed: int = Field(0, ge=0, description="Seed of the samples.")
     exclude_never: bool = Field(

@@ -1212,7 +1212,60 @@ CASES: list[Case] = [
         ["robot.yaml:5:", "'..'", "is outside", "--allow-outside"],
         args=["clean"],
     ),
+    Case(
+        "self-collision samples beyond what a build can take",
+        {
+            "robot.yaml": MANIFEST + "self_collision:\n  samples: 1000000000\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:", "samples", "100000"],
+    ),
+    Case(
+        "check configurations beyond what a build can take",
+        {"robot.yaml": MANIFEST + "check:\n  configurations: 1000000000\n", "robot.urdf": urdf()},
+        EXIT_MANIFEST,
+        ["robot.yaml:5:", "configurations", "10000"],
+    ),
+    Case(
+        "lidar of a million rays",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  lidars:\n    - {sensor_name: rf, link: arm, min_angle: 0,"
+            " max_angle: 3, angle_increment: 0.000001}\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:6:", "3000001 rays", "at most 20000"],
+    ),
+    Case(
+        "model name too long for the file system",
+        {"robot.yaml": MANIFEST.replace("name: robot", "name: " + "r" * 250), "robot.urdf": urdf()},
+        EXIT_OUTPUT,
+        ["cannot write: file name too long for its file system", "shorten the name"],
+    ),
     # ---- the command line ---------------------------------------------------------------------
+    Case(
+        "check tolerance not a number",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+        EXIT_USAGE,
+        ["--tolerance", "must be a positive number"],
+        args=["check", "--tolerance", "nan"],
+    ),
+    Case(
+        "check tolerance negative",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+        EXIT_USAGE,
+        ["--tolerance", "must be a positive number"],
+        args=["check", "--tolerance=-1"],
+    ),
+    Case(
+        "check configurations zero",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+        EXIT_USAGE,
+        ["--configurations", "must be from 1 to 10000"],
+        args=["check", "--configurations", "0"],
+    ),
     Case(
         "unknown option",
         {"robot.yaml": MANIFEST, "robot.urdf": urdf()},

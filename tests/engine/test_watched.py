@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 from pathlib import Path
 
 import mjcfbuild
 from mjcfbuild.cli import run
 from mjcfbuild.engine.watched import MUJOCO_LOG, Watched, around, from_stamp, without_stamp
+from tests.conftest import ROOT
 
 
 def test_after_a_build_it_watches_what_the_stamp_lists_as_recorded(arm):
@@ -71,6 +74,30 @@ def test_without_a_stamp_what_builds_wrote_into_the_manifests_own_folder_is_not_
     # A record that cannot be read leaves out nothing but the state folder.
     (arm / ".mjcfbuild" / "written.json").write_text("[")
     assert str(arm / "example_arm.xml") in around(manifest, None)
+
+
+def test_without_a_stamp_the_file_its_own_output_goes_to_is_not_watched(tmp_path):
+    """``mjcfbuild watch > watch.txt`` in the robot's folder: each line it printed changed a
+    watched file, and after a failed build it built again and again without end."""
+    robot = tmp_path / "robot"
+    robot.mkdir()
+    (robot / "robot.yaml").write_text("name: [\n")
+    script = (
+        "import sys; from pathlib import Path; from mjcfbuild.engine.watched import around; "
+        "print('printed', flush=True); "
+        "sys.stderr.write(repr(around(Path(sys.argv[1]), None)))"
+    )
+    with open(robot / "watch.txt", "w") as output:
+        done = subprocess.run(
+            [sys.executable, "-c", script, str(robot / "robot.yaml")],
+            stdout=output,
+            stderr=subprocess.PIPE,
+            text=True,
+            env={**os.environ, "PYTHONPATH": str(ROOT)},
+            check=True,
+        )
+    assert (robot / "watch.txt").read_text() == "printed\n"
+    assert done.stderr == repr([str(robot / "robot.yaml")])
 
 
 def test_without_a_stamp_it_watches_the_source_and_package_folders_it_names(tmp_path):

@@ -117,6 +117,17 @@ def test_a_raw_timestep_that_is_no_positive_number_is_an_error_at_its_input(tmp_
     ) in text, text
 
 
+@pytest.mark.parametrize("timestep", ["1", "0.06", "1e-6"])
+def test_a_raw_timestep_a_build_cannot_simulate_with_is_an_error_at_its_input(tmp_path, timestep):
+    """1 s passed the check (its 1 s hold was one step, a servo swinging out of range); 1e-9
+    ran for hours."""
+    text = error(tmp_path, f'<raw_inputs>\n<option timestep="{timestep}"/></raw_inputs>')
+    assert (
+        f'inputs.xml:2: <option timestep="{timestep}">: a build simulates with timesteps from '
+        "1e-05 to 0.05 s"
+    ) in text, text
+
+
 def test_raw_attributes_of_an_element_in_any_of_its_places_are_kept(tmp_path):
     # <joint> in an equality has joint1 and polycoef, which a body's <joint> has not.
     result = build(
