@@ -171,7 +171,9 @@ FAMILY = Family(
     name="assemble",
     step="mjcfbuild.steps.assemble:run",
     payload=AssemblePayload,
-    format=13,  # 12: the Gazebo sensors' MJCF counterparts; 13: the products' binary copies
+    # 12: the Gazebo sensors' MJCF counterparts; 13: the products' binary copies; 14: a raw
+    # timestep a build cannot simulate with refused
+    format=14,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,
     compiles_model=True,

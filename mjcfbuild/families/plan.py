@@ -69,8 +69,9 @@ FAMILY = Family(
     name="plan",
     step="mjcfbuild.steps.plan:run",
     payload=PlanPayload,
-    # 5: ros2_control <hardware>; 6: chains deeper than MuJoCo reads; 7: Gazebo sensors
-    format=8,  # 6: chains deeper than MuJoCo reads; 7: Gazebo sensors; 8: processed inputs by tag
+    # 5: ros2_control <hardware>; 6: chains deeper than MuJoCo reads; 7: Gazebo sensors;
+    # 8: processed inputs by tag; 9: a mimic of a fixed joint, or a ring of mimics, refused
+    format=9,
     tools=("lxml",),
     tasks=_tasks,
     stage="planning",

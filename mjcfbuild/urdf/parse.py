@@ -580,6 +580,7 @@ def validate_structure(robot: Robot, root: etree._Element, reader: _Reader) -> N
                 line=joint.line,
                 hint=_closest(joint.mimic.joint, joint_names),
             )
+    _refuse_impossible_mimics(robot, reader.file)
     roots = [link.name for link in robot.links if link.name not in parent_of]
     if not roots:
         raise InputError(
@@ -611,6 +612,36 @@ def validate_structure(robot: Robot, root: etree._Element, reader: _Reader) -> N
             file=reader.file,
             line=unreached[0].line,
         )
+
+
+def _refuse_impossible_mimics(robot: Robot, file: str) -> None:
+    """A joint that follows a fixed joint (which does not move, and MuJoCo's import removes),
+    or a ring of joints each following the next (none of them is driven), is an error at its
+    ``<joint>``: MuJoCo built contradictory constraints and no actuator for either."""
+    joints = {joint.name: joint for joint in robot.joints}
+    for joint in robot.joints:
+        if joint.mimic is None or joint.kind == "fixed":
+            continue  # a fixed joint's <mimic> moves nothing (genesis' panda_suction has one)
+        leader = joints[joint.mimic.joint]
+        if leader.kind == "fixed":
+            raise InputError(
+                f"joint '{joint.name}' mimics joint '{leader.name}', which is fixed",
+                file=file,
+                line=joint.line,
+                hint="name a moving joint in <mimic joint=...>, or remove the <mimic>",
+            )
+        ring = [joint.name]
+        while leader.mimic is not None and leader.name not in ring:
+            ring.append(leader.name)
+            leader = joints[leader.mimic.joint]
+        if leader.name == joint.name:
+            raise InputError(
+                f"joints {' -> '.join([*ring, joint.name])} mimic each other in a ring, so "
+                "none of them is driven",
+                file=file,
+                line=joint.line,
+                hint="one of them must follow no other joint: remove its <mimic>",
+            )
 
 
 def _closest(name: str, candidates: set[str]) -> str | None:

@@ -34,10 +34,10 @@ from tests.families.toy_step import ToyPayload
 # that family's tasks in every folder built before.
 BEFORE_FORMATS = {
     "expand": 2,
-    "plan": 8,
+    "plan": 9,
     "mesh": 7,
     "decompose": 3,
-    "assemble": 13,
+    "assemble": 14,
     "scene": 3,
     "check": 10,
     "reference": 1,

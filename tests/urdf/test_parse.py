@@ -243,7 +243,36 @@ DEFECTS = [
         "mimics joint 'k', which does not exist",
         2,
     ),
+    (
+        "<robot><link name='a'/><link name='b'/><link name='c'/>\n"
+        "<joint name='f' type='fixed'><parent link='a'/><child link='b'/></joint>\n"
+        "<joint name='j' type='revolute'><parent link='b'/><child link='c'/>"
+        "<limit lower='-1' upper='1' effort='1' velocity='1'/><mimic joint='f'/></joint></robot>",
+        "joint 'j' mimics joint 'f', which is fixed",
+        3,
+    ),
+    (
+        "<robot><link name='a'/><link name='b'/><link name='c'/>\n"
+        "<joint name='l' type='continuous'><parent link='a'/><child link='b'/>"
+        "<mimic joint='r'/></joint>\n"
+        "<joint name='r' type='continuous'><parent link='a'/><child link='c'/>"
+        "<mimic joint='l'/></joint></robot>",
+        "joints l -> r -> l mimic each other in a ring, so none of them is driven",
+        2,
+    ),
 ]
+
+
+def test_a_fixed_joint_may_mimic_a_fixed_joint():
+    """It moves nothing either way (genesis' panda with a suction cup fixes both fingers)."""
+    robot = parse_urdf(
+        b"<robot name='r'><link name='a'/><link name='b'/><link name='c'/>"
+        b"<joint name='f1' type='fixed'><parent link='a'/><child link='b'/></joint>"
+        b"<joint name='f2' type='fixed'><parent link='a'/><child link='c'/>"
+        b"<mimic joint='f1'/></joint></robot>",
+        "r.urdf",
+    )
+    assert [joint.name for joint in robot.joints] == ["f1", "f2"]
 
 
 @pytest.mark.parametrize(("text", "message", "line"), DEFECTS, ids=[d[1] for d in DEFECTS])
