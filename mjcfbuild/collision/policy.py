@@ -13,7 +13,7 @@ from __future__ import annotations
 import fnmatch
 import hashlib
 import json
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import PurePath
 from typing import Any, Literal, Protocol
@@ -275,3 +275,43 @@ def decompositions(robot: Robot, choices: list[CollisionChoice]) -> dict[str, tu
             name = mesh_id if len(sets) == 1 else decompose_id(mesh_id, params)
             result[name] = (mesh_id, params)
     return dict(sorted(result.items()))
+
+
+class _PatternRule(Protocol):
+    """A robot.yaml collision rule, as far as matching goes."""
+
+    @property
+    def links(self) -> list[str]: ...
+
+    @property
+    def meshes(self) -> list[str]: ...
+
+
+def check_rules(robot: Robot, rules: Sequence[_PatternRule], manifest_label: str) -> None:
+    """Refuse a robot.yaml collision rule whose link patterns match no link of ``robot``, or
+    whose mesh patterns match no mesh of it: always a typo, and the rule would change no
+    geometry without a word (an actuator rule or a home joint that names nothing is refused
+    the same way)."""
+    from mjcfbuild.errors import ManifestError
+    from mjcfbuild.sources.packages import did_you_mean
+
+    links = [link.name for link in robot.links]
+    meshes = sorted(
+        {name for link in robot.links for shape in link.shapes for name in mesh_names(shape)}
+    )
+    for index, rule in enumerate(rules):
+        for key, noun, names in (("links", "link", links), ("meshes", "mesh", meshes)):
+            patterns = list(getattr(rule, key))
+            if not patterns or any(fnmatch.fnmatchcase(n, p) for n in names for p in patterns):
+                continue
+            near = next(
+                (found for p in patterns if (found := did_you_mean(p.strip("*?"), names))), ""
+            )
+            shown = ", ".join(names[:12]) + (
+                f", ... ({len(names)} in all)" if len(names) > 12 else ""
+            )
+            raise ManifestError(
+                f"rule matches no {noun} of the robot ({', '.join(patterns)}){near}",
+                file=f"{manifest_label} collision.rules[{index}].{key}",
+                hint=f"its {key}: {shown or 'none'}",
+            )

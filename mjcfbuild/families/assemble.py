@@ -91,7 +91,9 @@ def _tasks(graph: Graph) -> list[dict]:
 
 
 def _verify(graph: Graph) -> None:
-    """Refuse actuator rules and home values that name no joint, before anything is built."""
+    """Refuse actuator rules and home values that name no joint, and collision rules that
+    match no link or mesh, before anything is built."""
+    from mjcfbuild.collision.policy import check_rules as check_collision_rules
     from mjcfbuild.control.choose import check_rules
     from mjcfbuild.control.home import home_values
     from mjcfbuild.manifest.pinpoint import pinpoint
@@ -100,6 +102,7 @@ def _verify(graph: Graph) -> None:
     robot = part_robot(ctx, graph.robot, graph.parts)
     try:
         check_rules(robot, ctx.manifest.actuators, ctx.manifest_label)
+        check_collision_rules(graph.robot, ctx.manifest.collision.rules, ctx.manifest_label)
         _motors(ctx)  # an unknown motor or a bad motor file, before anything is built
         home_values(robot, graph.plan.control(), ctx.manifest.home, None, ctx.manifest_label)
         _check_kept_pairs(robot, ctx)

@@ -334,6 +334,25 @@ CASES: list[Case] = [
         ["robot.yaml", "hull_tolerance", "less than or equal to 1"],
     ),
     Case(
+        "collision rule naming no link (letter case)",
+        {
+            "robot.yaml": MANIFEST + "collision:\n  rules:\n    - {links: [Arm], policy: hull}\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:6:", "rule matches no link of the robot (Arm); did you mean 'arm'?"],
+    ),
+    Case(
+        "collision rule naming no mesh",
+        {
+            "robot.yaml": MANIFEST
+            + "collision:\n  rules:\n    - {meshes: [forarm*], policy: decompose}\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_MANIFEST,
+        ["robot.yaml:6:", "rule matches no mesh of the robot (forarm*)", "its meshes: none"],
+    ),
+    Case(
         "not a number",
         {"robot.yaml": MANIFEST + "inertia:\n  min_mass: .nan\n"},
         EXIT_MANIFEST,
