@@ -58,6 +58,8 @@ def describe_error(
         return f"expected true or false, got {_show(value)}"
     if kind in {"int_type", "int_parsing", "float_type", "float_parsing", "int_from_float"}:
         return f"expected a number, got {_show(value)}"
+    if kind == "finite_number":
+        return f"expected a finite number, got {_show(value)}"
     if kind in {"dict_type", "model_type", "model_attributes_type"}:
         return f"expected a mapping of keys, got {_show(value)}"
     if kind in {"list_type", "tuple_type"}:

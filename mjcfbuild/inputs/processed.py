@@ -49,7 +49,7 @@ def mjcf_text(value: object) -> str:
 class ProcessedInput(BaseModel):
     """One item of ``processed_inputs`` (the base of every tag's model)."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
     xml_tag: ClassVar[str]  # the reference converter's element
     manifest_key: ClassVar[str]  # its list in robot.yaml's mujoco_inputs

@@ -44,7 +44,7 @@ FileName = Annotated[
 class StrictModel(BaseModel):
     """Base of every manifest model: unknown keys are errors."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
 
 class Source(StrictModel):

@@ -21,7 +21,7 @@ class Motor(BaseModel):
     """One drive: rotor, gearbox and limits. Torques in N m and speeds in rad/s, given at the
     output (the joint) or at the rotor, as ``at`` says; the rotor inertia is always the rotor's."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
     rotor_inertia: float = Field(
         gt=0, description="Moment of inertia of the rotor about its axis (kg m^2), at the rotor."
@@ -90,7 +90,7 @@ class MotorCatalogue(RootModel[dict[MotorName, Motor]]):
 class MotorSettings(BaseModel):
     """Drives that actuator rules name with ``motor:``."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
     files: list[MotorFile] = Field(
         default_factory=list,

@@ -21,7 +21,7 @@ DEFAULT_SAMPLES = 1000
 
 
 class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
 
 class ActuatorRule(_Strict):

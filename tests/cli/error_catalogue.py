@@ -356,7 +356,13 @@ CASES: list[Case] = [
         "not a number",
         {"robot.yaml": MANIFEST + "inertia:\n  min_mass: .nan\n"},
         EXIT_MANIFEST,
-        ["robot.yaml:5:3", "min_mass", "nan"],
+        ["robot.yaml:5:3", "min_mass: expected a finite number, got nan"],
+    ),
+    Case(
+        "infinite where a number is meant",
+        {"robot.yaml": MANIFEST + "inertia:\n  min_mass: .inf\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:5:3", "min_mass: expected a finite number, got inf"],
     ),
     Case(
         "robot name with a slash",
