@@ -209,9 +209,12 @@ def _apply_additions(
             return mujoco.MjModel.from_xml_string(xml)
         except Exception as exc:
             message = _first_line(exc).replace("Error: ", "")
+            file, line = _raw_input_named(str(exc), inputs)
             raise ModelError(
                 f"MuJoCo rejected the model with its inputs: {message}",
                 hint="check the mujoco_inputs and raw MJCF",
+                file=file,
+                line=line,
             ) from None
 
     parts = with_parts(robot, options.parts, options.actuators)
@@ -272,6 +275,27 @@ def _apply_additions(
     finished = compile_tree(root, drawing=True)  # the finished model, as published
     size_arena(root, finished)  # issue 40: a long chain's contacts outgrow the default
     return warnings, readiness
+
+
+def _raw_input_named(error: str, inputs: Inputs) -> tuple[str | None, int | None]:
+    """Where the raw input is that MuJoCo's ``error`` is about: the first raw element holding
+    an element of the tag MuJoCo names (``Element 'option', line 3``), if one does; (None,
+    None) otherwise (the element came from the URDF or mjcfbuild, or MuJoCo named none)."""
+    import re
+
+    from mjcfbuild.inputs.model import origin_location
+
+    named = re.search(r"Element '(\w+)'", error)
+    if named is None:
+        return None, None
+    for item in inputs.raw:
+        try:
+            element = etree.fromstring(item.xml)
+        except etree.XMLSyntaxError:
+            continue
+        if next(element.iter(named.group(1)), None) is not None:
+            return origin_location(item.origin)
+    return None, None
 
 
 def _reading_products(root: etree._Element, prepared: Prepared) -> etree._Element:

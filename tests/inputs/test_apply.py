@@ -192,7 +192,8 @@ def test_inputs_mujoco_rejects_are_named_in_mujocos_words(tmp_path):
     """No compile of its own checks the inputs first: the first compile's failure is reported
     as MuJoCo's complaint about the inputs."""
     with pytest.raises(BuildFailed) as info:
-        build(tmp_path, '<raw_inputs><option impratio="fast"/></raw_inputs>')
+        build(tmp_path, '<raw_inputs>\n<actuator/>\n<option impratio="fast"/></raw_inputs>')
     text = info.value.one_line()
-    assert "MuJoCo rejected the model with its inputs" in text, text
+    # at the raw element holding the <option> MuJoCo names
+    assert "inputs.xml:3: MuJoCo rejected the model with its inputs" in text, text
     assert "impratio" in text and "check the mujoco_inputs and raw MJCF" in text, text
