@@ -1362,6 +1362,13 @@ CASES: list[Case] = [
         args=["build", "--executor", "ray://head:10001"],
     ),
     Case(
+        "export-urdf over a file it did not write (the description's own URDF)",
+        {"model.xml": EXPORT_MODEL, "robot.urdf": urdf()},
+        EXIT_USAGE,
+        ["robot.urdf already exists and was not written by export-urdf", "--force"],
+        args=["export-urdf", "model.xml", "-o", "robot.urdf"],
+    ),
+    Case(
         "export-urdf: --limits-from a missing URDF",
         {"model.xml": EXPORT_MODEL},
         EXIT_INPUT,
