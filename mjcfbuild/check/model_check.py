@@ -35,6 +35,7 @@ from mjcfbuild.check.results import (
     Simulation,
 )
 from mjcfbuild.check.simulation import simulate
+from mjcfbuild.mjerrors import load_error
 from mjcfbuild.mjstopped import SimulationStopped, simulating
 from mjcfbuild.urdf.model import Robot
 
@@ -83,7 +84,7 @@ def check_model(
     try:
         model = compile_model(path, sources)
     except Exception as exc:
-        line = f"{path.name} does not load: {str(exc).strip().splitlines()[0]}"
+        line = f"{path.name} does not load: {load_error(exc)}"
         return CheckResults(loads=False, failures=[line])
     results = CheckResults(loads=True)
     problems: list[Problem] = []

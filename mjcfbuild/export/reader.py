@@ -13,6 +13,7 @@ from mjcfbuild.actuators import dcmotor_of
 from mjcfbuild.errors import InputError, ModelError
 from mjcfbuild.export.model import BodyOut, GeomOut, JointOut, MeshOut, MimicOut, ModelOut
 from mjcfbuild.fsutil import unreadable_file
+from mjcfbuild.mjerrors import load_error
 from mjcfbuild.urdf.model import WORLD
 from mjcfbuild.urdf.transforms import Transform, matmul, matrix3, quat_to_matrix, transpose
 
@@ -42,8 +43,7 @@ def read_mjcf(path: Path, speeds: dict[str, float] | None = None) -> ModelOut:
         spec = mujoco.MjSpec.from_file(str(path))
         model = spec.compile()
     except Exception as exc:
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise ModelError(f"MuJoCo cannot load the model: {first}", file=path) from None
+        raise ModelError(f"MuJoCo cannot load the model: {load_error(exc)}", file=path) from None
     classes = {geom.id: (geom.classname.name if geom.classname else "") for geom in spec.geoms}
     names = _body_names(model)
     bodies = [_body(model, index, names) for index in range(model.nbody)]
