@@ -12,7 +12,9 @@ from pathlib import Path
 
 from mjcfbuild.errors import MjcfbuildError
 
-_KEY_PART = re.compile(r"([A-Za-z_][\w\-]*)|\[(\d+)\]")
+# A key is anything but dots and brackets: a home: key may be a glob ("*finger*") or a joint
+# name with characters no identifier has.
+_KEY_PART = re.compile(r"([^.\[\]]+)|\[(\d+)\]")
 _BLOCK_INDICATORS = ("|", ">")
 
 

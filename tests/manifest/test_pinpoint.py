@@ -36,3 +36,13 @@ def test_an_error_about_another_file_is_left_alone(tmp_path: Path):
     error = InputError("bad", file="robot.urdf", line=3)
     pinpoint(error, str(manifest), manifest)
     assert error.one_line() == "robot.urdf:3: bad"
+
+
+@pytest.mark.parametrize("key", ["*finger*", "arm/joint:1", "l_hip-yaw", "0"])
+def test_a_key_that_is_no_identifier_points_at_its_line(tmp_path: Path, key: str):
+    """A home: key may be a glob or a joint name with any characters but dots."""
+    manifest = tmp_path / "robot.yaml"
+    manifest.write_text(f'{MANIFEST}home:\n  shoulder: 0.5\n  "{key}": 1.0\n')
+    error = InputError("matches no moving joint", file=f"robot.yaml home.{key}")
+    pinpoint(error, "robot.yaml", manifest)
+    assert error.one_line() == f"robot.yaml:10:3: home.{key}: matches no moving joint"
