@@ -26,6 +26,7 @@ def check_output_folder(ctx: BuildContext) -> None:
     """Raise :class:`OutputError` unless the build of ``ctx`` may write its output folder."""
     if _guarded(ctx):
         _check_inside(ctx)
+        _check_not_a_file(ctx)
     for folder in build_folders(ctx):
         if folder.is_symlink():
             raise OutputError(
@@ -41,6 +42,23 @@ def _guarded(ctx: BuildContext) -> bool:
     """Whether the output folder comes from robot.yaml (``convert -o``, ``diff``'s scratch
     builds and the API's folders are named by their caller)."""
     return ctx.manifest_file is not None and ctx.output_override is None
+
+
+def _check_not_a_file(ctx: BuildContext) -> None:
+    """Refuse, at its line, an output.folder that names a file (``output.folder:
+    robot.urdf``): the build would fail writing into it with the system's "Not a directory"."""
+    if not ctx.out_dir.exists() or ctx.out_dir.is_dir():
+        return
+    from mjcfbuild.errors import ManifestError
+    from mjcfbuild.manifest.pinpoint import pinpoint
+
+    error = ManifestError(
+        f"'{ctx.manifest.output.folder}' is a file, not a folder",
+        file=f"{ctx.manifest_label} output.folder",
+        hint="name the folder the model is written to, such as mjcf",
+    )
+    assert ctx.manifest_file is not None, "guarded only with a manifest file"
+    raise pinpoint(error, ctx.manifest_label, ctx.manifest_file)
 
 
 def _check_inside(ctx: BuildContext) -> None:

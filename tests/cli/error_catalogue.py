@@ -1231,6 +1231,12 @@ CASES: list[Case] = [
         ["out/assets", "symbolic link", "remove the link"],
     ),
     Case(
+        "output folder that is a file",
+        {"robot.yaml": MANIFEST + "output:\n  folder: robot.urdf\n", "robot.urdf": urdf()},
+        EXIT_MANIFEST,
+        ["robot.yaml:5:3", "output.folder: 'robot.urdf' is a file, not a folder"],
+    ),
+    Case(
         "clean of an output folder above robot.yaml",
         {"robot.yaml": MANIFEST + "output:\n  folder: ..\n", "robot.urdf": urdf()},
         EXIT_OUTPUT,
