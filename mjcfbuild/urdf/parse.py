@@ -507,7 +507,11 @@ def _axis(element: etree._Element | None, joint: str, kind: str, reader: _Reader
             return axis
     axis = reader.numbers(element, "xyz", 3, axis)
     if all(abs(a) < 1e-12 for a in axis):
-        raise reader.error(element, f"joint '{joint}' has a zero axis")
+        raise reader.error(
+            element,
+            f"joint '{joint}' has a zero axis",
+            hint="give <axis xyz> the direction it turns or slides about, such as 0 0 1",
+        )
     return axis
 
 
