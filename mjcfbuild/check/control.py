@@ -207,6 +207,24 @@ def _hold_advice(model, key: int, joint: str | None) -> str:
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, key)
     mujoco.mj_forward(model, data)
+    if drive not in ("motor", "velocity"):
+        aim = _position_aim(model, data, index)
+        if aim is not None:
+            target, position = aim
+            outside = _outside_ctrlrange(model, index, position)
+            if outside is not None:
+                return (
+                    f"'{joint}' is at {position:.4g} at home, outside its servo's ctrlrange "
+                    f"[{outside[0]:.4g}, {outside[1]:.4g}], so the servo pulls it back: give "
+                    "home a position inside the range"
+                )
+            name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_KEY, key)
+            return (
+                f"the '{name}' keyframe's ctrl asks the servo of '{joint}' for {target:.4g}, "
+                f"not its position there ({position:.4g}): give the keyframe a ctrl that "
+                "matches its qpos, or remove the keyframe from the inputs and let mjcfbuild "
+                "write one"
+            )
     if _floating(model):
         from mjcfbuild.control.apply import standing_torques
 
@@ -223,6 +241,54 @@ def _hold_advice(model, key: int, joint: str | None) -> str:
         f"carries this load with a spring or counterweight, compensate gravity on the bodies "
         f"it moves (a rule's gravcomp: true)"
     )
+
+
+def _position_aim(model, data, joint: int) -> tuple[float, float] | None:
+    """Where the servo on ``joint`` aims with the ctrl of ``data`` and the joint's length there
+    (its position times the gear), where the two differ by more than a rounding; None where
+    they agree or the joint's actuator is no servo with position feedback. A drive's position
+    servo (``<dcmotor input="pos">``, mjcfbuild's default) aims at its ctrl; an affine one
+    where its force, gain * ctrl + bias0 + bias1 * length, is zero (a ``<position>``: at its
+    ctrl)."""
+    import mujoco
+
+    from mjcfbuild.actuators import is_dcmotor
+
+    for actuator in range(model.nu):
+        if (
+            model.actuator_trntype[actuator] != mujoco.mjtTrn.mjTRN_JOINT
+            or model.actuator_trnid[actuator][0] != joint
+        ):
+            continue
+        ctrl = float(data.ctrl[actuator])
+        gain = float(model.actuator_gainprm[actuator][0])
+        bias0, bias1 = (float(v) for v in model.actuator_biasprm[actuator][:2])
+        affine = model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_AFFINE
+        if is_dcmotor(model, actuator):
+            aim = ctrl
+        elif affine and bias1 < 0 and gain > 0:
+            aim = (gain * ctrl + bias0) / -bias1
+        else:
+            return None
+        length = float(data.actuator_length[actuator])
+        return (aim, length) if abs(aim - length) > 1e-3 * max(1.0, abs(length)) else None
+    return None
+
+
+def _outside_ctrlrange(model, joint: int, length: float) -> tuple[float, float] | None:
+    """The ctrlrange of the servo on ``joint`` where ``length`` lies outside it, else None."""
+    import mujoco
+
+    for actuator in range(model.nu):
+        if (
+            model.actuator_trntype[actuator] == mujoco.mjtTrn.mjTRN_JOINT
+            and model.actuator_trnid[actuator][0] == joint
+            and model.actuator_ctrllimited[actuator]
+        ):
+            low, high = (float(v) for v in model.actuator_ctrlrange[actuator])
+            if not low - 1e-9 <= length <= high + 1e-9:
+                return low, high
+    return None
 
 
 def _force_limit(model, joint: int) -> float | None:

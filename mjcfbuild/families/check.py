@@ -74,9 +74,10 @@ FAMILY = Family(
     name="check",
     step="mjcfbuild.steps.check:run",
     payload=CheckPayload,
-    format=10,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
+    format=11,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
     # measured again from inside the joint ranges, velocity limits of 1e6 and above taken for
-    # none, unstable-state warnings naming their joint
+    # none, unstable-state warnings naming their joint; 11: a hold failure of a servo whose
+    # keyframe ctrl is not its position says so
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

@@ -97,6 +97,37 @@ def test_hold_advice_fits_what_drives_the_joint(actuator, advice):
         assert "stiffen" not in held[0]
 
 
+@pytest.mark.parametrize(
+    ("key", "actuator", "advice"),
+    [
+        (  # a hand-written keyframe without ctrl: the servo aims at 0
+            '<key name="home" qpos="0.8"/>',
+            '<position joint="swing" kp="50" ctrlrange="-2 2"/>',
+            "the 'home' keyframe's ctrl asks the servo of 'swing' for 0, not its position "
+            "there (0.8): give the keyframe a ctrl that matches its qpos",
+        ),
+        (  # mjcfbuild's default servo: a drive's position servo
+            '<key name="home" qpos="0.8" ctrl="0.2"/>',
+            '<dcmotor joint="swing" input="pos" nominal="1 20 5" controller="50 0 1 0 0 1" '
+            'saturation="20 0 0" ctrlrange="-2 2"/>',
+            "asks the servo of 'swing' for 0.2, not its position there (0.8)",
+        ),
+        (
+            '<key name="home" qpos="0.8" ctrl="0.5"/>',
+            '<position joint="swing" kp="50" ctrlrange="-0.5 0.5"/>',
+            "'swing' is at 0.8 at home, outside its servo's ctrlrange [-0.5, 0.5]",
+        ),
+    ],
+)
+def test_a_servo_aimed_away_from_home_is_said_to_be(key, actuator, advice):
+    """No stiffening helps a servo whose home ctrl is not home (a keyframe in the inputs)."""
+    xml = HELD.format(actuator=actuator).replace('<key name="home" qpos="0" ctrl="0"/>', key)
+    report = check_control(mujoco.MjModel.from_xml_string(xml), set(), 0.05, strict=True)
+    held = [f for f in report.failures if f.startswith("holding home's ctrl")]
+    assert len(held) == 1 and advice in held[0], report.failures
+    assert "stiffen" not in held[0]
+
+
 def test_an_effort_only_quadruped_needs_a_controller_and_the_rule_the_check_gives_stands(
     tmp_path,
 ):

@@ -39,7 +39,7 @@ BEFORE_FORMATS = {
     "decompose": 3,
     "assemble": 14,
     "scene": 3,
-    "check": 10,
+    "check": 11,
     "reference": 1,
     "previews": 5,
     "tuning": 1,
