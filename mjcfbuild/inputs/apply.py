@@ -257,7 +257,7 @@ def model_section(root: etree._Element, name: str) -> etree._Element:
 def _merge_raw(root: etree._Element, item: RawElement, warnings: list[str]) -> list[etree._Element]:
     element = etree.fromstring(item.xml)
     _refuse_unknown_attributes(element, item)
-    _refuse_impossible_timestep(element, item)
+    _refuse_impossible_options(element, item)
     if item.section in SINGLE_SECTIONS:
         existing = root.find(item.section)
         if existing is None:
@@ -306,12 +306,31 @@ SHORTEST_TIMESTEP = 1e-5
 LONGEST_TIMESTEP = 0.05
 
 
-def _refuse_impossible_timestep(element: etree._Element, item: RawElement) -> None:
-    """Refuse, at its line, an ``<option timestep>`` outside the timesteps a build can
-    simulate with (:data:`SHORTEST_TIMESTEP` to :data:`LONGEST_TIMESTEP`)."""
+def _refuse_impossible_options(element: etree._Element, item: RawElement) -> None:
+    """Refuse, at its line, an ``<option>`` a build cannot simulate with, which MuJoCo
+    compiles all the same: a number that is not finite (gravity="0 0 nan": the check's
+    simulation went non-finite and blamed the servos), no solver iterations (nothing holds
+    a contact or a joint limit), a timestep outside :data:`SHORTEST_TIMESTEP` to
+    :data:`LONGEST_TIMESTEP`."""
     import math
 
     for node in element.iter("option"):
+        for name, text in node.attrib.items():
+            if name == "timestep":
+                continue  # below, with the timesteps a build simulates with
+            words = str(text).split()
+            if any(not math.isfinite(number) for number in _numbers(words)):
+                raise input_error(
+                    _line_of(node, element, item),
+                    f'<option {name}="{text}">: every number must be finite',
+                )
+        if node.get("iterations", "").strip() == "0":
+            raise input_error(
+                _line_of(node, element, item),
+                '<option iterations="0">: with no solver iterations nothing holds a contact, '
+                "a joint limit or an equality",
+                hint="MuJoCo's default is 100",
+            )
         text = node.get("timestep")
         if text is None:
             continue
@@ -332,6 +351,17 @@ def _refuse_impossible_timestep(element: etree._Element, item: RawElement) -> No
                 f"{SHORTEST_TIMESTEP:g} to {LONGEST_TIMESTEP:g} s",
                 hint="MuJoCo's default is 0.002; MuJoCo Menagerie's models use 0.002-0.005",
             )
+
+
+def _numbers(words: list[str]) -> list[float]:
+    """The words that are numbers, as numbers (an attribute may hold keywords instead)."""
+    numbers = []
+    for word in words:
+        try:
+            numbers.append(float(word))
+        except ValueError:
+            continue
+    return numbers
 
 
 def _line_of(node: etree._Element, element: etree._Element, item: RawElement) -> str:

@@ -128,6 +128,19 @@ def test_a_raw_timestep_a_build_cannot_simulate_with_is_an_error_at_its_input(tm
     ) in text, text
 
 
+@pytest.mark.parametrize(
+    ("option", "says"),
+    [
+        ('gravity="0 0 nan"', '<option gravity="0 0 nan">: every number must be finite'),
+        ('impratio="inf"', '<option impratio="inf">: every number must be finite'),
+        ('iterations="0"', '<option iterations="0">: with no solver iterations nothing holds'),
+    ],
+)
+def test_a_raw_option_a_build_cannot_simulate_with_is_an_error_at_its_input(tmp_path, option, says):
+    text = error(tmp_path, f"<raw_inputs>\n<option {option}/></raw_inputs>")
+    assert f"inputs.xml:2: {says}" in text, text
+
+
 def test_raw_attributes_of_an_element_in_any_of_its_places_are_kept(tmp_path):
     # <joint> in an equality has joint1 and polycoef, which a body's <joint> has not.
     result = build(
