@@ -192,7 +192,7 @@ def jobs_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "-j",
         "--jobs",
-        type=_positive_int,
+        type=positive_int,
         default=None,
         help="tasks to run at once (default: one per CPU)",
     )
@@ -224,7 +224,8 @@ def step_timeout(args: argparse.Namespace) -> float:
         return DEFAULT_STEP_TIMEOUT
 
 
-def _positive_int(text: str) -> int:
+def positive_int(text: str) -> int:
+    """An argparse type: a whole number of at least 1."""
     try:
         value = int(text)
     except ValueError:

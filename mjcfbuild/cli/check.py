@@ -13,6 +13,7 @@ from mjcfbuild.cli import (
     chosen_manifests,
     load_context,
     manifest_argument,
+    positive_int,
     timeout_argument,
 )
 from mjcfbuild.console import report_error, report_warnings
@@ -328,10 +329,7 @@ def _configurations(text: str) -> int:
     """A count of configurations: 1 to MOST_CONFIGURATIONS."""
     from mjcfbuild.manifest.models import MOST_CONFIGURATIONS
 
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
-    if not 1 <= value <= MOST_CONFIGURATIONS:
+    value = positive_int(text)
+    if value > MOST_CONFIGURATIONS:
         raise argparse.ArgumentTypeError(f"must be from 1 to {MOST_CONFIGURATIONS}")
     return value
