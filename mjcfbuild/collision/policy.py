@@ -293,7 +293,7 @@ def check_rules(robot: Robot, rules: Sequence[_PatternRule], manifest_label: str
     geometry without a word (an actuator rule or a home joint that names nothing is refused
     the same way)."""
     from mjcfbuild.errors import ManifestError
-    from mjcfbuild.sources.packages import did_you_mean
+    from mjcfbuild.sources.packages import listing, suggestion
 
     links = [link.name for link in robot.links]
     meshes = sorted(
@@ -304,14 +304,9 @@ def check_rules(robot: Robot, rules: Sequence[_PatternRule], manifest_label: str
             patterns = list(getattr(rule, key))
             if not patterns or any(fnmatch.fnmatchcase(n, p) for n in names for p in patterns):
                 continue
-            near = next(
-                (found for p in patterns if (found := did_you_mean(p.strip("*?"), names))), ""
-            )
-            shown = ", ".join(names[:12]) + (
-                f", ... ({len(names)} in all)" if len(names) > 12 else ""
-            )
             raise ManifestError(
-                f"rule matches no {noun} of the robot ({', '.join(patterns)}){near}",
+                f"rule matches no {noun} of the robot ({', '.join(patterns)})"
+                f"{suggestion(patterns, names)}",
                 file=f"{manifest_label} collision.rules[{index}].{key}",
-                hint=f"its {key}: {shown or 'none'}",
+                hint=f"its {key}: {listing(names)}",
             )

@@ -113,7 +113,7 @@ def _names(root: etree._Element, tag: str) -> list[str]:
 def _unplaceable(pending: list[Part], links: list[str]) -> ManifestError:
     """Why none of ``pending`` can be joined: an unknown link, or parts attached to each other."""
     from mjcfbuild.compose.chain import stuck_chain
-    from mjcfbuild.control.choose import listing
+    from mjcfbuild.sources.packages import listing
 
     owner = {
         part.prefix + name: part

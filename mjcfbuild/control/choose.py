@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING
 from mjcfbuild.actuators import ActuatorChoice, resolve_choice
 from mjcfbuild.errors import ManifestError
 from mjcfbuild.inputs.ros2_control import Ros2Control
+from mjcfbuild.sources.packages import listing, suggestion
 from mjcfbuild.urdf.model import Joint, Robot
 
 if TYPE_CHECKING:  # pydantic's models: a worker that only reads settings from a payload skips them
@@ -201,23 +202,3 @@ def positive_velocity(joint: Joint) -> float | None:
     """The joint's URDF velocity limit where it is one (positive), else None."""
     velocity = joint.limit.velocity if joint.limit is not None else None
     return velocity if velocity is not None and velocity > 0 else None
-
-
-def suggestion(patterns: list[str], names: list[str]) -> str:
-    """``; did you mean 'x'?`` for the name closest to one of ``patterns`` (a glob pattern
-    compared without its wildcards), or nothing."""
-    from mjcfbuild.sources.packages import did_you_mean
-
-    for pattern in patterns:
-        found = did_you_mean(pattern, names) or did_you_mean(pattern.strip("*?"), names)
-        if found:
-            return found
-    return ""
-
-
-def listing(names: list[str], most: int = 12) -> str:
-    """Names for an error message's hint, the first ``most`` of them."""
-    shown = ", ".join(names[:most])
-    return (
-        shown + (f", ... ({len(names)} in all)" if len(names) > most else "") if names else "none"
-    )

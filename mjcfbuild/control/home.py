@@ -10,9 +10,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from mjcfbuild.control.choose import listing, matches, suggestion
+from mjcfbuild.control.choose import matches
 from mjcfbuild.errors import ManifestError
 from mjcfbuild.inputs.ros2_control import Ros2Control
+from mjcfbuild.sources.packages import listing, suggestion
 from mjcfbuild.urdf.limits import joint_range
 from mjcfbuild.urdf.model import Joint, Robot
 

@@ -146,7 +146,7 @@ def _check_floor_contacts(robot: Robot, ctx: GraphContext) -> None:
 
 def _refuse_unknown_link(robot: Robot, link: str, key: str, ctx: GraphContext) -> None:
     """:class:`ManifestError` unless ``link``, given at manifest ``key``, is a robot link."""
-    from mjcfbuild.control.choose import listing
+    from mjcfbuild.sources.packages import listing
 
     links = [each.name for each in robot.links]
     if link not in links:

@@ -124,7 +124,7 @@ def _check_names(
 def _unplaceable(ctx: GraphContext, pending: list, targets: list[str]) -> ManifestError:
     """Why none of ``pending`` can be attached: an unknown ``to``, or a cycle."""
     from mjcfbuild.compose.chain import stuck_chain
-    from mjcfbuild.control.choose import listing
+    from mjcfbuild.sources.packages import listing
 
     owner = {
         part.prefix + name: (index, part)

@@ -108,8 +108,8 @@ def home_state(
     SRDF has it, else, for a floating robot, its standing pose
     (:func:`~mjcfbuild.selfcollision.discover.standing_state`). Root joints are left out; a
     named state naming another unknown joint is an error, a found one is skipped."""
-    from mjcfbuild.control.choose import listing
     from mjcfbuild.selfcollision.discover import standing_state
+    from mjcfbuild.sources.packages import listing
 
     floating = set(srdf.floating)
     chosen = name if name in srdf.states and not srdf.discovered else None

@@ -4,6 +4,9 @@
 from the manifest's ``packages`` map first, then from the environment the way ROS tools look:
 ``ROS_PACKAGE_PATH`` (ROS 1: folders crawled for ``package.xml``) and ``AMENT_PREFIX_PATH``
 (ROS 2: ``<prefix>/share/<pkg>`` registered in the ament resource index).
+
+The "did you mean" of every name a message says is missing (a package, a joint, a link, a
+rule's pattern) and the listing of the names there are come from here too.
 """
 
 from __future__ import annotations
@@ -122,3 +125,21 @@ def did_you_mean(name: str, candidates: list[str] | set[str]) -> str:
 
     match = difflib.get_close_matches(name, sorted(candidates), n=1)
     return f"; did you mean '{match[0]}'?" if match else ""
+
+
+def suggestion(patterns: list[str], names: list[str]) -> str:
+    """``; did you mean 'x'?`` for the name closest to one of ``patterns`` (a glob pattern
+    compared without its wildcards), or nothing."""
+    for pattern in patterns:
+        found = did_you_mean(pattern, names) or did_you_mean(pattern.strip("*?"), names)
+        if found:
+            return found
+    return ""
+
+
+def listing(names: list[str], most: int = 12) -> str:
+    """Names for an error message's hint, the first ``most`` of them."""
+    shown = ", ".join(names[:most])
+    return (
+        shown + (f", ... ({len(names)} in all)" if len(names) > most else "") if names else "none"
+    )

@@ -12,7 +12,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from mjcfbuild.collision.policy import CollisionChoice
-from mjcfbuild.control.choose import listing
 from mjcfbuild.control.home import home_values
 from mjcfbuild.errors import InputError, ManifestError
 from mjcfbuild.inputs.ros2_control import ControlJoint, Ros2Control
@@ -29,7 +28,7 @@ from mjcfbuild.selfcollision.matrix import (
 )
 from mjcfbuild.selfcollision.srdf import Srdf
 from mjcfbuild.selfcollision.srdf import home_state as home_state_of
-from mjcfbuild.sources.packages import did_you_mean
+from mjcfbuild.sources.packages import did_you_mean, listing
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import DecompositionFiles, SelfCollisionPayload
 from mjcfbuild.urdf.model import robot_from_dict
