@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from copy import deepcopy
 from dataclasses import asdict, dataclass, field, replace
 from typing import Any
 
@@ -84,6 +85,20 @@ def user_driven_joints(root: etree._Element) -> set[str]:
     return driven
 
 
+def _without_actuator_state(root: etree._Element) -> etree._Element:
+    """``root``, or a copy of it whose keyframes hold no ``ctrl`` or ``act``: an input's
+    keyframe gives them for the finished model's actuators, which the compiles before the
+    actuators are added do not have yet (MuJoCo said "expected length 0")."""
+    keys = [key for key in root.iter("key") if "ctrl" in key.attrib or "act" in key.attrib]
+    if not keys:
+        return root
+    copy = deepcopy(root)
+    for key in copy.iter("key"):
+        key.attrib.pop("ctrl", None)
+        key.attrib.pop("act", None)
+    return copy
+
+
 def make_ready(
     root: etree._Element,
     robot: Robot,
@@ -123,14 +138,14 @@ def make_ready(
             root.insert(1, option)
         option.set("integrator", "implicitfast")
 
-    model = compile_tree(root)
+    model = compile_tree(_without_actuator_state(root))
     _planar_joints(model, robot, readiness)
     data = mujoco.MjData(model)
     qpos = _home_qpos(model, home, preset_qpos)
     if floating:
         readiness.base_height = _stand_on_floor(root, model, data, qpos)
         if readiness.base_height is not None and not _move_free_bodies(model, data, root):
-            model = compile_tree(root)
+            model = compile_tree(_without_actuator_state(root))
             data = mujoco.MjData(model)
         qpos = _home_qpos(model, home, preset_qpos)
     data.qpos[:] = qpos

@@ -11,7 +11,10 @@ import re
 from dataclasses import dataclass, field
 
 from mjcfbuild.export.model import RGBA, MeshOut
+from mjcfbuild.export.stamp import STAMP
 
+# The first line of every OBJ and MTL file written: a later export may replace them.
+STAMP_LINE = f"# {STAMP}\n".encode("ascii")
 _UNSAFE = re.compile(r"[^A-Za-z0-9_.-]+")
 
 
@@ -92,11 +95,11 @@ class MeshFiles:
             data = self.meshes[mesh]
             body = obj_bytes(data.vertices, data.faces)
             if key is None:
-                result[f"{stem}.obj"] = body
+                result[f"{stem}.obj"] = STAMP_LINE + body
                 continue
             header = f"mtllib {stem}.mtl\nusemtl {stem}\n".encode("ascii")
-            result[f"{stem}.obj"] = header + body
-            result[f"{stem}.mtl"] = _mtl(stem, self.colours[key])
+            result[f"{stem}.obj"] = STAMP_LINE + header + body
+            result[f"{stem}.mtl"] = STAMP_LINE + _mtl(stem, self.colours[key])
         return result
 
 

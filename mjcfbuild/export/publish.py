@@ -6,6 +6,7 @@ import os
 from pathlib import Path
 
 from mjcfbuild.errors import OutputError
+from mjcfbuild.export.stamp import refuse_overwriting
 from mjcfbuild.export.urdf_writer import ExportResult
 from mjcfbuild.fsutil import write_if_changed
 
@@ -16,12 +17,19 @@ def default_asset_prefix(urdf_path: Path, mesh_dir: Path) -> str:
     return "" if relative == "." else relative.replace(os.sep, "/") + "/"
 
 
-def publish(result: ExportResult, urdf_path: Path, mesh_dir: Path) -> dict[str, bytes]:
+def publish(
+    result: ExportResult, urdf_path: Path, mesh_dir: Path, force: bool = False
+) -> dict[str, bytes]:
     """Write the mesh files, then the URDF (last, so a URDF never names missing files).
+    Unless ``force``, nothing is written where a file export-urdf did not write would be
+    replaced by other bytes (:func:`~mjcfbuild.export.stamp.refuse_overwriting`).
 
     Returns every written file's bytes by path. Mesh file names come from
     :func:`~mjcfbuild.export.meshfiles.safe_stem`, so they never leave ``mesh_dir``.
     """
+    if not force:
+        files = {mesh_dir / name: data for name, data in result.meshes.items()}
+        refuse_overwriting([urdf_path, *sorted(files)], files)
     written: dict[str, bytes] = {}
     try:
         if result.meshes:

@@ -175,8 +175,8 @@ FAMILY = Family(
     step="mjcfbuild.steps.assemble:run",
     payload=AssemblePayload,
     # 12: the Gazebo sensors' MJCF counterparts; 13: the products' binary copies; 14: a raw
-    # timestep a build cannot simulate with refused
-    format=14,
+    # timestep a build cannot simulate with refused; 15: reversed ranges in the inputs refused
+    format=15,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,
     compiles_model=True,

@@ -52,7 +52,9 @@ FAMILY = Family(
     name="export_urdf",
     step="mjcfbuild.steps.export_urdf:run",
     payload=ExportUrdfPayload,
-    format=2,  # 2: mimic offsets with ref; speed limits from drives and the URDF
+    # 2: mimic offsets with ref; speed limits from drives and the URDF; 3: export-urdf's stamp
+    # atop each OBJ and MTL file
+    format=3,
     tools=("mujoco", "numpy"),
     tasks=_tasks,
 )

@@ -258,6 +258,9 @@ def _merge_raw(root: etree._Element, item: RawElement, warnings: list[str]) -> l
     element = etree.fromstring(item.xml)
     _refuse_unknown_attributes(element, item)
     _refuse_impossible_options(element, item)
+    for node in element.iter():
+        if isinstance(node.tag, str):
+            refuse_reversed_ranges(node, _line_of(node, element, item))
     if item.section in SINGLE_SECTIONS:
         existing = root.find(item.section)
         if existing is None:
@@ -351,6 +354,47 @@ def _refuse_impossible_options(element: etree._Element, item: RawElement) -> Non
                 f"{SHORTEST_TIMESTEP:g} to {LONGEST_TIMESTEP:g} s",
                 hint="MuJoCo's default is 0.002; MuJoCo Menagerie's models use 0.002-0.005",
             )
+
+
+# Each range attribute and the attribute that says whether it limits anything.
+RANGE_LIMITS = {
+    "range": "limited",
+    "ctrlrange": "ctrllimited",
+    "forcerange": "forcelimited",
+    "actrange": "actlimited",
+    "actuatorfrcrange": "actuatorfrclimited",
+}
+
+
+def refuse_reversed_ranges(node: etree._Element, origin: str) -> None:
+    """Refuse, at ``origin``, a range whose lower bound is not below its upper one: MuJoCo
+    (autolimits) compiles it as no limit at all, so ``range="3 -3"`` left a joint free to
+    turn. ``"0 0"`` is MuJoCo's way to say "no range" and stays allowed, as does any range
+    its ``limited`` attribute turns off."""
+    for name, limited in RANGE_LIMITS.items():
+        text = node.get(name)
+        if text is None or node.get(limited, "").strip() == "false":
+            continue
+        bounds = _numbers(str(text).split())
+        if len(bounds) != 2 or bounds == [0.0, 0.0] or bounds[0] < bounds[1]:
+            continue
+        raise input_error(
+            origin,
+            f'<{node.tag}{_named(node)} {name}="{text}">: the lower bound must be below the '
+            "upper one (MuJoCo would compile it as no limit at all)",
+            hint=f'write it as "{_format(bounds[1])} {_format(bounds[0])}"'
+            if bounds[0] > bounds[1]
+            else f'"0 0" for no limit, or set {limited}="false"',
+        )
+
+
+def _named(node: etree._Element) -> str:
+    name = node.get("name")
+    return f' name="{name}"' if name else ""
+
+
+def _format(number: float) -> str:
+    return f"{number:g}"
 
 
 def _numbers(words: list[str]) -> list[float]:

@@ -337,11 +337,15 @@ class ModifyInput(ProcessedInput):
         return items
 
     def apply(self, target: ModelTarget) -> None:
-        """The attributes set on every element the item finds (none found is an error)."""
+        """The attributes set on every element the item finds (none found is an error); a
+        range they leave reversed is an error at the item's line."""
+        from mjcfbuild.inputs.apply import refuse_reversed_ranges
+
         attributes = {key: mjcf_text(value) for key, value in self.attributes.items()}
         for element in target.modify_targets(self):
             for key, value in attributes.items():
                 element.set(key, value)
+            refuse_reversed_ranges(element, self.origin)
 
 
 # Every processed tag, in the order inputs are combined and applied.

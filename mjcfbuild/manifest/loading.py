@@ -102,17 +102,30 @@ def _related(a: tuple, b: tuple) -> bool:
 
 def _real_keys(loc: tuple, positions: Positions) -> tuple:
     """``loc`` without the names pydantic gives the members of a union (``constrained-str``,
-    ``function-after[...]``): only keys and list positions that are in the manifest."""
+    ``function-after[...]``, a model's class name: ``SelfCollisionSettings``): only keys and
+    list positions that are in the manifest."""
     kept: tuple = ()
     for part in loc:
         if isinstance(part, int) or (*kept, part) in positions.keys:
             kept = (*kept, part)
-        elif part not in _UNION_TAG_HINTS and "[" not in part and "-" not in part:
+        elif _is_field_name(part):
             kept = (*kept, part)  # a key the manifest lacks (a missing required key)
     return kept
 
 
 _UNION_TAG_HINTS = {"str", "int", "float", "bool", "list", "dict", "none", "lax-or-strict"}
+
+
+def _is_field_name(part: str) -> bool:
+    """Whether ``part`` of a pydantic location can be a key: not a union member's tag, which
+    is a type (``str``), a validator (``function-after[...]``) or a class (``Settings``);
+    robot.yaml's keys are snake_case."""
+    return (
+        part not in _UNION_TAG_HINTS
+        and "[" not in part
+        and "-" not in part
+        and not (part[:1].isupper())
+    )
 
 
 def _most_relevant(errors: list[ErrorDetails]) -> ErrorDetails:

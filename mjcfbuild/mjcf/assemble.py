@@ -286,14 +286,16 @@ def _raw_input_named(error: str, inputs: Inputs) -> tuple[str | None, int | None
     from mjcfbuild.inputs.model import origin_location
 
     named = re.search(r"Element '(\w+)'", error)
-    if named is None:
+    # MuJoCo names a keyframe by its index ("keyframe 0: invalid ctrl size"), not its element.
+    tag = named.group(1) if named else "key" if re.match(r"(Error: )?keyframe \d", error) else None
+    if tag is None:
         return None, None
     for item in inputs.raw:
         try:
             element = etree.fromstring(item.xml)
         except etree.XMLSyntaxError:
             continue
-        if next(element.iter(named.group(1)), None) is not None:
+        if next(element.iter(tag), None) is not None:
             return origin_location(item.origin)
     return None, None
 

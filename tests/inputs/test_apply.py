@@ -141,6 +141,64 @@ def test_a_raw_option_a_build_cannot_simulate_with_is_an_error_at_its_input(tmp_
     assert f"inputs.xml:2: {says}" in text, text
 
 
+@pytest.mark.parametrize(
+    ("inputs", "says"),
+    [
+        (
+            '<processed_inputs>\n<modify_element type="joint" name="hinge" range="3 -3"/>'
+            "</processed_inputs>",
+            'inputs.xml:2: <joint name="hinge" range="3 -3">: the lower bound must be below the '
+            'upper one (MuJoCo would compile it as no limit at all) (write it as "-3 3")',
+        ),
+        (
+            '<raw_inputs><default>\n<joint range="1 1"/></default></raw_inputs>',
+            'inputs.xml:2: <joint range="1 1">: the lower bound must be below the upper one',
+        ),
+        (
+            '<raw_inputs><actuator>\n<position name="p" joint="hinge" ctrlrange="2 -2"/>'
+            "</actuator></raw_inputs>",
+            'inputs.xml:2: <position name="p" ctrlrange="2 -2">: the lower bound must be below',
+        ),
+    ],
+)
+def test_a_reversed_range_in_the_inputs_is_an_error_at_its_line(tmp_path, inputs, says):
+    """MuJoCo (autolimits) compiles a reversed range as no limit: the joint turned freely and
+    the check said only 'no range in the model'."""
+    assert says in error(tmp_path, inputs)
+
+
+def test_a_range_of_zeros_or_one_turned_off_is_no_limit_as_written(tmp_path):
+    result = build(
+        tmp_path,
+        '<raw_inputs><default><joint range="0 0"/></default><tendon><fixed name="t" '
+        'range="1 -1" limited="false"><joint joint="hinge" coef="1"/></fixed></tendon>'
+        "</raw_inputs>",
+    )
+    assert 'range="1 -1"' in result.robot.read_text()
+
+
+def test_a_raw_keyframe_gives_ctrl_for_the_finished_models_actuators(tmp_path):
+    """The compiles before the actuators are added leave the key's ctrl out (MuJoCo said
+    "expected length 0" to a key sized for the model a user gets)."""
+    result = build(
+        tmp_path, '<raw_inputs>\n<keyframe><key name="k" ctrl="0.1"/></keyframe></raw_inputs>'
+    )
+    import mujoco
+
+    model = mujoco.MjModel.from_xml_path(str(result.robot))
+    assert model.key("k").ctrl.tolist() == [0.1]
+
+
+def test_a_raw_keyframe_with_ctrl_of_the_wrong_length_names_its_input(tmp_path):
+    text = error(
+        tmp_path, '<raw_inputs>\n<keyframe><key name="k" ctrl="0.1 0.2"/></keyframe></raw_inputs>'
+    )
+    assert (
+        "inputs.xml:2: MuJoCo rejected the model with its inputs: keyframe 0: invalid ctrl size, "
+        "expected length 1"
+    ) in text, text
+
+
 def test_raw_attributes_of_an_element_in_any_of_its_places_are_kept(tmp_path):
     # <joint> in an equality has joint1 and polycoef, which a body's <joint> has not.
     result = build(

@@ -56,6 +56,13 @@ def test_missing_required_key():
     assert "source: this key is required" in error.message
 
 
+def test_a_key_of_a_model_in_a_union_is_named_and_pointed_at_as_written():
+    """pydantic names the union's member (``SelfCollisionSettings``) in the error's place."""
+    error = error_of("name: arm\nsource: {urdf: a.urdf}\nself_collision:\n  samples: 0\n")
+    assert (error.location.line, error.location.column) == (4, 3)
+    assert error.message == "self_collision.samples: 0 should be greater than 0"
+
+
 def test_two_sources_are_refused():
     error = error_of("name: arm\nsource:\n  urdf: a.urdf\n  xacro: b.xacro\n")
     assert error.location.line == 2
