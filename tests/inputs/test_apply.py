@@ -160,6 +160,7 @@ def test_a_raw_option_a_build_cannot_simulate_with_is_an_error_at_its_input(tmp_
             'inputs.xml:2: <position name="p" ctrlrange="2 -2">: the lower bound must be below',
         ),
     ],
+    ids=["modified-joint", "default-joint", "actuator-ctrlrange"],
 )
 def test_a_reversed_range_in_the_inputs_is_an_error_at_its_line(tmp_path, inputs, says):
     """MuJoCo (autolimits) compiles a reversed range as no limit: the joint turned freely and
