@@ -9,6 +9,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 from pathlib import Path
@@ -194,3 +195,34 @@ def test_a_build_waits_while_a_changed_file_is_empty(tmp_path, monkeypatch):
     monkeypatch.setattr(watch.time, "sleep", pause)
     assert watch._settled(watched, [str(urdf)]) == [str(urdf)]
     assert len(pauses) == 4  # empty, empty, written, then unchanged for one pause
+
+
+def test_with_resident_workers_an_edit_builds_what_a_fresh_build_does(arm, watching, tmp_path):
+    """As at a terminal, where resident workers are on by default: the rebuild after an edit
+    runs in the workers the first build left (which hold MuJoCo's mesh cache), and its model
+    and meshes are the bytes a build from nothing makes of the edit."""
+    from mjcfbuild.engine import resident
+    from tests.engine.test_determinism import _assert_identical
+    from tests.engine.test_workers import _wait_for
+
+    folder = Path(tempfile.mkdtemp(prefix="mjw-", dir="/tmp"))  # a socket's path is short
+    try:
+        env = {resident.VARIABLE: "300", resident.DIR_VARIABLE: str(folder)}
+        watch = watching("-j", "2", env=env)
+        watch.until(r"^mjcfbuild: watching \d+ files for changes \(Ctrl-C to stop\)$")
+        _wait_for(lambda: len(resident.resident_pids(folder)) == 2)
+        waiting = resident.resident_pids(folder)  # the workers the first build left
+        _longer_forearm(arm)
+        rebuild = watch.until(r"^mjcfbuild: watching \d+ files for changes$")
+        assert rebuild[0] == "mjcfbuild: meshes/forearm.obj changed: building robot.yaml"
+        assert any(line.startswith("mjcfbuild: built example_arm.xml") for line in rebuild)
+        _wait_for(lambda: resident.resident_pids(folder) == waiting)  # they served it
+        assert watch.stop() == 0
+        fresh = copy_example("arm", tmp_path / "fresh")
+        shutil.copy(arm / "meshes" / "forearm.obj", fresh / "meshes" / "forearm.obj")
+        assert run(["build", str(fresh / "robot.yaml"), "-q", "--no-check"]) == 0
+        _assert_identical(arm / "mjcf", fresh / "mjcf")
+    finally:
+        for pid in resident.resident_pids(folder):
+            resident.stop(pid)
+        shutil.rmtree(folder, ignore_errors=True)
