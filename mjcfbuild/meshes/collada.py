@@ -146,7 +146,7 @@ def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
     if asset is not None:
         unit_element = reader.find(asset, "unit")
         if unit_element is not None and unit_element.get("meter"):
-            unit = float(unit_element.get("meter"))
+            unit = _unit(reader, unit_element)
         up_element = reader.find(asset, "up_axis")
         if up_element is not None and up_element.text:
             up_axis = up_element.text.strip()
@@ -178,6 +178,24 @@ def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
         rgba, texture = _material_look(reader, material)
         parts.append(ColladaPart(material, vertices, faces, uv if texture else None, rgba, texture))
     return ColladaMesh(parts, up_axis, unit)
+
+
+def _unit(reader: _Reader, element) -> float:
+    """The metres in one of the file's units: a positive, finite number, or an error at its
+    line (pycollada ignores ``meter="0,001"``, which would make a millimetre mesh a thousand
+    times too large)."""
+    text = element.get("meter")
+    try:
+        unit = float(text)
+    except ValueError:
+        unit = math.nan
+    if not (math.isfinite(unit) and unit > 0):
+        raise reader.error(
+            f'<unit meter="{text}">: the length of the file\'s unit in metres must be a '
+            "positive number (0.001 for millimetres)",
+            element,
+        )
+    return unit
 
 
 def _up_axis_rotation(up_axis: str) -> np.ndarray:
@@ -246,9 +264,13 @@ def _controlled_geometry(reader: _Reader, instance):
         )
     bind_shape = np.eye(4)
     matrix = reader.find(skin, "bind_shape_matrix") if skin is not None else None
-    if matrix is not None and len(_floats(matrix.text)) == 16:
-        bind_shape = _floats(matrix.text).reshape(4, 4)
+    if matrix is not None and len(_floats(reader, matrix)) == 16:
+        bind_shape = _floats(reader, matrix).reshape(4, 4)
     return geometry, bind_shape
+
+
+# How many numbers each transform of a node holds.
+_TRANSFORM_SIZES = {"matrix": 16, "translate": 3, "rotate": 4, "scale": 3}
 
 
 def _node_transform(reader: _Reader, node) -> np.ndarray:
@@ -257,7 +279,7 @@ def _node_transform(reader: _Reader, node) -> np.ndarray:
         if not isinstance(child.tag, str):
             continue  # comments (a transform commented out), processing instructions
         tag = etree.QName(child).localname
-        values = _floats(child.text)
+        values = _floats(reader, child)
         if tag == "matrix" and len(values) == 16:
             step = values.reshape(4, 4)
         elif tag == "translate" and len(values) == 3:
@@ -268,6 +290,18 @@ def _node_transform(reader: _Reader, node) -> np.ndarray:
             step[:3, :3] = _axis_angle(values[:3], math.radians(values[3]))
         elif tag == "scale" and len(values) == 3:
             step = np.diag([*values, 1.0])
+        elif tag in _TRANSFORM_SIZES:
+            raise reader.error(
+                f"a <{tag}> of node '{node.get('id') or node.get('name')}' with "
+                f"{len(values)} numbers (a <{tag}> has {_TRANSFORM_SIZES[tag]})",
+                child,
+            )
+        elif tag in ("lookat", "skew"):
+            raise reader.error(
+                f"node '{node.get('id') or node.get('name')}' is placed with <{tag}>, which "
+                "mjcfbuild does not apply (it would place the mesh wrong without a word)",
+                child,
+            )
         else:
             continue
         transform = transform @ step
@@ -289,20 +323,41 @@ def _axis_angle(axis: np.ndarray, angle: float) -> np.ndarray:
     )
 
 
-def _floats(text: str | None) -> np.ndarray:
-    if not text or not text.strip():
-        return np.zeros(0)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeprecationWarning)
-        return np.fromstring(text, dtype=np.float64, sep=" ")
+def _floats(reader: _Reader, element) -> np.ndarray:
+    """The numbers of ``element``'s text (none for no element); anything else in it is an
+    error at its line (``0,2``: a decimal comma)."""
+    return _numbers(reader, element, np.float64, "numbers")
 
 
-def _ints(text: str | None) -> np.ndarray:
+def _ints(reader: _Reader, element) -> np.ndarray:
+    """The whole numbers of ``element``'s text, as :func:`_floats`."""
+    return _numbers(reader, element, np.int64, "whole numbers")
+
+
+def _numbers(reader: _Reader, element, dtype, what: str) -> np.ndarray:
+    text = element.text if element is not None else None
     if not text or not text.strip():
-        return np.zeros(0, dtype=np.int64)
+        return np.zeros(0, dtype=dtype)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DeprecationWarning)
-        return np.fromstring(text, dtype=np.int64, sep=" ")
+        try:
+            return np.fromstring(text, dtype=dtype, sep=" ")
+        except ValueError:
+            pass
+    words = text.split()
+    kind = float if dtype is np.float64 else int
+    bad = next((word for word in words if not _parses(kind, word)), words[0])
+    raise reader.error(
+        f"<{etree.QName(element).localname}> holds '{bad[:20]}' among its {what}", element
+    )
+
+
+def _parses(kind: type, word: str) -> bool:
+    try:
+        kind(word)
+    except ValueError:
+        return False
+    return True
 
 
 def _source_array(reader: _Reader, referrer, mesh, cache: dict) -> np.ndarray:
@@ -325,7 +380,7 @@ def _source_array(reader: _Reader, referrer, mesh, cache: dict) -> np.ndarray:
     else:
         array = reader.find(source, "float_array")
         accessor = reader.find(source, "technique_common/accessor")
-        values = _floats(array.text if array is not None else None)
+        values = _floats(reader, array)
         stride = int(accessor.get("stride", "1")) if accessor is not None else 3
         count = (
             int(accessor.get("count", str(len(values) // max(stride, 1))))
@@ -392,7 +447,7 @@ def _add_geometry(
                 "mjcfbuild does not read"
             )
         if kind in ("polygons", "tristrips", "trifans"):  # one <p> per polygon, strip or fan
-            polygons = [_ints(p.text) for p in reader.findall(primitive, "p")]
+            polygons = [_ints(reader, p) for p in reader.findall(primitive, "p")]
             counts = np.array([len(p) // stride for p in polygons], dtype=np.int64)
             indices = np.concatenate(polygons) if polygons else np.zeros(0, dtype=np.int64)
         else:
@@ -403,9 +458,9 @@ def _add_geometry(
                     "index lists (COLLADA allows one)",
                     primitive,
                 )
-            indices = _ints(index_lists[0].text if index_lists else None)
+            indices = _ints(reader, index_lists[0] if index_lists else None)
             if kind == "polylist":
-                counts = _ints(getattr(reader.find(primitive, "vcount"), "text", None))
+                counts = _ints(reader, reader.find(primitive, "vcount"))
             else:
                 counts = np.full(len(indices) // (3 * stride), 3, dtype=np.int64)
         _check_count(reader, geometry, primitive, len(counts) if len(indices) else 0)
@@ -521,7 +576,7 @@ def _material_look(reader: _Reader, material_id: str):
             continue
         colour = reader.find(element, "color")
         if colour is not None:
-            values = _floats(colour.text)
+            values = _floats(reader, colour)
             if len(values) >= 3:
                 alpha = float(values[3]) if len(values) > 3 else 1.0
                 rgba = (*(float(v) for v in values[:3]), alpha)

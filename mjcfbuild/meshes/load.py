@@ -125,21 +125,76 @@ def _binary_stl_pieces(path: Path) -> list[MeshPart] | None:
 def _trimesh_pieces(path: Path) -> list[MeshPart]:
     import trimesh
 
+    if path.suffix.lower() == ".obj":
+        with open(path, "rb") as handle:
+            if handle.read(3) == b"\xef\xbb\xbf":  # trimesh loses the first line's vertex
+                raise InputError(
+                    "the file starts with a byte-order mark, which OBJ readers misread",
+                    file=path,
+                    line=1,
+                    hint="save it as UTF-8 without a byte-order mark (or as ASCII)",
+                )
     try:
         # trimesh.load is typed to return any Geometry; force="scene" makes it a Scene
         scene = cast(trimesh.Scene, trimesh.load(str(path), force="scene", process=False))
     except Exception as exc:  # trimesh raises many kinds for broken files
+        line, problem = _obj_problem(path) if path.suffix.lower() == ".obj" else (None, None)
         raise InputError(
-            f"cannot read mesh: {_first_line(exc)}",
+            problem or f"cannot read mesh: {_first_line(exc)}",
             file=path,
+            line=line,
             hint="open it in a mesh tool to check it; re-export it if it is damaged",
         ) from None
     pieces = []
     for geometry in scene.dump(concatenate=False):
         if not isinstance(geometry, trimesh.Trimesh) or len(geometry.faces) == 0:
             continue
+        _refuse_broken_indexing(path, geometry)
         pieces.extend(_pieces_of(geometry))
     return pieces
+
+
+def _refuse_broken_indexing(path: Path, geometry) -> None:
+    """An :class:`InputError` for vertices without three coordinates or faces naming
+    vertices the file lacks (trimesh reads both without a word; the conversion then failed
+    as an internal error), at the OBJ line where there is one."""
+    vertices = np.asarray(geometry.vertices)
+    faces = np.asarray(geometry.faces)
+    if (
+        vertices.ndim == 2
+        and vertices.shape[1] == 3
+        and (faces.size == 0 or (faces.min() >= 0 and faces.max() < len(vertices)))
+    ):
+        return
+    line, problem = _obj_problem(path) if path.suffix.lower() == ".obj" else (None, None)
+    raise InputError(
+        problem or "cannot read mesh: its faces name vertices it does not have",
+        file=path,
+        line=line,
+        hint="open it in a mesh tool to check it; re-export it if it is damaged",
+    )
+
+
+def _obj_problem(path: Path) -> tuple[int | None, str | None]:
+    """The first line of an OBJ file that breaks its vertices or faces, and what is wrong."""
+    count = 0
+    with open(path, encoding="utf-8", errors="replace") as handle:
+        for number, line in enumerate(handle, start=1):
+            words = line.split()
+            if not words:
+                continue
+            if words[0] == "v":
+                if len(words) < 4:
+                    return number, f"a vertex with {len(words) - 1} coordinates (a 'v' line has 3)"
+                count += 1
+            elif words[0] == "f":
+                for word in words[1:]:
+                    index = word.split("/")[0]
+                    if index.lstrip("-").isdigit() and not (
+                        0 < int(index) <= count or -count <= int(index) < 0
+                    ):
+                        return number, f"a face names vertex {index}; {count} come before it"
+    return None, None
 
 
 def _first_line(exc: Exception) -> str:

@@ -76,6 +76,7 @@ class StepFormat:
         return versions
 
 
-MESH = StepFormat("mesh", 7, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"))
+# mesh 8: COLLADA lookat/skew placements and nonsense units refused, not ignored
+MESH = StepFormat("mesh", 8, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"))
 DECOMPOSE = StepFormat("decompose", 3, ("coacd", "trimesh", "numpy", "scipy"))
 SELFCOLLISION = StepFormat("selfcollision", 3, ("mujoco", "numpy"))

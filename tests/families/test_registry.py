@@ -35,7 +35,7 @@ from tests.families.toy_step import ToyPayload
 BEFORE_FORMATS = {
     "expand": 2,
     "plan": 9,
-    "mesh": 7,
+    "mesh": 8,
     "decompose": 3,
     "assemble": 15,
     "scene": 3,

@@ -128,3 +128,51 @@ def test_broken_files_are_input_errors(tmp_path):
         read_collada(
             write(tmp_path / "c.dae", dae(bad_index, scene=scene(f"<node>{INSTANCE}</node>")))
         )
+
+
+@pytest.mark.parametrize("meter", ["0,001", "abc", "0", "-1", "nan", "1e400"])
+def test_a_unit_that_is_no_positive_length_is_an_error_at_its_line(tmp_path, meter):
+    """pycollada ignores ``meter="0,001"`` (a decimal comma: millimetres), which would make
+    the mesh a thousand times too large; 0 and -1 collapsed or mirrored it."""
+    body = QUAD + MATERIAL.format(diffuse="<color>1 1 1 1</color>")
+    path = write(
+        tmp_path / "u.dae",
+        dae(body, unit=f'<unit meter="{meter}"/>', scene=scene(f"<node>{INSTANCE}</node>")),
+    )
+    with pytest.raises(InputError) as info:
+        read_collada(path)
+    assert info.value.location.line == 3
+    assert f'<unit meter="{meter}">: the length of the file\'s unit in metres' in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "says"),
+    [
+        ("<p>0 0 1 1 2 2 3 3</p>", "<p>0 0 1.5 1 2 2 3 3</p>", "<p> holds '1.5' among its whole"),
+        ('count="12">0 0 0 1', 'count="12">0 0 0,5 1', "<float_array> holds '0,5' among"),
+    ],
+    ids=["index-not-whole", "decimal-comma"],
+)
+def test_numbers_that_do_not_read_are_an_error_at_their_line(tmp_path, old, new, says):
+    body = QUAD.replace(old, new) + MATERIAL.format(diffuse="<color>1 1 1 1</color>")
+    path = write(tmp_path / "n.dae", dae(body, scene=scene(f"<node>{INSTANCE}</node>")))
+    with pytest.raises(InputError) as info:
+        read_collada(path)
+    assert says in str(info.value) and info.value.location.line is not None
+
+
+@pytest.mark.parametrize(
+    ("transform", "says"),
+    [
+        ("<lookat>1 0 0 0 0 0 0 0 1</lookat>", "is placed with <lookat>, which mjcfbuild does not"),
+        ("<skew>45 0 1 0 1 0 0</skew>", "is placed with <skew>, which mjcfbuild does not apply"),
+        ("<translate>1 2</translate>", "a <translate> of node 'n' with 2 numbers (a <translate>"),
+    ],
+    ids=["lookat", "skew", "short-translate"],
+)
+def test_a_placement_the_reader_cannot_apply_is_an_error_not_ignored(tmp_path, transform, says):
+    body = QUAD + MATERIAL.format(diffuse="<color>1 1 1 1</color>")
+    node = f'<node id="n">{transform}{INSTANCE}</node>'
+    with pytest.raises(InputError) as info:
+        read_collada(write(tmp_path / "t.dae", dae(body, scene=scene(node))))
+    assert says in str(info.value)

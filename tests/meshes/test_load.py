@@ -69,3 +69,24 @@ def test_merge_vertices_keeps_texture_seams_and_drops_unused_vertices():
     merged = merge_vertices(MeshPart(vertices, faces, None, uv))
     assert len(merged.vertices) == 4  # (0,0,0) twice: different texture coordinates
     assert merged.uv.tolist()[3] == [0.5, 0.5]
+
+
+CUBE_CORNERS = "".join(f"v {x} {y} {z}\n" for x in (0, 1) for y in (0, 1) for z in (0, 1))
+
+
+@pytest.mark.parametrize(
+    ("text", "line", "says"),
+    [
+        ("v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n", 2, "a vertex with 2 coordinates"),
+        (CUBE_CORNERS + "f 1 2 3\nf 1 2 99\n", 10, "a face names vertex 99; 8 come before it"),
+        ("\ufeff" + CUBE_CORNERS + "f 1 2 3\n", 1, "the file starts with a byte-order mark"),
+    ],
+    ids=["two-coordinates", "missing-vertex", "byte-order-mark"],
+)
+def test_an_obj_that_breaks_its_indexing_is_an_error_at_its_line(tmp_path, text, line, says):
+    """trimesh read these without a word or with numpy's words; the conversion then failed
+    as an internal error or named no line."""
+    path = write(tmp_path / "m.obj", text)
+    with pytest.raises(InputError) as info:
+        load_parts(path)
+    assert says in str(info.value) and info.value.location.line == line
