@@ -48,7 +48,7 @@ def add_parser(commands) -> None:
 def run(args: argparse.Namespace) -> int:
     """Remove the recorded outputs, or list them (``--dry-run``)."""
     from mjcfbuild.engine import written
-    from mjcfbuild.engine.guard import check_output_folder
+    from mjcfbuild.engine.guard import check_output_folder, check_owner
     from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.runner import build_lock
 
@@ -58,6 +58,7 @@ def run(args: argparse.Namespace) -> int:
     if not out.is_dir() or not ctx.state_dir.is_dir():
         _say(args, "removed nothing" if not args.dry_run else "would remove nothing")
         return EXIT_OK
+    check_owner(ctx)  # another robot.yaml's folder: its files are not this one's to remove
     names = written.recorded(ctx)
     if names is None:
         report_warning(

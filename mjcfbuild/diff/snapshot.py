@@ -14,8 +14,7 @@ from typing import Any
 
 from mjcfbuild.actuators import read_actuator
 from mjcfbuild.errors import InputError, ModelError
-
-STATE_DIR = ".mjcfbuild"
+from mjcfbuild.ownership import STATE_DIR
 
 Snapshot = dict[str, Any]
 

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from mjcfbuild.errors import OutputError
+from mjcfbuild.ownership import FOREIGN
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext
@@ -255,3 +256,94 @@ _INPUT_KINDS = {
     "compose": "an attach: part",
     "part": "an attach: part or one of its files",
 }
+
+
+OWNER = "owner.json"
+
+
+def claim_output_folder(ctx: BuildContext) -> None:
+    """Record that the output folder is ``ctx``'s manifest's (``.mjcfbuild/owner.json``: the
+    manifest's path relative to the folder), after :func:`check_owner`, and which files in it
+    are the user's (:mod:`mjcfbuild.ownership`), which no step writes over. Called with the
+    folder's lock held."""
+    import json
+
+    from mjcfbuild.fsutil import write_if_changed
+    from mjcfbuild.ownership import record_foreign
+
+    mine = check_owner(ctx)
+    if mine is not None:
+        write_if_changed(ctx.state(OWNER), (json.dumps({"manifest": mine}) + "\n").encode())
+    record_foreign(ctx.out_dir, _foreign_files(ctx))
+
+
+def _foreign_files(ctx: BuildContext) -> list[str]:
+    """The files in the output folder where builds write (the folder itself, ``assets/``,
+    ``report/``, ...) that no build recorded writing: the user's. None known in a folder
+    an mjcfbuild from before the record built (its record is missing, its state is not)."""
+    from mjcfbuild.engine.written import recorded, written_file
+
+    names = recorded(ctx)
+    if names is None and any(
+        entry.name not in ("lock", OWNER, FOREIGN) for entry in ctx.state_dir.iterdir()
+    ):
+        return []
+    found = []
+    for folder in [ctx.out_dir, *build_folders(ctx)]:
+        if folder == ctx.state_dir or not folder.is_dir() or folder.is_symlink():
+            continue
+        for entry in folder.iterdir():
+            name = entry.relative_to(ctx.out_dir).as_posix()
+            if name not in (names or {}) and written_file(ctx.out_dir, name):
+                found.append(name)
+    return found
+
+
+def check_owner(ctx: BuildContext) -> str | None:
+    """Refuse (at robot.yaml's output.folder line) an output folder another robot.yaml that
+    still names it built: two manifests in one folder deleted each other's assets and rewrote
+    each other's scene, report and state, and each model then failed to load (``clean`` of
+    one removed the other's). A manifest that was renamed, removed, no longer reads or
+    points elsewhere gives the folder up. The name to record for ``ctx``'s manifest (None
+    where the folder is named by a caller, not robot.yaml)."""
+    import json
+
+    if not _guarded(ctx):
+        return None
+    assert ctx.manifest_file is not None, "guarded only with a manifest file"
+    mine = os.path.relpath(ctx.manifest_file, ctx.out_dir)
+    try:
+        owner = json.loads(ctx.state(OWNER).read_text(encoding="utf-8")).get("manifest")
+    except (OSError, ValueError, AttributeError):
+        return mine
+    if not isinstance(owner, str) or owner == mine or not _still_builds_here(ctx, owner):
+        return mine
+    from mjcfbuild.errors import ManifestError
+    from mjcfbuild.manifest.pinpoint import pinpoint
+
+    other = ctx.label(os.path.normpath(ctx.out_dir / owner))
+    error = ManifestError(
+        f"'{ctx.manifest.output.folder}' is the output folder of {other}, which built there; "
+        "two robot.yaml files cannot share one (each would delete the other's assets and "
+        "rewrite its scene and report)",
+        file=f"{ctx.manifest_label} output.folder",
+        hint=f"give this one an output.folder of its own, or remove {other} and its model "
+        "from the folder",
+    )
+    raise pinpoint(error, ctx.manifest_label, ctx.manifest_file)
+
+
+def _still_builds_here(ctx: BuildContext, owner: str) -> bool:
+    """Whether the manifest at ``owner`` (relative to the output folder) exists, reads, and
+    names this output folder."""
+    from mjcfbuild.errors import MjcfbuildError
+    from mjcfbuild.graph.context import GraphContext
+
+    path = Path(os.path.normpath(ctx.out_dir / owner))
+    if not path.is_file():
+        return False
+    try:
+        other = GraphContext.from_manifest_file(path)
+    except MjcfbuildError:
+        return False  # a manifest that does not read claims nothing
+    return os.path.realpath(other.out_dir) == os.path.realpath(ctx.out_dir)

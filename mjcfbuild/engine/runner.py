@@ -15,7 +15,11 @@ from typing import TYPE_CHECKING
 from mjcfbuild import interrupts
 from mjcfbuild.engine import stamp, written
 from mjcfbuild.engine.context import BuildContext
-from mjcfbuild.engine.guard import check_output_folder, check_outputs_are_not_inputs
+from mjcfbuild.engine.guard import (
+    check_output_folder,
+    check_outputs_are_not_inputs,
+    claim_output_folder,
+)
 from mjcfbuild.engine.loader import DATABASE, run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.tasks import build_tasks, planning_tasks
@@ -105,6 +109,7 @@ def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
             hint="check its permissions, or set output.folder",
         ) from None
     with held:
+        claim_output_folder(ctx)
         yield
 
 

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any, Protocol, Self
 from mjcfbuild.errors import MjcfbuildError
 from mjcfbuild.filesig import file_clock_ns
 from mjcfbuild.fsutil import normalise
+from mjcfbuild.ownership import STATE_DIR
 
 if TYPE_CHECKING:
     from mjcfbuild.errors import MjcfbuildError as StepError
@@ -23,7 +24,6 @@ if TYPE_CHECKING:
     from mjcfbuild.sharing_settings import SharingChoice
     from mjcfbuild.sources.packages import PackageResolver
 
-STATE_DIR = ".mjcfbuild"
 DEFAULT_STEP_TIMEOUT = 1800.0
 
 

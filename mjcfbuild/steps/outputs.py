@@ -6,10 +6,13 @@ import hashlib
 from pathlib import Path
 
 from mjcfbuild.fsutil import md5_file, write_if_changed
+from mjcfbuild.ownership import refuse_foreign
 
 
 def write_output(path: Path, data: bytes, outputs: dict[str, str]) -> None:
-    """Write ``data`` to ``path`` (atomically, only if different) and record its hash."""
+    """Write ``data`` to ``path`` (atomically, only if different) and record its hash; a file
+    of the user's found in the output folder is never written over (mjcfbuild.ownership)."""
+    refuse_foreign(path, data)
     path.parent.mkdir(parents=True, exist_ok=True)
     write_if_changed(path, data)
     outputs[str(path)] = hashlib.md5(data, usedforsecurity=False).hexdigest()

@@ -165,3 +165,59 @@ def test_the_model_over_the_mujoco_inputs_file_is_refused(arm):
         result, _output_line(arm) + 1, "output.robot", "extra.xml", "the mujoco_inputs file"
     )
     assert (arm / "extra.xml").read_text() == "<mujoco_inputs/>\n"
+
+
+def test_a_second_robot_yaml_may_not_build_into_the_folder_of_another(arm):
+    """Two manifests with one output folder deleted each other's assets and rewrote each
+    other's scene and report, exit 0, and clean of one listed the other's model."""
+    (arm / "other.yaml").write_text(
+        (arm / "robot.yaml").read_text().replace("name: example_arm", "name: other_arm")
+    )
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    model = (arm / "mjcf" / "example_arm.xml").read_bytes()
+    line = _output_line(arm)
+    for command in (["build", "other.yaml", "-q", "--no-check"], ["clean", "-n", "other.yaml"]):
+        result = run_cli(*command, cwd=arm)
+        assert result.code == EXIT_MANIFEST, result.stderr
+        assert result.stderr.startswith(
+            f"mjcfbuild: error: other.yaml:{line}:3: output.folder: 'mjcf' is the output "
+            "folder of robot.yaml, which built there; two robot.yaml files cannot share one"
+        ), result.stderr
+    assert not (arm / "mjcf" / "other_arm.xml").exists()
+    assert (arm / "mjcf" / "example_arm.xml").read_bytes() == model
+    # A manifest renamed (or removed) gives its folder up.
+    (arm / "robot.yaml").rename(arm / "before.yaml")
+    assert run_cli("build", "other.yaml", "-q", "--no-check", cwd=arm).code == 0
+    assert run_cli("build", "before.yaml", "-q", "--no-check", cwd=arm).code == EXIT_MANIFEST
+
+
+def test_a_file_of_the_users_in_the_output_folder_is_never_written_over(arm):
+    """A scene.xml and an asset put in the folder before the first build were replaced
+    without a word; so was an asset ``clean`` had kept as the user's, once a mesh of its
+    name came to the build."""
+    assets = arm / "mjcf" / "assets"
+    assets.mkdir(parents=True)
+    (arm / "mjcf" / "scene.xml").write_text("<mujoco/>\n")
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert result.code == EXIT_OUTPUT, result.stderr
+    assert result.stderr.startswith(
+        "mjcfbuild: error: mjcf/scene.xml: is not mjcfbuild's (it was in the output folder "
+        "before the build, and no build wrote it); a build never writes over a file of yours"
+    ), result.stderr
+    assert (arm / "mjcf" / "scene.xml").read_text() == "<mujoco/>\n"
+    (arm / "mjcf" / "scene.xml").unlink()
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    # After a build: the user's file beside its assets, then a mesh of that name.
+    (assets / "wrist.obj").write_text("# mine\n")
+    mesh = arm / "meshes" / "wrist.stl"
+    mesh.write_bytes((arm / "meshes" / "base.stl").read_bytes())
+    urdf = arm / "urdf" / "arm.urdf.xacro"
+    urdf.write_text(urdf.read_text().replace("meshes/base.stl", "meshes/wrist.stl"))
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert result.code == EXIT_OUTPUT, result.stderr
+    assert result.stderr.startswith("mjcfbuild: error: mjcf/assets/wrist.obj: is not"), (
+        result.stderr
+    )
+    assert (assets / "wrist.obj").read_text() == "# mine\n"
+    (assets / "wrist.obj").unlink()
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
