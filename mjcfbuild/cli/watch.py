@@ -188,7 +188,12 @@ def _say(args: argparse.Namespace, text: str, always: bool = False) -> None:
 def _count(manifests: list[_Manifest]) -> str:
     """How many files are watched, not counting mjcfbuild's own and the package folders."""
     files = len(
-        {path for m in manifests for path in m.watched.records if path not in m.watched.code}
+        {
+            path
+            for m in manifests
+            for path in m.watched.records
+            if path not in m.watched.code and not path.endswith(os.sep)  # a folder's names
+        }
     )
     return f"{files} file{'s' if files != 1 else ''}"
 

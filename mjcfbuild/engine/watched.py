@@ -9,7 +9,8 @@ imports packages from are watched too.
 
 Without a stamp (the build failed, or could not write one), what the build read is not fully
 known: every file below the manifest's folder, its source's folder and its packages' folders
-is watched (:data:`MOST_TREE_FILES` at most), with the last stamp's files, except
+is watched (:data:`MOST_TREE_FILES` at most), and each of those folders by its names (a file
+the failed build looked for, created later, is a change), with the last stamp's files, except
 what a build writes - output folders (those holding a build's state folder; where that is
 the manifest's folder itself, the files its builds recorded writing), the files the last
 stamp lists as written, MuJoCo's log, the file the watch's own output goes to - each
@@ -51,6 +52,7 @@ class Record:
     signature: list[int] | None
     md5: str | None = None
     racy: bool = False
+    listing: tuple[str, ...] | None = None  # a folder's (a path ending in os.sep): its names
 
 
 @dataclass
@@ -76,25 +78,34 @@ class Watched:
         for path, before in self.records.items():
             stat = _stat(path)
             signature = None if stat is None else filesig.signature(stat)
-            if signature != before.signature:
-                found.append(path)
-            elif before.racy and stat is not None and not filesig.racy(stat, now):
-                if _md5(path) != before.md5:
+            if before.listing is not None and signature != before.signature:
+                # A folder: only files coming or going count (not a folder a build made).
+                listing = _listing(path)
+                if listing != before.listing:
                     found.append(path)
                 else:
-                    self.records[path] = Record(signature, before.md5)
+                    self.records[path] = record_now(path, now)
+            elif signature != before.signature:
+                found.append(path)
+            elif before.racy and stat is not None and not filesig.racy(stat, now):
+                if _md5(path) != before.md5 or _listing(path) != before.listing:
+                    found.append(path)
+                else:
+                    self.records[path] = Record(signature, before.md5, listing=before.listing)
         return sorted(found)
 
     def edited(self, changed: list[str]) -> list[str]:
         """Those of ``changed`` whose bytes are not the recorded ones (where the MD5 was
         recorded; the others count as edited): what to name, rather than files only touched."""
-        return [
-            path
-            for path in changed
-            if path not in self.records
-            or self.records[path].md5 is None
-            or _md5(path) != self.records[path].md5
-        ]
+        named = []
+        for path in changed:
+            record = self.records.get(path)
+            if record is not None and record.listing is not None:  # a folder: what came
+                came = sorted(set(_listing(path) or ()) - set(record.listing))
+                named += [os.path.join(path, name) for name in came]
+            elif record is None or record.md5 is None or _md5(path) != record.md5:
+                named.append(path)
+        return named
 
     def again(self) -> Watched:
         """The same files, as they are now."""
@@ -143,6 +154,7 @@ def around(manifest: Path, last_good: Watched | None) -> list[str]:
     files ``last_good`` lists as written, MuJoCo's log, and the files this process prints to."""
     outputs: list[str] = []
     recorded: set[str] = set()
+    last_written = last_good.written if last_good is not None else frozenset()
     found = [str(manifest.resolve())]
     walked: list[Path] = []
     for folder in [manifest.resolve().parent, *declared_folders(manifest)]:
@@ -156,6 +168,11 @@ def around(manifest: Path, last_good: Watched | None) -> list[str]:
                 continue
             if STATE_DIR in folders:  # the output folder is this folder itself
                 recorded |= _recorded_as_written(Path(top))
+            paths = [os.path.join(top, name) for name in files]
+            if STATE_DIR not in folders and not any(
+                path in recorded or path in last_written for path in paths
+            ):  # not a folder builds write into: a file created here later is seen
+                found.append(top + os.sep)
             folders[:] = sorted(name for name in folders if name not in SKIPPED | {STATE_DIR})
             found += [os.path.join(top, name) for name in sorted(files) if name != MUJOCO_LOG]
             if len(found) >= MOST_TREE_FILES:
@@ -236,13 +253,27 @@ def declared_folders(manifest: Path) -> list[Path]:
 
 
 def record_now(path: str, now_ns: int) -> Record:
-    """What ``path`` is at ``now_ns`` (``time.time_ns()``)."""
+    """What ``path`` is at ``now_ns`` (``time.time_ns()``); a folder's (``path`` ends with
+    os.sep) names too."""
     stat = _stat(path)
     if stat is None:
         return Record(None)
+    listing = _listing(path) if path.endswith(os.sep) else None
     if not filesig.racy(stat, now_ns):
-        return Record(filesig.signature(stat))
-    return Record(filesig.signature(stat), _md5(path), racy=True)
+        return Record(filesig.signature(stat), listing=listing)
+    return Record(filesig.signature(stat), _md5(path), racy=True, listing=listing)
+
+
+def _listing(path: str) -> tuple[str, ...] | None:
+    """The names of the files in the folder ``path``, but MuJoCo's log (None for a file, or
+    a folder gone)."""
+    if not path.endswith(os.sep):
+        return None
+    try:
+        with os.scandir(path) as entries:
+            return tuple(sorted(e.name for e in entries if e.name != MUJOCO_LOG and e.is_file()))
+    except OSError:
+        return None
 
 
 def _stat(path: str) -> os.stat_result | None:
@@ -253,6 +284,8 @@ def _stat(path: str) -> os.stat_result | None:
 
 
 def _md5(path: str) -> str | None:
+    if path.endswith(os.sep):
+        return None  # a folder: its names tell
     try:
         with open(path, "rb") as file:
             return hashlib.file_digest(file, "md5").hexdigest()

@@ -226,3 +226,21 @@ def test_with_resident_workers_an_edit_builds_what_a_fresh_build_does(arm, watch
         for pid in resident.resident_pids(folder):
             resident.stop(pid)
         shutil.rmtree(folder, ignore_errors=True)
+
+
+def test_a_file_a_failed_build_looked_for_is_built_when_it_comes(arm, watching):
+    """After a build that failed for a missing include, creating the file did nothing: only
+    the files there were then were watched."""
+    xacro = arm / "urdf" / "arm.urdf.xacro"
+    text = xacro.read_text()
+    xacro.write_text(text.replace("</robot>", '<xacro:include filename="more.xacro"/></robot>'))
+    watch = watching()
+    failed = watch.until(r"^mjcfbuild: watching \d+ files for changes \(Ctrl-C to stop\)$")
+    assert any("more.xacro" in line and "error" in line for line in failed), failed
+    (arm / "urdf" / "more.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"/>\n'
+    )
+    built = watch.until(r"^mjcfbuild: watching \d+ files for changes$")
+    assert built[0] == "mjcfbuild: urdf/more.xacro changed: building robot.yaml", built
+    assert any(line.startswith("mjcfbuild: built example_arm.xml") for line in built), built
+    assert watch.stop() == 0

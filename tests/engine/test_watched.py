@@ -13,6 +13,16 @@ from mjcfbuild.engine.watched import MUJOCO_LOG, Watched, around, from_stamp, wi
 from tests.conftest import ROOT
 
 
+def files(paths: list[str]) -> list[str]:
+    """The files of what is watched (a folder's path ends with os.sep)."""
+    return [path for path in paths if not path.endswith(os.sep)]
+
+
+def folders(paths: list[str]) -> list[str]:
+    """The folders of what is watched, by the names of their files."""
+    return [path for path in paths if path.endswith(os.sep)]
+
+
 def test_after_a_build_it_watches_what_the_stamp_lists_as_recorded(arm):
     assert run(["build", str(arm / "robot.yaml"), "-q", "--no-check"]) == 0
     watched = from_stamp(arm / "robot.yaml", run_check=False)
@@ -55,7 +65,11 @@ def test_without_a_stamp_it_watches_the_folder_but_not_what_builds_write(tmp_pat
     last_good = Watched.take([str(elsewhere), str(robot / "exported/robot.urdf")])
     last_good.written = frozenset({str(robot / "exported/robot.urdf")})
     kept = (robot / "robot.yaml", robot / "urdf/robot.urdf", robot / "meshes/a.stl", elsewhere)
-    assert around(robot / "robot.yaml", last_good) == sorted(str(path) for path in kept)
+    assert files(around(robot / "robot.yaml", last_good)) == sorted(str(path) for path in kept)
+    # and the folders walked, by their files' names, but those builds write into
+    assert folders(around(robot / "robot.yaml", last_good)) == [
+        f"{robot / name}{os.sep}" for name in ("", "meshes", "urdf")
+    ]
 
 
 def test_without_a_stamp_what_builds_wrote_into_the_manifests_own_folder_is_not_watched(arm):
@@ -85,7 +99,7 @@ def test_without_a_stamp_the_file_its_own_output_goes_to_is_not_watched(tmp_path
     script = (
         "import sys; from pathlib import Path; from mjcfbuild.engine.watched import around; "
         "print('printed', flush=True); "
-        "sys.stderr.write(repr(around(Path(sys.argv[1]), None)))"
+        "sys.stderr.write(repr([p for p in around(Path(sys.argv[1]), None) if p[-1] != '/']))"
     )
     with open(robot / "watch.txt", "w") as output:
         done = subprocess.run(
@@ -114,9 +128,10 @@ def test_without_a_stamp_it_watches_the_source_and_package_folders_it_names(tmp_
         "name: arm\nsource: {xacro: ../arm/urdf/arm.urdf.xacro}\n"
         "packages: {arm_description: ../arm, gone: ../nowhere}\noptions: {no_such_option: 1}\n"
     )
-    assert around(manifest, None) == [str(arm / "urdf" / "arm.urdf.xacro"), str(manifest)]
+    watched = files(around(manifest, None))
+    assert watched == [str(arm / "urdf" / "arm.urdf.xacro"), str(manifest)]
     manifest.write_text(manifest.read_text() + "scene: [\n")  # not YAML any more
-    assert around(manifest, None) == [str(manifest)]
+    assert files(around(manifest, None)) == [str(manifest)]
 
 
 def test_without_a_stamp_a_file_is_compared_with_what_it_was_when_the_build_began(tmp_path):
@@ -125,6 +140,7 @@ def test_without_a_stamp_a_file_is_compared_with_what_it_was_when_the_build_bega
     manifest.write_text("name: a\n")
     before = Watched.take(around(manifest, None))
     manifest.write_text("name: robot\n")  # during the build
-    (tmp_path / "new.urdf").write_text("<robot/>")  # made during the build: as it is now
-    watched = without_stamp(manifest, None, before)
-    assert watched.changed() == [str(manifest)]
+    (tmp_path / "new.urdf").write_text("<robot/>")  # made during the build: the build may
+    watched = without_stamp(manifest, None, before)  # have looked for it, so it counts too
+    assert watched.changed() == [f"{tmp_path}{os.sep}", str(manifest)]
+    assert watched.edited(watched.changed()) == [str(tmp_path / "new.urdf"), str(manifest)]
