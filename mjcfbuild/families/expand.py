@@ -95,7 +95,9 @@ FAMILY = Family(
     name="expand",
     step="mjcfbuild.steps.expand:run",
     payload=ExpandPayload,
-    format=2,  # 2: the origins of the expanded lines
+    # 2: the origins of the expanded lines; 3: xacro.arg reads and files not UTF-8 as xacro
+    # takes them
+    format=3,
     tools=("xacro",),
     tasks=_tasks,
     stage="planning",

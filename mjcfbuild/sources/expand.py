@@ -28,6 +28,8 @@ COMMAND_LINE = "the command line"
 # Carried by every element through xacro's expansion: where it was written ("file:line").
 _ORIGIN = "mjcfbuild-origin"
 _ARG_USE = re.compile(r"\$\(arg\s+([^\s)]+)\s*\)")
+# An argument read in an expression: ${xacro.arg('name')} (the xacro command takes it too).
+_ARG_READ = re.compile(r"""xacro\.arg\(\s*(['"])([^'"]+)\1\s*\)""")
 
 
 @dataclass
@@ -179,6 +181,19 @@ def _expand(
             hint = "xacro fails the same way on its own; fix the file or its args"
             line = None
             undefined = re.search(r"(?i)undefined substitution argument (\S+)", message)
+            read = re.fullmatch(r"'([^']+)'", message.strip())  # xacro.arg's KeyError
+            if read and read.group(1) not in mappings:
+                name = read.group(1)
+                line = _line_of(current, rf"""xacro\.arg\(\s*['"]{re.escape(name)}['"]""")
+                if line is not None:
+                    raise InputError(
+                        f"xacro failed: argument '{name}' is read with xacro.arg('{name}') "
+                        "but given no value",
+                        file=current,
+                        line=line,
+                        hint="pass it under 'source.args' in robot.yaml, or declare it with "
+                        "<xacro:arg> and a default",
+                    ) from None
             if undefined:
                 name = undefined.group(1).strip("'\"")
                 # Given under a misspelt name? (Only then: files not read yet may declare
@@ -253,13 +268,30 @@ def _line_of(file: str, pattern: str, after: str | None = None) -> int | None:
     return None
 
 
+def _refuse_other_encodings(data: bytes, filename: str) -> None:
+    """An :class:`InputError` at its line for a file that is not UTF-8: the xacro command
+    reads every file as UTF-8 and refuses one in ISO-8859-1 (whatever its XML declaration
+    says), which a build from bytes would otherwise have accepted."""
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(
+            f"byte 0x{data[exc.start]:02x} is not UTF-8; xacro reads every file as UTF-8",
+            file=filename,
+            line=data.count(b"\n", 0, exc.start) + 1,
+            hint="save the file as UTF-8",
+        ) from None
+
+
 def _mark_origins(document: Any, data: bytes, file: str, reading: _Reading) -> None:
     """Record the arguments a freshly parsed file (a minidom document) declares or uses, and
     when tracking lines, give each of its non-xacro elements an attribute saying where it is
     written, which xacro copies along wherever the element ends up."""
     from lxml import etree
 
-    reading.declared.update(_ARG_USE.findall(data.decode("utf-8", "replace")))
+    text = data.decode("utf-8", "replace")
+    reading.declared.update(_ARG_USE.findall(text))
+    reading.declared.update(name for _, name in _ARG_READ.findall(text))
     nodes = document.getElementsByTagName("*")
     for node in nodes:
         if node.tagName == "xacro:arg" and node.getAttribute("name"):
@@ -485,6 +517,7 @@ def _xacro_hooks(
                 return original_parse(inp, filename)  # xacro reports it in its own words
             try:
                 refuse_entities(data, filename)
+                _refuse_other_encodings(data, filename)
             except InputError as exc:
                 raised.append(exc)
                 raise

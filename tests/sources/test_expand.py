@@ -187,6 +187,33 @@ def test_an_undefined_argument_names_the_line_that_uses_it(pkg):
     assert "argument size" in info.value.message
 
 
+def test_an_argument_read_with_xacro_arg_is_taken_as_the_xacro_command_takes_it(tmp_path):
+    """``${xacro.arg('base')}`` reads an argument no <xacro:arg> declares: the xacro command
+    takes ``base:=b``, mjcfbuild refused it as not declared; without it, xacro's error was
+    only "'base'"."""
+    source = write(
+        tmp_path / "r.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        "  <link name=\"${xacro.arg('base')}\"/>\n</robot>\n",
+    )
+    resolver = PackageResolver({}, {})
+    expansion = expand_xacro(source, {"base": "b"}, resolver, args_key="robot.yaml source.args")
+    assert b'<link name="b"/>' in expansion.urdf
+    with pytest.raises(InputError) as info:
+        expand_xacro(source, {}, resolver, args_key="robot.yaml source.args")
+    assert (info.value.location.file, info.value.location.line) == (str(source), 2)
+    assert "argument 'base' is read with xacro.arg('base') but given no value" in str(info.value)
+
+
+def test_a_file_that_is_not_utf8_is_refused_as_the_xacro_command_refuses_it(tmp_path):
+    source = tmp_path / "r.xacro"
+    source.write_bytes(b'<?xml version="1.0" encoding="ISO-8859-1"?>\n<robot name="r\xe9"/>\n')
+    with pytest.raises(InputError) as info:
+        expand_xacro(source, {}, PackageResolver({}, {}))
+    assert info.value.location.line == 2
+    assert "byte 0xe9 is not UTF-8; xacro reads every file as UTF-8" in str(info.value)
+
+
 def test_an_unknown_package_in_find_has_its_line_and_the_closest_name(pkg):
     with pytest.raises(InputError) as info:
         expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({"pgk": pkg}, {}))
