@@ -587,5 +587,15 @@ def _refuse_yaml_bombs(path: str, reading: _Reading) -> None:
             hint=exc.hint,
         )
         raise reading.refused from None
+    except yaml.MarkedYAMLError as exc:  # xacro fails alike, naming neither file nor line
+        mark = exc.problem_mark
+        reading.refused = InputError(
+            f"YAML syntax error: {exc.problem}" + (f" ({exc.context})" if exc.context else ""),
+            file=str(normalise(path)),
+            line=mark.line + 1 if mark is not None else None,
+            column=mark.column + 1 if mark is not None else None,
+            hint="xacro's load_yaml reads it; fix the YAML",
+        )
+        raise reading.refused from None
     except (OSError, ValueError, yaml.YAMLError):  # ValueError: UnicodeDecodeError too
         return  # xacro reports these in its own words

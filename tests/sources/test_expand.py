@@ -214,6 +214,22 @@ def test_a_file_that_is_not_utf8_is_refused_as_the_xacro_command_refuses_it(tmp_
     assert "byte 0xe9 is not UTF-8; xacro reads every file as UTF-8" in str(info.value)
 
 
+def test_a_yaml_syntax_error_in_a_file_load_yaml_reads_names_that_file_and_line(tmp_path):
+    """xacro's own message named neither ("while parsing a flow sequence")."""
+    write(tmp_path / "cfg.yaml", "len: 0.1\nm: [1, 2\nz: 3\n")
+    source = write(
+        tmp_path / "r.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:property name="cfg" value="${xacro.load_yaml(\'cfg.yaml\')}"/>\n'
+        '  <link name="${cfg.len}"/>\n</robot>\n',
+    )
+    with pytest.raises(InputError) as info:
+        expand_xacro(source, {}, PackageResolver({}, {}))
+    assert info.value.location.file == str(tmp_path / "cfg.yaml")
+    assert info.value.location.line == 3
+    assert info.value.message.startswith("YAML syntax error: expected ',' or ']'")
+
+
 def test_an_unknown_package_in_find_has_its_line_and_the_closest_name(pkg):
     with pytest.raises(InputError) as info:
         expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({"pgk": pkg}, {}))
