@@ -301,11 +301,11 @@ def _foreign_files(ctx: BuildContext) -> list[str]:
 
 def check_owner(ctx: BuildContext) -> str | None:
     """Refuse (at robot.yaml's output.folder line) an output folder another robot.yaml that
-    still names it built: two manifests in one folder deleted each other's assets and rewrote
-    each other's scene, report and state, and each model then failed to load (``clean`` of
-    one removed the other's). A manifest that was renamed, removed, no longer reads or
-    points elsewhere gives the folder up. The name to record for ``ctx``'s manifest (None
-    where the folder is named by a caller, not robot.yaml)."""
+    still names it built another robot's model in: two manifests in one folder deleted each
+    other's assets and rewrote each other's scene, report and state, and each model then
+    failed to load (``clean`` of one removed the other's). A manifest that was renamed,
+    removed, no longer reads or points elsewhere gives the folder up. The name to record for
+    ``ctx``'s manifest (None where the folder is named by a caller, not robot.yaml)."""
     import json
 
     if not _guarded(ctx):
@@ -334,8 +334,8 @@ def check_owner(ctx: BuildContext) -> str | None:
 
 
 def _still_builds_here(ctx: BuildContext, owner: str) -> bool:
-    """Whether the manifest at ``owner`` (relative to the output folder) exists, reads, and
-    names this output folder."""
+    """Whether the manifest at ``owner`` (relative to the output folder) exists, reads, names
+    this output folder, and another robot's model in it."""
     from mjcfbuild.errors import MjcfbuildError
     from mjcfbuild.graph.context import GraphContext
 
@@ -346,4 +346,8 @@ def _still_builds_here(ctx: BuildContext, owner: str) -> bool:
         other = GraphContext.from_manifest_file(path)
     except MjcfbuildError:
         return False  # a manifest that does not read claims nothing
-    return os.path.realpath(other.out_dir) == os.path.realpath(ctx.out_dir)
+    if os.path.realpath(other.out_dir) != os.path.realpath(ctx.out_dir):
+        return False
+    # One robot's model from two manifests (another source, other settings): each build
+    # replaces the same files whole, as a rebuild with other settings does.
+    return other.manifest.robot_file != ctx.manifest.robot_file

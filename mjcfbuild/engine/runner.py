@@ -109,6 +109,8 @@ def build_lock(ctx: BuildContext, progress: Progress) -> Iterator[None]:
             hint="check its permissions, or set output.folder",
         ) from None
     with held:
+        state = ctx.state_dir.stat()
+        ctx.session.state_folder = (state.st_dev, state.st_ino)
         claim_output_folder(ctx)
         yield
 
@@ -158,7 +160,7 @@ def run_build(
                 tasks = _build_locked(ctx, progress, result, started)
                 ctx.session.close()
             except OSError as exc:  # the folder's own files (state, hash cache, report)
-                unwritable = write_failure(exc)
+                unwritable = write_failure(exc) or _folder_removed(ctx, exc)
                 if unwritable is None:
                     raise
                 result.errors.append(unwritable)
@@ -166,6 +168,10 @@ def run_build(
             finally:
                 ctx.session.close()
                 progress.clear()
+            if _state_folder_replaced(ctx):
+                # What it wrote before went with the folder, and its steps failed on files
+                # that went with it: one error says why.
+                result.errors = [_removed(ctx)]
             _summarise(result, progress, ctx, started, tasks)
             failpoint("stamp")
             # No stamp saying the outputs are current if SIGINT came and its
@@ -181,6 +187,32 @@ def run_build(
         _summarise(result, progress, ctx, started, [])
     interrupts.check()  # nor a result that reads as a success
     return result
+
+
+def _folder_removed(ctx: BuildContext, exc: OSError) -> OutputError | None:
+    """The error of a build whose output folder (or its state folder) was removed while it
+    ran (``rm -rf mjcf`` during a build): a file it had written, or was writing, was gone."""
+    if not isinstance(exc, FileNotFoundError) or not _state_folder_replaced(ctx):
+        return None
+    return _removed(ctx)
+
+
+def _state_folder_replaced(ctx: BuildContext) -> bool:
+    """Whether the state folder the build took is gone, or is another folder now (a step
+    made it again after the folder was removed)."""
+    try:
+        state = ctx.state_dir.stat()
+    except OSError:
+        return True
+    return ctx.session.state_folder not in (None, (state.st_dev, state.st_ino))
+
+
+def _removed(ctx: BuildContext) -> OutputError:
+    return OutputError(
+        "was removed while the build ran; nothing in it is current",
+        file=ctx.label(ctx.out_dir),
+        hint="build again",
+    )
 
 
 def _build_locked(

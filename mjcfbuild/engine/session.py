@@ -54,6 +54,9 @@ class BuildSession:
         self._closed = False
         # Whether the output folder had no build before (no worker has its meshes processed).
         self.first_build = False
+        # The state folder this build took (device, inode): one removed while it ran is gone
+        # or another folder at the end (engine.runner).
+        self.state_folder: tuple[int, int] | None = None
         # The threads running a step in this process (doit's), which close() waits for.
         self._here: set[int] = set()
         self._here_done = threading.Condition()

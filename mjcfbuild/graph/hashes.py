@@ -53,8 +53,9 @@ class HashCache:
         return digest
 
     def save(self) -> None:
-        """Write the cache back if it changed, dropping entries of files that are gone."""
-        if self.path is None or not self._dirty:
+        """Write the cache back if it changed, dropping entries of files that are gone; not
+        where its folder is gone (removed during the build, which then fails saying so)."""
+        if self.path is None or not self._dirty or not self.path.parent.is_dir():
             return
         with self._lock:
             entries = {k: v for k, v in sorted(self._entries.items()) if os.path.exists(k)}

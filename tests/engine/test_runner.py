@@ -84,3 +84,34 @@ def test_concurrent_builds_of_one_folder_all_succeed(arm, tmp_path):
         if build.returncode != 0:
             failures.append(err.decode())
     assert failures == []
+
+
+def test_a_folder_removed_while_the_build_runs_fails_it_in_one_line(arm):
+    """``rm -rf mjcf`` during a build: its steps failed on files gone with the folder, as
+    internal errors (exit 70) or doit's words, or it even succeeded with its early outputs
+    gone. The build stops here, between its planning and its building, and the folder goes."""
+    import shutil
+    import signal
+
+    from mjcfbuild.errors import EXIT_OUTPUT
+    from tests.conftest import sigint_at_default
+
+    build = subprocess.Popen(
+        [sys.executable, "-m", "mjcfbuild", "build", "-q", "--no-check"],
+        cwd=arm,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(ROOT), "MJCFBUILD_FAILPOINT": "stages:stop"},
+        preexec_fn=sigint_at_default,
+    )
+    _, status = os.waitpid(build.pid, os.WUNTRACED)
+    assert os.WIFSTOPPED(status)
+    shutil.rmtree(arm / "mjcf")
+    os.kill(build.pid, signal.SIGCONT)
+    _, stderr = build.communicate(timeout=300)
+    assert build.returncode == EXIT_OUTPUT, stderr
+    assert stderr.splitlines()[0] == (
+        "mjcfbuild: error: mjcf: was removed while the build ran; nothing in it is current "
+        "(build again)"
+    ), stderr
+    assert "Traceback" not in stderr and "internal error" not in stderr
