@@ -472,9 +472,10 @@ def _add_geometry(
         positions = _source_array(reader, vertex_input, mesh, cache)[:, :3]
         vertex_index = corners[:, int(vertex_input.get("offset", "0"))]
         if vertex_index.size and (vertex_index.max() >= len(positions) or vertex_index.min() < 0):
+            outside = vertex_index.min() if vertex_index.min() < 0 else vertex_index.max()
             raise reader.error(
                 f"a <{kind}> of geometry '{geometry.get('id')}' uses vertex "
-                f"{int(vertex_index.max())}, but its source has {len(positions)} vertices "
+                f"{int(outside)}, but its source has {len(positions)} vertices "
                 "(vertex index out of range)",
                 primitive,
             )

@@ -86,7 +86,11 @@ def load_parts(path: Path, apply_up_axis: bool = False) -> list[MeshPart]:
         key = (piece.rgba, piece.texture.key if piece.texture else None)
         groups.setdefault(key, []).append(piece)
     if not groups:
-        raise InputError("mesh has no triangles", file=path, hint="re-export it with its faces")
+        raise InputError(
+            (_cut_stl(path) if suffix == ".stl" else None) or "mesh has no triangles",
+            file=path,
+            hint="re-export it with its faces",
+        )
     parts = []
     for pieces_of_look in groups.values():
         part = _concatenate(pieces_of_look)
@@ -94,6 +98,32 @@ def load_parts(path: Path, apply_up_axis: bool = False) -> list[MeshPart]:
             raise InputError("mesh has vertices that are not finite numbers", file=path)
         parts.append(merge_vertices(part))
     return parts
+
+
+def _cut_stl(path: Path) -> str | None:
+    """Why an STL file in which no triangle was found is not what it says, where its
+    length tells: a binary STL cut short, or with bytes after its last triangle (read as
+    ASCII, it had "no triangles")."""
+    from mjcfbuild.meshes.stlfile import HEADER_BYTES, TRIANGLE
+
+    try:
+        size = path.stat().st_size
+        with open(path, "rb") as handle:
+            head = handle.read(HEADER_BYTES + 4)
+            ascii_text = b"facet" in head + handle.read(1024)
+    except OSError:
+        return None
+    if ascii_text or len(head) < HEADER_BYTES + 4:
+        return None
+    count = int.from_bytes(head[HEADER_BYTES:], "little")
+    expected = HEADER_BYTES + 4 + count * TRIANGLE.itemsize
+    if size == expected:
+        return None
+    how = "is cut short" if size < expected else f"has {size - expected} bytes after its end"
+    return (
+        f"binary STL declares {count} triangles ({expected} bytes), but the file has {size} "
+        f"bytes: it {how}"
+    )
 
 
 def _collada_pieces(path: Path, apply_up_axis: bool) -> list[MeshPart]:

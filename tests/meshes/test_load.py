@@ -90,3 +90,19 @@ def test_an_obj_that_breaks_its_indexing_is_an_error_at_its_line(tmp_path, text,
     with pytest.raises(InputError) as info:
         load_parts(path)
     assert says in str(info.value) and info.value.location.line == line
+
+
+@pytest.mark.parametrize(
+    ("cut", "says"),
+    [(-384, "but the file has 300 bytes: it is cut short"), (9, "it has 9 bytes after its end")],
+    ids=["cut-short", "bytes-after"],
+)
+def test_a_binary_stl_whose_length_is_not_its_count_says_so(tmp_path, cut, says):
+    """Read as ASCII, such a file had "no triangles": the wrong thing to look for."""
+    whole = b"\0" * 80 + (12).to_bytes(4, "little") + b"\0" * (50 * 12)
+    path = tmp_path / "m.stl"
+    path.write_bytes(whole[:cut] if cut < 0 else whole + b"\0" * cut)
+    with pytest.raises(InputError) as info:
+        load_parts(path)
+    assert "binary STL declares 12 triangles (684 bytes)" in str(info.value)
+    assert says in str(info.value)
