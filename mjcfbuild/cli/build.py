@@ -6,6 +6,7 @@ import argparse
 import sys
 from collections.abc import Callable
 from dataclasses import replace
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from mjcfbuild.cli import (
@@ -217,11 +218,13 @@ def execute(
     hints: Callable[[str], str] | None = None,
     workers: WorkerPool | None = None,
     warnings: list[str] | None = None,
+    files: Callable[[str], str] | None = None,
 ) -> int:
     """Run a build of ``ctx`` and print its errors, summary and (unless ``quiet``) warnings,
     one line per kind; the exit code.
 
     ``hints`` rewrites the advice errors give (``convert`` has flags where robot.yaml has keys);
+    ``files`` the files they name (``diff``: a revision's copy as ``<revision>:<path>``);
     ``workers`` were started for this build before its manifest was read; ``warnings``, when
     given, receives the warnings instead of the console (``diff`` prints them after its answer).
     """
@@ -232,7 +235,12 @@ def execute(
     def report(error: MjcfbuildError) -> None:
         if hints is not None and error.hint:
             error.hint = hints(error.hint)
-        report_error(error, debug, base_dir=ctx.base_dir)
+        if files is not None and error.location is not None:
+            error.relocate(ctx.base_dir, Path.cwd())
+            error.location.file = files(error.location.file)
+            report_error(error, debug)
+        else:
+            report_error(error, debug, base_dir=ctx.base_dir)
 
     try:
         result = run_build(ctx, Progress(quiet=quiet), workers)

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 from mjcfbuild.cli import (
@@ -152,7 +154,16 @@ def _build_revision(
     from mjcfbuild.diff.revisions import extract
 
     manifest = extract(repo, revision, side)
-    return _build(manifest, side / "out", revision.label, args, warnings)
+    copy = str(side / "src") + os.sep
+
+    def in_revision(file: str) -> str:
+        """A file of the revision's copy as git names it (``git show 0123abcdef:urdf/a.xacro``
+        shows it)."""
+        if not file.startswith(copy):
+            return file
+        return f"{revision.commit[:10]}:{file.removeprefix(copy)}"
+
+    return _build(manifest, side / "out", revision.label, args, warnings, in_revision)
 
 
 def _build(
@@ -161,10 +172,11 @@ def _build(
     label: str,
     args: argparse.Namespace,
     warnings: dict[str, list[str]],
+    files: Callable[[str], str] | None = None,
 ) -> Path:
-    """Build ``manifest`` (into ``output`` when given) with its messages on stderr, its
-    warnings into ``warnings[label]``; its output folder. A check that fails still leaves a
-    model to compare."""
+    """Build ``manifest`` (into ``output`` when given) with its messages on stderr (the files
+    they name shown by ``files``), its warnings into ``warnings[label]``; its output folder. A
+    check that fails still leaves a model to compare."""
     import contextlib
     from dataclasses import replace
 
@@ -177,7 +189,9 @@ def _build(
     if output is not None:
         ctx = replace(ctx, output_override=output)
     with contextlib.redirect_stdout(sys.stderr):
-        code = execute(ctx, quiet=True, debug=args.debug, warnings=warnings.setdefault(label, []))
+        code = execute(
+            ctx, quiet=True, debug=args.debug, warnings=warnings.setdefault(label, []), files=files
+        )
     if code not in (EXIT_OK, EXIT_CHECK):
         raise RevisionBuildFailed(label, code)
     return ctx.out_dir

@@ -211,6 +211,23 @@ def test_a_revision_that_does_not_exist_is_a_usage_error(tmp_path):
     assert "Traceback" not in result.stderr
 
 
+def test_an_error_in_a_revision_names_its_file_as_git_shows_it(tmp_path):
+    """A revision that did not build named the copy in the scratch folder, which the user
+    never made; ``<commit>:<path>`` is what ``git show`` takes."""
+    arm = new_repo(tmp_path)
+    edit(arm / "urdf" / "arm.urdf.xacro", "<robot ", "<robotx ")
+    git(tmp_path, "commit", "-qam", "broken")
+    commit = git(tmp_path, "rev-parse", "HEAD").strip()[:10]
+    git(tmp_path, "checkout", "-q", "HEAD~1", "--", "arm/urdf/arm.urdf.xacro")
+    result = run_cli("diff", "--base", "HEAD", "-q", cwd=arm)
+    assert result.code == 4, result.stderr
+    named = f"mjcfbuild: error: {commit}:arm/urdf/arm.urdf.xacro:"
+    assert any(line.startswith(named) for line in result.stderr.splitlines()), result.stderr
+    line = int(result.stderr.split(named)[1].split(":")[0])
+    shown = git(tmp_path, "show", f"{commit}:arm/urdf/arm.urdf.xacro").splitlines()
+    assert shown[line - 1] == "</robot>"  # where the tag opened as <robotx> is closed
+
+
 def test_a_folder_without_a_build_is_an_input_error(tmp_path):
     (tmp_path / "empty").mkdir()
     result = run_cli("diff", "--folders", str(tmp_path / "empty"), str(tmp_path / "empty"))
