@@ -173,8 +173,11 @@ def _expand(
                 first = raised[0]
                 line = first.location.line if first.location else None
                 package = re.match(r"unknown package '([^']+)'", first.message)
+                variable = re.match(r"xacro reads environment variable (\S+),", first.message)
                 if line is None and package:
                     line = _line_of(current, re.escape(f"$(find {package.group(1)})"))
+                elif line is None and variable:
+                    line = _line_of(current, rf"\$\(env\s+{re.escape(variable.group(1))}\s*\)")
                 raise InputError(first.message, file=current, line=line, hint=first.hint) from None
             message = _xacro_message(exc)
             # Said only once xacro has failed without mjcfbuild's tracking too.
@@ -443,7 +446,16 @@ def _place_failure(
             message = f"macro '{name}' is called without parameter {lacking.group(1)}"
             hint = "give it in the call, or a default in the macro's params as name:=value"
     else:
-        return current, None, message, hint
+        # Outside macros xacro names only the expression (in its message's later lines):
+        # found where it is written, as ${...} or $(...) text.
+        expression = re.search(r"when evaluating expression '(.*)'", str(exc))
+        missing_default = "xacro:arg: missing attribute 'default'" in message
+        if expression is not None:
+            pattern = re.escape(expression.group(1))
+        elif missing_default:
+            pattern = r"<xacro:arg\b(?![^>]*\bdefault=)"
+        else:
+            return current, None, message, hint
     for file, start in places:
         line = _line_of(file, pattern, after=start)
         if line is not None:

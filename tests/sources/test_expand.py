@@ -230,6 +230,29 @@ def test_a_yaml_syntax_error_in_a_file_load_yaml_reads_names_that_file_and_line(
     assert info.value.message.startswith("YAML syntax error: expected ',' or ']'")
 
 
+@pytest.mark.parametrize(
+    "written",
+    [
+        '<link name="${1/0}"/>',
+        "<link name=\"${xacro.fatal('stop here')}\"/>",
+        '<link name="$(env MJCFBUILD_TEST_UNSET)"/>',
+        '<xacro:arg name="required"/>',
+    ],
+    ids=["division-by-zero", "fatal", "unset-env", "arg-without-default"],
+)
+def test_a_failure_outside_macros_names_its_line(tmp_path, monkeypatch, written):
+    """xacro names only the expression (or nothing); the error named the file alone."""
+    monkeypatch.delenv("MJCFBUILD_TEST_UNSET", raising=False)
+    source = write(
+        tmp_path / "r.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        f'  <link name="base"/>\n  {written}\n</robot>\n',
+    )
+    with pytest.raises(InputError) as info:
+        expand_xacro(source, {}, PackageResolver({}, {}))
+    assert (info.value.location.file, info.value.location.line) == (str(source), 3)
+
+
 def test_an_unknown_package_in_find_has_its_line_and_the_closest_name(pkg):
     with pytest.raises(InputError) as info:
         expand_xacro(pkg / "urdf" / "main.xacro", {}, PackageResolver({"pgk": pkg}, {}))
