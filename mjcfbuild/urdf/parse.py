@@ -593,12 +593,15 @@ def validate_structure(robot: Robot, root: etree._Element, reader: _Reader) -> N
             line=robot.joints[0].line if robot.joints else None,
         )
     if len(roots) > 1:
+        # The robot's own root carries the most links; the error is at an extra one (often
+        # a link an optional include adds).
+        extra = min(roots, key=lambda root: (_tree_size(robot, root), roots.index(root)))
         raise InputError(
             f"the robot has {len(roots)} root links ({', '.join(roots[:6])}"
             f"{', ...' if len(roots) > 6 else ''}); a URDF has exactly one",
             file=reader.file,
-            line=robot.link(roots[1]).line,
-            hint="connect the extra roots with joints",
+            line=robot.link(extra).line,
+            hint=f"connect '{extra}' (and any other extra root) to the robot with a joint",
         )
     children = robot.child_joints()
     reached = {roots[0]}
@@ -616,6 +619,18 @@ def validate_structure(robot: Robot, root: etree._Element, reader: _Reader) -> N
             file=reader.file,
             line=unreached[0].line,
         )
+
+
+def _tree_size(robot: Robot, root: str) -> int:
+    """How many links hang from ``root`` (itself included)."""
+    children = robot.child_joints()
+    seen, pending = {root}, [root]
+    while pending:
+        for joint in children.get(pending.pop(), []):
+            if joint.child not in seen:
+                seen.add(joint.child)
+                pending.append(joint.child)
+    return len(seen)
 
 
 def _refuse_impossible_mimics(robot: Robot, file: str) -> None:

@@ -181,6 +181,12 @@ DEFECTS = [
         "2 root links",
         1,
     ),
+    (  # the extra root is named where it is written, before the robot's own or after it
+        "<robot>\n<link name='extra'/>\n<link name='a'/><link name='b'/>"
+        "<joint name='j' type='fixed'><parent link='a'/><child link='b'/></joint></robot>",
+        "2 root links (extra, a)",
+        2,
+    ),
     (
         "<robot><link name='a'/><link name='b'/>\n"
         "<joint name='j1' type='fixed'><parent link='a'/><child link='b'/></joint>\n"
