@@ -67,6 +67,11 @@ class MeshPart:
     texture: Texture | None = None
 
 
+# The largest coordinate a mesh file may hold, in its own unit: 100 km in metres, 100 m in
+# millimetres; a damaged file's 1e30 is refused instead of passed to MuJoCo.
+FARTHEST_COORDINATE = 1e5
+
+
 def load_parts(path: Path, apply_up_axis: bool = False) -> list[MeshPart]:
     """The triangles of ``path`` grouped by look, in a stable order, vertices shared.
 
@@ -96,6 +101,14 @@ def load_parts(path: Path, apply_up_axis: bool = False) -> list[MeshPart]:
         part = _concatenate(pieces_of_look)
         if not np.all(np.isfinite(part.vertices)):
             raise InputError("mesh has vertices that are not finite numbers", file=path)
+        farthest = float(np.abs(part.vertices).max(initial=0.0))
+        if farthest > FARTHEST_COORDINATE:  # MuJoCo then called its vertices "collinear"
+            raise InputError(
+                f"mesh has a vertex coordinate of {farthest:g}, farther than any robot reaches "
+                f"in any unit (at most {FARTHEST_COORDINATE:g})",
+                file=path,
+                hint="a damaged file, or a vertex written wrong: open it in a mesh tool",
+            )
         parts.append(merge_vertices(part))
     return parts
 

@@ -106,3 +106,13 @@ def test_a_binary_stl_whose_length_is_not_its_count_says_so(tmp_path, cut, says)
         load_parts(path)
     assert "binary STL declares 12 triangles (684 bytes)" in str(info.value)
     assert says in str(info.value)
+
+
+def test_a_coordinate_no_robot_reaches_is_refused_by_its_size(tmp_path):
+    """A damaged file's 1e30 reached MuJoCo, which called the vertices "collinear"."""
+    path = write(tmp_path / "m.obj", "v 0 0 0\nv 1e30 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n")
+    with pytest.raises(InputError) as info:
+        load_parts(path)
+    assert "mesh has a vertex coordinate of 1e+30, farther than any robot reaches" in str(
+        info.value
+    )
