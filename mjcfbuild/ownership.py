@@ -17,8 +17,9 @@ from pathlib import Path
 STATE_DIR = ".mjcfbuild"
 FOREIGN = "foreign.json"
 
-# The files each process read, by record path: (its mtime, the names it holds).
-_read: dict[str, tuple[int, frozenset[str]]] = {}
+# The records each process read, by path: (what identifies that version of it, its names).
+# A resident worker serves many builds; each writes its record anew (a new inode).
+_read: dict[str, tuple[tuple[int, int, int], frozenset[str]]] = {}
 
 
 def record_foreign(out_dir: Path, names: Iterable[str]) -> None:
@@ -57,17 +58,18 @@ def refuse_foreign(path: Path, data: bytes) -> None:
 
 def _names(record: Path) -> frozenset[str]:
     try:
-        mtime = record.stat().st_mtime_ns
+        stat = record.stat()
     except OSError:
         return frozenset()
+    version = (stat.st_ino, stat.st_size, stat.st_mtime_ns)
     cached = _read.get(str(record))
-    if cached is not None and cached[0] == mtime:
+    if cached is not None and cached[0] == version:
         return cached[1]
     try:
         names = frozenset(json.loads(record.read_text(encoding="utf-8"))["files"])
     except (OSError, ValueError, KeyError, TypeError):
         names = frozenset()
-    _read[str(record)] = (mtime, names)
+    _read[str(record)] = (version, names)
     return names
 
 
