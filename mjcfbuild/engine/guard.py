@@ -279,13 +279,16 @@ def claim_output_folder(ctx: BuildContext) -> None:
 
 def _foreign_files(ctx: BuildContext) -> list[str]:
     """The files in the output folder where builds write (the folder itself, ``assets/``,
-    ``report/``, ...) that no build recorded writing: the user's. None known in a folder
-    an mjcfbuild from before the record built (its record is missing, its state is not)."""
+    ``report/``, ...) that no build recorded writing: the user's. None known where there is
+    no record but a build's outputs are there: a folder an mjcfbuild from before the record
+    built (its state is there), or a fresh clone of a repository that commits its models
+    (no state; the model carries mjcfbuild's header), whose files the build keeps current."""
     from mjcfbuild.engine.written import recorded, written_file
 
     names = recorded(ctx)
-    if names is None and any(
-        entry.name not in ("lock", OWNER, FOREIGN) for entry in ctx.state_dir.iterdir()
+    if names is None and (
+        any(entry.name not in ("lock", OWNER, FOREIGN) for entry in ctx.state_dir.iterdir())
+        or _built_model(ctx.robot_path)
     ):
         return []
     found = []
@@ -297,6 +300,18 @@ def _foreign_files(ctx: BuildContext) -> list[str]:
             if name not in (names or {}) and written_file(ctx.out_dir, name):
                 found.append(name)
     return found
+
+
+def _built_model(path: Path) -> bool:
+    """Whether ``path`` is a model a build wrote (it starts with the build's header)."""
+    from mjcfbuild.outputs import MODEL_HEADER
+
+    start = f"<!-- {MODEL_HEADER} ".encode()
+    try:
+        with open(path, "rb") as file:
+            return file.read(len(start)) == start
+    except OSError:
+        return False
 
 
 def check_owner(ctx: BuildContext) -> str | None:

@@ -221,3 +221,23 @@ def test_a_file_of_the_users_in_the_output_folder_is_never_written_over(arm):
     assert (assets / "wrist.obj").read_text() == "# mine\n"
     (assets / "wrist.obj").unlink()
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+
+
+def test_a_fresh_clone_of_committed_models_is_the_builds_to_keep_current(arm):
+    """A repository that commits its models (not the state folder): the first build of a
+    fresh clone finds the model, scene and assets with no record, and updates them. It knows
+    them by the model's header; a folder whose model lacks it is guarded as above."""
+    import shutil
+
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    shutil.rmtree(arm / "mjcf" / ".mjcfbuild")
+    limits = arm / "config" / "joint_limits.yaml"
+    limits.write_text(limits.read_text().replace("upper: 2.5", "upper: 2.4"))
+    before = (arm / "mjcf" / "example_arm.xml").read_text()
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    assert (arm / "mjcf" / "example_arm.xml").read_text() != before
+    shutil.rmtree(arm / "mjcf" / ".mjcfbuild")
+    model = arm / "mjcf" / "example_arm.xml"
+    model.write_text(model.read_text().split("\n", 1)[1])  # no header: not known as a build's
+    limits.write_text(limits.read_text().replace("upper: 2.4", "upper: 2.3"))
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == EXIT_OUTPUT
