@@ -89,8 +89,7 @@ def _without_actuator_state(root: etree._Element) -> etree._Element:
     """``root``, or a copy of it whose keyframes hold no ``ctrl`` or ``act``: an input's
     keyframe gives them for the finished model's actuators, which the compiles before the
     actuators are added do not have yet (MuJoCo said "expected length 0")."""
-    keys = [key for key in root.iter("key") if "ctrl" in key.attrib or "act" in key.attrib]
-    if not keys:
+    if not any("ctrl" in key.attrib or "act" in key.attrib for key in root.iter("key")):
         return root
     copy = deepcopy(root)
     for key in copy.iter("key"):
