@@ -261,3 +261,29 @@ def test_every_xacro_file_of_the_description_wheels_expands_as_xacro_does(tmp_pa
         if assert_agrees(source, tmp_path / str(number), args, packages) is not None:
             expanded += 1
     assert expanded >= len(files) - 5  # a few are fragments that only expand when included
+
+
+@pytest.mark.parametrize(
+    ("text", "args", "expands"),
+    [
+        ("<link name=\"${xacro.arg('base')}\"/>", {"base": "b"}, True),
+        ("<link name=\"${xacro.arg('base')}\"/>", {}, False),
+        ('<link name="caf\xe9"/>', {}, False),  # written in ISO-8859-1 below
+        ('<link name="$(env MJCFBUILD_PARITY_UNSET)"/>', {}, False),
+        ('<link name="${1/0}"/>', {}, False),
+    ],
+    ids=["xacro-arg-given", "xacro-arg-missing", "iso-8859-1", "unset-env", "division"],
+)
+def test_what_xacro_takes_and_refuses_at_the_edges(tmp_path, monkeypatch, text, args, expands):
+    """The cases this project once decided apart from the xacro command: an argument read
+    with xacro.arg, a file that is not UTF-8, failures outside macros."""
+    monkeypatch.delenv("MJCFBUILD_PARITY_UNSET", raising=False)
+    source = tmp_path / "r.xacro"
+    source.write_bytes(
+        (
+            '<?xml version="1.0" encoding="ISO-8859-1"?>\n'
+            '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+            f'  <link name="root"/>\n  {text}\n</robot>\n'
+        ).encode("latin-1")
+    )
+    assert (assert_agrees(source, tmp_path, args) is not None) == expands
