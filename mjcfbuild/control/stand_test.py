@@ -118,28 +118,25 @@ def stand_test(model, key: int, passive: set[str], seconds: float = STAND_SECOND
     ]
     watched = [j for j in watched_joints(model, passive) if j not in wheels]
     start = data.xpos[root][:2].copy()
-    roll = 0.0
     addresses = np.array([model.jnt_qposadr[j] for j in watched], dtype=int)
     home = data.qpos.copy()
-    tilt = sink = worst = 0.0
-    worst_joint = None
-    # What base_tilt and floor_height look up, once: the loop runs 1,500 times a trial.
-    floor = floor_height(model)
-    for _ in range(round(seconds / model.opt.timestep)):
+    # Each step's state is copied into arrays and judged after the loop: the loop runs
+    # 1,500-2,500 times a trial, and judging each step in Python cost as much as stepping.
+    steps = round(seconds / model.opt.timestep)
+    qpos = np.empty((steps, model.nq))
+    base = np.empty((steps, 4))  # the root body's position and its z axis's world z
+    for step in range(steps):
         mujoco.mj_step(model, data)
-        if root:  # base_tilt of the free body (the world's is 0)
-            tilt = max(tilt, _tilt(data.xmat[root][8]))
-        sink = max(sink, height - (float(data.xpos[root][2]) - floor))
-        roll = max(roll, float(np.linalg.norm(data.xpos[root][:2] - start)))
-        if len(addresses):
-            deviation = np.abs(data.qpos[addresses] - home[addresses])
-            index = int(np.argmax(deviation))
-            if deviation[index] > worst:
-                worst = float(deviation[index])
-                worst_joint = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, watched[index])
-        if not np.all(np.isfinite(data.qpos)):
-            tilt = math.pi
-            break
+        qpos[step] = data.qpos
+        base[step, :3] = data.xpos[root]
+        base[step, 3] = data.xmat[root][8]
+    judged = _judge(qpos, base, start, home, addresses, (height, floor_height(model)), root)
+    tilt, sink, roll, worst, worst_index = judged
+    worst_joint = (
+        mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, watched[worst_index])
+        if worst_index is not None
+        else None
+    )
     names = [mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or "" for j in wheels]
     kvs = [
         float(model.actuator_gainprm[a][0])
@@ -160,6 +157,40 @@ def stand_test(model, key: int, passive: set[str], seconds: float = STAND_SECOND
         roll,
         min(kvs, default=0.0),
     )
+
+
+def _judge(qpos, base, start, home, addresses, heights: tuple[float, float], root: int):
+    """The largest tilt, sink (below ``heights``: the base's at home above the floor, and the
+    floor's) and roll of the base and the largest deviation of a watched
+    joint from ``home`` (with the index of its joint in ``addresses``, None if none moved),
+    over the steps recorded in ``qpos`` and ``base``, up to the first step whose qpos is not
+    finite (the simulation diverged: the tilt is then pi, a fall)."""
+    import numpy as np
+
+    finite = np.all(np.isfinite(qpos), axis=1)
+    diverged = not finite.all()
+    # After mj_step, the bodies' poses are those of the qpos the step started from: a step
+    # that diverged still moved the base to finite poses, which count.
+    end = int(np.argmin(finite)) if diverged else len(qpos)
+    seen = base[: end + 1]
+    tilt = math.pi if diverged else 0.0
+    if root and len(seen) and not diverged:
+        tilt = _tilt(float(np.fmin.reduce(seen[:, 3])))
+    height, floor = heights
+    sink = float(np.fmax.reduce(height - (seen[:, 2] - floor), initial=0.0))
+    moved = np.linalg.norm(seen[:, :2] - start, axis=1)
+    roll = float(np.fmax.reduce(moved, initial=0.0))
+    worst, worst_index = 0.0, None
+    # The step that diverged counts too where the joints watched are still finite.
+    counted = end + 1 if diverged and np.all(np.isfinite(qpos[end, addresses])) else end
+    if len(addresses) and counted:
+        deviation = np.abs(qpos[:counted, addresses] - home[addresses])
+        largest = deviation.max(axis=1)
+        first = int(np.argmax(largest))  # the step the largest deviation was first reached
+        if largest[first] > 0.0:
+            worst_index = int(np.argmax(deviation[first]))
+            worst = float(deviation[first, worst_index])
+    return tilt, sink, roll, worst, worst_index
 
 
 def joint_drives(model) -> dict[str, str]:

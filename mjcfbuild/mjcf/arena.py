@@ -40,6 +40,11 @@ def arena_bytes(model: Any) -> int:
     return contacts * rows * max(model.nv, 1) * BYTES_PER_ROW_DOF * MARGIN
 
 
+def holds_contacts(model: Any) -> bool:
+    """Whether the arena MuJoCo sized for ``model`` holds the bound above."""
+    return arena_bytes(model) <= model.narena
+
+
 def size_arena(root: etree._Element, model: Any) -> str | None:
     """Give ``root`` (the model ``model`` was compiled from) a ``<size memory>`` where the
     bound exceeds the arena MuJoCo sized by default; the value set, or None (a memory the

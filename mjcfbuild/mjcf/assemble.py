@@ -175,7 +175,7 @@ def _apply_additions(
     from mjcfbuild.inputs.gazebo_sensors import add_gazebo_sensors
     from mjcfbuild.inputs.rays import unroll_lidar_rays
     from mjcfbuild.inputs.ros2_control import sensor_warnings
-    from mjcfbuild.mjcf.arena import size_arena
+    from mjcfbuild.mjcf.arena import holds_contacts, size_arena
     from mjcfbuild.selfcollision.excludes import write_excludes
 
     links = {
@@ -200,13 +200,18 @@ def _apply_additions(
     write_excludes(root, options.excludes)
     unroll_lidar_rays(root)  # MuJoCo compiles a replicated lidar's rays in quadratic time
 
+    # The last model compiled from each whole tree (not a copy), by the tree's identity.
+    compiled: dict[int, tuple[etree._Element, Any]] = {}
+
     def compile_tree(tree, drawing: bool = False) -> Any:
         copy = _reading_products(tree, prepared)
         if not drawing:
             _drop_drawing_meshes(copy)
         xml = etree.tostring(copy, encoding="unicode")
         try:
-            return mujoco.MjModel.from_xml_string(xml)
+            model = mujoco.MjModel.from_xml_string(xml)
+            compiled[id(tree)] = (tree, model)
+            return model
         except Exception as exc:
             message = _first_line(exc).replace("Error: ", "")
             file, line = _raw_input_named(str(exc), inputs)
@@ -260,6 +265,9 @@ def _apply_additions(
             trial_readiness = ready(trial, crouched)
             if stands(trial, compile_tree):
                 replace_tree(root, trial)
+                compiled.pop(id(root), None)
+                if id(trial) in compiled:
+                    compiled[id(root)] = (root, compiled[id(trial)][1])
                 readiness = trial_readiness
                 readiness.home_from = (
                     "crouch mjcfbuild computed: no home pose was given (robot.yaml home:, "
@@ -272,8 +280,13 @@ def _apply_additions(
     readiness.passive += [joint for joint in parts.undriven if joint not in chosen]
     readiness.actuators += _part_actuators(root, options.parts)
     warnings += readiness.notes
-    finished = compile_tree(root, drawing=True)  # the finished model, as published
-    size_arena(root, finished)  # issue 40: a long chain's contacts outgrow the default
+    # issue 40: a long chain's contacts outgrow the default arena. The last trial model of
+    # the finished tree decides when it holds them: the published model differs from it only
+    # by geoms that draw (more geoms, a larger arena). Otherwise, or where the inputs may
+    # have changed what draws, the finished model is compiled as published.
+    tree, trial_model = compiled.get(id(root), (None, None))
+    if tree is not root or not inputs.is_empty() or not holds_contacts(trial_model):
+        size_arena(root, compile_tree(root, drawing=True))
     return warnings, readiness
 
 

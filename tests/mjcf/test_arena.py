@@ -6,7 +6,7 @@ from __future__ import annotations
 import mujoco
 from lxml import etree
 
-from mjcfbuild.mjcf.arena import arena_bytes, size_arena
+from mjcfbuild.mjcf.arena import arena_bytes, holds_contacts, size_arena
 
 
 def chain(links: int, size: str = "") -> etree._Element:
@@ -60,3 +60,31 @@ def test_nothing_colliding_needs_nothing():
         "</body></worldbody></mujoco>"
     )
     assert arena_bytes(compiled(root)) == 0
+
+
+def test_geoms_that_only_draw_never_shrink_the_arena_mujoco_gives():
+    # The assembly sizes the arena from its last trial model, which leaves out the geoms that
+    # only draw, when that model holds its contacts: the published model, with every geom,
+    # must then get at least that arena and need no more.
+    for links in (1, 20, 150, 300):
+        root = chain(links)
+        trial = compiled(root)
+        for body in root.iter("body"):
+            for _ in range(3):
+                etree.SubElement(
+                    body,
+                    "geom",
+                    {
+                        "type": "sphere",
+                        "size": "0.01",
+                        "contype": "0",
+                        "conaffinity": "0",
+                        "group": "2",
+                        "density": "0",
+                    },
+                )
+        published = compiled(root)
+        assert published.narena >= trial.narena
+        assert arena_bytes(published) == arena_bytes(trial)
+        if holds_contacts(trial):
+            assert holds_contacts(published)

@@ -214,3 +214,13 @@ def test_touching_pairs_are_bodies_in_contact_not_geoms_within_the_margin():
     # a's own two geoms overlap but are one body.
     assert _touching(model, data, model.qpos0) == {(1, 2)}
     assert any(dist > 0 for dist in data.contact.dist)  # the margin's contact was there
+
+
+def test_a_verdicts_dict_holds_every_field():
+    from dataclasses import asdict
+
+    from mjcfbuild.selfcollision.matrix import PairVerdict
+
+    verdict = PairVerdict("a", "b", "sometimes", 0.25, False)
+    assert verdict.to_dict() == asdict(verdict)
+    assert PairVerdict(**verdict.to_dict()) == verdict
