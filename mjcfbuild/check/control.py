@@ -73,7 +73,7 @@ def check_control(
 
     report = ControlReport(results or CheckResults())
     problems = actuation_problems(model, passive)
-    report.add(problems if strict else [], actuation=Actuation(model.nu, problems))
+    report.add(problems if strict else [], actuation=Actuation(model.nu, problems, strict))
     home = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home")
     report.add(home=home >= 0)
     floating = _floating(model)
@@ -125,8 +125,9 @@ def _hold_and_stand(
     if home >= 0:
         with simulating("holding home's ctrl for 1 s"):
             deviation, joint, tilt = hold_deviation(model, home, passive)
-        report.add(hold=Hold(deviation, joint, floating, tilt if floating else None))
-        if not floating and deviation > hold_tolerance:
+        failed = not floating and deviation > hold_tolerance
+        report.add(hold=Hold(deviation, joint, floating, tilt if floating else None, failed))
+        if failed:
             report.add(
                 [
                     f"holding home's ctrl for 1 s, joint '{joint}' moved {deviation:.3g} from "
@@ -148,7 +149,8 @@ def _hold_and_stand(
             report.add(stand=fell, needs_controller=why)
         elif stand.fails(hold_tolerance):
             advice = _hold_advice(model, home, stand.joint)
-            report.add([stand.failure(hold_tolerance, advice)], stand=standing)
+            fallen = replace(standing, failed=True)
+            report.add([stand.failure(hold_tolerance, advice)], stand=fallen)
         else:
             report.add(stand=standing)
 

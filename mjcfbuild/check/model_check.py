@@ -111,6 +111,8 @@ def check_model(
 
     reader, fallback = reference_from_record(reference)
     kinematics = compare_kinematics(robot, model, options.configurations, options.seed, reader)
+    tolerances = (options.position_tolerance, options.rotation_tolerance)
+    first = kinematics.first_wrong(*tolerances)
     results = results.add(
         kinematics=Kinematics(
             configurations=options.configurations,
@@ -120,14 +122,13 @@ def check_model(
             missing_links=kinematics.missing_links,
             missing_joints=kinematics.missing_joints,
             reference=reader.name if reader else f"mjcfbuild's URDF parser: {fallback}",
+            failed=first is not None or bool(kinematics.missing_links),
         )
     )
     for link in kinematics.missing_links:
         problems.append(
             Problem(f"link '{link}' has no body or site of its name in the model", True)
         )
-    tolerances = (options.position_tolerance, options.rotation_tolerance)
-    first = kinematics.first_wrong(*tolerances)
     if first is not None:
         others = kinematics.wrong_count(*tolerances) - 1
         problems.append(

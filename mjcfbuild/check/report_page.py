@@ -121,9 +121,9 @@ def verdict(results: CheckResults, warnings: list[str]) -> str:
         first = f": {md(failures[0])}" if failures else ""
         more = f" (and {len(failures) - 1} more, below)" if len(failures) > 1 else ""
         return f"**checks failed**{first}{more}"
-    standing = results.standing_note(md)
-    if standing:
-        return f"checks pass, but {standing}"
+    caveats = results.caveats(md)
+    if caveats:
+        return f"checks pass, but {'; '.join(caveats)}"
     if warnings:
         count = f"{len(warnings)} warning{'s' if len(warnings) > 1 else ''}"
         return f"checks pass with {count} (see Warnings): {md(warnings[0])}"

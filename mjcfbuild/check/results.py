@@ -84,6 +84,10 @@ class Simulation:
         return data
 
 
+# How the console marks a check that failed, before its figures.
+FAILED = "FAILED: "
+
+
 @dataclass(frozen=True)
 class Kinematics:
     """Every URDF link's pose in the model against the reference's, at random configurations."""
@@ -95,6 +99,7 @@ class Kinematics:
     missing_links: list[str] = field(default_factory=list)
     missing_joints: list[str] = field(default_factory=list)
     reference: str = ""  # who read the URDF: yourdfpy, or mjcfbuild's parser and why
+    failed: bool = False  # a link is missing or past the tolerances
 
 
 @dataclass(frozen=True)
@@ -146,6 +151,8 @@ class Actuation:
 
     actuators: int = 0
     problems: list[str] = field(default_factory=list)
+    # Whether the problems fail the check: only for a model mjcfbuild built.
+    required: bool = True
 
 
 @dataclass(frozen=True)
@@ -163,6 +170,7 @@ class Hold:
     joint: str | None = None
     floating: bool = False
     base_tilt: float | None = None
+    failed: bool = False  # a fixed base moved past check.hold_tolerance
 
 
 @dataclass(frozen=True)
@@ -181,6 +189,7 @@ class Stand:
     max_roll: float = 0.0
     wheel_kv: float = 0.0
     fell_without_controller: str = ""  # why it fell: torque motors cannot hold a pose
+    failed: bool = False  # it fell, sank, rolled or bent past the tolerances
 
     def to_dict(self) -> dict[str, Any]:
         """As check.json holds it (``fell_without_controller`` only when it fell so)."""
@@ -277,6 +286,7 @@ class Runtime:
     sensors: list[dict[str, Any]] = field(default_factory=list)
     devices: list[dict[str, Any]] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+    failed: bool = False  # the runtime would not drive or read something the block names
 
 
 @dataclass(frozen=True)
@@ -326,8 +336,10 @@ class CheckResults:
         return replace(self, failures=[*self.failures, *failures], **sections)
 
     def to_dict(self) -> dict[str, Any]:
-        """check.json's content: whether it passes, the failures and every section that ran."""
-        data: dict[str, Any] = {"passes": self.passes}
+        """check.json's content: whether it passes, the console's verdict, the failures and
+        every section that ran."""
+        # The console's verdict, for the build's summary to print without reading the rest.
+        data: dict[str, Any] = {"passes": self.passes, "verdict": self.console_verdict()}
         for item in fields(self):
             value = getattr(self, item.name)
             if value is None or (item.name == "needs_controller" and not value):
@@ -432,10 +444,15 @@ class CheckResults:
         )
 
     def console_lines(self) -> list[tuple[str, str]]:
-        """Each check that ran (or was skipped) and its result, as the console shows them."""
+        """Each check that ran (or was skipped) and its result, as the console shows them; a
+        check that failed says so first (``FAILED:``), before its figures."""
         if not self.loads:
-            return [("loads", "NO")]
+            return [("loads", "FAILED: the model does not load")]
         lines = [("loads", "yes")]
+
+        def add(name: str, result: str, failed: bool = False) -> None:
+            lines.append((name, f"{FAILED}{result}" if failed else result))
+
         if self.simulation:
             sim = self.simulation
             result = (
@@ -444,102 +461,125 @@ class CheckResults:
                 else f"{'finite' if sim.finite else 'NOT FINITE'}, "
                 f"{len(sim.warnings)} MuJoCo warnings"
             )
-            lines.append((f"{sim.steps} zero-control steps", result))
+            failed = bool(sim.stopped or not sim.finite or sim.warnings)
+            add(f"{sim.steps} zero-control steps", result, failed)
         if self.kinematics:
             kin = self.kinematics
-            lines.append(
-                (
-                    "link poses",
-                    f"max {kin.max_position_error:.2g} m, {kin.max_rotation_error:.2g} rad at "
-                    f"{kin.configurations} configurations",
-                )
+            missing = f", {len(kin.missing_links)} links missing" if kin.missing_links else ""
+            add(
+                "link poses",
+                f"max {kin.max_position_error:.2g} m, {kin.max_rotation_error:.2g} rad at "
+                f"{kin.configurations} configurations{missing}",
+                kin.failed,
             )
         if self.joints:
-            lines.append(("joints", f"{len(self.joints.problems)} problems"))
+            add("joints", f"{len(self.joints.problems)} problems", bool(self.joints.problems))
         if self.masses:
             masses = self.masses
-            lines.append(
-                (
-                    "masses",
-                    f"{masses.model_total:.6g} kg (URDF {masses.urdf_total:.6g} kg), "
-                    f"{len(masses.problems)} problems",
-                )
+            add(
+                "masses",
+                f"{masses.model_total:.6g} kg (URDF {masses.urdf_total:.6g} kg), "
+                f"{len(masses.problems)} problems",
+                bool(masses.problems),
             )
         if self.resting_contacts:
             pairs = self.resting_contacts.pairs
-            lines.append(("resting contacts", str(len(pairs)) if pairs else "none"))
+            add("resting contacts", str(len(pairs)) if pairs else "none")
         if self.actuation is not None:
             actuation = self.actuation
-            lines.append(
-                (
-                    "every moving joint driven",
-                    f"{actuation.actuators} actuators, {len(actuation.problems)} problems",
-                )
-            )
+            problems = len(actuation.problems)
+            result = f"{actuation.actuators} actuators, {problems} problems"
+            if problems and not actuation.required:
+                result += " (not required of a model mjcfbuild did not build)"
+            add("every moving joint driven", result, bool(problems) and actuation.required)
         if self.floor is not None and self.floor.gap is not None:
-            lines.append(("on the floor at home", f"gap {self.floor.gap * 1000:.2g} mm"))
+            add("on the floor at home", f"gap {self.floor.gap * 1000:.2g} mm")
         if self.hold:
             joint = f" ({self.hold.joint})" if self.hold.joint else ""
             deviation = f"largest deviation {self.hold.max_deviation:.3g}{joint}"
-            lines.append(("hold home 1 s", deviation))
+            add("hold home 1 s", deviation, self.hold.failed)
         stand = self.stand
         if stand and stand.fell_without_controller:
-            lines.append(
-                ("stand 5 s", f"FELL: needs a controller ({stand.fell_without_controller})")
-            )
+            add("stand 5 s", f"FELL: needs a controller ({stand.fell_without_controller})")
         elif stand and stand.needs_controller:
-            lines.append(("stand 5 s", f"NOT RUN: needs a controller ({stand.needs_controller})"))
+            add("stand 5 s", f"NOT RUN: needs a controller ({stand.needs_controller})")
         elif stand:
-            lines.append(
-                (
-                    f"stand {stand.seconds:g} s",
-                    f"tilt {stand.max_tilt:.2g} rad, sank {stand.max_sink * 1000:.0f} mm",
-                )
+            add(
+                f"stand {stand.seconds:g} s",
+                f"tilt {stand.max_tilt:.2g} rad, sank {stand.max_sink * 1000:.0f} mm",
+                stand.failed,
             )
         elif self.home is False:
-            lines.append(("hold and stand", "NOT RUN: the model has no home keyframe"))
+            add("hold and stand", "NOT RUN: the model has no home keyframe")
         if self.menagerie_test:
             test = self.menagerie_test
-            lines.append(
-                (
-                    "1 s pseudorandom control",
-                    f"{'finite' if test.finite else 'NOT FINITE'}, "
-                    f"{len(test.warnings)} MuJoCo warnings",
-                )
+            add(
+                "1 s pseudorandom control",
+                f"{'finite' if test.finite else 'NOT FINITE'}, "
+                f"{len(test.warnings)} MuJoCo warnings",
+                bool(not test.finite or test.warnings),
             )
         fastest = self.speeds.fastest if self.speeds else None
         if fastest:
-            lines.append(
-                (
-                    "joint speeds",
-                    f"fastest {fastest.joint} {fastest.speed:.3g} (limit {fastest.limit:g})",
-                )
+            over = self.speeds.over_limit if self.speeds else []
+            bound = f"; {len(over)} past the bound" if over else ", within the bound"
+            add(
+                "joint speeds",
+                f"fastest {fastest.joint} {fastest.speed:.3g} (limit {fastest.limit:g}){bound}",
+                bool(over),
             )
         if self.plausibility:
             found = self.plausibility
-            lines.append(
-                (
-                    "plausibility",
-                    f"{len(found.failures)} failures, {len(found.warnings)} warnings",
-                )
+            add(
+                "plausibility",
+                f"{len(found.failures)} failures, {len(found.warnings)} warnings",
+                bool(found.failures),
             )
         for prefix, part in sorted((self.parts or {}).items()):
-            lines.append(
-                (
-                    f"MJCF part {prefix}",
-                    f"max {part.max_position_error:.2g} m, {len(part.problems)} problems",
-                )
+            where = f"MJCF part {prefix}"
+            add(
+                where,
+                f"max {part.max_position_error:.2g} m, {len(part.problems)} problems",
+                any(failure.startswith(f"{where} (") for failure in self.failures),
             )
         if self.mujoco_ros2_control:
             runtime = self.mujoco_ros2_control
-            lines.append(
-                (
-                    "mujoco_ros2_control",
-                    f"{len(runtime.joints)} joints, {len(runtime.sensors)} sensors, "
-                    f"{len(runtime.devices)} cameras/lidars",
-                )
+            add(
+                "mujoco_ros2_control",
+                f"{len(runtime.joints)} joints, {len(runtime.sensors)} sensors, "
+                f"{len(runtime.devices)} cameras/lidars",
+                runtime.failed,
             )
         return lines
+
+    def console_verdict(self) -> str:
+        """The verdict the console gives: how many checks failed, or that they pass and what
+        they did not prove, or "check passed"."""
+        if not self.passes:
+            return f"{len(self.failures)} check(s) failed"
+        caveats = self.caveats()
+        return f"checks pass, but {'; '.join(caveats)}" if caveats else "check passed"
+
+    def caveats(self, escape: Callable[[str], str] = str) -> list[str]:
+        """What a passing check did not prove, for its verdict (``escape`` for Markdown):
+        checks that did not run, and problems reported but not failed (of a model mjcfbuild
+        did not build)."""
+        found = []
+        actuation = self.actuation
+        if actuation is not None and actuation.problems and not actuation.required:
+            shown = "; ".join(escape(problem) for problem in actuation.problems[:2])
+            more = f"; {len(actuation.problems) - 2} more" if len(actuation.problems) > 2 else ""
+            count = len(actuation.problems)
+            found.append(
+                f"{count} actuation problem{'s' if count > 1 else ''} ({shown}{more}): a "
+                "controller cannot drive every joint"
+            )
+        if self.home is False:
+            found.append("the hold and stand tests were not run: the model has no home keyframe")
+        standing = self.standing_note(escape)
+        if standing:
+            found.append(standing)
+        return found
 
     def table_rows(self) -> list[str]:
         """The rows of report.md's table of checks (Markdown, names escaped)."""

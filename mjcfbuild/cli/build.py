@@ -169,6 +169,9 @@ def report_nothing_to_do(check: Callable[[], dict | None], quiet: bool) -> bool:
             f"mjcfbuild: built {summary['robot']}: 0 run, {summary['tasks']} up to date"
             f"{counted} in {seconds:.2f} s"
         )
+        if "check_results" in summary:  # as the full build prints it
+            results = summary["check_results"]
+            print(check_line(Path(results)) if results else NOT_CHECKED)
     return True
 
 
@@ -263,7 +266,35 @@ def execute(
         if result.slowest and result.seconds > 2.0 and not quiet:
             slowest = ", ".join(f"{title} {seconds:.2f} s" for title, seconds in result.slowest)
             print(f"  slowest: {slowest}")
+        if not quiet and not result.errors:
+            print(_check_line(ctx))
     return result.errors[0].exit_code if result.errors else EXIT_OK
+
+
+def _check_line(ctx) -> str:
+    """The check's verdict under a build's summary, as ``mjcfbuild check`` gives it, or that
+    the build did not check."""
+    from mjcfbuild.outputs import CHECK_RESULTS
+
+    if not ctx.run_check:
+        return NOT_CHECKED
+    return check_line(ctx.state(CHECK_RESULTS))
+
+
+NOT_CHECKED = "  check: not run (--no-check); `mjcfbuild check` runs it"
+
+
+def check_line(results: Path) -> str:
+    """The line under a build's summary for the check results in ``results`` (check.json)."""
+    import json
+
+    try:
+        verdict = json.loads(results.read_bytes())["verdict"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return "  check: no results (`mjcfbuild check` runs it)"
+    if verdict == "check passed":
+        verdict = "all checks pass"
+    return f"  check: {verdict} (each check: `mjcfbuild check`)"
 
 
 def report_md(ctx) -> str:

@@ -125,7 +125,8 @@ def nothing_to_do(
     """The stamp's summary if nothing changed since the last successful build, else None.
 
     ``{"robot": <model file name>, "tasks": <tasks of that build>, "warnings": <to print>,
-    "report": <report.md, which lists them all>}``. ``allow_outside``: whether this run
+    "report": <report.md, which lists them all>, "check_results": <check.json, or None where
+    the build did not check>, ...}``. ``allow_outside``: whether this run
     passes ``--allow-outside``; without it, the stamp of a build whose output folder needed
     it is not used (the full build's guard refuses the folder). Never raises: any problem
     reading the stamp means the full build decides.
@@ -388,7 +389,7 @@ def record_build(
     if ctx.urdf_path is not None:
         outputs.append(ctx.urdf_path)
     from mjcfbuild.engine.published import published_files
-    from mjcfbuild.outputs import report_dir
+    from mjcfbuild.outputs import CHECK_RESULTS, report_dir
 
     summary = {
         "robot": ctx.robot_path.name,
@@ -396,6 +397,8 @@ def record_build(
         "outputs": [str(path) for path in published_files(ctx)],  # for --fail-on-change
         "warnings": warnings,
         "report": str(report_dir(ctx) / "report.md"),
+        # The check's results, whose verdict the fast path prints (None: not checked).
+        "check_results": str(ctx.state(CHECK_RESULTS)) if ctx.run_check else None,
     }
     write(
         manifest,

@@ -95,7 +95,9 @@ def add_runtime_check(
     from mjcfbuild.check.runtime import check_runtime
 
     found, failures, warnings = check_runtime(compile_model(model_path, sources), control)
-    runtime = Runtime(found["joints"], found["sensors"], found["devices"], warnings)
+    runtime = Runtime(
+        found["joints"], found["sensors"], found["devices"], warnings, failed=bool(failures)
+    )
     return results.add(failures, mujoco_ros2_control=runtime)
 
 

@@ -31,11 +31,31 @@ MJCF = """<mujoco><compiler angle="radian"/><worldbody>
 </worldbody></mujoco>"""
 
 
+# A position servo on the joint and a home keyframe it holds, for MJCF.
+DRIVEN = """</worldbody>
+  <actuator><position name="swing" joint="swing" kp="200" kv="20" ctrlrange="-1 1"/></actuator>
+  <keyframe><key name="home" qpos="0" ctrl="0"/></keyframe>"""
+
+
 def test_any_urdf_against_a_hand_written_mjcf(tmp_path):
     write(tmp_path / "p.urdf", URDF)
     write(tmp_path / "p.xml", MJCF)
     result = run_cli("check", "--urdf", "p.urdf", "--mjcf", "p.xml", cwd=tmp_path)
     assert result.code == EXIT_OK, result.stdout + result.stderr
+    # Without an actuator or a home keyframe, passing proves less: the verdict says what.
+    lines = result.stdout.splitlines()
+    assert "mjcfbuild: check passed" not in lines
+    assert lines[-1] == (
+        "mjcfbuild: checks pass, but 1 actuation problem (joint 'swing' has no actuator): a "
+        "controller cannot drive every joint; the hold and stand tests were not run: the "
+        "model has no home keyframe"
+    )
+    driven = next(line for line in lines if "every moving joint driven" in line)
+    assert driven.endswith("1 problems (not required of a model mjcfbuild did not build)")
+    write(tmp_path / "driven.xml", MJCF.replace("</worldbody>", DRIVEN))
+    result = run_cli("check", "--urdf", "p.urdf", "--mjcf", "driven.xml", cwd=tmp_path)
+    assert result.code == EXIT_OK, result.stdout + result.stderr
+    assert result.stdout.splitlines()[-1] == "mjcfbuild: check passed"
     write(tmp_path / "bad.xml", MJCF.replace('mass="1"', 'mass="2"'))
     result = run_cli("check", "--urdf", "p.urdf", "--mjcf", "bad.xml", cwd=tmp_path)
     assert result.code == EXIT_CHECK
@@ -216,7 +236,7 @@ def test_check_urdf_takes_package_for_a_xacro_that_finds_one(tmp_path):
         *argv, "--package", "pendulum_description=pkgs/pendulum_description", cwd=tmp_path
     )
     assert result.code == EXIT_OK, result.stdout + result.stderr
-    assert "check passed" in result.stdout
+    assert "checks pass, but 1 actuation problem" in result.stdout
 
 
 def test_check_urdf_points_a_xacro_mistake_at_the_included_file_and_line(tmp_path):
@@ -280,6 +300,25 @@ def test_the_console_of_a_robot_that_stands_says_passed_with_each_result(tmp_pat
     hold = next(line for line in lines if line.strip().startswith("hold home 1 s"))
     assert "largest deviation" in hold
     assert any(line.strip().startswith("joint speeds") for line in lines)
+
+
+def test_a_check_that_fails_says_so_on_its_own_line(tmp_path):
+    arm = copy_example("arm", tmp_path)
+    manifest = arm / "robot.yaml"
+    manifest.write_text(
+        manifest.read_text().replace(
+            '- {joints: ["*finger*"], frequency: 5}',
+            '- {joints: ["*finger*"], frequency: 5}\n    - {joints: ["*"], forcerange: [-0.05, 0.05]}',
+        )
+    )
+    assert run_cli("build", str(manifest)).code == EXIT_CHECK
+    result = run_cli("check", str(manifest))
+    assert result.code == EXIT_CHECK
+    table = [line for line in result.stdout.splitlines() if line.startswith("  ")]
+    lines = {line[:31].strip(): line[31:] for line in table}
+    assert lines["hold home 1 s"].startswith("FAILED: largest deviation ")
+    assert lines["loads"] == "yes" and not lines["joints"].startswith("FAILED")
+    assert "mjcfbuild: 1 check(s) failed" in result.stdout.splitlines()
 
 
 def test_check_writes_the_same_check_json_as_the_build_mjcf_parts_included(tmp_path):

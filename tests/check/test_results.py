@@ -16,6 +16,7 @@ from mjcfbuild.check.results import (
     Speeds,
     Stand,
 )
+from mjcfbuild.check.speeds import JointSpeed
 from mjcfbuild.urdf.parse import parse_urdf
 from tests.check.test_check_command import MJCF, ROUNDED_MJCF, ROUNDED_URDF, URDF
 from tests.conftest import write
@@ -54,8 +55,9 @@ def test_a_failing_check_says_so_in_its_results(tmp_path):
 def test_a_model_that_does_not_load_has_only_that_result(tmp_path):
     results = _checked(tmp_path, URDF, "<mujoco><worldbody><body></mujoco>")
     data = json.loads(results.to_json())
-    assert set(data) == {"passes", "failures", "loads"} and data["loads"] is False
-    assert results.console_lines() == [("loads", "NO")]
+    assert set(data) == {"passes", "verdict", "failures", "loads"} and data["loads"] is False
+    assert data["verdict"] == "1 check(s) failed"
+    assert results.console_lines() == [("loads", "FAILED: the model does not load")]
 
 
 def test_keys_present_only_when_they_say_something():
@@ -126,4 +128,11 @@ def test_the_stand_verdict_in_a_word():
 
 def test_the_fastest_joint_is_on_the_console():
     results = CheckResults(loads=True, speeds=Speeds(FastestJoint("knee", 3.14159, 2.0)))
-    assert ("joint speeds", "fastest knee 3.14 (limit 2)") in results.console_lines()
+    line = ("joint speeds", "fastest knee 3.14 (limit 2), within the bound")
+    assert line in results.console_lines()
+    over = JointSpeed("knee", 3.14159, 2.0, "urdf", 1.5)
+    results = CheckResults(
+        loads=True, speeds=Speeds(FastestJoint("knee", 3.14159, 2.0), over_limit=[over])
+    )
+    line = ("joint speeds", "FAILED: fastest knee 3.14 (limit 2); 1 past the bound")
+    assert line in results.console_lines()

@@ -13,12 +13,22 @@ def test_build_prints_progress_then_summary(cli, arm):
     assert result.code == EXIT_OK, result.stderr
     assert "mesh base" in result.stdout and "check example_arm.xml" in result.stdout
     lines = result.stdout.strip().splitlines()
+    assert lines.pop() == "  check: all checks pass (each check: `mjcfbuild check`)"
     if lines[-1].startswith("  slowest: "):  # only builds longer than two seconds say it
         lines.pop()
     assert lines[-1].startswith("mjcfbuild: built example_arm.xml: 13 run, 0 up to date")
     again = cli("build", cwd=arm)
-    assert "0 run, 13 up to date" in again.stdout
-    assert again.stdout.count("\n") == 1
+    summary, check = again.stdout.splitlines()  # the no-op says what the build said
+    assert "0 run, 13 up to date" in summary and check == lines_after(result.stdout)
+    unchecked = cli("build", "--no-check", cwd=arm)
+    assert unchecked.stdout.splitlines()[-1] == (
+        "  check: not run (--no-check); `mjcfbuild check` runs it"
+    )
+
+
+def lines_after(stdout: str) -> str:
+    """The check's line of a build's output."""
+    return next(line for line in stdout.splitlines() if line.startswith("  check: "))
 
 
 def test_manifest_path_from_another_folder(cli, arm, tmp_path):

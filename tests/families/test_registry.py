@@ -39,7 +39,7 @@ BEFORE_FORMATS = {
     "decompose": 3,
     "assemble": 15,
     "scene": 3,
-    "check": 11,
+    "check": 12,
     "reference": 1,
     "previews": 5,
     "tuning": 1,
