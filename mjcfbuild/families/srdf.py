@@ -27,6 +27,14 @@ def srdf_home_state(ctx: GraphContext) -> str | None:
     return settings.home_state if settings != "none" and settings.srdf else None
 
 
+def _given_home_state(ctx: GraphContext) -> str | None:
+    """self_collision.home_state where robot.yaml writes it (not its default)."""
+    settings = ctx.manifest.self_collision
+    if settings == "none" or "home_state" not in settings.model_fields_set:
+        return None
+    return settings.home_state
+
+
 def _named_srdf(ctx: GraphContext) -> Path | None:
     """The SRDF robot.yaml names (self_collision.srdf)."""
     settings = ctx.manifest.self_collision
@@ -70,6 +78,8 @@ def _tasks(graph: Graph) -> list[dict]:
         environment=ros_environment(ctx),
         output=str(ctx.state(SRDF_SUMMARY)),
         discovered=not named,
+        home_state=_given_home_state(ctx) if named else None,
+        manifest_label=ctx.manifest_output_label,
     )
     task = file_task(
         ctx,
@@ -88,7 +98,7 @@ FAMILY = Family(
     name="srdf",
     step="mjcfbuild.steps.srdf:run",
     payload=SrdfPayload,
-    format=2,
+    format=3,  # 3: each group_state joint's line, for errors naming it
     tools=("xacro", "lxml"),
     tasks=_tasks,
 )

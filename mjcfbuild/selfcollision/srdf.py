@@ -27,6 +27,8 @@ class Srdf:
     # The floating root's joint names: virtual joints, and joints with a whole pose as value.
     floating: list[str] = field(default_factory=list)
     discovered: bool = False  # found beside the description: only its poses are used
+    # state -> joint -> the line of its <joint> element
+    lines: dict[str, dict[str, int]] = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""
@@ -41,6 +43,7 @@ class Srdf:
             data["states"],
             data.get("floating", []),
             data.get("discovered", False),
+            data.get("lines", {}),
         )
 
 
@@ -89,6 +92,9 @@ def parse_srdf(text: bytes, label: str) -> Srdf:
                 continue
             try:
                 values[joint.get("name", "")] = float(words[0])
+                if joint.sourceline:
+                    lines = result.lines.setdefault(state.get("name", ""), {})
+                    lines[joint.get("name", "")] = joint.sourceline
             except (ValueError, IndexError):
                 raise InputError(
                     f"joint '{joint.get('name')}' has no numeric value",
@@ -109,7 +115,7 @@ def home_state(
     (:func:`~mjcfbuild.selfcollision.discover.standing_state`). Root joints are left out; a
     named state naming another unknown joint is an error, a found one is skipped."""
     from mjcfbuild.selfcollision.discover import standing_state
-    from mjcfbuild.sources.packages import listing
+    from mjcfbuild.sources.packages import did_you_mean, listing
 
     floating = set(srdf.floating)
     chosen = name if name in srdf.states and not srdf.discovered else None
@@ -121,8 +127,10 @@ def home_state(
     unknown = sorted(set(state) - joints)
     if unknown:
         raise InputError(
-            f"group_state '{chosen}' names joint '{unknown[0]}', which the robot does not have",
+            f"group_state '{chosen}' names joint '{unknown[0]}', which the robot does not have"
+            f"{did_you_mean(unknown[0], joints)}",
             file=srdf.label,
+            line=srdf.lines.get(chosen, {}).get(unknown[0]),
             hint=f"joints: {listing(sorted(joints))}; name the root joint in a "
             '<virtual_joint type="floating"> if it is the floating base',
         )

@@ -267,6 +267,9 @@ class SrdfPayload(Payload):
     environment: dict[str, str]
     output: Output
     discovered: bool = False  # found beside the description, not named in robot.yaml
+    # self_collision.home_state where robot.yaml gives it, which the SRDF must then have.
+    home_state: str | None = None
+    manifest_label: str = "robot.yaml"
 
 
 @dataclass(frozen=True)

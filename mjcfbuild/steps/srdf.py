@@ -24,7 +24,27 @@ def run(payload: dict) -> dict:
     )
     srdf = parse_srdf(expansion.urdf, request.label)
     srdf.discovered = request.discovered
+    if request.home_state is not None and request.home_state not in srdf.states:
+        _refuse_missing_state(request.home_state, list(srdf.states), request)
     outputs: dict[str, str] = {}
     text = json.dumps(srdf.to_dict(), indent=1, sort_keys=True) + "\n"
     write_output(Path(request.output), text.encode(), outputs)
     return {"outputs": outputs, "discovered": [f for f in expansion.files if f != str(source)]}
+
+
+def _refuse_missing_state(name: str, states: list[str], request: SrdfPayload) -> None:
+    """robot.yaml's home_state names a group_state the SRDF does not have: a typo, which
+    would otherwise leave home at zero without a word."""
+    from mjcfbuild.errors import ManifestError
+    from mjcfbuild.sources.packages import did_you_mean, listing
+
+    hint = (
+        f"its group states: {listing(sorted(states))}"
+        if states
+        else "it has none: add a <group_state>, or remove home_state"
+    )
+    raise ManifestError(
+        f"{request.label} has no group_state '{name}'{did_you_mean(name, states)}",
+        file=f"{request.manifest_label} self_collision.home_state",
+        hint=hint,
+    )

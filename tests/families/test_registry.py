@@ -43,7 +43,7 @@ BEFORE_FORMATS = {
     "reference": 1,
     "previews": 5,
     "tuning": 1,
-    "srdf": 2,
+    "srdf": 3,
     "selfcollision": 3,
     "export_urdf": 3,
     "compose": 2,

@@ -95,6 +95,37 @@ def test_an_srdf_link_that_does_not_exist_is_an_error_at_its_line(tmp_path):
     assert not (tmp_path / "mjcf/chain.xml").exists()
 
 
+def test_a_home_state_the_srdf_lacks_is_an_error_at_its_robot_yaml_line(tmp_path):
+    write(
+        tmp_path / "robot.srdf",
+        '<robot name="x">\n<group_state name="ready" group="arm">'
+        '<joint name="j1" value="0.3"/></group_state>\n</robot>',
+    )
+    manifest = _robot(tmp_path, "self_collision:\n  srdf: robot.srdf\n  home_state: redy\n")
+    result = run_cli("build", str(manifest))
+    assert result.code == 3, result.stderr
+    assert (
+        "robot.yaml:5:3: self_collision.home_state: robot.srdf has no group_state 'redy'; "
+        "did you mean 'ready'? (its group states: ready)"
+    ) in result.stderr
+    # Left to its default, home_state is looked for and not required.
+    assert run_cli("build", str(_robot(tmp_path, "self_collision: {srdf: robot.srdf}\n"))).code == 0
+
+
+def test_a_group_state_joint_the_robot_lacks_is_an_error_at_its_srdf_line(tmp_path):
+    write(
+        tmp_path / "robot.srdf",
+        '<robot name="x">\n<group_state name="home" group="arm">\n'
+        '  <joint name="j1x" value="0.3"/></group_state>\n</robot>',
+    )
+    result = run_cli("build", str(_robot(tmp_path, "self_collision: {srdf: robot.srdf}\n")))
+    assert result.code == 4, result.stderr
+    assert (
+        "robot.srdf:3: group_state 'home' names joint 'j1x', which the robot does not have; "
+        "did you mean 'j1'?"
+    ) in result.stderr
+
+
 def test_a_malformed_srdf_is_an_error(tmp_path):
     write(tmp_path / "robot.srdf", "<robot>\n<disable_collisions")
     result = run_cli("build", str(_robot(tmp_path, "self_collision: {srdf: robot.srdf}\n")))
