@@ -398,6 +398,18 @@ def _place_failure(
             "fix the include's filename (relative to this file, or $(find package)/...) "
             'or add optional="true"',
         )
+    stack = [str(f) for f in getattr(xacro_module, "filestack", None) or [] if f]
+    cycle = _include_cycle(stack)
+    if cycle and "maximum recursion depth" in message:
+        including, included = cycle[-2], cycle[-1]
+        base = re.escape(os.path.basename(included))
+        names = " includes ".join(os.path.basename(file) for file in cycle)
+        return (
+            including,
+            _line_of(including, rf"<xacro:include\b.*{base}") or _line_of(including, base),
+            f"include cycle: {names}",
+            "remove the include that closes the cycle",
+        )
     macros = list(getattr(xacro_module, "macrostack", None) or [])
     # Where to look, innermost first: the body of the macro being instantiated, then where it
     # was called (the body of the macro around it, or the file being read).
@@ -430,6 +442,14 @@ def _place_failure(
     elif macros:  # a bad call (an undeclared or missing parameter), or its body failed
         macro = macros[-1]
         name = macro.body.getAttribute("name")
+        # An expression that failed is found where it is written: in the macro's body, or in
+        # the one call that passes it (xacro evaluates a call's parameters as it calls).
+        expression = re.search(r"when evaluating expression '(.*)'", str(exc))
+        if expression is not None:
+            for file, start in places:
+                line = _line_of(file, re.escape(expression.group(1)), after=start)
+                if line is not None:
+                    return file, line, message, hint
         pattern = rf"<xacro:{re.escape(name)}\b"
         places = places[1:]
         declared = [param.lstrip("*") for param in macro.params]
@@ -461,6 +481,18 @@ def _place_failure(
         if line is not None:
             return file, line, message, hint
     return places[0][0] if places else current, None, message, hint
+
+
+def _include_cycle(stack: list[str]) -> list[str]:
+    """The files of the first include cycle in xacro's file stack (the first file again at
+    its end), or [] where no file includes itself."""
+    seen: dict[str, int] = {}
+    for index, file in enumerate(stack):
+        key = os.path.realpath(file)
+        if key in seen:
+            return stack[seen[key] : index + 1]
+        seen[key] = index
+    return []
 
 
 def _xacro_message(exc: Exception) -> str:

@@ -287,3 +287,57 @@ def test_a_xacro_file_named_as_a_urdf_is_refused_not_built_as_one_link(tmp_path)
         '<robot name="a" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="b"/></robot>'
     )
     assert read_urdf_file(expanded).urdf.startswith(b"<robot")
+
+
+MACRO = (
+    '  <xacro:macro name="leg" params="name size">\n'
+    '    <link name="${name}"><visual><geometry><box size="${1 / size} 1 1"/>'
+    "</geometry></visual></link>\n"
+    "  </xacro:macro>\n"
+)
+
+
+@pytest.mark.parametrize(
+    ("calls", "line"),
+    [
+        # The second call's parameter fails as xacro evaluates it: that call, not the first.
+        ('  <xacro:leg name="a" size="0.1"/>\n  <xacro:leg name="b"\n    size="${1/0}"/>\n', 8),
+        # The body fails for one call: the body's line.
+        ('  <xacro:leg name="a" size="0.1"/>\n  <xacro:leg name="b" size="0"/>\n', 3),
+    ],
+    ids=["call-parameter", "macro-body"],
+)
+def test_a_failure_inside_a_macro_names_the_line_that_failed(tmp_path, calls, line):
+    source = write(
+        tmp_path / "r.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        + MACRO
+        + '  <link name="base"/>\n'
+        + calls
+        + "</robot>\n",
+    )
+    with pytest.raises(InputError) as info:
+        expand_xacro(source, {}, PackageResolver({}, {}))
+    assert (info.value.location.file, info.value.location.line) == (str(source), line)
+    assert info.value.message.startswith("xacro failed: in macro 'leg': ")
+
+
+def test_an_include_cycle_is_named_at_the_include_that_closes_it(tmp_path):
+    write(
+        tmp_path / "part.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <link name="p"/>\n  <xacro:include filename="r.xacro"/>\n</robot>\n',
+    )
+    source = write(
+        tmp_path / "r.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="part.xacro"/>\n</robot>\n',
+    )
+    with pytest.raises(InputError) as info:
+        expand_xacro(source, {}, PackageResolver({}, {}))
+    assert info.value.location.file == str(tmp_path / "part.xacro")
+    assert info.value.location.line == 3
+    assert (
+        info.value.message
+        == "xacro failed: include cycle: r.xacro includes part.xacro includes r.xacro"
+    )
