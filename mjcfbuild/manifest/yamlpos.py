@@ -95,6 +95,37 @@ def _syntax_hint(exc: yaml.MarkedYAMLError) -> str | None:
     return None
 
 
+def _unclosed_quote(text: str, before: int | None) -> tuple[int, int] | None:
+    """The line and column of the first quote that opens a value and is not closed on its
+    line, above line ``before`` (1-based; None: anywhere); None where every quote closes."""
+    for number, line in enumerate(text.splitlines(), start=1):
+        if before is not None and number >= before:
+            return None
+        quote, opened_at, previous = "", 0, " "
+        index = 0
+        while index < len(line):
+            char = line[index]
+            if quote == '"':
+                if char == "\\":
+                    index += 1  # an escaped character
+                elif char == '"':
+                    quote = ""
+            elif quote == "'":
+                if char == "'" and line[index + 1 : index + 2] == "'":
+                    index += 1  # '' is a quote inside the value
+                elif char == "'":
+                    quote = ""
+            elif char == "#" and previous in " \t":
+                break  # a comment
+            elif char in "\"'" and previous in " \t:[{,-":
+                quote, opened_at = char, index
+            previous = char
+            index += 1
+        if quote:
+            return number, opened_at + 1
+    return None
+
+
 def load_with_positions(text: str) -> tuple[object, Positions]:
     """Parse one YAML document into plain values and the positions of every value."""
     try:
@@ -105,6 +136,15 @@ def load_with_positions(text: str) -> tuple[object, Positions]:
         mark = _offending_mark(exc)
         line = mark.line + 1 if mark else None
         column = mark.column + 1 if mark else None
+        opened = _unclosed_quote(text, line)
+        if opened is not None:
+            # The scanner read on to the next quote and failed lines later: the quote is
+            # the mistake.
+            raise YamlSyntaxError(
+                "YAML syntax error: this quote is not closed on its line",
+                *opened,
+                "close the quote opened here: a value quoted here ends on its line",
+            ) from None
         problem = exc.problem or exc.context or "invalid YAML"
         raise YamlSyntaxError(
             f"YAML syntax error: {problem}", line, column, _syntax_hint(exc)
@@ -134,7 +174,11 @@ def _build(node: yaml.Node, path: Path_, positions: Positions, constructor: yaml
             key = str(key) if not isinstance(key, str) else key
             if key in result:
                 line, column = _mark(key_node)
-                raise YamlSyntaxError(f"duplicate key '{key}'", line, column)
+                first, _ = positions.keys.get((*path, key), (None, None))
+                where = f" (first at line {first})" if first else ""
+                raise YamlSyntaxError(
+                    f"duplicate key '{key}'{where}", line, column, "remove one of them"
+                )
             child = (*path, key)
             positions.keys[child] = _mark(key_node)
             result[key] = _build(value_node, child, positions, constructor)

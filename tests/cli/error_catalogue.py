@@ -201,6 +201,24 @@ CASES: list[Case] = [
         ["robot.yaml:5:3:", "close the quote opened here"],
     ),
     Case(
+        "yaml quote not closed, with a quote lines later",
+        {"robot.yaml": 'name: "arm\n' + MANIFEST.split("\n", 1)[1] + 'home: {"*": 0}\n'},
+        EXIT_MANIFEST,
+        ["robot.yaml:1:7:", "this quote is not closed on its line", "close the quote"],
+    ),
+    Case(
+        "yaml single quote not closed",
+        {"robot.yaml": "name: 'arm\n" + MANIFEST.split("\n", 1)[1] + "home: {'*': 0}\n"},
+        EXIT_MANIFEST,
+        ["robot.yaml:1:7:", "this quote is not closed on its line"],
+    ),
+    Case(
+        "yaml duplicate key",
+        {"robot.yaml": MANIFEST + "name: again\n"},
+        EXIT_MANIFEST,
+        ["duplicate key 'name' (first at line 1)", "remove one of them"],
+    ),
+    Case(
         "yaml aliases that expand to billions of values",
         {"robot.yaml": MANIFEST + laughs()},
         EXIT_MANIFEST,
