@@ -202,7 +202,7 @@ def timeout_argument(parser: argparse.ArgumentParser) -> None:
     """Add ``--timeout``."""
     parser.add_argument(
         "--timeout",
-        type=float,
+        type=positive_seconds,
         default=None,
         metavar="SECONDS",
         help="stop a build step (mesh conversion, decomposition, assembly) that runs longer, "
@@ -214,14 +214,31 @@ def timeout_argument(parser: argparse.ArgumentParser) -> None:
 def step_timeout(args: argparse.Namespace) -> float:
     """The step time limit from ``--timeout``, ``MJCFBUILD_TIMEOUT`` or the default."""
     from mjcfbuild.engine.context import DEFAULT_STEP_TIMEOUT
+    from mjcfbuild.errors import UsageError
 
     if getattr(args, "timeout", None) is not None:
         return args.timeout
     value = os.environ.get("MJCFBUILD_TIMEOUT")
-    try:
-        return float(value) if value else DEFAULT_STEP_TIMEOUT
-    except ValueError:
+    if not value:
         return DEFAULT_STEP_TIMEOUT
+    try:
+        return positive_seconds(value)
+    except argparse.ArgumentTypeError as problem:
+        raise UsageError(
+            f"MJCFBUILD_TIMEOUT={value}: {problem}",
+            hint=f"set it to a number of seconds, or unset it for {DEFAULT_STEP_TIMEOUT:g}",
+        ) from None
+
+
+def positive_seconds(text: str) -> float:
+    """An argparse type: a number of seconds more than 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds") from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError("must be more than 0")
+    return value
 
 
 def positive_int(text: str) -> int:

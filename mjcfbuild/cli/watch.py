@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from mjcfbuild import interrupts
-from mjcfbuild.cli import chosen_manifests
+from mjcfbuild.cli import chosen_manifests, positive_seconds
 from mjcfbuild.errors import EXIT_OK, EXIT_RESTART
 
 if TYPE_CHECKING:
@@ -42,7 +42,7 @@ def add_parser(commands) -> None:
     build_options(parser)
     parser.add_argument(
         "--interval",
-        type=_positive_seconds,
+        type=positive_seconds,
         default=0.1,
         metavar="SECONDS",
         help="how often to look at the watched files (default: 0.1; less often where looking "
@@ -204,13 +204,3 @@ def _shown(paths: list[str]) -> str:
     relative = os.path.relpath(paths[0])
     first = paths[0] if relative.startswith("..") else relative
     return first + (f" and {len(paths) - 1} more" if len(paths) > 1 else "")
-
-
-def _positive_seconds(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError("must be more than 0")
-    return value

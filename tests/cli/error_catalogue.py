@@ -1302,6 +1302,13 @@ CASES: list[Case] = [
         args=["check", "--tolerance", "nan"],
     ),
     Case(
+        "build timeout negative",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+        EXIT_USAGE,
+        ["argument --timeout: must be more than 0"],
+        args=["build", "--timeout=-1"],
+    ),
+    Case(
         "check tolerance negative",
         {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
         EXIT_USAGE,

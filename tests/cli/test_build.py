@@ -148,3 +148,11 @@ def test_a_2000_link_chain_stops_at_plan_with_mujocos_limit(tmp_path):
     assert "MuJoCo reads at most 496" in error and "not a fault in the file" in error
     assert "Traceback" not in result.stderr and "self-collision" not in result.stdout
     assert not (tmp_path / "mjcf" / "robot.xml").exists()
+
+
+def test_a_timeout_from_the_environment_that_is_not_seconds_is_refused(tmp_path):
+    write(tmp_path / "robot.urdf", two_link_urdf())
+    manifest = simple_manifest(tmp_path)
+    result = run_cli("build", str(manifest), env={"MJCFBUILD_TIMEOUT": "-5"})
+    assert result.code == EXIT_USAGE
+    assert result.stderr.startswith("mjcfbuild: error: MJCFBUILD_TIMEOUT=-5: must be more than 0")
