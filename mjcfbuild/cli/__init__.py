@@ -46,6 +46,8 @@ QUIET: dict[str, str] = {
     "diff": "print errors and the answer only: no building lines, warnings or page line",
     "export-urdf": "print errors only: no warnings or summary",
     "watch": "print errors only: no progress, warnings, summaries or what changed",
+    "check": "print errors only: the failed checks, not the table, verdict or warnings",
+    "init": "print errors only: no warnings or what was written",
 }
 """What ``-q`` leaves out, per command; commands not named print only what they are asked
 for already, and take ``-q`` so that it can go anywhere on a command line."""

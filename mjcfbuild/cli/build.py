@@ -260,7 +260,7 @@ def execute(
         report(failure)
     if debug and result.engine_log.strip():
         print(result.engine_log, file=sys.stderr)
-    if not quiet or result.errors:
+    if not quiet:
         interrupts.check()  # a SIGINT while the warnings printed: no line saying "built"
         print(result.summary())
         if result.slowest and result.seconds > 2.0 and not quiet:

@@ -118,9 +118,13 @@ def _options(args, settings=None):
     )
 
 
-def _print(results: CheckResults, label: str) -> int:
+def _print(results: CheckResults, label: str, quiet: bool = False) -> int:
     """One line per check with its result, then the verdict (with what the checks did not
-    prove, when they pass); the exit code."""
+    prove, when they pass); the exit code. ``quiet``: the failures alone."""
+    if quiet:
+        for failure in results.failures:
+            print(f"mjcfbuild: check failed: {failure}", file=sys.stderr)
+        return EXIT_OK if results.passes else EXIT_CHECK
     print(f"mjcfbuild check: {label}")
     for name, result in results.console_lines():
         print(f"  {name:<28} {result}")
@@ -162,7 +166,7 @@ def _pair(args) -> int:
             error.message += f" [line {expanded} of its expansion]"
         raise
     results = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))
-    return _print(results, f"{mjcf} against {urdf}")
+    return _print(results, f"{mjcf} against {urdf}", bool(getattr(args, "quiet", False)))
 
 
 def _urdf_bytes(path: Path, packages: dict[str, str]) -> tuple[bytes, dict[int, tuple[str, int]]]:
@@ -223,10 +227,12 @@ def _manifest(ctx, args) -> int:
         written.record(ctx, ctx.session.written)
     if not getattr(args, "quiet", False):  # as the build prints them: one line per kind
         report_warnings(results.warnings(), ctx.label(folder / "report.md"))
-    code = _print(results, ctx.label(ctx.robot_path))
-    print(f"  report: {ctx.label(folder / 'report.md')}")
-    if (folder / "index.html").is_file():  # output.page: its tables are the report's
-        print(f"  page: {ctx.label(folder / 'index.html')}")
+    quiet = bool(getattr(args, "quiet", False))
+    code = _print(results, ctx.label(ctx.robot_path), quiet)
+    if not quiet:
+        print(f"  report: {ctx.label(folder / 'report.md')}")
+        if (folder / "index.html").is_file():  # output.page: its tables are the report's
+            print(f"  page: {ctx.label(folder / 'index.html')}")
     if args.warp:
         from mjcfbuild.check.warp import check_in_warp
 

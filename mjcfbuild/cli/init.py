@@ -35,6 +35,8 @@ def run(args: argparse.Namespace) -> int:
     path, warnings = write_starter_manifest(
         args.source, parse_packages(args.package), args.output, force=args.force
     )
+    if getattr(args, "quiet", False):  # errors only
+        return 0
     for warning in warnings:
         print(f"mjcfbuild: warning: {warning}", file=sys.stderr)
     print(f"mjcfbuild: wrote {path}; build it with: mjcfbuild build {path}")

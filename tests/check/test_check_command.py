@@ -319,6 +319,12 @@ def test_a_check_that_fails_says_so_on_its_own_line(tmp_path):
     assert lines["hold home 1 s"].startswith("FAILED: largest deviation ")
     assert lines["loads"] == "yes" and not lines["joints"].startswith("FAILED")
     assert "mjcfbuild: 1 check(s) failed" in result.stdout.splitlines()
+    quiet = run_cli("check", str(manifest), "-q")
+    assert quiet.code == EXIT_CHECK and quiet.stdout == ""
+    assert quiet.stderr.startswith("mjcfbuild: check failed: holding home's ctrl for 1 s")
+    quietly_failed = run_cli("build", str(manifest), "-q")
+    assert quietly_failed.code == EXIT_CHECK and quietly_failed.stdout == ""
+    assert quietly_failed.stderr.count("\n") == 1
 
 
 def test_check_writes_the_same_check_json_as_the_build_mjcf_parts_included(tmp_path):

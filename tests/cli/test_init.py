@@ -42,6 +42,15 @@ def test_init_does_not_overwrite_without_force(cli, tmp_path):
     assert cli("init", str(source), "--force", cwd=tmp_path).code == EXIT_OK
 
 
+def test_quiet_init_prints_nothing_but_errors(cli, tmp_path):
+    source = EXAMPLES / "arm" / "urdf" / "arm.urdf.xacro"
+    result = cli("-q", "init", str(source), cwd=tmp_path)
+    assert result.code == EXIT_OK and (result.stdout, result.stderr) == ("", "")
+    assert (tmp_path / "robot.yaml").is_file()
+    again = cli("init", str(source), "-q", cwd=tmp_path)
+    assert again.code == EXIT_USAGE and again.stderr.count("\n") == 1
+
+
 def test_packages_without_package_xml_are_inferred_from_the_uris(cli, tmp_path):
     """jvrc-, icub- and upkie-style wheels: the package folder is there, package.xml is not."""
     from tests.conftest import two_link_urdf, write
