@@ -110,7 +110,22 @@ def load_parts(path: Path, apply_up_axis: bool = False) -> list[MeshPart]:
                 hint="a damaged file, or a vertex written wrong: open it in a mesh tool",
             )
         parts.append(merge_vertices(part))
+    if not any(_has_area(part) for part in parts):
+        # MuJoCo would refuse the product later, naming mjcfbuild's copy of it.
+        raise InputError(
+            "every triangle of the mesh is degenerate (no area): it has nothing to draw or "
+            "collide",
+            file=path,
+            hint="re-export it, or remove the geometry that names it",
+        )
     return parts
+
+
+def _has_area(part: MeshPart) -> bool:
+    """Whether any triangle of ``part`` has an area."""
+    corners = part.vertices[part.faces]
+    cross = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    return bool(np.any(cross != 0.0))
 
 
 def _cut_stl(path: Path) -> str | None:
@@ -132,6 +147,13 @@ def _cut_stl(path: Path) -> str | None:
     expected = HEADER_BYTES + 4 + count * TRIANGLE.itemsize
     if size == expected:
         return None
+    if expected > 2 * size + 1024:
+        # Far more triangles than the bytes could hold: not a binary STL cut short, but no
+        # STL at all (the "count" is whatever bytes 80-83 happen to be).
+        return (
+            f"not an STL file: it is not ASCII STL ('solid' ... 'facet'), and as binary STL "
+            f"its triangle count ({count}) does not fit its {size} bytes"
+        )
     how = "is cut short" if size < expected else f"has {size - expected} bytes after its end"
     return (
         f"binary STL declares {count} triangles ({expected} bytes), but the file has {size} "

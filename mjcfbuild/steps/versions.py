@@ -76,7 +76,8 @@ class StepFormat:
         return versions
 
 
-# mesh 8: COLLADA lookat/skew placements and nonsense units refused, not ignored
-MESH = StepFormat("mesh", 8, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"))
+# mesh 8: COLLADA lookat/skew placements and nonsense units refused, not ignored; 9: a mesh
+# whose every triangle is degenerate refused at its file, not passed to MuJoCo
+MESH = StepFormat("mesh", 9, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"))
 DECOMPOSE = StepFormat("decompose", 3, ("coacd", "trimesh", "numpy", "scipy"))
 SELFCOLLISION = StepFormat("selfcollision", 3, ("mujoco", "numpy"))

@@ -116,3 +116,29 @@ def test_a_coordinate_no_robot_reaches_is_refused_by_its_size(tmp_path):
     assert "mesh has a vertex coordinate of 1e+30, farther than any robot reaches" in str(
         info.value
     )
+
+
+def test_bytes_that_are_no_stl_are_called_so_not_a_cut_binary(tmp_path):
+    path = tmp_path / "m.stl"
+    path.write_bytes(b"\x8f" * 5000)  # bytes 80-83 read as 2.4 billion triangles
+    with pytest.raises(InputError) as info:
+        load_parts(path)
+    assert str(info.value).startswith("not an STL file: it is not ASCII STL")
+    assert "does not fit its 5000 bytes" in str(info.value)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "v 0 0 0\nf 1 1 1\n",
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n",  # collinear
+    ],
+    ids=["one-point", "collinear"],
+)
+def test_a_mesh_whose_every_triangle_is_degenerate_is_refused_at_its_file(tmp_path, text):
+    """MuJoCo refused the product instead, naming mjcfbuild's copy of it."""
+    path = write(tmp_path / "m.obj", text)
+    with pytest.raises(InputError) as info:
+        load_parts(path)
+    assert "every triangle of the mesh is degenerate (no area)" in str(info.value)
+    assert info.value.location.file == str(path)
