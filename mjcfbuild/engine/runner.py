@@ -24,7 +24,7 @@ from mjcfbuild.engine.loader import DATABASE, run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.tasks import build_tasks, planning_tasks
 from mjcfbuild.engine.training_files import remove_stale_variant
-from mjcfbuild.errors import CheckError, MjcfbuildError, OutputError, write_failure
+from mjcfbuild.errors import CheckError, InputError, MjcfbuildError, OutputError, write_failure
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import TEMP_SUFFIX, remove_stale_temp_files, write_if_changed
 from mjcfbuild.manifest.pinpoint import pinpoint
@@ -427,6 +427,13 @@ def prepare_state(ctx: BuildContext) -> None:
     remove_stale_temp_files(ctx.state_dir)
     if ctx.manifest.source.description == "-":
         data = sys.stdin.buffer.read()
+        if not data.strip():
+            # Said here: later, the error would name the state folder's copy of stdin.
+            raise InputError(
+                "the robot description read from standard input is empty",
+                file="<stdin>",
+                hint="pipe the URDF into the command, as in: ... < robot.urdf",
+            )
         write_if_changed(ctx.source_path, data)
 
 

@@ -113,8 +113,7 @@ def load_parts(path: Path, apply_up_axis: bool = False) -> list[MeshPart]:
     if not any(_has_area(part) for part in parts):
         # MuJoCo would refuse the product later, naming mjcfbuild's copy of it.
         raise InputError(
-            "every triangle of the mesh is degenerate (no area): it has nothing to draw or "
-            "collide",
+            "every triangle of the mesh is degenerate (no area): it has nothing to draw or collide",
             file=path,
             hint="re-export it, or remove the geometry that names it",
         )

@@ -136,3 +136,17 @@ def test_a_convert_no_op_takes_builds_fast_path_and_imports_nothing_heavy(cli, a
     done, imported = _convert_in_probe(tmp_path, *argv)
     assert done.returncode == 0, done.stderr
     assert "doit" in imported
+
+
+def test_a_description_piped_in_is_built_and_an_empty_pipe_is_named_as_stdin(tmp_path):
+    from mjcfbuild.errors import EXIT_INPUT
+    from tests.conftest import run_cli
+
+    done = run_cli("convert", "-r", "-", "-o", "out", cwd=tmp_path, stdin=two_link_urdf())
+    assert done.code == EXIT_OK, done.stderr
+    assert (tmp_path / "out" / "mujoco_description_formatted.xml").is_file()
+    empty = run_cli("convert", "-r", "-", "-o", "out", cwd=tmp_path, stdin="")
+    assert empty.code == EXIT_INPUT
+    assert empty.stderr.startswith(
+        "mjcfbuild: error: <stdin>: the robot description read from standard input is empty"
+    )
