@@ -202,7 +202,14 @@ def _trimesh_pieces(path: Path) -> list[MeshPart]:
         # trimesh.load is typed to return any Geometry; force="scene" makes it a Scene
         scene = cast(trimesh.Scene, trimesh.load(str(path), force="scene", process=False))
     except Exception as exc:  # trimesh raises many kinds for broken files
-        line, problem = _obj_problem(path) if path.suffix.lower() == ".obj" else (None, None)
+        suffix = path.suffix.lower()
+        line, problem = (
+            _obj_problem(path)
+            if suffix == ".obj"
+            else _ascii_stl_problem(path)
+            if suffix == ".stl"
+            else (None, None)
+        )
         raise InputError(
             problem or f"cannot read mesh: {_first_line(exc)}",
             file=path,
@@ -250,6 +257,9 @@ def _obj_problem(path: Path) -> tuple[int | None, str | None]:
             if words[0] == "v":
                 if len(words) < 4:
                     return number, f"a vertex with {len(words) - 1} coordinates (a 'v' line has 3)"
+                wrong = _not_a_number(words[1:4])
+                if wrong is not None:
+                    return number, f"vertex coordinate '{wrong}' is not a number"
                 count += 1
             elif words[0] == "f":
                 for word in words[1:]:
@@ -259,6 +269,39 @@ def _obj_problem(path: Path) -> tuple[int | None, str | None]:
                     ):
                         return number, f"a face names vertex {index}; {count} come before it"
     return None, None
+
+
+def _ascii_stl_problem(path: Path) -> tuple[int | None, str | None]:
+    """The first line of an ASCII STL file that breaks a triangle, and what is wrong."""
+    corners = 0
+    with open(path, encoding="utf-8", errors="replace") as handle:
+        for number, line in enumerate(handle, start=1):
+            words = line.split()
+            if not words:
+                continue
+            keyword = words[0].lower()
+            if keyword == "vertex":
+                if len(words) != 4:
+                    return number, f"a vertex with {len(words) - 1} coordinates (it has 3)"
+                wrong = _not_a_number(words[1:])
+                if wrong is not None:
+                    return number, f"vertex coordinate '{wrong}' is not a number"
+                corners += 1
+            elif keyword == "endloop":
+                if corners != 3:
+                    return number, f"a facet with {corners} vertices (a triangle has 3)"
+                corners = 0
+    return None, None
+
+
+def _not_a_number(words: list[str]) -> str | None:
+    """The first of ``words`` that is not a number, or None."""
+    for word in words:
+        try:
+            float(word)
+        except ValueError:
+            return word
+    return None
 
 
 def _first_line(exc: Exception) -> str:

@@ -142,3 +142,25 @@ def test_a_mesh_whose_every_triangle_is_degenerate_is_refused_at_its_file(tmp_pa
         load_parts(path)
     assert "every triangle of the mesh is degenerate (no area)" in str(info.value)
     assert info.value.location.file == str(path)
+
+
+@pytest.mark.parametrize(
+    ("name", "text", "line", "says"),
+    [
+        (
+            "m.stl",
+            "solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0\n"
+            "   vertex 0 1 0\n  endloop\n endfacet\nendsolid x\n",
+            5,
+            "a vertex with 2 coordinates (it has 3)",
+        ),
+        ("m.obj", "v 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n", 2, "vertex coordinate 'x' is not"),
+    ],
+    ids=["ascii-stl-two-coordinates", "obj-word-for-a-number"],
+)
+def test_a_text_mesh_trimesh_cannot_read_is_an_error_at_its_line(tmp_path, name, text, line, says):
+    """trimesh's own words named no line ("incorrect number of vertices")."""
+    path = write(tmp_path / name, text)
+    with pytest.raises(InputError) as info:
+        load_parts(path)
+    assert says in str(info.value) and info.value.location.line == line
