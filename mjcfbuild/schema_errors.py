@@ -9,6 +9,7 @@ class method, ``{other name: key}``; an unknown key that is one of them is point
 from __future__ import annotations
 
 import difflib
+import re
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -46,7 +47,10 @@ def describe_error(
         return "this key is required"
     if kind == "literal_error":
         expected = error.get("ctx", {}).get("expected", "")
-        return f"{_show(value)} is not allowed; use one of {expected}"
+        choices = re.findall(r"'([^']*)'", expected)
+        close = difflib.get_close_matches(str(value), choices, n=1) if choices else []
+        mean = f"; did you mean '{close[0]}'?" if close else ""
+        return f"{_show(value)} is not allowed{mean or ';'} use one of {expected}"
     if kind in {"string_type", "string_too_short"}:
         return f"expected a non-empty string, got {_show(value)}"
     if kind == "string_pattern_mismatch":

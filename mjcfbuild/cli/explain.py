@@ -39,9 +39,13 @@ def run(args: argparse.Namespace) -> int:
     if args.task:
         chosen = [s for s in statuses if s.name == args.task or s.title == args.task]
         if not chosen:
-            names = ", ".join(s.name for s in statuses)
+            from mjcfbuild.sources.packages import did_you_mean
+
+            known = [s.name for s in statuses]
+            names = ", ".join(known)
             hint = "" if complete else " (the plan must be made again before later tasks exist)"
-            raise UsageError(f"no task '{args.task}'; tasks: {names}{hint}")
+            mean = did_you_mean(args.task, known)
+            raise UsageError(f"no task '{args.task}'{mean or ';'} tasks: {names}{hint}")
         statuses = chosen
     for status in statuses:
         if status.up_to_date:

@@ -436,6 +436,9 @@ def _place_failure(
     if undefined:
         pattern = rf"\$\{{[^}}]*\b{re.escape(undefined.group(1))}\b"
         hint = "define it with <xacro:property>, or as a macro parameter, before it is used"
+        message = message.rstrip() + did_you_mean(
+            undefined.group(1), _names_in_scope(macros, stack, current)
+        )
     elif unknown:
         pattern = rf"<{re.escape(unknown.group(1))}\b"
         hint = "define the macro, or include the file that does, before this call"
@@ -481,6 +484,22 @@ def _place_failure(
         if line is not None:
             return file, line, message, hint
     return places[0][0] if places else current, None, message, hint
+
+
+def _names_in_scope(macros: list[Any], stack: list[str], current: str) -> set[str]:
+    """Names an expression may have meant: the parameters of the macros being instantiated
+    and the properties the files being read define (by their text: xacro's own table is not
+    left behind)."""
+    names = {
+        param.lstrip("*").split(":=")[0].split("=")[0] for macro in macros for param in macro.params
+    }
+    for file in {*stack, current}:
+        try:
+            text = Path(file).read_text(errors="replace")
+        except OSError:
+            continue
+        names.update(re.findall(r"<xacro:property\s[^>]*\bname=[\"']([^\"']+)[\"']", text))
+    return {name for name in names if name}
 
 
 def _include_cycle(stack: list[str]) -> list[str]:

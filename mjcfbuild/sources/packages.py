@@ -130,10 +130,23 @@ def did_you_mean(name: str, candidates: list[str] | set[str]) -> str:
 def suggestion(patterns: list[str], names: list[str]) -> str:
     """``; did you mean 'x'?`` for the name closest to one of ``patterns`` (a glob pattern
     compared without its wildcards), or nothing."""
+    import re
+
     for pattern in patterns:
         found = did_you_mean(pattern, names) or did_you_mean(pattern.strip("*?"), names)
         if found:
             return found
+    # A pattern's word misspelt ('*fingr*' among 'left_finger_joint', ...): the pattern with
+    # the closest word of the names in its place.
+    words = sorted({word for name in names for word in re.split(r"[_\-.]", name) if word})
+    for pattern in patterns:
+        core = pattern.strip("*?")
+        if not core or core == pattern or not re.fullmatch(r"[\w\-.]+", core):
+            continue
+        found = did_you_mean(core, words)
+        if found:
+            word = found.split("'")[1]
+            return f"; did you mean '{pattern.replace(core, word)}'?"
     return ""
 
 

@@ -530,28 +530,37 @@ def validate_structure(robot: Robot, root: etree._Element, reader: _Reader) -> N
         raise reader.error(root, "the robot has no links")
     elements = {("link", e.get("name")): e for e in root.findall("link")}
     elements.update({("joint", e.get("name")): e for e in root.findall("joint")})
-    seen: set[str] = set()
+    first_line: dict[str, int | None] = {}
     for link in robot.links:
-        if link.name in seen:
+        if link.name in first_line:
             raise InputError(
-                f"link '{link.name}' is defined twice", file=reader.file, line=link.line
+                f"link '{link.name}' is defined twice{_first_at(first_line[link.name])}",
+                file=reader.file,
+                line=link.line,
+                hint="rename one of them, or remove it",
             )
-        seen.add(link.name)
-    joint_names: set[str] = set()
+        first_line[link.name] = link.line
+    seen = set(first_line)
+    joint_lines: dict[str, int | None] = {}
     parent_of: dict[str, Joint] = {}
     for joint in robot.joints:
-        if joint.name in joint_names:
+        if joint.name in joint_lines:
             raise InputError(
-                f"joint '{joint.name}' is defined twice", file=reader.file, line=joint.line
+                f"joint '{joint.name}' is defined twice{_first_at(joint_lines[joint.name])}",
+                file=reader.file,
+                line=joint.line,
+                hint="rename one of them, or remove it",
             )
-        joint_names.add(joint.name)
+        joint_lines[joint.name] = joint.line
+    joint_names = set(joint_lines)
+    for joint in robot.joints:
         for end in (joint.parent, joint.child):
             if end not in seen:
                 raise InputError(
                     f"joint '{joint.name}' refers to link '{end}', which does not exist",
                     file=reader.file,
                     line=joint.line,
-                    hint=_closest(end, seen),
+                    hint=_closest(end, seen, "links"),
                 )
         if joint.child in parent_of:
             other = parent_of[joint.child]
@@ -582,7 +591,7 @@ def validate_structure(robot: Robot, root: etree._Element, reader: _Reader) -> N
                 f"joint '{joint.name}' mimics joint '{joint.mimic.joint}', which does not exist",
                 file=reader.file,
                 line=joint.line,
-                hint=_closest(joint.mimic.joint, joint_names),
+                hint=_closest(joint.mimic.joint, joint_names, "joints"),
             )
     _refuse_impossible_mimics(robot, reader.file)
     roots = [link.name for link in robot.links if link.name not in parent_of]
@@ -663,10 +672,17 @@ def _refuse_impossible_mimics(robot: Robot, file: str) -> None:
             )
 
 
-def _closest(name: str, candidates: set[str]) -> str | None:
+def _closest(name: str, candidates: set[str], kind: str) -> str:
+    """``did you mean 'x'?`` for the closest of ``candidates``, else the ``kind`` there are."""
     import difflib
+
+    from mjcfbuild.sources.packages import listing
 
     match = difflib.get_close_matches(name, sorted(candidates), n=1)
     if match:
         return f"did you mean '{match[0]}'?"
-    return None
+    return f"{kind}: {listing(sorted(candidates))}"
+
+
+def _first_at(line: int | None) -> str:
+    return f" (first at line {line})" if line else ""

@@ -72,3 +72,10 @@ def test_the_manifest_is_a_positional_argument_in_either_order_with_the_task(arm
     assert two.code == 2 and "one manifest" in two.stderr
     both = run_cli("explain", "robot.yaml", "-m", "arm.manifest", cwd=arm)
     assert both.code == 2 and "two manifests" in both.stderr
+
+
+def test_a_misspelt_task_gets_the_closest_name(arm):
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    result = run_cli("explain", "mesh:bse", cwd=arm)
+    assert result.code == 2
+    assert "no task 'mesh:bse'; did you mean 'mesh:base'? tasks: expand, plan" in result.stderr

@@ -170,7 +170,10 @@ def test_robot_yaml_names_exactly_the_registered_policies(tmp_path):
     )
     with pytest.raises(ManifestError) as info:
         load_manifest(tmp_path / "robot.yaml")
-    assert "'decompse' is not allowed; use one of 'authored', 'visual'" in info.value.one_line()
+    assert (
+        "'decompse' is not allowed; did you mean 'decompose'? use one of 'authored', 'visual'"
+        in info.value.one_line()
+    )
 
 
 def test_the_docs_table_is_the_registry():

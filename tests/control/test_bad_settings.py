@@ -13,6 +13,11 @@ CASES = {
         "robot.yaml:5",
         "rule matches no actuated joint (elbow*) (actuated joints: hinge)",
     ),
+    "a rule whose word is misspelt": (
+        "actuators:\n  rules:\n    - {joints: ['*hnge*'], kp: 5}\n",
+        "robot.yaml:5",
+        "rule matches no actuated joint (*hnge*); did you mean 'hinge'?",
+    ),
     "a gain that is not positive": (
         "actuators:\n  rules:\n    - {joints: [hinge], kp: -5}\n",
         "robot.yaml:5",

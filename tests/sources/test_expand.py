@@ -341,3 +341,17 @@ def test_an_include_cycle_is_named_at_the_include_that_closes_it(tmp_path):
         info.value.message
         == "xacro failed: include cycle: r.xacro includes part.xacro includes r.xacro"
     )
+
+
+def test_an_undefined_name_gets_the_closest_parameter_or_property(tmp_path):
+    source = write(
+        tmp_path / "r.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:property name="wheel_radius" value="0.1"/>\n'
+        + MACRO.replace("${1 / size}", "${1 / sise + wheel_radus}")
+        + '  <xacro:leg name="a" size="0.1"/>\n</robot>\n',
+    )
+    with pytest.raises(InputError) as info:
+        expand_xacro(source, {}, PackageResolver({}, {}))
+    assert info.value.message.endswith("name 'sise' is not defined; did you mean 'size'?")
+    assert info.value.location.line == 4

@@ -72,3 +72,12 @@ def test_enclosing_package(tmp_path):
     urdf = write(root / "urdf" / "arm.urdf", "<robot/>")
     assert find_enclosing_package(urdf) == ("arm_description", root)
     assert find_enclosing_package(write(tmp_path / "loose.urdf", "")) is None
+
+
+def test_a_pattern_with_a_misspelt_word_gets_the_pattern_with_the_closest_word():
+    from mjcfbuild.sources.packages import suggestion
+
+    names = ["left_finger_joint", "right_finger_joint", "elbow"]
+    assert suggestion(["*fingr*"], names) == "; did you mean '*finger*'?"
+    assert suggestion(["elbw"], names) == "; did you mean 'elbow'?"
+    assert suggestion(["*gripper*"], names) == ""

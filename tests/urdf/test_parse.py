@@ -321,3 +321,14 @@ def test_existing_mujoco_compiler_is_kept_for_merging():
         '<link name="l"/></robot>'
     )
     assert robot.mujoco_compiler == {"balanceinertia": "true", "meshdir": "x"}
+
+
+def test_a_name_defined_twice_says_where_first_and_a_missing_one_lists_the_others():
+    twice = error_of("<robot>\n<link name='a'/>\n<link name='a'/>\n</robot>")
+    assert twice.message == "link 'a' is defined twice (first at line 2)"
+    assert twice.hint == "rename one of them, or remove it"
+    mimic = error_of(
+        "<robot><link name='a'/><link name='b'/>\n<joint name='j' type='revolute'>"
+        "<parent link='a'/><child link='b'/><mimic joint='k9'/></joint></robot>"
+    )
+    assert mimic.hint == "joints: j"  # nothing close to 'k9': the joints there are
