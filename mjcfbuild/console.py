@@ -32,12 +32,39 @@ def report_warning(text: str) -> None:
     print(f"mjcfbuild: warning: {text}", file=sys.stderr)
 
 
-def report_warnings(warnings: list[str], listed_in: str = "", prefix: str = "") -> None:
+def report_warnings(
+    warnings: list[str], listed_in: str = "", prefix: str = "", base_dir: Path | None = None
+) -> None:
     """Print warnings one line per kind (:mod:`mjcfbuild.warning_groups`), each after
     ``prefix``; ``listed_in`` names the file that lists them all, for a kind with more
-    subjects than a line shows."""
+    subjects than a line shows. A warning that starts with a file of ``base_dir`` (the
+    manifest's folder, as the report names it) names it from the current folder, as errors do."""
     from mjcfbuild.warning_groups import group_warnings
 
+    if base_dir is not None:
+        warnings = [_from_here(warning, base_dir) for warning in warnings]
     more = f"all in {listed_in}" if listed_in else ""
     for line in group_warnings(warnings, more):
         report_warning(prefix + line)
+
+
+def shown_path(path: str | Path) -> str:
+    """``path`` as the console names it: from the current folder, or absolute where that is
+    shorter than climbing out of it."""
+    import os
+
+    relative = os.path.relpath(path)
+    return str(path) if relative.startswith("..") else relative
+
+
+def _from_here(warning: str, base_dir: Path) -> str:
+    """``warning`` with its leading ``file:`` (relative to ``base_dir``) named from here."""
+    import re
+
+    found = re.match(r"([^\s:]+\.[A-Za-z0-9]+):", warning)
+    if found is None or Path(found.group(1)).is_absolute():
+        return warning
+    file = base_dir / found.group(1)
+    if not file.exists():
+        return warning
+    return shown_path(file) + warning[found.end(1) :]

@@ -145,13 +145,17 @@ def _nothing_changed(manifest: str, args: argparse.Namespace) -> dict | None:
         found.extend([summary] if summary is not None else [])
         return summary
 
-    return found[0] if report_nothing_to_do(check, args.quiet) else None
+    base_dir = Path(manifest).resolve().parent
+    return found[0] if report_nothing_to_do(check, args.quiet, base_dir) else None
 
 
-def report_nothing_to_do(check: Callable[[], dict | None], quiet: bool) -> bool:
+def report_nothing_to_do(
+    check: Callable[[], dict | None], quiet: bool, base_dir: Path | None = None
+) -> bool:
     """Run the no-op fast path's ``check`` (a stamp lookup); when it finds nothing to do,
-    print what a build would - the model's warnings, one line per kind, and the summary -
-    and return True."""
+    print what a build would - the model's warnings, one line per kind (their files named
+    from here where they are in ``base_dir``, the manifest's folder), and the summary - and
+    return True."""
     import os
     import time
 
@@ -161,7 +165,8 @@ def report_nothing_to_do(check: Callable[[], dict | None], quiet: bool) -> bool:
         return False
     if not quiet:
         warnings = summary["warnings"]
-        report_warnings(warnings, os.path.relpath(summary["report"]) if warnings else "")
+        listed_in = os.path.relpath(summary["report"]) if warnings else ""
+        report_warnings(warnings, listed_in, base_dir=base_dir)
         count = len(warnings)
         counted = f", {count} warning{'s' if count > 1 else ''}" if count else ""
         seconds = time.perf_counter() - started
@@ -255,7 +260,7 @@ def execute(
     elif not quiet:
         # The report is written when the model was (a failed check still leaves one).
         built = all(isinstance(error, CheckError) for error in result.errors)
-        report_warnings(result.warnings, report_md(ctx) if built else "")
+        report_warnings(result.warnings, report_md(ctx) if built else "", base_dir=ctx.base_dir)
     for failure in result.errors:
         report(failure)
     if debug and result.engine_log.strip():

@@ -16,7 +16,7 @@ from mjcfbuild.cli import (
     positive_int,
     timeout_argument,
 )
-from mjcfbuild.console import report_error, report_warnings
+from mjcfbuild.console import report_error, report_warnings, shown_path
 from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, CheckError, MjcfbuildError, UsageError
 
 if TYPE_CHECKING:
@@ -226,13 +226,13 @@ def _manifest(ctx, args) -> int:
         folder = write_report(ctx)
         written.record(ctx, ctx.session.written)
     if not getattr(args, "quiet", False):  # as the build prints them: one line per kind
-        report_warnings(results.warnings(), ctx.label(folder / "report.md"))
+        report_warnings(results.warnings(), shown_path(folder / "report.md"), base_dir=ctx.base_dir)
     quiet = bool(getattr(args, "quiet", False))
-    code = _print(results, ctx.label(ctx.robot_path), quiet)
+    code = _print(results, shown_path(ctx.robot_path), quiet)
     if not quiet:
-        print(f"  report: {ctx.label(folder / 'report.md')}")
+        print(f"  report: {shown_path(folder / 'report.md')}")
         if (folder / "index.html").is_file():  # output.page: its tables are the report's
-            print(f"  page: {ctx.label(folder / 'index.html')}")
+            print(f"  page: {shown_path(folder / 'index.html')}")
     if args.warp:
         from mjcfbuild.check.warp import check_in_warp
 

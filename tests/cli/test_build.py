@@ -156,3 +156,22 @@ def test_a_timeout_from_the_environment_that_is_not_seconds_is_refused(tmp_path)
     result = run_cli("build", str(manifest), env={"MJCFBUILD_TIMEOUT": "-5"})
     assert result.code == EXIT_USAGE
     assert result.stderr.startswith("mjcfbuild: error: MJCFBUILD_TIMEOUT=-5: must be more than 0")
+
+
+def test_files_are_named_from_the_current_folder_in_warnings_and_the_check(tmp_path):
+    """Errors named files from the current folder; warnings and check's lines from the
+    manifest's, which from elsewhere named files that are not there."""
+    robot = tmp_path / "robot"
+    write(
+        robot / "w.urdf",
+        '<robot name="w"><link name="base"><visual><geometry><box size="0 0 0"/></geometry>'
+        "</visual></link></robot>",
+    )
+    write(robot / "robot.yaml", "name: w\nsource: {urdf: w.urdf}\n")
+    for _ in range(2):  # the build, then its no-op
+        result = run_cli("build", "robot/robot.yaml", cwd=tmp_path)
+        assert result.code == EXIT_OK, result.stderr
+        assert "mjcfbuild: warning: robot/w.urdf:1: link 'base' visual 0" in result.stderr
+    checked = run_cli("check", "robot/robot.yaml", cwd=tmp_path)
+    assert checked.stdout.splitlines()[0] == "mjcfbuild check: robot/mjcf/w.xml"
+    assert "  report: robot/mjcf/report/report.md" in checked.stdout.splitlines()
