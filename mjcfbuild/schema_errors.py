@@ -44,6 +44,8 @@ def describe_error(
             text += f"{'' if suggestion else ';'} allowed keys: {', '.join(allowed)}"
         return text
     if kind == "missing":
+        if loc and isinstance(loc[-1], int):  # a fixed-length list, cut short
+            return f"missing: the list needs {loc[-1] + 1} items"
         return "this key is required"
     if kind == "literal_error":
         expected = error.get("ctx", {}).get("expected", "")

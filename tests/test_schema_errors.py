@@ -85,6 +85,14 @@ def test_values_of_the_wrong_kind_say_what_was_expected():
     assert describe_error(first_error(Cart, {}), Cart) == "this key is required"
 
 
+def test_a_fixed_length_list_cut_short_says_how_many_items_it_needs():
+    class Range(BaseModel):
+        limits: tuple[float, float]
+
+    error = first_error(Range, {"limits": [5]})
+    assert describe_error(error, Range) == "missing: the list needs 2 items"
+
+
 def test_robot_yaml_errors_list_the_manifests_keys_and_its_removed_section():
     from mjcfbuild.manifest.models import Manifest
 

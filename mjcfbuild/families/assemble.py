@@ -181,8 +181,9 @@ FAMILY = Family(
     step="mjcfbuild.steps.assemble:run",
     payload=AssemblePayload,
     # 12: the Gazebo sensors' MJCF counterparts; 13: the products' binary copies; 14: a raw
-    # timestep a build cannot simulate with refused; 15: reversed ranges in the inputs refused
-    format=15,
+    # timestep a build cannot simulate with refused; 15: reversed ranges in the inputs refused;
+    # 16: an inertia repair names the link's file and line
+    format=16,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,
     compiles_model=True,

@@ -36,8 +36,13 @@ def load_manifest(path: str | Path) -> Manifest:
             "this is a folder, not a manifest", file=path.name, hint="pass the path of robot.yaml"
         ) from None
     except UnicodeDecodeError as exc:
+        before = exc.object[: exc.start]
         raise ManifestError(
-            f"not UTF-8 text (byte {exc.start})", file=path.name, hint="save the file as UTF-8"
+            f"not UTF-8 text (byte {exc.start}: 0x{exc.object[exc.start]:02x})",
+            file=path.name,
+            line=before.count(b"\n") + 1,
+            column=exc.start - (before.rfind(b"\n") + 1) + 1,
+            hint="save the file as UTF-8",
         ) from None
     except OSError as exc:
         raise ManifestError(f"cannot read: {exc.strerror}", file=path.name) from None

@@ -43,10 +43,12 @@ class Repair:
     problem: str
     before: str
     after: str
+    where: str = ""  # file:line of the link's <inertial> (or the link), where known
 
     def describe(self) -> str:
         """One line for the build report."""
-        return f"body '{self.body}': {self.problem}; {self.before} -> {self.after}"
+        at = f"{self.where}: " if self.where else ""
+        return f"{at}body '{self.body}': {self.problem}; {self.before} -> {self.after}"
 
 
 def validate_masses(
@@ -89,7 +91,9 @@ def validate_masses(
                     hint="fix the <inertial>, or set inertia.policy: repair in robot.yaml",
                 )
             body.mass = fixed
-            repairs.append(Repair(body.name, problem, before, after))
+            line = lines.get(body.name)
+            where = f"{source}:{line}" if line else ""
+            repairs.append(Repair(body.name, problem, before, after, where))
     return repairs
 
 
@@ -120,7 +124,9 @@ def _floating_root(
         links=body.mass.links if body.mass is not None else [],
     )
     after = f"mass {mass:.4g} (1% of the robot), inertia {moment:.3g}"
-    return [Repair(body.name, "floating root without mass", before, after)]
+    line = lines.get(body.name)
+    where = f"{source}:{line}" if line else ""
+    return [Repair(body.name, "floating root without mass", before, after, where)]
 
 
 def _problems(body: Body, policy: InertiaPolicy):

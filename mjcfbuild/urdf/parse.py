@@ -407,6 +407,13 @@ def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
     axis = _axis(element.find("axis"), name, kind, reader)
     limit = None
     limit_element = element.find("limit")
+    if limit_element is None and kind in ("revolute", "prismatic"):
+        reader.warnings.append(
+            f"{reader.file}:{element.sourceline}: joint '{name}' is {kind} without <limit>: "
+            "ROS's URDF parser (urdfdom) refuses it, MuJoCo's import makes it unlimited; "
+            'add <limit lower= upper= effort= velocity=/>, or make it type="continuous"'
+            + (" (a prismatic joint cannot be)" if kind == "prismatic" else "")
+        )
     if limit_element is not None:
         limit = Limit(
             reader.number(limit_element, "lower"),

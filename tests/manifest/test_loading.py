@@ -121,7 +121,8 @@ def test_load_manifest_reports_missing_file(tmp_path):
 
 def test_load_manifest_reports_non_utf8(tmp_path):
     path = tmp_path / "robot.yaml"
-    path.write_bytes(b"name: \xff\xfe\n")
+    path.write_bytes(b"name: r\nsource:\n  urdf: r\xe9.urdf\n")
     with pytest.raises(ManifestError) as info:
         load_manifest(path)
-    assert "not UTF-8" in info.value.message
+    assert info.value.message == "not UTF-8 text (byte 25: 0xe9)"
+    assert (info.value.location.line, info.value.location.column) == (3, 10)

@@ -48,6 +48,7 @@ def test_missing_inertial_on_a_moving_body_gets_the_minimum():
         "principal inertia too small for a moving body",
     ]
     assert "no <inertial>" in repairs[0].describe()
+    assert repairs[0].describe().startswith("r.urdf:3: body 'arm': ")  # the link's line
 
 
 def test_triangle_inequality_is_restored_minimally():

@@ -332,3 +332,22 @@ def test_a_name_defined_twice_says_where_first_and_a_missing_one_lists_the_other
         "<parent link='a'/><child link='b'/><mimic joint='k9'/></joint></robot>"
     )
     assert mimic.hint == "joints: j"  # nothing close to 'k9': the joints there are
+
+
+@pytest.mark.parametrize("kind", ["revolute", "prismatic"])
+def test_a_joint_urdfdom_refuses_for_want_of_a_limit_is_warned_of(kind):
+    robot = parse(
+        "<robot><link name='a'/><link name='b'/>\n"
+        f"<joint name='j' type='{kind}'><parent link='a'/><child link='b'/></joint></robot>"
+    )
+    assert [w for w in robot.warnings if "without <limit>" in w] == [
+        f"r.urdf:2: joint 'j' is {kind} without <limit>: ROS's URDF parser (urdfdom) refuses "
+        "it, MuJoCo's import makes it unlimited; add <limit lower= upper= effort= velocity=/>, "
+        'or make it type="continuous"'
+        + (" (a prismatic joint cannot be)" if kind == "prismatic" else "")
+    ]
+    continuous = parse(
+        "<robot><link name='a'/><link name='b'/>\n"
+        "<joint name='j' type='continuous'><parent link='a'/><child link='b'/></joint></robot>"
+    )
+    assert not [w for w in continuous.warnings if "without <limit>" in w]
