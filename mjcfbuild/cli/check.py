@@ -149,9 +149,15 @@ def _pair(args) -> int:
         problem = unreadable_file(path)
         if problem:
             raise InputError(f"file {problem}", file=path)
-    from mjcfbuild.cli.convert import parse_packages
+    from mjcfbuild.cli.convert import command_line_hint, parse_packages
+    from mjcfbuild.errors import MjcfbuildError
 
-    text, origins = _urdf_bytes(urdf, parse_packages(args.package))
+    try:
+        text, origins = _urdf_bytes(urdf, parse_packages(args.package))
+    except MjcfbuildError as error:  # no robot.yaml here: its hints name --package instead
+        if error.hint:
+            error.hint = command_line_hint(error.hint)
+        raise
     try:
         robot = parse_urdf(text, str(urdf))
     except InputError as error:

@@ -232,6 +232,8 @@ def test_check_urdf_takes_package_for_a_xacro_that_finds_one(tmp_path):
     argv = ["check", "--urdf", "p.urdf.xacro", "--mjcf", "p.xml"]
     missing = run_cli(*argv, cwd=tmp_path, env={"ROS_PACKAGE_PATH": "", "AMENT_PREFIX_PATH": ""})
     assert missing.code == 4 and "pendulum_description" in missing.stderr
+    assert "pass --package pendulum_description=<folder>" in missing.stderr  # no robot.yaml
+    assert "robot.yaml" not in missing.stderr
     result = run_cli(
         *argv, "--package", "pendulum_description=pkgs/pendulum_description", cwd=tmp_path
     )
