@@ -98,7 +98,7 @@ def starter_manifest_text(
         found = infer_package(package, references.get(package, []), source)
         if found is not None:
             known[package] = str(found.folder)
-            notes[package] = _inferred_note(package, found)
+            notes[package] = _inferred_note(package, found, needed)
     enclosing = find_enclosing_package(source)
     # One name per folder: the description's own package only under a name it uses, or under
     # its package.xml's name when no other name already points there.
@@ -193,13 +193,19 @@ def starter_manifest_text(
     return "\n".join(lines)
 
 
-def _inferred_note(package: str, found: InferredPackage) -> str:
-    """The comment above a package found from the files the description names in it."""
+def _inferred_note(package: str, found: InferredPackage, used: list[str]) -> str:
+    """The comment above a package found from the files the description names in it
+    (``used``: every package name the description uses)."""
     where = f"from the description's {found.evidence}, found in this folder"
     if found.package_xml is None:
         return f"  # {package}: inferred (no package.xml) {where}"
     if found.package_xml == package:
         return f"  # {package}: its package.xml is in this folder"
+    if found.package_xml in used:
+        return (
+            f"  # {package}: inferred {where}; its package.xml names it '{found.package_xml}', "
+            "which the description uses too: both names are this folder"
+        )
     return (
         f"  # {package}: inferred {where}; its package.xml names it '{found.package_xml}', "
         "which the description does not use"

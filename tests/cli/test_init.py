@@ -398,3 +398,25 @@ def test_init_does_not_warn_of_a_package_the_ros_environment_holds(cli, tmp_path
         "init", "robot.urdf", cwd=tmp_path, env={"ROS_PACKAGE_PATH": str(tmp_path / "ros")}
     )
     assert result.code == EXIT_OK and result.stderr == ""
+
+
+def test_a_folder_the_description_names_twice_says_both_names_are_it(cli, tmp_path):
+    from tests.conftest import write
+    from tests.meshes.samples import ascii_stl
+
+    (tmp_path / "pkg" / "meshes").mkdir(parents=True)
+    ascii_stl(tmp_path / "pkg" / "meshes" / "base.stl")
+    write(tmp_path / "pkg" / "package.xml", "<package><name>pkg_a</name></package>")
+    write(
+        tmp_path / "pkg" / "urdf" / "r.urdf",
+        '<robot name="r"><link name="a"><visual><geometry><mesh '
+        'filename="package://pkg_a/meshes/base.stl"/></geometry></visual></link>'
+        '<link name="b"><visual><geometry><mesh filename="package://pkg_b/meshes/base.stl"/>'
+        '</geometry></visual></link><joint name="j" type="fixed"><parent link="a"/>'
+        '<child link="b"/></joint></robot>',
+    )
+    assert cli("init", "pkg/urdf/r.urdf", cwd=tmp_path).code == EXIT_OK
+    text = (tmp_path / "robot.yaml").read_text()
+    assert "  pkg_a: pkg\n" in text and "  pkg_b: pkg\n" in text
+    assert "names it 'pkg_a', which the description uses too: both names are this folder" in text
+    assert "does not use" not in text
