@@ -99,10 +99,18 @@ def _print_warnings(warnings: dict[str, list[str]]) -> None:
     from mjcfbuild.console import report_warnings
 
     sides = [(label, found) for label, found in warnings.items() if found]
-    if len(sides) == 2 and sides[0][1] == sides[1][1]:
-        sides = [(f"{sides[0][0]} and {sides[1][0]}", sides[0][1])]
+    if len(sides) == 2:
+        # What both sides warn of once, under both names; then what each warns of alone.
+        (first, mine), (second, theirs) = sides
+        common = [warning for warning in mine if warning in theirs]
+        sides = [
+            (f"{first} and {second}", common),
+            (first, [warning for warning in mine if warning not in common]),
+            (second, [warning for warning in theirs if warning not in common]),
+        ]
     for label, found in sides:
-        report_warnings(found, prefix=f"{label}: ")
+        if found:
+            report_warnings(found, prefix=f"{label}: ")
 
 
 def _sides(args: argparse.Namespace, warnings: dict[str, list[str]]):

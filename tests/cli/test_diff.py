@@ -297,3 +297,13 @@ def test_commits_made_within_one_second_diff_correctly(tmp_path, monkeypatch):
     assert mass_change("main~2", "main~1") == (1.5, 2.5)
     # Each side's scratch folder holds the previous pair's build; now the next commit's files.
     assert mass_change("main~1", "main") == (2.5, 3.5)
+
+
+def test_a_warning_both_sides_give_is_printed_once_beside_each_sides_own(capsys):
+    from mjcfbuild.cli.diff import _print_warnings
+
+    _print_warnings({"main": ["r.urdf:3: shared", "r.urdf:4: old"], "HEAD": ["r.urdf:3: shared"]})
+    assert capsys.readouterr().err.splitlines() == [
+        "mjcfbuild: warning: main and HEAD: r.urdf:3: shared",
+        "mjcfbuild: warning: main: r.urdf:4: old",
+    ]
