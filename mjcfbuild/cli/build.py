@@ -268,10 +268,10 @@ def execute(
     if not quiet:
         interrupts.check()  # a SIGINT while the warnings printed: no line saying "built"
         print(result.summary())
-        if result.slowest and result.seconds > 2.0 and not quiet:
+        if result.slowest and result.seconds > 2.0:
             slowest = ", ".join(f"{title} {seconds:.2f} s" for title, seconds in result.slowest)
             print(f"  slowest: {slowest}")
-        if not quiet and not result.errors:
+        if not result.errors:
             print(_check_line(ctx))
     return result.errors[0].exit_code if result.errors else EXIT_OK
 
