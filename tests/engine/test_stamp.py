@@ -235,7 +235,9 @@ def test_every_way_of_finding_the_folder_up_to_date_prints_the_same(tmp_path):
     fast = printed()
     assert fast[0] == warning_lines(built.stderr) != []
     assert re.fullmatch(
-        r"mjcfbuild: built robot\.xml: 0 run, 5 up to date, 8 warnings in _ s\n", fast[1]
+        r"mjcfbuild: built robot\.xml: 0 run, 5 up to date, 8 warnings in _ s\n"
+        r"  check: not run \(--no-check\); `mjcfbuild check` runs it\n",
+        fast[1],
     )
     assert printed(FULL) == fast
     assert stamp.stamp_path(key, False).is_file()
