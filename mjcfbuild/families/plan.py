@@ -72,7 +72,7 @@ FAMILY = Family(
     # 5: ros2_control <hardware>; 6: chains deeper than MuJoCo reads; 7: Gazebo sensors;
     # 8: processed inputs by tag; 9: a mimic of a fixed joint, or a ring of mimics, refused;
     # 10: a revolute or prismatic joint without <limit> warned of; names twice say where first
-    format=10,
+    format=11,
     tools=("lxml",),
     tasks=_tasks,
     stage="planning",

@@ -289,6 +289,7 @@ def _material(element: etree._Element, reader: _Reader, known: dict[str, Materia
 
 def _parse_link(element: etree._Element, reader: _Reader, materials: dict[str, Material]) -> Link:
     name = reader.required(element, "name")
+    _warn_repeated(element, ("inertial",), f"link '{name}'", reader)
     inertial = None
     inertial_element = element.find("inertial")
     if inertial_element is not None:
@@ -305,6 +306,7 @@ def _parse_link(element: etree._Element, reader: _Reader, materials: dict[str, M
 
 
 def _parse_inertial(element: etree._Element, reader: _Reader) -> Inertial:
+    _warn_repeated(element, ("origin", "mass", "inertia"), "<inertial>", reader)
     mass_element = element.find("mass")
     mass = reader.number(mass_element, "value") if mass_element is not None else None
     if mass is None:
@@ -327,9 +329,18 @@ def _parse_shape(
     reader: _Reader,
     materials: dict[str, Material],
 ) -> Shape:
+    _warn_repeated(element, ("origin", "geometry", "material"), f"<{role}>", reader)
     geometry_element = element.find("geometry")
     if geometry_element is None or len(geometry_element) == 0:
         raise reader.error(element, f"<{role}> has no <geometry>")
+    if len(geometry_element) > 1:
+        reader.warnings.append(
+            f"{reader.file}:{geometry_element[1].sourceline}: <geometry> holds "
+            f"{len(geometry_element)} shapes: only the first, <{geometry_element[0].tag}> "
+            f"(line {geometry_element[0].sourceline}), is read, as ROS's URDF parser reads it "
+            "(MuJoCo's own import takes a box first, whatever the order); give each shape a "
+            "<visual> or <collision> of its own"
+        )
     geometry = _parse_geometry(geometry_element[0], reader)
     material = None
     material_element = element.find("material")
@@ -400,6 +411,7 @@ def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
             hint=f"use one of {', '.join(JOINT_TYPES)}"
             + (_SPHERICAL if kind == "spherical" else ""),
         )
+    _warn_repeated(element, _JOINT_SINGLES, f"joint '{name}'", reader)
     parent = element.find("parent")
     child = element.find("child")
     if parent is None or child is None:
@@ -448,6 +460,28 @@ def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
         mimic=mimic,
         line=element.sourceline,
     )
+
+
+_JOINT_SINGLES = (
+    "parent", "child", "origin", "axis", "limit", "dynamics", "mimic", "calibration",
+    "safety_controller",
+)  # fmt: skip
+
+
+def _warn_repeated(
+    element: etree._Element, tags: tuple[str, ...], subject: str, reader: _Reader
+) -> None:
+    """A warning for each of ``tags`` that ``element`` holds more than once: URDF allows one,
+    ROS's URDF parser (urdfdom) reads the first without a word and MuJoCo's own import refuses
+    the file ("repeated element"); mjcfbuild reads it as the runtime's parser does."""
+    for tag in tags:
+        found = element.findall(tag)
+        if len(found) > 1:
+            reader.warnings.append(
+                f"{reader.file}:{found[1].sourceline}: {subject} has {len(found)} <{tag}> "
+                f"elements: only the first (line {found[0].sourceline}) is read, as ROS's URDF "
+                "parser reads it (MuJoCo's own import refuses the file); remove the others"
+            )
 
 
 def _implicit_world(links: list[Link], joints: list[Joint], reader: _Reader) -> list[Link]:

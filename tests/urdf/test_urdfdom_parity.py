@@ -312,3 +312,38 @@ def test_mjcfbuild_reads_what_urdfdom_reads(folder, generated):
         if bounds is not None:  # urdfdom: a missing bound is 0, as mjcfbuild reads it
             assert bounds == (written.get("lower", 0.0), written.get("upper", 0.0))
     assert {link.name: link.inertial.mass for link in ours.links if link.inertial} == spec.masses
+
+
+def test_an_element_given_twice_is_read_as_urdfdom_reads_it_with_a_warning(tmp_path):
+    """urdfdom reads the first of a repeated <parent>, <origin> or shape; so does mjcfbuild,
+    with a warning at the second (MuJoCo's own import refuses the file)."""
+    inertia = '<inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>'
+    path = tmp_path / "twice.urdf"
+    path.write_text(
+        f'<robot name="r">\n<link name="a"><inertial><mass value="1"/>{inertia}</inertial>\n'
+        '<collision><geometry><sphere radius="0.1"/>\n<box size="1 1 1"/></geometry>'
+        "</collision></link>\n"
+        f'<link name="b"><inertial><mass value="2"/>{inertia}</inertial></link>\n'
+        f'<link name="c"><inertial><mass value="3"/>{inertia}</inertial></link>\n'
+        '<joint name="j" type="fixed"><parent link="a"/>\n<parent link="c"/><child link="b"/>'
+        '<origin xyz="1 0 0"/>\n<origin xyz="2 0 0"/></joint>\n'
+        '<joint name="k" type="fixed"><parent link="a"/><child link="c"/></joint>\n</robot>\n',
+        encoding="utf-8",
+    )
+    judged = urdfdom_read(path, tmp_path / "graph")
+    ours = parse_urdf(path.read_bytes(), "twice.urdf")
+    assert judged.accepted and not judged.errors
+    for joint in ours.joints:
+        theirs = judged.joints[joint.name]
+        assert (theirs.parent, theirs.child) == (joint.parent, joint.child)
+        assert same_origin(theirs, joint.origin.xyz, joint.origin.rpy), joint.name
+    assert [link.collisions[0].geometry.kind for link in ours.links if link.collisions] == [
+        "sphere"
+    ]
+    assert [w.split(": ")[0] for w in ours.warnings] == [
+        "twice.urdf:4",
+        "twice.urdf:8",
+        "twice.urdf:9",
+    ]
+    assert "joint 'j' has 2 <parent> elements: only the first (line 7) is read" in ours.warnings[1]
+    assert "MuJoCo's own import refuses the file" in ours.warnings[2]
