@@ -6,6 +6,7 @@ import os
 import re
 from pathlib import Path
 
+from mjcfbuild.console import shown_path
 from mjcfbuild.errors import InputError, MjcfbuildError, OutputError, UsageError
 from mjcfbuild.fsutil import unreadable_file
 from mjcfbuild.manifest.models import NAME_PATTERN
@@ -91,9 +92,17 @@ def starter_manifest_text(
     for package in needed:
         if package in known:
             continue
-        folder = find_package_xml(package, source)
-        if folder is not None:
-            known[package] = str(folder)
+        folders = find_package_xml(package, source)
+        if folders:
+            known[package] = str(folders[0])
+            if len(folders) > 1:
+                notes[package] = _twice_note(package, folders, manifest_dir)
+                warnings.append(
+                    f"{shown_path(folders[1] / 'package.xml')}: package '{package}' is named by "
+                    f"{len(folders)} package.xml files; the manifest takes the nearest, "
+                    f"{_relative(folders[0], manifest_dir)} (catkin and colcon refuse a "
+                    "workspace with two): check its line under packages"
+                )
             continue
         found = infer_package(package, references.get(package, []), source)
         if found is not None:
@@ -191,6 +200,12 @@ def starter_manifest_text(
         "",
     ]
     return "\n".join(lines)
+
+
+def _twice_note(package: str, folders: list[Path], manifest_dir: Path) -> str:
+    """The comment above a package whose name more than one package.xml gives."""
+    others = ", ".join(_relative(folder, manifest_dir) for folder in folders[1:])
+    return f"  # {package}: the nearest package.xml naming it; named by another in: {others}"
 
 
 def _inferred_note(package: str, found: InferredPackage, used: list[str]) -> str:

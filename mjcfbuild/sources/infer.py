@@ -39,11 +39,13 @@ def package_references(data: bytes) -> dict[str, list[str]]:
     return found
 
 
-def find_package_xml(name: str, source: Path) -> Path | None:
-    """The folder of the ``package.xml`` naming package ``name``, among the folders above
-    ``source`` and their children (a package beside the description's own, in one workspace)."""
+def find_package_xml(name: str, source: Path) -> list[Path]:
+    """The folders of every ``package.xml`` naming package ``name``, nearest first, among the
+    folders above ``source`` and their children (a package beside the description's own, in
+    one workspace). More than one is a workspace catkin and colcon refuse to build."""
     from mjcfbuild.sources.packages import package_name
 
+    found: list[Path] = []
     for ancestor in list(source.resolve().parents)[:_LEVELS]:
         try:
             children = sorted(child for child in ancestor.iterdir() if child.is_dir())
@@ -51,9 +53,9 @@ def find_package_xml(name: str, source: Path) -> Path | None:
             continue
         for folder in [ancestor, *children]:
             manifest = folder / "package.xml"
-            if manifest.is_file() and package_name(manifest) == name:
-                return folder
-    return None
+            if folder not in found and manifest.is_file() and package_name(manifest) == name:
+                found.append(folder)
+    return found
 
 
 def infer_package(name: str, paths: list[str], source: Path) -> InferredPackage | None:

@@ -319,6 +319,39 @@ def test_a_sibling_package_is_found_by_its_package_xml(cli, tmp_path):
     assert cli("build", "-q", "--no-check", cwd=tmp_path).code == EXIT_OK
 
 
+def test_a_package_two_package_xml_files_name_takes_the_nearest_and_says_so(cli, tmp_path):
+    """Two folders of one workspace claim robot_meshes (catkin and colcon refuse to build
+    such a workspace): the manifest takes the nearest, and both init and the manifest say
+    which other folder claims it."""
+    from tests.conftest import two_link_urdf, write
+    from tests.meshes.samples import ascii_stl
+
+    src = tmp_path / "src"
+    for folder in ("meshes_pkg", "old_meshes"):
+        (src / folder / "stl").mkdir(parents=True)
+        ascii_stl(src / folder / "stl" / "base.stl")
+        write(src / folder / "package.xml", "<package><name>robot_meshes</name></package>\n")
+    urdf = two_link_urdf().replace(
+        '<geometry><box size="0.2 0.2 0.1"/></geometry>',
+        '<geometry><mesh filename="package://robot_meshes/stl/base.stl"/></geometry>',
+    )
+    write(src / "robot_description" / "urdf" / "robot.urdf", urdf)
+    source = src / "robot_description" / "urdf" / "robot.urdf"
+    result = cli("init", str(source), "-o", "robot.yaml", cwd=tmp_path)
+    assert result.code == EXIT_OK
+    text = (tmp_path / "robot.yaml").read_text()
+    assert _packages_section(text) == [
+        "  # robot_meshes: the nearest package.xml naming it; named by another in: src/old_meshes",
+        "  robot_meshes: src/meshes_pkg",
+    ]
+    assert (
+        "mjcfbuild: warning: src/old_meshes/package.xml: package 'robot_meshes' is named by 2 "
+        "package.xml files; the manifest takes the nearest, src/meshes_pkg (catkin and colcon "
+        "refuse a workspace with two): check its line under packages"
+    ) in result.stderr
+    assert cli("build", "-q", "--no-check", cwd=tmp_path).code == EXIT_OK
+
+
 def test_init_says_what_the_first_build_will_stop_at(cli, tmp_path):
     # gaikpy's NICO (a lower limit above the upper) and pib-sdk's pib (meshes in a package the
     # wheel lacks): init wrote the manifest and said nothing; the build then stopped.
