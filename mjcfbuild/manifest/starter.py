@@ -92,15 +92,15 @@ def starter_manifest_text(
     for package in needed:
         if package in known:
             continue
-        folders = find_package_xml(package, source)
-        if folders:
-            known[package] = str(folders[0])
-            if len(folders) > 1:
-                notes[package] = _twice_note(package, folders, manifest_dir)
+        claimed = find_package_xml(package, source)
+        if claimed:
+            known[package] = str(claimed[0])
+            if len(claimed) > 1:
+                notes[package] = _twice_note(package, claimed, manifest_dir)
                 warnings.append(
-                    f"{shown_path(folders[1] / 'package.xml')}: package '{package}' is named by "
-                    f"{len(folders)} package.xml files; the manifest takes the nearest, "
-                    f"{_relative(folders[0], manifest_dir)} (catkin and colcon refuse a "
+                    f"{shown_path(claimed[1] / 'package.xml')}: package '{package}' is named by "
+                    f"{len(claimed)} package.xml files; the manifest takes the nearest, "
+                    f"{_relative(claimed[0], manifest_dir)} (catkin and colcon refuse a "
                     "workspace with two): check its line under packages"
                 )
             continue
