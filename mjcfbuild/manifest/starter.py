@@ -263,7 +263,9 @@ def _free_joint_lines(
         kind = classify_base(parse_urdf(expansion.urdf, label))
     except Exception as exc:  # an unreadable description: init still writes a starting manifest
         # The build reports anything else itself; a user error is worth telling now.
-        unread = exc.one_line() if isinstance(exc, MjcfbuildError) else None
+        # Its file named from the current folder, as the build names it.
+        here = Path.cwd()
+        unread = exc.relocate(here, here).one_line() if isinstance(exc, MjcfbuildError) else None
         legs = _leg_words(data)
         if legs:
             return [

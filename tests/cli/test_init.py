@@ -381,6 +381,31 @@ def test_init_says_what_the_first_build_will_stop_at(cli, tmp_path):
     assert f"robot.urdf:{line}: joint 'hinge' has lower limit 0.3 above" in built.stderr
 
 
+def test_init_names_an_included_file_that_fails_from_the_current_folder(cli, tmp_path):
+    """A failure in a file the description includes is named as the build names it, from
+    the folder init runs in, not by its absolute path."""
+    from tests.conftest import write
+
+    write(tmp_path / "desc" / "package.xml", "<package><name>desc</name></package>\n")
+    write(
+        tmp_path / "desc" / "urdf" / "r.urdf.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:include filename="$(find desc)/urdf/part.xacro"/>\n<link name="a"/>\n</robot>\n',
+    )
+    write(
+        tmp_path / "desc" / "urdf" / "part.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<link name="${undefined_thing}"/>\n</robot>\n',
+    )
+    result = cli("init", "urdf/r.urdf.xacro", cwd=tmp_path / "desc")
+    assert result.code == EXIT_OK, result.stderr
+    assert result.stderr.startswith(
+        "mjcfbuild: warning: urdf/part.xacro:2: xacro failed: name 'undefined_thing' is not defined"
+    ), result.stderr
+    built = cli("build", "--no-check", cwd=tmp_path / "desc")
+    assert built.code == EXIT_INPUT and "error: urdf/part.xacro:2: xacro failed" in built.stderr
+
+
 def test_init_takes_no_package_a_comment_mentions(cli, tmp_path):
     from tests.conftest import two_link_urdf, write
 
