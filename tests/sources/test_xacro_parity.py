@@ -287,3 +287,64 @@ def test_what_xacro_takes_and_refuses_at_the_edges(tmp_path, monkeypatch, text, 
         ).encode("latin-1")
     )
     assert (assert_agrees(source, tmp_path, args) is not None) == expands
+
+
+NESTED_MACROS = (
+    '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+    '<xacro:macro name="foot" params="side">\n'
+    '  <link name="${side}_foot_${missing}"/>\n'
+    "</xacro:macro>\n"
+    '<xacro:macro name="leg" params="side">\n'
+    '  <link name="${side}_hip"/>\n'
+    '  <xacro:foot side="${side}"/>\n'
+    "</xacro:macro>\n"
+    '<link name="root"/>\n'
+    '<xacro:leg side="left"/>\n'
+    "</robot>\n"
+)
+
+
+def test_a_failure_in_a_macro_is_placed_in_the_macro_xacro_names(tmp_path):
+    """xacro's trace names the innermost macro and its file ("when instantiating macro: foot
+    (r.xacro)"); mjcfbuild names the same macro, at the line of the expression that failed."""
+    import re
+
+    source = write(tmp_path / "r.xacro", NESTED_MACROS)
+    theirs = xacro_command(source, {}, {}, tmp_path / "index")
+    assert theirs.returncode != 0
+    trace = theirs.stderr.decode()
+    macro = re.search(r"when instantiating macro: (\S+) \((\S+)\)", trace)
+    assert macro is not None, trace
+    with pytest.raises(InputError) as caught:
+        expand_xacro(source, {}, PackageResolver({}, {}))
+    assert f"in macro '{macro.group(1)}'" in caught.value.message
+    location = caught.value.location
+    assert location is not None and Path(location.file) == Path(macro.group(2))
+    assert location.line == 3  # ${missing}, inside foot
+
+
+def test_an_include_cycle_xacro_recurses_through_is_named_at_the_include_closing_it(tmp_path):
+    """xacro recurses until Python's stack runs out, naming the files it went through;
+    mjcfbuild names the cycle at the include that closes it, one of those files."""
+    write(
+        tmp_path / "a.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:include filename="b.xacro"/>\n</robot>\n',
+    )
+    source = tmp_path / "a.xacro"
+    write(
+        tmp_path / "b.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:include filename="a.xacro"/>\n</robot>\n',
+    )
+    theirs = xacro_command(source, {}, {}, tmp_path / "index")
+    assert theirs.returncode != 0
+    trace = theirs.stderr.decode()
+    assert "maximum recursion depth exceeded" in trace and str(tmp_path / "b.xacro") in trace
+    with pytest.raises(InputError, match=r"include cycle: a\.xacro includes b\.xacro") as caught:
+        expand_xacro(source, {}, PackageResolver({}, {}))
+    location = caught.value.location
+    assert location is not None and (Path(location.file), location.line) == (
+        tmp_path / "b.xacro",
+        2,
+    )
