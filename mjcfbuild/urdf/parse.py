@@ -569,31 +569,9 @@ def validate_structure(robot: Robot, root: etree._Element, reader: _Reader) -> N
     """Unique names, existing parents and children, one root, no cycles."""
     if not robot.links:
         raise reader.error(root, "the robot has no links")
-    elements = {("link", e.get("name")): e for e in root.findall("link")}
-    elements.update({("joint", e.get("name")): e for e in root.findall("joint")})
-    first_line: dict[str, int | None] = {}
-    for link in robot.links:
-        if link.name in first_line:
-            raise InputError(
-                f"link '{link.name}' is defined twice{_first_at(first_line[link.name])}",
-                file=reader.file,
-                line=link.line,
-                hint="rename one of them, or remove it",
-            )
-        first_line[link.name] = link.line
-    seen = set(first_line)
-    joint_lines: dict[str, int | None] = {}
+    seen = _unique_names("link", [(link.name, link.line) for link in robot.links], reader)
+    joint_names = _unique_names("joint", [(j.name, j.line) for j in robot.joints], reader)
     parent_of: dict[str, Joint] = {}
-    for joint in robot.joints:
-        if joint.name in joint_lines:
-            raise InputError(
-                f"joint '{joint.name}' is defined twice{_first_at(joint_lines[joint.name])}",
-                file=reader.file,
-                line=joint.line,
-                hint="rename one of them, or remove it",
-            )
-        joint_lines[joint.name] = joint.line
-    joint_names = set(joint_lines)
     for joint in robot.joints:
         for end in (joint.parent, joint.child):
             if end not in seen:
@@ -669,6 +647,22 @@ def validate_structure(robot: Robot, root: etree._Element, reader: _Reader) -> N
             file=reader.file,
             line=unreached[0].line,
         )
+
+
+def _unique_names(kind: str, named: list[tuple[str, int | None]], reader: _Reader) -> set[str]:
+    """The names of ``named`` (each with its line); an error at the second of a name given
+    twice, naming the line of the first."""
+    first_line: dict[str, int | None] = {}
+    for name, line in named:
+        if name in first_line:
+            raise InputError(
+                f"{kind} '{name}' is defined twice{_first_at(first_line[name])}",
+                file=reader.file,
+                line=line,
+                hint="rename one of them, or remove it",
+            )
+        first_line[name] = line
+    return set(first_line)
 
 
 def _tree_size(robot: Robot, root: str) -> int:
