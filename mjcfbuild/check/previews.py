@@ -29,7 +29,7 @@ import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 from mjcfbuild.check.drawn import drawn_model_xml
 from mjcfbuild.check.loading import AssetSource, spec_reading_sources
@@ -57,6 +57,17 @@ MARGIN = 1.15  # the robot fills the frame, less this
 DRAWING = (3, SKY_TOP, SKY_BOTTOM, COLLISION_RGBA, SHADOW_MAP_SIZE, SUPERSAMPLING, MARGIN)
 
 
+class PictureCache(Protocol):
+    """Pictures drawn before, by the digest of what each shows (mjcfbuild.steps.previews
+    keeps them in the shared product cache)."""
+
+    def get(self, shows: str) -> bytes | None:
+        """The PNG of a picture showing ``shows``, if one was kept."""
+
+    def put(self, shows: str, png: bytes) -> None:
+        """Keep the PNG of a picture showing ``shows``."""
+
+
 @dataclass(frozen=True)
 class View:
     """A camera: where it looks from (degrees), at what, from how far; the kinds it shows."""
@@ -75,10 +86,12 @@ def render_previews(
     height: int = 360,
     sources: dict[str, AssetSource] | None = None,
     drawn: Mapping[str, str] | None = None,
+    cache: PictureCache | None = None,
 ) -> dict[str, str | None]:
     """Write the pictures ``<view>_<kind>.png`` into ``folder``; each picture's name and the
     digest of what it shows (None where that cannot be told). ``drawn``: pictures already in
     ``folder`` with the digest each was drawn for; one whose digest is unchanged is kept.
+    ``cache``: pictures drawn before, in any folder; one found there is copied, not drawn.
     ``sources``: the products a build published the assets from (see check.loading)."""
     from mjcfbuild.cachedir import user_cache_dir
     from mjcfbuild.check.shadercache import choose_shader_cache
@@ -116,6 +129,8 @@ def render_previews(
     to_draw = [
         name for name in pictures if shown[name] is None or (drawn or {}).get(name) != shown[name]
     ]
+    if cache is not None:
+        to_draw = [name for name in to_draw if not _copied(cache, shown[name], folder / name)]
     if not to_draw:
         return shown
     model.geom_group[:] = np.where(collides, 3, 2)
@@ -145,7 +160,20 @@ def render_previews(
             png = io.BytesIO()
             picture.save(png, format="PNG", optimize=False)
             atomic_write(folder / name, png.getvalue())  # a full disk names the picture
+            shows = shown[name]
+            if cache is not None and shows is not None:
+                cache.put(shows, png.getvalue())
     return shown
+
+
+def _copied(cache: PictureCache, shows: str | None, path: Path) -> bool:
+    """Whether the picture showing ``shows`` was found in ``cache`` and written to ``path``."""
+    png = cache.get(shows) if shows is not None else None
+    if png is None:
+        return False
+    path.parent.mkdir(parents=True, exist_ok=True)
+    atomic_write(path, png)
+    return True
 
 
 def _model_to_draw(model_path: Path, sources: dict[str, AssetSource]) -> tuple[Any, Any]:

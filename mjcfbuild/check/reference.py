@@ -51,6 +51,20 @@ def kinematic_digest(urdf: bytes) -> str:
     return hashlib.sha256(text.encode()).hexdigest()
 
 
+def reader_input_digest(urdf: bytes) -> str:
+    """A digest of the URDF text as the reader sees it: without its comments (xacro writes the
+    source's absolute path into one), so that the same description in another folder has the
+    same digest; of the bytes when the text is not XML."""
+    from lxml import etree
+
+    try:
+        parser = etree.XMLParser(resolve_entities=False, no_network=True, remove_comments=True)
+        text = etree.tostring(etree.fromstring(urdf, parser))
+    except etree.XMLSyntaxError:
+        return "text:" + hashlib.sha256(urdf).hexdigest()
+    return hashlib.sha256(text).hexdigest()
+
+
 def _parts(joint: Any) -> list[tuple[str, Any]]:
     return [(part, element) for part in _JOINT_PARTS for element in joint.findall(part)]
 

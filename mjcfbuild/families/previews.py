@@ -8,6 +8,7 @@ from mjcfbuild.graph.family import Family, file_task
 from mjcfbuild.graph.render_inputs import RenderInputsUnchanged
 from mjcfbuild.outputs import ASSEMBLY_REPORT, PREVIEWS_RECORD, report_dir
 from mjcfbuild.steps.payloads import PreviewsPayload
+from mjcfbuild.steps.versions import PREVIEWS
 
 if TYPE_CHECKING:
     from mjcfbuild.graph.context import GraphContext
@@ -35,6 +36,7 @@ def _tasks(graph: Graph) -> list[dict]:
         model=str(ctx.scene_path),
         assembly_report=str(ctx.state(ASSEMBLY_REPORT)),
         record=str(ctx.state(PREVIEWS_RECORD)),
+        cache=ctx.cache_settings(),
     )
     task = file_task(
         ctx,
@@ -66,8 +68,8 @@ FAMILY = Family(
     name="previews",
     step="mjcfbuild.steps.previews:run",
     payload=PreviewsPayload,
-    format=5,
-    tools=("mujoco", "numpy", "pillow"),
+    format=PREVIEWS.format,  # declared beside the step, which keys its products by it
+    tools=PREVIEWS.tools,
     tasks=_tasks,
     compiles_model=True,
     report_only=True,

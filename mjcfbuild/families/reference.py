@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 from mjcfbuild.graph.family import Family, file_task
 from mjcfbuild.outputs import REFERENCE, planned_urdf
 from mjcfbuild.steps.payloads import ReferencePayload
+from mjcfbuild.steps.versions import REFERENCE as REFERENCE_STEP
 
 if TYPE_CHECKING:
     from mjcfbuild.graph.graph import Graph
@@ -25,6 +26,7 @@ def _tasks(graph: Graph) -> list[dict]:
     payload = ReferencePayload(
         urdf=str(urdf),
         kinematics=kinematic_digest(urdf.read_bytes()),
+        cache=ctx.cache_settings(),
         output=str(ctx.state(REFERENCE)),
     )
     task = file_task(
@@ -44,7 +46,7 @@ FAMILY = Family(
     name="reference",
     step="mjcfbuild.steps.reference:run",
     payload=ReferencePayload,
-    format=1,
-    tools=("yourdfpy", "numpy", "lxml"),
+    format=REFERENCE_STEP.format,  # declared beside the step, which keys its products by it
+    tools=REFERENCE_STEP.tools,
     tasks=_tasks,
 )

@@ -63,6 +63,10 @@ def _listed_files(kind: str | None, summary: Any) -> tuple[dict[str, str], set[s
             raise ValueError("no parts")
     elif kind == "selfcollision":
         named.add("matrix.json")
+    elif kind == "reference":
+        named.add("reference.json")
+    elif kind == "preview":
+        named.add("picture.png")
     if not all(isinstance(name, str) for name in named):
         raise TypeError("a file name is not text")
     return files, named

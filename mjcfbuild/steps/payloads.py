@@ -372,6 +372,7 @@ class ReferencePayload(Payload):
 
     urdf: Annotated[str, NotCounted("read for its kinematics alone, which `kinematics` digests")]
     kinematics: str  # check.reference.kinematic_digest of the URDF text
+    cache: CacheSettings
     output: Output
 
 
@@ -385,6 +386,7 @@ class PreviewsPayload(Payload):
         str, NotCounted("names the products the assets were published from: speed, not content")
     ]
     record: Output  # each picture in ``folder`` with what it shows, to keep those unchanged
+    cache: CacheSettings
 
 
 @dataclass(frozen=True)

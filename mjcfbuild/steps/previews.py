@@ -3,20 +3,27 @@
 Only the pictures whose content changed are drawn again. The step's record lists each picture
 it left in the folder with the digest of what it shows and the hash of its bytes; a picture
 counts as drawn only while its file still has those bytes, so one edited by hand, or left
-half-written by an interrupted build, is drawn again.
+half-written by an interrupted build, is drawn again. A picture drawn before, in any folder, is
+taken from the shared product cache by that digest (drawing costs about a second a model on a
+CPU); the digest holds no path.
 """
 
 from __future__ import annotations
 
 import json
+import tempfile
 from pathlib import Path
 
 from mjcfbuild.check.loading import asset_sources
 from mjcfbuild.check.previews import OffscreenUnavailable, render_previews
 from mjcfbuild.errors import MjcfbuildError, ModelError, write_failure
 from mjcfbuild.fsutil import md5_file
+from mjcfbuild.products.store import ProductStore, open_store, product_key
 from mjcfbuild.steps.outputs import record_output, write_output
 from mjcfbuild.steps.payloads import PreviewsPayload
+from mjcfbuild.steps.versions import PREVIEWS
+
+PICTURE = "picture.png"
 
 
 def run(payload: dict) -> dict:
@@ -25,8 +32,14 @@ def run(payload: dict) -> dict:
     folder, record = Path(request.folder), Path(request.record)
     try:
         sources = asset_sources(Path(request.assembly_report))
+        store = open_store(request.cache)
+        stored = StoredPictures(store) if store is not None else None
         shown = render_previews(
-            Path(request.model), folder, sources=sources, drawn=pictures_in_place(folder, record)
+            Path(request.model),
+            folder,
+            sources=sources,
+            drawn=pictures_in_place(folder, record),
+            cache=stored,
         )
     except ModelError:  # a model that does not load: the check task says why
         return {"outputs": {}}
@@ -65,7 +78,49 @@ def run(payload: dict) -> dict:
             entries[name] = {"shows": digest, "md5": outputs[str(folder / name)]}
     text = json.dumps(entries, indent=1, sort_keys=True) + "\n"
     write_output(record, text.encode(), outputs)
-    return {"outputs": outputs}
+    if stored is None:
+        return {"outputs": outputs}
+    # "from cache" only when no picture was drawn; a drawn one grew the cache.
+    return {
+        "outputs": outputs,
+        "cached": stored.taken > 0 and not stored.kept,
+        "stored": stored.kept > 0,
+    }
+
+
+class StoredPictures:
+    """Pictures in the shared product cache, each under the digest of what it shows and the
+    drawing tools' versions."""
+
+    def __init__(self, store: ProductStore) -> None:
+        self.store = store
+        self.versions = PREVIEWS.versions()
+        self.taken = 0  # pictures found here
+        self.kept = 0  # pictures drawn and kept here
+
+    def _key(self, shows: str) -> str:
+        return product_key("preview", {"shows": shows, "versions": self.versions}, [])
+
+    def get(self, shows: str) -> bytes | None:
+        """The PNG kept for ``shows``; None if there is none (or it cannot be used)."""
+        with tempfile.TemporaryDirectory() as scratch:
+            if self.store.fetch(self._key(shows), Path(scratch), "preview") is None:
+                return None
+            try:
+                png = (Path(scratch) / PICTURE).read_bytes()
+            except OSError:
+                return None
+        self.taken += 1
+        return png
+
+    def put(self, shows: str, png: bytes) -> None:
+        """Keep ``png`` for ``shows`` (a full or read-only cache keeps nothing)."""
+        with tempfile.TemporaryDirectory() as scratch:
+            picture = Path(scratch) / PICTURE
+            picture.write_bytes(png)
+            summary = {"files": {PICTURE: md5_file(picture)}}
+            if self.store.store(self._key(shows), Path(scratch), summary, "preview"):
+                self.kept += 1
 
 
 def pictures_in_place(folder: Path, record: Path) -> dict[str, str]:

@@ -1,21 +1,60 @@
 """Step ``reference``: what the check's independent reader (yourdfpy) reads from the URDF for
-forward kinematics, kept as a record for the check (see mjcfbuild.check.reference)."""
+forward kinematics, kept as a record for the check (see mjcfbuild.check.reference).
+
+Reading costs about a second (importing yourdfpy, trimesh and scipy), so the record is kept in
+the shared product cache under the URDF's bytes: another folder or a clone of the same
+description (whose expanded URDF names meshes by ``package://``, not by folder) takes it from
+there (the key is the text without its comments: xacro writes the source's absolute path into
+one). A record that says the reader failed is kept too: it is what the reader makes of that
+text.
+"""
 
 from __future__ import annotations
 
 import json
+import tempfile
 from pathlib import Path
 
-from mjcfbuild.check.reference import read_kinematics
+from mjcfbuild.check.reference import read_kinematics, reader_input_digest
+from mjcfbuild.fsutil import md5_file
+from mjcfbuild.products.store import ProductStore, open_store, product_key
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import ReferencePayload
+from mjcfbuild.steps.versions import REFERENCE
+
+RECORD = "reference.json"
 
 
 def run(payload: dict) -> dict:
-    """Read the URDF's kinematics and write the record (one that says why, if unreadable)."""
+    """Read the URDF's kinematics (or take what was read of the same text from the cache) and
+    write the record (one that says why, if unreadable)."""
     request = ReferencePayload.from_dict(payload)
-    record = read_kinematics(Path(request.urdf).read_bytes())
+    urdf_text = Path(request.urdf).read_bytes()
+    store = open_store(request.cache)
+    params = {"urdf": reader_input_digest(urdf_text), "versions": REFERENCE.versions()}
+    key = product_key("reference", params, [])
+    with tempfile.TemporaryDirectory() as scratch:
+        kept = Path(scratch) / RECORD
+        record_text = _fetched(store, key, kept) if store is not None else None
+        cached = record_text is not None
+        if record_text is None:
+            record = read_kinematics(urdf_text)
+            record_text = json.dumps(record, indent=1, sort_keys=True) + "\n"
+            if store is not None:
+                kept.write_text(record_text)
+                store.store(key, Path(scratch), {"files": {RECORD: md5_file(kept)}}, "reference")
     outputs: dict[str, str] = {}
-    text = json.dumps(record, indent=1, sort_keys=True) + "\n"
-    write_output(Path(request.output), text.encode(), outputs)
-    return {"outputs": outputs}
+    write_output(Path(request.output), record_text.encode(), outputs)
+    return {"outputs": outputs, "cached": cached, "stored": not cached and store is not None}
+
+
+def _fetched(store: ProductStore, key: str, kept: Path) -> str | None:
+    """The record kept under ``key``, fetched to ``kept``; None if there is none usable."""
+    if store.fetch(key, kept.parent, "reference") is None:
+        return None
+    try:
+        text = kept.read_text()
+        json.loads(text)
+    except (OSError, ValueError):
+        return None
+    return text

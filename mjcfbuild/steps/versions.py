@@ -81,3 +81,5 @@ class StepFormat:
 MESH = StepFormat("mesh", 9, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"))
 DECOMPOSE = StepFormat("decompose", 3, ("coacd", "trimesh", "numpy", "scipy"))
 SELFCOLLISION = StepFormat("selfcollision", 3, ("mujoco", "numpy"))
+REFERENCE = StepFormat("reference", 1, ("yourdfpy", "numpy", "lxml"))
+PREVIEWS = StepFormat("previews", 5, ("mujoco", "numpy", "pillow"))

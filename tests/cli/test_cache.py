@@ -9,10 +9,10 @@ def test_cache_command_after_a_build(cli, arm, tmp_path):
     shown = cli("cache", env=env)
     assert shown.code == 0
     assert f"cache: {tmp_path / 'cache' / 'products'}" in shown.stdout
-    # Four mesh products and the collision matrix.
-    assert "entries: 5" in shown.stdout
+    # Four mesh products, the collision matrix, the reference kinematics and seven pictures.
+    assert "entries: 13" in shown.stdout
     pruned = cli("cache", "prune", "--max-size", "0", env=env)
-    assert "removed 5 cache entries" in pruned.stdout
+    assert "removed 13 cache entries" in pruned.stdout
     assert "entries: 0" in pruned.stdout
     assert cli("cache", "clear", env=env).code == 0
     assert cli("cache", "prune", "--max-size", "lots", env=env).code == 2

@@ -221,7 +221,7 @@ def test_a_family_given_another_familys_payload_is_refused():
             TOY,
             "toy",
             "toy",
-            BY_NAME["reference"].payload(urdf="u", kinematics="k", output="o"),
+            BY_NAME["reference"].payload(urdf="u", kinematics="k", cache={}, output="o"),
             in_worker=False,
             file_dep=[],
             targets=[],

@@ -4,6 +4,7 @@ there are none: no OpenGL context (EGL), or what else failed."""
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 from mjcfbuild.errors import EXIT_OK
@@ -72,3 +73,39 @@ def test_any_other_failure_while_drawing_says_what_it_is(arm, tmp_path):
         in (report)
     )
     assert "libegl" not in report and "OpenGL context" not in report
+
+
+def _pictures(folder: Path) -> dict[str, bytes]:
+    return {p.name: p.read_bytes() for p in (folder / "mjcf/report/previews").glob("*.png")}
+
+
+def test_pictures_drawn_in_one_folder_are_taken_from_the_cache_in_another(tmp_path):
+    """Another folder of the same robot takes the pictures (and the reference kinematics) from
+    the shared cache, byte for byte, drawing nothing: a drawing would fail here. An entry that
+    is not as it was stored is drawn again."""
+    from tests.conftest import copy_example
+
+    cache = tmp_path / "cache"
+    first = copy_example("arm", tmp_path / "first")
+    drawn = run_cli("build", cwd=first, env={"MJCFBUILD_CACHE_DIR": str(cache)})
+    assert drawn.code == EXIT_OK and "previews (" in drawn.stdout, drawn.stdout + drawn.stderr
+    assert not re.search(r"\] (previews|reference kinematics) .*from cache", drawn.stdout)
+
+    env = {"MJCFBUILD_CACHE_DIR": str(cache), VARIABLE: "previews-draw:raise"}
+    second = copy_example("arm", tmp_path / "second")
+    taken = run_cli("build", cwd=second, env=env)
+    assert taken.code == EXIT_OK, taken.stdout + taken.stderr
+    assert re.search(r"\] previews \(\d+\.\d+ s, from cache\)", taken.stdout), taken.stdout
+    assert re.search(r"\] reference kinematics \(\d+\.\d+ s, from cache\)", taken.stdout)
+    assert "no preview pictures" not in (second / "mjcf/report/report.md").read_text()
+    assert _pictures(second) == _pictures(first) and len(_pictures(first)) >= 4
+    for name in (".mjcfbuild/previews.json", ".mjcfbuild/reference.json"):
+        assert (second / "mjcf" / name).read_bytes() == (first / "mjcf" / name).read_bytes()
+
+    for picture in cache.rglob("picture.png"):
+        picture.write_bytes(b"not the picture that was stored")
+    third = copy_example("arm", tmp_path / "third")
+    redrawn = run_cli("build", "-q", cwd=third, env=env)
+    assert redrawn.code == EXIT_OK, redrawn.stdout + redrawn.stderr
+    report = (third / "mjcf/report/report.md").read_text()
+    assert "drawing them failed with RuntimeError: failpoint previews-draw" in report
