@@ -1,105 +1,23 @@
-"""URDF -> MJCF -> URDF on the real robots: every link of the original URDF is where the
-original puts it at 20 random configurations, and has its mass. Both URDFs' kinematics are
-computed by mjcfbuild's own URDF forward kinematics, which shares no code with MuJoCo."""
+"""URDF -> MJCF -> URDF on the real robots, built with static links kept as bodies of their own
+(tests/robots/test_real_robots.py round-trips the default, fused builds it makes anyway)."""
 
 from __future__ import annotations
-
-import json
-import math
-import random
 
 import pytest
 
 import mjcfbuild
 from bench import robot_data
-from mjcfbuild.urdf.kinematics import link_poses
-from mjcfbuild.urdf.parse import parse_urdf
-from mjcfbuild.urdf.transforms import rotation_angle_between
+from tests.export.round_trip import EXPORT, assert_round_trip
 
 pytestmark = [pytest.mark.robots, pytest.mark.slow]
 
 
-def random_configuration(robot, rng: random.Random) -> dict[str, float]:
-    values = {}
-    for joint in robot.joints:
-        if joint.kind == "continuous":
-            values[joint.name] = rng.uniform(-math.pi, math.pi)
-        elif joint.kind in ("revolute", "prismatic"):
-            limit = joint.limit
-            low = limit.lower if limit and limit.lower is not None else -1.0
-            high = limit.upper if limit and limit.upper is not None else 1.0
-            values[joint.name] = rng.uniform(low, high)
-    return values
-
-
-def welded_to_world(robot) -> set[str]:
-    """Links joined to a root link named 'world' by fixed joints only."""
-    if robot.root != "world":
-        return set()
-    welded, children = {"world"}, robot.child_joints()
-    pending = ["world"]
-    while pending:
-        for joint in children[pending.pop()]:
-            if joint.kind == "fixed":
-                welded.add(joint.child)
-                pending.append(joint.child)
-    return welded
-
-
-@pytest.mark.parametrize("fuse_static", [True, False], ids=["fused", "unfused"])
 @pytest.mark.parametrize("name", sorted(robot_data.ROBOTS))
-def test_round_trip_keeps_link_poses_and_masses(name, fuse_static, tmp_path):
+def test_round_trip_of_an_unfused_build_keeps_link_poses_and_masses(name, tmp_path):
     robot = robot_data.ROBOTS[name]
     urdf = robot_data.unpack(robot)
     manifest = robot_data.manifest(
-        robot,
-        tmp_path,
-        urdf,
-        robot_data.package_root(),
-        extra="output:\n  urdf: exported.urdf\n",
-        fuse_static=fuse_static,
+        robot, tmp_path, urdf, robot_data.package_root(), extra=EXPORT, fuse_static=False
     )
     result = mjcfbuild.build(manifest, jobs=2, check=False)
-    exported_path = result.robot.parent / "exported.urdf"
-    original = parse_urdf(urdf.read_bytes(), str(urdf))
-    exported = parse_urdf(exported_path.read_bytes(), str(exported_path))
-
-    rng = random.Random(0)
-    for _ in range(20):
-        values = random_configuration(original, rng)
-        assert set(values) <= {j.name for j in exported.joints}
-        expected, actual = link_poses(original, values), link_poses(exported, values)
-        # Poses relative to the original's root, which the export may have put under 'world'.
-        actual_root = actual[original.root].inverse()
-        for link in original.links:
-            pose = actual_root.compose(actual[link.name])
-            reference = expected[link.name]
-            gap = max(abs(a - b) for a, b in zip(pose.position, reference.position, strict=True))
-            assert gap < 1e-6, (link.name, gap)
-            assert rotation_angle_between(pose.rotation, reference.rotation) < 1e-6, link.name
-
-    # Every speed limit the original gives survives (from the servo's torque-speed line, or
-    # from the URDF itself where the servo has none).
-    speeds = {j.name: j.limit.velocity for j in exported.joints if j.limit is not None}
-    for joint in original.joints:
-        velocity = joint.limit.velocity if joint.limit is not None else None
-        if joint.kind != "fixed" and velocity and velocity > 0 and joint.name in speeds:
-            assert speeds[joint.name] == pytest.approx(velocity, rel=1e-9), joint.name
-
-    report = json.loads((result.robot.parent / "report" / "report.json").read_text())
-    repaired = {repair["body"] for repair in report["repairs"]}
-    masses = {link.name: (link.inertial.mass if link.inertial else 0.0) for link in original.links}
-    exported_masses = {
-        link.name: (link.inertial.mass if link.inertial else 0.0) for link in exported.links
-    }
-    if fuse_static:
-        # Fused links' masses are in the body they were fused into, except links welded to a
-        # root named 'world': they become part of MuJoCo's world body, which has no mass.
-        welded = welded_to_world(original)
-        kept = sum(m for n, m in exported_masses.items() if n not in repaired)
-        expected_total = sum(m for n, m in masses.items() if n not in repaired | welded)
-        assert kept == pytest.approx(expected_total)
-    else:
-        for link, mass in masses.items():
-            if link not in repaired:
-                assert exported_masses[link] == pytest.approx(mass, rel=1e-9, abs=1e-12), link
+    assert_round_trip(urdf, result.robot, fuse_static=False)

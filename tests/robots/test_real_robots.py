@@ -1,7 +1,8 @@
 """The real robots of example-robot-data build with default settings, load, simulate, and
 put every URDF link where the URDF does (checked by code independent of MuJoCo's import); each
 passes the mesh plausibility test (no failure; warnings only where the description itself is
-off). Each robot is built once, for both tests (a module-scoped fixture; neither test writes).
+off), and the URDF the build exports round-trips the original. Each robot is built once, for
+all three tests (a module-scoped fixture; no test writes).
 
 The wheel is downloaded once into a cache (see bench/robot_data.py). Run only these with
 ``pytest -m robots``; skip them with ``-m "not robots"``.
@@ -21,6 +22,7 @@ from mjcfbuild.check.kinematics import compare_kinematics
 from mjcfbuild.check.loading import asset_sources, compile_model
 from mjcfbuild.check.plausibility import check_plausibility
 from mjcfbuild.urdf.parse import parse_urdf
+from tests.export.round_trip import EXPORT, assert_round_trip
 
 pytestmark = [pytest.mark.robots, pytest.mark.slow]
 
@@ -49,7 +51,9 @@ def built(tmp_path_factory):
             robot = robot_data.ROBOTS[name]
             folder = tmp_path_factory.mktemp(name)
             urdf = robot_data.unpack(robot)
-            manifest = robot_data.manifest(robot, folder, urdf, robot_data.package_root())
+            manifest = robot_data.manifest(
+                robot, folder, urdf, robot_data.package_root(), extra=EXPORT
+            )
             with pytest.MonkeyPatch.context() as patch:
                 patch.setenv("MJCFBUILD_CACHE_DIR", str(cache))
                 # The build's own check must pass: actuators on every joint, no robot bodies
@@ -106,3 +110,10 @@ def test_example_robots_pass_the_plausibility_test(name, built):
     found = check_plausibility(compile_model(result.robot, sources), sources)
     assert found.failures == []
     assert {f.body: f.cause for f in found.findings} == KNOWN.get(name, {})
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_the_exported_urdf_keeps_link_poses_and_masses(name, built):
+    """URDF -> MJCF -> URDF (tests/export/round_trip.py), on the default, fused build."""
+    _, result = built(name)
+    assert_round_trip(robot_data.unpack(robot_data.ROBOTS[name]), result.robot, fuse_static=True)
