@@ -1,4 +1,5 @@
-"""The shared cache of mesh products: converted meshes and convex decompositions.
+"""The shared cache of build products: converted meshes and convex decompositions, and the
+one-file products of other steps (the collision matrix, the reference kinematics, pictures).
 
 A product is stored under a key made of everything it depends on: the bytes of its inputs,
 the step's parameters, the step's format and the versions of the tools it used. Any build of
@@ -24,6 +25,7 @@ import hashlib
 import json
 import os
 import shutil
+import tempfile
 import time
 import uuid
 from dataclasses import dataclass
@@ -134,6 +136,24 @@ class ProductStore:
             now = time.time()
             os.utime(entry / _SUMMARY, (now, now))
         return summary
+
+    def fetch_file(self, key: str, name: str, kind: str) -> bytes | None:
+        """The bytes of the one-file product ``key`` of ``kind``, whose file is ``name``; None
+        when there is none or it cannot be used (as :meth:`fetch`)."""
+        with tempfile.TemporaryDirectory() as scratch:
+            if self.fetch(key, Path(scratch), kind) is None:
+                return None
+            try:
+                return (Path(scratch) / name).read_bytes()
+            except OSError:
+                return None
+
+    def store_file(self, key: str, name: str, data: bytes, kind: str) -> bool:
+        """Add a one-file product: ``data`` as its file ``name``; as :meth:`store`."""
+        with tempfile.TemporaryDirectory() as scratch:
+            path = Path(scratch) / name
+            path.write_bytes(data)
+            return self.store(key, Path(scratch), {"files": {name: md5_file(path)}}, kind)
 
     def _drop(self, key: str, problem: str) -> None:
         """Remove the unusable entry ``key`` (if the cache can be written) and remember why."""

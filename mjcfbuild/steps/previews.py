@@ -11,7 +11,6 @@ CPU); the digest holds no path.
 from __future__ import annotations
 
 import json
-import tempfile
 from pathlib import Path
 
 from mjcfbuild.check.loading import asset_sources
@@ -103,24 +102,13 @@ class StoredPictures:
 
     def get(self, shows: str) -> bytes | None:
         """The PNG kept for ``shows``; None if there is none (or it cannot be used)."""
-        with tempfile.TemporaryDirectory() as scratch:
-            if self.store.fetch(self._key(shows), Path(scratch), "preview") is None:
-                return None
-            try:
-                png = (Path(scratch) / PICTURE).read_bytes()
-            except OSError:
-                return None
-        self.taken += 1
+        png = self.store.fetch_file(self._key(shows), PICTURE, "preview")
+        self.taken += png is not None
         return png
 
     def put(self, shows: str, png: bytes) -> None:
         """Keep ``png`` for ``shows`` (a full or read-only cache keeps nothing)."""
-        with tempfile.TemporaryDirectory() as scratch:
-            picture = Path(scratch) / PICTURE
-            picture.write_bytes(png)
-            summary = {"files": {PICTURE: md5_file(picture)}}
-            if self.store.store(self._key(shows), Path(scratch), summary, "preview"):
-                self.kept += 1
+        self.kept += self.store.store_file(self._key(shows), PICTURE, png, "preview")
 
 
 def pictures_in_place(folder: Path, record: Path) -> dict[str, str]:

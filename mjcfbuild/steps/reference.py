@@ -12,12 +12,10 @@ text.
 from __future__ import annotations
 
 import json
-import tempfile
 from pathlib import Path
 
 from mjcfbuild.check.reference import read_kinematics, reader_input_digest
-from mjcfbuild.fsutil import md5_file
-from mjcfbuild.products.store import ProductStore, open_store, product_key
+from mjcfbuild.products.store import open_store, product_key
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import ReferencePayload
 from mjcfbuild.steps.versions import REFERENCE
@@ -33,28 +31,24 @@ def run(payload: dict) -> dict:
     store = open_store(request.cache)
     params = {"urdf": reader_input_digest(urdf_text), "versions": REFERENCE.versions()}
     key = product_key("reference", params, [])
-    with tempfile.TemporaryDirectory() as scratch:
-        kept = Path(scratch) / RECORD
-        record_text = _fetched(store, key, kept) if store is not None else None
-        cached = record_text is not None
-        if record_text is None:
-            record = read_kinematics(urdf_text)
-            record_text = json.dumps(record, indent=1, sort_keys=True) + "\n"
-            if store is not None:
-                kept.write_text(record_text)
-                store.store(key, Path(scratch), {"files": {RECORD: md5_file(kept)}}, "reference")
+    record_text = _kept(store.fetch_file(key, RECORD, "reference")) if store else None
+    cached = record_text is not None
+    if record_text is None:
+        record = read_kinematics(urdf_text)
+        record_text = (json.dumps(record, indent=1, sort_keys=True) + "\n").encode()
+        if store is not None:
+            store.store_file(key, RECORD, record_text, "reference")
     outputs: dict[str, str] = {}
-    write_output(Path(request.output), record_text.encode(), outputs)
+    write_output(Path(request.output), record_text, outputs)
     return {"outputs": outputs, "cached": cached, "stored": not cached and store is not None}
 
 
-def _fetched(store: ProductStore, key: str, kept: Path) -> str | None:
-    """The record kept under ``key``, fetched to ``kept``; None if there is none usable."""
-    if store.fetch(key, kept.parent, "reference") is None:
+def _kept(record_text: bytes | None) -> bytes | None:
+    """A record from the cache, if it is one (JSON); None otherwise, and it is read again."""
+    if record_text is None:
         return None
     try:
-        text = kept.read_text()
-        json.loads(text)
-    except (OSError, ValueError):
+        json.loads(record_text)
+    except ValueError:
         return None
-    return text
+    return record_text

@@ -33,6 +33,8 @@ from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import DecompositionFiles, SelfCollisionPayload
 from mjcfbuild.urdf.model import robot_from_dict
 
+MATRIX = "matrix.json"  # the cached product's one file
+
 if TYPE_CHECKING:
     import mujoco  # untyped: its classes are Any to mypy, named here for the reader
     import numpy as np
@@ -152,10 +154,6 @@ def _matrix(
 ) -> tuple[list[dict], bool]:
     """The verdicts of every pair, from the shared cache when this matrix was computed before
     (in any folder: the key holds no paths), else computed and stored; whether cached."""
-    import contextlib
-    import tempfile
-
-    from mjcfbuild.fsutil import md5_file
     from mjcfbuild.products.store import open_store, product_key
     from mjcfbuild.steps.versions import SELFCOLLISION
 
@@ -177,20 +175,23 @@ def _matrix(
     }
     inputs = [*request.products.values(), *(d.summary for d in request.decompositions)]
     key = product_key("selfcollision", params, sorted(inputs, key=lambda p: Path(p).name))
-    with tempfile.TemporaryDirectory() as scratch:
-        if store is not None and store.fetch(key, Path(scratch), "selfcollision") is not None:
-            with contextlib.suppress(ValueError):  # unreadable: computed again, stored over
-                verdicts = json.loads((Path(scratch) / "matrix.json").read_text())
-                if isinstance(verdicts, list):
-                    return verdicts, True
-        verdicts = [v.to_dict() for v in collision_matrix(model, qpos, settings)]
-        if store is not None:
-            matrix = Path(scratch) / "matrix.json"
-            matrix.write_text(json.dumps(verdicts, sort_keys=True))
-            store.store(
-                key, Path(scratch), {"files": {"matrix.json": md5_file(matrix)}}, "selfcollision"
-            )
+    kept = _verdicts(store.fetch_file(key, MATRIX, "selfcollision")) if store else None
+    if kept is not None:
+        return kept, True
+    verdicts = [v.to_dict() for v in collision_matrix(model, qpos, settings)]
+    if store is not None:
+        text = json.dumps(verdicts, sort_keys=True).encode()
+        store.store_file(key, MATRIX, text, "selfcollision")
     return verdicts, False
+
+
+def _verdicts(text: bytes | None) -> list[dict] | None:
+    """The verdicts a cached matrix holds; None where it holds none (it is computed again)."""
+    try:
+        verdicts = json.loads(text) if text is not None else None
+    except ValueError:
+        return None
+    return verdicts if isinstance(verdicts, list) else None
 
 
 def _attach_parts(

@@ -41,6 +41,23 @@ def test_store_then_fetch_into_another_folder(tmp_path):
     assert store.fetch("cd" * 32, target) is None
 
 
+@pytest.mark.parametrize(
+    ("kind", "name"),
+    [("selfcollision", "matrix.json"), ("reference", "reference.json"), ("preview", "picture.png")],
+)
+def test_a_one_file_product_is_fetched_as_stored_and_never_when_spoiled(tmp_path, kind, name):
+    store = ProductStore(tmp_path / "cache")
+    key = "cd" * 32
+    assert store.fetch_file(key, name, kind) is None
+    assert store.store_file(key, name, b"\x89 the bytes", kind)
+    assert store.fetch_file(key, name, kind) == b"\x89 the bytes"
+    (store.folder / key[:2] / key / name).write_bytes(b"changed in the cache")
+    assert store.fetch_file(key, name, kind) is None
+    assert store.dropped == [(key, f"{name} does not match its digest")] and not store.has(key)
+    # A file of another name is not that kind's product: never stored.
+    assert not store.store_file(key, "other.bin", b"bytes", kind)
+
+
 def test_prune_removes_least_recently_used_first(tmp_path):
     store = ProductStore(tmp_path / "cache")
     for index, key in enumerate(["aa" * 32, "bb" * 32, "cc" * 32]):
