@@ -59,7 +59,8 @@ def reader_input_digest(urdf: bytes) -> str:
 
     try:
         parser = etree.XMLParser(resolve_entities=False, no_network=True, remove_comments=True)
-        text = etree.tostring(etree.fromstring(urdf, parser))
+        # The whole document, so that an entity the DOCTYPE defines counts.
+        text = etree.tostring(etree.fromstring(urdf, parser).getroottree())
     except etree.XMLSyntaxError:
         return "text:" + hashlib.sha256(urdf).hexdigest()
     return hashlib.sha256(text).hexdigest()

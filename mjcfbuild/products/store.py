@@ -25,7 +25,6 @@ import hashlib
 import json
 import os
 import shutil
-import tempfile
 import time
 import uuid
 from dataclasses import dataclass
@@ -112,15 +111,8 @@ class ProductStore:
         ``destination`` (replacing its files); its summary. None when there is none, or the
         entry cannot be used: such an entry is removed and recorded in :attr:`dropped`."""
         entry = self._entry(key)
-        try:
-            summary = json.loads((entry / _SUMMARY).read_text())
-        except FileNotFoundError:
-            return None
-        except (OSError, ValueError):
-            summary = None
-        problem = product_problem(kind, summary, entry)
-        if problem is not None:
-            self._drop(key, problem)
+        summary = self._usable_summary(key, kind)
+        if summary is None:
             return None
         destination.mkdir(parents=True, exist_ok=True)
         wanted = set(summary["files"])
@@ -132,28 +124,55 @@ class ProductStore:
                 _link_or_copy(entry / name, destination / name)
         except OSError:
             return None
+        self._touch(key)
+        return summary
+
+    def _usable_summary(self, key: str, kind: str | None) -> dict | None:
+        """The summary of the entry ``key`` if it can be used as a product of ``kind``; None
+        when there is no entry, or it cannot be used (it is removed and recorded)."""
+        entry = self._entry(key)
+        try:
+            summary = json.loads((entry / _SUMMARY).read_text())
+        except FileNotFoundError:
+            return None
+        except (OSError, ValueError):
+            summary = None
+        problem = product_problem(kind, summary, entry)
+        if problem is not None:
+            self._drop(key, problem)
+            return None
+        return summary
+
+    def _touch(self, key: str) -> None:
+        """Mark the entry ``key`` used now (pruning removes the least recently used)."""
         with contextlib.suppress(OSError):  # a read-only cache: the entry just ages
             now = time.time()
-            os.utime(entry / _SUMMARY, (now, now))
-        return summary
+            os.utime(self._entry(key) / _SUMMARY, (now, now))
 
     def fetch_file(self, key: str, name: str, kind: str) -> bytes | None:
         """The bytes of the one-file product ``key`` of ``kind``, whose file is ``name``; None
         when there is none or it cannot be used (as :meth:`fetch`)."""
-        with tempfile.TemporaryDirectory() as scratch:
-            if self.fetch(key, Path(scratch), kind) is None:
-                return None
-            try:
-                return (Path(scratch) / name).read_bytes()
-            except OSError:
-                return None
+        if self._usable_summary(key, kind) is None:
+            return None
+        try:  # checked against its digest by _usable_summary
+            data = (self._entry(key) / name).read_bytes()
+        except OSError:  # pruned by another build since
+            return None
+        self._touch(key)
+        return data
 
     def store_file(self, key: str, name: str, data: bytes, kind: str) -> bool:
-        """Add a one-file product: ``data`` as its file ``name``; as :meth:`store`."""
-        with tempfile.TemporaryDirectory() as scratch:
-            path = Path(scratch) / name
-            path.write_bytes(data)
-            return self.store(key, Path(scratch), {"files": {name: md5_file(path)}}, kind)
+        """Add a one-file product: ``data`` as its file ``name``; as :meth:`store` (a full or
+        read-only cache stores nothing and never fails a build)."""
+        folder = self.temporary_folder(key)
+        try:
+            folder.mkdir(parents=True)
+            (folder / name).write_bytes(data)
+            return self.store(key, folder, {"files": {name: md5_file(folder / name)}}, kind)
+        except OSError:
+            return False
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
 
     def _drop(self, key: str, problem: str) -> None:
         """Remove the unusable entry ``key`` (if the cache can be written) and remember why."""

@@ -31,7 +31,7 @@ def run(payload: dict) -> dict:
     store = open_store(request.cache)
     params = {"urdf": reader_input_digest(urdf_text), "versions": REFERENCE.versions()}
     key = product_key("reference", params, [])
-    record_text = _kept(store.fetch_file(key, RECORD, "reference")) if store else None
+    record_text = _kept(store.fetch_file(key, RECORD, "reference")) if store is not None else None
     cached = record_text is not None
     if record_text is None:
         record = read_kinematics(urdf_text)

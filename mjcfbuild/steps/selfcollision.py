@@ -175,7 +175,7 @@ def _matrix(
     }
     inputs = [*request.products.values(), *(d.summary for d in request.decompositions)]
     key = product_key("selfcollision", params, sorted(inputs, key=lambda p: Path(p).name))
-    kept = _verdicts(store.fetch_file(key, MATRIX, "selfcollision")) if store else None
+    kept = _verdicts(store.fetch_file(key, MATRIX, "selfcollision")) if store is not None else None
     if kept is not None:
         return kept, True
     verdicts = [v.to_dict() for v in collision_matrix(model, qpos, settings)]
