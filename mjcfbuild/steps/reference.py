@@ -2,11 +2,10 @@
 forward kinematics, kept as a record for the check (see mjcfbuild.check.reference).
 
 Reading costs about a second (importing yourdfpy, trimesh and scipy), so the record is kept in
-the shared product cache under the URDF's bytes: another folder or a clone of the same
-description (whose expanded URDF names meshes by ``package://``, not by folder) takes it from
-there (the key is the text without its comments: xacro writes the source's absolute path into
-one). A record that says the reader failed is kept too: it is what the reader makes of that
-text.
+the shared product cache under the URDF's text without its comments (xacro writes the source's
+absolute path into one): another folder or a clone of the same description, whose expanded URDF
+names meshes by ``package://``, not by folder, takes it from there. A record that says the
+reader failed is kept too: it is what the reader makes of that text.
 """
 
 from __future__ import annotations
