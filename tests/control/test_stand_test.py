@@ -10,6 +10,7 @@ import math
 
 import mujoco
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -60,7 +61,11 @@ def test_judging_the_recorded_steps_matches_judging_each_step(
     start = np.array([0.1, -0.2])
     heights = (0.5, 0.02)
     expected = _step_by_step(qpos, base, start, home, addresses, heights, root)
-    assert _judge(qpos, base, start, home, addresses, heights, root) == expected
+    judged = _judge(qpos, base, start, home, addresses, heights, root)
+    # The same steps counted, the same joint named; a distance may differ in its last bit
+    # (numpy 2.4 takes the norm of one row and of each row of an array by different sums).
+    assert judged[:2] == expected[:2] and judged[3:] == expected[3:]
+    assert judged[2] == pytest.approx(expected[2], rel=1e-15, abs=0)
 
 
 def test_an_unheld_pendulum_on_a_steady_base_is_judged_by_its_joint():
