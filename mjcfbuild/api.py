@@ -21,8 +21,9 @@ def build(
 ) -> BuildResult:
     """Build the robot of ``manifest`` (a path to robot.yaml, or a :class:`Manifest`).
 
-    ``jobs`` is the number of tasks run at once (default: one per CPU). With a Manifest object,
-    its relative paths are resolved against ``base_dir`` (default: the current folder).
+    ``jobs`` is the number of tasks run at once (default: ``$MJCFBUILD_JOBS``, else one per
+    CPU). With a Manifest object, its relative paths are resolved against ``base_dir``
+    (default: the current folder).
     ``check=False`` skips the check against the URDF (as ``build --no-check`` does).
     Returns the :class:`BuildResult`; raises :class:`BuildFailed` listing every error if a
     task failed, and :class:`ManifestError` if the manifest is invalid.

@@ -42,6 +42,13 @@ def pytest_configure(config):
     # Every build starts its own workers: a worker that stayed after one test's build would
     # serve the next test's. tests/engine/test_resident.py turns them on where it tests them.
     os.environ["MJCFBUILD_RESIDENT_WORKERS"] = "0"
+    # One task at a time unless a test asks for more (-j, jobs=). The suite already keeps
+    # every core busy (README's command runs two tests at once on two cores), and a build's
+    # second job is a head start for its model: a worker that imports MuJoCo and processes the
+    # meshes beside the first. Here it only doubled that work (a third of the suite's time).
+    # The outputs do not depend on -j (tests/engine/test_determinism.py); the tests of the
+    # parallel engine, its warm-ups and its interruptions pass -j 2 themselves.
+    os.environ.setdefault("MJCFBUILD_JOBS", "1")
     if not worker:
         compile_bytecode_once()
     from tests.fuzzing import load_profile

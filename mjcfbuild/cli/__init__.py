@@ -196,7 +196,7 @@ def jobs_argument(parser: argparse.ArgumentParser) -> None:
         "--jobs",
         type=positive_int,
         default=None,
-        help="tasks to run at once (default: one per CPU)",
+        help="tasks to run at once (default: $MJCFBUILD_JOBS, else one per CPU)",
     )
 
 
@@ -263,7 +263,7 @@ def load_context(path: str | Path, args: argparse.Namespace):
     from mjcfbuild.errors import ManifestError
 
     path = Path(path)
-    jobs = getattr(args, "jobs", None) or environment_jobs() or default_jobs()
+    jobs = getattr(args, "jobs", None) or default_jobs()
     try:
         return BuildContext.from_manifest_file(
             path,
@@ -344,9 +344,3 @@ def allow_outside_argument(parser: argparse.ArgumentParser) -> None:
         help="let output.folder be outside the folder of robot.yaml (as output.allow_outside: "
         "true does)",
     )
-
-
-def environment_jobs() -> int | None:
-    """``MJCFBUILD_JOBS`` from the environment, if set."""
-    value = os.environ.get("MJCFBUILD_JOBS")
-    return int(value) if value and value.isdigit() and int(value) > 0 else None

@@ -12,7 +12,6 @@ from typing import TYPE_CHECKING
 from mjcfbuild.cli import (
     allow_outside_argument,
     chosen_manifests,
-    environment_jobs,
     jobs_argument,
     load_context,
     manifest_argument,
@@ -129,7 +128,7 @@ def _start_workers(manifest: str, args: argparse.Namespace) -> WorkerPool | None
     from mjcfbuild.engine.context import default_jobs
     from mjcfbuild.engine.early import start_workers
 
-    jobs = args.jobs or environment_jobs() or default_jobs()
+    jobs = args.jobs or default_jobs()
     return start_workers(manifest, run_check=not args.no_check, jobs=jobs)
 
 

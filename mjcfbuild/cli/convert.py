@@ -11,7 +11,7 @@ import argparse
 import os
 from pathlib import Path
 
-from mjcfbuild.cli import environment_jobs, jobs_argument, step_timeout, timeout_argument
+from mjcfbuild.cli import jobs_argument, step_timeout, timeout_argument
 from mjcfbuild.errors import EXIT_OK, UsageError
 
 REFERENCE_ROBOT_FILE = "mujoco_description_formatted.xml"
@@ -194,7 +194,7 @@ def _convert(args: argparse.Namespace, key: str | None) -> int:
             "output": {"folder": str(output), "robot": REFERENCE_ROBOT_FILE},
         }
     )
-    jobs = args.jobs or environment_jobs() or default_jobs()
+    jobs = args.jobs or default_jobs()
     prebuilt = None
     if args.asset_dir:
         if not Path(args.asset_dir).is_dir():

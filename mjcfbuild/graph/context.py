@@ -27,8 +27,24 @@ if TYPE_CHECKING:
 DEFAULT_STEP_TIMEOUT = 1800.0
 
 
+JOBS_VARIABLE = "MJCFBUILD_JOBS"
+
+
 def default_jobs() -> int:
-    """One job per CPU the process may use."""
+    """The tasks a build runs at once where it is not told (``-j``, ``jobs=``):
+    ``$MJCFBUILD_JOBS``, else one per CPU the process may use. A value that is not a whole
+    number above 0 is a :class:`~mjcfbuild.errors.UsageError`."""
+    from mjcfbuild.errors import UsageError
+
+    value = os.environ.get(JOBS_VARIABLE, "").strip()
+    if value:
+        if not value.isdigit() or int(value) < 1:
+            raise UsageError(
+                f"{JOBS_VARIABLE}={value}: not a number of jobs",
+                hint="set it to how many tasks a build runs at once (1 or more), or unset it "
+                "for one per CPU",
+            )
+        return int(value)
     try:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # not Linux
