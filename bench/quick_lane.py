@@ -3,6 +3,10 @@
     python -m pytest --junitxml=/tmp/run.xml          # a full run, any machine
     python bench/quick_lane.py /tmp/run.xml [--budget 120]
 
+It also writes each test file's measured seconds, slowest first, to ``tests/file_seconds.txt``:
+tests/conftest.py starts the slowest files first, so that a run in two workers does not end
+with one of them alone on a long file.
+
 The lane takes no test marked slow or robots (real robots, CoACD), and none from the files that
 drive a browser or MuJoCo Warp / MJX. Of the rest it takes the fastest test of every test module
 first (so every package of mjcfbuild is exercised), then the fastest remaining ones, until their
@@ -21,6 +25,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 LANE = ROOT / "tests" / "quick_lane.txt"
+FILE_SECONDS = ROOT / "tests" / "file_seconds.txt"
 # Words in a test file that say it drives a browser, MuJoCo Warp or MJX (heavy imports and
 # kernel compiles) or fetches from npm: such files stay out of the lane.
 LEFT_OUT = ("chromium", "warp", "mjx", "npm")
@@ -84,6 +89,14 @@ def choose(times: dict[str, float], allowed: set[str], budget: float) -> list[st
     return sorted(chosen)
 
 
+def by_file(times: dict[str, float]) -> list[tuple[str, float]]:
+    """Each test file with the seconds its tests took, slowest first."""
+    seconds: dict[str, float] = defaultdict(float)
+    for node, spent in times.items():
+        seconds[node.split("::")[0]] += spent
+    return sorted(seconds.items(), key=lambda item: (-item[1], item[0]))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("report", type=Path, help="junit XML of a full pytest run")
@@ -92,6 +105,7 @@ def main() -> None:
     times = timings(args.report)
     lane = choose(times, fast_tests(), args.budget)
     LANE.write_text("".join(f"{node}\n" for node in lane))
+    FILE_SECONDS.write_text("".join(f"{seconds:.1f} {path}\n" for path, seconds in by_file(times)))
     per_package: dict[str, list[float]] = defaultdict(list)
     for node in lane:
         path = node.split("::")[0]

@@ -49,6 +49,8 @@ def pytest_configure(config):
     # The outputs do not depend on -j (tests/engine/test_determinism.py); the tests of the
     # parallel engine, its warm-ups and its interruptions pass -j 2 themselves.
     os.environ.setdefault("MJCFBUILD_JOBS", "1")
+    if hasattr(config.option, "loadscopereorder"):  # pytest-xdist: keep the order set below
+        config.option.loadscopereorder = False
     if not worker:
         compile_bytecode_once()
     from tests.fuzzing import load_profile
@@ -77,15 +79,35 @@ def pytest_unconfigure(config):
 
 
 QUICK_LANE = Path(__file__).with_name("quick_lane.txt")
+FILE_SECONDS = Path(__file__).with_name("file_seconds.txt")
 
 
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
-    """Mark the tests of the quick lane (``pytest -m quick``) before ``-m`` selects."""
+    """Mark the tests of the quick lane (``pytest -m quick``) before ``-m`` selects, and run
+    the slowest test files first."""
     lane = set(QUICK_LANE.read_text().splitlines()) if QUICK_LANE.is_file() else set()
     for item in items:
         if item.nodeid in lane:
             item.add_marker(pytest.mark.quick)
+    # pytest-xdist hands whole files to its workers in this order (its own reordering, by
+    # the number of tests in a file, is turned off in pytest_configure): slowest first, so
+    # the run does not end with one worker alone on a long file (the MuJoCo Warp tests: six
+    # tests, a minute and a half). A file not in the list (a new one) comes last; the order
+    # of the tests in a file stays as written.
+    seconds = file_seconds()
+    items.sort(key=lambda item: -seconds.get(item.nodeid.split("::")[0], 0.0))
+
+
+def file_seconds() -> dict[str, float]:
+    """Each test file's seconds in a measured full run (``bench/quick_lane.py`` writes them)."""
+    if not FILE_SECONDS.is_file():
+        return {}
+    measured = {}
+    for line in FILE_SECONDS.read_text().splitlines():
+        spent, _, path = line.partition(" ")
+        measured[path] = float(spent)
+    return measured
 
 
 @dataclass
