@@ -153,6 +153,12 @@ def run(argv: Sequence[str] | None = None) -> int:
         print(unknown_arguments_line(parser, args.command, unknown), file=sys.stderr)
         return EXIT_USAGE
     try:
+        if getattr(args, "jobs", 0) is None:
+            # Read once, before any fast path: a bad $MJCFBUILD_JOBS is refused even when
+            # nothing needs building.
+            from mjcfbuild.graph.context import default_jobs
+
+            args.jobs = default_jobs()
         code: int = args.handler(args)
         interrupts.check()  # a SIGINT whose KeyboardInterrupt was lost: not a success
         return code

@@ -37,3 +37,12 @@ def test_the_command_line_says_so_in_one_line_and_an_explicit_j_wins(tmp_path):
     assert not (arm / "mjcf").exists()
     built = run_cli("build", "--no-check", "-q", "-j", "1", cwd=arm, env={JOBS_VARIABLE: "two"})
     assert built.code == 0, built.stderr
+    # Refused before the no-op fast path too, by every command that builds: the value is
+    # wrong whether or not this build needed it.
+    for command in (
+        ["build", "--no-check"],
+        ["watch", "--no-check"],
+        ["convert", "-u", "urdf/arm.urdf.xacro"],
+    ):
+        again = run_cli(*command, cwd=arm, env={JOBS_VARIABLE: "two"})
+        assert (again.code, again.stderr.splitlines()) == (2, refused.stderr.splitlines())
