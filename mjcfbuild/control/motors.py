@@ -93,12 +93,33 @@ def _scaled(value: float | None, factor: float) -> float | None:
     return None if value is None else float(value) * factor
 
 
+def coupled(transmissions: list[Transmission]) -> dict[str, list[Transmission]]:
+    """Actuators -> the transmissions of the joints they move, where they move more joints
+    than there are actuators: an underactuated mechanism (a hand whose one motor curls every
+    finger joint), whose reductions are ratios between the joints, not gearboxes. A
+    differential (two motors, two joints) is not one: each joint can still be driven."""
+    joints: dict[str, dict[str, Transmission]] = {}
+    for transmission in transmissions:
+        if transmission.actuator:
+            joints.setdefault(transmission.actuator, {}).setdefault(
+                transmission.joint, transmission
+            )
+    return {
+        actuators: list(found.values())
+        for actuators, found in joints.items()
+        if len(found) > len(actuators.split(","))
+    }
+
+
 def reductions(transmissions: list[Transmission]) -> dict[str, Transmission]:
-    """Joint -> the transmission that gives its gear ratio (the first one that does)."""
+    """Joint -> the transmission that gives its gear ratio (the first one that does); not the
+    joints of a coupled mechanism (:func:`coupled`)."""
+    mechanisms = {t.joint for group in coupled(transmissions).values() for t in group}
     found: dict[str, Transmission] = {}
     for transmission in transmissions:
-        if transmission.reduction is not None and transmission.joint not in found:
-            found[transmission.joint] = transmission
+        joint = transmission.joint
+        if transmission.reduction is not None and joint not in found and joint not in mechanisms:
+            found[joint] = transmission
     return found
 
 
@@ -133,6 +154,7 @@ def apply_motors(
                     f"({transmission.origin}) replaces the ratio {own:g} of motor '{rule.motor}'"
                 )
         result.append(_driven(choice, rule, drive))
+    warnings += [_coupling_warning(name, group) for name, group in coupled(transmissions).items()]
     for joint, transmission in sorted(geared.items()):
         if joint not in used:
             warnings.append(
@@ -141,6 +163,18 @@ def apply_motors(
                 f'in a rule (actuators: {{rules: [{{joints: ["{joint}"], motor: NAME}}]}})'
             )
     return result, warnings
+
+
+def _coupling_warning(actuators: str, group: list[Transmission]) -> str:
+    """What the model does with joints fewer actuators move together, and how to couple them."""
+    kind = group[0].kind or "unnamed"
+    return (
+        f"{group[0].origin}: actuator '{actuators}' moves {len(group)} joints through "
+        f"<transmission>s of type '{kind}', from '{group[0].joint}': an underactuated "
+        "mechanism the model does not reproduce - each joint moves on its own and their "
+        "reductions set nothing; to move them together, give them <equality><joint joint1=... "
+        "joint2=... polycoef=.../> in the raw inputs"
+    )
 
 
 def _driven(choice: ActuatorChoice, rule: ActuatorRule, drive: Drive) -> ActuatorChoice:

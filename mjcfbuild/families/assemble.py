@@ -182,8 +182,9 @@ FAMILY = Family(
     payload=AssemblePayload,
     # 12: the Gazebo sensors' MJCF counterparts; 13: the products' binary copies; 14: a raw
     # timestep a build cannot simulate with refused; 15: reversed ranges in the inputs refused;
-    # 16: an inertia repair names the link's file and line
-    format=16,
+    # 16: an inertia repair names the link's file and line; 17: an underactuated mechanism's
+    # reductions are no gear ratios, one warning per actuator
+    format=17,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,
     compiles_model=True,

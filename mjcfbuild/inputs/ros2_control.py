@@ -58,6 +58,8 @@ class Transmission:
     interfaces: list[str]
     origin: str
     reduction: float | None = None  # mechanicalReduction (ROS 1) or mechanical_reduction
+    actuator: str = ""  # the name of its (first) <actuator>: one shared by joints couples them
+    kind: str = ""  # its <type> (transmission_interface/SimpleTransmission, a vendor's plugin)
 
 
 @dataclass
@@ -119,6 +121,7 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                 )
             )
     for transmission in root.findall("transmission"):
+        actuator, kind = _drive(transmission, "type")
         for joint in transmission.findall("joint"):
             # hardwareInterface sits under <joint> (ROS 1 since Indigo) or under <actuator>.
             interfaces = [
@@ -138,12 +141,15 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                     [i for i in interfaces if i],
                     f"{label}:{joint.sourceline}",
                     _reduction(transmission, joint),
+                    actuator,
+                    kind,
                 )
             )
     # ros2_control's own <transmission> (transmission_interface plugins): no hardware
     # interface, but the joint's mechanical_reduction.
     for block in root.findall("ros2_control"):
         for transmission in block.findall("transmission"):
+            actuator, kind = _drive(transmission, "plugin")
             for joint in transmission.findall("joint"):
                 result.transmissions.append(
                     Transmission(
@@ -151,9 +157,21 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                         [],
                         f"{label}:{joint.sourceline}",
                         _reduction(transmission, joint),
+                        actuator,
+                        kind,
                     )
                 )
     return result
+
+
+def _drive(transmission: etree._Element, kind_tag: str) -> tuple[str, str]:
+    """What moves a transmission's joints - its actuators' names, joined (a transmission of
+    several joints, or several transmissions naming one actuator, couple their joints) - and
+    its type (``kind_tag``: ROS 1's ``<type>``, ros2_control's ``<plugin>``)."""
+    names = sorted(a.get("name", "") for a in transmission.findall("actuator"))
+    if len(transmission.findall("joint")) > 1 and not any(names):
+        names = [f"transmission {transmission.get('name', '')}"]
+    return ",".join(n for n in names if n), (transmission.findtext(kind_tag) or "").strip()
 
 
 _REDUCTION_TAGS = ("mechanicalReduction", "mechanical_reduction")

@@ -135,6 +135,50 @@ def test_a_reduction_without_a_motor_is_reported(tmp_path):
     assert re.search(r"robot\.urdf:\d+: joint 'FL_calf_joint'", unused[0]), unused[0]
 
 
+def test_joints_one_actuator_moves_together_are_one_warning_and_no_gear_ratio(tmp_path):
+    # An underactuated mechanism: one motor behind every calf (as a hand's one motor curls
+    # every finger joint). Its reductions are ratios between the joints, not gearboxes.
+    urdf = quadruped_urdf(50).replace('<actuator name="FL_calf_motor">', "<actuator>")
+    for leg in ("FR", "RL", "RR"):
+        urdf = urdf.replace(f'"{leg}_calf_motor"', '"calf_motor"')
+    write(tmp_path / "robot.urdf", urdf)
+    write(tmp_path / "robot.yaml", MANIFEST + RULES)
+    result = mjcfbuild.build(tmp_path / "robot.yaml")
+    assert not result.errors, result.errors
+    coupling = [w for w in result.warnings if "underactuated" in w]
+    assert len(coupling) == 1, result.warnings
+    assert re.match(
+        r"robot\.urdf:\d+: actuator 'calf_motor' moves 3 joints through <transmission>s of "
+        r"type 'transmission_interface/SimpleTransmission', from 'FR_calf_joint': an "
+        r"underactuated mechanism the model does not reproduce",
+        coupling[0],
+    ), coupling[0]
+    # FL's transmission names no actuator: its reduction is its gear ratio, as before.
+    assert [w for w in result.warnings if "replaces the ratio 9" in w] == [
+        next(w for w in result.warnings if "joint 'FL_calf_joint'" in w)
+    ]
+    model = mujoco.MjModel.from_xml_path(str(result.robot))
+    assert model.dof_armature[_ids(model, "FL_calf_joint")[0]] == pytest.approx(
+        GO1_ROTOR * 50**2, abs=1e-9
+    )
+    for knee in KNEES[1:]:  # the motor's own ratio
+        dof, _ = _ids(model, knee)
+        assert model.dof_armature[dof] == pytest.approx(GO1_ROTOR * KNEE_RATIO**2, abs=1e-9)
+
+
+def test_a_differential_is_not_underactuated():
+    from mjcfbuild.control.motors import coupled, reductions
+    from mjcfbuild.inputs.ros2_control import Transmission
+
+    wrist = [
+        Transmission("pitch", [], "r.urdf:3", 2.0, "m6,m7", "DifferentialTransmission"),
+        Transmission("roll", [], "r.urdf:4", 3.0, "m6,m7", "DifferentialTransmission"),
+    ]
+    hand = [Transmission(f"f{i}", [], f"r.urdf:{i}", 0.1, "m1", "Reducer") for i in (5, 6)]
+    assert coupled(wrist + hand) == {"m1": hand}
+    assert sorted(reductions(wrist + hand)) == ["pitch", "roll"]
+
+
 def test_a_users_motor_file_and_definitions_extend_the_catalogue(tmp_path):
     write(
         tmp_path / "drives.yaml",

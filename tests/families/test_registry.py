@@ -34,10 +34,10 @@ from tests.families.toy_step import ToyPayload
 # that family's tasks in every folder built before.
 BEFORE_FORMATS = {
     "expand": 3,
-    "plan": 11,
+    "plan": 12,
     "mesh": 9,
     "decompose": 3,
-    "assemble": 16,
+    "assemble": 17,
     "scene": 3,
     "check": 12,
     "reference": 1,

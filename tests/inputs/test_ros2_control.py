@@ -63,3 +63,32 @@ def test_transmission_reductions_are_read_from_ros1_and_ros2_control():
     # A negative reduction only flips the direction; 1 is the usual placeholder: no gearbox.
     assert reductions == {"knee": 9.0, "hip": None, "elbow": 50.0, "wrist": 100.0}
     assert next(t for t in control.transmissions if t.joint == "elbow").origin == "robot.urdf:12"
+    # What moves each joint, and the transmission's type, in both dialects.
+    drives = {t.joint: (t.actuator, t.kind) for t in control.transmissions}
+    simple = "transmission_interface/SimpleTransmission"
+    assert drives == {
+        "knee": ("m1", simple),
+        "hip": ("m2", ""),
+        "elbow": ("m3", simple),
+        "wrist": ("", simple),
+    }
+
+
+def test_a_transmission_of_several_joints_names_all_its_actuators():
+    from lxml import etree
+
+    from mjcfbuild.inputs.ros2_control import read_ros2_control
+
+    urdf = b"""<robot name="r">
+  <transmission name="wrist"><type>transmission_interface/DifferentialTransmission</type>
+    <actuator name="m7"/><actuator name="m6"/>
+    <joint name="pitch"/><joint name="roll"/></transmission>
+  <transmission name="linkage"><joint name="a"/><joint name="b"/></transmission>
+</robot>"""
+    control = read_ros2_control(etree.fromstring(urdf), "robot.urdf")
+    assert [t.actuator for t in control.transmissions] == [
+        "m6,m7",
+        "m6,m7",
+        "transmission linkage",
+        "transmission linkage",
+    ]
