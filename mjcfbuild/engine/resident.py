@@ -58,13 +58,15 @@ if TYPE_CHECKING:  # imported where used: every build reads the variables, few s
 VARIABLE = "MJCFBUILD_RESIDENT_WORKERS"
 DIR_VARIABLE = "MJCFBUILD_RESIDENT_DIR"
 DEFAULT_SECONDS = 900.0
-# Variables a process reads only as it starts (the interpreter, the dynamic linker, MuJoCo's
-# choice of OpenGL, Mesa, OpenMP, the locale, the temporary folder): a worker started with
-# other values would not take new ones, so they are part of the key. Every other variable
-# is set for each build.
+# Variables a process reads only as it starts (the interpreter, the dynamic linker, the C
+# library's allocator, MuJoCo's choice of OpenGL, Mesa, OpenMP, the locale, the temporary
+# folder): a worker started with other values would not take new ones, so they are part of
+# the key. Every other variable is set for each build.
 _START_VARIABLES = (
     "PYTHON",
     "LD_",
+    "MALLOC_",
+    "GLIBC_TUNABLES",
     "MUJOCO_",
     "MESA",
     "GALLIUM",

@@ -77,6 +77,11 @@ def rebuild_preloads(checks: bool) -> tuple[tuple[str, ...], tuple[str, ...]]:
     return MODEL_MODULES + CHECK_MODULES, (*MESH_MODULES, "mujoco", *CHECK_MODULES)
 
 
+# The largest block the C heap serves itself rather than by mmap, and the free space at its
+# top it keeps rather than returns (bytes; see worker_environment).
+HEAP_BLOCKS = 1 << 30
+
+
 def worker_environment() -> dict[str, str]:
     """The environment of a worker process of this build."""
     env = dict(os.environ)
@@ -86,6 +91,13 @@ def worker_environment() -> dict[str, str]:
     # One thread per worker: -j is the build's CPU budget. CoACD is OpenMP-parallel, and
     # two workers each starting a thread per core would fight over the same cores.
     env.setdefault("OMP_NUM_THREADS", "1")
+    # Each MuJoCo compile allocates and frees the model's tens of megabytes. glibc serves
+    # blocks that large by mmap and unmaps them when freed, so every compile faulted in and
+    # zeroed fresh pages: a third of its time (g1: 0.070 s a compile, 0.044 s from the heap).
+    # From the heap, freed pages serve the next compile; a resident worker hands them back
+    # while it waits for a build (worker_main._give_back_memory). Other C libraries ignore it.
+    for variable in ("MALLOC_MMAP_THRESHOLD_", "MALLOC_TRIM_THRESHOLD_"):
+        env.setdefault(variable, str(HEAP_BLOCKS))
     env[BUILD_PID] = str(os.getpid())
     if sys.platform.startswith("linux"):
         # Offscreen rendering (previews) without a display; must be set before import mujoco.

@@ -45,3 +45,22 @@ def pause(payload: dict) -> dict:
     while not until.exists():
         time.sleep(0.01)
     return {"pid": os.getpid()}
+
+
+def reuse_heap(payload: dict) -> dict:
+    """Allocate, touch and free a block of ``payload["megabytes"]`` twice: the page faults
+    each round cost (a block the C heap kept costs none the second time)."""
+    import resource
+
+    libc = ctypes.CDLL("libc.so.6")
+    libc.malloc.restype = ctypes.c_void_p
+    libc.free.argtypes = [ctypes.c_void_p]
+    size = payload["megabytes"] << 20
+    faults = []
+    for _ in range(2):
+        before = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+        block = libc.malloc(size)
+        ctypes.memset(block, 1, size)
+        faults.append(resource.getrusage(resource.RUSAGE_SELF).ru_minflt - before)
+        libc.free(block)
+    return {"faults": faults}

@@ -96,6 +96,7 @@ def test_the_key_follows_start_variables_only():
     assert resident.worker_key({**base, "HOME": "/home/b", "GIT_INDEX_FILE": "x"}) == key
     assert resident.worker_key({**base, "MUJOCO_GL": "osmesa"}) != key
     assert resident.worker_key({**base, "LD_LIBRARY_PATH": "/opt"}) != key
+    assert resident.worker_key({**base, "MALLOC_TRIM_THRESHOLD_": "0"}) != key
 
 
 def test_a_worker_killed_while_it_waits_is_replaced(residents, tmp_path):
