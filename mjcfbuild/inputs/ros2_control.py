@@ -58,7 +58,7 @@ class Transmission:
     interfaces: list[str]
     origin: str
     reduction: float | None = None  # mechanicalReduction (ROS 1) or mechanical_reduction
-    actuator: str = ""  # the name of its (first) <actuator>: one shared by joints couples them
+    actuator: str = ""  # its <actuator>s' names, joined: one shared by joints couples them
     kind: str = ""  # its <type> (transmission_interface/SimpleTransmission, a vendor's plugin)
 
 
