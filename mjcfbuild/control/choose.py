@@ -3,7 +3,8 @@
 Sources, strongest first: an actuator the user wrote (raw MJCF, inputs file, URDF
 ``<mujoco_inputs>``) - then an ``actuators.rules`` entry that names a type - then the joint's
 ``<ros2_control>`` command interface - then ``actuators.default``, for joints a ROS 1
-``<transmission>`` names (source ``transmission``) and all others (source ``default``). Gains
+``<transmission>`` commands (source ``transmission``) and all others (source ``default``; a
+transmission that only reads a joint, ``JointStateInterface``, commands nothing). Gains
 and joint dynamics come from the first matching rule, else the defaults. Mimic followers are
 driven through their equality, never by an actuator; free (URDF ``floating``) and planar
 joints never get a generated actuator: one servo cannot drive several degrees of freedom.
@@ -25,7 +26,7 @@ from typing import TYPE_CHECKING
 
 from mjcfbuild.actuators import ActuatorChoice, resolve_choice
 from mjcfbuild.errors import ManifestError
-from mjcfbuild.inputs.ros2_control import Ros2Control
+from mjcfbuild.inputs.ros2_control import Ros2Control, Transmission
 from mjcfbuild.sources.packages import listing, suggestion
 from mjcfbuild.urdf.model import Joint, Robot
 
@@ -114,7 +115,7 @@ def choose_actuators(
 ) -> list[ActuatorChoice]:
     """One choice per actuated joint, in URDF order (``none`` choices included)."""
     commands = {joint.name: joint.commands for joint in control.joints if joint.commands}
-    transmitted = {t.joint: t.interfaces for t in control.transmissions}
+    transmitted = {t.joint: t.interfaces for t in control.transmissions if _commands(t)}
     choices = []
     for joint in actuated_joints(robot):
         index, rule = _first_rule(joint.name, settings.rules)
@@ -152,6 +153,14 @@ def choose_actuators(
             choice = replace(choice, wheel_candidate=True)
         choices.append(choice)
     return choices
+
+
+def _commands(transmission: Transmission) -> bool:
+    """Whether a transmission commands its joint: it names a hardware interface that is not
+    a state (read-only) one, or none (ros2_control's transmissions name none)."""
+    return not transmission.interfaces or any(
+        not name.endswith("StateInterface") for name in transmission.interfaces
+    )
 
 
 def check_rules(robot: Robot, settings: ActuatorSettings, manifest_label: str) -> None:

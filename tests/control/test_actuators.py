@@ -106,15 +106,20 @@ def test_ros2_control_command_interfaces_decide_the_type(tmp_path, interfaces, k
         assert list(model.actuator_ctrlrange[0]) == [-10, 10]
 
 
-def test_a_ros1_transmission_names_an_actuated_joint(tmp_path):
+@pytest.mark.parametrize(
+    ("interface", "source"),
+    [("EffortJointInterface", "transmission"), ("JointStateInterface", "default")],
+)
+def test_a_ros1_transmission_names_an_actuated_joint(tmp_path, interface, source):
     """Its effort interface is what a ROS controller commands, usually under a position PID;
-    without that controller the joint gets the default servo."""
-    transmission = """<transmission name="t"><type>transmission_interface/SimpleTransmission</type>
-      <joint name="hinge"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+    without that controller the joint gets the default servo. A transmission that only reads
+    the joint (an underactuated hand's finger joints) commands nothing: the default's own."""
+    transmission = f"""<transmission name="t"><type>transmission_interface/SimpleTransmission</type>
+      <joint name="hinge"><hardwareInterface>hardware_interface/{interface}</hardwareInterface></joint>
       <actuator name="m"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>"""
     model = load(build_two_link(tmp_path, urdf_extra=transmission))
     record = readiness(tmp_path)["actuators"][0]
-    assert (record["type"], record["source"]) == ("dcmotor", "transmission")
+    assert (record["type"], record["source"]) == ("dcmotor", source)
     assert model.actuator_gaintype[0] == mujoco.mjtGain.mjGAIN_DCMOTOR
 
 
