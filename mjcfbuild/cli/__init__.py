@@ -156,7 +156,7 @@ def run(argv: Sequence[str] | None = None) -> int:
         if getattr(args, "jobs", 0) is None:
             # Read once, before any fast path: a bad $MJCFBUILD_JOBS is refused even when
             # nothing needs building.
-            from mjcfbuild.graph.context import default_jobs
+            from mjcfbuild.jobs import default_jobs
 
             args.jobs = default_jobs()
         code: int = args.handler(args)

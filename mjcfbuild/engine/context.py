@@ -6,7 +6,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from mjcfbuild.engine.session import BuildSession
-from mjcfbuild.graph.context import DEFAULT_STEP_TIMEOUT, STATE_DIR, GraphContext, default_jobs
+from mjcfbuild.graph.context import DEFAULT_STEP_TIMEOUT, STATE_DIR, GraphContext
+from mjcfbuild.jobs import default_jobs
 
 __all__ = ["DEFAULT_STEP_TIMEOUT", "STATE_DIR", "BuildContext", "default_jobs"]
 

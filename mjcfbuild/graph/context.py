@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any, Protocol, Self
 from mjcfbuild.errors import MjcfbuildError
 from mjcfbuild.filesig import file_clock_ns
 from mjcfbuild.fsutil import normalise
+from mjcfbuild.jobs import default_jobs
 from mjcfbuild.ownership import STATE_DIR
 
 if TYPE_CHECKING:
@@ -25,30 +26,6 @@ if TYPE_CHECKING:
     from mjcfbuild.sources.packages import PackageResolver
 
 DEFAULT_STEP_TIMEOUT = 1800.0
-
-
-JOBS_VARIABLE = "MJCFBUILD_JOBS"
-
-
-def default_jobs() -> int:
-    """The tasks a build runs at once where it is not told (``-j``, ``jobs=``):
-    ``$MJCFBUILD_JOBS``, else one per CPU the process may use. A value that is not a whole
-    number above 0 is a :class:`~mjcfbuild.errors.UsageError`."""
-    from mjcfbuild.errors import UsageError
-
-    value = os.environ.get(JOBS_VARIABLE, "").strip()
-    if value:
-        if not value.isdigit() or int(value) < 1:
-            raise UsageError(
-                f"{JOBS_VARIABLE}={value}: not a number of jobs",
-                hint="set it to how many tasks a build runs at once (1 or more), or unset it "
-                "for one per CPU",
-            )
-        return int(value)
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:  # not Linux
-        return max(1, os.cpu_count() or 1)
 
 
 class Session(Protocol):

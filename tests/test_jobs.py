@@ -8,7 +8,7 @@ import os
 import pytest
 
 from mjcfbuild.errors import EXIT_CODES, UsageError
-from mjcfbuild.graph.context import JOBS_VARIABLE, default_jobs
+from mjcfbuild.jobs import JOBS_VARIABLE, default_jobs
 from tests.conftest import copy_example, run_cli
 
 
