@@ -19,7 +19,7 @@ def default_jobs() -> int:
 
     value = os.environ.get(JOBS_VARIABLE, "").strip()
     if value:
-        if not value.isdigit() or int(value) < 1:
+        if not value.isdecimal() or int(value) < 1:
             raise UsageError(
                 f"{JOBS_VARIABLE}={value}: not a number of jobs",
                 hint="set it to how many tasks a build runs at once (1 or more), or unset it "

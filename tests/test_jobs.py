@@ -19,7 +19,7 @@ def test_the_variable_decides_and_without_it_one_job_per_cpu(monkeypatch):
     assert default_jobs() == len(os.sched_getaffinity(0))
 
 
-@pytest.mark.parametrize("value", ["abc", "0", "-1", "1.5"])
+@pytest.mark.parametrize("value", ["abc", "0", "-1", "1.5", "²"])
 def test_a_value_that_is_not_a_number_of_jobs_is_refused(monkeypatch, value):
     monkeypatch.setenv(JOBS_VARIABLE, value)
     with pytest.raises(UsageError, match=f"{JOBS_VARIABLE}={value}: not a number of jobs"):

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 
 from mjcfbuild.actuators import ActuatorChoice, resolve_choice
 from mjcfbuild.errors import ManifestError
-from mjcfbuild.inputs.ros2_control import Ros2Control, Transmission
+from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.sources.packages import listing, suggestion
 from mjcfbuild.urdf.model import Joint, Robot
 
@@ -115,7 +115,7 @@ def choose_actuators(
 ) -> list[ActuatorChoice]:
     """One choice per actuated joint, in URDF order (``none`` choices included)."""
     commands = {joint.name: joint.commands for joint in control.joints if joint.commands}
-    transmitted = {t.joint: t.interfaces for t in control.transmissions if _commands(t)}
+    transmitted = {t.joint: t.interfaces for t in control.transmissions if t.commands()}
     choices = []
     for joint in actuated_joints(robot):
         index, rule = _first_rule(joint.name, settings.rules)
@@ -153,14 +153,6 @@ def choose_actuators(
             choice = replace(choice, wheel_candidate=True)
         choices.append(choice)
     return choices
-
-
-def _commands(transmission: Transmission) -> bool:
-    """Whether a transmission commands its joint: it names a hardware interface that is not
-    a state (read-only) one, or none (ros2_control's transmissions name none)."""
-    return not transmission.interfaces or any(
-        not name.endswith("StateInterface") for name in transmission.interfaces
-    )
 
 
 def check_rules(robot: Robot, settings: ActuatorSettings, manifest_label: str) -> None:

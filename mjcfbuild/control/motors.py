@@ -93,32 +93,72 @@ def _scaled(value: float | None, factor: float) -> float | None:
     return None if value is None else float(value) * factor
 
 
-def coupled(transmissions: list[Transmission]) -> dict[str, list[Transmission]]:
-    """Actuators -> the transmissions of the joints they move, where they move more joints
-    than there are actuators: an underactuated mechanism (a hand whose one motor curls every
-    finger joint), whose reductions are ratios between the joints, not gearboxes. A
-    differential (two motors, two joints) is not one: each joint can still be driven."""
-    joints: dict[str, dict[str, Transmission]] = {}
-    for transmission in transmissions:
-        if transmission.actuator:
-            joints.setdefault(transmission.actuator, {}).setdefault(
-                transmission.joint, transmission
-            )
-    return {
-        actuators: list(found.values())
-        for actuators, found in joints.items()
-        if len(found) > len(actuators.split(","))
+def underactuated(
+    transmissions: list[Transmission], actuated: set[str]
+) -> list[list[Transmission]]:
+    """The transmissions (one per joint, in the URDF's order) of each mechanism that moves
+    more of the ``actuated`` joints than it has actuators: transmissions linked by one
+    ``<transmission>`` element or by an actuator name they share, where some joint is only
+    read (a state interface: TIAGo's Hey5 hand moves 22 finger joints by one motor and
+    commands one of them) or one element holds more joints than actuators. Several
+    transmissions naming one actuator but each commanding its joint are a copied name (a
+    pybullet xArm's two joints on ``motor3``), not a mechanism; a differential (two motors,
+    two joints) is fully actuated."""
+    group = list(range(len(transmissions)))  # union-find over the transmissions
+
+    def root(index: int) -> int:
+        while group[index] != index:
+            group[index] = group[group[index]]
+            index = group[index]
+        return index
+
+    first: dict[str, int] = {}
+    for index, transmission in enumerate(transmissions):
+        element = [f"element {transmission.element}"] if transmission.element else []
+        for key in [*element, *transmission.actuators]:
+            group[root(index)] = root(first.setdefault(key, index))
+    linked: dict[int, list[Transmission]] = {}
+    for index, transmission in enumerate(transmissions):
+        linked.setdefault(root(index), []).append(transmission)
+    found = []
+    for members in linked.values():
+        joints: dict[str, Transmission] = {}
+        for transmission in members:
+            if transmission.joint in actuated:
+                joints.setdefault(transmission.joint, transmission)
+        names = {name for transmission in members for name in transmission.actuators}
+        read_only = any(not transmission.commands() for transmission in members)
+        if len(joints) > max(len(names), 1) and (read_only or _crowded(members)):
+            found.append(list(joints.values()))
+    return found
+
+
+def _crowded(members: list[Transmission]) -> bool:
+    """Whether one ``<transmission>`` element among ``members`` holds more joints than
+    actuators (each of its joints' records carries the element's actuators)."""
+    elements: dict[str, list[Transmission]] = {}
+    for transmission in members:
+        if transmission.element:
+            elements.setdefault(transmission.element, []).append(transmission)
+    return any(len(joints) > len(joints[0].actuators) for joints in elements.values())
+
+
+def reductions(
+    transmissions: list[Transmission], actuated: set[str] | None = None
+) -> dict[str, Transmission]:
+    """Joint -> the transmission that gives its gear ratio (the first one that does); not
+    the joints an underactuated mechanism only reads (:func:`underactuated`), whose
+    reductions are ratios between its joints."""
+    followers = {
+        t.joint
+        for mechanism in underactuated(transmissions, actuated or {t.joint for t in transmissions})
+        for t in mechanism
+        if not t.commands()
     }
-
-
-def reductions(transmissions: list[Transmission]) -> dict[str, Transmission]:
-    """Joint -> the transmission that gives its gear ratio (the first one that does); not the
-    joints of a coupled mechanism (:func:`coupled`)."""
-    mechanisms = {t.joint for group in coupled(transmissions).values() for t in group}
     found: dict[str, Transmission] = {}
     for transmission in transmissions:
         joint = transmission.joint
-        if transmission.reduction is not None and joint not in found and joint not in mechanisms:
+        if transmission.reduction is not None and joint not in found and joint not in followers:
             found[joint] = transmission
     return found
 
@@ -133,7 +173,8 @@ def apply_motors(
     line, friction, damping; what the rule itself sets wins), and the build's warnings: a
     transmission's reduction that no motor uses, and a reduction that overrides a motor's own
     ratio."""
-    geared = reductions(transmissions)
+    actuated = {choice.joint for choice in choices}
+    geared = reductions(transmissions, actuated)
     warnings: list[str] = []
     result = []
     used: set[str] = set()
@@ -154,7 +195,7 @@ def apply_motors(
                     f"({transmission.origin}) replaces the ratio {own:g} of motor '{rule.motor}'"
                 )
         result.append(_driven(choice, rule, drive))
-    warnings += [_coupling_warning(name, group) for name, group in coupled(transmissions).items()]
+    warnings += [_mechanism_warning(group) for group in underactuated(transmissions, actuated)]
     for joint, transmission in sorted(geared.items()):
         if joint not in used:
             warnings.append(
@@ -165,15 +206,16 @@ def apply_motors(
     return result, warnings
 
 
-def _coupling_warning(actuators: str, group: list[Transmission]) -> str:
+def _mechanism_warning(mechanism: list[Transmission]) -> str:
     """What the model does with joints fewer actuators move together, and how to couple them."""
-    kind = group[0].kind or "unnamed"
+    types = ", ".join(sorted({t.kind for t in mechanism if t.kind})) or "unnamed"
+    names = ", ".join(sorted({n for t in mechanism for n in t.actuators})) or "none named"
     return (
-        f"{group[0].origin}: actuator '{actuators}' moves {len(group)} joints through "
-        f"<transmission>s of type '{kind}', from '{group[0].joint}': an underactuated "
-        "mechanism the model does not reproduce - each joint moves on its own and their "
-        "reductions set nothing; to move them together, give them <equality><joint joint1=... "
-        "joint2=... polycoef=.../> in the raw inputs"
+        f"{mechanism[0].origin}: <transmission>s of type '{types}' move {len(mechanism)} "
+        f"joints from '{mechanism[0].joint}' by actuator '{names}': an underactuated "
+        "mechanism the model does not reproduce - each joint moves on its own, and the "
+        "reductions of those it only reads set nothing; to move them together, give them "
+        "<equality><joint joint1=... joint2=... polycoef=.../> in the raw inputs"
     )
 
 

@@ -95,7 +95,8 @@ def worker_environment() -> dict[str, str]:
     # blocks that large by mmap and unmaps them when freed, so every compile faulted in and
     # zeroed fresh pages: a third of its time (g1: 0.070 s a compile, 0.044 s from the heap).
     # From the heap, freed pages serve the next compile; a resident worker hands them back
-    # while it waits for a build (worker_main._give_back_memory). Other C libraries ignore it.
+    # while it waits for a build (worker_main._give_back_memory). A C library that refuses
+    # the value (other than glibc, or a glibc capping the threshold) keeps its default.
     for variable in ("MALLOC_MMAP_THRESHOLD_", "MALLOC_TRIM_THRESHOLD_"):
         env.setdefault(variable, str(HEAP_BLOCKS))
     env[BUILD_PID] = str(os.getpid())

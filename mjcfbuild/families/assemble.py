@@ -183,7 +183,7 @@ FAMILY = Family(
     # 12: the Gazebo sensors' MJCF counterparts; 13: the products' binary copies; 14: a raw
     # timestep a build cannot simulate with refused; 15: reversed ranges in the inputs refused;
     # 16: an inertia repair names the link's file and line; 17: an underactuated mechanism's
-    # reductions are no gear ratios, one warning per actuator
+    # read-only joints' reductions are no gear ratios, one warning per mechanism
     format=17,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,

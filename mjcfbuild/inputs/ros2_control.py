@@ -52,14 +52,23 @@ class ControlSensor:
 
 @dataclass
 class Transmission:
-    """A ROS 1 ``<transmission>``'s joint and the hardware interface that drives it."""
+    """One joint of a ``<transmission>`` (ROS 1's, or ros2_control's own): the hardware
+    interfaces that drive it, its reduction, and what else the transmission holds."""
 
     joint: str
     interfaces: list[str]
     origin: str
     reduction: float | None = None  # mechanicalReduction (ROS 1) or mechanical_reduction
-    actuator: str = ""  # its <actuator>s' names, joined: one shared by joints couples them
-    kind: str = ""  # its <type> (transmission_interface/SimpleTransmission, a vendor's plugin)
+    actuators: list[str] = field(default_factory=list)  # the transmission's <actuator> names
+    element: str = ""  # which <transmission> element holds it ("#3": the document's third)
+    kind: str = ""  # its type (transmission_interface/SimpleTransmission, a vendor's plugin)
+
+    def commands(self) -> bool:
+        """Whether the transmission commands its joint: it names a hardware interface that
+        is not a state (read-only) one, or none (ros2_control's transmissions name none)."""
+        return not self.interfaces or any(
+            not name.endswith("StateInterface") for name in self.interfaces
+        )
 
 
 @dataclass
@@ -120,8 +129,15 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                     sensor.get("name", ""), params, f"{label}:{sensor.sourceline}", hardware
                 )
             )
+    # Each element by its place in the document: generated URDFs put many on one line. The
+    # list keeps lxml's proxies alive, so findall below returns these same objects.
+    order = list(root.iter("transmission"))
+    elements = {element: f"#{n}" for n, element in enumerate(order, start=1)}
     for transmission in root.findall("transmission"):
-        actuator, kind = _drive(transmission, "type")
+        actuators = _actuators(transmission)
+        element = elements[transmission]
+        # <type> since ROS Hydro; a type="" attribute before it
+        kind = (transmission.findtext("type") or transmission.get("type") or "").strip()
         for joint in transmission.findall("joint"):
             # hardwareInterface sits under <joint> (ROS 1 since Indigo) or under <actuator>.
             interfaces = [
@@ -141,7 +157,8 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                     [i for i in interfaces if i],
                     f"{label}:{joint.sourceline}",
                     _reduction(transmission, joint),
-                    actuator,
+                    actuators,
+                    element,
                     kind,
                 )
             )
@@ -149,7 +166,9 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
     # interface, but the joint's mechanical_reduction.
     for block in root.findall("ros2_control"):
         for transmission in block.findall("transmission"):
-            actuator, kind = _drive(transmission, "plugin")
+            actuators = _actuators(transmission)
+            element = elements[transmission]
+            kind = (transmission.findtext("plugin") or "").strip()
             for joint in transmission.findall("joint"):
                 result.transmissions.append(
                     Transmission(
@@ -157,21 +176,17 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                         [],
                         f"{label}:{joint.sourceline}",
                         _reduction(transmission, joint),
-                        actuator,
+                        actuators,
+                        element,
                         kind,
                     )
                 )
     return result
 
 
-def _drive(transmission: etree._Element, kind_tag: str) -> tuple[str, str]:
-    """What moves a transmission's joints - its actuators' names, joined (a transmission of
-    several joints, or several transmissions naming one actuator, couple their joints) - and
-    its type (``kind_tag``: ROS 1's ``<type>``, ros2_control's ``<plugin>``)."""
-    names = sorted(a.get("name", "") for a in transmission.findall("actuator"))
-    if len(transmission.findall("joint")) > 1 and not any(names):
-        names = [f"transmission {transmission.get('name', '')}"]
-    return ",".join(n for n in names if n), (transmission.findtext(kind_tag) or "").strip()
+def _actuators(transmission: etree._Element) -> list[str]:
+    """The names of a transmission's ``<actuator>`` elements (unnamed ones left out)."""
+    return [name for a in transmission.findall("actuator") if (name := a.get("name", ""))]
 
 
 _REDUCTION_TAGS = ("mechanicalReduction", "mechanical_reduction")

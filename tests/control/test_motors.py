@@ -135,25 +135,38 @@ def test_a_reduction_without_a_motor_is_reported(tmp_path):
     assert re.search(r"robot\.urdf:\d+: joint 'FL_calf_joint'", unused[0]), unused[0]
 
 
-def test_joints_one_actuator_moves_together_are_one_warning_and_no_gear_ratio(tmp_path):
-    # An underactuated mechanism: one motor behind every calf (as a hand's one motor curls
-    # every finger joint). Its reductions are ratios between the joints, not gearboxes.
-    urdf = quadruped_urdf(50).replace('<actuator name="FL_calf_motor">', "<actuator>")
+def _one_calf_motor(urdf: str, follower_interface: str) -> str:
+    """Every calf's transmission on FL's actuator, the other three with ``follower_interface``."""
     for leg in ("FR", "RL", "RR"):
-        urdf = urdf.replace(f'"{leg}_calf_motor"', '"calf_motor"')
+        urdf = urdf.replace(f'"{leg}_calf_motor"', '"FL_calf_motor"')
+        urdf = urdf.replace(
+            f'<joint name="{leg}_calf_joint"><hardwareInterface>hardware_interface/'
+            "EffortJointInterface",
+            f'<joint name="{leg}_calf_joint"><hardwareInterface>hardware_interface/'
+            f"{follower_interface}",
+        )
+    return urdf
+
+
+def test_joints_one_actuator_moves_and_only_reads_are_one_warning_and_no_gear_ratio(tmp_path):
+    # An underactuated mechanism: one motor behind every calf, commanding FL's and only
+    # reading the others (as TIAGo's Hey5 hand's one motor curls many finger joints). The
+    # followers' reductions are ratios between the joints, not gearboxes.
+    urdf = _one_calf_motor(quadruped_urdf(50), "JointStateInterface")
+    assert urdf.count('"FL_calf_motor"') == 4 and urdf.count("JointStateInterface") == 3
     write(tmp_path / "robot.urdf", urdf)
     write(tmp_path / "robot.yaml", MANIFEST + RULES)
     result = mjcfbuild.build(tmp_path / "robot.yaml")
     assert not result.errors, result.errors
-    coupling = [w for w in result.warnings if "underactuated" in w]
-    assert len(coupling) == 1, result.warnings
+    mechanism = [w for w in result.warnings if "underactuated" in w]
+    assert len(mechanism) == 1, result.warnings
     assert re.match(
-        r"robot\.urdf:\d+: actuator 'calf_motor' moves 3 joints through <transmission>s of "
-        r"type 'transmission_interface/SimpleTransmission', from 'FR_calf_joint': an "
-        r"underactuated mechanism the model does not reproduce",
-        coupling[0],
-    ), coupling[0]
-    # FL's transmission names no actuator: its reduction is its gear ratio, as before.
+        r"robot\.urdf:\d+: <transmission>s of type 'transmission_interface/SimpleTransmission' "
+        r"move 4 joints from 'FL_calf_joint' by actuator 'FL_calf_motor': an underactuated "
+        r"mechanism the model does not reproduce",
+        mechanism[0],
+    ), mechanism[0]
+    # FL's transmission commands it: its reduction is its motor's gear ratio, as before.
     assert [w for w in result.warnings if "replaces the ratio 9" in w] == [
         next(w for w in result.warnings if "joint 'FL_calf_joint'" in w)
     ]
@@ -166,17 +179,59 @@ def test_joints_one_actuator_moves_together_are_one_warning_and_no_gear_ratio(tm
         assert model.dof_armature[dof] == pytest.approx(GO1_ROTOR * KNEE_RATIO**2, abs=1e-9)
 
 
-def test_a_differential_is_not_underactuated():
-    from mjcfbuild.control.motors import coupled, reductions
+def test_one_actuator_name_on_joints_each_commands_is_no_mechanism(tmp_path):
+    # A copied name (pybullet's xArm: joint3 and joint4 on motor3), each transmission
+    # commanding its joint: four gearboxes, as if the names differed.
+    write(tmp_path / "robot.urdf", _one_calf_motor(quadruped_urdf(50), "EffortJointInterface"))
+    write(tmp_path / "robot.yaml", MANIFEST + RULES)
+    result = mjcfbuild.build(tmp_path / "robot.yaml")
+    assert not result.errors, result.errors
+    assert not [w for w in result.warnings if "underactuated" in w], result.warnings
+    assert len([w for w in result.warnings if "replaces the ratio 9" in w]) == 4
+
+
+def test_which_transmissions_make_an_underactuated_mechanism():
+    from mjcfbuild.control.motors import reductions, underactuated
     from mjcfbuild.inputs.ros2_control import Transmission
 
-    wrist = [
-        Transmission("pitch", [], "r.urdf:3", 2.0, "m6,m7", "DifferentialTransmission"),
-        Transmission("roll", [], "r.urdf:4", 3.0, "m6,m7", "DifferentialTransmission"),
+    state = ["hardware_interface/JointStateInterface"]
+    command = ["hardware_interface/PositionJointInterface"]
+
+    def joint(name, interfaces, actuators, element, reduction=2.0):
+        return Transmission(name, interfaces, f"r.urdf:{element}", reduction, actuators, element)
+
+    wrist = [  # one element, two motors, two joints: fully actuated
+        joint("pitch", command, ["m6", "m7"], "w"),
+        joint("roll", command, ["m6", "m7"], "w"),
     ]
-    hand = [Transmission(f"f{i}", [], f"r.urdf:{i}", 0.1, "m1", "Reducer") for i in (5, 6)]
-    assert coupled(wrist + hand) == {"m1": hand}
-    assert sorted(reductions(wrist + hand)) == ["pitch", "roll"]
+    hand = [  # one motor commanding one joint, moving two more it only reads
+        joint("knuckle", command, ["m1"], "h1", reduction=None),
+        joint("f1", state, ["m1"], "h2", 0.1),
+        joint("f2", state, ["m1"], "h3", 0.2),
+    ]
+    linkage = [  # ros2_control: one element of three joints and one actuator
+        joint("a", [], ["m9"], "l", 3.0),
+        joint("b", [], ["m9"], "l"),
+        joint("c", [], ["m9"], "l"),
+    ]
+    unnamed = [joint("u1", [], [], "u"), joint("u2", [], [], "u")]  # no actuator named
+    alone = [joint("s", [], [], "s")]  # one joint is never a mechanism
+    everything = wrist + hand + linkage + unnamed + alone
+    names = {t.joint for t in everything}
+    assert underactuated(everything, names) == [hand, linkage, unnamed]
+    assert underactuated(everything, names - {"f2"}) == [hand[:2], linkage, unnamed]
+    assert underactuated(everything, names - {"f1", "f2"}) == [linkage, unnamed]
+    # The read-only joints' reductions are no gear ratios; the commanding joints' are.
+    assert sorted(reductions(everything, names)) == [
+        "a",
+        "b",
+        "c",
+        "pitch",
+        "roll",
+        "s",
+        "u1",
+        "u2",
+    ]
 
 
 def test_a_users_motor_file_and_definitions_extend_the_catalogue(tmp_path):

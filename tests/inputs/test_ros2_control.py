@@ -63,32 +63,47 @@ def test_transmission_reductions_are_read_from_ros1_and_ros2_control():
     # A negative reduction only flips the direction; 1 is the usual placeholder: no gearbox.
     assert reductions == {"knee": 9.0, "hip": None, "elbow": 50.0, "wrist": 100.0}
     assert next(t for t in control.transmissions if t.joint == "elbow").origin == "robot.urdf:12"
-    # What moves each joint, and the transmission's type, in both dialects.
-    drives = {t.joint: (t.actuator, t.kind) for t in control.transmissions}
+    # What else each joint's transmission holds, in both dialects.
+    drives = {t.joint: (t.actuators, t.element, t.kind) for t in control.transmissions}
     simple = "transmission_interface/SimpleTransmission"
     assert drives == {
-        "knee": ("m1", simple),
-        "hip": ("m2", ""),
-        "elbow": ("m3", simple),
-        "wrist": ("", simple),
+        "knee": (["m1"], "#1", simple),
+        "hip": (["m2"], "#2", ""),
+        "elbow": (["m3"], "#3", simple),
+        "wrist": ([], "#4", simple),
     }
+    assert [t.commands() for t in control.transmissions] == [True, True, True, True]
 
 
-def test_a_transmission_of_several_joints_names_all_its_actuators():
+def test_a_transmission_names_its_actuators_and_its_type_in_either_form():
     from lxml import etree
 
     from mjcfbuild.inputs.ros2_control import read_ros2_control
 
     urdf = b"""<robot name="r">
   <transmission name="wrist"><type>transmission_interface/DifferentialTransmission</type>
-    <actuator name="m7"/><actuator name="m6"/>
-    <joint name="pitch"/><joint name="roll"/></transmission>
-  <transmission name="linkage"><joint name="a"/><joint name="b"/></transmission>
+    <actuator name="m7"/><actuator name="m6"/><actuator/>
+    <joint name="pitch"><hardwareInterface>JointStateInterface</hardwareInterface></joint>
+    <joint name="roll"/></transmission>
+  <transmission name="old" type="pr2_mechanism_model/SimpleTransmission">
+    <joint name="a"/><actuator name="m1"/></transmission>
 </robot>"""
     control = read_ros2_control(etree.fromstring(urdf), "robot.urdf")
-    assert [t.actuator for t in control.transmissions] == [
-        "m6,m7",
-        "m6,m7",
-        "transmission linkage",
-        "transmission linkage",
+    found = [(t.joint, t.actuators, t.element, t.kind, t.commands()) for t in control.transmissions]
+    assert found == [
+        (
+            "pitch",
+            ["m7", "m6"],
+            "#1",
+            "transmission_interface/DifferentialTransmission",
+            False,
+        ),
+        (
+            "roll",
+            ["m7", "m6"],
+            "#1",
+            "transmission_interface/DifferentialTransmission",
+            True,
+        ),
+        ("a", ["m1"], "#2", "pr2_mechanism_model/SimpleTransmission", True),
     ]
