@@ -521,13 +521,7 @@ class CheckResults:
             )
         fastest = self.speeds.fastest if self.speeds else None
         if fastest:
-            over = self.speeds.over_limit if self.speeds else []
-            bound = f"; {len(over)} past the bound" if over else ", within the bound"
-            add(
-                "joint speeds",
-                f"fastest {fastest.joint} {fastest.speed:.3g} (limit {fastest.limit:g}){bound}",
-                bool(over),
-            )
+            add("joint speeds", *self._speed_line(fastest))
         if self.plausibility:
             found = self.plausibility
             add(
@@ -551,6 +545,26 @@ class CheckResults:
                 runtime.failed,
             )
         return lines
+
+    def _speed_line(self, fastest: FastestJoint) -> tuple[str, bool]:
+        """The console's joint speeds, and whether a joint went past its bound: faster than
+        its velocity limit is listed (the real joint could not), failed only past the bound
+        (check.speeds: that many times the limit)."""
+        over = self.speeds.over_limit if self.speeds else []
+        failing = [speed for speed in over if speed.fails]
+        line = f"fastest {fastest.joint} {fastest.speed:.3g} (limit {fastest.limit:g})"
+        if not over:
+            return f"{line}, within the bound", False
+        worst = max(failing or over, key=lambda speed: (speed.speed / speed.limit, speed.joint))
+        most = f"{worst.joint} at {worst.speed / worst.limit:.2g} times its limit"
+        if failing:
+            return f"{line}; {len(failing)} past the bound ({most})", True
+        joints = (
+            "1 joint faster than its limit"
+            if len(over) == 1
+            else (f"{len(over)} joints faster than their limits")
+        )
+        return f"{line}; {joints}, within the bound ({most})", False
 
     def console_verdict(self) -> str:
         """The verdict the console gives: how many checks failed, or that they pass and what

@@ -134,5 +134,20 @@ def test_the_fastest_joint_is_on_the_console():
     results = CheckResults(
         loads=True, speeds=Speeds(FastestJoint("knee", 3.14159, 2.0), over_limit=[over])
     )
-    line = ("joint speeds", "FAILED: fastest knee 3.14 (limit 2); 1 past the bound")
+    line = (
+        "joint speeds",
+        "FAILED: fastest knee 3.14 (limit 2); 1 past the bound (knee at 1.6 times its limit)",
+    )
     assert line in results.console_lines()
+    # Faster than its limit but within its bound (50 times, a servo without a speed line):
+    # listed, not failed, and the verdict agrees (TIAGo's fingers).
+    finger = JointSpeed("finger", 2.4, 2.0, "urdf", 50.0)
+    results = CheckResults(
+        loads=True, speeds=Speeds(FastestJoint("knee", 3.14159, 4.0), over_limit=[finger])
+    )
+    line = (
+        "joint speeds",
+        "fastest knee 3.14 (limit 4); 1 joint faster than its limit, within the bound "
+        "(finger at 1.2 times its limit)",
+    )
+    assert line in results.console_lines() and results.passes
