@@ -47,20 +47,11 @@ def pause(payload: dict) -> dict:
     return {"pid": os.getpid()}
 
 
-def reuse_heap(payload: dict) -> dict:
-    """Allocate, touch and free a block of ``payload["megabytes"]`` twice: the page faults
-    each round cost (a block the C heap kept costs none the second time)."""
-    import resource
-
-    libc = ctypes.CDLL("libc.so.6")
-    libc.malloc.restype = ctypes.c_void_p
-    libc.free.argtypes = [ctypes.c_void_p]
-    size = payload["megabytes"] << 20
-    faults = []
-    for _ in range(2):
-        before = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
-        block = libc.malloc(size)
-        ctypes.memset(block, 1, size)
-        faults.append(resource.getrusage(resource.RUSAGE_SELF).ru_minflt - before)
-        libc.free(block)
-    return {"faults": faults}
+def allocator(payload: dict) -> dict:
+    """The C allocator's settings this process started with (glibc reads them at start)."""
+    environ = Path("/proc/self/environ").read_bytes().split(b"\0")
+    return {
+        name.decode(): value.decode()
+        for name, _, value in (entry.partition(b"=") for entry in environ)
+        if name.startswith(b"MALLOC_")
+    }
