@@ -556,7 +556,7 @@ class CheckResults:
         if not over:
             return f"{line}, within the bound", False
         worst = max(failing or over, key=lambda speed: (speed.speed / speed.limit, speed.joint))
-        most = f"{worst.joint} at {worst.speed / worst.limit:.2g} times its limit"
+        most = f"{worst.joint} at {worst.speed / worst.limit:.3g} times its limit"
         if failing:
             return f"{line}; {len(failing)} past the bound ({most})", True
         joints = (

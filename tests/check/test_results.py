@@ -136,7 +136,7 @@ def test_the_fastest_joint_is_on_the_console():
     )
     line = (
         "joint speeds",
-        "FAILED: fastest knee 3.14 (limit 2); 1 past the bound (knee at 1.6 times its limit)",
+        "FAILED: fastest knee 3.14 (limit 2); 1 past the bound (knee at 1.57 times its limit)",
     )
     assert line in results.console_lines()
     # Faster than its limit but within its bound (50 times, a servo without a speed line):
