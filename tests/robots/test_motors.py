@@ -47,3 +47,26 @@ def test_go1_with_its_drives(tmp_path):
         "actuators.rules[0]: *_calf_joint",
         "actuators.rules[1]: *_hip_joint, *_thigh_joint",
     ]
+
+
+def test_tiagos_hand_is_three_underactuated_mechanisms_and_its_wrist_none():
+    # The real description: the Hey5 hand's transmissions name one motor for each finger
+    # group (PAL's own Hey5Reducer type), commanding one joint and reading the others; the
+    # wrist is a differential of two motors.
+    from lxml import etree
+
+    from mjcfbuild.control.motors import reductions, underactuated
+    from mjcfbuild.inputs.ros2_control import read_ros2_control
+
+    urdf = robot_data.unpack(robot_data.ROBOTS["tiago"])
+    control = read_ros2_control(etree.parse(str(urdf)).getroot(), "tiago.urdf")
+    joints = {t.joint for t in control.transmissions}
+    found = underactuated(control.transmissions, joints)
+    assert [(len(m), m[0].joint, m[0].actuators) for m in found] == [
+        (6, "hand_thumb_joint", ["hand_thumb_motor"]),
+        (8, "hand_index_joint", ["hand_index_motor"]),
+        (22, "hand_mrl_joint", ["hand_mrl_motor"]),
+    ]
+    assert all(m[0].commands() and not any(t.commands() for t in m[1:]) for m in found)
+    geared = reductions(control.transmissions, joints)
+    assert not {t.joint for m in found for t in m[1:]} & set(geared)
