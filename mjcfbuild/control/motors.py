@@ -144,17 +144,12 @@ def _crowded(members: list[Transmission]) -> bool:
 
 
 def reductions(
-    transmissions: list[Transmission], actuated: set[str] | None = None
+    transmissions: list[Transmission], mechanisms: list[list[Transmission]]
 ) -> dict[str, Transmission]:
     """Joint -> the transmission that gives its gear ratio (the first one that does); not
-    the joints an underactuated mechanism only reads (:func:`underactuated`), whose
-    reductions are ratios between its joints."""
-    followers = {
-        t.joint
-        for mechanism in underactuated(transmissions, actuated or {t.joint for t in transmissions})
-        for t in mechanism
-        if not t.commands()
-    }
+    the joints one of the underactuated ``mechanisms`` only reads (:func:`underactuated`),
+    whose reductions are ratios between its joints."""
+    followers = {t.joint for mechanism in mechanisms for t in mechanism if not t.commands()}
     found: dict[str, Transmission] = {}
     for transmission in transmissions:
         joint = transmission.joint
@@ -173,8 +168,8 @@ def apply_motors(
     line, friction, damping; what the rule itself sets wins), and the build's warnings: a
     transmission's reduction that no motor uses, and a reduction that overrides a motor's own
     ratio."""
-    actuated = {choice.joint for choice in choices}
-    geared = reductions(transmissions, actuated)
+    mechanisms = underactuated(transmissions, {choice.joint for choice in choices})
+    geared = reductions(transmissions, mechanisms)
     warnings: list[str] = []
     result = []
     used: set[str] = set()
@@ -195,7 +190,7 @@ def apply_motors(
                     f"({transmission.origin}) replaces the ratio {own:g} of motor '{rule.motor}'"
                 )
         result.append(_driven(choice, rule, drive))
-    warnings += [_mechanism_warning(group) for group in underactuated(transmissions, actuated)]
+    warnings += [_mechanism_warning(mechanism) for mechanism in mechanisms]
     for joint, transmission in sorted(geared.items()):
         if joint not in used:
             warnings.append(

@@ -68,5 +68,5 @@ def test_tiagos_hand_is_three_underactuated_mechanisms_and_its_wrist_none():
         (22, "hand_mrl_joint", ["hand_mrl_motor"]),
     ]
     assert all(m[0].commands() and not any(t.commands() for t in m[1:]) for m in found)
-    geared = reductions(control.transmissions, joints)
+    geared = reductions(control.transmissions, found)
     assert not {t.joint for m in found for t in m[1:]} & set(geared)
