@@ -362,10 +362,14 @@ def test_a_pool_closed_while_its_workers_start_keeps_none(tmp_path):
     assert pool._all == [] and pool._idle == []
 
 
-def test_a_worker_keeps_freed_model_sized_blocks_for_the_next_compile(pool, tmp_path):
+def test_a_worker_keeps_freed_model_sized_blocks_for_the_next_compile(pool, tmp_path, monkeypatch):
     # MuJoCo's compiles allocate and free tens of megabytes each; glibc unmaps blocks that
     # large when freed and faults fresh pages in for the next compile (a third of a compile's
-    # time on g1, docs/benchmarks.md). The workers start with the heap keeping them.
+    # time on g1, docs/benchmarks.md). The workers start with the heap keeping them, unless
+    # the environment sets the variables: a dask Nanny started in this process (the cluster
+    # tests) puts MALLOC_TRIM_THRESHOLD_=65536 into os.environ, which the workers would keep.
+    for variable in ("MALLOC_MMAP_THRESHOLD_", "MALLOC_TRIM_THRESHOLD_"):
+        monkeypatch.delenv(variable, raising=False)
     settings = pool.run(f"{STEPS}:allocator", {}, "allocator", tmp_path / "a.log", 60)
     assert settings == {
         "MALLOC_MMAP_THRESHOLD_": str(HEAP_BLOCKS),

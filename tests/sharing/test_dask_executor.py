@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+from contextlib import contextmanager
 
 import pytest
 
@@ -14,15 +15,25 @@ from tests.sharing.conftest import PRODUCTS, free_port
 distributed = pytest.importorskip("distributed")
 
 
+@contextmanager
 def local_cluster(**kwargs):
-    return distributed.LocalCluster(
-        n_workers=2,
-        threads_per_worker=1,
-        processes=True,
-        dashboard_address=":0",
-        host="127.0.0.1",
-        **kwargs,
-    )
+    """A cluster of worker processes on this machine. Its Nanny writes its workers' settings
+    (MALLOC_TRIM_THRESHOLD_, OMP_NUM_THREADS) into this process's environment; they are put
+    back after, so no later test in this process starts its processes with them."""
+    saved = dict(os.environ)
+    try:
+        with distributed.LocalCluster(
+            n_workers=2,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=":0",
+            host="127.0.0.1",
+            **kwargs,
+        ) as cluster:
+            yield cluster
+    finally:
+        os.environ.clear()
+        os.environ.update(saved)
 
 
 @pytest.fixture(scope="module")
