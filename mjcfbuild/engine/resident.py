@@ -22,8 +22,9 @@ does not answer a claim within ``MJCFBUILD_WORKER_ANSWER_SECONDS`` (stopped, or 
 is killed once its command line shows it is that worker (:func:`is_worker`), its socket is
 removed and the build goes on with another; a socket nobody listens on is removed, whatever
 process its name's number now belongs to. One user has at most ``MJCFBUILD_RESIDENT_MAX``
-waiting workers, of every key together; a worker whose socket file is removed (its folder
-deleted) exits within a second.
+waiting workers, of every key together: a worker that has just served a build takes the place
+of the worker of another key that has waited longest (:func:`make_room`). A worker whose socket
+file is removed (its folder deleted) exits within a second.
 
 What makes a worker that outlived a build safe to reuse (mjcfbuild.engine.worker_main):
 each build's environment, folder, file mode mask, nice level and resource limits are set
@@ -641,7 +642,22 @@ def resident_pids(folder: Path, key: str | None = None) -> list[int]:
     """The process ids of the idle resident workers in ``folder`` (of ``key``, if given):
     only processes confirmed to be such workers (:func:`is_worker`); socket files nobody
     listens on are removed on the way, and files of other kinds are not counted."""
-    pids = []
+    return [waiting.pid for waiting in _waiting(folder, key)]
+
+
+@dataclass(frozen=True)
+class _Waiting:
+    """An idle resident worker: its socket, process id, key and since when it waits."""
+
+    path: Path
+    pid: int
+    key: str
+    since_ns: int  # the socket file's modification time: made when the worker began to wait
+
+
+def _waiting(folder: Path, key: str | None = None) -> list[_Waiting]:
+    """The idle resident workers in ``folder`` (see :func:`resident_pids`)."""
+    found = []
     for path in sorted(folder.glob(f"{key or '*'}-*.sock")):
         pid = _pid_of(path)
         try:
@@ -650,11 +666,32 @@ def resident_pids(folder: Path, key: str | None = None) -> list[int]:
             continue
         if pid is None or not stat.S_ISSOCK(info.st_mode):
             continue
-        if is_worker(pid, folder, path.name.rpartition("-")[0]) and _process_exists(pid):
-            pids.append(pid)
+        its_key = path.name.rpartition("-")[0]
+        if is_worker(pid, folder, its_key) and _process_exists(pid):
+            found.append(_Waiting(path, pid, its_key, info.st_mtime_ns))
         elif not _listening(path):
             _unlink_if_same(path, info)
-    return pids
+    return found
+
+
+def make_room(folder: Path, key: str, most: int, seconds: float) -> bool:
+    """Whether a worker of ``key`` that has just served a build may wait in ``folder``, with
+    at most ``most`` waiting there of every key together. Where they are as many already,
+    those of other keys that have waited longest are asked to exit (:func:`shut_down`): the
+    worker of the latest build is the likeliest to serve the next one, and workers of an
+    environment nobody builds in any more (another ``MUJOCO_GL``, another virtual
+    environment) would otherwise hold every place for their whole wait. Workers of ``key``
+    are never asked: the next build of that key may use them as well as this one."""
+    for _ in range(most + 1):  # each turn ends a worker, or finds one gone meanwhile
+        waiting = _waiting(folder)
+        if len(waiting) < most:
+            return True
+        others = [worker for worker in waiting if worker.key != key]
+        if not others:
+            return False
+        oldest = min(others, key=lambda worker: (worker.since_ns, worker.path.name))
+        shut_down(oldest.path, folder, seconds)
+    return False
 
 
 def _listening(path: Path) -> bool:

@@ -283,7 +283,7 @@ def _serve_resident(connection: socket.socket, limits: _Limits) -> None:
     """Serve the build on ``connection``, then wait up to ``limits.seconds`` for the next one
     on a socket in ``limits.folder``, again and again; return when none came in time, when
     the folder is gone, when the build asked it to stop or when it cannot serve a build."""
-    from mjcfbuild.engine.resident import resident_pids
+    from mjcfbuild.engine.resident import answer_seconds, make_room
 
     between = _Between()
     idle: IdleWork = []
@@ -297,7 +297,7 @@ def _serve_resident(connection: socket.socket, limits: _Limits) -> None:
             _code.note()  # what this build imported, as it is now
         drop_mesh_work(idle)  # processing a mesh after the build let go could miss its rewrite
         # Every waiting worker of this user counts, of whatever key: one cap per user.
-        if len(resident_pids(limits.folder)) >= limits.most:
+        if not make_room(limits.folder, limits.key, limits.most, answer_seconds(os.environ)):
             return
         idle.insert(0, _give_back_memory)  # once listening: the next build may come at once
         path = limits.folder / f"{limits.key}-{os.getpid()}.sock"

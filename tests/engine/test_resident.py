@@ -574,7 +574,7 @@ def test_workers_notice_their_folder_is_gone_and_exit(residents, tmp_path):
     _wait_for(lambda: _gone(orphan))
 
 
-def test_junk_files_do_not_use_up_the_cap_and_the_cap_counts_every_key(
+def test_junk_files_do_not_use_up_the_cap_which_counts_every_key_and_keeps_the_latest(
     residents, tmp_path, monkeypatch
 ):
     arm = copy_example("arm", tmp_path)
@@ -593,10 +593,14 @@ def test_junk_files_do_not_use_up_the_cap_and_the_cap_counts_every_key(
     build()  # served by the first, which waits again: junk counts for nothing
     assert _waiting(residents, 1) == [first]
     build(OMP_NUM_THREADS="2")  # another key: a worker of its own, which waits too
-    assert len(_waiting(residents, 2)) == 2
+    [second] = set(_waiting(residents, 2)) - {first}
     build(OMP_NUM_THREADS="3")  # a third key: one cap for all of this user's workers
-    time.sleep(1.0)  # the third counts the others before it would listen: it leaves
-    assert len(resident.resident_pids(residents)) == 2
+    # The third's worker takes the place of the one that has waited longest: the first,
+    # whose environment the user has not built in since.
+    _wait_for(lambda: _gone(first))
+    [third] = set(_waiting(residents, 2)) - {second}
+    build(OMP_NUM_THREADS="3")  # the latest key's build finds its worker waiting
+    assert set(_waiting(residents, 2)) == {second, third}
 
 
 def test_workers_of_an_older_version_of_the_same_installation_end(residents, tmp_path):
