@@ -271,10 +271,15 @@ def worker_key(environ: dict[str, str]) -> str:
     packages), the last 8 the variables read at start. Edits of modules a worker imported
     since are found by the worker itself (mjcfbuild.engine.worker_main)."""
     package = Path(__file__).resolve().parents[1]
-    install = [sys.executable, str(package)]
+    # The interpreter itself and the environment it runs in: `mjcfbuild` runs a virtual
+    # environment's python3, `python -m mjcfbuild` its python, links to the same program.
+    install = [os.path.realpath(sys.executable), sys.prefix, str(package)]
     code = [sys.version, *_code_fingerprint(package)]
     here = os.getcwd()
-    for entry in sys.path:  # installing or removing a package changes its folder's mtime
+    # The first entry is the running script's folder (a console script's bin/, the folder
+    # `python -m` runs in), not one a worker imports from, unless Python was told not to add it.
+    entries = sys.path if sys.flags.safe_path else sys.path[1:]
+    for entry in entries:  # installing or removing a package changes its folder's mtime
         if entry in ("", ".", here):
             continue  # the folder `python -m` runs in: any file made there would change it
         with contextlib.suppress(OSError):

@@ -99,6 +99,30 @@ def test_the_key_follows_start_variables_only():
     assert resident.worker_key({**base, "MALLOC_TRIM_THRESHOLD_": "0"}) != key
 
 
+def test_the_key_is_the_same_however_the_command_is_started(tmp_path):
+    """`mjcfbuild` (a console script: its bin/ first on sys.path, run by python3) and
+    `python -m mjcfbuild` (the folder it runs in first) must find the same workers."""
+    script = tmp_path / "bin" / "key.py"
+    script.parent.mkdir()
+    printing = "import os\nfrom mjcfbuild.engine import resident\n"
+    printing += "print(resident.worker_key({'MUJOCO_GL': 'egl'}))\n"
+    script.write_text(printing)
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+
+    def key(*command: str) -> str:
+        done = subprocess.run(command, capture_output=True, text=True, env=env, cwd=tmp_path)
+        assert done.returncode == 0, done.stderr
+        return done.stdout.strip()
+
+    keys = {key(sys.executable, str(script)), key(sys.executable, "-c", printing)}
+    (script.parent / "new-console-script").write_text("")  # a package installed a script
+    keys.add(key(sys.executable, str(script)))
+    other = Path(sys.executable).with_name("python" if sys.executable[-1] == "3" else "python3")
+    if other.exists() and os.path.realpath(other) == os.path.realpath(sys.executable):
+        keys.add(key(str(other), str(script)))
+    assert len(keys) == 1, keys
+
+
 def test_a_worker_killed_while_it_waits_is_replaced(residents, tmp_path):
     arm = copy_example("arm", tmp_path)
     assert run_cli("build", "-q", "--no-check", "-j", "1", cwd=arm).code == EXIT_OK
