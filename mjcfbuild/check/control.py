@@ -124,9 +124,24 @@ def _hold_and_stand(
     """The hold (fixed base) and stand (floating base) checks from home, into ``report``."""
     if home >= 0:
         with simulating("holding home's ctrl for 1 s"):
-            deviation, joint, tilt = hold_deviation(model, home, passive)
+            measure = hold_deviation(model, home, passive)
+        deviation, joint = measure.deviation, measure.joint
         failed = not floating and deviation > hold_tolerance
-        report.add(hold=Hold(deviation, joint, floating, tilt if floating else None, failed))
+        # Joints asked to have no actuator fail nothing, but an arm whose joints sag from
+        # home does not hold it: the verdict says so (CheckResults.caveats).
+        sags = not floating and measure.passive_deviation > hold_tolerance
+        hold = Hold(
+            deviation,
+            joint,
+            floating,
+            measure.tilt if floating else None,
+            failed,
+            passive=measure.passive_count,
+            passive_deviation=measure.passive_deviation,
+            passive_joint=measure.passive_joint,
+            passive_sags=sags,
+        )
+        report.add(hold=hold)
         if failed:
             report.add(
                 [
@@ -200,6 +215,11 @@ def _hold_advice(model, key: int, joint: str | None) -> str:
             f"'{joint}' is driven by a velocity servo, which holds a speed, not a position: "
             "where it must hold a pose, make it a position servo with a rule (actuators: "
             f"{{rules: [{{joints: [{joint}], type: position}}]}})"
+        )
+    elif f"joint '{joint}' has no actuator" in actuation_problems(model, set()):
+        return (
+            f"'{joint}' has no actuator, so nothing holds it: drive it with one (a position "
+            "servo holds a pose), or leave it passive where it is meant to move freely"
         )
     else:
         stiffen = "stiffen its actuator (actuators.frequency, or kp in a rule)"
@@ -389,30 +409,72 @@ def floor_gap(model, key: int) -> float | None:
     return lowest.height - floor_height(model)
 
 
-def hold_deviation(model, key: int, passive: set[str]) -> tuple[float, str | None, float]:
-    """Largest distance of an actuated hinge or slide joint from home over 1 s of home ctrl,
-    its joint, and how far a floating base tilted by the end (rad; a robot that does not stand
-    in its home pose falls over)."""
+@dataclass
+class HoldMeasure:
+    """What 1 s of home's ctrl did: the largest distance from home of a hinge or slide joint
+    an actuator holds and its joint, the same of the joints asked to be passive (no
+    actuator), how many of those there are, and how far a floating base tilted by the end
+    (rad; a robot that does not stand in its home pose falls over)."""
+
+    deviation: float
+    joint: str | None
+    passive_deviation: float
+    passive_joint: str | None
+    passive_count: int
+    tilt: float
+
+
+def hold_deviation(model, key: int, passive: set[str]) -> HoldMeasure:
+    """Hold home's ctrl for 1 s from keyframe ``key``: how far the joints moved."""
     import mujoco
-    import numpy as np
 
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, key)
     home = data.qpos.copy()
-    watched = watched_joints(model, passive)
-    addresses = np.array([model.jnt_qposadr[j] for j in watched], dtype=int)
-    worst, worst_joint = 0.0, None
-    steps = round(TEST_SECONDS / model.opt.timestep)
-    for _ in range(steps):
+    held = _Farthest(watched_joints(model, passive))
+    unheld = _Farthest([j for j in watched_joints(model, set()) if j not in held.joints])
+    for _ in range(round(TEST_SECONDS / model.opt.timestep)):
         mujoco.mj_step(model, data)
-        if not len(addresses):
-            continue
-        deviation = np.abs(data.qpos[addresses] - home[addresses])
+        held.note(model, data.qpos, home)
+        unheld.note(model, data.qpos, home)
+    return HoldMeasure(
+        held.distance,
+        held.name(model),
+        unheld.distance,
+        unheld.name(model),
+        len(unheld.joints),
+        base_tilt(model, data),
+    )
+
+
+class _Farthest:
+    """The farthest any of ``joints`` (hinge and slide joint ids) got from home."""
+
+    def __init__(self, joints: list[int]) -> None:
+        self.joints = joints
+        self.distance = 0.0
+        self.joint: int | None = None
+
+    def note(self, model, qpos, home) -> None:
+        """Take the joints' positions ``qpos`` into account."""
+        import numpy as np
+
+        if not self.joints:
+            return
+        addresses = model.jnt_qposadr[self.joints]
+        deviation = np.abs(qpos[addresses] - home[addresses])
         index = int(np.argmax(deviation))
-        if deviation[index] > worst:
-            worst = float(deviation[index])
-            worst_joint = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, watched[index])
-    return worst, worst_joint, base_tilt(model, data)
+        if deviation[index] > self.distance:
+            self.distance = float(deviation[index])
+            self.joint = self.joints[index]
+
+    def name(self, model) -> str | None:
+        """The farthest joint's name (None where none moved)."""
+        import mujoco
+
+        if self.joint is None:
+            return None
+        return mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, self.joint)
 
 
 @dataclass

@@ -32,6 +32,11 @@ R = TypeVar("R")
 CANNOT_STAND = "the robot cannot stand without a controller"
 
 
+def plural(count: int, noun: str) -> str:
+    """``count`` and ``noun``, with an s where it is not one."""
+    return f"{count} {noun}{'' if count == 1 else 's'}"
+
+
 def to_plain(value: Any) -> Any:
     """``value`` as check.json holds it: records as dicts, lists and dicts of them likewise."""
     if is_dataclass(value) and not isinstance(value, type):
@@ -171,6 +176,19 @@ class Hold:
     floating: bool = False
     base_tilt: float | None = None
     failed: bool = False  # a fixed base moved past check.hold_tolerance
+    passive: int = 0  # hinge and slide joints asked to have no actuator
+    passive_deviation: float = 0.0  # the largest distance from home of one of them
+    passive_joint: str | None = None
+    passive_sags: bool = False  # of a fixed base, past check.hold_tolerance: it holds no pose
+
+    def passive_words(self) -> str:
+        """How the joints without an actuator moved, '' where there are none."""
+        if not self.passive:
+            return ""
+        count = f"{self.passive} joint{'s' if self.passive > 1 else ''} without an actuator"
+        if not self.passive_joint:
+            return f"{count} did not move"
+        return f"{count} moved up to {self.passive_deviation:.3g} ({self.passive_joint})"
 
 
 @dataclass(frozen=True)
@@ -459,7 +477,7 @@ class CheckResults:
                 "STOPPED by a MuJoCo error"
                 if sim.stopped
                 else f"{'finite' if sim.finite else 'NOT FINITE'}, "
-                f"{len(sim.warnings)} MuJoCo warnings"
+                f"{plural(len(sim.warnings), 'MuJoCo warning')}"
             )
             failed = bool(sim.stopped or not sim.finite or sim.warnings)
             add(f"{sim.steps} zero-control steps", result, failed)
@@ -473,13 +491,13 @@ class CheckResults:
                 kin.failed,
             )
         if self.joints:
-            add("joints", f"{len(self.joints.problems)} problems", bool(self.joints.problems))
+            add("joints", plural(len(self.joints.problems), "problem"), bool(self.joints.problems))
         if self.masses:
             masses = self.masses
             add(
                 "masses",
                 f"{masses.model_total:.6g} kg (URDF {masses.urdf_total:.6g} kg), "
-                f"{len(masses.problems)} problems",
+                f"{plural(len(masses.problems), 'problem')}",
                 bool(masses.problems),
             )
         if self.resting_contacts:
@@ -488,16 +506,22 @@ class CheckResults:
         if self.actuation is not None:
             actuation = self.actuation
             problems = len(actuation.problems)
-            result = f"{actuation.actuators} actuators, {problems} problems"
+            result = f"{plural(actuation.actuators, 'actuator')}, {plural(problems, 'problem')}"
             if problems and not actuation.required:
                 result += " (not required of a model mjcfbuild did not build)"
             add("every moving joint driven", result, bool(problems) and actuation.required)
         if self.floor is not None and self.floor.gap is not None:
             add("on the floor at home", f"gap {self.floor.gap * 1000:.2g} mm")
         if self.hold:
-            joint = f" ({self.hold.joint})" if self.hold.joint else ""
-            deviation = f"largest deviation {self.hold.max_deviation:.3g}{joint}"
-            add("hold home 1 s", deviation, self.hold.failed)
+            hold = self.hold
+            joint = f" ({hold.joint})" if hold.joint else ""
+            deviation = (
+                f"largest deviation {hold.max_deviation:.3g}{joint}"
+                if hold.joint or not hold.passive
+                else "no joint has an actuator"
+            )
+            passive = hold.passive_words()
+            add("hold home 1 s", f"{deviation}; {passive}" if passive else deviation, hold.failed)
         stand = self.stand
         if stand and stand.fell_without_controller:
             add("stand 5 s", f"FELL: needs a controller ({stand.fell_without_controller})")
@@ -516,7 +540,7 @@ class CheckResults:
             add(
                 "1 s pseudorandom control",
                 f"{'finite' if test.finite else 'NOT FINITE'}, "
-                f"{len(test.warnings)} MuJoCo warnings",
+                f"{plural(len(test.warnings), 'MuJoCo warning')}",
                 bool(not test.finite or test.warnings),
             )
         fastest = self.speeds.fastest if self.speeds else None
@@ -526,14 +550,15 @@ class CheckResults:
             found = self.plausibility
             add(
                 "plausibility",
-                f"{len(found.failures)} failures, {len(found.warnings)} warnings",
+                f"{plural(len(found.failures), 'failure')}, "
+                f"{plural(len(found.warnings), 'warning')}",
                 bool(found.failures),
             )
         for prefix, part in sorted((self.parts or {}).items()):
             where = f"MJCF part {prefix}"
             add(
                 where,
-                f"max {part.max_position_error:.2g} m, {len(part.problems)} problems",
+                f"max {part.max_position_error:.2g} m, {plural(len(part.problems), 'problem')}",
                 any(failure.startswith(f"{where} (") for failure in self.failures),
             )
         if self.mujoco_ros2_control:
@@ -572,7 +597,13 @@ class CheckResults:
         if not self.passes:
             return f"{len(self.failures)} check(s) failed"
         caveats = self.caveats()
-        return f"checks pass, but {'; '.join(caveats)}" if caveats else "check passed"
+        if caveats:
+            return f"checks pass, but {'; '.join(caveats)}"
+        warnings = self.warnings()  # the caveats hold the standing note: these are others
+        if warnings:
+            count = f"{len(warnings)} warning{'s' if len(warnings) > 1 else ''}"
+            return f"checks pass with {count}: {warnings[0]}"
+        return "check passed"
 
     def caveats(self, escape: Callable[[str], str] = str) -> list[str]:
         """What a passing check did not prove, for its verdict (``escape`` for Markdown):
@@ -590,6 +621,14 @@ class CheckResults:
             )
         if self.home is False:
             found.append("the hold and stand tests were not run: the model has no home keyframe")
+        hold = self.hold
+        if hold is not None and hold.passive_sags:
+            found.append(
+                f"it does not hold home: {plural(hold.passive, 'joint')} without an actuator "
+                f"(as robot.yaml's actuators ask) {'move' if hold.passive > 1 else 'moves'} "
+                "from it, "
+                f"'{escape(hold.passive_joint or '')}' by {hold.passive_deviation:.3g} in 1 s"
+            )
         standing = self.standing_note(escape)
         if standing:
             found.append(standing)
@@ -632,9 +671,10 @@ class CheckResults:
             tilted = (
                 f"; the base tilted {hold.base_tilt:.2g} rad" if hold.base_tilt is not None else ""
             )
+            passive = f"; {md(hold.passive_words())}" if hold.passive else ""
             rows.append(
                 f"| hold home's ctrl for 1 s | largest deviation {hold.max_deviation:.3g}{where}"
-                f"{tilted} |"
+                f"{tilted}{passive} |"
             )
         stand = self.stand
         if stand and stand.fell_without_controller:

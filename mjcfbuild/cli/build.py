@@ -175,7 +175,7 @@ def report_nothing_to_do(
         )
         if "check_results" in summary:  # as the full build prints it
             results = summary["check_results"]
-            print(check_line(Path(results)) if results else NOT_CHECKED)
+            print(check_line(Path(results), count) if results else NOT_CHECKED)
     return True
 
 
@@ -271,33 +271,39 @@ def execute(
             slowest = ", ".join(f"{title} {seconds:.2f} s" for title, seconds in result.slowest)
             print(f"  slowest: {slowest}")
         if not result.errors:
-            print(_check_line(ctx))
+            print(_check_line(ctx, len(result.warnings)))
     return result.errors[0].exit_code if result.errors else EXIT_OK
 
 
-def _check_line(ctx) -> str:
+def _check_line(ctx, warnings: int) -> str:
     """The check's verdict under a build's summary, as ``mjcfbuild check`` gives it, or that
     the build did not check."""
     from mjcfbuild.outputs import CHECK_RESULTS
 
     if not ctx.run_check:
         return NOT_CHECKED
-    return check_line(ctx.state(CHECK_RESULTS))
+    return check_line(ctx.state(CHECK_RESULTS), warnings)
 
 
 NOT_CHECKED = "  check: not run (--no-check); `mjcfbuild check` runs it"
 
 
-def check_line(results: Path) -> str:
-    """The line under a build's summary for the check results in ``results`` (check.json)."""
+def check_line(results: Path, warnings: int = 0) -> str:
+    """The line under a build's summary for the check results in ``results`` (check.json),
+    with the build's ``warnings`` (as many as its summary counts) where the checks found none
+    to say: the report's verdict counts both."""
     import json
 
     try:
         verdict = json.loads(results.read_bytes())["verdict"]
     except (OSError, ValueError, KeyError, TypeError):
         return "  check: no results (`mjcfbuild check` runs it)"
-    if verdict == "check passed":
-        verdict = "all checks pass"
+    if verdict == "check passed" or verdict.startswith("checks pass with "):
+        verdict = (
+            f"checks pass with the {warnings} warning{'s' if warnings > 1 else ''} above"
+            if warnings
+            else "all checks pass"
+        )
     return f"  check: {verdict} (each check: `mjcfbuild check`)"
 
 

@@ -107,11 +107,65 @@ def geom_points(model, data, geom: int):
 
 def geom_support_points(model, data, geom: int, tolerance: float) -> list:
     """The points of ``geom`` within ``tolerance`` of the floor (z = 0), its lowest included:
-    where it can push on the floor."""
-    points = geom_points(model, data, geom)
+    where it can push on the floor.
+
+    A curved surface touches the floor where it is lowest, not over the band of it that is
+    within ``tolerance``: a sphere or an ellipsoid at one point, a capsule at the lowest
+    point of each end (one, or a line lying down), a cylinder at its rims' lowest points
+    unless a whole rim is that close (standing on a cap: the cap). Flat faces (boxes, mesh
+    soles) keep every point that close: a sole tilted by a hair still stands on its area."""
+    import mujoco
+
     lowest = geom_lowest_points_of(model, data, geom)
-    found = [] if points is None else [p for p in points if p[2] <= tolerance]
+    kind = mujoco.mjtGeom(model.geom_type[geom])
+    if kind in (mujoco.mjtGeom.mjGEOM_SPHERE, mujoco.mjtGeom.mjGEOM_ELLIPSOID):
+        found = []
+    elif kind == mujoco.mjtGeom.mjGEOM_CAPSULE:
+        found = [p for p in _capsule_ends(model, data, geom) if p[2] <= tolerance]
+    elif kind == mujoco.mjtGeom.mjGEOM_CYLINDER:
+        found = _rim_support(model, data, geom, tolerance)
+    else:
+        points = geom_points(model, data, geom)
+        found = [] if points is None else [p for p in points if p[2] <= tolerance]
     return [*found, *([lowest] if lowest is not None else [])]
+
+
+def _capsule_ends(model, data, geom: int) -> list:
+    """The lowest point of each of a capsule's two hemispherical ends, in world coordinates."""
+    import numpy as np
+
+    radius, half = model.geom_size[geom][:2]
+    axis = data.geom_xmat[geom].reshape(3, 3)[:, 2]
+    ends = []
+    for sign in (1.0, -1.0):
+        point = np.array(data.geom_xpos[geom] + sign * half * axis, dtype=float)
+        point[2] -= radius
+        ends.append(point)
+    return ends
+
+
+def _rim_support(model, data, geom: int, tolerance: float) -> list:
+    """A cylinder's points on the floor: each rim whole where all of it is within
+    ``tolerance`` of its lowest point (a cap flat on the floor), else the rim's lowest point
+    where that is within ``tolerance``."""
+    import numpy as np
+
+    points = geom_points(model, data, geom)
+    if points is None:
+        return []
+    found = []
+    for rim in (points[:RIM_POINTS], points[RIM_POINTS : 2 * RIM_POINTS]):
+        low = float(rim[:, 2].min())
+        if low > tolerance:
+            continue
+        if float(rim[:, 2].max()) - low <= tolerance:
+            found += [p for p in rim if p[2] <= tolerance]
+        else:
+            found.append(rim[int(np.argmin(rim[:, 2]))])
+    return found
+
+
+RIM_POINTS = 48  # points on each circle of a primitive (_local_points)
 
 
 def _local_points(model, geom: int):
@@ -121,7 +175,7 @@ def _local_points(model, geom: int):
 
     kind = mujoco.mjtGeom(model.geom_type[geom])  # an enum: `in` needs one
     size = model.geom_size[geom]
-    circle = np.linspace(0, 2 * math.pi, 48, endpoint=False)
+    circle = np.linspace(0, 2 * math.pi, RIM_POINTS, endpoint=False)
     ring = np.stack([np.cos(circle), np.sin(circle), np.zeros_like(circle)], axis=1)
     if kind == mujoco.mjtGeom.mjGEOM_MESH:
         mesh = model.geom_dataid[geom]

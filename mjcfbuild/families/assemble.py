@@ -183,8 +183,9 @@ FAMILY = Family(
     # 12: the Gazebo sensors' MJCF counterparts; 13: the products' binary copies; 14: a raw
     # timestep a build cannot simulate with refused; 15: reversed ranges in the inputs refused;
     # 16: an inertia repair names the link's file and line; 17: an underactuated mechanism's
-    # read-only joints' reductions are no gear ratios, one warning per mechanism
-    format=17,
+    # read-only joints' reductions are no gear ratios, one warning per mechanism; 18: curved
+    # feet touch the floor at their lowest points (a stance on two spheres is a line)
+    format=18,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,
     compiles_model=True,

@@ -51,7 +51,7 @@ def test_any_urdf_against_a_hand_written_mjcf(tmp_path):
         "model has no home keyframe"
     )
     driven = next(line for line in lines if "every moving joint driven" in line)
-    assert driven.endswith("1 problems (not required of a model mjcfbuild did not build)")
+    assert driven.endswith("1 problem (not required of a model mjcfbuild did not build)")
     write(tmp_path / "driven.xml", MJCF.replace("</worldbody>", DRIVEN))
     result = run_cli("check", "--urdf", "p.urdf", "--mjcf", "driven.xml", cwd=tmp_path)
     assert result.code == EXIT_OK, result.stdout + result.stderr

@@ -97,6 +97,37 @@ def test_hold_advice_fits_what_drives_the_joint(actuator, advice):
         assert "stiffen" not in held[0]
 
 
+def test_a_joint_without_an_actuator_is_told_to_get_one_not_to_stiffen_it():
+    """A hand-written model whose sagging joint has no actuator at all."""
+    xml = HELD.format(actuator="").replace(' ctrl="0"', "")
+    report = check_control(mujoco.MjModel.from_xml_string(xml), set(), 0.05, strict=False)
+    [held] = [f for f in report.failures if f.startswith("holding home's ctrl")]
+    assert "'swing' has no actuator, so nothing holds it: drive it with one" in held
+    assert "stiffen" not in held
+
+
+def test_joints_asked_to_be_passive_that_sag_fail_nothing_but_the_verdict_says_so():
+    """robot.yaml's actuators: none on an arm: no failure (it was asked for), but the verdict
+    does not say "check passed" over an arm that falls from home."""
+    xml = HELD.format(actuator="").replace(' ctrl="0"', "")
+    report = check_control(mujoco.MjModel.from_xml_string(xml), {"swing"}, 0.05, strict=True)
+    results = report.results.add(loads=True)
+    assert results.passes, results.failures
+    assert results.hold is not None and results.hold.passive_sags
+    hold = dict(results.console_lines())["hold home 1 s"]
+    assert hold.startswith("no joint has an actuator; 1 joint without an actuator moved up to ")
+    assert hold.endswith(" (swing)")
+    verdict = results.console_verdict()
+    assert verdict.startswith(
+        "checks pass, but it does not hold home: 1 joint without an actuator (as robot.yaml's "
+        "actuators ask) moves from it, 'swing' by "
+    )
+    # Held still (a stiff spring at home), the same passive joint is no caveat.
+    stiff = xml.replace('damping="0.01"', 'damping="0.01" stiffness="1000"')
+    report = check_control(mujoco.MjModel.from_xml_string(stiff), {"swing"}, 0.05, strict=True)
+    assert report.results.add(loads=True).console_verdict() == "check passed"
+
+
 @pytest.mark.parametrize(
     ("key", "actuator", "advice"),
     [

@@ -12,6 +12,7 @@ from mjcfbuild.check.results import (
     FastestJoint,
     FloorGap,
     Hold,
+    PlausibilityResults,
     Simulation,
     Speeds,
     Stand,
@@ -113,6 +114,28 @@ def test_the_standing_sentence_has_one_owner():
         "the model holds its joints, not its balance"
     ]
     assert CheckResults(loads=True).standing_note() == "" and CheckResults().warnings() == []
+
+
+def test_a_passing_check_with_warnings_says_so_on_the_console_and_under_a_build(tmp_path):
+    """The report's verdict counts warnings ("checks pass with 1 warning"): the console's and
+    the build's must not say "check passed" / "all checks pass" beside it."""
+    from mjcfbuild.cli.build import check_line
+
+    warned = CheckResults(
+        loads=True,
+        plausibility=PlausibilityResults(bodies=3, warnings=["body 'a': a wrong origin"]),
+    )
+    assert warned.passes
+    assert warned.console_verdict() == "checks pass with 1 warning: body 'a': a wrong origin"
+    assert dict(warned.console_lines())["plausibility"] == "0 failures, 1 warning"
+    results = write(tmp_path / "check.json", warned.to_json().decode())
+    assert check_line(results, 1) == (
+        "  check: checks pass with the 1 warning above (each check: `mjcfbuild check`)"
+    )
+    # Clean checks under a build that warned of something else (a URDF effort of 0)
+    clean = write(tmp_path / "clean.json", CheckResults(loads=True).to_json().decode())
+    assert check_line(clean, 2).startswith("  check: checks pass with the 2 warnings above")
+    assert check_line(clean, 0).startswith("  check: all checks pass")
 
 
 def test_the_stand_verdict_in_a_word():
