@@ -42,7 +42,7 @@ EXAMPLES: dict[str, str] = {
 QUIET: dict[str, str] = {
     "build": "print errors only: no progress, warnings or summary",
     "convert": "print errors only: no progress, warnings or summary",
-    "clean": "print errors only, not what was removed",
+    "clean": "print errors only, not what was removed (--dry-run still lists what it would remove)",
     "diff": "print errors and the answer only: no building lines, warnings or page line",
     "export-urdf": "print errors only: no warnings or summary",
     "watch": "print errors only: no progress, warnings, summaries or what changed",
@@ -57,11 +57,27 @@ class Parser(argparse.ArgumentParser):
     """An argument parser whose errors are one line, with a suggestion for a misspelling."""
 
     commands: dict[str, argparse.ArgumentParser]
+    words: list[str]  # what it was last given to parse
+    unrecognized: list[str]  # the words of those it did not take (a command's included)
+
+    def parse_known_args(  # type: ignore[override]
+        self, args: Sequence[str] | None = None, namespace: argparse.Namespace | None = None
+    ) -> tuple[argparse.Namespace, list[str]]:
+        """Parse as argparse does, remembering the words and those left over."""
+        self.words = list(sys.argv[1:] if args is None else args)
+        parsed, unrecognized = super().parse_known_args(self.words, namespace)
+        self.unrecognized = list(unrecognized)
+        return parsed, unrecognized
 
     def error(self, message: str) -> NoReturn:
-        """Print ``message`` as one line with what to do, and exit with the usage code."""
-        from mjcfbuild.cli.suggest import usage_error_line
+        """Print ``message`` as one line with what to do, and exit with the usage code; an
+        option it does not know comes first, with the closest it does (a required option
+        misspelled, or a misspelled option whose value was taken for a positional argument)."""
+        from mjcfbuild.cli.suggest import unknown_arguments_line, unknown_option, usage_error_line
 
+        word = unknown_option(self, getattr(self, "words", []))
+        if word is not None:
+            self.exit(EXIT_USAGE, unknown_arguments_line(self, None, [word]) + "\n")
         self.exit(EXIT_USAGE, usage_error_line(self.prog, message) + "\n")
 
 

@@ -80,6 +80,7 @@ def add_parser(commands) -> None:
 def run(args: argparse.Namespace) -> int:
     """Dispatch to one of the three modes."""
     if args.urdf or args.mjcf:
+        _refuse_with_pair(args)
         if not (args.urdf and args.mjcf):
             raise UsageError("--urdf and --mjcf go together")
         return _pair(args)
@@ -95,6 +96,21 @@ def run(args: argparse.Namespace) -> int:
             result = error.exit_code
         code = code or result
     return code
+
+
+def _refuse_with_pair(args: argparse.Namespace) -> None:
+    """Refuse a manifest, ``--up-to-date`` or ``--warp`` beside ``--urdf``/``--mjcf``, which
+    check two files without a manifest (each was ignored)."""
+    manifests = [*(args.manifest or []), *(args.manifest_flag or [])]
+    others = [f"a manifest ({manifests[0]})"] if manifests else []
+    others += ["--up-to-date"] if args.up_to_date else []
+    others += ["--warp"] if args.warp else []
+    if others:
+        pair = "--urdf/--mjcf" if args.urdf and args.mjcf else "--urdf" if args.urdf else "--mjcf"
+        raise UsageError(
+            f"{', '.join(others)} and {pair} cannot go together",
+            hint="--urdf with --mjcf checks those two files, without a manifest",
+        )
 
 
 def _options(args, settings=None):

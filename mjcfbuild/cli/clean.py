@@ -71,11 +71,11 @@ def run(args: argparse.Namespace) -> int:
     # A file the user edited since the build wrote it is theirs now.
     edited = [out / name for name in present if written.edited(out, name, names[name])]
     files = [out / name for name in present if out / name not in edited]
-    if args.dry_run:
+    if args.dry_run:  # the list is the answer asked for: -q leaves out the rest
+        print("mjcfbuild: would remove:")
+        for path in [*files, ctx.state_dir]:
+            print(f"  {ctx.label(path)}{'/' if path == ctx.state_dir else ''}")
         if not args.quiet:
-            print("mjcfbuild: would remove:")
-            for path in [*files, ctx.state_dir]:
-                print(f"  {ctx.label(path)}{'/' if path == ctx.state_dir else ''}")
             _say_edited(ctx, edited)
             _say_kept(ctx, {*files, *edited})
         return EXIT_OK
@@ -98,7 +98,9 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _say(args: argparse.Namespace, text: str) -> None:
-    if not args.quiet:
+    """Print ``text``, unless -q asks for quiet: what was removed (not what would be, with
+    --dry-run, which is the answer asked for)."""
+    if not args.quiet or args.dry_run:
         print(f"mjcfbuild: {text}")
 
 

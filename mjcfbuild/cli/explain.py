@@ -3,8 +3,15 @@
 from __future__ import annotations
 
 import argparse
+import os
 
-from mjcfbuild.cli import chosen_manifest, load_context, looks_like_manifest, manifest_argument
+from mjcfbuild.cli import (
+    DEFAULT_MANIFEST,
+    chosen_manifest,
+    load_context,
+    looks_like_manifest,
+    manifest_argument,
+)
 from mjcfbuild.errors import EXIT_OK, UsageError
 
 
@@ -33,7 +40,7 @@ def run(args: argparse.Namespace) -> int:
     from mjcfbuild.engine.status import build_statuses
 
     words = [word for word in (args.first, args.second) if word is not None]
-    manifest, args.task = _manifest_and_task(words)
+    manifest, args.task = _manifest_and_task(words, named=args.manifest_flag is not None)
     ctx = load_context(chosen_manifest(args, manifest), args)
     statuses, complete = build_statuses(ctx)
     if args.task:
@@ -59,10 +66,19 @@ def run(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-def _manifest_and_task(words: list[str]) -> tuple[str | None, str | None]:
-    """Sort ``explain``'s positional words into the manifest and the task name."""
+def _manifest_and_task(words: list[str], named: bool = False) -> tuple[str | None, str | None]:
+    """Sort ``explain``'s positional words into the manifest and the task name; ``named``:
+    ``-m`` names the manifest."""
     manifests = [word for word in words if looks_like_manifest(word)]
     tasks = [word for word in words if not looks_like_manifest(word)]
+    folders = [word for word in tasks if os.path.isdir(word)]
+    # A folder given for the manifest, as build, check, graph and clean are given one: the
+    # manifest (which loading refuses in the same words), unless it can be a task of the
+    # robot.yaml here (a task named like a folder: check, previews).
+    can_be_task = len(tasks) == 1 and os.path.exists(DEFAULT_MANIFEST)
+    if folders and not manifests and not named and not can_be_task:
+        manifests = folders[:1]
+        tasks.remove(folders[0])
     if len(manifests) > 1 or len(tasks) > 1:
         raise UsageError(
             f"explain takes one manifest and one task at most, not {' '.join(words)}",

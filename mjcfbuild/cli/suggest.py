@@ -59,6 +59,8 @@ def unknown_arguments_line(
     of ``mjcfbuild`` itself) closest to the first of them."""
     commands: dict[str, argparse.ArgumentParser] = getattr(parser, "commands", {})
     owner = commands.get(command or "", parser)
+    if len(words) > len(getattr(owner, "unrecognized", words)):
+        owner = parser  # the command did not leave the first: it came before the command
     word = words[0]
     hint = ""
     if word.startswith("-"):
@@ -70,6 +72,23 @@ def unknown_arguments_line(
     else:
         what = f"unexpected argument '{word}'"
     return _line(owner.prog, what + (hint or f" (see {owner.prog} --help)"))
+
+
+def unknown_option(parser: argparse.ArgumentParser, words: list[str]) -> str | None:
+    """The first of ``words`` that is a long option ``parser`` takes neither whole nor
+    abbreviated, else None; for ``mjcfbuild`` itself, among the words before the command."""
+    known = parser._option_string_actions
+    for word in words:
+        if word == "--":
+            break
+        if not word.startswith("-"):
+            if getattr(parser, "commands", None):
+                break  # the command's words are the command's
+            continue
+        name = word.split("=", 1)[0]
+        if name.startswith("--") and not any(option.startswith(name) for option in known):
+            return word
+    return None
 
 
 def _line(prog: str, text: str) -> str:

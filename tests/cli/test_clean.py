@@ -210,3 +210,17 @@ def test_the_record_drops_files_that_are_gone_and_hashes_what_was_written(arm):
     record.write_text(json.dumps({"files": files}))
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
     assert "assets/renamed_long_ago.obj" not in json.loads(record.read_text())["files"]
+
+
+def test_quiet_dry_run_still_lists_what_would_be_removed(built_arm):
+    (built_arm / "mjcf" / "NOTES.md").write_text("my notes\n")
+    listed = run_cli("clean", "-n", cwd=built_arm)
+    assert listed.code == 0, listed.stderr
+    assert "kept mjcf/NOTES.md" in listed.stdout
+    for argv in (["clean", "-n", "-q"], ["-q", "clean", "--dry-run"]):
+        quiet = run_cli(*argv, cwd=built_arm)
+        assert quiet.code == 0, quiet.stderr
+        lines = quiet.stdout.splitlines()
+        assert lines[0] == "mjcfbuild: would remove:" and "  mjcf/.mjcfbuild/" in lines
+        assert lines == [line for line in listed.stdout.splitlines() if "kept" not in line]
+    assert (built_arm / "mjcf" / "scene.xml").exists()

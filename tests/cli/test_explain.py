@@ -79,3 +79,18 @@ def test_a_misspelt_task_gets_the_closest_name(arm):
     result = run_cli("explain", "mesh:bse", cwd=arm)
     assert result.code == 2
     assert "no task 'mesh:bse'; did you mean 'mesh:base'? tasks: expand, plan" in result.stderr
+
+
+def test_a_folder_for_the_manifest_is_refused_in_the_words_of_build(arm, tmp_path):
+    (tmp_path / "some_folder").mkdir()
+    refused = run_cli("build", "some_folder", cwd=tmp_path)
+    assert refused.code == 3
+    assert refused.stderr.startswith("mjcfbuild: error: some_folder: this is a folder")
+    for argv in (["some_folder"], ["some_folder", "mesh:base"], ["mesh:base", "some_folder"]):
+        result = run_cli("explain", *argv, cwd=tmp_path)
+        assert (result.code, result.stderr) == (refused.code, refused.stderr), argv
+    # Beside a robot.yaml, a folder named like a task is the task.
+    (arm / "plan").mkdir()
+    task = run_cli("explain", "plan", cwd=arm)
+    assert task.code == 0, task.stderr
+    assert task.stdout.startswith("plan: would run")

@@ -1,0 +1,31 @@
+"""``mjcfbuild check`` refuses options that cannot go together (its other tests are in
+tests/check/test_check_command.py)."""
+
+from __future__ import annotations
+
+import pytest
+
+from mjcfbuild.errors import EXIT_USAGE
+from tests.conftest import run_cli, simple_manifest, two_link_urdf, write
+
+PAIR = ["--urdf", "robot.urdf", "--mjcf", "model.xml"]
+
+
+@pytest.mark.parametrize(
+    ("argv", "refused"),
+    [
+        (["robot.yaml", *PAIR], "a manifest (robot.yaml) and --urdf/--mjcf"),
+        (["-m", "robot.yaml", *PAIR], "a manifest (robot.yaml) and --urdf/--mjcf"),
+        (["--up-to-date", *PAIR], "--up-to-date and --urdf/--mjcf"),
+        (["--warp", "--urdf", "robot.urdf"], "--warp and --urdf"),
+    ],
+)
+def test_a_manifest_or_its_options_beside_urdf_and_mjcf_are_refused(argv, refused, tmp_path):
+    # Files that are there: each combination checked the pair and ignored the rest.
+    write(tmp_path / "robot.urdf", two_link_urdf())
+    simple_manifest(tmp_path)
+    write(tmp_path / "model.xml", "<mujoco/>\n")
+    result = run_cli("check", *argv, cwd=tmp_path)
+    assert result.code == EXIT_USAGE
+    assert result.stderr.startswith(f"mjcfbuild: error: {refused} cannot go together (")
+    assert result.stderr.count("\n") == 1 and result.stdout == ""
