@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -109,17 +110,18 @@ def _resolve_existing(
         raise InputError(exc.message, file=robot.source, line=shape.line, hint=exc.hint) from None
     problem = unreadable_file(path)
     match = case_match(path) if problem and problem.startswith("not found") else None
+    # Where the file was looked for, unless the URI already says it (a plain absolute path)
+    looked = "" if os.path.normpath(uri.strip()) == str(path) else f" (looked at {path})"
     if match is not None:
         raise InputError(
-            f"file '{uri}' not found; did you mean '{_respelt(uri, path, match)}'? "
-            f"(looked at {path})",
+            f"file '{uri}' not found; did you mean '{_respelt(uri, path, match)}'?{looked}",
             file=robot.source,
             line=shape.line,
             hint="write the name as the file is spelt: letter case matters here",
         )
     if problem:
         raise InputError(
-            f"file '{uri}' {problem} (looked at {path})",
+            f"file '{uri}' {problem}{looked}",
             file=robot.source,
             line=shape.line,
             hint="check the path and the 'packages' in robot.yaml",

@@ -206,6 +206,17 @@ def test_a_mesh_spelt_in_another_letter_case_is_named(tmp_path, written, meant):
     assert "letter case" in (error.hint or "")
 
 
+def test_a_missing_mesh_at_an_absolute_path_is_named_once(tmp_path):
+    gone = tmp_path / "nowhere" / "base.stl"
+    with pytest.raises(InputError) as info:
+        resolve_files(robot_with(str(gone)), tmp_path, PackageResolver({}, {}))
+    assert info.value.message == f"file '{gone}' not found"
+    # a relative one says where it was looked for
+    with pytest.raises(InputError) as info:
+        resolve_files(robot_with("nowhere/base.stl"), tmp_path, PackageResolver({}, {}))
+    assert info.value.message == f"file 'nowhere/base.stl' not found (looked at {gone})"
+
+
 def test_a_missing_mesh_with_no_file_of_its_name_suggests_nothing(tmp_path):
     write(tmp_path / "meshes" / "part.stl", "solid a\nendsolid a\n")
     with pytest.raises(InputError) as info:
