@@ -92,7 +92,36 @@ def _syntax_hint(exc: yaml.MarkedYAMLError) -> str | None:
         return "close the '[' opened here with ']', with ',' between its items"
     if "block sequence" in context or "block collection" in problem:
         return "a list item ('- ') must be indented like the others of its list"
+    if "undefined alias" in problem:
+        return (
+            "'*name' repeats what '&name' marks above it: mark that value, or quote this one "
+            "if it is text that starts with '*'"
+        )
     return None
+
+
+def _unclosed_bracket(text: str, mark: yaml.Mark | None) -> tuple[str, int, int] | None:
+    """The last '[' or '{' opened before ``mark`` and not closed by then, with its line and
+    column (1-based), outside quotes and comments; None where every one closes."""
+    if mark is None:
+        return None
+    opened: list[tuple[str, int, int]] = []
+    for number, line in enumerate(text.splitlines()[: mark.line + 1]):
+        end = mark.column if number == mark.line else len(line)
+        quote, previous = "", " "
+        for index, char in enumerate(line[:end]):
+            if quote:
+                quote = "" if char == quote else quote
+            elif char == "#" and previous in " \t":
+                break
+            elif char in "\"'" and previous in " \t:[{,-":
+                quote = char
+            elif char in "[{":
+                opened.append((char, number + 1, index + 1))
+            elif char in "]}" and opened:
+                opened.pop()
+            previous = char
+    return opened[-1] if opened else None
 
 
 def _unclosed_quote(text: str, before: int | None) -> tuple[int, int] | None:
@@ -136,6 +165,17 @@ def load_with_positions(text: str) -> tuple[object, Positions]:
         mark = _offending_mark(exc)
         line = mark.line + 1 if mark else None
         column = mark.column + 1 if mark else None
+        bracket = _unclosed_bracket(text, mark) if "flow node" in (exc.context or "") else None
+        if bracket is not None:
+            # A block item or key inside a '[' or '{' left open: the bracket is the mistake.
+            char, *where = bracket
+            closing = "]" if char == "[" else "}"
+            raise YamlSyntaxError(
+                f"YAML syntax error: this '{char}' is not closed before line {line}",
+                *where,
+                f"close it with '{closing}' on its line, or drop it and write the items as "
+                "'- ' lines (a list) or 'key: value' lines (a mapping) below",
+            ) from None
         opened = _unclosed_quote(text, line)
         if opened is not None:
             # The scanner read on to the next quote and failed lines later: the quote is

@@ -107,6 +107,24 @@ def test_empty_and_non_mapping_manifests():
     assert "mapping of keys" in error_of("- a\n- b\n").message
 
 
+def test_a_bracket_left_open_above_block_items_is_the_error_with_a_hint():
+    text = "name: arm\nsource: {urdf: a.urdf}\nactuators:\n  rules: [\n    - {joints: [a]}\n"
+    error = error_of(text)
+    assert (error.location.line, error.location.column) == (4, 10)
+    assert error.message == "YAML syntax error: this '[' is not closed before line 5"
+    assert error.hint is not None and error.hint.startswith("close it with ']' on its line")
+    # A bracket closed on its line, or one inside quotes, is not taken for it.
+    closed = "name: arm\nsource: {urdf: '[a.urdf'}\nhome: {a: 1}\nx: [\n  - 1\n"
+    assert error_of(closed).location.line == 4
+
+
+def test_an_undefined_alias_says_what_an_alias_is():
+    error = error_of("name: arm\nsource: *nope\n")
+    assert error.location.line == 2
+    assert "undefined alias 'nope'" in error.message
+    assert error.hint is not None and "'&name'" in error.hint
+
+
 def test_more_problems_are_counted_in_the_hint():
     error = error_of("name: arm\nsource: {urdf: a.urdf}\nfoo: 1\nbar: 2\n")
     assert error.hint == "1 more problem after this one"
