@@ -168,11 +168,12 @@ def load_with_positions(text: str) -> tuple[object, Positions]:
         bracket = _unclosed_bracket(text, mark) if "flow node" in (exc.context or "") else None
         if bracket is not None:
             # A block item or key inside a '[' or '{' left open: the bracket is the mistake.
-            char, *where = bracket
+            char, bracket_line, bracket_column = bracket
             closing = "]" if char == "[" else "}"
             raise YamlSyntaxError(
                 f"YAML syntax error: this '{char}' is not closed before line {line}",
-                *where,
+                bracket_line,
+                bracket_column,
                 f"close it with '{closing}' on its line, or drop it and write the items as "
                 "'- ' lines (a list) or 'key: value' lines (a mapping) below",
             ) from None
