@@ -26,6 +26,7 @@ def load_manifest(path: str | Path) -> Manifest:
     # callers show it relative to the current one (ManifestError.relocate).
     try:
         data = path.read_bytes()
+        _refuse_other_kinds(path, data)
         text = data.decode("utf-8")
     except FileNotFoundError:
         raise ManifestError(
@@ -48,6 +49,26 @@ def load_manifest(path: str | Path) -> Manifest:
         raise ManifestError(f"cannot read: {exc.strerror}", file=path.name) from None
     # Errors name the manifest relative to its own folder, like every other file of a build.
     return parse_manifest(text, display_name=path.name)
+
+
+def _refuse_other_kinds(path: Path, data: bytes) -> None:
+    """Refuse a file that is plainly not a manifest (a URDF, a mesh, an image...) by what it
+    is, rather than by the YAML or UTF-8 error reading it as one would give."""
+    import shlex
+
+    from mjcfbuild.sources.kind import not_a_manifest
+
+    kind = not_a_manifest(path, data)
+    if kind is None:
+        return
+    description = kind in ("a URDF", "a xacro file")
+    raise ManifestError(
+        f"this is {kind}, not a manifest",
+        file=path.name,
+        hint=f"'mjcfbuild init {shlex.quote(str(path))}' writes a robot.yaml that builds it"
+        if description
+        else "pass the path of robot.yaml",
+    )
 
 
 def parse_manifest(text: str, display_name: str = "robot.yaml") -> Manifest:

@@ -31,6 +31,16 @@ _ROOTS = {
     "COLLADA": "a COLLADA (DAE) mesh",
     "gazebo": "a Gazebo file",
 }
+# Files a user may pass by mistake, by their first bytes.
+_BINARY_KINDS = (
+    (b"\x89PNG\r\n\x1a\n", "a PNG image"),
+    (b"\xff\xd8\xff", "a JPEG image"),
+    (b"GIF8", "a GIF image"),
+    (b"%PDF-", "a PDF document"),
+    (b"PK\x03\x04", "a ZIP archive"),
+    (b"\x1f\x8b", "a gzip archive"),
+    (b"\x7fELF", "a program"),
+)
 _MESH_EXTENSIONS = {
     ".stl": "an STL mesh",
     ".obj": "an OBJ mesh",
@@ -71,6 +81,11 @@ def not_a_description(path: Path, data: bytes) -> str | None:
     if mesh is not None:
         return mesh
     head = data[:4096]
+    for magic, kind in _BINARY_KINDS:
+        if head.startswith(magic):
+            return kind
+    if b"\0" in head:
+        return "a binary file"  # its bytes may hold a '<' that is no XML element
     root = _root_tag(head)
     if root is not None:
         local = root.split(":")[-1]
@@ -123,3 +138,18 @@ def _root_tag(head: bytes) -> str | None:
         else:
             match = _ROOT.match(head, position)
             return match.group(1).decode("utf-8", "replace") if match else None
+
+
+def not_a_manifest(path: Path, data: bytes) -> str | None:
+    """What ``path`` (with content ``data``) is when it is plainly no robot.yaml: a URDF or
+    xacro file, a mesh, an image, other XML or binary data; None where it may be YAML."""
+    text = data.lstrip(b"\xef\xbb\xbf \t\r\n")
+    # Text in another encoding is a manifest saved wrongly: its reader says where.
+    binary = b"\0" in data[:4096] or any(data.startswith(magic) for magic, _ in _BINARY_KINDS)
+    xml = re.match(rb"<[?!A-Za-z_]", text) is not None  # not YAML's merge key, <<:
+    if not (binary or xml or mesh_kind(path, data) is not None):
+        return None
+    kind = not_a_description(path, data)
+    if kind is not None:
+        return kind
+    return "a xacro file" if xacro_evidence(data) is not None else "a URDF"

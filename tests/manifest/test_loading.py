@@ -137,6 +137,20 @@ def test_load_manifest_reports_missing_file(tmp_path):
     assert "mjcfbuild init" in info.value.one_line()
 
 
+def test_a_urdf_or_a_mesh_given_for_the_manifest_is_named_for_what_it_is(tmp_path):
+    urdf = tmp_path / "arm.urdf"
+    urdf.write_text('<?xml version="1.0"?>\n<robot name="arm"><link name="a"/></robot>\n')
+    with pytest.raises(ManifestError) as info:
+        load_manifest(urdf)
+    assert info.value.message == "this is a URDF, not a manifest"
+    assert info.value.hint == f"'mjcfbuild init {urdf}' writes a robot.yaml that builds it"
+    mesh = tmp_path / "base.stl"
+    mesh.write_bytes(b"\0" * 80 + (0).to_bytes(4, "little"))
+    with pytest.raises(ManifestError) as info:
+        load_manifest(mesh)
+    assert info.value.message == "this is an STL mesh, not a manifest"
+
+
 def test_load_manifest_reports_non_utf8(tmp_path):
     path = tmp_path / "robot.yaml"
     path.write_bytes(b"name: r\nsource:\n  urdf: r\xe9.urdf\n")

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from mjcfbuild.sources.kind import mesh_kind, not_a_description, xacro_evidence
+from mjcfbuild.sources.kind import mesh_kind, not_a_description, not_a_manifest, xacro_evidence
 
 NS = '<robot name="r" xmlns:xacro="http://wiki.ros.org/xacro">\n'
 
@@ -57,3 +57,23 @@ def test_other_files_are_named_for_what_they_are(tmp_path: Path):
     assert not_a_description(tmp_path / "r.urdf", b"  \n") == "an empty file"
     assert not_a_description(tmp_path / "r.urdf", b"name: robot\n") == "not XML"
     assert not_a_description(tmp_path / "r.urdf", b'<?xml version="1.0"?>\n<robot/>') is None
+
+
+def test_binary_files_are_named_not_read_for_a_root_element(tmp_path: Path):
+    # a PNG's compressed bytes hold a '<' followed by letters: no XML element
+    png = b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR<JC>\0"
+    assert not_a_description(tmp_path / "p.png", png) == "a PNG image"
+    assert not_a_description(tmp_path / "r.urdf", b"%PDF-1.7\n<</Type>>") == "a PDF document"
+    assert not_a_description(tmp_path / "r.urdf", b"\0\0<robot>") == "a binary file"
+
+
+def test_what_is_plainly_no_manifest_is_named():
+    robot = Path("robot.yaml")
+    assert not_a_manifest(robot, b'<?xml version="1.0"?>\n<robot name="r"/>') == "a URDF"
+    assert not_a_manifest(robot, NS.encode() + b"<xacro:arg name='a'/></robot>") == ("a xacro file")
+    assert not_a_manifest(robot, b"solid a\nfacet normal 0 0 1\nendsolid a\n") == "an STL mesh"
+    assert not_a_manifest(robot, b"\x89PNG\r\n\x1a\n\0") == "a PNG image"
+    assert not_a_manifest(robot, b"name: r\xe9\n") is None  # Latin-1: its reader says where
+    # YAML, even YAML that starts with a merge key, is for the manifest's reader to judge
+    assert not_a_manifest(robot, b"name: r\nsource: {urdf: r.urdf}\n") is None
+    assert not_a_manifest(robot, b"<<: *defaults\nname: r\n") is None
