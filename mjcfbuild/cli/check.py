@@ -134,9 +134,10 @@ def _options(args, settings=None):
     )
 
 
-def _print(results: CheckResults, label: str, quiet: bool = False) -> int:
+def _print(results: CheckResults, label: str, quiet: bool = False, stale: str = "") -> int:
     """One line per check with its result, then the verdict (with what the checks did not
-    prove, when they pass); the exit code. ``quiet``: the failures alone."""
+    prove, when they pass, and ``stale``: how the model is older than its inputs); the exit
+    code. ``quiet``: the failures alone."""
     if quiet:
         for failure in results.failures:
             print(f"mjcfbuild: check failed: {failure}", file=sys.stderr)
@@ -149,8 +150,27 @@ def _print(results: CheckResults, label: str, quiet: bool = False) -> int:
         print(contacts.exclude)
     for failure in results.failures:
         print(f"mjcfbuild: check failed: {failure}", file=sys.stderr)
-    print(f"mjcfbuild: {results.console_verdict()}")
+    verdict = results.console_verdict()
+    if stale:
+        verdict += f", of the model as it was built: {stale}"
+    print(f"mjcfbuild: {verdict}")
     return EXIT_OK if results.passes else EXIT_CHECK
+
+
+def _stale_since_built(ctx) -> str:
+    """How the built model is older than its inputs, in a few words ('' where it is not, or
+    where the folder has no build database to tell by: a fresh clone's committed outputs,
+    which only --up-to-date's rebuild can judge)."""
+    from mjcfbuild.engine.freshness import stale_from_database
+
+    stale = stale_from_database(ctx)
+    if not stale:
+        return ""
+    more = f" (and {len(stale) - 1} more)" if len(stale) > 1 else ""
+    return (
+        f"it is out of date ({stale[0]}{more}); `mjcfbuild build {ctx.manifest_label}` "
+        "makes it current"
+    )
 
 
 def _pair(args) -> int:
@@ -250,7 +270,7 @@ def _manifest(ctx, args) -> int:
     if not getattr(args, "quiet", False):  # as the build prints them: one line per kind
         report_warnings(results.warnings(), shown_path(folder / "report.md"), base_dir=ctx.base_dir)
     quiet = bool(getattr(args, "quiet", False))
-    code = _print(results, shown_path(ctx.robot_path), quiet)
+    code = _print(results, shown_path(ctx.robot_path), quiet, _stale_since_built(ctx))
     if not quiet:
         print(f"  report: {shown_path(folder / 'report.md')}")
         if (folder / "index.html").is_file():  # output.page: its tables are the report's

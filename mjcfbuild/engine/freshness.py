@@ -26,6 +26,14 @@ def stale_outputs(ctx: BuildContext) -> list[str]:
     return _by_rebuilding(ctx)
 
 
+def stale_from_database(ctx: BuildContext) -> list[str]:
+    """What is stale as the folder's build database tells it (one line each); empty when
+    everything is up to date, or the folder has no database (a fresh clone) to tell by."""
+    if ctx.state(DATABASE).exists() and ctx.state(PLAN).exists():
+        return _from_database(ctx)
+    return []
+
+
 def _from_database(ctx: BuildContext) -> list[str]:
     from mjcfbuild.engine.status import build_statuses
 

@@ -302,6 +302,16 @@ def test_the_console_of_a_robot_that_stands_says_passed_with_each_result(tmp_pat
     hold = next(line for line in lines if line.strip().startswith("hold home 1 s"))
     assert "largest deviation" in hold
     assert any(line.strip().startswith("joint speeds") for line in lines)
+    # An input edited since the build: the check is of the model as built, and says so.
+    xacro = arm / "urdf" / "arm.urdf.xacro"
+    xacro.write_text(xacro.read_text().replace('<mass value="2.0"/>', '<mass value="2.5"/>', 1))
+    result = run_cli("check", str(arm / "robot.yaml"))
+    assert result.code == EXIT_OK, result.stderr
+    assert result.stdout.splitlines()[-2] == (
+        "mjcfbuild: check passed, of the model as it was built: it is out of date (expand "
+        "urdf/arm.urdf.xacro: input changed: urdf/arm.urdf.xacro); `mjcfbuild build "
+        f"{arm / 'robot.yaml'}` makes it current"
+    )
 
 
 def test_a_check_that_fails_says_so_on_its_own_line(tmp_path):
