@@ -159,7 +159,8 @@ def _hold_and_stand(
             report.add(stand=standing, needs_controller=stand.needs_controller)
         elif stand.fails(hold_tolerance) and motors:
             # A torque motor's constant ctrl cannot hold a pose: no gain fixes that.
-            why = motors_need_a_controller(motors)
+            every = len(motors) == len(watched_joints(model, set()))  # none passive either
+            why = motors_need_a_controller(motors, every)
             fell = replace(standing, fell_without_controller=why)
             report.add(stand=fell, needs_controller=why)
         elif stand.fails(hold_tolerance):
@@ -182,15 +183,17 @@ def torque_motors(model, passive: set[str]) -> list[str]:
     return [name for name in names if drives.get(name) == "motor"]
 
 
-def motors_need_a_controller(motors: list[str]) -> str:
+def motors_need_a_controller(motors: list[str], every: bool = False) -> str:
     """Why a robot on torque motors falls at home, and the two ways out (the rule names every
-    motor, to be copied as it is)."""
+    motor, to be copied as it is; ``every``: they are all of its hinge and slide joints, which
+    one pattern names)."""
     shown = ", ".join(motors[:6]) + (f", ... ({len(motors)} in all)" if len(motors) > 6 else "")
+    named = '"*"' if every else ", ".join(motors)
     return (
         f"its joints are driven by torque motors ({shown}), whose constant ctrl cannot hold a "
         "pose, so it fell: it stands under a controller that closes the loop (a ros2_control "
         "controller, or mujoco_ros2_control's PIDs); for a passive stand make them position "
-        f"servos with a rule (actuators: {{rules: [{{joints: [{', '.join(motors)}], "
+        f"servos with a rule (actuators: {{rules: [{{joints: [{named}], "
         "type: position}]}) in a model not meant for mujoco_ros2_control, whose effort "
         "interfaces need the motors"
     )

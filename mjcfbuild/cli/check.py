@@ -134,12 +134,18 @@ def _options(args, settings=None):
     )
 
 
-def _print(results: CheckResults, label: str, quiet: bool = False, stale: str = "") -> int:
+def _print(
+    results: CheckResults, label: str, quiet: bool = False, stale: str = "", listed_in: str = ""
+) -> int:
     """One line per check with its result, then the verdict (with what the checks did not
     prove, when they pass, and ``stale``: how the model is older than its inputs); the exit
-    code. ``quiet``: the failures alone."""
+    code. ``quiet``: the failures alone. Failures of one kind (a joint too fast, each joint)
+    are one line, as warnings are, with where they are all listed (``listed_in``)."""
+    from mjcfbuild.warning_groups import group_warnings
+
+    failures = group_warnings(results.failures, f"all in {listed_in}" if listed_in else "")
     if quiet:
-        for failure in results.failures:
+        for failure in failures:
             print(f"mjcfbuild: check failed: {failure}", file=sys.stderr)
         return EXIT_OK if results.passes else EXIT_CHECK
     print(f"mjcfbuild check: {label}")
@@ -148,7 +154,7 @@ def _print(results: CheckResults, label: str, quiet: bool = False, stale: str = 
     contacts = results.resting_contacts
     if contacts and contacts.pairs:
         print(contacts.exclude)
-    for failure in results.failures:
+    for failure in failures:
         print(f"mjcfbuild: check failed: {failure}", file=sys.stderr)
     verdict = results.console_verdict()
     if stale:
@@ -270,7 +276,8 @@ def _manifest(ctx, args) -> int:
     if not getattr(args, "quiet", False):  # as the build prints them: one line per kind
         report_warnings(results.warnings(), shown_path(folder / "report.md"), base_dir=ctx.base_dir)
     quiet = bool(getattr(args, "quiet", False))
-    code = _print(results, shown_path(ctx.robot_path), quiet, _stale_since_built(ctx))
+    report = shown_path(folder / "report.md")
+    code = _print(results, shown_path(ctx.robot_path), quiet, _stale_since_built(ctx), report)
     if not quiet:
         print(f"  report: {shown_path(folder / 'report.md')}")
         if (folder / "index.html").is_file():  # output.page: its tables are the report's

@@ -1,5 +1,5 @@
-"""``mjcfbuild check`` refuses options that cannot go together (its other tests are in
-tests/check/test_check_command.py)."""
+"""``mjcfbuild check`` refuses options that cannot go together, and prints failures of one
+kind on one line (its other tests are in tests/check/test_check_command.py)."""
 
 from __future__ import annotations
 
@@ -29,3 +29,24 @@ def test_a_manifest_or_its_options_beside_urdf_and_mjcf_are_refused(argv, refuse
     assert result.code == EXIT_USAGE
     assert result.stderr.startswith(f"mjcfbuild: error: {refused} cannot go together (")
     assert result.stderr.count("\n") == 1 and result.stdout == ""
+
+
+def test_failures_of_one_kind_are_one_line_with_where_they_all_are(capsys):
+    from mjcfbuild.check.results import CheckResults
+    from mjcfbuild.cli.check import _print
+    from mjcfbuild.errors import EXIT_CHECK
+
+    fast = [
+        f"joint '{name}' reached {speed} rad/s under pseudorandom control, more than 50 times "
+        "its velocity limit 3 rad/s (urdf)"
+        for name, speed in (("a", 400), ("b", 500), ("c", 600), ("d", 700))
+    ]
+    results = CheckResults(loads=True, failures=["the state is not finite", *fast])
+    assert _print(results, "model.xml", listed_in="report.md") == EXIT_CHECK
+    failed = capsys.readouterr().err.splitlines()
+    assert failed == [
+        "mjcfbuild: check failed: the state is not finite",
+        "mjcfbuild: check failed: 4 × joint '…' reached … rad/s under pseudorandom control, "
+        "more than 50 times its velocity limit 3 rad/s (urdf): a, b, c, ... 1 more (all in "
+        "report.md)",
+    ]
