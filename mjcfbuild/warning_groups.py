@@ -34,11 +34,12 @@ class _Kind:
     slots: list[tuple[str, ...]] = field(default_factory=list)
 
 
-def group_warnings(warnings: list[str], more: str = "") -> list[str]:
+def group_warnings(warnings: list[str], more: str = "", fewest: int = 2) -> list[str]:
     """One line per kind of warning, in the order each kind first appears.
 
     ``more`` follows the subjects of a kind that has more than are shown (where to find them
-    all, like ``"see report/report.md"``).
+    all, like ``"see report/report.md"``). A kind with fewer than ``fewest`` warnings prints
+    each as it is (the check's failures: their figures matter while they are few).
     """
     kinds: dict[tuple[tuple[str, ...], tuple[str, ...]], _Kind] = {}
     for text in dict.fromkeys(warnings):
@@ -48,7 +49,10 @@ def group_warnings(warnings: list[str], more: str = "") -> list[str]:
         kind.texts.append(text)
         kind.locations.append(location)
         kind.slots.append(values)
-    return [_line(kind, more) for kind in kinds.values()]
+    lines = []
+    for kind in kinds.values():
+        lines += [_line(kind, more)] if len(kind.texts) >= fewest else kind.texts
+    return lines
 
 
 def _split_location(text: str) -> tuple[str | None, str]:

@@ -141,9 +141,11 @@ def _print(
     prove, when they pass, and ``stale``: how the model is older than its inputs); the exit
     code. ``quiet``: the failures alone. Failures of one kind (a joint too fast, each joint)
     are one line, as warnings are, with where they are all listed (``listed_in``)."""
-    from mjcfbuild.warning_groups import group_warnings
+    from mjcfbuild.warning_groups import SHOWN_SUBJECTS, group_warnings
 
-    failures = group_warnings(results.failures, f"all in {listed_in}" if listed_in else "")
+    # Their figures matter while they are few: only kinds with more than a line shows group.
+    more = f"all in {listed_in}" if listed_in else ""
+    failures = group_warnings(results.failures, more, fewest=SHOWN_SUBJECTS + 1)
     if quiet:
         for failure in failures:
             print(f"mjcfbuild: check failed: {failure}", file=sys.stderr)

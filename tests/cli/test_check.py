@@ -50,3 +50,9 @@ def test_failures_of_one_kind_are_one_line_with_where_they_all_are(capsys):
         "more than 50 times its velocity limit 3 rad/s (urdf): a, b, c, ... 1 more (all in "
         "report.md)",
     ]
+    # Three of a kind are shown each with its figures.
+    results = CheckResults(loads=True, failures=fast[:3])
+    _print(results, "model.xml", listed_in="report.md")
+    assert capsys.readouterr().err.splitlines() == [
+        f"mjcfbuild: check failed: {failure}" for failure in fast[:3]
+    ]
