@@ -8,7 +8,7 @@ from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.errors import ManifestError
+from mjcfbuild.errors import InputError, ManifestError
 
 if TYPE_CHECKING:
     from mjcfbuild.manifest.motors import Motor, MotorSettings
@@ -65,7 +65,7 @@ def resolve_motors(
     for index, name in enumerate(settings.files):
         path = folder / name
         if not path.is_file():
-            raise ManifestError(
+            raise InputError(  # a missing input, as a missing source is: exit 4
                 f"motor file '{name}' not found",
                 file=f"{manifest_label} motors.files[{index}]",
                 hint="give a YAML file of motors (name -> datasheet values), relative to "

@@ -8,7 +8,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.errors import ManifestError, MjcfbuildError
+from mjcfbuild.errors import InputError, ManifestError, MjcfbuildError
 from mjcfbuild.fsutil import unreadable_file
 
 if TYPE_CHECKING:
@@ -35,7 +35,7 @@ def part_source(ctx: GraphContext, index: int, part: Attachment) -> Path:
     if problem:
         raise pinpointed(
             ctx,
-            ManifestError(
+            InputError(  # a missing input, as a missing source is: exit 4
                 f"part file {problem}",
                 file=f"{ctx.manifest_label} attach[{index}].source.{part.source.kind}",
                 hint="fix the path (relative to robot.yaml)",

@@ -11,7 +11,7 @@ import mujoco
 import pytest
 
 import mjcfbuild
-from mjcfbuild.errors import EXIT_MANIFEST, EXIT_OK
+from mjcfbuild.errors import EXIT_INPUT, EXIT_MANIFEST, EXIT_OK
 from tests.conftest import copy_example, run_cli, simple_manifest, two_link_urdf, write
 
 
@@ -128,7 +128,8 @@ def test_bad_attachments_are_one_line_errors_and_write_nothing(tmp_path, old, ne
         message, line = "link name 'upper_arm_link'", 17
     manifest.write_text(text.replace(old, new))
     done = run_cli("build", cwd=folder)
-    assert done.code == EXIT_MANIFEST, done.stderr
+    # a missing part file is a missing input, as a missing source is
+    assert done.code == (EXIT_INPUT if message == "part file not found" else EXIT_MANIFEST)
     error = [row for row in done.stderr.splitlines() if "error" in row]
     assert len(error) == 1 and message in error[0], done.stderr
     assert error[0].startswith(f"mjcfbuild: error: robot.yaml:{line}:"), error[0]

@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from mjcfbuild.control.catalogue import resolve_motors
-from mjcfbuild.errors import ManifestError
+from mjcfbuild.errors import InputError
 from mjcfbuild.manifest.motors import MotorSettings
 from mjcfbuild.manifest.simulation import ActuatorRule
 from tests.conftest import write
@@ -34,7 +34,7 @@ def test_definitions_win_over_files_which_win_over_the_catalogue(tmp_path):
 
 
 def test_a_missing_motor_file_is_an_error_even_before_a_rule_names_a_motor(tmp_path):
-    with pytest.raises(ManifestError) as caught:
+    with pytest.raises(InputError) as caught:  # a missing input: exit 4, as a missing source
         resolve_motors(MotorSettings(files=["gone.yaml"]), [], tmp_path, "robot.yaml")
     assert "motor file 'gone.yaml' not found" in caught.value.one_line()
     assert "robot.yaml motors.files[0]" in caught.value.one_line()
