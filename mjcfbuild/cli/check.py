@@ -193,6 +193,7 @@ def _pair(args) -> int:
         problem = unreadable_file(path)
         if problem:
             raise InputError(f"file {problem}", file=path)
+    refuse_other_models(mjcf, "--mjcf takes the MuJoCo model the URDF (--urdf) was made into")
     from mjcfbuild.cli.convert import command_line_hint, parse_packages
     from mjcfbuild.errors import MjcfbuildError
 
@@ -217,6 +218,17 @@ def _pair(args) -> int:
         raise
     results = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))
     return _print(results, f"{mjcf} against {urdf}", bool(getattr(args, "quiet", False)))
+
+
+def refuse_other_models(path: Path, hint: str) -> None:
+    """Refuse ``path`` where it is not an MJCF model, naming what it is: MuJoCo would read a
+    URDF in its place without a word."""
+    from mjcfbuild.errors import InputError
+    from mjcfbuild.sources.kind import not_an_mjcf
+
+    kind = not_an_mjcf(path, path.read_bytes())
+    if kind is not None:
+        raise InputError(f"this is {kind}, not an MJCF model", file=path, hint=hint)
 
 
 def _urdf_bytes(path: Path, packages: dict[str, str]) -> tuple[bytes, dict[int, tuple[str, int]]]:

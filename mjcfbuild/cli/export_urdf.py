@@ -63,10 +63,18 @@ def add_parser(commands) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Export, write, and print a summary line."""
+    from mjcfbuild.cli.check import refuse_other_models
     from mjcfbuild.console import report_warnings
+    from mjcfbuild.errors import InputError
     from mjcfbuild.export import ExportOptions, export_urdf
     from mjcfbuild.export.publish import default_asset_prefix, publish
+    from mjcfbuild.fsutil import unreadable_file
 
+    model = Path(args.model)
+    problem = unreadable_file(model)
+    if problem:
+        raise InputError(f"file {problem}", file=model, hint="give the MJCF model to export")
+    refuse_other_models(model, "export-urdf writes a URDF from an MJCF model (a robot.xml)")
     urdf_path = Path(args.output)
     if not args.force:
         refuse_overwriting([urdf_path])  # before the export's work, which takes a while

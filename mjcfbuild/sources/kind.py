@@ -153,3 +153,16 @@ def not_a_manifest(path: Path, data: bytes) -> str | None:
     if kind is not None:
         return kind
     return "a xacro file" if xacro_evidence(data) is not None else "a URDF"
+
+
+def not_an_mjcf(path: Path, data: bytes) -> str | None:
+    """What ``path`` (with content ``data``) is when it is not an MJCF model (its root element
+    is not <mujoco>): a URDF or xacro file (which MuJoCo would read as a URDF), a mesh, an
+    image...; None for an MJCF model."""
+    root = _root_tag(data[:4096]) if b"\0" not in data[:4096] else None
+    if root is not None and root.split(":")[-1] == "mujoco":
+        return None
+    kind = not_a_description(path, data)
+    if kind is not None:
+        return kind
+    return "a xacro file" if xacro_evidence(data) is not None else "a URDF"

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from mjcfbuild.errors import EXIT_USAGE
+from mjcfbuild.errors import EXIT_INPUT, EXIT_USAGE
 from tests.conftest import run_cli, simple_manifest, two_link_urdf, write
 
 PAIR = ["--urdf", "robot.urdf", "--mjcf", "model.xml"]
@@ -56,3 +56,13 @@ def test_failures_of_one_kind_are_one_line_with_where_they_all_are(capsys):
     assert capsys.readouterr().err.splitlines() == [
         f"mjcfbuild: check failed: {failure}" for failure in fast[:3]
     ]
+
+
+def test_a_urdf_given_for_the_mjcf_is_refused_for_what_it_is(tmp_path):
+    """MuJoCo reads a URDF in an MJCF's place: the check would compare the URDF with itself."""
+    write(tmp_path / "robot.urdf", two_link_urdf())
+    result = run_cli("check", "--urdf", "robot.urdf", "--mjcf", "robot.urdf", cwd=tmp_path)
+    assert result.code == EXIT_INPUT
+    assert result.stderr.startswith(
+        "mjcfbuild: error: robot.urdf: this is a URDF, not an MJCF model (--mjcf takes the "
+    )
