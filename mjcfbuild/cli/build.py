@@ -24,6 +24,10 @@ if TYPE_CHECKING:
     from mjcfbuild.engine.workers import WorkerPool
 
 
+# How a build's summary says to see each check; `convert` has no manifest to name.
+CHECK_COMMAND = "mjcfbuild check"
+
+
 def add_parser(commands) -> None:
     """Register the subcommand."""
     parser = commands.add_parser(
@@ -149,12 +153,15 @@ def _nothing_changed(manifest: str, args: argparse.Namespace) -> dict | None:
 
 
 def report_nothing_to_do(
-    check: Callable[[], dict | None], quiet: bool, base_dir: Path | None = None
+    check: Callable[[], dict | None],
+    quiet: bool,
+    base_dir: Path | None = None,
+    check_command: str = CHECK_COMMAND,
 ) -> bool:
     """Run the no-op fast path's ``check`` (a stamp lookup); when it finds nothing to do,
     print what a build would - the model's warnings, one line per kind (their files named
-    from here where they are in ``base_dir``, the manifest's folder), and the summary - and
-    return True."""
+    from here where they are in ``base_dir``, the manifest's folder), and the summary, with
+    the ``check_command`` that checks the model again - and return True."""
     import os
     import time
 
@@ -175,7 +182,7 @@ def report_nothing_to_do(
         )
         if "check_results" in summary:  # as the full build prints it
             results = summary["check_results"]
-            print(check_line(Path(results), count) if results else NOT_CHECKED)
+            print(check_line(Path(results), count, check_command) if results else NOT_CHECKED)
     return True
 
 
@@ -226,9 +233,10 @@ def execute(
     workers: WorkerPool | None = None,
     warnings: list[str] | None = None,
     files: Callable[[str], str] | None = None,
+    check_command: str = CHECK_COMMAND,
 ) -> int:
     """Run a build of ``ctx`` and print its errors, summary and (unless ``quiet``) warnings,
-    one line per kind; the exit code.
+    one line per kind; the exit code. The summary's check line names ``check_command``.
 
     ``hints`` rewrites the advice errors give (``convert`` has flags where robot.yaml has keys);
     ``files`` the files they name (``diff``: a revision's copy as ``<revision>:<path>``);
@@ -271,27 +279,27 @@ def execute(
             slowest = ", ".join(f"{title} {seconds:.2f} s" for title, seconds in result.slowest)
             print(f"  slowest: {slowest}")
         if not result.errors:
-            print(_check_line(ctx, len(result.warnings)))
+            print(_check_line(ctx, len(result.warnings), check_command))
     return result.errors[0].exit_code if result.errors else EXIT_OK
 
 
-def _check_line(ctx, warnings: int) -> str:
+def _check_line(ctx, warnings: int, check_command: str) -> str:
     """The check's verdict under a build's summary, as ``mjcfbuild check`` gives it, or that
     the build did not check."""
     from mjcfbuild.outputs import CHECK_RESULTS
 
     if not ctx.run_check:
         return NOT_CHECKED
-    return check_line(ctx.state(CHECK_RESULTS), warnings)
+    return check_line(ctx.state(CHECK_RESULTS), warnings, check_command)
 
 
 NOT_CHECKED = "  check: not run (--no-check); `mjcfbuild check` runs it"
 
 
-def check_line(results: Path, warnings: int = 0) -> str:
+def check_line(results: Path, warnings: int = 0, check_command: str = CHECK_COMMAND) -> str:
     """The line under a build's summary for the check results in ``results`` (check.json),
     with the build's ``warnings`` (as many as its summary counts) where the checks found none
-    to say: the report's verdict counts both."""
+    to say (the report's verdict counts both), and the command that shows each check."""
     import json
 
     try:
@@ -304,7 +312,7 @@ def check_line(results: Path, warnings: int = 0) -> str:
             if warnings
             else "all checks pass"
         )
-    return f"  check: {verdict} (each check: `mjcfbuild check`)"
+    return f"  check: {verdict} (each check: `{check_command}`)"
 
 
 def report_md(ctx) -> str:

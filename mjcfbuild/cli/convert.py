@@ -150,7 +150,9 @@ def run(args: argparse.Namespace) -> int:
         )
     key = stamp_key(args)
     if key is not None and report_nothing_to_do(
-        lambda: stamp.nothing_to_do_for(key, run_check=True), args.quiet
+        lambda: stamp.nothing_to_do_for(key, run_check=True),
+        args.quiet,
+        check_command=check_command(args),
     ):
         return EXIT_OK
     return _convert(args, key)
@@ -213,7 +215,32 @@ def _convert(args: argparse.Namespace, key: str | None) -> int:
         noop_stamp=key is not None,
         command_stamp_key=key,
     )
-    return execute(ctx, quiet=args.quiet, debug=args.debug, hints=command_line_hint)
+    return execute(
+        ctx,
+        quiet=args.quiet,
+        debug=args.debug,
+        hints=command_line_hint,
+        check_command=check_command(args),
+    )
+
+
+def check_command(args: argparse.Namespace) -> str:
+    """The ``mjcfbuild check`` command that checks a conversion's model against its URDF:
+    there is no robot.yaml for a plain ``mjcfbuild check`` to read."""
+    import shlex
+
+    from mjcfbuild.outputs import SOURCE_URDF
+    from mjcfbuild.ownership import STATE_DIR
+
+    model = shlex.quote(str(Path(args.output) / REFERENCE_ROBOT_FILE))
+    if args.urdf and not args.xacro_args:
+        urdf = shlex.quote(args.urdf)
+        packages = "".join(f" --package {shlex.quote(entry)}" for entry in args.package or [])
+        return f"mjcfbuild check --urdf {urdf} --mjcf {model}{packages}"
+    # Expanded with NAME:=VALUE arguments, or given as a string: the URDF the build compared
+    # the model with, which it keeps (check --urdf expands a xacro with its defaults).
+    urdf = shlex.quote(str(Path(args.output) / STATE_DIR / SOURCE_URDF))
+    return f"mjcfbuild check --urdf {urdf} --mjcf {model}"
 
 
 # Errors advise changes to robot.yaml; convert has no robot.yaml, only these flags.

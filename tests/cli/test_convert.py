@@ -19,6 +19,18 @@ def test_convert_urdf_into_output_folder_and_again_incrementally(cli, tmp_path):
     assert "0 run," in again.stdout
 
 
+def test_the_summary_names_a_check_command_that_works_without_a_manifest(cli, tmp_path):
+    write(tmp_path / "robot.urdf", two_link_urdf())
+    result = cli("convert", "-u", "robot.urdf", "-o", "out", cwd=tmp_path)
+    assert result.code == EXIT_OK, result.stderr
+    command = "mjcfbuild check --urdf robot.urdf --mjcf out/mujoco_description_formatted.xml"
+    assert f"(each check: `{command}`)" in result.stdout
+    again = cli("convert", "-u", "robot.urdf", "-o", "out", cwd=tmp_path)  # the no-op's too
+    assert f"(each check: `{command}`)" in again.stdout
+    checked = cli(*command.split()[1:], cwd=tmp_path)
+    assert checked.code == EXIT_OK and "mjcfbuild: check passed" in checked.stdout
+
+
 def test_convert_robot_description_string(cli, tmp_path):
     result = cli("convert", "-r", two_link_urdf(), "-o", "out", "-f", "--no-fuse", cwd=tmp_path)
     assert result.code == EXIT_OK, result.stderr
