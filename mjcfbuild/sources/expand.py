@@ -433,6 +433,7 @@ def _place_failure(
         places.append((current, None))
     undefined = re.search(r"name '([^']+)' is not defined", message)
     unknown = re.search(r"unknown macro name: (xacro:\S+)", message)
+    conditional = re.search(r'Xacro conditional "(.*?)" evaluated to', message)
     if undefined:
         pattern = rf"\$\{{[^}}]*\b{re.escape(undefined.group(1))}\b"
         hint = "define it with <xacro:property>, or as a macro parameter, before it is used"
@@ -442,6 +443,11 @@ def _place_failure(
     elif unknown:
         pattern = rf"<{re.escape(unknown.group(1))}\b"
         hint = "define the macro, or include the file that does, before this call"
+    elif conditional:
+        # Found where it is written: in the macro's body (the call site only after that)
+        value = re.escape(conditional.group(1))
+        pattern = rf"<xacro:(?:if|unless)\s[^>]*value=[\"']{value}[\"']"
+        hint = "give value= a boolean: true, false, 1, 0, or a ${...} expression of one"
     elif macros:  # a bad call (an undeclared or missing parameter), or its body failed
         macro = macros[-1]
         name = macro.body.getAttribute("name")

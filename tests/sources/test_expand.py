@@ -322,6 +322,29 @@ def test_a_failure_inside_a_macro_names_the_line_that_failed(tmp_path, calls, li
     assert info.value.message.startswith("xacro failed: in macro 'leg': ")
 
 
+@pytest.mark.parametrize("in_macro", [True, False], ids=["in-a-macro", "in-the-file"])
+def test_a_conditional_that_is_no_boolean_names_its_own_line(tmp_path, in_macro):
+    body = '    <xacro:if value="maybe"><link name="x"/></xacro:if>\n'
+    text = (
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <link name="base"/>\n'
+        + (
+            '  <xacro:macro name="opt" params="">\n' + body + "  </xacro:macro>\n"
+            if in_macro
+            else body
+        )
+        + ("  <xacro:opt/>\n" if in_macro else "")
+        + "</robot>\n"
+    )
+    source = write(tmp_path / "r.xacro", text)
+    with pytest.raises(InputError) as info:
+        expand_xacro(source, {}, PackageResolver({}, {}))
+    line = 4 if in_macro else 3
+    assert (info.value.location.file, info.value.location.line) == (str(source), line)
+    assert 'conditional "maybe"' in info.value.message
+    assert info.value.hint is not None and info.value.hint.startswith("give value= a boolean")
+
+
 def test_an_include_cycle_is_named_at_the_include_that_closes_it(tmp_path):
     write(
         tmp_path / "part.xacro",
