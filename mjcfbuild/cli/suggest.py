@@ -43,6 +43,9 @@ def usage_error_line(prog: str, message: str) -> str:
         if choice.group("argument") == "COMMAND":
             message = f"no command '{value}'"
             hint = suggestion or f" (commands: {', '.join(choices)})"
+        elif choice.group("argument").isidentifier():  # a positional word: cache's action
+            message = f"no {choice.group('argument')} '{value}'"
+            hint = suggestion or f" (choose from {', '.join(choices)})"
         else:
             message = f"argument {choice.group('argument')}: no choice '{value}'"
             hint = suggestion or f" (choose from {', '.join(choices)})"

@@ -29,7 +29,7 @@ from tests.conftest import run_cli
         ),
         (
             ["cache", "prnue"],
-            "mjcfbuild: error: cache: argument action: no choice 'prnue' (did you mean 'prune'?)",
+            "mjcfbuild: error: cache: no action 'prnue' (did you mean 'prune'?)",
         ),
         (
             ["diff", "--format", "txt"],
