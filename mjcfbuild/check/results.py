@@ -682,10 +682,11 @@ class CheckResults:
         elif stand and stand.needs_controller:
             rows.append(f"| stand at home for 5 s | not run: {md(stand.needs_controller)} |")
         elif stand:
+            joint = f" ({md(stand.joint)})" if stand.joint else ""  # none moved, or none held
             rows.append(
                 f"| stand at home holding its ctrl for {stand.seconds:g} s | base tilted "
                 f"{stand.max_tilt:.2g} rad, sank {stand.max_sink * 1000:.0f} mm; largest "
-                f"joint deviation {stand.max_deviation:.3g} ({md(stand.joint)}) |"
+                f"joint deviation {stand.max_deviation:.3g}{joint} |"
             )
         if self.menagerie_test:
             test = self.menagerie_test

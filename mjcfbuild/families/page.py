@@ -57,7 +57,8 @@ FAMILY = Family(
     name="page",
     step="mjcfbuild.steps.page:run",
     payload=PagePayload,
-    format=2,  # 2: bold, pictures and quotes in the tables; the diff's changes section
+    format=3,  # 2: bold, pictures and quotes in the tables; the diff's changes section; 3: no
+    # "(null)" after a deviation no joint made
     tools=(),
     tasks=_tasks,
 )

@@ -399,7 +399,7 @@
       }, () => report('hold', worst <= tolerance, {
         deviation: worst, tolerance, joint: worstJoint,
         summary: `holding home's ctrl for 1 s, the largest joint deviation is `
-          + `${worst.toPrecision(3)} (${worstJoint}); tolerance ${tolerance}`,
+          + `${worst.toPrecision(3)}${worstJoint ? ` (${worstJoint})` : ''}; tolerance ${tolerance}`,
       }));
     }
     function floorHeight() {
@@ -430,7 +430,7 @@
           deviation: worst, tolerance, tilt: maxTilt, sink, joint: worstJoint,
           summary: `standing at home for 5 s: base tilted ${maxTilt.toFixed(3)} rad, `
             + `sank ${(sink * 1000).toFixed(0)} mm; largest joint deviation `
-            + `${worst.toPrecision(3)} (${worstJoint}); tolerance ${tolerance}`,
+            + `${worst.toPrecision(3)}${worstJoint ? ` (${worstJoint})` : ''}; tolerance ${tolerance}`,
         });
       });
     }
