@@ -521,6 +521,8 @@ class CheckResults:
                 else "no joint has an actuator"
             )
             passive = hold.passive_words()
+            if hold.floating:  # it stands on the floor, or falls, as it holds: one judge
+                deviation += ", judged by the stand test below"
             add("hold home 1 s", f"{deviation}; {passive}" if passive else deviation, hold.failed)
         stand = self.stand
         if stand and stand.fell_without_controller:

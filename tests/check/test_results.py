@@ -138,6 +138,14 @@ def test_a_passing_check_with_warnings_says_so_on_the_console_and_under_a_build(
     assert check_line(clean, 0).startswith("  check: all checks pass")
 
 
+def test_a_floating_robots_hold_row_says_the_stand_test_judges_it():
+    floating = CheckResults(loads=True, hold=Hold(3.43, "knee", floating=True))
+    row = dict(floating.console_lines())["hold home 1 s"]
+    assert row == "largest deviation 3.43 (knee), judged by the stand test below"
+    fixed = CheckResults(loads=True, hold=Hold(0.01, "elbow"))
+    assert dict(fixed.console_lines())["hold home 1 s"] == "largest deviation 0.01 (elbow)"
+
+
 def test_the_stand_verdict_in_a_word():
     stands = CheckResults(stand=Stand(seconds=5.0))
     assert stands.stand_verdict() == "stands"
