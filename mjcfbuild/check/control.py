@@ -434,12 +434,12 @@ def hold_deviation(model, key: int, passive: set[str]) -> HoldMeasure:
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, key)
     home = data.qpos.copy()
-    held = _Farthest(watched_joints(model, passive))
-    unheld = _Farthest([j for j in watched_joints(model, set()) if j not in held.joints])
+    held = _Farthest(model, watched_joints(model, passive))
+    unheld = _Farthest(model, [j for j in watched_joints(model, set()) if j not in held.joints])
     for _ in range(round(TEST_SECONDS / model.opt.timestep)):
         mujoco.mj_step(model, data)
-        held.note(model, data.qpos, home)
-        unheld.note(model, data.qpos, home)
+        held.note(data.qpos, home)
+        unheld.note(data.qpos, home)
     return HoldMeasure(
         held.distance,
         held.name(model),
@@ -451,21 +451,21 @@ def hold_deviation(model, key: int, passive: set[str]) -> HoldMeasure:
 
 
 class _Farthest:
-    """The farthest any of ``joints`` (hinge and slide joint ids) got from home."""
+    """The farthest any of ``joints`` (hinge and slide joint ids of ``model``) got from home."""
 
-    def __init__(self, joints: list[int]) -> None:
+    def __init__(self, model, joints: list[int]) -> None:
         self.joints = joints
+        self.addresses = model.jnt_qposadr[joints]
         self.distance = 0.0
         self.joint: int | None = None
 
-    def note(self, model, qpos, home) -> None:
+    def note(self, qpos, home) -> None:
         """Take the joints' positions ``qpos`` into account."""
         import numpy as np
 
         if not self.joints:
             return
-        addresses = model.jnt_qposadr[self.joints]
-        deviation = np.abs(qpos[addresses] - home[addresses])
+        deviation = np.abs(qpos[self.addresses] - home[self.addresses])
         index = int(np.argmax(deviation))
         if deviation[index] > self.distance:
             self.distance = float(deviation[index])
