@@ -37,9 +37,9 @@ BEFORE_FORMATS = {
     "plan": 12,
     "mesh": 9,
     "decompose": 3,
-    "assemble": 17,
+    "assemble": 18,
     "scene": 3,
-    "check": 12,
+    "check": 13,
     "reference": 1,
     "previews": 5,
     "tuning": 1,
@@ -50,7 +50,7 @@ BEFORE_FORMATS = {
     "mjcfpart": 1,
     "package": 2,
     "training": 7,
-    "page": 2,
+    "page": 3,
 }
 BEFORE_TOOLS = {
     "expand": ("xacro",),
