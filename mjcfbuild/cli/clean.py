@@ -70,14 +70,22 @@ def run(args: argparse.Namespace) -> int:
     present = [name for name in names if written.written_file(out, name)]
     # A file the user edited since the build wrote it is theirs now.
     edited = [out / name for name in present if written.edited(out, name, names[name])]
-    files = [out / name for name in present if out / name not in edited]
+    # The package's changelog holds every earlier build's entry and the user's notes between
+    # them (a rebuild keeps them, as its own bytes): no build can write it again.
+    from mjcfbuild.outputs import PACKAGE_FOLDER
+    from mjcfbuild.steps.package import CHANGELOG
+
+    changelog = f"{PACKAGE_FOLDER}/{CHANGELOG}"
+    history = [out / name for name in present if name == changelog and out / name not in edited]
+    files = [out / name for name in present if out / name not in {*edited, *history}]
     if args.dry_run:  # the list is the answer asked for: -q leaves out the rest
         print("mjcfbuild: would remove:")
         for path in [*files, ctx.state_dir]:
             print(f"  {ctx.label(path)}{'/' if path == ctx.state_dir else ''}")
         if not args.quiet:
             _say_edited(ctx, edited)
-            _say_kept(ctx, {*files, *edited})
+            _say_history(ctx, history)
+            _say_kept(ctx, {*files, *edited, *history})
         return EXIT_OK
     with build_lock(ctx, Progress(quiet=True)):
         for path in files:
@@ -93,7 +101,8 @@ def run(args: argparse.Namespace) -> int:
     _say(args, "removed " + ", ".join([*_grouped(ctx, files), ctx.label(ctx.state_dir) + "/"]))
     if out.is_dir() and not args.quiet:
         _say_edited(ctx, edited)
-        _say_kept(ctx, set(edited))
+        _say_history(ctx, history)
+        _say_kept(ctx, {*edited, *history})
     return EXIT_OK
 
 
@@ -138,6 +147,15 @@ def _say_edited(ctx, edited: list[Path]) -> None:
     """Name every file a build wrote that the user edited since, which stays."""
     for path in edited:
         print(f"mjcfbuild: kept {ctx.label(path)} (edited since mjcfbuild wrote it)")
+
+
+def _say_history(ctx, history: list[Path]) -> None:
+    """Name the changelog clean keeps."""
+    for path in history:
+        print(
+            f"mjcfbuild: kept {ctx.label(path)} (the history of earlier builds: no build can "
+            "write it again; remove it yourself if it is to go)"
+        )
 
 
 def _say_kept(ctx, listed: set[Path]) -> None:

@@ -62,7 +62,8 @@ def run(payload: dict) -> dict:
         str(Path(path).relative_to(folder)) for path in outputs if Path(path).is_relative_to(folder)
     )
     write_if_changed(copies, (json.dumps({"files": names}, indent=1) + "\n").encode())
-    # The changelog is kept, not checked (a user may edit it), but clean removes it too.
+    # The changelog is kept, not checked (a user may edit it); recorded as written, and kept
+    # by clean, which leaves the history of earlier builds alone (cli.clean).
     written = [str(folder / CHANGELOG)] if (folder / CHANGELOG).is_file() else []
     return {"outputs": outputs, "warnings": warnings, "written": written}
 

@@ -104,7 +104,7 @@ def test_a_dry_run_lists_what_would_go_and_removes_nothing(built_arm):
     assert _files_below(arm / "mjcf") == ["NOTES.md"]
 
 
-def test_every_optional_output_goes_and_the_folder_with_them(arm):
+def test_every_optional_output_goes_but_the_package_changelog(arm):
     _output_setting(
         arm, "output:\n  folder: mjcf\n  package: true\n  urdf: exported.urdf\n  training: true\n"
     )
@@ -112,7 +112,28 @@ def test_every_optional_output_goes_and_the_folder_with_them(arm):
     assert (arm / "mjcf" / "package" / "CHANGELOG.md").is_file()
     assert (arm / "mjcf" / "example_arm_mjx.xml").is_file()
     assert run_cli("clean", "-q", cwd=arm).code == 0
-    assert not (arm / "mjcf").exists()
+    # but the package's changelog, a history no build can write again
+    assert _files_below(arm / "mjcf") == ["package/CHANGELOG.md"]
+
+
+def test_the_changelog_with_a_note_a_rebuild_kept_is_not_removed(arm):
+    """A rebuild keeps the user's note below its new entry and records the file as written:
+    clean must not take the history, and the note, for a file it can write again."""
+    _output_setting(arm, "output:\n  folder: mjcf\n  package: true\n")
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    changelog = arm / "mjcf" / "package" / "CHANGELOG.md"
+    changelog.write_text(changelog.read_text() + "\n- my own note\n")
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace("elbow: 1.2", "elbow: 1.0"))
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    assert "- my own note" in changelog.read_text()
+    result = run_cli("clean", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert (
+        "mjcfbuild: kept mjcf/package/CHANGELOG.md (the history of earlier builds: no build can "
+        "write it again; remove it yourself if it is to go)"
+    ) in result.stdout.splitlines()
+    assert "- my own note" in changelog.read_text()
 
 
 def test_a_link_put_in_place_of_an_output_is_not_followed(built_arm, tmp_path):
