@@ -184,7 +184,8 @@ FAMILY = Family(
     # timestep a build cannot simulate with refused; 15: reversed ranges in the inputs refused;
     # 16: an inertia repair names the link's file and line; 17: an underactuated mechanism's
     # read-only joints' reductions are no gear ratios, one warning per mechanism; 18: curved
-    # feet touch the floor at their lowest points (a stance on two spheres is a line)
+    # feet touch the floor at their lowest points (a stance on two spheres is a line); an
+    # unused asset the user edited is kept
     format=18,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,

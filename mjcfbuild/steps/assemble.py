@@ -11,7 +11,7 @@ from mjcfbuild.collision.policy import CollisionChoice
 from mjcfbuild.compose.attach import AttachedPart
 from mjcfbuild.errors import CheckError
 from mjcfbuild.failpoints import failpoint
-from mjcfbuild.fsutil import remove_stale_temp_files
+from mjcfbuild.fsutil import md5_file, remove_stale_temp_files
 from mjcfbuild.inputs.combine import combine
 from mjcfbuild.inputs.model import Inputs, inputs_from_dict
 from mjcfbuild.manifest.models import MujocoInputs
@@ -91,9 +91,18 @@ def run(payload: dict) -> dict:
     remove_stale_temp_files(assets_dir)
     for name, source in sorted(assembly.assets.items()):
         write_output(assets_dir / name, Path(source).read_bytes(), outputs)
-    for name in previous - set(assembly.assets):
-        if name == Path(name).name and not name.startswith("."):  # never outside assets/
-            (assets_dir / name).unlink(missing_ok=True)
+    for name, digest in sorted(previous.items()):
+        if name in assembly.assets or name != Path(name).name or name.startswith("."):
+            continue  # still used, or not a file of assets/
+        stale = assets_dir / name
+        if digest is not None and stale.is_file() and md5_file(stale) != digest:
+            # Edited since the build wrote it: the user's now, and no build would write it back
+            assembly.warnings.append(
+                f"assets/{name}: edited since mjcfbuild wrote it, and the model no longer uses "
+                "it; kept (remove it if it is to go)"
+            )
+            continue
+        stale.unlink(missing_ok=True)
     if not any(assets_dir.iterdir()):
         os.rmdir(assets_dir)
     report = {
@@ -155,11 +164,15 @@ def _read(path: str | None) -> dict | None:
     return json.loads(Path(path).read_text()) if path else None
 
 
-def _previous_assets(report_path: Path) -> set[str]:
+def _previous_assets(report_path: Path) -> dict[str, str | None]:
+    """The assets the last assembly published, each with the MD5 of what it wrote (None where
+    its report does not say)."""
     try:
-        return set(json.loads(report_path.read_text())["assets"])
-    except (OSError, ValueError, KeyError):
-        return set()
+        report = json.loads(report_path.read_text())
+        digests = report.get("asset_md5") or {}
+        return {name: digests.get(name) for name in report["assets"]}
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return {}
 
 
 def _srdf_home(

@@ -142,6 +142,26 @@ def test_removed_mesh_disappears_from_assets(built_arm):
     assert not (built_arm / "mjcf" / ".mjcfbuild" / "products" / "base").exists()
 
 
+def test_an_asset_the_user_edited_is_kept_when_the_model_stops_using_it(built_arm):
+    """Unused assets go, but not one edited since the build wrote it: no build could write
+    the user's bytes back."""
+    edited = built_arm / "mjcf" / "assets" / "base.obj"
+    edited.write_text(edited.read_text() + "# my edit\n")
+    xacro = built_arm / "urdf" / "arm.urdf.xacro"
+    xacro.write_text(
+        xacro.read_text().replace(
+            '<geometry><mesh filename="package://arm_description/meshes/base.stl"/></geometry>',
+            '<geometry><cylinder radius="0.08" length="0.1"/></geometry>',
+        )
+    )
+    result = build(built_arm)
+    assert edited.read_text().endswith("# my edit\n")
+    assert any(
+        warning.startswith("assets/base.obj: edited since mjcfbuild wrote it, and the model no ")
+        for warning in result.warnings
+    ), result.warnings
+
+
 def test_environment_variables_read_by_xacro_are_dependencies(tmp_path, monkeypatch):
     write(
         tmp_path / "r.xacro",
