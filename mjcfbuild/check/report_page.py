@@ -27,7 +27,7 @@ def markdown(report: dict) -> str:
     lines.append("")
     checked = report.get("check")
     results = CheckResults.from_dict(checked) if checked else None
-    lines += _checks(results, report.get("warnings") or [])
+    lines += _checks(results, report.get("warnings") or [], report.get("check_not_run"))
     lines += _control(report.get("readiness") or {})
     lines += tuning_lines(report.get("tuning") or {})  # issue 33
     lines += _self_collision(report.get("self_collision"))
@@ -130,14 +130,16 @@ def verdict(results: CheckResults, warnings: list[str]) -> str:
     return "all checks pass"
 
 
-def _checks(results: CheckResults | None, warnings: list[str]) -> list[str]:
+def _checks(
+    results: CheckResults | None, warnings: list[str], not_run: str | None = None
+) -> list[str]:
     if results is None:
-        return [
-            "## Checks",
-            "",
-            "Not run (check.enabled is false, or the build stopped before).",
-            "",
-        ]
+        why = (
+            f"Not run on this model: it was built with {not_run}; `mjcfbuild check` checks it."
+            if not_run
+            else "Not run (check.enabled is false, or the build stopped before)."
+        )
+        return ["## Checks", "", why, ""]
     lines = ["## Checks", "", f"Result: {verdict(results, warnings)}.", ""]
     for failure in results.failures:
         lines.append(f"- {md(failure)}")

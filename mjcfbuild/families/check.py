@@ -67,7 +67,18 @@ def _tasks(graph: Graph) -> list[dict]:
 
 
 def _report(ctx: GraphContext) -> dict:
-    return {"check": read_record(ctx.state(CHECK_RESULTS))}
+    """The check's results for the report: none where a build without the check (--no-check)
+    changed the model or scene since they were found, which would be another model's."""
+    results = ctx.state(CHECK_RESULTS)
+    if not ctx.run_check and results.exists() and _older(results, ctx.robot_path, ctx.scene_path):
+        return {"check": {}, "check_not_run": "--no-check"}
+    return {"check": read_record(results)}
+
+
+def _older(path: Path, *than: Path) -> bool:
+    """Whether ``path`` was last written before any of ``than`` (those that exist)."""
+    written = path.stat().st_mtime_ns
+    return any(other.exists() and other.stat().st_mtime_ns > written for other in than)
 
 
 FAMILY = Family(

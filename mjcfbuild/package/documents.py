@@ -154,7 +154,7 @@ def _derived(assembly: dict[str, Any]) -> list[str]:
 
 def _checks(check: CheckResults | None) -> list[str]:
     if check is None:
-        return ["The build did not check this model (check.enabled: false)."]
+        return ["The build did not check this model (check.enabled: false, or --no-check)."]
     lines = []
     if check.loads:
         lines.append("- loads and simulates in MuJoCo")

@@ -148,3 +148,24 @@ def test_a_warning_fixed_in_the_source_leaves_the_report(tmp_path):
     assert run_cli("build", "--no-check", "-q", cwd=folder).code == 0
     report = json.loads((folder / "mjcf" / "report" / "report.json").read_text())
     assert report["warnings"] == []
+
+
+def test_a_build_without_the_check_reports_no_check_of_another_model(tmp_path):
+    """--no-check after an edit: the report is of the new model, and the last check was of
+    the old one; it must not say "checks pass" over a model the check would fail."""
+    from tests.conftest import copy_example
+
+    arm = copy_example("arm", tmp_path)
+    assert run_cli("build", "-q", cwd=arm).code == 0
+    report = arm / "mjcf" / "report" / "report.md"
+    assert "Result: all checks pass." in report.read_text()
+    limits = arm / "config" / "joint_limits.yaml"
+    limits.write_text(limits.read_text().replace("effort: 60.0", "effort: 1.0"))
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    text = report.read_text()
+    assert "Result:" not in text
+    assert "Not run on this model: it was built with --no-check" in text
+    # Checked, then built again without the check and no change: that check speaks for it.
+    assert run_cli("build", "-q", cwd=arm).code == 6  # the check fails the weak servos
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    assert "Result: **checks failed**" in report.read_text()
