@@ -196,7 +196,13 @@ def _mesh(model, index: int) -> dict[str, Any]:
     face_first, faces = int(model.mesh_faceadr[index]), int(model.mesh_facenum[index])
     digest = hashlib.md5(np.round(vertices, 9).astype("<f8").tobytes())
     digest.update(model.mesh_face[face_first : face_first + faces].astype("<i4").tobytes())
-    extent = (vertices.max(axis=0) - vertices.min(axis=0)) if count else np.zeros(3)
+    # MuJoCo holds a mesh centred and turned to its principal axes of inertia (mesh_pos,
+    # mesh_quat): its extent is taken in the mesh file's own axes, which an edit of a vertex
+    # does not turn (there, 2 mm moved showed as 2 cm grown on two axes).
+    rotation = np.zeros(9)
+    mujoco.mju_quat2Mat(rotation, model.mesh_quat[index])
+    in_file = vertices @ rotation.reshape(3, 3).T
+    extent = (in_file.max(axis=0) - in_file.min(axis=0)) if count else np.zeros(3)
     return {
         "mesh": _name(model, mujoco.mjtObj.mjOBJ_MESH, index),
         "vertices": count,
