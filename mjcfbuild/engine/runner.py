@@ -23,7 +23,7 @@ from mjcfbuild.engine.guard import (
 from mjcfbuild.engine.loader import DATABASE, run_doit
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.tasks import build_tasks, planning_tasks
-from mjcfbuild.engine.training_files import remove_stale_variant
+from mjcfbuild.engine.training_files import remove_renamed_model, remove_stale_variant
 from mjcfbuild.errors import CheckError, InputError, MjcfbuildError, OutputError, write_failure
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import TEMP_SUFFIX, remove_stale_temp_files, write_if_changed
@@ -226,6 +226,7 @@ def _build_locked(
         stamp.discard(ctx.stamp_key, ctx.run_check)
     prepare_state(ctx)
     remove_stale_variant(ctx)
+    remove_renamed_model(ctx)
     # Workers start while this process plans, importing until their first step comes.
     ctx.session.warm_workers(first_build=not ctx.state(DATABASE).exists())
     planning = planning_tasks(ctx)

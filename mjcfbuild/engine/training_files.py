@@ -1,4 +1,5 @@
-"""The training variant's files, removed when robot.yaml no longer asks for them.
+"""The training variant's files, removed when robot.yaml no longer asks for them; and the
+model and scene of an earlier name.
 
 The ``training`` task records the files it wrote (``.mjcfbuild/training.json``). Before a
 build's tasks run, the recorded files that this build will not write are removed from the
@@ -37,4 +38,28 @@ def remove_stale_variant(ctx: BuildContext) -> list[Path]:
     if not ctx.manifest.training:
         record.unlink()
         ctx.state(TRAINING_WARP).unlink(missing_ok=True)
+    return removed
+
+
+def remove_renamed_model(ctx: BuildContext) -> list[Path]:
+    """Remove the model and scene files an earlier build wrote under names this one will not
+    write (robot.yaml's ``name:``, ``output.robot`` or ``output.scene`` changed): the MJCF
+    files at the top of the output folder the record of written files names, that still hold
+    what the build wrote (one the user edited stays, as ``clean`` keeps it); the paths
+    removed. A rename left the old model beside the new one, looking current."""
+    from mjcfbuild.engine import written
+
+    recorded = written.recorded(ctx) or {}
+    keep = {ctx.robot_path, ctx.scene_path}
+    keep |= set(training_paths(ctx)) if ctx.manifest.training else set()
+    removed = []
+    for name, digest in recorded.items():
+        path = ctx.out_dir / name
+        if "/" in name or not name.endswith(".xml") or path in keep or digest is None:
+            continue
+        if written.written_file(ctx.out_dir, name) and not written.edited(
+            ctx.out_dir, name, digest
+        ):
+            path.unlink()
+            removed.append(path)
     return removed

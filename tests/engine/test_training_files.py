@@ -1,4 +1,5 @@
-"""The training variant's files go when robot.yaml stops asking for them (real builds)."""
+"""The training variant's files go when robot.yaml stops asking for them, and the model of an
+old name when it is renamed (real builds)."""
 
 from __future__ import annotations
 
@@ -50,3 +51,24 @@ def test_a_new_name_for_the_variant_removes_the_old_files(tmp_path):
     build(folder)
     assert not any(path.exists() for path in old)
     assert (out / "trainer.xml").exists() and (out / "trainer_scene.xml").exists()
+
+
+def test_a_renamed_robot_leaves_no_old_model_behind(tmp_path):
+    """name: changed: the old model went on looking current beside the new one."""
+    folder = copy_example("arm", tmp_path)
+    build(folder)
+    out = folder / "mjcf"
+    old = out / "example_arm.xml"
+    assert old.exists()
+    (out / "mine.xml").write_text("<mujoco/>")  # the user's: no build wrote it
+    manifest = folder / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace("name: example_arm", "name: arm2"))
+    build(folder)
+    assert (out / "arm2.xml").exists() and (out / "scene.xml").exists()
+    assert not old.exists() and (out / "mine.xml").exists()
+    # One the user edited stays, as clean keeps it.
+    manifest.write_text(manifest.read_text().replace("name: arm2", "name: arm3"))
+    edited = out / "arm2.xml"
+    edited.write_text(edited.read_text() + "<!-- mine -->\n")
+    build(folder)
+    assert edited.exists() and (out / "arm3.xml").exists()
