@@ -205,22 +205,37 @@ def _report_unadded(
     the exit code (6 if there are any)."""
     import os
 
-    from mjcfbuild.engine.published import git_status
+    from mjcfbuild.engine.published import git_status, in_work_tree, unstaged
     from mjcfbuild.errors import CheckError
 
     untracked, ignored = git_status(published)
+    in_git = bool(published) and in_work_tree(os.path.dirname(published[0]))
+    tracked_changes = set(changed) - ignored - untracked
+    differing = unstaged(sorted(tracked_changes)) if in_git and tracked_changes else None
+    if differing is not None:  # rewritten to the bytes git has staged: nothing to add
+        tracked_changes &= differing
     # The model and scene first: files at the top of the output folder, then those below.
-    created = sorted({*created, *untracked} - ignored, key=_top_first)
-    changed = sorted(set(changed) - ignored, key=_top_first)
-    if not created and not changed:
+    created = sorted(set(created) - ignored, key=_top_first)
+    changed = sorted(tracked_changes, key=_top_first)
+    not_added = sorted(untracked - ignored - set(created), key=_top_first)
+    if not created and not changed and not not_added:
         return EXIT_OK
     parts = []
-    for verb, names in (("created", created), ("changed", changed)):
+    for words, names in (
+        ("files were created", created),
+        ("files were changed", changed),
+        ("files git does not track", not_added),
+    ):
         if names:
             shown = [os.path.relpath(name) for name in names[:5]]
             more = f" and {len(names) - 5} more" if len(names) > 5 else ""
-            parts.append(f"files were {verb}: {', '.join(shown)}{more}")
-    error = CheckError("; ".join(parts), hint="git add them, then commit again")
+            parts.append(f"{words}: {', '.join(shown)}{more}")
+    hint = (
+        "git add them, then commit again"
+        if in_git
+        else "not in a git work tree: --fail-on-change fails on any file a build writes anew"
+    )
+    error = CheckError("; ".join(parts), hint=hint)
     report_error(error, debug)
     return error.exit_code
 

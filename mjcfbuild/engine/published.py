@@ -77,3 +77,35 @@ def git_status(files: list[str]) -> tuple[set[str], set[str]]:
             listed = [entry for entry in done.stdout.decode().split("\0") if entry]
             found.update(os.path.normpath(os.path.join(folder, entry)) for entry in listed)
     return untracked, ignored
+
+
+def unstaged(files: list[str]) -> set[str] | None:
+    """Those of ``files`` whose bytes differ from what git's index holds for them (tracked
+    files only); None outside a git work tree. A file a build rewrote to the bytes that are
+    staged (a hand edit undone) needs no ``git add``."""
+    by_folder: dict[str, list[str]] = {}
+    for name in files:
+        by_folder.setdefault(os.path.dirname(name), []).append(name)
+    found: set[str] = set()
+    for folder, names in sorted(by_folder.items()):
+        command = ["git", "diff", "--name-only", "--relative", "-z", "--", *names]
+        try:
+            done = subprocess.run(command, cwd=folder, capture_output=True)
+        except OSError:
+            return None  # no git
+        if done.returncode != 0:
+            return None  # not a work tree
+        listed = [entry for entry in done.stdout.decode().split("\0") if entry]
+        found.update(os.path.normpath(os.path.join(folder, entry)) for entry in listed)
+    return found
+
+
+def in_work_tree(folder: str) -> bool:
+    """Whether ``folder`` is in a git work tree (False without git)."""
+    try:
+        done = subprocess.run(
+            ["git", "rev-parse", "--is-inside-work-tree"], cwd=folder, capture_output=True
+        )
+    except OSError:
+        return False
+    return done.returncode == 0 and done.stdout.strip() == b"true"

@@ -105,9 +105,16 @@ def test_fail_on_change_fails_until_created_and_changed_files_are_added(cli, arm
     assert "git add them" in created.stderr
     # Nothing rebuilt, but the model is still not added: the no-op fails too.
     again = cli("build", "--no-check", "--fail-on-change", cwd=arm)
-    assert again.code == 6 and "0 run" in again.stdout and "files were created" in again.stderr
+    assert again.code == 6 and "0 run" in again.stdout, again.stderr
+    assert "files git does not track: mjcf/example_arm.xml" in again.stderr
+    assert "created" not in again.stderr  # this build created nothing
     git("add", "-A")
     assert cli("build", "--no-check", "--fail-on-change", cwd=arm).code == 0
+    # A hand edit the build undoes, back to the bytes git has: nothing to add.
+    model = arm / "mjcf" / "example_arm.xml"
+    model.write_text(model.read_text().replace("<mujoco", "<!-- mine -->\n<mujoco", 1))
+    undone = cli("build", "--no-check", "--fail-on-change", cwd=arm)
+    assert undone.code == 0, undone.stderr
     limits = arm / "config" / "joint_limits.yaml"
     limits.write_text(limits.read_text().replace("upper: 2.5", "upper: 2.4"))
     changed = cli("build", "--no-check", "--fail-on-change", "-q", cwd=arm)
@@ -175,3 +182,11 @@ def test_files_are_named_from_the_current_folder_in_warnings_and_the_check(tmp_p
     checked = run_cli("check", "robot/robot.yaml", cwd=tmp_path)
     assert checked.stdout.splitlines()[0] == "mjcfbuild check: robot/mjcf/w.xml"
     assert "  report: robot/mjcf/report/report.md" in checked.stdout.splitlines()
+
+
+def test_fail_on_change_outside_git_does_not_ask_for_git_add(cli, arm):
+    created = cli("build", "--no-check", "--fail-on-change", cwd=arm)
+    assert created.code == 6
+    assert "files were created: mjcf/example_arm.xml" in created.stderr
+    assert "git add" not in created.stderr and "not in a git work tree" in created.stderr
+    assert cli("build", "--no-check", "--fail-on-change", cwd=arm).code == 0  # nothing new
