@@ -254,14 +254,21 @@ def step_timeout(args: argparse.Namespace) -> float:
         ) from None
 
 
+# The longest wait a command line may ask for (about 115 days): the system's timers refuse
+# infinity and numbers near it, which failed every step of a build as an internal error.
+MOST_SECONDS = 1e7
+
+
 def positive_seconds(text: str) -> float:
-    """An argparse type: a number of seconds more than 0."""
+    """An argparse type: a number of seconds more than 0 and at most :data:`MOST_SECONDS`."""
     try:
         value = float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds") from None
     if not value > 0:
         raise argparse.ArgumentTypeError("must be more than 0")
+    if not value <= MOST_SECONDS:
+        raise argparse.ArgumentTypeError(f"must be at most {MOST_SECONDS:g} (about 115 days)")
     return value
 
 

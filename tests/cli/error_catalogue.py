@@ -1309,6 +1309,20 @@ CASES: list[Case] = [
         args=["build", "--timeout=-1"],
     ),
     Case(
+        "build timeout infinite (the system's timers refuse it)",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+        EXIT_USAGE,
+        ["argument --timeout: must be at most 1e+07"],
+        args=["build", "--timeout", "inf"],
+    ),
+    Case(
+        "watch interval infinite",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+        EXIT_USAGE,
+        ["argument --interval: must be at most 1e+07"],
+        args=["watch", "--interval", "inf"],
+    ),
+    Case(
         "check tolerance negative",
         {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
         EXIT_USAGE,
