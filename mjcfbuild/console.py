@@ -58,13 +58,18 @@ def shown_path(path: str | Path) -> str:
 
 
 def _from_here(warning: str, base_dir: Path) -> str:
-    """``warning`` with its leading ``file:`` (relative to ``base_dir``) named from here."""
+    """``warning`` with its leading ``file:`` and the expanded URDF it names (``[expanded:
+    file:line]``), both relative to ``base_dir``, named from here."""
     import re
 
+    def here(name: str) -> str:
+        file = base_dir / name
+        return name if Path(name).is_absolute() or not file.exists() else shown_path(file)
+
+    warning = re.sub(
+        r"\[expanded: ([^\s:\]]+)", lambda m: f"[expanded: {here(m.group(1))}", warning
+    )
     found = re.match(r"([^\s:]+\.[A-Za-z0-9]+):", warning)
-    if found is None or Path(found.group(1)).is_absolute():
+    if found is None:
         return warning
-    file = base_dir / found.group(1)
-    if not file.exists():
-        return warning
-    return shown_path(file) + warning[found.end(1) :]
+    return here(found.group(1)) + warning[found.end(1) :]

@@ -35,3 +35,19 @@ def test_warnings_print_one_line_per_kind_after_the_prefix(capsys):
         "pad9, ... 1 more (all in report.md)",
         "mjcfbuild: warning: arm: joint 'a' has no limit",
     ]
+
+
+def test_a_warnings_files_are_named_from_where_the_command_runs(tmp_path, monkeypatch, capsys):
+    """Kept warnings name files from robot.yaml's folder (the report, the no-op fast path):
+    the console names both the file and the expanded URDF's line from here."""
+    robot = tmp_path / "robots" / "arm"
+    (robot / "mjcf" / ".mjcfbuild").mkdir(parents=True)
+    (robot / "arm.urdf.xacro").write_text("<robot/>")
+    (robot / "mjcf" / ".mjcfbuild" / "source.urdf").write_text("<robot/>")
+    warning = "arm.urdf.xacro:7: a box of size 0 [expanded: mjcf/.mjcfbuild/source.urdf:28]"
+    monkeypatch.chdir(tmp_path)
+    report_warnings([warning], base_dir=robot)
+    assert capsys.readouterr().err == (
+        "mjcfbuild: warning: robots/arm/arm.urdf.xacro:7: a box of size 0 [expanded: "
+        "robots/arm/mjcf/.mjcfbuild/source.urdf:28]\n"
+    )

@@ -43,17 +43,22 @@ def written_at(urdf: Path, line: int) -> tuple[str, int] | None:
 
 
 def point_at_source(
-    error: MjcfbuildError, urdf: Path, label: str, base_dir: Path, xacro: Path | None = None
+    error: MjcfbuildError,
+    urdf: Path,
+    label: str,
+    base_dir: Path,
+    xacro: Path | None = None,
+    expanded_from: Path | None = None,
 ) -> None:
     """If ``error`` points at a line of the expanded URDF ``urdf`` (shown as ``label``,
     relative to ``base_dir``), point it where that element was written, and name the
-    expanded line in its message. An error about the whole expanded URDF (no line) points at
-    ``xacro``, the file it was expanded from, where one is given: the user never wrote the
-    expanded file."""
+    expanded line in its message (from ``expanded_from``, else the current folder). An error
+    about the whole expanded URDF (no line) points at ``xacro``, the file it was expanded
+    from, where one is given: the user never wrote the expanded file."""
     location = error.location
     if location is None or location.file != label:
         return
-    expanded = os.path.relpath(urdf)
+    expanded = os.path.relpath(urdf, expanded_from)
     expanded = str(urdf) if expanded.startswith("..") else expanded
     if location.line is None:
         if xacro is not None:
@@ -81,7 +86,9 @@ def point_warning_at_source(text: str, urdf: Path, label: str, base_dir: Path) -
     if not sep or not number.isdigit():
         return text
     error = MjcfbuildError(rest.strip(), file=label, line=int(number))
-    point_at_source(error, urdf, label, base_dir)
+    # Named from base_dir, as the warning's file is: the report and the no-op fast path keep
+    # warnings, which the console names from wherever it runs (console.report_warnings).
+    point_at_source(error, urdf, label, base_dir, expanded_from=base_dir)
     if error.location is None or error.location.file == label:
         return text
     return f"{error.location}: {error.message}"
