@@ -350,6 +350,9 @@ def dry_run(ctx) -> int:
     running = [s for s in statuses if not s.up_to_date]
     for status in running:
         print(f"would run: {status.title}: {'; '.join(status.reasons)}")
+    then = list(dict.fromkeys(title for status in running for title in status.then))
+    if then:  # doit decides each once the task before it has run: by what it wrote
+        print(f"  then, where what it writes comes out changed: {', '.join(then)}")
     if not complete:
         print("  (the plan would be made again first; the tasks after it follow from it)")
     print(

@@ -61,6 +61,8 @@ def run(args: argparse.Namespace) -> int:
             print(f"{status.name}: would run")
             for reason in status.reasons:
                 print(f"  - {reason}")
+            if status.then:  # doit decides each once this one ran: by what it wrote
+                print(f"  then, where what it writes comes out changed: {', '.join(status.then)}")
     if not complete and not args.task:
         print("(later tasks are known once the plan is made again: run mjcfbuild build)")
     return EXIT_OK

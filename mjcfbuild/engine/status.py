@@ -22,6 +22,9 @@ class TaskStatus:
     title: str
     up_to_date: bool
     reasons: list[str] = field(default_factory=list)
+    # Titles of the up-to-date tasks that read what this one writes, directly or further on:
+    # they run after it where its outputs come out changed (doit compares them then).
+    then: list[str] = field(default_factory=list)
 
 
 def task_statuses(ctx: BuildContext, tasks: list[dict]) -> list[TaskStatus]:
@@ -50,9 +53,37 @@ def task_statuses(ctx: BuildContext, tasks: list[dict]) -> list[TaskStatus]:
             result.append(
                 TaskStatus(task.name, task.title(), status.status == "up-to-date", reasons)
             )
+        _downstream(objects, result)
         return result
     finally:
         manager.close()
+
+
+def _downstream(objects: list[Any], statuses: list[TaskStatus]) -> None:
+    """Fill each stale task's ``then``: the up-to-date tasks reading its outputs, transitively."""
+    writer = {str(target): task.name for task in objects for target in task.targets}
+    readers: dict[str, set[str]] = {}
+    for task in objects:
+        for path in task.file_dep:
+            if str(path) in writer and writer[str(path)] != task.name:
+                readers.setdefault(writer[str(path)], set()).add(task.name)
+        for name in task.task_dep:
+            readers.setdefault(name, set()).add(task.name)
+    by_name = {status.name: status for status in statuses}
+    for status in statuses:
+        if status.up_to_date:
+            continue
+        found, todo = set(), [status.name]
+        while todo:
+            for reader in readers.get(todo.pop(), ()):
+                if reader not in found:
+                    found.add(reader)
+                    todo.append(reader)
+        status.then = [
+            other.title
+            for other in statuses
+            if other.name in found and other.up_to_date and other.name in by_name
+        ]
 
 
 def _reasons(status: Any, task: Any, values: dict, ctx: BuildContext) -> list[str]:

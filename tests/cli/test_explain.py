@@ -20,7 +20,12 @@ def test_explain_names_the_changed_input_and_nothing_else(arm):
     assert one.stdout.splitlines() == [
         "mesh:forearm: would run",
         "  - input changed: meshes/forearm_colours.mtl",
+        "  then, where what it writes comes out changed: assemble example_arm.xml, scene "
+        "scene.xml, check example_arm.xml, previews, tuning report",
     ]
+    # The dry run says the same: the tasks that read the mesh may follow it.
+    dry = run_cli("build", "-n", cwd=arm)
+    assert "  then, where what it writes comes out changed: assemble example_arm.xml" in dry.stdout
 
 
 def test_explain_names_a_changed_parameter(arm):
