@@ -86,7 +86,7 @@ def write_report(ctx: BuildContext) -> Path:
     # Ignored in git by default: the preview pictures are rendered on this machine and its
     # OpenGL (report.md and report.json are the same bytes for the same inputs, and may be
     # added with git add -f).
-    write_if_changed(
+    _write(
         folder / ".gitignore",
         b"# previews are rendered on this machine; git add -f report.md report.json\n*\n",
     )
@@ -103,13 +103,20 @@ def write_report(ctx: BuildContext) -> Path:
                 if isinstance(given, dict) and isinstance(value, dict):
                     value = {**given, **value}  # products: a count from each family
                 report[key] = value
-    write_if_changed(
-        folder / "report.json", (json.dumps(report, indent=1, sort_keys=True) + "\n").encode()
-    )
-    write_if_changed(folder / "report.md", markdown(report).encode())
+    _write(folder / "report.json", (json.dumps(report, indent=1, sort_keys=True) + "\n").encode())
+    _write(folder / "report.md", markdown(report).encode())
     _page_tables(ctx, folder, report)
     ctx.session.written.update(str(folder / n) for n in (".gitignore", "report.json", "report.md"))
     return folder
+
+
+def _write(path: Path, data: bytes) -> None:
+    """Write a file of the report, unless it is one of the user's found in the folder (a
+    report.md ``clean`` kept as edited): that stops the build, as a step's write does."""
+    from mjcfbuild.ownership import refuse_foreign
+
+    refuse_foreign(path, data)
+    write_if_changed(path, data)
 
 
 def _page_tables(ctx: BuildContext, folder: Path, report: dict) -> None:
@@ -119,7 +126,7 @@ def _page_tables(ctx: BuildContext, folder: Path, report: dict) -> None:
         from mjcfbuild.page.tables import tables_script
 
         (folder / "page").mkdir(exist_ok=True)
-        write_if_changed(folder / "page" / "tables.js", tables_script(report))
+        _write(folder / "page" / "tables.js", tables_script(report))
         ctx.session.written.add(str(folder / "page" / "tables.js"))
         return
     # Only what builds wrote goes (engine.written): a file of the user's stays.

@@ -223,6 +223,19 @@ def test_a_file_of_the_users_in_the_output_folder_is_never_written_over(arm):
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
 
 
+def test_a_report_clean_kept_as_edited_is_not_written_over(arm):
+    """clean keeps an edited report.md as the user's; the report, written by the engine and
+    not by a step, wrote over it all the same."""
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    report = arm / "mjcf" / "report" / "report.md"
+    report.write_text(report.read_text() + "MY NOTES\n")
+    assert run_cli("clean", "-q", cwd=arm).code == 0
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert result.code == EXIT_OUTPUT, result.stderr
+    assert result.stderr.startswith("mjcfbuild: error: mjcf/report/report.md: is not mjcfbuild's")
+    assert report.read_text().endswith("MY NOTES\n")
+
+
 def test_a_fresh_clone_of_committed_models_is_the_builds_to_keep_current(arm):
     """A repository that commits its models (not the state folder): the first build of a
     fresh clone finds the model, scene and assets with no record, and updates them. It knows
