@@ -54,14 +54,29 @@ def run(args: argparse.Namespace) -> int:
     elif args.action == "clear":
         removed = store.clear()
         print(f"mjcfbuild: removed {removed} cache entr{'y' if removed == 1 else 'ies'}")
+        if folder is None and _diff_folder().is_dir():  # diff's revisions: built again at need
+            import shutil
+
+            shutil.rmtree(_diff_folder(), ignore_errors=True)
+            print(f"mjcfbuild: removed {_diff_folder()} (the revisions mjcfbuild diff built)")
     usage = store.usage()
     print(
         f"cache: {usage.folder}\n"
         f"entries: {usage.entries}\n"
         f"size: {_human(usage.bytes)} of {_human(store.max_bytes)} (the cap builds prune to)"
     )
+    if folder is None and _diff_folder().is_dir():
+        size = sum(f.stat().st_size for f in _diff_folder().rglob("*") if f.is_file())
+        print(f"diff revisions: {_diff_folder()} ({_human(size)}; `cache clear` removes them)")
     _show_remotes(store.folder)
     return 0
+
+
+def _diff_folder() -> Path:
+    """Where ``mjcfbuild diff`` keeps the revisions it extracted and built (cli.diff)."""
+    from mjcfbuild.cachedir import user_cache_dir
+
+    return user_cache_dir() / "diff"
 
 
 def _show_remotes(folder: Path) -> None:

@@ -25,3 +25,18 @@ def test_prune_to_a_size_does_not_show_it_as_the_cap(cli, arm, tmp_path):
     assert pruned.code == 0
     assert "pruned to 1.0 MiB" in pruned.stdout
     assert "of 2.0 GiB" in pruned.stdout and "of 1.0 MiB" not in pruned.stdout
+
+
+def test_the_revisions_diff_built_are_shown_and_cleared(cli, tmp_path):
+    """`mjcfbuild diff` keeps the revisions it extracted and built under the cache folder:
+    `cache` names them and `cache clear` removes them with the rest."""
+    cache = tmp_path / "cache"
+    kept = cache / "diff" / "repo" / "base" / "src"
+    kept.mkdir(parents=True)
+    (kept / "robot.yaml").write_text("name: r\n")
+    env = {"MJCFBUILD_CACHE_DIR": str(cache)}
+    shown = cli("cache", env=env)
+    assert f"diff revisions: {cache / 'diff'} (8 B; `cache clear` removes them)" in shown.stdout
+    cleared = cli("cache", "clear", env=env)
+    assert cleared.code == 0 and not (cache / "diff").exists()
+    assert "diff revisions" not in cleared.stdout.split("removed")[-1]
