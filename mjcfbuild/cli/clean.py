@@ -144,9 +144,16 @@ def _grouped(ctx, files: list[Path]) -> list[str]:
 
 
 def _say_edited(ctx, edited: list[Path]) -> None:
-    """Name every file a build wrote that the user edited since, which stays."""
+    """Name every file a build wrote that the user edited since, which stays. The model is
+    the build's to write again: a folder holding one is taken as a fresh clone's committed
+    outputs (engine.guard), so the next build writes over it, and clean says so."""
     for path in edited:
-        print(f"mjcfbuild: kept {ctx.label(path)} (edited since mjcfbuild wrote it)")
+        more = (
+            "; the next build writes the model over it: move it away to keep your edit"
+            if path == ctx.robot_path
+            else ""
+        )
+        print(f"mjcfbuild: kept {ctx.label(path)} (edited since mjcfbuild wrote it{more})")
 
 
 def _say_history(ctx, history: list[Path]) -> None:

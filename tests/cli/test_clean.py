@@ -245,3 +245,16 @@ def test_quiet_dry_run_still_lists_what_would_be_removed(built_arm):
         assert lines[0] == "mjcfbuild: would remove:" and "  mjcf/.mjcfbuild/" in lines
         assert lines == [line for line in listed.stdout.splitlines() if "kept" not in line]
     assert (built_arm / "mjcf" / "scene.xml").exists()
+
+
+def test_clean_says_the_next_build_writes_over_an_edited_model_it_kept(arm):
+    """A folder holding a model with mjcfbuild's header is taken for a fresh clone's committed
+    outputs, which the build keeps current: clean must not promise the edit stays."""
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    model = arm / "mjcf" / "example_arm.xml"
+    model.write_text(model.read_text() + "<!-- mine -->\n")
+    result = run_cli("clean", cwd=arm)
+    assert (
+        "mjcfbuild: kept mjcf/example_arm.xml (edited since mjcfbuild wrote it; the next build "
+        "writes the model over it: move it away to keep your edit)"
+    ) in result.stdout.splitlines()
