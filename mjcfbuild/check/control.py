@@ -136,6 +136,7 @@ def _hold_and_stand(
             floating,
             measure.tilt if floating else None,
             failed,
+            held=measure.held_count,
             passive=measure.passive_count,
             passive_deviation=measure.passive_deviation,
             passive_joint=measure.passive_joint,
@@ -425,6 +426,7 @@ class HoldMeasure:
     passive_joint: str | None
     passive_count: int
     tilt: float
+    held_count: int = 0  # the hinge and slide joints not asked to be passive
 
 
 def hold_deviation(model, key: int, passive: set[str]) -> HoldMeasure:
@@ -447,6 +449,7 @@ def hold_deviation(model, key: int, passive: set[str]) -> HoldMeasure:
         unheld.name(model),
         len(unheld.joints),
         base_tilt(model, data),
+        len(held.joints),
     )
 
 

@@ -176,6 +176,7 @@ class Hold:
     floating: bool = False
     base_tilt: float | None = None
     failed: bool = False  # a fixed base moved past check.hold_tolerance
+    held: int = 0  # hinge and slide joints the hold watched (not asked to be passive)
     passive: int = 0  # hinge and slide joints asked to have no actuator
     passive_deviation: float = 0.0  # the largest distance from home of one of them
     passive_joint: str | None = None
@@ -516,9 +517,9 @@ class CheckResults:
             hold = self.hold
             joint = f" ({hold.joint})" if hold.joint else ""
             deviation = (
-                f"largest deviation {hold.max_deviation:.3g}{joint}"
-                if hold.joint or not hold.passive
-                else "no joint has an actuator"
+                "every joint is passive"
+                if hold.passive and not hold.held
+                else f"largest deviation {hold.max_deviation:.3g}{joint}"
             )
             passive = hold.passive_words()
             if hold.floating:  # it stands on the floor, or falls, as it holds: one judge

@@ -61,15 +61,13 @@ def task_statuses(ctx: BuildContext, tasks: list[dict]) -> list[TaskStatus]:
 
 def _downstream(objects: list[Any], statuses: list[TaskStatus]) -> None:
     """Fill each stale task's ``then``: the up-to-date tasks reading its outputs, transitively."""
+    # Only files: a task_dep orders tasks but makes none rerun (engine.runner).
     writer = {str(target): task.name for task in objects for target in task.targets}
     readers: dict[str, set[str]] = {}
     for task in objects:
         for path in task.file_dep:
             if str(path) in writer and writer[str(path)] != task.name:
                 readers.setdefault(writer[str(path)], set()).add(task.name)
-        for name in task.task_dep:
-            readers.setdefault(name, set()).add(task.name)
-    by_name = {status.name: status for status in statuses}
     for status in statuses:
         if status.up_to_date:
             continue
@@ -80,9 +78,7 @@ def _downstream(objects: list[Any], statuses: list[TaskStatus]) -> None:
                     found.add(reader)
                     todo.append(reader)
         status.then = [
-            other.title
-            for other in statuses
-            if other.name in found and other.up_to_date and other.name in by_name
+            other.title for other in statuses if other.name in found and other.up_to_date
         ]
 
 

@@ -158,11 +158,15 @@ def not_a_manifest(path: Path, data: bytes) -> str | None:
 def not_an_mjcf(path: Path, data: bytes) -> str | None:
     """What ``path`` (with content ``data``) is when it is not an MJCF model (its root element
     is not <mujoco>): a URDF or xacro file (which MuJoCo would read as a URDF), a mesh, an
-    image...; None for an MJCF model."""
-    root = _root_tag(data[:4096]) if b"\0" not in data[:4096] else None
-    if root is not None and root.split(":")[-1] == "mujoco":
+    image...; None for an MJCF model, or text in which no element starts (MuJoCo's to judge)."""
+    head = data[:4096]
+    binary = b"\0" in head or any(head.startswith(magic) for magic, _ in _BINARY_KINDS)
+    if binary or mesh_kind(path, data) is not None:
+        return not_a_description(path, data)
+    root = _root_tag(data[: 1 << 20])  # past a licence comment of any length
+    local = root.split(":")[-1] if root is not None else None
+    if local is None or local == "mujoco":
         return None
-    kind = not_a_description(path, data)
-    if kind is not None:
-        return kind
-    return "a xacro file" if xacro_evidence(data) is not None else "a URDF"
+    if local == "robot":
+        return "a xacro file" if xacro_evidence(data) is not None else "a URDF"
+    return _ROOTS.get(local) or f"an XML file whose root element is <{root}>, not <mujoco>"

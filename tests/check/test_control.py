@@ -115,7 +115,7 @@ def test_joints_asked_to_be_passive_that_sag_fail_nothing_but_the_verdict_says_s
     assert results.passes, results.failures
     assert results.hold is not None and results.hold.passive_sags
     hold = dict(results.console_lines())["hold home 1 s"]
-    assert hold.startswith("no joint has an actuator; 1 joint without an actuator moved up to ")
+    assert hold.startswith("every joint is passive; 1 joint without an actuator moved up to ")
     assert hold.endswith(" (swing)")
     verdict = results.console_verdict()
     assert verdict.startswith(

@@ -55,7 +55,7 @@ def test_the_script_holds_the_reports_tables_and_what_the_check_measured():
     html = json.loads(tables.removeprefix("window.MJCFBUILD_TABLES = ").rstrip(";"))
     assert checked == (
         'window.MJCFBUILD_CHECKED = {"hold": {"base_tilt": null, "failed": false, '
-        '"floating": false, "joint": "elbow", "max_deviation": 0.01, "passive": 0, '
+        '"floating": false, "held": 0, "joint": "elbow", "max_deviation": 0.01, "passive": 0, '
         '"passive_deviation": 0.0, "passive_joint": null, "passive_sags": false}};'
     )
     assert "<h2>arm: build report</h2>" in html

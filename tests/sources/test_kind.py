@@ -6,7 +6,13 @@ from pathlib import Path
 
 import pytest
 
-from mjcfbuild.sources.kind import mesh_kind, not_a_description, not_a_manifest, xacro_evidence
+from mjcfbuild.sources.kind import (
+    mesh_kind,
+    not_a_description,
+    not_a_manifest,
+    not_an_mjcf,
+    xacro_evidence,
+)
 
 NS = '<robot name="r" xmlns:xacro="http://wiki.ros.org/xacro">\n'
 
@@ -77,3 +83,14 @@ def test_what_is_plainly_no_manifest_is_named():
     # YAML, even YAML that starts with a merge key, is for the manifest's reader to judge
     assert not_a_manifest(robot, b"name: r\nsource: {urdf: r.urdf}\n") is None
     assert not_a_manifest(robot, b"<<: *defaults\nname: r\n") is None
+
+
+def test_an_mjcf_model_is_told_from_a_urdf_past_a_long_licence_comment():
+    licence = b"<!-- " + b"licence text " * 500 + b"-->\n"  # 6.5 kB before the root
+    model = Path("model.xml")
+    assert not_an_mjcf(model, licence + b"<mujoco/>") is None
+    assert not_an_mjcf(model, licence + b'<robot name="r"/>') == "a URDF"
+    assert not_an_mjcf(model, b"no element here") is None  # MuJoCo's to judge
+    assert not_an_mjcf(Path("m.stl"), b"solid a\nfacet normal 0 0 1\nendsolid a\n") == (
+        "an STL mesh"
+    )
