@@ -13,3 +13,9 @@ def user_cache_dir() -> Path:
         return Path(explicit).expanduser()
     base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
     return Path(base) / "mjcfbuild"
+
+
+def diff_cache_dir() -> Path:
+    """Where ``mjcfbuild diff`` keeps the revisions it extracted and built, one folder per
+    repository (``cache clear`` removes it)."""
+    return user_cache_dir() / "diff"

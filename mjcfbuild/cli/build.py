@@ -210,13 +210,14 @@ def _report_unadded(
 
     untracked, ignored = git_status(published)
     in_git = bool(published) and in_work_tree(os.path.dirname(published[0]))
-    tracked_changes = set(changed) - ignored - untracked
-    differing = unstaged(sorted(tracked_changes)) if in_git and tracked_changes else None
-    if differing is not None:  # rewritten to the bytes git has staged: nothing to add
-        tracked_changes &= differing
+    written = (set(created) | set(changed)) - ignored
+    tracked = written - untracked
+    differing = unstaged(sorted(tracked)) if in_git and tracked else None
+    if differing is not None:  # written as git has them staged (after a clean, a hand edit)
+        written -= tracked - differing
     # The model and scene first: files at the top of the output folder, then those below.
-    created = sorted(set(created) - ignored, key=_top_first)
-    changed = sorted(tracked_changes, key=_top_first)
+    created = sorted(written & set(created), key=_top_first)
+    changed = sorted(written & set(changed), key=_top_first)
     not_added = sorted(untracked - ignored - set(created), key=_top_first)
     if not created and not changed and not not_added:
         return EXIT_OK

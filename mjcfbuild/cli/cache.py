@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
+import os
 from pathlib import Path
 
 from mjcfbuild.errors import UsageError
@@ -66,17 +68,27 @@ def run(args: argparse.Namespace) -> int:
         f"size: {_human(usage.bytes)} of {_human(store.max_bytes)} (the cap builds prune to)"
     )
     if folder is None and _diff_folder().is_dir():
-        size = sum(f.stat().st_size for f in _diff_folder().rglob("*") if f.is_file())
+        size = _size(_diff_folder())
         print(f"diff revisions: {_diff_folder()} ({_human(size)}; `cache clear` removes them)")
     _show_remotes(store.folder)
     return 0
 
 
 def _diff_folder() -> Path:
-    """Where ``mjcfbuild diff`` keeps the revisions it extracted and built (cli.diff)."""
-    from mjcfbuild.cachedir import user_cache_dir
+    """Where ``mjcfbuild diff`` keeps the revisions it extracted and built."""
+    from mjcfbuild.cachedir import diff_cache_dir
 
-    return user_cache_dir() / "diff"
+    return diff_cache_dir()
+
+
+def _size(folder: Path) -> int:
+    """The bytes of the files below ``folder`` (a file a running diff removes counts none)."""
+    total = 0
+    for root, _, names in os.walk(folder):
+        for name in names:
+            with contextlib.suppress(OSError):
+                total += os.lstat(os.path.join(root, name)).st_size
+    return total
 
 
 def _show_remotes(folder: Path) -> None:

@@ -72,10 +72,9 @@ def run(args: argparse.Namespace) -> int:
     edited = [out / name for name in present if written.edited(out, name, names[name])]
     # The package's changelog holds every earlier build's entry and the user's notes between
     # them (a rebuild keeps them, as its own bytes): no build can write it again.
-    from mjcfbuild.outputs import PACKAGE_FOLDER
-    from mjcfbuild.steps.package import CHANGELOG
+    from mjcfbuild.outputs import PACKAGE_CHANGELOG, PACKAGE_FOLDER
 
-    changelog = f"{PACKAGE_FOLDER}/{CHANGELOG}"
+    changelog = f"{PACKAGE_FOLDER}/{PACKAGE_CHANGELOG}"
     history = [out / name for name in present if name == changelog and out / name not in edited]
     files = [out / name for name in present if out / name not in {*edited, *history}]
     if args.dry_run:  # the list is the answer asked for: -q leaves out the rest

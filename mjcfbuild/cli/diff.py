@@ -133,7 +133,7 @@ def _sides(args: argparse.Namespace, warnings: dict[str, list[str]]):
 
 
 def _revisions(args: argparse.Namespace, warnings: dict[str, list[str]]):
-    from mjcfbuild.cachedir import user_cache_dir
+    from mjcfbuild.cachedir import diff_cache_dir
     from mjcfbuild.diff import revisions
     from mjcfbuild.diff.render import Sides
     from mjcfbuild.diff.snapshot import find_model
@@ -142,7 +142,7 @@ def _revisions(args: argparse.Namespace, warnings: dict[str, list[str]]):
     repo = revisions.repository(manifest)
     base = revisions.resolve(repo, args.base)
     head = revisions.resolve(repo, args.head) if args.head else None
-    scratch = Path(args.scratch) if args.scratch else user_cache_dir() / "diff" / repo.key
+    scratch = Path(args.scratch) if args.scratch else diff_cache_dir() / repo.key
     base_folder = _build_revision(repo, base, scratch / "base", args, warnings)
     if head is None:
         head_folder = _build(manifest, None, "the working tree", args, warnings)

@@ -687,14 +687,16 @@ def make_room(folder: Path, key: str, most: int, seconds: float) -> bool:
     environment nobody builds in any more (another ``MUJOCO_GL``, another virtual
     environment) would otherwise hold every place for their whole wait. Workers of ``key``
     are never asked: the next build of that key may use them as well as this one."""
+    asked: set[Path] = set()
     for _ in range(most + 1):  # each turn ends a worker, or finds one gone meanwhile
         waiting = _waiting(folder)
         if len(waiting) < most:
             return True
-        others = [worker for worker in waiting if worker.key != key]
+        others = [w for w in waiting if w.key != key and w.path not in asked]
         if not others:
             return False
         oldest = min(others, key=lambda worker: (worker.since_ns, worker.path.name))
+        asked.add(oldest.path)  # asked once: one that would not go is not asked again
         shut_down(oldest.path, folder, seconds)
     return False
 

@@ -95,7 +95,7 @@ def run(payload: dict) -> dict:
         if name in assembly.assets or name != Path(name).name or name.startswith("."):
             continue  # still used, or not a file of assets/
         stale = assets_dir / name
-        if digest is not None and stale.is_file() and md5_file(stale) != digest:
+        if digest is not None and stale.is_file() and _differs(stale, digest):
             # Edited since the build wrote it: the user's now, and no build would write it back
             assembly.warnings.append(
                 f"assets/{name}: edited since mjcfbuild wrote it, and the model no longer uses "
@@ -162,6 +162,15 @@ def _placement_warnings(assembly: Assembly, floor: float | str) -> list[str]:
 
 def _read(path: str | None) -> dict | None:
     return json.loads(Path(path).read_text()) if path else None
+
+
+def _differs(path: Path, digest: str) -> bool:
+    """Whether ``path`` no longer holds the bytes of MD5 ``digest`` (one that cannot be read
+    counts as unedited, as engine.written.edited takes it)."""
+    try:
+        return md5_file(path) != digest
+    except OSError:
+        return False
 
 
 def _previous_assets(report_path: Path) -> dict[str, str | None]:

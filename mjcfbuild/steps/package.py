@@ -17,13 +17,14 @@ from mjcfbuild.diff.render import change_line
 from mjcfbuild.diff.snapshot import model_snapshot
 from mjcfbuild.fsutil import write_if_changed
 from mjcfbuild.markup import markdown_code, markdown_text
+from mjcfbuild.outputs import PACKAGE_CHANGELOG
 from mjcfbuild.package.documents import Provenance, changelog, readme
 from mjcfbuild.package.format import format_model
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import PackagePayload
 from mjcfbuild.version import __version__
 
-CHANGELOG = "CHANGELOG.md"
+CHANGELOG = PACKAGE_CHANGELOG
 
 
 def run(payload: dict) -> dict:

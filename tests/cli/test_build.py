@@ -115,6 +115,10 @@ def test_fail_on_change_fails_until_created_and_changed_files_are_added(cli, arm
     model.write_text(model.read_text().replace("<mujoco", "<!-- mine -->\n<mujoco", 1))
     undone = cli("build", "--no-check", "--fail-on-change", cwd=arm)
     assert undone.code == 0, undone.stderr
+    # After a clean, the build writes the committed files again as they are: nothing to add.
+    assert cli("clean", "-q", cwd=arm).code == 0
+    rebuilt = cli("build", "--no-check", "--fail-on-change", cwd=arm)
+    assert rebuilt.code == 0, rebuilt.stderr
     limits = arm / "config" / "joint_limits.yaml"
     limits.write_text(limits.read_text().replace("upper: 2.5", "upper: 2.4"))
     changed = cli("build", "--no-check", "--fail-on-change", "-q", cwd=arm)
