@@ -78,3 +78,8 @@ def _holds(path: Path, data: bytes) -> bool:
         return path.stat().st_size == len(data) and path.read_bytes() == data
     except OSError:
         return False  # gone, or a folder: writing it says what is wrong
+
+
+def recorded_foreign(out_dir: Path) -> frozenset[str]:
+    """The names the folder's record lists as files no build wrote (none without one)."""
+    return _names(out_dir / STATE_DIR / FOREIGN)

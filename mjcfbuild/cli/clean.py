@@ -93,6 +93,15 @@ def run(args: argparse.Namespace) -> int:
         # Still holding the lock: a build waiting for it finds the folder gone and makes a
         # new one, never loses the state it has just made (the guard refused a link there).
         shutil.rmtree(ctx.state_dir, ignore_errors=True)
+        # The files kept as edited are the user's now: the next build, finding no record of
+        # its own, must not take them for a fresh clone's outputs and write over them. (The
+        # changelog, which builds extend around the user's notes, stays the build's.)
+        yours = [path for path in edited if path.relative_to(out).as_posix() != changelog]
+        if yours:
+            from mjcfbuild.ownership import record_foreign
+
+            ctx.state_dir.mkdir()
+            record_foreign(out, [path.relative_to(out).as_posix() for path in yours])
         if not out.is_symlink() and not any(out.iterdir()):  # a linked folder is the user's
             with contextlib.suppress(OSError):  # a waiting build made its state folder again
                 out.rmdir()
@@ -143,16 +152,10 @@ def _grouped(ctx, files: list[Path]) -> list[str]:
 
 
 def _say_edited(ctx, edited: list[Path]) -> None:
-    """Name every file a build wrote that the user edited since, which stays. The model is
-    the build's to write again: a folder holding one is taken as a fresh clone's committed
-    outputs (engine.guard), so the next build writes over it, and clean says so."""
+    """Name every file a build wrote that the user edited since, which stays (recorded as
+    the user's, which no build writes over: mjcfbuild.ownership)."""
     for path in edited:
-        more = (
-            "; the next build writes the model over it: move it away to keep your edit"
-            if path == ctx.robot_path
-            else ""
-        )
-        print(f"mjcfbuild: kept {ctx.label(path)} (edited since mjcfbuild wrote it{more})")
+        print(f"mjcfbuild: kept {ctx.label(path)} (edited since mjcfbuild wrote it)")
 
 
 def _say_history(ctx, history: list[Path]) -> None:

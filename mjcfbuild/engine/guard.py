@@ -284,13 +284,17 @@ def _foreign_files(ctx: BuildContext) -> list[str]:
     built (its state is there), or a fresh clone of a repository that commits its models
     (no state; the model carries mjcfbuild's header), whose files the build keeps current."""
     from mjcfbuild.engine.written import recorded, written_file
+    from mjcfbuild.ownership import recorded_foreign
 
     names = recorded(ctx)
     if names is None and (
         any(entry.name not in ("lock", OWNER, FOREIGN) for entry in ctx.state_dir.iterdir())
         or _built_model(ctx.robot_path)
     ):
-        return []
+        # What clean kept as the user's (edited since a build wrote it) stays the user's,
+        # a model with the build's header among them.
+        kept = recorded_foreign(ctx.out_dir)
+        return sorted(name for name in kept if written_file(ctx.out_dir, name))
     found = []
     for folder in [ctx.out_dir, *build_folders(ctx)]:
         if folder == ctx.state_dir or not folder.is_dir() or folder.is_symlink():

@@ -247,14 +247,20 @@ def test_quiet_dry_run_still_lists_what_would_be_removed(built_arm):
     assert (built_arm / "mjcf" / "scene.xml").exists()
 
 
-def test_clean_says_the_next_build_writes_over_an_edited_model_it_kept(arm):
-    """A folder holding a model with mjcfbuild's header is taken for a fresh clone's committed
-    outputs, which the build keeps current: clean must not promise the edit stays."""
+def test_an_edited_model_clean_kept_is_not_written_over_by_the_next_build(arm):
+    """With no record left, a folder holding a model with mjcfbuild's header was taken for a
+    fresh clone's committed outputs, and the next build wrote over the edit clean had kept."""
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
     model = arm / "mjcf" / "example_arm.xml"
     model.write_text(model.read_text() + "<!-- mine -->\n")
     result = run_cli("clean", cwd=arm)
     assert (
-        "mjcfbuild: kept mjcf/example_arm.xml (edited since mjcfbuild wrote it; the next build "
-        "writes the model over it: move it away to keep your edit)"
-    ) in result.stdout.splitlines()
+        "mjcfbuild: kept mjcf/example_arm.xml (edited since mjcfbuild wrote it)"
+        in result.stdout.splitlines()
+    )
+    again = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert again.code == 7, again.stderr
+    assert again.stderr.startswith("mjcfbuild: error: mjcf/example_arm.xml: is not mjcfbuild's")
+    assert model.read_text().endswith("<!-- mine -->\n")
+    model.unlink()  # moved away: the build writes its own
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
