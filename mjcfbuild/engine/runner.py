@@ -226,7 +226,6 @@ def _build_locked(
         stamp.discard(ctx.stamp_key, ctx.run_check)
     prepare_state(ctx)
     remove_stale_variant(ctx)
-    remove_renamed_model(ctx)
     # Workers start while this process plans, importing until their first step comes.
     ctx.session.warm_workers(first_build=not ctx.state(DATABASE).exists())
     planning = planning_tasks(ctx)
@@ -247,6 +246,8 @@ def _build_locked(
             # A failed check is what the report is for; any other failure means the model
             # on disk is an earlier one, which the report must not claim to describe.
             model_built = all(isinstance(e, CheckError) for e in result.errors)
+            if model_built and ctx.robot_path.exists():
+                remove_renamed_model(ctx)  # once the new name's model is there, not before
             ctx.session.finish_sharing()  # uploads are done (or given up) before it returns
             failpoint("report")
             # Imported here, after the model: the report's modules cost 0.02 s of the start.

@@ -46,7 +46,8 @@ def remove_renamed_model(ctx: BuildContext) -> list[Path]:
     write (robot.yaml's ``name:``, ``output.robot`` or ``output.scene`` changed): the MJCF
     files at the top of the output folder the record of written files names, that still hold
     what the build wrote (one the user edited stays, as ``clean`` keeps it); the paths
-    removed. A rename left the old model beside the new one, looking current."""
+    removed. A rename left the old model beside the new one, looking current. Called once
+    the build wrote the model under its new name: a failed build leaves the old one."""
     from mjcfbuild.engine import written
 
     recorded = written.recorded(ctx) or {}

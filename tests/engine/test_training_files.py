@@ -3,7 +3,10 @@ old name when it is renamed (real builds)."""
 
 from __future__ import annotations
 
+import pytest
+
 import mjcfbuild
+from mjcfbuild.errors import BuildFailed
 from tests.conftest import copy_example
 
 
@@ -72,3 +75,9 @@ def test_a_renamed_robot_leaves_no_old_model_behind(tmp_path):
     edited.write_text(edited.read_text() + "<!-- mine -->\n")
     build(folder)
     assert edited.exists() and (out / "arm3.xml").exists()
+    # A build that fails under the new name leaves the old model: there is no other yet.
+    manifest.write_text(manifest.read_text().replace("name: arm3", "name: arm4"))
+    (folder / "meshes" / "forearm.obj").write_text("not a mesh\n")
+    with pytest.raises(BuildFailed):
+        build(folder)
+    assert (out / "arm3.xml").exists() and not (out / "arm4.xml").exists()
