@@ -45,6 +45,21 @@ from tests.conftest import run_cli
             "(see mjcfbuild build --help)",
         ),
         ([], "mjcfbuild: error: name a command (see mjcfbuild --help for the list)"),
+        # An unknown option is named before the error it led to:
+        # Before: "name a command", as if nothing had been given.
+        (["--verison"], "mjcfbuild: error: no option '--verison' (did you mean '--version'?)"),
+        # Before: "argument action: no choice 'x'", the option's value taken for the action.
+        (
+            ["cache", "--foldr", "x"],
+            "mjcfbuild: error: cache: no option '--foldr' (did you mean '--folder'?)",
+        ),
+        # Before: "the following arguments are required: -o/--output".
+        (
+            ["export-urdf", "--outptu", "x.urdf", "m.xml"],
+            "mjcfbuild: error: export-urdf: no option '--outptu' (did you mean '--output'?)",
+        ),
+        # Before: "build: no option", though it came before the command.
+        (["--qiet", "build"], "mjcfbuild: error: no option '--qiet' (did you mean '--quiet'?)"),
     ],
 )
 def test_a_usage_error_is_one_line_with_a_suggestion(argv, line, tmp_path):
@@ -73,32 +88,6 @@ def test_choices_are_read_with_or_without_quotes():
 def test_nothing_close_is_no_suggestion():
     assert closest("build", ["build", "check"]) == "build"
     assert closest("--verbose", ["--jobs", "--timeout"]) is None
-
-
-@pytest.mark.parametrize(
-    ("argv", "line"),
-    [
-        # Before: "name a command", as if nothing had been given.
-        (["--verison"], "mjcfbuild: error: no option '--verison' (did you mean '--version'?)"),
-        # Before: "argument action: no choice 'x'", the option's value taken for the action.
-        (
-            ["cache", "--foldr", "x"],
-            "mjcfbuild: error: cache: no option '--foldr' (did you mean '--folder'?)",
-        ),
-        # Before: "the following arguments are required: -o/--output".
-        (
-            ["export-urdf", "--outptu", "x.urdf", "m.xml"],
-            "mjcfbuild: error: export-urdf: no option '--outptu' (did you mean '--output'?)",
-        ),
-        # Before: "build: no option", though it came before the command.
-        (["--qiet", "build"], "mjcfbuild: error: no option '--qiet' (did you mean '--quiet'?)"),
-    ],
-)
-def test_an_unknown_option_is_named_before_the_error_it_led_to(argv, line, tmp_path):
-    result = run_cli(*argv, cwd=tmp_path)
-    assert result.code == EXIT_USAGE
-    assert result.stderr == line + "\n"
-    assert result.stdout == ""
 
 
 def test_an_abbreviated_option_is_not_taken_for_an_unknown_one(tmp_path):
