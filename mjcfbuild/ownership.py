@@ -1,10 +1,12 @@
-"""What in an output folder is mjcfbuild's: the name of its state folder, and the files a
-build found there that no build wrote, which no step may write over.
+"""What in an output folder is mjcfbuild's: the name of its state folder, and the files
+there that are the user's, which no step may write over: those a build found there that no
+build wrote, and outputs the user edited since a build wrote them that git does not hold.
 
 A build lists those files (:func:`record_foreign`) when it takes the folder, and every step's
 write (``steps.outputs.write_output``) asks :func:`refuse_foreign` first: a ``scene.xml``
-or ``assets/base.obj`` the user put in the folder was replaced without a word, and one that
-``clean`` had kept as the user's was replaced once a mesh of that name came to the build.
+or ``assets/base.obj`` the user put in the folder was replaced without a word, one that
+``clean`` had kept as the user's was replaced once a mesh of that name came to the build, and
+a model tuned by hand was replaced by the next build, the tuning lost.
 """
 
 from __future__ import annotations
@@ -13,26 +15,43 @@ import json
 import os
 from collections.abc import Iterable
 from pathlib import Path
+from typing import NamedTuple
 
 STATE_DIR = ".mjcfbuild"
 FOREIGN = "foreign.json"
 
-# The records each process read, by path: (what identifies that version of it, its names).
+
+class Record(NamedTuple):
+    """A folder's record of the user's files: every name, and those among them that are
+    outputs a build wrote and the user edited since."""
+
+    files: frozenset[str]
+    edited: frozenset[str]
+
+
+_NONE = Record(frozenset(), frozenset())
+
+# The records each process read, by path: (what identifies that version of it, the record).
 # A resident worker serves many builds; each writes its record anew (a new inode).
-_read: dict[str, tuple[tuple[int, int, int], frozenset[str]]] = {}
+_read: dict[str, tuple[tuple[int, int, int], Record]] = {}
 
 
-def record_foreign(out_dir: Path, names: Iterable[str]) -> None:
-    """Record ``names`` (relative to ``out_dir``, posix) as files no build wrote; none
-    removes the record."""
+def record_foreign(out_dir: Path, names: Iterable[str], edited: Iterable[str] = ()) -> None:
+    """Record ``names`` (relative to ``out_dir``, posix) as files no build wrote, and
+    ``edited`` as outputs the user edited since a build wrote them; none removes the
+    record."""
     from mjcfbuild.fsutil import write_if_changed
 
     path = out_dir / STATE_DIR / FOREIGN
-    listed = sorted(set(names))
+    changed = sorted(set(edited))
+    listed = sorted(set(names) | set(changed))
     if not listed:
         path.unlink(missing_ok=True)
         return
-    write_if_changed(path, (json.dumps({"files": listed}, indent=1) + "\n").encode())
+    record: dict[str, list[str]] = {"files": listed}
+    if changed:
+        record["edited"] = changed
+    write_if_changed(path, (json.dumps(record, indent=1) + "\n").encode())
 
 
 def refuse_foreign(path: Path, data: bytes) -> None:
@@ -43,10 +62,25 @@ def refuse_foreign(path: Path, data: bytes) -> None:
         if not (folder / STATE_DIR).is_dir():
             continue
         name = Path(os.path.relpath(path, folder)).as_posix()
-        if name not in _names(record) or not os.path.lexists(path) or _holds(path, data):
+        users = _record(record)
+        if name not in users.files or not os.path.lexists(path) or _holds(path, data):
             return
         from mjcfbuild.errors import OutputError
 
+        if name in users.edited:
+            # A model's tuning has a home in robot.yaml; another output's edit has none.
+            keep = (
+                "carry the edit into robot.yaml, whose mujoco_inputs and actuators every build "
+                "applies, or commit it"
+                if path.suffix == ".xml"
+                else "copy out what you need, or commit it"
+            )
+            raise OutputError(
+                "was edited since a build wrote it, and git does not hold the edit (neither "
+                "committed nor staged); a build never writes over an edit of yours",
+                file=str(path),
+                hint=f"{keep}, or move the file away; then build again",
+            )
         raise OutputError(
             "is not mjcfbuild's (it was in the output folder before the build, and no build "
             "wrote it); a build never writes over a file of yours",
@@ -56,21 +90,23 @@ def refuse_foreign(path: Path, data: bytes) -> None:
         )
 
 
-def _names(record: Path) -> frozenset[str]:
+def _record(record: Path) -> Record:
     try:
         stat = record.stat()
     except OSError:
-        return frozenset()
+        return _NONE
     version = (stat.st_ino, stat.st_size, stat.st_mtime_ns)
     cached = _read.get(str(record))
     if cached is not None and cached[0] == version:
         return cached[1]
     try:
-        names = frozenset(json.loads(record.read_text(encoding="utf-8"))["files"])
-    except (OSError, ValueError, KeyError, TypeError):
-        names = frozenset()
-    _read[str(record)] = (version, names)
-    return names
+        data = json.loads(record.read_text(encoding="utf-8"))
+        files = frozenset(data["files"])
+        read = Record(files, frozenset(data.get("edited", ())) & files)
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        read = _NONE
+    _read[str(record)] = (version, read)
+    return read
 
 
 def _holds(path: Path, data: bytes) -> bool:
@@ -80,6 +116,6 @@ def _holds(path: Path, data: bytes) -> bool:
         return False  # gone, or a folder: writing it says what is wrong
 
 
-def recorded_foreign(out_dir: Path) -> frozenset[str]:
-    """The names the folder's record lists as files no build wrote (none without one)."""
-    return _names(out_dir / STATE_DIR / FOREIGN)
+def recorded_foreign(out_dir: Path) -> Record:
+    """The folder's record of the user's files (empty without one)."""
+    return _record(out_dir / STATE_DIR / FOREIGN)

@@ -101,7 +101,7 @@ def run(args: argparse.Namespace) -> int:
             from mjcfbuild.ownership import record_foreign
 
             ctx.state_dir.mkdir()
-            record_foreign(out, [path.relative_to(out).as_posix() for path in yours])
+            record_foreign(out, (), [path.relative_to(out).as_posix() for path in yours])
         if not out.is_symlink() and not any(out.iterdir()):  # a linked folder is the user's
             with contextlib.suppress(OSError):  # a waiting build made its state folder again
                 out.rmdir()

@@ -274,36 +274,73 @@ def claim_output_folder(ctx: BuildContext) -> None:
     mine = check_owner(ctx)
     if mine is not None:
         write_if_changed(ctx.state(OWNER), (json.dumps({"manifest": mine}) + "\n").encode())
-    record_foreign(ctx.out_dir, _foreign_files(ctx))
+    found, edited = _users_files(ctx)
+    record_foreign(ctx.out_dir, found, edited)
 
 
-def _foreign_files(ctx: BuildContext) -> list[str]:
+def _users_files(ctx: BuildContext) -> tuple[list[str], list[str]]:
     """The files in the output folder where builds write (the folder itself, ``assets/``,
-    ``report/``, ...) that no build recorded writing: the user's. None known where there is
-    no record but a build's outputs are there: a folder an mjcfbuild from before the record
-    built (its state is there), or a fresh clone of a repository that commits its models
-    (no state; the model carries mjcfbuild's header), whose files the build keeps current."""
+    ``report/``, ...) that are the user's: those no build recorded writing, and the outputs
+    edited since a build wrote them (the record's hash differs) whose edit git does not hold
+    (neither committed nor staged: a checkout, a pull or a staged formatter's change is
+    safe to write over, and so is a merge conflict, which a rebuild resolves). None known
+    where there is no record but a build's outputs are there: a folder an mjcfbuild from
+    before the record built (its state is there), or a fresh clone of a repository that
+    commits its models (no state; the model carries mjcfbuild's header), whose files the
+    build keeps current; what ``clean`` kept as edited stays the user's there."""
     from mjcfbuild.engine.written import recorded, written_file
     from mjcfbuild.ownership import recorded_foreign
 
     names = recorded(ctx)
+    before = recorded_foreign(ctx.out_dir)
     if names is None and (
         any(entry.name not in ("lock", OWNER, FOREIGN) for entry in ctx.state_dir.iterdir())
         or _built_model(ctx.robot_path)
     ):
-        # What clean kept as the user's (edited since a build wrote it) stays the user's,
-        # a model with the build's header among them.
-        kept = recorded_foreign(ctx.out_dir)
-        return sorted(name for name in kept if written_file(ctx.out_dir, name))
-    found = []
-    for folder in [ctx.out_dir, *build_folders(ctx)]:
-        if folder == ctx.state_dir or not folder.is_dir() or folder.is_symlink():
+        found = sorted(name for name in before.files if written_file(ctx.out_dir, name))
+        edits = []
+    else:
+        found = []
+        for folder in [ctx.out_dir, *build_folders(ctx)]:
+            if folder == ctx.state_dir or not folder.is_dir() or folder.is_symlink():
+                continue
+            for entry in folder.iterdir():
+                name = entry.relative_to(ctx.out_dir).as_posix()
+                if name not in (names or {}) and written_file(ctx.out_dir, name):
+                    found.append(name)
+        edits = _edited_outputs(ctx, names or {})
+    # An edit recorded before (clean kept it; a build stopped at it) is still one.
+    edits += [name for name in found if name in before.edited]
+    return [name for name in found if name not in before.edited], _not_in_git(ctx, edits)
+
+
+def _edited_outputs(ctx: BuildContext, names: dict[str, str | None]) -> list[str]:
+    """The recorded outputs whose bytes are no longer those the build recorded writing (the
+    package's changelog aside: builds extend it around the user's notes)."""
+    from mjcfbuild.engine.written import written_file
+    from mjcfbuild.outputs import PACKAGE_CHANGELOG, PACKAGE_FOLDER
+
+    changelog = f"{PACKAGE_FOLDER}/{PACKAGE_CHANGELOG}"
+    edited = []
+    for name, digest in names.items():
+        if digest is None or name == changelog or not written_file(ctx.out_dir, name):
             continue
-        for entry in folder.iterdir():
-            name = entry.relative_to(ctx.out_dir).as_posix()
-            if name not in (names or {}) and written_file(ctx.out_dir, name):
-                found.append(name)
-    return found
+        try:
+            if ctx.session.hashes.md5(ctx.out_dir / name) != digest:
+                edited.append(name)
+        except OSError:
+            continue  # unreadable: writing it says what is wrong
+    return edited
+
+
+def _not_in_git(ctx: BuildContext, names: list[str]) -> list[str]:
+    """Those of ``names`` (in the output folder) whose bytes git does not hold."""
+    if not names:
+        return []
+    from mjcfbuild.engine.published import git_holds
+
+    held = git_holds([str(ctx.out_dir / name) for name in names])
+    return [name for name in names if os.path.normpath(ctx.out_dir / name) not in held]
 
 
 def _built_model(path: Path) -> bool:

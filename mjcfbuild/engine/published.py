@@ -100,6 +100,35 @@ def unstaged(files: list[str]) -> set[str] | None:
     return found
 
 
+def git_holds(files: list[str]) -> set[str]:
+    """Those of ``files`` git holds as they are: tracked, with the bytes its index has (staged
+    or committed), or in a merge conflict (which a rebuild is how to resolve). Writing over one
+    of them loses nothing. Empty outside a git work tree or without git."""
+    by_folder: dict[str, list[str]] = {}
+    for name in files:
+        by_folder.setdefault(os.path.dirname(name), []).append(name)
+    tracked: set[str] = set()
+    conflicted: set[str] = set()
+    for folder, names in sorted(by_folder.items()):
+        command = ["git", "ls-files", "--stage", "-z", "--", *names]
+        try:
+            done = subprocess.run(command, cwd=folder, capture_output=True)
+        except OSError:
+            return set()  # no git
+        if done.returncode != 0:
+            continue  # not a work tree
+        for entry in done.stdout.decode().split("\0"):
+            info, tab, path = entry.partition("\t")
+            if not tab:
+                continue
+            full = os.path.normpath(os.path.join(folder, path))
+            (conflicted if info.split()[-1] != "0" else tracked).add(full)
+    if not tracked:
+        return conflicted
+    differ = unstaged(sorted(tracked)) or set()
+    return (tracked - differ) | conflicted
+
+
 def in_work_tree(folder: str) -> bool:
     """Whether ``folder`` is in a git work tree (False without git)."""
     try:

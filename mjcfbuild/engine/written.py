@@ -66,13 +66,19 @@ def record(
     the bytes they hold now, which the build wrote or found intact. ``owned`` are the build's
     files it did not vouch for (targets of tasks that failed or did not run): an earlier entry
     stays as it was, so a file the user edited is not taken for the build's; a file without
-    one is recorded as it is. Entries of files that are gone are dropped."""
+    one is recorded as it is, unless it is one of the user's (:mod:`mjcfbuild.ownership`).
+    Entries of files that are gone are dropped."""
+    from mjcfbuild.ownership import recorded_foreign
+
     out = ctx.out_dir
     before = recorded(ctx) or {}
     entries = {name: digest for name, digest in before.items() if written_file(out, name)}
+    users = recorded_foreign(out).files  # a build that stopped at one did not make it its own
     for path in owned:
         name = _name(ctx, path)
-        if name is not None and name not in entries and written_file(out, name):
+        if name is None or name in entries or name in users:
+            continue
+        if written_file(out, name):
             entries[name] = _digest(ctx, name)
     for path in wrote:
         name = _name(ctx, path)

@@ -110,11 +110,16 @@ def test_fail_on_change_fails_until_created_and_changed_files_are_added(cli, arm
     assert "created" not in again.stderr  # this build created nothing
     git("add", "-A")
     assert cli("build", "--no-check", "--fail-on-change", cwd=arm).code == 0
-    # A hand edit the build undoes, back to the bytes git has: nothing to add.
+    # A hand edit git does not hold stops the build and stays; checked out again, the model
+    # is what git has: nothing to add.
     model = arm / "mjcf" / "example_arm.xml"
+    built = model.read_bytes()
     model.write_text(model.read_text().replace("<mujoco", "<!-- mine -->\n<mujoco", 1))
-    undone = cli("build", "--no-check", "--fail-on-change", cwd=arm)
-    assert undone.code == 0, undone.stderr
+    kept = cli("build", "--no-check", "--fail-on-change", cwd=arm)
+    assert kept.code == 7 and "git does not hold the edit" in kept.stderr, kept.stderr
+    git("checkout", "--", "mjcf/example_arm.xml")
+    assert model.read_bytes() == built
+    assert cli("build", "--no-check", "--fail-on-change", cwd=arm).code == 0
     # After a clean, the build writes the committed files again as they are: nothing to add.
     assert cli("clean", "-q", cwd=arm).code == 0
     rebuilt = cli("build", "--no-check", "--fail-on-change", cwd=arm)

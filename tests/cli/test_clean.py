@@ -260,7 +260,9 @@ def test_an_edited_model_clean_kept_is_not_written_over_by_the_next_build(arm):
     )
     again = run_cli("build", "-q", "--no-check", cwd=arm)
     assert again.code == 7, again.stderr
-    assert again.stderr.startswith("mjcfbuild: error: mjcf/example_arm.xml: is not mjcfbuild's")
+    assert again.stderr.startswith(
+        "mjcfbuild: error: mjcf/example_arm.xml: was edited since a build wrote it"
+    )
     assert model.read_text().endswith("<!-- mine -->\n")
     model.unlink()  # moved away: the build writes its own
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0

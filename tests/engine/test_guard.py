@@ -232,8 +232,49 @@ def test_a_report_clean_kept_as_edited_is_not_written_over(arm):
     assert run_cli("clean", "-q", cwd=arm).code == 0
     result = run_cli("build", "-q", "--no-check", cwd=arm)
     assert result.code == EXIT_OUTPUT, result.stderr
-    assert result.stderr.startswith("mjcfbuild: error: mjcf/report/report.md: is not mjcfbuild's")
+    assert result.stderr.startswith(
+        "mjcfbuild: error: mjcf/report/report.md: was edited since a build wrote it"
+    )
+    assert "copy out what you need, or commit it" in result.stderr
     assert report.read_text().endswith("MY NOTES\n")
+    # The build that stopped at it did not take it for its own: the next one stops too.
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == EXIT_OUTPUT
+    assert report.read_text().endswith("MY NOTES\n")
+
+
+def test_a_model_tuned_by_hand_is_kept_until_git_holds_the_edit(arm):
+    """A model edited since the build wrote it is the user's (days of hand-tuning were lost to
+    the next build): the build stops at it, every time, until the edit is committed or staged
+    (git then has it) or the file is moved away."""
+    import subprocess
+
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    model = arm / "mjcf" / "example_arm.xml"
+    built = model.read_text()
+    tuned = built.replace("<mujoco", "<!-- tuned -->\n<mujoco", 1)
+    model.write_text(tuned)
+    for _ in range(2):
+        result = run_cli("build", "-q", "--no-check", cwd=arm)
+        assert result.code == EXIT_OUTPUT, result.stderr
+        assert result.stderr == (
+            "mjcfbuild: error: mjcf/example_arm.xml: was edited since a build wrote it, and git "
+            "does not hold the edit (neither committed nor staged); a build never writes over "
+            "an edit of yours (carry the edit into robot.yaml, whose mujoco_inputs and "
+            "actuators every build applies, or commit it, or move the file away; then build "
+            "again)\n"
+        )
+        assert model.read_text() == tuned
+    # git has the edit: writing over it loses nothing.
+    for args in (["init", "-q"], ["add", "mjcf/example_arm.xml"]):
+        subprocess.run(["git", *args], cwd=arm, check=True, capture_output=True)
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    assert model.read_text() == built
+    # Edited again (git has only the first edit), then moved away: the build writes it again.
+    model.write_text(tuned.replace("tuned", "tuned again"))
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == EXIT_OUTPUT
+    model.rename(arm / "tuned.xml")
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    assert model.read_text() == built
 
 
 def test_a_fresh_clone_of_committed_models_is_the_builds_to_keep_current(arm):

@@ -120,14 +120,20 @@ def test_changing_an_option_reruns_only_the_assembly(built_arm):
     assert sorted(build(built_arm).ran) == ["assemble", "selfcollision"]
 
 
-def test_hand_edited_or_deleted_outputs_are_rebuilt(built_arm):
+def test_deleted_outputs_are_rebuilt_and_edited_ones_kept(built_arm):
     robot = built_arm / "mjcf" / "example_arm.xml"
     original = robot.read_bytes()
-    robot.write_bytes(original.replace(b'mass="2"', b'mass="3"'))
     (built_arm / "mjcf" / "assets" / "finger.obj").unlink()
     assert build(built_arm).ran == ["assemble"]
-    assert robot.read_bytes() == original
     assert (built_arm / "mjcf" / "assets" / "finger.obj").exists()
+    robot.unlink()
+    assert build(built_arm).ran == ["assemble"]
+    assert robot.read_bytes() == original
+    tuned = original.replace(b'mass="2"', b'mass="3"')
+    robot.write_bytes(tuned)
+    with pytest.raises(BuildFailed, match="was edited since a build wrote it"):
+        build(built_arm)
+    assert robot.read_bytes() == tuned
 
 
 def test_removed_mesh_disappears_from_assets(built_arm):

@@ -4,11 +4,16 @@ from __future__ import annotations
 
 import subprocess
 
-from mjcfbuild.engine.published import changes, git_status, snapshot
+from mjcfbuild.engine.published import changes, git_holds, git_status, snapshot
 
 
 def _git(*args: str, cwd) -> None:
-    subprocess.run(["git", *args], cwd=cwd, check=True, capture_output=True)
+    subprocess.run(
+        ["git", "-c", "user.name=t", "-c", "user.email=t@t", *args],
+        cwd=cwd,
+        check=True,
+        capture_output=True,
+    )
 
 
 def test_snapshots_tell_created_from_changed_files(tmp_path):
@@ -39,3 +44,36 @@ def test_git_status_names_untracked_and_ignored_files(tmp_path):
 def test_outside_a_work_tree_nothing_is_untracked(tmp_path):
     (tmp_path / "robot.xml").write_text("x")
     assert git_status([str(tmp_path / "robot.xml")]) == (set(), set())
+
+
+def test_git_holds_committed_staged_and_conflicted_files_not_edits(tmp_path):
+    """What a build may write over without losing anything: bytes git has in its index, and a
+    file in a merge conflict (which a rebuild resolves); not an edit git lacks, nor a file
+    git does not track."""
+    _git("init", "-q", "-b", "main", cwd=tmp_path)
+    out = tmp_path / "mjcf"
+    out.mkdir()
+    for name in ("committed.xml", "edited.xml", "staged.xml", "conflict.xml"):
+        (out / name).write_text("built\n")
+    _git("add", "-A", cwd=tmp_path)
+    _git("commit", "-qm", "built", cwd=tmp_path)
+    _git("checkout", "-qb", "other", cwd=tmp_path)
+    (out / "conflict.xml").write_text("other\n")
+    _git("commit", "-qam", "other", cwd=tmp_path)
+    _git("checkout", "-q", "main", cwd=tmp_path)
+    (out / "conflict.xml").write_text("main\n")
+    _git("commit", "-qam", "main", cwd=tmp_path)
+    merge = subprocess.run(["git", "merge", "-q", "other"], cwd=tmp_path, capture_output=True)
+    assert merge.returncode != 0 and "<<<<" in (out / "conflict.xml").read_text()
+    (out / "edited.xml").write_text("tuned by hand\n")
+    (out / "staged.xml").write_text("tuned and staged\n")
+    _git("add", "mjcf/staged.xml", cwd=tmp_path)
+    (out / "untracked.xml").write_text("mine\n")
+    names = ["committed.xml", "edited.xml", "staged.xml", "conflict.xml", "untracked.xml"]
+    held = git_holds([str(out / name) for name in names])
+    assert held == {str(out / name) for name in ("committed.xml", "staged.xml", "conflict.xml")}
+
+
+def test_outside_a_work_tree_git_holds_nothing(tmp_path):
+    (tmp_path / "robot.xml").write_text("x")
+    assert git_holds([str(tmp_path / "robot.xml")]) == set()

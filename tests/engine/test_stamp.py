@@ -73,8 +73,12 @@ def test_the_fast_path_agrees_with_the_full_build_edit_by_edit(built_arm):
     mesh.write_text(re.sub(r"(\nv\s+)(-?[0-9.]+)", r"\g<1>0.25", mesh.read_text(), count=1))
     assert not agree(arm)
 
-    model = arm / "mjcf" / "example_arm.xml"  # an output edited by hand
+    model = arm / "mjcf" / "example_arm.xml"  # an output edited by hand: the build keeps it
     model.write_text(model.read_text().replace("<mujoco", "<!-- mine -->\n<mujoco", 1))
+    assert not fast_path_skips(arm)
+    assert run_cli("build", "--no-check", cwd=arm, env=FULL).code == 7
+    assert "<!-- mine -->" in model.read_text()
+    model.unlink()  # then removed: the build writes it again
     assert not agree(arm)
 
     (arm / "mjcf" / "assets" / "base.obj").unlink()  # an output deleted
