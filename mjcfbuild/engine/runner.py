@@ -247,7 +247,8 @@ def _build_locked(
             # on disk is an earlier one, which the report must not claim to describe.
             model_built = all(isinstance(e, CheckError) for e in result.errors)
             if model_built and ctx.robot_path.exists():
-                remove_renamed_model(ctx)  # once the new name's model is there, not before
+                # once the new name's model is there, not before
+                _say_removed(ctx, progress, remove_renamed_model(ctx))
             ctx.session.finish_sharing()  # uploads are done (or given up) before it returns
             failpoint("report")
             # Imported here, after the model: the report's modules cost 0.02 s of the start.
@@ -270,6 +271,20 @@ def _build_locked(
     result.engine_log = doit_output if result.errors else ""
     # The build stage makes the planning tasks again (to see them up to date): one of each.
     return list({task["name"]: task for task in (*planning, *tasks)}.values())
+
+
+def _say_removed(ctx: BuildContext, progress: Progress, removed: list[Path]) -> None:
+    """Say which files of the model under its old name the build removed: a user looking for
+    them must not think them lost."""
+    if not removed or progress.quiet:
+        return
+    now = [ctx.label(ctx.robot_path), ctx.label(ctx.scene_path)]
+    progress.clear()
+    progress.stream.write(
+        f"{progress.prefix}mjcfbuild: removed {', '.join(ctx.label(p) for p in removed)}: the "
+        f"model's files under names robot.yaml no longer gives (now {', '.join(now)})\n"
+    )
+    progress.stream.flush()
 
 
 def _model_tasks(ctx: BuildContext, tasks: list[dict]) -> list[str]:

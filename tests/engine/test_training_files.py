@@ -7,7 +7,7 @@ import pytest
 
 import mjcfbuild
 from mjcfbuild.errors import BuildFailed
-from tests.conftest import copy_example
+from tests.conftest import copy_example, run_cli
 
 
 def build(folder):
@@ -81,3 +81,19 @@ def test_a_renamed_robot_leaves_no_old_model_behind(tmp_path):
     with pytest.raises(BuildFailed):
         build(folder)
     assert (out / "arm3.xml").exists() and not (out / "arm4.xml").exists()
+
+
+def test_the_build_says_which_old_files_it_removed(tmp_path):
+    folder = copy_example("arm", tmp_path)
+    assert run_cli("build", "--no-check", "-q", cwd=folder).code == 0
+    manifest = folder / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace("name: example_arm", "name: arm2"))
+    renamed = run_cli("build", "--no-check", cwd=folder)
+    assert renamed.code == 0, renamed.stderr
+    assert (
+        "mjcfbuild: removed mjcf/example_arm.xml: the model's files under names robot.yaml no "
+        "longer gives (now mjcf/arm2.xml, mjcf/scene.xml)"
+    ) in renamed.stdout.splitlines()
+    manifest.write_text(manifest.read_text().replace("name: arm2", "name: arm3"))
+    quiet = run_cli("build", "--no-check", "-q", cwd=folder)
+    assert quiet.code == 0 and quiet.stdout == "", quiet.stdout
