@@ -66,10 +66,9 @@ def _from_here(warning: str, base_dir: Path) -> str:
         file = base_dir / name
         return name if Path(name).is_absolute() or not file.exists() else shown_path(file)
 
-    warning = re.sub(
-        r"\[expanded: ([^\s:\]]+)", lambda m: f"[expanded: {here(m.group(1))}", warning
-    )
-    found = re.match(r"([^\s:]+\.[A-Za-z0-9]+):", warning)
+    # A name may hold spaces (an output folder "my model"): only one that exists is renamed.
+    warning = re.sub(r"\[expanded: ([^:\]]+)", lambda m: f"[expanded: {here(m.group(1))}", warning)
+    found = re.match(r"([^:]+\.[A-Za-z0-9]+):", warning)
     if found is None:
         return warning
     return here(found.group(1)) + warning[found.end(1) :]

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import pytest
+
 from mjcfbuild.console import report_error, report_warnings
 from mjcfbuild.errors import InputError, InternalError
 
@@ -37,17 +39,22 @@ def test_warnings_print_one_line_per_kind_after_the_prefix(capsys):
     ]
 
 
-def test_a_warnings_files_are_named_from_where_the_command_runs(tmp_path, monkeypatch, capsys):
+@pytest.mark.parametrize("out", ["mjcf", "my model"])
+@pytest.mark.parametrize("source", ["arm.urdf.xacro", "my arm.urdf.xacro"])
+def test_a_warnings_files_are_named_from_where_the_command_runs(
+    tmp_path, monkeypatch, capsys, out, source
+):
     """Kept warnings name files from robot.yaml's folder (the report, the no-op fast path):
-    the console names both the file and the expanded URDF's line from here."""
+    the console names both the file and the expanded URDF's line from here, spaces or not."""
     robot = tmp_path / "robots" / "arm"
-    (robot / "mjcf" / ".mjcfbuild").mkdir(parents=True)
-    (robot / "arm.urdf.xacro").write_text("<robot/>")
-    (robot / "mjcf" / ".mjcfbuild" / "source.urdf").write_text("<robot/>")
-    warning = "arm.urdf.xacro:7: a box of size 0 [expanded: mjcf/.mjcfbuild/source.urdf:28]"
+    (robot / out / ".mjcfbuild").mkdir(parents=True)
+    (robot / source).write_text("<robot/>")
+    (robot / out / ".mjcfbuild" / "source.urdf").write_text("<robot/>")
+    warning = f"{source}:7: a box of size 0 [expanded: {out}/.mjcfbuild/source.urdf:28]"
     monkeypatch.chdir(tmp_path)
-    report_warnings([warning], base_dir=robot)
+    report_warnings([warning, "mass 0.5 kg: not a file"], base_dir=robot)
     assert capsys.readouterr().err == (
-        "mjcfbuild: warning: robots/arm/arm.urdf.xacro:7: a box of size 0 [expanded: "
-        "robots/arm/mjcf/.mjcfbuild/source.urdf:28]\n"
+        f"mjcfbuild: warning: robots/arm/{source}:7: a box of size 0 [expanded: "
+        f"robots/arm/{out}/.mjcfbuild/source.urdf:28]\n"
+        "mjcfbuild: warning: mass 0.5 kg: not a file\n"
     )
