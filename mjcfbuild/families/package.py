@@ -109,7 +109,7 @@ FAMILY = Family(
     name="package",
     step="mjcfbuild.steps.package:run",
     payload=PackagePayload,
-    format=2,  # 2: <dcmotor> gains rounded and shared in classes
+    format=3,  # 2: <dcmotor> gains rounded and shared in classes; 3: no stale picture
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,
 )

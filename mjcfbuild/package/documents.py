@@ -70,8 +70,11 @@ def find_license(folders: list[Path], top: Path | None, levels: int = 3) -> Path
     return None
 
 
-def readme(info: Provenance, check: CheckResults | None, assembly: dict[str, Any]) -> str:
-    """README.md: where the model comes from, how it was derived, what it passed."""
+def readme(
+    info: Provenance, check: CheckResults | None, assembly: dict[str, Any], picture: bool = True
+) -> str:
+    """README.md: where the model comes from, how it was derived, what it passed; ``picture``:
+    whether the folder holds the robot's picture."""
     name, source = markdown_code(info.name), markdown_code(info.source)
     lines = [f"# {md(info.name)}", ""]
     lines += [
@@ -116,7 +119,7 @@ def readme(info: Provenance, check: CheckResults | None, assembly: dict[str, Any
         f"- {markdown_code(info.name + '.xml')}: the robot; `scene.xml`: the robot on a floor, "
         "with lights",
         "- `assets/`: meshes and textures",
-        f"- {markdown_code(info.name + '.png')}: the robot at home",
+        *([f"- {markdown_code(info.name + '.png')}: the robot at home"] if picture else []),
         "- `CHANGELOG.md`: what changed in the model from one build to the next",
     ]
     return "\n".join(lines) + "\n"

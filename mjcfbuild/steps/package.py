@@ -39,8 +39,12 @@ def run(payload: dict) -> dict:
     copies = Path(request.record).with_name("package_copies.json")
     copied = _read(copies).get("files", [])  # what this step copied last time
     _copy_assets(Path(request.assets), folder / "assets", outputs, copied)
-    if request.picture and Path(request.picture).is_file():
-        write_output(folder / f"{request.name}.png", Path(request.picture).read_bytes(), outputs)
+    picture = folder / f"{request.name}.png"
+    drawn = bool(request.picture) and Path(request.picture).is_file()
+    if drawn:
+        write_output(picture, Path(request.picture).read_bytes(), outputs)
+    elif picture.name in copied:  # our picture of the model as an earlier build drew it
+        picture.unlink(missing_ok=True)
     if request.license:
         write_output(folder / "LICENSE", Path(request.license).read_bytes(), outputs)
     else:
@@ -57,7 +61,7 @@ def run(payload: dict) -> dict:
     )
     check = CheckResults.read(Path(request.check)) if request.check else None
     assembly = _read(Path(request.assembly_report))
-    write_output(folder / "README.md", readme(info, check, assembly).encode(), outputs)
+    write_output(folder / "README.md", readme(info, check, assembly, drawn).encode(), outputs)
     _changelog(folder, model, info, Path(request.record))
     names = sorted(
         str(Path(path).relative_to(folder)) for path in outputs if Path(path).is_relative_to(folder)

@@ -48,7 +48,7 @@ BEFORE_FORMATS = {
     "export_urdf": 3,
     "compose": 2,
     "mjcfpart": 1,
-    "package": 2,
+    "package": 3,
     "training": 7,
     "page": 3,
 }

@@ -168,3 +168,24 @@ def test_files_the_user_put_in_the_package_stay_and_stale_copies_go(tmp_path):
     result = run_cli("build", cwd=arm)
     assert result.code == 0 and "package" in result.stdout, result.stdout
     assert (folder / "LICENSE").read_text() == "mine\n"
+
+
+def test_a_build_without_the_check_leaves_no_picture_of_an_earlier_model(tmp_path):
+    """The picture comes from the check's previews: a build without them kept the last
+    picture, of a model the package no longer holds, and the README still listed it."""
+    import shutil
+
+    arm = tmp_path / "arm"
+    shutil.copytree(EXAMPLES / "arm", arm, ignore=shutil.ignore_patterns("mjcf"))
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "  package: true\n")
+    assert run_cli("build", "-q", cwd=arm).code == 0
+    folder = arm / "mjcf" / "package"
+    picture = folder / "example_arm.png"
+    assert picture.is_file() and "`example_arm.png`" in (folder / "README.md").read_text()
+    manifest.write_text(manifest.read_text().replace("elbow: 1.2", "elbow: 1.1"))  # a new model
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    assert not picture.exists()
+    assert "example_arm.png" not in (folder / "README.md").read_text()
+    assert run_cli("build", "-q", cwd=arm).code == 0
+    assert picture.is_file()
