@@ -85,12 +85,14 @@ def limit_notes(robot: Robot) -> list[str]:
         limit = joint.limit
         if limit is None:
             continue
+        # Started with the URDF's file and line, which the console places in a xacro source.
+        where = f"{robot.source}:{joint.line}: " if joint.line else ""
         bounds = joint_range(joint)
         if bounds is not None and placeholder_range(bounds):
             notes.append(
-                f"joint '{joint.name}' has the range [{bounds[0]:g}, {bounds[1]:g}] in the URDF "
-                f"(line {joint.line}): taken for no range, its servo gets no ctrlrange; give "
-                'the real limits, or type="continuous" for a joint without stops'
+                f"{where}joint '{joint.name}' has the range [{bounds[0]:g}, {bounds[1]:g}]: "
+                "taken for no range, its servo gets no ctrlrange; give the real limits, or "
+                'type="continuous" for a joint without stops'
             )
         # What gives each limit in robot.yaml: a rule's forcerange bounds the force, only a
         # drive (a rule's motor) gives a speed.
@@ -100,9 +102,9 @@ def limit_notes(robot: Robot) -> list[str]:
         ):
             if value is not None and value <= 0:
                 notes.append(
-                    f"joint '{joint.name}' has {name}=\"{value:g}\" in the URDF (line "
-                    f"{joint.line}): not a limit, taken as unknown (no {name} limit); give "
-                    f"the real one in the URDF or with {other}"
+                    f"{where}joint '{joint.name}' has {name}=\"{value:g}\": not a limit, "
+                    f"taken as unknown (no {name} limit); give the real one in the URDF or "
+                    f"with {other}"
                 )
     return notes
 

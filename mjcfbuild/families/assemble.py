@@ -185,8 +185,9 @@ FAMILY = Family(
     # 16: an inertia repair names the link's file and line; 17: an underactuated mechanism's
     # read-only joints' reductions are no gear ratios, one warning per mechanism; 18: curved
     # feet touch the floor at their lowest points (a stance on two spheres is a line); an
-    # unused asset the user edited is kept
-    format=18,
+    # unused asset the user edited is kept; 19: a limit that is no limit is named at the
+    # joint's file and line (placed in a xacro source)
+    format=19,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,
     compiles_model=True,

@@ -37,7 +37,7 @@ BEFORE_FORMATS = {
     "plan": 12,
     "mesh": 9,
     "decompose": 3,
-    "assemble": 18,
+    "assemble": 19,
     "scene": 3,
     "check": 13,
     "reference": 1,
