@@ -148,16 +148,18 @@ def compare_kinematics(
     result.order = _root_first(robot)
     data = mujoco.MjData(model)
     for number, values in enumerate(random_configurations(robot, count, seed)):
+        expected = reference.poses(values) if reference else link_poses(robot, values)
         qpos = model.qpos0.copy()
         for jnt in range(model.njnt):
             if model.jnt_type[jnt] == mujoco.mjtJoint.mjJNT_FREE:
+                # A free body sits where the URDF places its link at rest: the root at the
+                # origin, the child of a floating joint from `world` at that joint's origin.
                 address = model.jnt_qposadr[jnt]
-                qpos[address : address + 7] = [0, 0, 0, 1, 0, 0, 0]
+                qpos[address : address + 7] = _resting(model, jnt, expected)
         for name, address in addresses.items():
             qpos[address] = values.get(name, 0.0)
         data.qpos[:] = qpos
         mujoco.mj_kinematics(model, data)
-        expected = reference.poses(values) if reference else link_poses(robot, values)
         for link_name, (kind, index) in frames.items():
             if link_name not in expected:
                 continue
@@ -183,6 +185,20 @@ def compare_kinematics(
             result.max_position = max(result.max_position, position_error)
             result.max_rotation = max(result.max_rotation, rotation_error)
     return result
+
+
+def _resting(model, joint: int, expected: dict) -> list[float]:
+    """The free joint ``joint``'s qpos that puts its body where ``expected`` (the URDF's link
+    poses) has the link of its name: identity where it has none."""
+    import mujoco
+    import numpy as np
+
+    pose = expected.get(model.body(model.jnt_bodyid[joint]).name)
+    if pose is None:
+        return [0, 0, 0, 1, 0, 0, 0]
+    quat = np.zeros(4)
+    mujoco.mju_mat2Quat(quat, np.array(pose.rotation, dtype=float).reshape(9))
+    return [*pose.position, *quat]
 
 
 def _root_first(robot: Robot) -> list[str]:

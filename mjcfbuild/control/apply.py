@@ -171,8 +171,11 @@ def make_ready(
         if choice.type == NONE:
             continue
         motion = _coupled_motion(model, choice.joint, robot)
+        moved = float(motion @ inertia @ motion)
+        if not moved > 0:
+            _unresolved_inertia(robot, urdf_joints[choice.joint], moved)
         servo = Servo(
-            float(motion @ inertia @ motion),
+            moved,
             abs(float(motion @ bias)),
             model.opt.timestep,
             *(_carried(pendulum, motion) if pendulum is not None else (0.0, 0.0)),
@@ -338,6 +341,22 @@ def _coupled_motion(model, joint: str, robot: Robot):
         ):
             motion[model.jnt_dofadr[index]] = factor
     return motion
+
+
+def _unresolved_inertia(robot: Robot, joint, moved: float) -> None:
+    """Refuse, at the joint's URDF line, a joint whose inertia at home MuJoCo computes as none
+    or less (rounding: tiny masses against centres of mass kilometres away): no servo can be
+    sized for it, and MuJoCo refuses the negative gains that would follow."""
+    from mjcfbuild.errors import InputError
+
+    raise InputError(
+        f"joint '{joint.name}' moves an inertia MuJoCo computes as {moved:.3g} at home: the "
+        "masses it moves are lost to rounding against the robot's extent",
+        file=robot.source,
+        line=joint.line,
+        hint="check the <inertial> origins (a centre of mass kilometres from its link) and "
+        "masses of the robot's links",
+    )
 
 
 def _match_mirrored(model, data, records: list[ActuatorRecord]) -> None:

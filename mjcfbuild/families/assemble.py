@@ -186,7 +186,8 @@ FAMILY = Family(
     # read-only joints' reductions are no gear ratios, one warning per mechanism; 18: curved
     # feet touch the floor at their lowest points (a stance on two spheres is a line); an
     # unused asset the user edited is kept; 19: a limit that is no limit is named at the
-    # joint's file and line (placed in a xacro source)
+    # joint's file and line (placed in a xacro source); a URDF floating joint from `world`
+    # floats the robot, stood on the floor; a joint whose inertia rounds away is refused
     format=19,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,

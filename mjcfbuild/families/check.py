@@ -85,12 +85,13 @@ FAMILY = Family(
     name="check",
     step="mjcfbuild.steps.check:run",
     payload=CheckPayload,
-    format=13,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
+    format=14,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
     # measured again from inside the joint ranges, velocity limits of 1e6 and above taken for
     # none, unstable-state warnings naming their joint; 11: a hold failure of a servo whose
     # keyframe ctrl is not its position says so; 12: check.json holds the console's verdict and
     # which checks failed (the report's verdict names checks that did not run); 13: joints
-    # without an actuator that sag from home, curved feet's stance, warnings in the verdict
+    # without an actuator that sag from home, curved feet's stance, warnings in the verdict;
+    # 14: a free body compared where the URDF places it (a floating joint's origin)
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

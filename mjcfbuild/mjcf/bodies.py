@@ -147,6 +147,16 @@ def combine_masses(robot: Robot, body: Body) -> MassProperties | None:
     )
 
 
+def floating_base(robot: Robot, free_joint: bool) -> bool:
+    """Whether the model's base floats: robot.yaml's ``options.free_joint`` asks for it, or the
+    URDF itself joins its root to the ``world`` link with a floating joint (MuJoCo's import
+    makes that a free joint: the robot then stands on the floor as any floating base does)."""
+    return free_joint or (
+        robot.root == WORLD
+        and any(joint.kind == "floating" and joint.parent == WORLD for joint in robot.joints)
+    )
+
+
 def floats(body: Body) -> bool:
     """Whether a free joint goes on ``body``: the root, or what a ``world`` root holds fixed."""
     if body.parent is None:

@@ -19,6 +19,7 @@ from mjcfbuild.manifest.mujoco_inputs import native_inputs
 from mjcfbuild.manifest.simulation import ActuatorSettings
 from mjcfbuild.meshes.product import read_product
 from mjcfbuild.mjcf.assemble import Assembly, AssemblyOptions, assemble
+from mjcfbuild.mjcf.bodies import floating_base
 from mjcfbuild.mjcf.inertia import InertiaPolicy
 from mjcfbuild.mjcf.prepared import Decomposition
 from mjcfbuild.mjstopped import SimulationStopped, simulating
@@ -67,7 +68,7 @@ def run(payload: dict) -> dict:
         excludes=[tuple(pair) for pair in (matrix or {}).get("excludes", [])],
         manifest_label=request.manifest_label,
         fuse_static=request.fuse_static,
-        free_joint=request.free_joint,
+        free_joint=floating_base(robot, request.free_joint),
         link_sites=request.link_sites,
         max_hull_vertices=request.max_hull_vertices,
         inertia=InertiaPolicy(**request.inertia),
@@ -195,7 +196,8 @@ def _srdf_home(
 
     parsed = Srdf.from_dict(srdf)
     joints = {joint.name for joint in robot.joints}
-    name, state = home_state(parsed, joints, request.srdf_home or "home", request.free_joint)
+    floating = floating_base(robot, request.free_joint)
+    name, state = home_state(parsed, joints, request.srdf_home or "home", floating)
     if name is None:
         return None, None
     found = ", found beside the description" if parsed.discovered else ""

@@ -40,8 +40,8 @@ def run(payload: dict) -> dict:
     copied = _read(copies).get("files", [])  # what this step copied last time
     _copy_assets(Path(request.assets), folder / "assets", outputs, copied)
     picture = folder / f"{request.name}.png"
-    drawn = bool(request.picture) and Path(request.picture).is_file()
-    if drawn:
+    drawn = request.picture is not None and Path(request.picture).is_file()
+    if request.picture is not None and drawn:
         write_output(picture, Path(request.picture).read_bytes(), outputs)
     elif picture.name in copied:  # our picture of the model as an earlier build drew it
         picture.unlink(missing_ok=True)

@@ -80,6 +80,7 @@ class StepFormat:
 # whose every triangle is degenerate refused at its file, not passed to MuJoCo
 MESH = StepFormat("mesh", 9, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy"))
 DECOMPOSE = StepFormat("decompose", 3, ("coacd", "trimesh", "numpy", "scipy"))
-SELFCOLLISION = StepFormat("selfcollision", 3, ("mujoco", "numpy"))
+# selfcollision 4: a URDF floating joint from `world` floats the robot (its standing home)
+SELFCOLLISION = StepFormat("selfcollision", 4, ("mujoco", "numpy"))
 REFERENCE = StepFormat("reference", 1, ("yourdfpy", "numpy", "lxml"))
 PREVIEWS = StepFormat("previews", 5, ("mujoco", "numpy", "pillow"))

@@ -5,7 +5,8 @@ wheeled base whose casters are called ``*_hip_*``). At the zero pose, with every
 forward kinematics and each link's shapes reduced to points (their origins, and the corners of
 boxes, cylinders and spheres):
 
-- a robot bolted down says so: its root is a ``world`` link joined by a fixed joint;
+- a robot bolted down says so: its root is a ``world`` link joined by a fixed joint; one
+  joined by a floating joint says it floats;
 - a robot without moving joints floats: fixed, nothing in it could ever move; free, forces
   move it (hector's quadrotor, one link). A fixture meant to stay put (a sensor mount, a
   table) takes ``free_joint: false``;
@@ -50,8 +51,8 @@ def classify_base(robot: Robot) -> BaseKind:
     """Decide whether ``robot``'s base floats (see the module's rules)."""
     if robot.root == "world":
         kinds = {joint.kind for joint in robot.joints if joint.parent == "world"}
-        if "floating" in kinds:
-            return BaseKind(False, "its URDF joins it to the world with a floating joint")
+        if "floating" in kinds:  # MuJoCo's import makes it a free joint: the build floats it
+            return BaseKind(True, "its URDF joins it to the world with a floating joint")
         return BaseKind(False, "its root is joined to the world link")
     if all(joint.kind == "fixed" for joint in robot.joints):
         return BaseKind(

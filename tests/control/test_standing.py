@@ -7,6 +7,8 @@ MuJoCo; the stand test is the check's own, and each test reads the model, not th
 from __future__ import annotations
 
 import json
+import math
+import re
 from pathlib import Path
 
 import mujoco
@@ -16,7 +18,7 @@ import pytest
 import mjcfbuild
 from mjcfbuild.control.standing import MARGIN
 from mjcfbuild.errors import BuildFailed
-from tests.conftest import two_link_urdf, write
+from tests.conftest import run_cli, two_link_urdf, write
 from tests.control import robots
 from tests.control.helpers import actuator, readiness
 
@@ -167,14 +169,47 @@ def test_a_quadruped_with_continuous_leg_joints_keeps_standing(tmp_path):
 
 
 def test_a_floating_joint_never_gets_an_actuator(tmp_path):
-    """A drone whose URDF joins it to the world with a floating joint: no servo on it (the
-    check is off: it compares a URDF floating joint's pose at zero, see the closing note)."""
+    """A drone whose URDF joins it to the world with a floating joint: no servo on it; it
+    floats as options.free_joint makes a robot float, and the check holds it to the URDF."""
     write(tmp_path / "urdf/robot.urdf", robots.drone())
     write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: urdf/robot.urdf}\n")
-    result = mjcfbuild.build(tmp_path / "robot.yaml", jobs=1, check=False)
+    result = mjcfbuild.build(tmp_path / "robot.yaml", jobs=1)
     model = mujoco.MjModel.from_xml_path(str(result.robot))
     assert model.nu == 0
     assert model.jnt_type[0] == mujoco.mjtJoint.mjJNT_FREE
+
+
+def test_a_floating_joint_with_an_origin_stands_on_the_floor_and_passes_the_check(tmp_path):
+    """A URDF floating joint from `world` placed its child at the joint's origin, half a metre
+    up: the build left it hanging there (free_joint: false, as init wrote) and the check
+    compared the link with the free joint at zero, and failed a correct model."""
+    urdf = """<robot name="f">
+  <link name="world"/>
+  <joint name="float" type="floating"><parent link="world"/><child link="torso"/>
+    <origin xyz="0 0 0.5" rpy="0 0 0.7"/></joint>
+  <link name="torso"><inertial><mass value="5"/>
+    <inertia ixx="0.05" ixy="0" ixz="0" iyy="0.05" iyz="0" izz="0.05"/></inertial>
+    <collision><geometry><box size="0.3 0.2 0.1"/></geometry></collision></link>
+</robot>
+"""
+    write(tmp_path / "f.urdf", urdf)
+    assert run_cli("init", "f.urdf", cwd=tmp_path).code == 0
+    assert "  free_joint: true\n" in (tmp_path / "robot.yaml").read_text()
+    for setting in ("true", "false"):  # the URDF's own floating joint floats it either way
+        manifest = tmp_path / "robot.yaml"
+        manifest.write_text(
+            re.sub(r"free_joint: \w+", f"free_joint: {setting}", manifest.read_text())
+        )
+        result = run_cli("build", "-q", cwd=tmp_path)
+        assert result.code == 0, result.stderr
+        model = mujoco.MjModel.from_xml_path(str(tmp_path / "mjcf" / "f.xml"))
+        data = mujoco.MjData(model)
+        mujoco.mj_resetDataKeyframe(model, data, 0)
+        mujoco.mj_kinematics(model, data)
+        assert data.qpos[2] == pytest.approx(0.05)  # its box on the floor, the yaw kept
+        assert data.qpos[3] == pytest.approx(math.cos(0.35)) and data.qpos[6] == pytest.approx(
+            math.sin(0.35)
+        )
 
 
 def test_unknown_effort_and_velocity_are_not_limits(tmp_path):

@@ -52,6 +52,21 @@ def test_a_very_long_thin_cylinder_keeps_its_radius(description):
     assert model.geom_size[0][:2].tolist() == [0.1, 1.25e11]
 
 
+def test_a_centre_of_mass_kilometres_away_is_named_at_the_joint_it_leaves_unsized(description):
+    """Found by the fuzz test: a link's centre of mass 2,048 km out rounded away the inertia a
+    joint moves (-3e-09), and MuJoCo refused the negative gains sized from it, unplaced."""
+    text = (
+        '<robot name="fuzz"><link name="base"><inertial><origin xyz="0.0 1.0 2047975.0"/>'
+        '<mass value="0.5"/><inertia ixx="0.5" iyy="0.5" izz="0.5" ixy="0" ixz="0" iyz="0"/>'
+        '</inertial></link>\n<link name="l1"></link>\n'
+        '<joint name="j0" type="continuous"><parent link="base"/><child link="l1"/></joint>'
+        "</robot>"
+    )
+    with pytest.raises(MjcfbuildError) as raised:
+        build(text, description)
+    assert raised.value.one_line().startswith("robot.urdf:3: joint 'j0' moves an inertia MuJoCo")
+
+
 def test_property_tests_are_deterministic_by_default():
     """A clean clone runs the same examples every time; MJCFBUILD_FUZZ asks for random ones."""
     from hypothesis import settings
