@@ -153,7 +153,9 @@ class ReferenceKinematics:
 
 def _motion(joint: dict, values: dict[str, float]) -> Any:
     """The joint's own motion at its value (4x4): a rotation about its unit axis or a
-    translation along its axis as written; nothing for fixed, floating and planar joints."""
+    translation along it; nothing for fixed, floating and planar joints. The axis is made a
+    unit one for both, as KDL (robot_state_publisher, MoveIt) and MuJoCo do: yourdfpy
+    scales a prismatic joint's travel by the length of the axis as written."""
     import numpy as np
 
     motion = np.eye(4)
@@ -167,10 +169,10 @@ def _motion(joint: dict, values: dict[str, float]) -> Any:
     else:  # yourdfpy: a mimic of a joint that is not actuated stays at its offset
         value = mimic["offset"]
     axis = np.array(joint["axis"], dtype=float)
-    if joint["type"] == "prismatic":
-        motion[:3, 3] = value * axis
-        return motion
     unit = axis / np.linalg.norm(axis)
+    if joint["type"] == "prismatic":
+        motion[:3, 3] = value * unit
+        return motion
     cross = np.array([[0.0, -unit[2], unit[1]], [unit[2], 0.0, -unit[0]], [-unit[1], unit[0], 0.0]])
     motion[:3, :3] = (
         math.cos(value) * np.eye(3)

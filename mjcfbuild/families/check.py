@@ -91,7 +91,8 @@ FAMILY = Family(
     # keyframe ctrl is not its position says so; 12: check.json holds the console's verdict and
     # which checks failed (the report's verdict names checks that did not run); 13: joints
     # without an actuator that sag from home, curved feet's stance, warnings in the verdict;
-    # 14: a free body compared where the URDF places it (a floating joint's origin)
+    # 14: a free body compared where the URDF places it (a floating joint's origin), a
+    # prismatic joint's travel along its unit axis
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,
