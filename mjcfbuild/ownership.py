@@ -68,18 +68,11 @@ def refuse_foreign(path: Path, data: bytes) -> None:
         from mjcfbuild.errors import OutputError
 
         if name in users.edited:
-            # A model's tuning has a home in robot.yaml; another output's edit has none.
-            keep = (
-                "carry the edit into robot.yaml, whose mujoco_inputs and actuators every build "
-                "applies, or commit it"
-                if path.suffix == ".xml"
-                else "copy out what you need, or commit it"
-            )
             raise OutputError(
-                "was edited since a build wrote it, and git does not hold the edit (neither "
-                "committed nor staged); a build never writes over an edit of yours",
+                "was edited since a build wrote it, and git has no commit of the edit; a build "
+                "never writes over an edit of yours",
                 file=str(path),
-                hint=f"{keep}, or move the file away; then build again",
+                hint=_settle(name, path),
             )
         raise OutputError(
             "is not mjcfbuild's (it was in the output folder before the build, and no build "
@@ -88,6 +81,20 @@ def refuse_foreign(path: Path, data: bytes) -> None:
             hint="move it out of the folder (or remove it), or set output.folder to a folder "
             "of the build's own",
         )
+
+
+def _settle(name: str, path: Path) -> str:
+    """What to do about an output the user edited, ``name`` in its output folder."""
+    if name.split("/", 1)[0] == "report":  # the build's own, which git ignores
+        return "copy out what you need, then remove it (the report folder is the build's)"
+    if path.suffix == ".xml":  # a model's tuning has a home in robot.yaml
+        return (
+            "carry the edit into robot.yaml's mujoco_inputs or actuators, which every build "
+            "applies, then remove the file; or commit it first, and the build writes over it"
+        )
+    return (
+        "copy out what you need, then remove it; or commit it first, and the build writes over it"
+    )
 
 
 def _record(record: Path) -> Record:

@@ -281,9 +281,10 @@ def claim_output_folder(ctx: BuildContext) -> None:
 def _users_files(ctx: BuildContext) -> tuple[list[str], list[str]]:
     """The files in the output folder where builds write (the folder itself, ``assets/``,
     ``report/``, ...) that are the user's: those no build recorded writing, and the outputs
-    edited since a build wrote them (the record's hash differs) whose edit git does not hold
-    (neither committed nor staged: a checkout, a pull or a staged formatter's change is
-    safe to write over, and so is a merge conflict, which a rebuild resolves). None known
+    edited since a build wrote them (the record's hash differs) whose edit git has no commit
+    of (a checkout or a pull is safe to write over, and so is a merge conflict, which a
+    rebuild resolves; a staged edit is not: the commit hook would leave it only in the
+    index). None known
     where there is no record but a build's outputs are there: a folder an mjcfbuild from
     before the record built (its state is there), or a fresh clone of a repository that
     commits its models (no state; the model carries mjcfbuild's header), whose files the
@@ -311,7 +312,11 @@ def _users_files(ctx: BuildContext) -> tuple[list[str], list[str]]:
         edits = _edited_outputs(ctx, names or {})
     # An edit recorded before (clean kept it; a build stopped at it) is still one.
     edits += [name for name in found if name in before.edited]
-    return [name for name in found if name not in before.edited], _not_in_git(ctx, edits)
+    kept = _not_in_git(ctx, edits)
+    ctx.session.committed_edits = {
+        name: ctx.session.hashes.md5(ctx.out_dir / name) for name in edits if name not in kept
+    }
+    return [name for name in found if name not in before.edited], kept
 
 
 def _edited_outputs(ctx: BuildContext, names: dict[str, str | None]) -> list[str]:
@@ -334,7 +339,7 @@ def _edited_outputs(ctx: BuildContext, names: dict[str, str | None]) -> list[str
 
 
 def _not_in_git(ctx: BuildContext, names: list[str]) -> list[str]:
-    """Those of ``names`` (in the output folder) whose bytes git does not hold."""
+    """Those of ``names`` (in the output folder) whose bytes git does not hold in a commit."""
     if not names:
         return []
     from mjcfbuild.engine.published import git_holds

@@ -101,32 +101,39 @@ def unstaged(files: list[str]) -> set[str] | None:
 
 
 def git_holds(files: list[str]) -> set[str]:
-    """Those of ``files`` git holds as they are: tracked, with the bytes its index has (staged
-    or committed), or in a merge conflict (which a rebuild is how to resolve). Writing over one
-    of them loses nothing. Empty outside a git work tree or without git."""
+    """Those of ``files`` git holds as they are: committed, with the bytes HEAD has, or in a
+    merge conflict (which a rebuild is how to resolve). Writing over one of them loses
+    nothing. A staged edit is not held: the commit hook would write over it and ask for the
+    result to be added, leaving the edit only in the index. Empty outside a git work tree,
+    before the first commit, or without git."""
     by_folder: dict[str, list[str]] = {}
     for name in files:
         by_folder.setdefault(os.path.dirname(name), []).append(name)
-    tracked: set[str] = set()
-    conflicted: set[str] = set()
+    held: set[str] = set()
     for folder, names in sorted(by_folder.items()):
-        command = ["git", "ls-files", "--stage", "-z", "--", *names]
-        try:
-            done = subprocess.run(command, cwd=folder, capture_output=True)
-        except OSError:
-            return set()  # no git
-        if done.returncode != 0:
-            continue  # not a work tree
-        for entry in done.stdout.decode().split("\0"):
-            info, tab, path = entry.partition("\t")
-            if not tab:
-                continue
-            full = os.path.normpath(os.path.join(folder, path))
-            (conflicted if info.split()[-1] != "0" else tracked).add(full)
-    if not tracked:
-        return conflicted
-    differ = unstaged(sorted(tracked)) or set()
-    return (tracked - differ) | conflicted
+        committed = _git_names(folder, ["ls-tree", "-z", "--name-only", "HEAD", "--", *names])
+        differ = _git_names(
+            folder, ["diff", "HEAD", "--name-only", "--relative", "-z", "--", *names]
+        )
+        conflicted = _git_names(
+            folder, ["diff", "--name-only", "--relative", "--diff-filter=U", "-z", "--", *names]
+        )
+        if committed is not None and differ is not None and conflicted is not None:
+            held |= (committed - differ) | conflicted
+    return held
+
+
+def _git_names(folder: str, arguments: list[str]) -> set[str] | None:
+    """The paths a git command run in ``folder`` lists (NUL-separated, relative to it), made
+    full; None where git is missing or the command fails (no work tree, no commit yet)."""
+    try:
+        done = subprocess.run(["git", *arguments], cwd=folder, capture_output=True)
+    except OSError:
+        return None
+    if done.returncode != 0:
+        return None
+    listed = (entry for entry in done.stdout.decode().split("\0") if entry)
+    return {os.path.normpath(os.path.join(folder, entry)) for entry in listed}
 
 
 def in_work_tree(folder: str) -> bool:

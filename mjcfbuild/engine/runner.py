@@ -249,6 +249,7 @@ def _build_locked(
             if model_built and ctx.robot_path.exists():
                 # once the new name's model is there, not before
                 _say_removed(ctx, progress, remove_renamed_model(ctx))
+            _say_undone(ctx, progress)
             ctx.session.finish_sharing()  # uploads are done (or given up) before it returns
             failpoint("report")
             # Imported here, after the model: the report's modules cost 0.02 s of the start.
@@ -283,6 +284,29 @@ def _say_removed(ctx: BuildContext, progress: Progress, removed: list[Path]) -> 
     progress.stream.write(
         f"{progress.prefix}mjcfbuild: removed {', '.join(ctx.label(p) for p in removed)}: the "
         f"model's files under names robot.yaml no longer gives (now {', '.join(now)})\n"
+    )
+    progress.stream.flush()
+
+
+def _say_undone(ctx: BuildContext, progress: Progress) -> None:
+    """Name the outputs the user edited and committed that the build wrote over: git has the
+    edit, but the user must learn it is no longer in the folder."""
+    from mjcfbuild.fsutil import md5_file
+
+    undone = []
+    for name, digest in ctx.session.committed_edits.items():
+        try:
+            if md5_file(ctx.out_dir / name) != digest:
+                undone.append(name)
+        except OSError:
+            undone.append(name)  # removed: a stale asset, or the old name's model
+    if not undone or progress.quiet:
+        return
+    progress.clear()
+    names = ", ".join(ctx.label(ctx.out_dir / name) for name in undone)
+    progress.stream.write(
+        f"{progress.prefix}mjcfbuild: wrote over {names}, edited by hand and committed (git "
+        "has the edit: `git diff` shows what the build undid; keep a tuning in robot.yaml)\n"
     )
     progress.stream.flush()
 

@@ -44,6 +44,9 @@ class BuildSession:
         self.timings: dict[str, float] = {}
         self.notes: dict[str, str] = {}  # task -> a word for the progress line ("from cache")
         self.written: set[str] = set()  # files this build wrote (engine.written records them)
+        # Outputs edited since a build wrote them whose edit git has in HEAD, each with the MD5
+        # of the edit: the build may write over them, and says so (engine.guard finds them).
+        self.committed_edits: dict[str, str] = {}
         self.cache_grew = False  # a product was stored: the cache may need pruning
         self.cache_report: dict[str, Any] | None = None
         self._hashes: HashCache | None = None

@@ -116,7 +116,7 @@ def test_fail_on_change_fails_until_created_and_changed_files_are_added(cli, arm
     built = model.read_bytes()
     model.write_text(model.read_text().replace("<mujoco", "<!-- mine -->\n<mujoco", 1))
     kept = cli("build", "--no-check", "--fail-on-change", cwd=arm)
-    assert kept.code == 7 and "git does not hold the edit" in kept.stderr, kept.stderr
+    assert kept.code == 7 and "git has no commit of the edit" in kept.stderr, kept.stderr
     git("checkout", "--", "mjcf/example_arm.xml")
     assert model.read_bytes() == built
     assert cli("build", "--no-check", "--fail-on-change", cwd=arm).code == 0

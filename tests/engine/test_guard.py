@@ -235,7 +235,9 @@ def test_a_report_clean_kept_as_edited_is_not_written_over(arm):
     assert result.stderr.startswith(
         "mjcfbuild: error: mjcf/report/report.md: was edited since a build wrote it"
     )
-    assert "copy out what you need, or commit it" in result.stderr
+    assert "(copy out what you need, then remove it (the report folder is the build's))" in (
+        result.stderr
+    )
     assert report.read_text().endswith("MY NOTES\n")
     # The build that stopped at it did not take it for its own: the next one stops too.
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == EXIT_OUTPUT
@@ -244,36 +246,48 @@ def test_a_report_clean_kept_as_edited_is_not_written_over(arm):
 
 def test_a_model_tuned_by_hand_is_kept_until_git_holds_the_edit(arm):
     """A model edited since the build wrote it is the user's (days of hand-tuning were lost to
-    the next build): the build stops at it, every time, until the edit is committed or staged
-    (git then has it) or the file is moved away."""
+    the next build): the build stops at it, every time, until the edit is committed (git then
+    has it; the build says it wrote over it) or the file is moved away. A staged edit is not
+    enough: the commit hook wrote over it, and `git add` as asked then lost it."""
     import subprocess
 
+    def git(*args):
+        command = ["git", "-c", "user.name=t", "-c", "user.email=t@t", *args]
+        subprocess.run(command, cwd=arm, check=True, capture_output=True)
+
+    git("init", "-q")
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
     model = arm / "mjcf" / "example_arm.xml"
     built = model.read_text()
     tuned = built.replace("<mujoco", "<!-- tuned -->\n<mujoco", 1)
     model.write_text(tuned)
-    for _ in range(2):
+    for staged in (False, True):
+        if staged:
+            git("add", "-A")
         result = run_cli("build", "-q", "--no-check", cwd=arm)
         assert result.code == EXIT_OUTPUT, result.stderr
         assert result.stderr == (
             "mjcfbuild: error: mjcf/example_arm.xml: was edited since a build wrote it, and git "
-            "does not hold the edit (neither committed nor staged); a build never writes over "
-            "an edit of yours (carry the edit into robot.yaml, whose mujoco_inputs and "
-            "actuators every build applies, or commit it, or move the file away; then build "
-            "again)\n"
+            "has no commit of the edit; a build never writes over an edit of yours (carry the "
+            "edit into robot.yaml's mujoco_inputs or actuators, which every build applies, "
+            "then remove the file; or commit it first, and the build writes over it)\n"
         )
         assert model.read_text() == tuned
-    # git has the edit: writing over it loses nothing.
-    for args in (["init", "-q"], ["add", "mjcf/example_arm.xml"]):
-        subprocess.run(["git", *args], cwd=arm, check=True, capture_output=True)
-    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    # Committed: git has the edit, writing over it loses nothing, and the build says so.
+    git("commit", "-qm", "tuned")
+    result = run_cli("build", "--no-check", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert (
+        "mjcfbuild: wrote over mjcf/example_arm.xml, edited by hand and committed (git has the "
+        "edit: `git diff` shows what the build undid; keep a tuning in robot.yaml)"
+    ) in result.stdout.splitlines()
     assert model.read_text() == built
     # Edited again (git has only the first edit), then moved away: the build writes it again.
     model.write_text(tuned.replace("tuned", "tuned again"))
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == EXIT_OUTPUT
     model.rename(arm / "tuned.xml")
-    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    again = run_cli("build", "--no-check", cwd=arm)
+    assert again.code == 0 and "wrote over" not in again.stdout, again.stdout
     assert model.read_text() == built
 
 

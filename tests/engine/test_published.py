@@ -47,9 +47,9 @@ def test_outside_a_work_tree_nothing_is_untracked(tmp_path):
 
 
 def test_git_holds_committed_staged_and_conflicted_files_not_edits(tmp_path):
-    """What a build may write over without losing anything: bytes git has in its index, and a
-    file in a merge conflict (which a rebuild resolves); not an edit git lacks, nor a file
-    git does not track."""
+    """What a build may write over without losing anything: bytes HEAD has, and a file in a
+    merge conflict (which a rebuild resolves); not an edit git lacks or holds only in its
+    index (a commit hook would write over it), nor a file git does not track."""
     _git("init", "-q", "-b", "main", cwd=tmp_path)
     out = tmp_path / "mjcf"
     out.mkdir()
@@ -71,9 +71,15 @@ def test_git_holds_committed_staged_and_conflicted_files_not_edits(tmp_path):
     (out / "untracked.xml").write_text("mine\n")
     names = ["committed.xml", "edited.xml", "staged.xml", "conflict.xml", "untracked.xml"]
     held = git_holds([str(out / name) for name in names])
-    assert held == {str(out / name) for name in ("committed.xml", "staged.xml", "conflict.xml")}
+    assert held == {str(out / name) for name in ("committed.xml", "conflict.xml")}
+    assert git_holds([str(out / "conflict.xml"), str(tmp_path / "elsewhere.xml")]) == {
+        str(out / "conflict.xml")
+    }
 
 
-def test_outside_a_work_tree_git_holds_nothing(tmp_path):
+def test_outside_a_work_tree_or_before_a_commit_git_holds_nothing(tmp_path):
     (tmp_path / "robot.xml").write_text("x")
+    assert git_holds([str(tmp_path / "robot.xml")]) == set()
+    _git("init", "-q", cwd=tmp_path)
+    _git("add", "robot.xml", cwd=tmp_path)
     assert git_holds([str(tmp_path / "robot.xml")]) == set()
