@@ -187,7 +187,8 @@ FAMILY = Family(
     # feet touch the floor at their lowest points (a stance on two spheres is a line); an
     # unused asset the user edited is kept; 19: a limit that is no limit is named at the
     # joint's file and line (placed in a xacro source); a URDF floating joint from `world`
-    # floats the robot, stood on the floor; a joint whose inertia rounds away is refused
+    # floats the robot, stood on the floor; a joint whose inertia rounds away is refused; an
+    # axis given at any length written as its unit axis at 12 digits
     format=19,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,

@@ -125,7 +125,7 @@ def _values(element, fields: dict[str, str]) -> dict[str, tuple[float, ...]]:
 
 
 def _patch(element: etree._Element, values: dict[str, tuple[float, ...]]) -> None:
-    for attribute, exact in values.items():
+    for attribute, given in values.items():
         text = element.get(attribute)
         if text is None:
             continue
@@ -133,11 +133,10 @@ def _patch(element: etree._Element, values: dict[str, tuple[float, ...]]) -> Non
             shown = [float(t) for t in text.split()]
         except ValueError:
             continue
-        scale = max((abs(v) for v in exact[: len(shown)]), default=0.0)
-        if len(shown) > len(exact) or not all(
-            math.isfinite(v) and _same_when_rounded(s, v, scale)
-            for s, v in zip(shown, exact, strict=False)
-        ):
+        # MuJoCo writes an axis as a unit one (0.136083 0.272166 0.952579 for 1 2 7).
+        candidates = [given, _unit(given)] if attribute == "axis" else [given]
+        exact = next((c for c in candidates if _shows(shown, c)), None)
+        if exact is None:
             continue
         new = exact[: len(shown)]
         if attribute in _GEOMETRIC:
@@ -150,6 +149,21 @@ def _patch(element: etree._Element, values: dict[str, tuple[float, ...]]) -> Non
             del element.attrib[attribute]
         else:
             element.set(attribute, output_list(new))
+
+
+def _shows(shown: list[float], exact: tuple[float, ...]) -> bool:
+    """Whether the numbers ``shown`` are ``exact``'s, as MuJoCo's writer rounds them."""
+    scale = max((abs(v) for v in exact[: len(shown)]), default=0.0)
+    return len(shown) <= len(exact) and all(
+        math.isfinite(v) and _same_when_rounded(s, v, scale)
+        for s, v in zip(shown, exact, strict=False)
+    )
+
+
+def _unit(values: tuple[float, ...]) -> tuple[float, ...]:
+    """``values`` scaled to length 1 (as they are where they have none)."""
+    length = math.sqrt(sum(v * v for v in values))
+    return tuple(v / length for v in values) if length > 0 else values
 
 
 def _same_when_rounded(shown: float, exact: float, scale: float) -> bool:

@@ -47,7 +47,7 @@ BEFORE_FORMATS = {
     "selfcollision": 4,
     "export_urdf": 3,
     "compose": 2,
-    "mjcfpart": 1,
+    "mjcfpart": 2,
     "package": 3,
     "training": 7,
     "page": 3,

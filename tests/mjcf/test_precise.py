@@ -31,3 +31,15 @@ def test_numbers_keep_their_precision_and_defaults_are_dropped():
     geom = root.find(".//geom")
     assert "name" not in geom.attrib  # temporary names used for matching are removed
     assert "pos" not in geom.attrib and "quat" not in geom.attrib
+
+
+def test_an_axis_given_at_any_length_is_written_as_its_unit_axis_at_full_precision():
+    """MuJoCo writes the unit axis (6 digits) of a joint given 1 2 7: it kept them, and the
+    model's link 2 m out stood 1e-6 from its URDF pose, failing the check."""
+    spec = mujoco.MjSpec()
+    body = spec.worldbody.add_body(name="b")
+    body.add_joint(name="j", axis=[1, 2, 7])
+    body.add_geom(size=[0.1, 0, 0])
+    axis = precise_xml(spec).find(".//joint[@name='j']").get("axis")
+    length = math.sqrt(1 + 4 + 49)
+    assert axis == " ".join(f"{v / length:.12g}" for v in (1, 2, 7))
