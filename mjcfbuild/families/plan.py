@@ -72,8 +72,9 @@ FAMILY = Family(
     # 5: ros2_control <hardware>; 6: chains deeper than MuJoCo reads; 7: Gazebo sensors;
     # 8: processed inputs by tag; 9: a mimic of a fixed joint, or a ring of mimics, refused;
     # 10: a revolute or prismatic joint without <limit> warned of; names twice say where first;
-    # 12: each transmission's actuators and type (underactuated mechanisms)
-    format=12,
+    # 12: each transmission's actuators and type (underactuated mechanisms); 13: a URDF's
+    # <compiler inertiafromgeom> said not to be applied
+    format=13,
     tools=("lxml",),
     tasks=_tasks,
     stage="planning",

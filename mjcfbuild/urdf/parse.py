@@ -261,7 +261,7 @@ def parse_urdf(data: bytes, display_file: str = "robot.urdf") -> Robot:
         links=links,
         joints=joints,
         source=display_file,
-        mujoco_compiler=_mujoco_compiler(root),
+        mujoco_compiler=_mujoco_compiler(root, reader),
         warnings=warnings,
     )
     validate_structure(robot, root, reader)
@@ -556,12 +556,22 @@ def _axis(element: etree._Element | None, joint: str, kind: str, reader: _Reader
     return axis
 
 
-def _mujoco_compiler(root: etree._Element) -> dict[str, str]:
-    """Attributes of ``<mujoco><compiler>`` already in the URDF, to be merged, not duplicated."""
+def _mujoco_compiler(root: etree._Element, reader: _Reader) -> dict[str, str]:
+    """Attributes of ``<mujoco><compiler>`` already in the URDF, to be merged, not duplicated.
+    One that asks for masses from the geometry is said not to be applied: the model's masses
+    would otherwise differ from MuJoCo's import of the same URDF without a word."""
     result: dict[str, str] = {}
     for mujoco in root.findall("mujoco"):
         for compiler in mujoco.findall("compiler"):
             result.update({str(k): str(v) for k, v in compiler.attrib.items()})
+            value = compiler.get("inertiafromgeom", "false").strip()
+            if value != "false":
+                reader.warnings.append(
+                    f'{reader.file}:{compiler.sourceline}: <compiler inertiafromgeom="{value}"> '
+                    "is not applied: mjcfbuild takes each link's mass and inertia from its "
+                    "<inertial> alone (a link without one gets a placeholder mass); give each "
+                    "link its <inertial>"
+                )
     return result
 
 

@@ -34,7 +34,7 @@ from tests.families.toy_step import ToyPayload
 # that family's tasks in every folder built before.
 BEFORE_FORMATS = {
     "expand": 3,
-    "plan": 12,
+    "plan": 13,
     "mesh": 9,
     "decompose": 3,
     "assemble": 19,

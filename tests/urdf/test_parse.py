@@ -315,6 +315,30 @@ def test_entity_declarations_are_refused():
     assert error.location.line == 2
 
 
+@pytest.mark.parametrize("value", ["true", "auto"])
+def test_masses_from_the_geometry_are_said_not_to_be_applied(value):
+    """MuJoCo's import of this URDF computes the link's mass from its box (0.32 kg); the model
+    had 0.1 g, without a word."""
+    robot = parse_urdf(
+        (
+            '<robot name="a">\n<mujoco>\n'
+            f'<compiler inertiafromgeom="{value}"/></mujoco><link name="b"/></robot>'
+        ).encode(),
+        "a.urdf",
+    )
+    assert robot.warnings == [
+        f'a.urdf:3: <compiler inertiafromgeom="{value}"> is not applied: mjcfbuild takes each '
+        "link's mass and inertia from its <inertial> alone (a link without one gets a "
+        "placeholder mass); give each link its <inertial>"
+    ]
+    quiet = parse_urdf(
+        b'<robot name="a"><mujoco><compiler inertiafromgeom="false"/></mujoco><link name="b"/>'
+        b"</robot>",
+        "a.urdf",
+    )
+    assert quiet.warnings == []
+
+
 def test_existing_mujoco_compiler_is_kept_for_merging():
     robot = parse(
         '<robot name="a"><mujoco><compiler balanceinertia="true" meshdir="x"/></mujoco>'
