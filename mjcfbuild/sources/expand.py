@@ -202,7 +202,7 @@ def _expand(
                 # Given under a misspelt name? (Only then: files not read yet may declare
                 # the other unknown ones.)
                 if did_you_mean(name, set(mappings) - reading.declared):
-                    _check_args(mappings, reading.declared, path, args_key)
+                    _check_args(mappings, reading, packages, path, args_key)
                 line = _line_of(current, rf"\$\(arg\s+{re.escape(name)}\s*\)")
                 message += did_you_mean(name, set(mappings) | (reading.declared - {name}))
                 hint = (
@@ -213,7 +213,7 @@ def _expand(
             failure = _XacroFailed if track_lines else InputError
             raise failure(f"xacro failed: {message}", file=current, line=line, hint=hint) from None
         included = list(xacro.all_includes)
-    _check_args(mappings, reading.declared, path, args_key)
+    _check_args(mappings, reading, packages, path, args_key)
     marks = _take_origins(document) if track_lines else []
     text = document.toprettyxml(indent="  ", encoding="utf-8")
     files = {str(normalise(path))}
@@ -231,12 +231,22 @@ def _expand(
 
 
 def _check_args(
-    mappings: Mapping[str, str], declared: set[str], source: Path, args_key: str | None
+    mappings: Mapping[str, str],
+    reading: _Reading,
+    packages: PackageResolver,
+    source: Path,
+    args_key: str | None,
 ) -> None:
     """Refuse an argument that no file of the expansion declares or uses: a misspelt name
-    would otherwise be ignored, and the file's default used instead."""
+    would otherwise be ignored, and the file's default used instead. A file included under
+    a condition that was false declares its arguments too (xacro takes them either way)."""
+    declared = reading.declared
     unknown = sorted(set(mappings) - declared)
     if args_key is None or not unknown:
+        return
+    declared = declared | _declared_in_skipped_includes(reading.files, packages)
+    unknown = sorted(set(mappings) - declared)
+    if not unknown:
         return
     name = unknown[0]
     listing = ", ".join(sorted(declared)) or "none"
@@ -254,6 +264,44 @@ def _check_args(
         file=f"{args_key}.{name}",
         hint="fix its name, or declare it in the xacro file with <xacro:arg name=...>",
     )
+
+
+_INCLUDE = re.compile(r"""<xacro:include\b[^>]*?\bfilename\s*=\s*(['"])(.*?)\1""", re.DOTALL)
+_FIND = re.compile(r"\$\(find\s+([^\s)]+)\s*\)")
+_ARG_DECLARED = re.compile(r"""<xacro:arg\b[^>]*?\bname\s*=\s*(['"])(.*?)\1""", re.DOTALL)
+
+
+def _declared_in_skipped_includes(files: list[str], packages: PackageResolver) -> set[str]:
+    """The arguments declared or used in the files the ``files`` xacro read include but xacro
+    did not read (an include inside an ``xacro:if`` that was false), and in theirs: found in
+    the text, where an include's file name resolves without evaluating anything but
+    ``$(find)``."""
+    read = {str(normalise(file)) for file in files}
+    seen = set(read)
+    pending = sorted(read)
+    declared: set[str] = set()
+    while pending:
+        current = pending.pop()
+        try:
+            text = Path(current).read_text(encoding="utf-8", errors="replace")
+        except OSError:
+            continue
+        if current not in read:
+            declared.update(_ARG_USE.findall(text))
+            declared.update(name for _, name in _ARG_READ.findall(text))
+            declared.update(name for _, name in _ARG_DECLARED.findall(text))
+        for _, name in _INCLUDE.findall(text):
+            try:
+                name = _FIND.sub(lambda found: str(packages.find(found.group(1))), name)
+            except InputError:
+                continue
+            if "$" in name:
+                continue  # an expression: only xacro can evaluate it
+            resolved = str(normalise(Path(current).parent / name))
+            if resolved not in seen and os.path.isfile(resolved):
+                seen.add(resolved)
+                pending.append(resolved)
+    return declared
 
 
 def _line_of(file: str, pattern: str, after: str | None = None) -> int | None:

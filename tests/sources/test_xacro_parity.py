@@ -348,3 +348,39 @@ def test_an_include_cycle_xacro_recurses_through_is_named_at_the_include_closing
         tmp_path / "b.xacro",
         2,
     )
+
+
+def test_an_argument_of_a_file_included_under_a_false_condition_is_taken(tmp_path):
+    """xacro takes `finger_len:=0.08` when the file declaring it is included only under a
+    condition that is false; mjcfbuild said no file declared it (it looked only at the files
+    xacro read). A misspelt name is still refused."""
+    from mjcfbuild.errors import ManifestError
+
+    pkg = tmp_path / "pkg"
+    write(pkg / "package.xml", "<package><name>pkg</name></package>\n")
+    write(
+        pkg / "urdf" / "main.urdf.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="cond">\n'
+        '  <xacro:arg name="with_gripper" default="true"/>\n'
+        '  <link name="base"/>\n'
+        '  <xacro:if value="$(arg with_gripper)">\n'
+        '    <xacro:include filename="$(find pkg)/urdf/gripper.xacro"/>\n'
+        "  </xacro:if>\n"
+        "</robot>\n",
+    )
+    write(
+        pkg / "urdf" / "gripper.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:arg name="finger_len" default="0.05"/>\n'
+        '  <link name="finger"><visual><geometry><box size="0.01 0.01 $(arg finger_len)"/>'
+        "</geometry></visual></link>\n"
+        "</robot>\n",
+    )
+    source = pkg / "urdf" / "main.urdf.xacro"
+    args = {"with_gripper": "false", "finger_len": "0.08"}
+    assert xacro_command(source, args, {"pkg": pkg}, tmp_path / "ament").returncode == 0
+    resolver = PackageResolver({"pkg": pkg}, {})
+    expand_xacro(source, args, resolver, args_key="robot.yaml source.args")
+    assert_agrees(source, tmp_path / "again", args, {"pkg": pkg})
+    with pytest.raises(ManifestError, match="did you mean 'finger_len'"):
+        expand_xacro(source, {"finger_lne": "0.08"}, resolver, args_key="robot.yaml source.args")
