@@ -135,7 +135,8 @@ def from_stamp(manifest: Path, run_check: bool) -> Watched | None:
 
 def without_stamp(manifest: Path, last_good: Watched | None, before: Watched) -> Watched:
     """What to watch after a build of ``manifest`` that left no stamp (:func:`around`), each
-    file as it was in ``before`` (taken when the build started) where it was there."""
+    file as it was in ``before`` (taken when the build started) where it was there, and the
+    outputs of ``last_good`` as they are now."""
     now = time.time_ns()
     records = {
         path: before.records.get(path) or record_now(path, now)
@@ -143,6 +144,10 @@ def without_stamp(manifest: Path, last_good: Watched | None, before: Watched) ->
     }
     if last_good is None:
         return Watched(records)
+    # The outputs too, as the failed build left them: one it stopped at (edited by hand,
+    # exit 7) is moved away or checked out to settle it, and that must start a build.
+    for path in sorted(last_good.written):
+        records.setdefault(path, record_now(path, now))
     return Watched(records, last_good.code, last_good.written)
 
 

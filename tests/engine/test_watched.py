@@ -144,3 +144,19 @@ def test_without_a_stamp_a_file_is_compared_with_what_it_was_when_the_build_bega
     watched = without_stamp(manifest, None, before)  # have looked for it, so it counts too
     assert watched.changed() == [f"{tmp_path}{os.sep}", str(manifest)]
     assert watched.edited(watched.changed()) == [str(tmp_path / "new.urdf"), str(manifest)]
+
+
+def test_after_a_build_stopped_at_an_edited_output_settling_it_is_seen(arm):
+    """A build that stops at a model edited by hand (exit 7) is settled by moving the model
+    away: the watch saw only the inputs after a failed build, and waited on."""
+    manifest = arm / "robot.yaml"
+    assert run(["build", str(manifest), "-q", "--no-check"]) == 0
+    last_good = from_stamp(manifest, run_check=False)
+    model = arm / "mjcf" / "example_arm.xml"
+    model.write_text(model.read_text() + "<!-- tuned -->\n")
+    before = Watched.take(around(manifest, last_good))
+    assert run(["build", str(manifest), "-q", "--no-check"]) == 7
+    watched = without_stamp(manifest, last_good, before)
+    assert watched.changed() == []  # what the failed build wrote starts nothing
+    model.rename(arm / "tuned.xml")
+    assert str(model) in watched.changed()
