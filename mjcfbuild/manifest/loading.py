@@ -15,6 +15,20 @@ if TYPE_CHECKING:
     from mjcfbuild.manifest.yamlpos import Positions
 
 
+def _not_found_hint(path: Path) -> str:
+    """What to do about a manifest that is not there: the one of that name in a folder above,
+    where there is one (a command run from the description's urdf/ folder), else init."""
+    import os
+
+    folder = path.absolute().parent
+    for up, above in enumerate(list(folder.parents)[:4], 1):
+        found = above / path.name
+        if found.is_file():
+            how_far = "one folder" if up == 1 else f"{up} folders"
+            return f"'{os.path.relpath(found)}' is {how_far} up: pass its path, or run there"
+    return "run 'mjcfbuild init SOURCE' to create one"
+
+
 def load_manifest(path: str | Path) -> Manifest:
     """Read and validate a manifest file.
 
@@ -30,7 +44,7 @@ def load_manifest(path: str | Path) -> Manifest:
         text = data.decode("utf-8")
     except FileNotFoundError:
         raise ManifestError(
-            "manifest not found", file=path.name, hint="run 'mjcfbuild init SOURCE' to create one"
+            "manifest not found", file=path.name, hint=_not_found_hint(path)
         ) from None
     except IsADirectoryError:
         raise ManifestError(

@@ -137,6 +137,21 @@ def test_load_manifest_reports_missing_file(tmp_path):
     assert "mjcfbuild init" in info.value.one_line()
 
 
+def test_a_missing_manifest_names_the_one_in_a_folder_above(tmp_path, monkeypatch):
+    """Run from the description's urdf/ folder, the command was told to make a second
+    robot.yaml with init."""
+    (tmp_path / "robot.yaml").write_text("name: a\n")
+    (tmp_path / "urdf" / "deeper").mkdir(parents=True)
+    monkeypatch.chdir(tmp_path / "urdf")
+    with pytest.raises(ManifestError) as info:
+        load_manifest("robot.yaml")
+    assert info.value.hint == "'../robot.yaml' is one folder up: pass its path, or run there"
+    monkeypatch.chdir(tmp_path / "urdf" / "deeper")
+    with pytest.raises(ManifestError) as info:
+        load_manifest("robot.yaml")
+    assert info.value.hint == "'../../robot.yaml' is 2 folders up: pass its path, or run there"
+
+
 def test_a_urdf_or_a_mesh_given_for_the_manifest_is_named_for_what_it_is(tmp_path):
     urdf = tmp_path / "arm.urdf"
     urdf.write_text('<?xml version="1.0"?>\n<robot name="arm"><link name="a"/></robot>\n')
