@@ -62,6 +62,10 @@ def run(args: argparse.Namespace) -> int:
     try:
         for manifest in manifests:
             manifest.build()
+        # A name that is no file (misspelt): its build said so; nothing would ever build it.
+        missing = [m for m in manifests if not Path(m.name).is_file()]
+        if missing:
+            return missing[0].code
         _say(args, f"watching {_count(manifests)} for changes (Ctrl-C to stop)")
         if _watch(manifests, args):
             return EXIT_RESTART

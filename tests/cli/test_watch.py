@@ -19,7 +19,7 @@ import pytest
 from mjcfbuild.cli import run
 from mjcfbuild.engine import stamp
 from mjcfbuild.errors import EXIT_RESTART
-from tests.conftest import ROOT, copy_example, sigint_at_default
+from tests.conftest import ROOT, copy_example, run_cli, sigint_at_default
 
 # Generous: a line comes when a build ends, and CI machines are slow and busy.
 LINE_SECONDS = 120
@@ -244,3 +244,11 @@ def test_a_file_a_failed_build_looked_for_is_built_when_it_comes(arm, watching):
     assert built[0] == "mjcfbuild: urdf/more.xacro changed: building robot.yaml", built
     assert any(line.startswith("mjcfbuild: built example_arm.xml") for line in built), built
     assert watch.stop() == 0
+
+
+def test_a_manifest_that_is_not_there_ends_it_at_once(arm):
+    """A misspelt name said 'manifest not found', then watched forever for nothing."""
+    result = run_cli("watch", "robto.yaml", cwd=arm)
+    assert result.code == 3
+    assert result.stderr.startswith("mjcfbuild: error: robto.yaml: manifest not found")
+    assert "watching" not in result.stdout
