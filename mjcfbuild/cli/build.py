@@ -201,11 +201,11 @@ def _build_and_compare(ctx, args: argparse.Namespace, workers: WorkerPool | None
 def _report_unadded(
     created: list[str], changed: list[str], published: list[str], debug: bool
 ) -> int:
-    """Report files the build created or changed, and published files git does not track;
-    the exit code (6 if there are any)."""
+    """Report files the build created or changed, published files git does not track, and
+    removed ones git still has; the exit code (6 if there are any)."""
     import os
 
-    from mjcfbuild.engine.published import git_status, in_work_tree, unstaged
+    from mjcfbuild.engine.published import git_removed, git_status, in_work_tree, unstaged
     from mjcfbuild.errors import CheckError
 
     untracked, ignored = git_status(published)
@@ -219,20 +219,22 @@ def _report_unadded(
     created = sorted(written & set(created), key=_top_first)
     changed = sorted(written & set(changed), key=_top_first)
     not_added = sorted(untracked - ignored - set(created), key=_top_first)
-    if not created and not changed and not not_added:
+    removed = sorted(git_removed(published), key=_top_first)
+    if not created and not changed and not not_added and not removed:
         return EXIT_OK
     parts = []
     for words, names in (
         ("files were created", created),
         ("files were changed", changed),
         ("files git does not track", not_added),
+        ("files were removed that git still has", removed),
     ):
         if names:
             shown = [os.path.relpath(name) for name in names[:5]]
             more = f" and {len(names) - 5} more" if len(names) > 5 else ""
             parts.append(f"{words}: {', '.join(shown)}{more}")
     hint = (
-        "git add them, then commit again"
+        "git add them, then commit again"  # git add stages a removal too
         if in_git
         else "not in a git work tree: --fail-on-change fails on any file a build writes anew"
     )

@@ -136,6 +136,19 @@ def _git_names(folder: str, arguments: list[str]) -> set[str] | None:
     return {os.path.normpath(os.path.join(folder, entry)) for entry in listed}
 
 
+def git_removed(files: list[str]) -> set[str]:
+    """The files in the folders of ``files`` (what a build publishes), and below them, that
+    git's index has but the work tree no longer does: an asset the model stopped using, which
+    the build removed; unless its removal is staged, the commit keeps it."""
+    folders = sorted({os.path.dirname(name) for name in files})
+    found: set[str] = set()
+    for folder in folders:
+        if any(folder.startswith(other + os.sep) for other in folders):
+            continue  # listed with the folder above it
+        found |= _git_names(folder, ["ls-files", "--deleted", "-z", "--", "."]) or set()
+    return found
+
+
 def in_work_tree(folder: str) -> bool:
     """Whether ``folder`` is in a git work tree (False without git)."""
     try:

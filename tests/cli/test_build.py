@@ -130,6 +130,25 @@ def test_fail_on_change_fails_until_created_and_changed_files_are_added(cli, arm
     assert changed.code == 6
     assert "files were changed: mjcf/example_arm.xml" in changed.stderr
     assert "created" not in changed.stderr
+    # An asset the model stops using is removed: its removal must be staged too, or the
+    # commit keeps it (a fresh clone then found it, "not written by mjcfbuild").
+    git("add", "-A")
+    xacro = arm / "urdf" / "arm.urdf.xacro"
+    xacro.write_text(
+        xacro.read_text().replace(
+            '<mesh filename="package://arm_description/meshes/base.stl"/>',
+            '<cylinder radius="0.08" length="0.1"/>',
+        )
+    )
+    git("add", "urdf")
+    removed = cli("build", "--no-check", "--fail-on-change", "-q", cwd=arm)
+    assert removed.code == 6
+    assert "files were removed that git still has: mjcf/assets/base.obj" in removed.stderr
+    git("add", "mjcf/example_arm.xml")  # not the removal: the no-op says so again
+    again = cli("build", "--no-check", "--fail-on-change", "-q", cwd=arm)
+    assert again.code == 6 and "mjcf/assets/base.obj" in again.stderr, again.stderr
+    git("add", "mjcf/assets/base.obj")
+    assert cli("build", "--no-check", "--fail-on-change", cwd=arm).code == 0
 
 
 @pytest.mark.slow
