@@ -160,24 +160,32 @@ def _print(
         print(f"mjcfbuild: check failed: {failure}", file=sys.stderr)
     verdict = results.console_verdict()
     if stale:
-        verdict += f", of the model as it was built: {stale}"
+        verdict += f", {stale}"
     print(f"mjcfbuild: {verdict}")
     return EXIT_OK if results.passes else EXIT_CHECK
 
 
 def _stale_since_built(ctx) -> str:
-    """How the built model is older than its inputs, in a few words ('' where it is not, or
-    where the folder has no build database to tell by: a fresh clone's committed outputs,
-    which only --up-to-date's rebuild can judge)."""
+    """What the verdict must add about the model checked: edited by hand since the build
+    wrote it, or how the built model is older than its inputs, in a few words ('' where it
+    is neither, or where the folder has no build database to tell by: a fresh clone's
+    committed outputs, which only --up-to-date's rebuild can judge)."""
+    from mjcfbuild.engine import written
     from mjcfbuild.engine.freshness import stale_from_database
 
+    name = ctx.robot_path.relative_to(ctx.out_dir).as_posix()
+    if written.edited(ctx.out_dir, name, (written.recorded(ctx) or {}).get(name)):
+        return (
+            f"of {ctx.label(ctx.robot_path)} as edited by hand, not as the build wrote it (a "
+            "build stops at the edit until it is carried into robot.yaml or committed)"
+        )
     stale = stale_from_database(ctx)
     if not stale:
         return ""
     more = f" (and {len(stale) - 1} more)" if len(stale) > 1 else ""
     return (
-        f"it is out of date ({stale[0]}{more}); `mjcfbuild build {ctx.manifest_label}` "
-        "makes it current"
+        f"of the model as it was built: it is out of date ({stale[0]}{more}); "
+        f"`mjcfbuild build {ctx.manifest_label}` makes it current"
     )
 
 

@@ -7,6 +7,7 @@ deleted. ``mjcfbuild check --up-to-date`` and ``mjcfbuild explain`` are built on
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -82,11 +83,28 @@ def _downstream(objects: list[Any], statuses: list[TaskStatus]) -> None:
         ]
 
 
+def _never_run(task: Any, ctx: BuildContext) -> str:
+    """Why a task with no record of a run is stale: its last run stopped at an output the
+    user edited (which it will not write over), or it has not run here."""
+    from mjcfbuild.ownership import recorded_foreign
+
+    edited = recorded_foreign(ctx.out_dir).edited
+    for target in task.targets:
+        if os.path.relpath(target, ctx.out_dir).replace(os.sep, "/") in edited:
+            return (
+                f"it stops at {ctx.label(target)}, edited by hand since it was built (carry "
+                "the edit into robot.yaml, or commit it)"
+            )
+    # The folder has a database (task_statuses): a task new to the build, or one a failed
+    # build did not finish (doit keeps no record of a run that failed).
+    return "no finished run of it is recorded here (a new task, or a build stopped before it)"
+
+
 def _reasons(status: Any, task: Any, values: dict, ctx: BuildContext) -> list[str]:
     if status.status == "up-to-date":
         return []
     if not values:
-        return ["it has not run in this output folder yet"]
+        return [_never_run(task, ctx)]
     reasons = []
     log = status.reasons
     for path in log.get("changed_file_dep", []):

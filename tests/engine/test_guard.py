@@ -273,6 +273,18 @@ def test_a_model_tuned_by_hand_is_kept_until_git_holds_the_edit(arm):
             "then remove the file; or commit it first, and the build writes over it)\n"
         )
         assert model.read_text() == tuned
+    # What is checked and what a build would do say so (not "as it was built", "not run").
+    checked = run_cli("check", cwd=arm)
+    assert checked.code == 0, checked.stderr
+    assert checked.stdout.splitlines()[-2].endswith(
+        "of mjcf/example_arm.xml as edited by hand, not as the build wrote it (a build stops "
+        "at the edit until it is carried into robot.yaml or committed)"
+    ), checked.stdout
+    dry = run_cli("build", "-n", "--no-check", cwd=arm)
+    assert (
+        "would run: assemble example_arm.xml: it stops at mjcf/example_arm.xml, edited by hand "
+        "since it was built"
+    ) in dry.stdout, dry.stdout
     # Committed: git has the edit, writing over it loses nothing, and the build says so.
     git("commit", "-qm", "tuned")
     result = run_cli("build", "--no-check", cwd=arm)
