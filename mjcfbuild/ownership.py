@@ -19,6 +19,8 @@ from typing import NamedTuple
 
 STATE_DIR = ".mjcfbuild"
 FOREIGN = "foreign.json"
+# The state folder's .gitignore: it ignores itself in git.
+STATE_IGNORE = b"# mjcfbuild's build state; not for version control\n*\n"
 
 
 class Record(NamedTuple):
@@ -52,6 +54,7 @@ def record_foreign(out_dir: Path, names: Iterable[str], edited: Iterable[str] = 
     if changed:
         record["edited"] = changed
     write_if_changed(path, (json.dumps(record, indent=1) + "\n").encode())
+    write_if_changed(path.with_name(".gitignore"), STATE_IGNORE)  # clean left none
 
 
 def refuse_foreign(path: Path, data: bytes) -> None:

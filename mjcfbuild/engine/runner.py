@@ -461,9 +461,9 @@ def _first_line(text: str) -> str:
 
 def prepare_state(ctx: BuildContext) -> None:
     """The state folder ignores itself in git; stdin input is stored; stale temp files go."""
-    write_if_changed(
-        ctx.state(".gitignore"), b"# mjcfbuild's build state; not for version control\n*\n"
-    )
+    from mjcfbuild.ownership import STATE_IGNORE
+
+    write_if_changed(ctx.state(".gitignore"), STATE_IGNORE)
     remove_stale_temp_files(ctx.out_dir)
     remove_stale_temp_files(ctx.state_dir)
     if ctx.manifest.source.description == "-":

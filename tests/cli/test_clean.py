@@ -258,6 +258,9 @@ def test_an_edited_model_clean_kept_is_not_written_over_by_the_next_build(arm):
         "mjcfbuild: kept mjcf/example_arm.xml (edited since mjcfbuild wrote it)"
         in result.stdout.splitlines()
     )
+    # The record stays out of git, as the state folder always does.
+    state = arm / "mjcf" / ".mjcfbuild"
+    assert sorted(path.name for path in state.iterdir()) == [".gitignore", "foreign.json"]
     again = run_cli("build", "-q", "--no-check", cwd=arm)
     assert again.code == 7, again.stderr
     assert again.stderr.startswith(
