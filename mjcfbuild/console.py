@@ -17,6 +17,8 @@ def report_error(error: MjcfbuildError, debug: bool, base_dir: Path | None = Non
     """Print one error as ``mjcfbuild: error: file:line: message (hint)``."""
     if base_dir is not None:
         error.relocate(base_dir, Path.cwd())
+    if _at_conflict_marker(error):
+        error.hint = "git left a merge conflict's marker there: resolve the conflict, then build"
     text = error.one_line()
     if isinstance(error, InternalError) and not debug:
         text += " (an internal error: run again with --debug and report the output)"
@@ -25,6 +27,28 @@ def report_error(error: MjcfbuildError, debug: bool, base_dir: Path | None = Non
         details = error.traceback_text()
         if details:
             print(details.rstrip(), file=sys.stderr)
+
+
+def _at_conflict_marker(error: MjcfbuildError) -> bool:
+    """Whether ``error`` points at a line git's merge left (``<<<<<<<``, ``=======``,
+    ``>>>>>>>``), or the line after one (where YAML's parser stops): a syntax error there is
+    the conflict, not the file's syntax."""
+    location = error.location
+    if location is None or location.line is None:
+        return False
+    try:
+        with open(location.file, "rb") as file:
+            for number, line in enumerate(file, 1):
+                if number >= location.line - 1 and line[:7] in _MARKERS:
+                    return True
+                if number >= location.line:
+                    return False
+    except OSError:
+        pass
+    return False
+
+
+_MARKERS = (b"<<<<<<<", b"=======", b">>>>>>>")
 
 
 def report_warning(text: str) -> None:

@@ -5,7 +5,8 @@ from __future__ import annotations
 import pytest
 
 from mjcfbuild.console import report_error, report_warnings
-from mjcfbuild.errors import InputError, InternalError
+from mjcfbuild.errors import InputError, InternalError, ManifestError
+from tests.conftest import write
 
 
 def test_an_error_is_one_line_on_stderr_with_its_place_and_hint(capsys):
@@ -58,3 +59,19 @@ def test_a_warnings_files_are_named_from_where_the_command_runs(
         f"robots/arm/{out}/.mjcfbuild/source.urdf:28]\n"
         "mjcfbuild: warning: mass 0.5 kg: not a file\n"
     )
+
+
+def test_an_error_at_a_merge_conflicts_marker_says_so(tmp_path, monkeypatch, capsys):
+    """A YAML file git left conflicted read as a plain syntax error ("could not find expected
+    ':'"), the parser stopping on the marker or the line after it."""
+
+    write(tmp_path / "limits.yaml", "a: 1\n<<<<<<< HEAD\nb: 2\n=======\nb: 3\n>>>>>>> other\n")
+    monkeypatch.chdir(tmp_path)
+    for line in (2, 3):
+        report_error(ManifestError("YAML syntax error", file="limits.yaml", line=line), False)
+        assert capsys.readouterr().err == (
+            f"mjcfbuild: error: limits.yaml:{line}: YAML syntax error (git left a merge "
+            "conflict's marker there: resolve the conflict, then build)\n"
+        )
+    report_error(ManifestError("bad", file="limits.yaml", line=1, hint="fix it"), False)
+    assert capsys.readouterr().err == "mjcfbuild: error: limits.yaml:1: bad (fix it)\n"
