@@ -121,9 +121,9 @@ def _sides(args: argparse.Namespace, warnings: dict[str, list[str]]):
         if args.base or args.head:
             raise UsageError("--folders compares two build folders: leave out --base and --head")
         old, new = (Path(folder) for folder in args.folders)
-        find_model(old)
+        base_model = find_model(old).name
         model = find_model(new).name
-        return Sides(str(old), str(new), old, new, model)
+        return Sides(str(old), str(new), old, new, model, base_model)
     if not args.base:
         raise UsageError(
             "say what to compare: --base REF [--head REF], or --folders OLD NEW",
@@ -153,7 +153,8 @@ def _revisions(args: argparse.Namespace, warnings: dict[str, list[str]]):
         head_folder = _build_revision(repo, head, scratch / "head", args, warnings)
         head_label = head.label
     model = find_model(head_folder).name
-    return Sides(base.label, head_label, base_folder, head_folder, model)
+    base_model = find_model(base_folder).name
+    return Sides(base.label, head_label, base_folder, head_folder, model, base_model)
 
 
 def _build_revision(

@@ -24,6 +24,14 @@ class Sides:
     base_folder: Path
     head_folder: Path
     model: str
+    base_model: str = ""  # the base's model file, where the robot was renamed since
+
+    @property
+    def models(self) -> str:
+        """The model's file, or both where the robot was renamed."""
+        if self.base_model and self.base_model != self.model:
+            return f"{self.base_model} -> {self.model} (renamed)"
+        return self.model
 
 
 def value_text(value: Any) -> str:
@@ -58,7 +66,7 @@ def change_line(change: Change, group: str) -> str:
 
 def text(diff: ModelDiff, sides: Sides) -> str:
     """The diff for a terminal: a header, then each group's changes, one a line."""
-    lines = [f"mjcfbuild diff: {sides.model}: {sides.base_label} -> {sides.head_label}"]
+    lines = [f"mjcfbuild diff: {sides.models}: {sides.base_label} -> {sides.head_label}"]
     if diff.empty:
         lines.append(NO_CHANGES)
     for key, title in GROUPS:
@@ -78,7 +86,7 @@ def markdown(diff: ModelDiff, sides: Sides, pictures: dict[str, str] | None = No
     """The diff as a pull request comment: a table per group; ``pictures`` maps a changed
     preview's name to the side-by-side picture's path (relative to the Markdown file)."""
     lines = [
-        f"### Model changes: {markdown_code(sides.model)}",
+        f"### Model changes: {markdown_code(sides.models)}",
         "",
         f"{markdown_code(sides.base_label)} → {markdown_code(sides.head_label)}",
         "",
@@ -113,6 +121,7 @@ def as_json(diff: ModelDiff, sides: Sides) -> str:
     """The diff as JSON: both sides, whether anything changed, the groups' changes."""
     data = {
         "model": sides.model,
+        "base_model": sides.base_model or sides.model,
         "base": sides.base_label,
         "head": sides.head_label,
         "changed": not diff.empty,

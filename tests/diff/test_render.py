@@ -27,3 +27,23 @@ def test_names_in_the_diff_stay_text_and_in_their_cells():
     assert '<img alt="a|b.png: before, after" src="previews/a%7Cb.png">' in html
     assert html.count("<img") == 1 and "<a " not in html  # the picture of the preview only
     assert all(html_text(name) in html for name in NAMES)
+
+
+def test_a_renamed_robot_names_both_model_files():
+    """A rename said only the new name, over 'no model changes', as if nothing had happened."""
+    import json
+
+    from mjcfbuild.diff.render import as_json, text
+
+    sides = Sides("HEAD~1", "working tree", Path("a"), Path("b"), "arm_v2.xml", "example_arm.xml")
+    assert text(ModelDiff(), sides).splitlines() == [
+        "mjcfbuild diff: example_arm.xml -> arm_v2.xml (renamed): HEAD~1 -> working tree",
+        "no model changes",
+    ]
+    assert markdown(ModelDiff(), sides).startswith(
+        "### Model changes: `example_arm.xml -> arm_v2.xml (renamed)`"
+    )
+    data = json.loads(as_json(ModelDiff(), sides))
+    assert (data["base_model"], data["model"]) == ("example_arm.xml", "arm_v2.xml")
+    same = Sides("HEAD~1", "working tree", Path("a"), Path("b"), "arm.xml", "arm.xml")
+    assert text(ModelDiff(), same).startswith("mjcfbuild diff: arm.xml: HEAD~1")
