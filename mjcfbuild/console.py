@@ -39,7 +39,7 @@ def _at_conflict_marker(error: MjcfbuildError) -> bool:
     try:
         with open(location.file, "rb") as file:
             for number, line in enumerate(file, 1):
-                if number >= location.line - 1 and line[:7] in _MARKERS:
+                if number >= location.line - 1 and _is_marker(line):
                     return True
                 if number >= location.line:
                     return False
@@ -48,7 +48,10 @@ def _at_conflict_marker(error: MjcfbuildError) -> bool:
     return False
 
 
-_MARKERS = (b"<<<<<<<", b"=======", b">>>>>>>")
+def _is_marker(line: bytes) -> bool:
+    """Whether ``line`` is one of git's conflict markers (``<<<<<<< ours``, ``=======``,
+    ``>>>>>>> theirs``), not a banner of '=' signs in a comment."""
+    return line[:8] in (b"<<<<<<< ", b">>>>>>> ") or line.rstrip() == b"======="
 
 
 def report_warning(text: str) -> None:

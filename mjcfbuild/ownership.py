@@ -24,11 +24,12 @@ STATE_IGNORE = b"# mjcfbuild's build state; not for version control\n*\n"
 
 
 class Record(NamedTuple):
-    """A folder's record of the user's files: every name, and those among them that are
-    outputs a build wrote and the user edited since."""
+    """A folder's record of the user's files: every name, those among them that are outputs
+    a build wrote and the user edited since, and why git could not be asked about them."""
 
     files: frozenset[str]
     edited: frozenset[str]
+    git_problem: str = ""
 
 
 _NONE = Record(frozenset(), frozenset())
@@ -38,10 +39,12 @@ _NONE = Record(frozenset(), frozenset())
 _read: dict[str, tuple[tuple[int, int, int], Record]] = {}
 
 
-def record_foreign(out_dir: Path, names: Iterable[str], edited: Iterable[str] = ()) -> None:
+def record_foreign(
+    out_dir: Path, names: Iterable[str], edited: Iterable[str] = (), git_problem: str = ""
+) -> None:
     """Record ``names`` (relative to ``out_dir``, posix) as files no build wrote, and
-    ``edited`` as outputs the user edited since a build wrote them; none removes the
-    record."""
+    ``edited`` as outputs the user edited since a build wrote them (``git_problem``: why git
+    could not say whether it has those edits); none removes the record."""
     from mjcfbuild.fsutil import write_if_changed
 
     path = out_dir / STATE_DIR / FOREIGN
@@ -50,20 +53,73 @@ def record_foreign(out_dir: Path, names: Iterable[str], edited: Iterable[str] = 
     if not listed:
         path.unlink(missing_ok=True)
         return
-    record: dict[str, list[str]] = {"files": listed}
+    record: dict[str, list[str] | str] = {"files": listed}
     if changed:
         record["edited"] = changed
+    if git_problem:
+        record["git_problem"] = git_problem
     write_if_changed(path, (json.dumps(record, indent=1) + "\n").encode())
     write_if_changed(path.with_name(".gitignore"), STATE_IGNORE)  # clean left none
+
+
+JOURNAL = "wrote.log"  # every output a step wrote, as written: "<md5> <name>" a line
+
+
+def _output_folder(path: Path) -> Path | None:
+    """The output folder ``path`` lies in: the nearest folder above it (at most three up:
+    assets/x/) that holds a state folder."""
+    for folder in list(path.parents)[:4]:
+        if (folder / STATE_DIR).is_dir():
+            return folder
+    return None
+
+
+def note_written(path: Path, digest: str) -> None:
+    """Journal that a step wrote ``path`` with the bytes of MD5 ``digest``, before anything
+    else can fail: a step that writes some outputs and then fails (or a build killed before
+    it records what it wrote) left new bytes under an old record's hash, which the next build
+    took for the user's edit. :func:`journaled` reads the journal back."""
+    folder = _output_folder(path)
+    if folder is None:
+        return
+    name = Path(os.path.relpath(path, folder)).as_posix()
+    # One short line, appended: whole even when two workers write at once.
+    with open(folder / STATE_DIR / JOURNAL, "a", encoding="utf-8") as journal:
+        journal.write(f"{digest} {name}\n")
+
+
+def journaled(out_dir: Path) -> dict[str, set[str]]:
+    """The journal of what steps wrote (:func:`note_written`): each name with the MD5s of the
+    bytes written to it."""
+    found: dict[str, set[str]] = {}
+    try:
+        text = (out_dir / STATE_DIR / JOURNAL).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return found
+    for line in text.splitlines():
+        digest, _, name = line.partition(" ")
+        if name:
+            found.setdefault(name, set()).add(digest)
+    return found
+
+
+def remove_output(path: Path) -> None:
+    """Remove ``path``, an output a step wrote earlier and no longer writes, unless it is
+    one of the user's (found there, or edited since: :func:`refuse_foreign`'s files)."""
+    folder = _output_folder(path)
+    if folder is not None:
+        name = Path(os.path.relpath(path, folder)).as_posix()
+        if name in _record(folder / STATE_DIR / FOREIGN).files:
+            return
+    path.unlink(missing_ok=True)
 
 
 def refuse_foreign(path: Path, data: bytes) -> None:
     """Raise :class:`~mjcfbuild.errors.OutputError` when ``path`` is a file the build found
     in its output folder, that no build wrote, and ``data`` would change it."""
-    for folder in list(path.parents)[:4]:  # the output folder: at most assets/x/ above it
+    folder = _output_folder(path)
+    if folder is not None:
         record = folder / STATE_DIR / FOREIGN
-        if not (folder / STATE_DIR).is_dir():
-            continue
         name = Path(os.path.relpath(path, folder)).as_posix()
         users = _record(record)
         if name not in users.files or not os.path.lexists(path) or _holds(path, data):
@@ -75,7 +131,7 @@ def refuse_foreign(path: Path, data: bytes) -> None:
                 "was edited since a build wrote it, and git has no commit of the edit; a build "
                 "never writes over an edit of yours",
                 file=str(path),
-                hint=_settle(name, path),
+                hint=_settle(name, path, users.git_problem),
             )
         raise OutputError(
             "is not mjcfbuild's (it was in the output folder before the build, and no build "
@@ -86,18 +142,20 @@ def refuse_foreign(path: Path, data: bytes) -> None:
         )
 
 
-def _settle(name: str, path: Path) -> str:
+def _settle(name: str, path: Path, git_problem: str) -> str:
     """What to do about an output the user edited, ``name`` in its output folder."""
     if name.split("/", 1)[0] == "report":  # the build's own, which git ignores
         return "copy out what you need, then remove it (the report folder is the build's)"
     if path.suffix == ".xml":  # a model's tuning has a home in robot.yaml
-        return (
+        keep = (
             "carry the edit into robot.yaml's mujoco_inputs or actuators, which every build "
-            "applies, then remove the file; or commit it first, and the build writes over it"
+            "applies, then remove the file"
         )
-    return (
-        "copy out what you need, then remove it; or commit it first, and the build writes over it"
-    )
+    else:
+        keep = "copy out what you need, then remove it"
+    if git_problem:  # git may well have it: only the user can tell
+        return f"{keep}; {git_problem}: if it is committed, remove it"
+    return f"{keep}; or commit it (past the commit hook: --no-verify), and the build writes over it"
 
 
 def _record(record: Path) -> Record:
@@ -112,7 +170,9 @@ def _record(record: Path) -> Record:
     try:
         data = json.loads(record.read_text(encoding="utf-8"))
         files = frozenset(data["files"])
-        read = Record(files, frozenset(data.get("edited", ())) & files)
+        problem = data.get("git_problem", "")
+        edited = frozenset(data.get("edited", ())) & files
+        read = Record(files, edited, problem if isinstance(problem, str) else "")
     except (OSError, ValueError, KeyError, TypeError, AttributeError):
         read = _NONE
     _read[str(record)] = (version, read)

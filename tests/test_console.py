@@ -75,3 +75,7 @@ def test_an_error_at_a_merge_conflicts_marker_says_so(tmp_path, monkeypatch, cap
         )
     report_error(ManifestError("bad", file="limits.yaml", line=1, hint="fix it"), False)
     assert capsys.readouterr().err == "mjcfbuild: error: limits.yaml:1: bad (fix it)\n"
+    # A banner of '=' signs in a comment is no marker.
+    write(tmp_path / "arm.xacro", "<!--\n======= joints =======\n-->\n<robot\n")
+    report_error(ManifestError("XML error", file="arm.xacro", line=3, hint="fix it"), False)
+    assert capsys.readouterr().err == "mjcfbuild: error: arm.xacro:3: XML error (fix it)\n"

@@ -175,6 +175,17 @@ def _stale_since_built(ctx) -> str:
 
     name = ctx.robot_path.relative_to(ctx.out_dir).as_posix()
     if written.edited(ctx.out_dir, name, (written.recorded(ctx) or {}).get(name)):
+        from mjcfbuild.engine.published import GitUnavailable, git_holds
+
+        try:
+            committed = bool(git_holds([str(ctx.robot_path)]))
+        except GitUnavailable:
+            committed = False
+        if committed:  # a checkout or pull of another build's model, or a committed edit
+            return (
+                f"of {ctx.label(ctx.robot_path)} as git has it in HEAD, not as this folder's "
+                f"last build wrote it; `mjcfbuild build {ctx.manifest_label}` makes it the build's"
+            )
         return (
             f"of {ctx.label(ctx.robot_path)} as edited by hand, not as the build wrote it (a "
             "build stops at the edit until it is carried into robot.yaml or committed)"

@@ -253,6 +253,11 @@ _FLAG_HINTS = (
     (rf"fix 'source(?:\.xacro|\.urdf)?' {_IN}", "fix -u"),
     (rf"fix 'mujoco_inputs\.file' {_IN}", "fix -m"),
     (rf"fix 'scene\.file' {_IN}", "fix --scene"),
+    (
+        r"carry the edit into robot\.yaml's mujoco_inputs or actuators, which every build "
+        r"applies",
+        "carry the edit into the -m file (raw MJCF, which every conversion applies)",
+    ),
 )
 
 

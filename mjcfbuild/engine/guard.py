@@ -9,6 +9,7 @@ says it is meant. The folders a build writes below the output folder (its state,
 
 from __future__ import annotations
 
+import contextlib
 import os
 from collections.abc import Callable
 from pathlib import Path
@@ -259,6 +260,9 @@ _INPUT_KINDS = {
 
 
 OWNER = "owner.json"
+# What a state folder holds that says no build wrote here: the lock, which robot.yaml owns
+# it, and what clean kept (its record and the .gitignore beside it).
+_NO_STATE = ("lock", OWNER, FOREIGN, ".gitignore")
 
 
 def claim_output_folder(ctx: BuildContext) -> None:
@@ -274,11 +278,11 @@ def claim_output_folder(ctx: BuildContext) -> None:
     mine = check_owner(ctx)
     if mine is not None:
         write_if_changed(ctx.state(OWNER), (json.dumps({"manifest": mine}) + "\n").encode())
-    found, edited = _users_files(ctx)
-    record_foreign(ctx.out_dir, found, edited)
+    found, edited, git_problem = _users_files(ctx)
+    record_foreign(ctx.out_dir, found, edited, git_problem)
 
 
-def _users_files(ctx: BuildContext) -> tuple[list[str], list[str]]:
+def _users_files(ctx: BuildContext) -> tuple[list[str], list[str], str]:
     """The files in the output folder where builds write (the folder itself, ``assets/``,
     ``report/``, ...) that are the user's: those no build recorded writing, and the outputs
     edited since a build wrote them (the record's hash differs) whose edit git has no commit
@@ -295,11 +299,13 @@ def _users_files(ctx: BuildContext) -> tuple[list[str], list[str]]:
     names = recorded(ctx)
     before = recorded_foreign(ctx.out_dir)
     if names is None and (
-        any(entry.name not in ("lock", OWNER, FOREIGN) for entry in ctx.state_dir.iterdir())
+        any(entry.name not in _NO_STATE for entry in ctx.state_dir.iterdir())
         or _built_model(ctx.robot_path)
     ):
         found = sorted(name for name in before.files if written_file(ctx.out_dir, name))
-        edits = []
+        # No record of what the build wrote (a fresh clone, the state folder removed): an
+        # output whose bytes are not HEAD's is an edit all the same.
+        edits = _modified_in_git(ctx)
     else:
         found = []
         for folder in [ctx.out_dir, *build_folders(ctx)]:
@@ -312,23 +318,43 @@ def _users_files(ctx: BuildContext) -> tuple[list[str], list[str]]:
         edits = _edited_outputs(ctx, names or {})
     # An edit recorded before (clean kept it; a build stopped at it) is still one.
     edits += [name for name in found if name in before.edited]
-    kept = _not_in_git(ctx, edits)
-    ctx.session.committed_edits = {
-        name: ctx.session.hashes.md5(ctx.out_dir / name) for name in edits if name not in kept
-    }
-    return [name for name in found if name not in before.edited], kept
+    kept, problem = _not_in_git(ctx, edits)
+    for name in edits:
+        if name not in kept:
+            with contextlib.suppress(OSError):  # gone: writing it says what is wrong
+                ctx.session.committed_edits[name] = ctx.session.hashes.md5(ctx.out_dir / name)
+    return [name for name in found if name not in before.edited], kept, problem
+
+
+def _modified_in_git(ctx: BuildContext) -> list[str]:
+    """The files in the output folder, outside its state folder, that git tracks and whose
+    bytes are not HEAD's (names relative to it, posix)."""
+    from mjcfbuild.engine.published import git_modified
+    from mjcfbuild.engine.written import written_file
+
+    out = os.path.normpath(ctx.out_dir)
+    names = (Path(os.path.relpath(path, out)).as_posix() for path in git_modified(out))
+    state = ctx.state_dir.name + "/"
+    return sorted(n for n in names if not n.startswith(state) and written_file(ctx.out_dir, n))
 
 
 def _edited_outputs(ctx: BuildContext, names: dict[str, str | None]) -> list[str]:
     """The recorded outputs whose bytes are no longer those the build recorded writing (the
-    package's changelog aside: builds extend it around the user's notes)."""
-    from mjcfbuild.engine.written import written_file
-    from mjcfbuild.outputs import PACKAGE_CHANGELOG, PACKAGE_FOLDER
+    package's changelog aside: builds extend it around the user's notes; and the preview
+    pictures, which are drawn again whatever they hold)."""
+    from mjcfbuild.engine.written import settled_by_journal, written_file
+    from mjcfbuild.outputs import PACKAGE_CHANGELOG, PACKAGE_FOLDER, report_dir
 
     changelog = f"{PACKAGE_FOLDER}/{PACKAGE_CHANGELOG}"
+    # Bytes a step journaled writing are the build's (it failed, or was killed, before it
+    # recorded them).
+    skipped = {changelog, *settled_by_journal(ctx)}
+    previews = Path(os.path.relpath(report_dir(ctx) / "previews", ctx.out_dir)).as_posix() + "/"
     edited = []
     for name, digest in names.items():
-        if digest is None or name == changelog or not written_file(ctx.out_dir, name):
+        if digest is None or name in skipped or name.startswith(previews):
+            continue
+        if not written_file(ctx.out_dir, name):
             continue
         try:
             if ctx.session.hashes.md5(ctx.out_dir / name) != digest:
@@ -338,14 +364,18 @@ def _edited_outputs(ctx: BuildContext, names: dict[str, str | None]) -> list[str
     return edited
 
 
-def _not_in_git(ctx: BuildContext, names: list[str]) -> list[str]:
-    """Those of ``names`` (in the output folder) whose bytes git does not hold in a commit."""
+def _not_in_git(ctx: BuildContext, names: list[str]) -> tuple[list[str], str]:
+    """Those of ``names`` (in the output folder) whose bytes git does not hold in a commit,
+    and why git could not be asked ('' where it could): then none is taken as held."""
     if not names:
-        return []
-    from mjcfbuild.engine.published import git_holds
+        return [], ""
+    from mjcfbuild.engine.published import GitUnavailable, git_holds
 
-    held = git_holds([str(ctx.out_dir / name) for name in names])
-    return [name for name in names if os.path.normpath(ctx.out_dir / name) not in held]
+    try:
+        held = git_holds([str(ctx.out_dir / name) for name in names])
+    except GitUnavailable as unavailable:
+        return names, str(unavailable)
+    return [name for name in names if os.path.normpath(ctx.out_dir / name) not in held], ""
 
 
 def _built_model(path: Path) -> bool:

@@ -100,52 +100,106 @@ def unstaged(files: list[str]) -> set[str] | None:
     return found
 
 
+class GitUnavailable(Exception):
+    """git could not be asked about a file in a git work tree (not installed, or it refuses
+    the repository: another user's, "dubious ownership"); the message says which."""
+
+
 def git_holds(files: list[str]) -> set[str]:
     """Those of ``files`` git holds as they are: committed, with the bytes HEAD has, or in a
-    merge conflict (which a rebuild is how to resolve). Writing over one of them loses
-    nothing. A staged edit is not held: the commit hook would write over it and ask for the
-    result to be added, leaving the edit only in the index. Empty outside a git work tree,
-    before the first commit, or without git."""
+    merge conflict whose markers are still in the file (a rebuild is how to resolve it; a
+    conflict resolved by hand is not held). Writing over one of them loses nothing. Not held:
+    a staged edit (the commit hook would write over it and ask for the result to be added,
+    leaving the edit only in the index), and a file git is told not to look at
+    (``--assume-unchanged``, ``--skip-worktree``: a local change kept out of commits). Empty
+    outside a git work tree and before the first commit; :class:`GitUnavailable` where git
+    cannot be asked."""
     by_folder: dict[str, list[str]] = {}
     for name in files:
         by_folder.setdefault(os.path.dirname(name), []).append(name)
     held: set[str] = set()
     for folder, names in sorted(by_folder.items()):
         committed = _git_names(folder, ["ls-tree", "-z", "--name-only", "HEAD", "--", *names])
+        if committed is None:
+            continue  # not a work tree, or nothing committed yet
         differ = _git_names(
             folder, ["diff", "HEAD", "--name-only", "--relative", "-z", "--", *names]
         )
-        conflicted = _git_names(
-            folder, ["diff", "--name-only", "--relative", "--diff-filter=U", "-z", "--", *names]
-        )
-        if committed is not None and differ is not None and conflicted is not None:
-            held |= (committed - differ) | conflicted
+        unmerged = ["diff", "--name-only", "--relative", "--diff-filter=U", "-z", "--", *names]
+        conflicted = _git_names(folder, unmerged)
+        flagged = _git_names(folder, ["ls-files", "-v", "-z", "--", *names], tagged=True)
+        if differ is None or conflicted is None or flagged is None:
+            continue
+        held |= (committed - differ - flagged) | {path for path in conflicted if _has_markers(path)}
     return held
 
 
-def _git_names(folder: str, arguments: list[str]) -> set[str] | None:
+def git_modified(folder: str) -> set[str]:
+    """The tracked files below ``folder`` whose bytes differ from HEAD's (empty outside a
+    work tree, before a commit, or where git cannot be asked)."""
+    try:
+        return (
+            _git_names(folder, ["diff", "HEAD", "--name-only", "--relative", "-z", "--", "."])
+            or set()
+        )
+    except GitUnavailable:
+        return set()
+
+
+def _has_markers(path: str) -> bool:
+    """Whether ``path`` still holds the markers of a merge conflict."""
+    try:
+        with open(path, "rb") as file:
+            lines = {line[:8] for line in file}
+    except OSError:
+        return False
+    return {b"<<<<<<< ", b">>>>>>> "} <= lines
+
+
+def _git_names(folder: str, arguments: list[str], tagged: bool = False) -> set[str] | None:
     """The paths a git command run in ``folder`` lists (NUL-separated, relative to it), made
-    full; None where git is missing or the command fails (no work tree, no commit yet)."""
+    full; None where the command fails because there is no work tree or commit to ask.
+    ``tagged``: ``ls-files -v`` output, of which only the files git does not look at (tags
+    in lower case: assume-unchanged; ``S``: skip-worktree) are returned."""
     try:
         done = subprocess.run(["git", *arguments], cwd=folder, capture_output=True)
     except OSError:
+        if _in_checkout(folder):
+            raise GitUnavailable("git is not installed, so it cannot say what it holds") from None
         return None
     if done.returncode != 0:
+        error = os.fsdecode(done.stderr).strip().splitlines()
+        first = error[0] if error else f"exit code {done.returncode}"
+        if _in_checkout(folder) and "not a git repository" not in first and "HEAD" not in first:
+            raise GitUnavailable(f"git could not be asked ({first})")
         return None
-    listed = (entry for entry in done.stdout.decode().split("\0") if entry)
+    listed = [entry for entry in os.fsdecode(done.stdout).split("\0") if entry]
+    if tagged:
+        listed = [entry[2:] for entry in listed if entry[:1].islower() or entry[:1] == "S"]
     return {os.path.normpath(os.path.join(folder, entry)) for entry in listed}
 
 
+def _in_checkout(folder: str) -> bool:
+    """Whether ``folder`` or one above it holds a ``.git``."""
+    path = Path(folder).absolute()
+    return any((above / ".git").exists() for above in [path, *path.parents])
+
+
 def git_removed(files: list[str]) -> set[str]:
-    """The files in the folders of ``files`` (what a build publishes), and below them, that
-    git's index has but the work tree no longer does: an asset the model stopped using, which
-    the build removed; unless its removal is staged, the commit keeps it."""
+    """The files git's index has, in the folders of ``files`` (what a build publishes), that
+    the work tree no longer does: an asset the model stopped using, which the build removed;
+    unless its removal is staged, the commit keeps it. Only files directly in those folders
+    (where the output folder is the description's own, the user's files lie below it)."""
     folders = sorted({os.path.dirname(name) for name in files})
     found: set[str] = set()
     for folder in folders:
-        if any(folder.startswith(other + os.sep) for other in folders):
-            continue  # listed with the folder above it
-        found |= _git_names(folder, ["ls-files", "--deleted", "-z", "--", "."]) or set()
+        try:
+            listed = _git_names(folder, ["ls-files", "--deleted", "-z", "--", "."])
+        except GitUnavailable:
+            continue
+        found |= {
+            path for path in listed or () if os.path.dirname(path) == os.path.normpath(folder)
+        }
     return found
 
 

@@ -113,9 +113,12 @@ def write_report(ctx: BuildContext) -> Path:
 def _write(path: Path, data: bytes) -> None:
     """Write a file of the report, unless it is one of the user's found in the folder (a
     report.md ``clean`` kept as edited): that stops the build, as a step's write does."""
-    from mjcfbuild.ownership import refuse_foreign
+    import hashlib
+
+    from mjcfbuild.ownership import note_written, refuse_foreign
 
     refuse_foreign(path, data)
+    note_written(path, hashlib.md5(data, usedforsecurity=False).hexdigest())
     write_if_changed(path, data)
 
 

@@ -289,8 +289,9 @@ def _say_removed(ctx: BuildContext, progress: Progress, removed: list[Path]) -> 
 
 
 def _say_undone(ctx: BuildContext, progress: Progress) -> None:
-    """Name the outputs the user edited and committed that the build wrote over: git has the
-    edit, but the user must learn it is no longer in the folder."""
+    """Name the outputs holding bytes git has in HEAD but no build here wrote (a hand edit
+    committed, another build's model pulled) that the build wrote over: git has them, but the
+    user must learn they are no longer in the folder."""
     from mjcfbuild.fsutil import md5_file
 
     undone = []
@@ -305,8 +306,9 @@ def _say_undone(ctx: BuildContext, progress: Progress) -> None:
     progress.clear()
     names = ", ".join(ctx.label(ctx.out_dir / name) for name in undone)
     progress.stream.write(
-        f"{progress.prefix}mjcfbuild: wrote over {names}, edited by hand and committed (git "
-        "has the edit: `git diff` shows what the build undid; keep a tuning in robot.yaml)\n"
+        f"{progress.prefix}mjcfbuild: wrote over {names}, which held bytes git has in HEAD "
+        "but no build here wrote (`git diff` shows what the build changed; keep a tuning in "
+        "robot.yaml)\n"
     )
     progress.stream.flush()
 

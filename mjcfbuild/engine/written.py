@@ -68,12 +68,14 @@ def record(
     stays as it was, so a file the user edited is not taken for the build's; a file without
     one is recorded as it is, unless it is one of the user's (:mod:`mjcfbuild.ownership`).
     Entries of files that are gone are dropped."""
-    from mjcfbuild.ownership import recorded_foreign
+    from mjcfbuild.ownership import JOURNAL, recorded_foreign
 
     out = ctx.out_dir
     before = recorded(ctx) or {}
     entries = {name: digest for name, digest in before.items() if written_file(out, name)}
     users = recorded_foreign(out).files  # a build that stopped at one did not make it its own
+    for settled in settled_by_journal(ctx):  # written by a step that failed after writing it
+        entries[settled] = _digest(ctx, settled)
     for path in owned:
         name = _name(ctx, path)
         if name is None or name in entries or name in users:
@@ -86,6 +88,20 @@ def record(
             entries[name] = _digest(ctx, name)
     text = json.dumps({"files": dict(sorted(entries.items()))}, indent=1) + "\n"
     write_if_changed(ctx.state(WRITTEN), text.encode())
+    ctx.state(JOURNAL).unlink(missing_ok=True)  # all in the record now
+
+
+def settled_by_journal(ctx: BuildContext) -> list[str]:
+    """The files in the output folder whose bytes are ones a step journaled writing
+    (:func:`mjcfbuild.ownership.note_written`): the build's, whatever the record says."""
+    from mjcfbuild.ownership import journaled
+
+    found = []
+    for name, digests in sorted(journaled(ctx.out_dir).items()):
+        inside = _relative(ctx.out_dir, ctx.out_dir / name) == name
+        if inside and written_file(ctx.out_dir, name) and _digest(ctx, name) in digests:
+            found.append(name)
+    return found
 
 
 def _name(ctx: BuildContext, path: str | os.PathLike) -> str | None:

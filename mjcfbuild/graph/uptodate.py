@@ -64,7 +64,10 @@ def outputs_intact(hashes: HashCache) -> Callable:
         for path, digest in outputs.items():
             try:
                 if hashes.md5(path) != digest:
-                    check.reason = f"output edited since it was built: {path}"  # type: ignore[attr-defined]
+                    check.reason = (  # type: ignore[attr-defined]
+                        f"output edited since it was built: {path} (a build stops at it "
+                        "unless git has it in HEAD)"
+                    )
                     return False
             except OSError:
                 check.reason = f"output deleted since it was built: {path}"  # type: ignore[attr-defined]

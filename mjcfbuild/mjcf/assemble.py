@@ -55,7 +55,8 @@ class AssemblyOptions:
     """The manifest settings the assembly uses."""
 
     fuse_static: bool = True
-    free_joint: bool = False
+    free_joint: bool = False  # robot.yaml's: a free joint on the root (and on what world holds)
+    floating: bool = False  # the base floats: free_joint, or the URDF's own floating joint
     link_sites: str = "all"
     max_hull_vertices: int | None = None  # MuJoCo's maxhullvert on collision meshes
     inertia: InertiaPolicy = field(default_factory=InertiaPolicy)
@@ -248,7 +249,7 @@ def _apply_additions(
             parts.actuator_robot,
             choices,
             home_values,
-            options.free_joint,
+            options.free_joint or options.floating,
             compile_tree,
             preset_qpos=parts.preset_qpos,
             preset_ctrl=parts.preset_ctrl,
@@ -257,7 +258,8 @@ def _apply_additions(
     # No compile of its own checks the inputs first: this one's failure, with the joints'
     # dynamics set, is MuJoCo's complaint about them (the same words).
     readiness = ready(root, home)
-    if options.free_joint and described_nothing(home) and not stands(root, compile_tree):
+    floating = options.free_joint or options.floating
+    if floating and described_nothing(home) and not stands(root, compile_tree):
         # The description gives no pose the robot stands in: try a computed crouch.
         crouched = crouched_home(root, compile_tree, home, readiness)
         if crouched is not None:

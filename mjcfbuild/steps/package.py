@@ -18,6 +18,7 @@ from mjcfbuild.diff.snapshot import model_snapshot
 from mjcfbuild.fsutil import write_if_changed
 from mjcfbuild.markup import markdown_code, markdown_text
 from mjcfbuild.outputs import PACKAGE_CHANGELOG
+from mjcfbuild.ownership import remove_output
 from mjcfbuild.package.documents import Provenance, changelog, readme
 from mjcfbuild.package.format import format_model
 from mjcfbuild.steps.outputs import write_output
@@ -44,12 +45,12 @@ def run(payload: dict) -> dict:
     if request.picture is not None and drawn:
         write_output(picture, Path(request.picture).read_bytes(), outputs)
     elif picture.name in copied:  # our picture of the model as an earlier build drew it
-        picture.unlink(missing_ok=True)
+        remove_output(picture)
     if request.license:
         write_output(folder / "LICENSE", Path(request.license).read_bytes(), outputs)
     else:
         if "LICENSE" in copied:  # our copy of a license the description no longer has
-            (folder / "LICENSE").unlink(missing_ok=True)
+            remove_output(folder / "LICENSE")
         warnings.append(
             "package: no LICENSE found in the description package (or its repository): the "
             "packaged folder has none; add the description's license before sharing it"
@@ -87,7 +88,7 @@ def _copy_assets(source: Path, target: Path, outputs: dict[str, str], copied: li
     for name in copied:
         stale = target.parent / name
         if stale.parent == target and stale.name not in wanted and not stale.is_symlink():
-            stale.unlink(missing_ok=True)
+            remove_output(stale)
 
 
 def _changelog(folder: Path, model: Path, info: Provenance, record: Path) -> None:

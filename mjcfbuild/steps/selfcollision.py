@@ -48,8 +48,7 @@ def run(payload: dict) -> dict:
     import mujoco
 
     robot = robot_from_dict(request.robot)
-    floating = floating_base(robot, request.free_joint)
-    bodies = build_bodies(robot, request.fuse_static, float_from_world=floating)
+    bodies = build_bodies(robot, request.fuse_static, float_from_world=request.free_joint)
     refuse_deep_bodies(robot, bodies)
     body_of = {frame.link: body.name for body in bodies for frame in body.links}
     choices = [CollisionChoice.from_dict(choice) for choice in request.choices]
@@ -70,7 +69,7 @@ def run(payload: dict) -> dict:
         spec = mujoco.MjSpec.from_string(prepared.urdf)
     except Exception as exc:
         raise compile_error(exc, robot.source, prepared.meshes) from None
-    if floating:
+    if request.free_joint:
         for body in bodies:
             if floats(body):
                 body.floating = True
@@ -87,7 +86,11 @@ def run(payload: dict) -> dict:
     )
     joint_names = {joint.name for joint in robot.joints}
     _, home_state = (
-        home_state_of(srdf, joint_names, request.home_state, floating) if srdf else (None, None)
+        home_state_of(
+            srdf, joint_names, request.home_state, floating_base(robot, request.free_joint)
+        )
+        if srdf
+        else (None, None)
     )
     home = home_values(robot, control, request.home, home_state, request.manifest_label)
     qpos = model.qpos0.copy()

@@ -269,3 +269,18 @@ def test_an_edited_model_clean_kept_is_not_written_over_by_the_next_build(arm):
     assert model.read_text().endswith("<!-- mine -->\n")
     model.unlink()  # moved away: the build writes its own
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+
+
+def test_after_clean_kept_an_edit_the_next_build_still_finds_the_users_files(arm):
+    """The .gitignore clean leaves beside its record made the next build take the folder for
+    one an older mjcfbuild built, and write over a scene.xml the user had put there."""
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    model = arm / "mjcf" / "example_arm.xml"
+    model.write_text(model.read_text() + "<!-- mine -->\n")
+    assert run_cli("clean", "-q", cwd=arm).code == 0
+    model.unlink()
+    scene = arm / "mjcf" / "scene.xml"
+    scene.write_text("<mujoco><!-- my scene --></mujoco>\n")
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert result.code == 7 and "mjcf/scene.xml: is not mjcfbuild's" in result.stderr
+    assert "my scene" in scene.read_text()

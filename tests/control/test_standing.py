@@ -352,3 +352,29 @@ def test_a_humanoid_takes_its_half_sitting_pose_from_an_srdf_naming_the_floating
     assert (values["left_knee"]["value"], values["left_knee"]["source"]) == (0.6, "srdf")
     assert "half_sitting" in readiness(tmp_path)["home_from"]
     assert _check(tmp_path)["stand"]["max_tilt"] < 0.2
+
+
+def test_a_part_world_holds_stays_put_beside_a_floating_joint(tmp_path):
+    """The URDF's floating joint floats its robot; a table the same `world` holds by a fixed
+    joint stayed static before and must not get a free joint of its own."""
+    urdf = """<robot name="f">
+  <link name="world"/>
+  <joint name="float" type="floating"><parent link="world"/><child link="torso"/>
+    <origin xyz="0 0 0.5"/></joint>
+  <link name="torso"><inertial><mass value="5"/>
+    <inertia ixx="0.05" ixy="0" ixz="0" iyy="0.05" iyz="0" izz="0.05"/></inertial>
+    <collision><geometry><box size="0.3 0.2 0.1"/></geometry></collision></link>
+  <joint name="bolt" type="fixed"><parent link="world"/><child link="table"/>
+    <origin xyz="2 0 0"/></joint>
+  <link name="table"><inertial><mass value="20"/>
+    <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+    <collision><origin xyz="0 0 0.2"/><geometry><box size="0.5 0.5 0.4"/></geometry></collision>
+  </link>
+</robot>
+"""
+    write(tmp_path / "f.urdf", urdf)
+    write(tmp_path / "robot.yaml", "name: f\nsource: {urdf: f.urdf}\n")
+    result = mjcfbuild.build(tmp_path / "robot.yaml", jobs=1)
+    model = mujoco.MjModel.from_xml_path(str(result.robot))
+    free = [j for j in range(model.njnt) if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE]
+    assert [model.body(model.jnt_bodyid[j]).name for j in free] == ["torso"]

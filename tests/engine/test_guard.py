@@ -270,7 +270,8 @@ def test_a_model_tuned_by_hand_is_kept_until_git_holds_the_edit(arm):
             "mjcfbuild: error: mjcf/example_arm.xml: was edited since a build wrote it, and git "
             "has no commit of the edit; a build never writes over an edit of yours (carry the "
             "edit into robot.yaml's mujoco_inputs or actuators, which every build applies, "
-            "then remove the file; or commit it first, and the build writes over it)\n"
+            "then remove the file; or commit it (past the commit hook: --no-verify), and the "
+            "build writes over it)\n"
         )
         assert model.read_text() == tuned
     # What is checked and what a build would do say so (not "as it was built", "not run").
@@ -285,13 +286,19 @@ def test_a_model_tuned_by_hand_is_kept_until_git_holds_the_edit(arm):
         "would run: assemble example_arm.xml: it stops at mjcf/example_arm.xml, edited by hand "
         "since it was built"
     ) in dry.stdout, dry.stdout
-    # Committed: git has the edit, writing over it loses nothing, and the build says so.
+    # Committed: git has the edit, writing over it loses nothing, and the build says so;
+    # check says what it checked.
     git("commit", "-qm", "tuned")
+    checked = run_cli("check", cwd=arm)
+    assert "of mjcf/example_arm.xml as git has it in HEAD, not as this folder's last build" in (
+        checked.stdout
+    )
     result = run_cli("build", "--no-check", cwd=arm)
     assert result.code == 0, result.stderr
     assert (
-        "mjcfbuild: wrote over mjcf/example_arm.xml, edited by hand and committed (git has the "
-        "edit: `git diff` shows what the build undid; keep a tuning in robot.yaml)"
+        "mjcfbuild: wrote over mjcf/example_arm.xml, which held bytes git has in HEAD but no "
+        "build here wrote (`git diff` shows what the build changed; keep a tuning in "
+        "robot.yaml)"
     ) in result.stdout.splitlines()
     assert model.read_text() == built
     # Edited again (git has only the first edit), then moved away: the build writes it again.
@@ -321,3 +328,62 @@ def test_a_fresh_clone_of_committed_models_is_the_builds_to_keep_current(arm):
     model.write_text(model.read_text().split("\n", 1)[1])  # no header: not known as a build's
     limits.write_text(limits.read_text().replace("upper: 2.4", "upper: 2.3"))
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == EXIT_OUTPUT
+
+
+def test_what_a_stopped_assembly_wrote_before_it_stopped_is_not_taken_for_an_edit(arm):
+    """The assembly writes the assets, then refuses the edited model: the new asset bytes
+    stood under the old record's hash, and once the model was moved away the next build
+    stopped at the asset, which the user never touched."""
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    model = arm / "mjcf" / "example_arm.xml"
+    model.write_text(model.read_text() + "<!-- tuned -->\n")
+    mesh = arm / "meshes" / "forearm.obj"
+    mesh.write_text(mesh.read_text().replace(" 0.240000", " 0.250000"))
+    stopped = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert stopped.code == EXIT_OUTPUT and "example_arm.xml: was edited" in stopped.stderr
+    mesh.write_text(mesh.read_text().replace(" 0.250000", " 0.260000"))  # new asset bytes
+    model.unlink()
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert not (arm / "mjcf" / ".mjcfbuild" / "wrote.log").exists()
+
+
+def test_without_a_record_an_output_that_is_not_heads_is_an_edit(arm):
+    """A fresh clone of a repository that commits its models has no record of what builds
+    wrote: a model tuned there was written over."""
+    import shutil
+    import subprocess
+
+    def git(*args):
+        command = ["git", "-c", "user.name=t", "-c", "user.email=t@t", *args]
+        subprocess.run(command, cwd=arm, check=True, capture_output=True)
+
+    git("init", "-q")
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    git("add", "-A")
+    git("commit", "-qm", "built")
+    shutil.rmtree(arm / "mjcf" / ".mjcfbuild")  # as a clone has it
+    model = arm / "mjcf" / "example_arm.xml"
+    tuned = model.read_text().replace("<mujoco", "<!-- tuned -->\n<mujoco", 1)
+    model.write_text(tuned)
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert result.code == EXIT_OUTPUT, result.stderr
+    assert model.read_text() == tuned
+
+
+def test_a_picture_of_the_users_in_the_package_is_not_removed(tmp_path):
+    """A build without previews removes the package picture it copied earlier; one the user
+    put in its place was removed with it."""
+    import shutil
+
+    from tests.conftest import EXAMPLES
+
+    arm = tmp_path / "arm"
+    shutil.copytree(EXAMPLES / "arm", arm, ignore=shutil.ignore_patterns("mjcf"))
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "  package: true\n")
+    assert run_cli("build", "-q", cwd=arm).code == 0
+    picture = arm / "mjcf" / "package" / "example_arm.png"
+    picture.write_bytes(b"my own render")
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    assert picture.read_bytes() == b"my own render"

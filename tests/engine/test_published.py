@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import subprocess
 
+import pytest
+
 from mjcfbuild.engine.published import changes, git_holds, git_status, snapshot
 
 
@@ -83,3 +85,39 @@ def test_outside_a_work_tree_or_before_a_commit_git_holds_nothing(tmp_path):
     _git("init", "-q", cwd=tmp_path)
     _git("add", "robot.xml", cwd=tmp_path)
     assert git_holds([str(tmp_path / "robot.xml")]) == set()
+
+
+def test_git_holds_neither_hidden_changes_nor_conflicts_resolved_by_hand(tmp_path):
+    """A file git is told not to look at (a local tweak kept out of commits) compared as
+    unchanged, and a conflict resolved in an editor but not added counted as a conflict: the
+    build wrote over both."""
+    _git("init", "-q", "-b", "main", cwd=tmp_path)
+    for name in ("hidden.xml", "skipped.xml", "resolved.xml"):
+        (tmp_path / name).write_text("built\n")
+    _git("add", "-A", cwd=tmp_path)
+    _git("commit", "-qm", "built", cwd=tmp_path)
+    _git("checkout", "-qb", "other", cwd=tmp_path)
+    (tmp_path / "resolved.xml").write_text("other\n")
+    _git("commit", "-qam", "other", cwd=tmp_path)
+    _git("checkout", "-q", "main", cwd=tmp_path)
+    (tmp_path / "resolved.xml").write_text("main\n")
+    _git("commit", "-qam", "main", cwd=tmp_path)
+    subprocess.run(["git", "merge", "-q", "other"], cwd=tmp_path, capture_output=True)
+    (tmp_path / "resolved.xml").write_text("merged by hand\n")
+    _git("update-index", "--assume-unchanged", "hidden.xml", cwd=tmp_path)
+    _git("update-index", "--skip-worktree", "skipped.xml", cwd=tmp_path)
+    (tmp_path / "hidden.xml").write_text("local tweak\n")
+    (tmp_path / "skipped.xml").write_text("local tweak\n")
+    names = [str(tmp_path / name) for name in ("hidden.xml", "skipped.xml", "resolved.xml")]
+    assert git_holds(names) == set()
+
+
+def test_where_git_cannot_be_asked_it_says_so(tmp_path, monkeypatch):
+    """No git on PATH in a git checkout: not "git has no commit of it", but why it cannot say."""
+    from mjcfbuild.engine.published import GitUnavailable
+
+    _git("init", "-q", cwd=tmp_path)
+    (tmp_path / "robot.xml").write_text("x")
+    monkeypatch.setenv("PATH", str(tmp_path / "nothing"))
+    with pytest.raises(GitUnavailable, match="git is not installed"):
+        git_holds([str(tmp_path / "robot.xml")])
