@@ -83,6 +83,8 @@ def note_written(path: Path, digest: str) -> None:
     if folder is None:
         return
     name = Path(os.path.relpath(path, folder)).as_posix()
+    if name.split("/", 1)[0] == STATE_DIR:
+        return  # the build's state, never the user's
     # One short line, appended: whole even when two workers write at once.
     with open(folder / STATE_DIR / JOURNAL, "a", encoding="utf-8") as journal:
         journal.write(f"{digest} {name}\n")

@@ -98,7 +98,7 @@ def settled_by_journal(ctx: BuildContext) -> list[str]:
 
     found = []
     for name, digests in sorted(journaled(ctx.out_dir).items()):
-        inside = _relative(ctx.out_dir, ctx.out_dir / name) == name
+        inside = _name(ctx, ctx.out_dir / name) == name  # in the folder, not its state
         if inside and written_file(ctx.out_dir, name) and _digest(ctx, name) in digests:
             found.append(name)
     return found
