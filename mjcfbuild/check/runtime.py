@@ -59,8 +59,72 @@ def check_runtime(model, control: Ros2Control) -> tuple[dict, list[str], list[st
         if sensor.params.get("mujoco_type")
     ]
     devices = [_device(model, sensor, failures) for sensor in control.sensors if sensor.kind]
+    failures += _unmatched_tendon_actuators(model)
+    failures += _missing_keyframe(model, control.hardware.get("initial_keyframe"))
+    failures += _unmatched_transmissions(model, control)
     warnings = _refusals(joints) + _effort_on_dcmotors(joints)
     return {"joints": joints, "sensors": sensors, "devices": devices}, failures, warnings
+
+
+def _unmatched_tendon_actuators(model) -> list[str]:
+    """The runtime registers every actuator of the model, a tendon's under the joint of its
+    name; one named like no joint stops it ("Tendon actuator ... has no matching joint")."""
+    import mujoco
+
+    failures = []
+    for index in range(model.nu):
+        if model.actuator_trntype[index] != mujoco.mjtTrn.mjTRN_TENDON:
+            continue
+        name = model.actuator(index).name
+        if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name) >= 0:
+            continue
+        tendon = model.tendon(model.actuator_trnid[index][0]).name
+        failures.append(
+            f"actuator '{name or f'#{index}'}' drives tendon '{tendon}' and no joint is named "
+            'like it: mujoco_ros2_control stops at start-up ("Tendon actuator ... has no '
+            'matching joint"); name the actuator after the joint it drives'
+        )
+    return failures
+
+
+def _missing_keyframe(model, keyframe: str | None) -> list[str]:
+    """``initial_keyframe`` names a keyframe the runtime starts from; none of that name stops
+    it ("Failed to find keyframe")."""
+    if not keyframe:
+        return []
+    names = [model.key(index).name for index in range(model.nkey)]
+    if keyframe in names:
+        return []
+    listing = ", ".join(f"'{name}'" for name in names if name) or "none"
+    return [
+        f"<hardware> param initial_keyframe names keyframe '{keyframe}', which the model does "
+        f"not have (its keyframes: {listing}): mujoco_ros2_control stops at start-up "
+        '("Failed to find keyframe"); name one of them'
+    ]
+
+
+def _unmatched_transmissions(model, control: Ros2Control) -> list[str]:
+    """A ``<ros2_control>`` transmission's actuators are looked up as joints, then as
+    actuators of the model; one that is neither stops the runtime ("Transmission actuator
+    ... not found")."""
+    import mujoco
+
+    failures = []
+    for transmission in control.transmissions:
+        if not transmission.in_ros2_control:
+            continue
+        for name in transmission.actuators:
+            if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name) >= 0:
+                continue
+            if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, name) >= 0:
+                continue
+            failures.append(
+                f"transmission {transmission.element} of joint '{transmission.joint}' names "
+                f"actuator '{name}', which is neither a joint nor an actuator of the model: "
+                'mujoco_ros2_control stops at start-up ("Transmission actuator ... not '
+                'found"); name the joint or its actuator'
+            )
+    return list(dict.fromkeys(failures))
 
 
 def _effort_on_dcmotors(joints: list[dict]) -> list[str]:

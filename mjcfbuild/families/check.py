@@ -92,7 +92,8 @@ FAMILY = Family(
     # which checks failed (the report's verdict names checks that did not run); 13: joints
     # without an actuator that sag from home, curved feet's stance, warnings in the verdict;
     # 14: a free body compared where the URDF places it (a floating joint's origin), a
-    # prismatic joint's travel along its unit axis
+    # prismatic joint's travel along its unit axis; the runtime's start-up rules for tendon
+    # actuators, initial_keyframe and ros2_control transmissions
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

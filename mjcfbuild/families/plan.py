@@ -73,7 +73,8 @@ FAMILY = Family(
     # 8: processed inputs by tag; 9: a mimic of a fixed joint, or a ring of mimics, refused;
     # 10: a revolute or prismatic joint without <limit> warned of; names twice say where first;
     # 12: each transmission's actuators and type (underactuated mechanisms); 13: a URDF's
-    # <compiler inertiafromgeom> said not to be applied
+    # <compiler inertiafromgeom> said not to be applied; <hardware> params and which
+    # transmissions are ros2_control's
     format=13,
     tools=("lxml",),
     tasks=_tasks,

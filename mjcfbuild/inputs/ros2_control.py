@@ -62,6 +62,7 @@ class Transmission:
     actuators: list[str] = field(default_factory=list)  # the transmission's <actuator> names
     element: str = ""  # which <transmission> element holds it ("#3": the document's third)
     kind: str = ""  # its type (transmission_interface/SimpleTransmission, a vendor's plugin)
+    in_ros2_control: bool = False  # inside a <ros2_control> block, where the runtime reads it
 
     def commands(self) -> bool:
         """Whether the transmission commands its joint: it names a hardware interface that
@@ -78,6 +79,7 @@ class Ros2Control:
     joints: list[ControlJoint] = field(default_factory=list)
     sensors: list[ControlSensor] = field(default_factory=list)
     transmissions: list[Transmission] = field(default_factory=list)
+    hardware: dict[str, str] = field(default_factory=dict)  # every <hardware> <param>
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""
@@ -90,6 +92,7 @@ class Ros2Control:
             [ControlJoint(**j) for j in data.get("joints", [])],
             [ControlSensor(**s) for s in data.get("sensors", [])],
             [Transmission(**t) for t in data.get("transmissions", [])],
+            dict(data.get("hardware", {})),
         )
 
 
@@ -102,6 +105,7 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
             for element in block.findall("hardware")
             for p in element.findall("param")
         }
+        result.hardware.update(hardware)
         for joint in block.findall("joint"):
             commands = [c.get("name", "") for c in joint.findall("command_interface")]
             initial = None
@@ -179,6 +183,7 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                         actuators,
                         element,
                         kind,
+                        in_ros2_control=True,
                     )
                 )
     return result

@@ -196,3 +196,62 @@ def test_an_effort_command_on_a_dcmotor_is_warned_about(tmp_path):
     (joint,) = check_record(tmp_path)["mujoco_ros2_control"]["joints"]
     assert (joint["kind"], joint["how"], joint["dcmotor"]) == ("custom", {"effort": "direct"}, True)
     assert any("command effort on a <dcmotor>" in w for w in result.warnings), result.warnings
+
+
+def _fails_to_start(tmp_path, urdf_extra: str, manifest_extra: str = "") -> str:
+    """Build the two-link robot; assert the check fails; its stderr."""
+    write(tmp_path / "robot.urdf", _two_link_with(urdf_extra))
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\n" + manifest_extra)
+    result = run_cli("build", str(tmp_path / "robot.yaml"))
+    assert result.code == EXIT_CHECK, result.stdout + result.stderr
+    return result.stderr
+
+
+def test_an_initial_keyframe_the_model_lacks_stops_the_runtime(tmp_path):
+    """mujoco_ros2_control's apply_keyframe: "Failed to find keyframe", and it does not start;
+    the check passed a model with only 'home'."""
+    hardware = '<param name="initial_keyframe">start_90</param>'
+    stderr = _fails_to_start(tmp_path, control_block(["position"], hardware))
+    assert (
+        "<hardware> param initial_keyframe names keyframe 'start_90', which the model does not "
+        "have (its keyframes: 'home')"
+    ) in stderr
+    fixed = '<param name="initial_keyframe">home</param>'
+    build_two_link(tmp_path / "fixed", urdf_extra=control_block(["position"], fixed))
+    assert check_record(tmp_path / "fixed")["passes"]
+
+
+def test_a_transmission_naming_no_joint_or_actuator_stops_the_runtime(tmp_path):
+    """register_transmissions looks each transmission actuator up as a joint, then as an
+    actuator: "Transmission actuator 'actuator1' not found" stops it."""
+
+    def block(actuator: str) -> str:
+        return control_block(["position"]).replace(
+            "</ros2_control>",
+            '<transmission name="t"><plugin>transmission_interface/SimpleTransmission</plugin>'
+            f'<actuator name="{actuator}" role="actuator1"/><joint name="hinge" role="joint1">'
+            "<mechanical_reduction>1.0</mechanical_reduction></joint></transmission>"
+            "</ros2_control>",
+        )
+
+    stderr = _fails_to_start(tmp_path, block("actuator1"))
+    assert "of joint 'hinge' names actuator 'actuator1', which is neither a joint" in stderr
+    build_two_link(tmp_path / "fixed", urdf_extra=block("hinge"))
+    assert check_record(tmp_path / "fixed")["passes"]
+
+
+def test_a_tendon_actuator_named_like_no_joint_stops_the_runtime(tmp_path):
+    """register_mujoco_actuators takes every actuator of the model, a tendon's by the joint of
+    its name: "Tendon actuator 'grip' has no matching joint" stops it (the MJCF hand's
+    'hand_grip' on the example arm with its ros2_control block)."""
+    raw = (
+        'mujoco_inputs:\n  raw: \'<tendon><fixed name="split"><joint joint="hinge" '
+        'coef="1"/></fixed></tendon><actuator><position name="grip" tendon="split" kp="5"/>'
+        "</actuator>'\n"
+    )
+    _fails_to_start(tmp_path, control_block(["position"]), raw)
+    failures = check_record(tmp_path)["failures"]
+    assert any(
+        "actuator 'grip' drives tendon 'split' and no joint is named like it" in failure
+        for failure in failures
+    ), failures
