@@ -76,8 +76,9 @@ def add_parser(commands) -> None:
         "--use_collision_tags",
         action="store_true",
         help="no effect: the URDF's authored <collision> geometry is always the collision "
-        "geometry (links without any collide with their visual meshes), which is what "
-        "--use_collision_tags asks of the reference converter",
+        "geometry, which is what --use_collision_tags asks of the reference converter; a link "
+        "without any has none (the reference gives it its visual; robot.yaml's collision "
+        "policies 'hull', 'primitive' and 'decompose' do too)",
     )
     parser.add_argument(
         "-a",
