@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import subprocess
+from pathlib import Path
 
 import pytest
 
@@ -16,6 +17,22 @@ def _git(*args: str, cwd) -> None:
         check=True,
         capture_output=True,
     )
+
+
+def _repo_with_a_conflict(top: Path, files: list[Path], conflicted: Path) -> None:
+    """A repository at ``top`` with ``files`` committed as a build wrote them, and a merge
+    that left ``conflicted`` (one of them) in conflict."""
+    _git("init", "-q", "-b", "main", cwd=top)
+    for path in files:
+        path.write_text("built\n")
+    _git("add", "-A", cwd=top)
+    _git("commit", "-qm", "built", cwd=top)
+    for branch, text in (("other", "other\n"), ("main", "main\n")):
+        _git("checkout", "-q", *(["-b"] if branch == "other" else []), branch, cwd=top)
+        conflicted.write_text(text)
+        _git("commit", "-qam", branch, cwd=top)
+    merge = subprocess.run(["git", "merge", "-q", "other"], cwd=top, capture_output=True)
+    assert merge.returncode != 0 and "<<<<" in conflicted.read_text()
 
 
 def test_snapshots_tell_created_from_changed_files(tmp_path):
@@ -52,21 +69,10 @@ def test_git_holds_committed_staged_and_conflicted_files_not_edits(tmp_path):
     """What a build may write over without losing anything: bytes HEAD has, and a file in a
     merge conflict (which a rebuild resolves); not an edit git lacks or holds only in its
     index (a commit hook would write over it), nor a file git does not track."""
-    _git("init", "-q", "-b", "main", cwd=tmp_path)
     out = tmp_path / "mjcf"
     out.mkdir()
-    for name in ("committed.xml", "edited.xml", "staged.xml", "conflict.xml"):
-        (out / name).write_text("built\n")
-    _git("add", "-A", cwd=tmp_path)
-    _git("commit", "-qm", "built", cwd=tmp_path)
-    _git("checkout", "-qb", "other", cwd=tmp_path)
-    (out / "conflict.xml").write_text("other\n")
-    _git("commit", "-qam", "other", cwd=tmp_path)
-    _git("checkout", "-q", "main", cwd=tmp_path)
-    (out / "conflict.xml").write_text("main\n")
-    _git("commit", "-qam", "main", cwd=tmp_path)
-    merge = subprocess.run(["git", "merge", "-q", "other"], cwd=tmp_path, capture_output=True)
-    assert merge.returncode != 0 and "<<<<" in (out / "conflict.xml").read_text()
+    names = ("committed.xml", "edited.xml", "staged.xml", "conflict.xml")
+    _repo_with_a_conflict(tmp_path, [out / name for name in names], out / "conflict.xml")
     (out / "edited.xml").write_text("tuned by hand\n")
     (out / "staged.xml").write_text("tuned and staged\n")
     _git("add", "mjcf/staged.xml", cwd=tmp_path)
@@ -91,18 +97,8 @@ def test_git_holds_neither_hidden_changes_nor_conflicts_resolved_by_hand(tmp_pat
     """A file git is told not to look at (a local tweak kept out of commits) compared as
     unchanged, and a conflict resolved in an editor but not added counted as a conflict: the
     build wrote over both."""
-    _git("init", "-q", "-b", "main", cwd=tmp_path)
-    for name in ("hidden.xml", "skipped.xml", "resolved.xml"):
-        (tmp_path / name).write_text("built\n")
-    _git("add", "-A", cwd=tmp_path)
-    _git("commit", "-qm", "built", cwd=tmp_path)
-    _git("checkout", "-qb", "other", cwd=tmp_path)
-    (tmp_path / "resolved.xml").write_text("other\n")
-    _git("commit", "-qam", "other", cwd=tmp_path)
-    _git("checkout", "-q", "main", cwd=tmp_path)
-    (tmp_path / "resolved.xml").write_text("main\n")
-    _git("commit", "-qam", "main", cwd=tmp_path)
-    subprocess.run(["git", "merge", "-q", "other"], cwd=tmp_path, capture_output=True)
+    names = ("hidden.xml", "skipped.xml", "resolved.xml")
+    _repo_with_a_conflict(tmp_path, [tmp_path / n for n in names], tmp_path / "resolved.xml")
     (tmp_path / "resolved.xml").write_text("merged by hand\n")
     _git("update-index", "--assume-unchanged", "hidden.xml", cwd=tmp_path)
     _git("update-index", "--skip-worktree", "skipped.xml", cwd=tmp_path)
