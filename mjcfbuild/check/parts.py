@@ -14,6 +14,7 @@ import random
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from mjcfbuild.compose.mjcf import joint_names
 from mjcfbuild.urdf.transforms import rotation_angle_between
 
 
@@ -73,8 +74,15 @@ def check_part(
         else:
             bodies[body] = found
     joints = {}
+    # An unnamed joint of the part has the name the build gave it (compose.mjcf.joint_names).
+    given = joint_names(
+        [
+            (named(obj.mjOBJ_JOINT, alone, j), named(obj.mjOBJ_BODY, alone, alone.jnt_bodyid[j]))
+            for j in range(alone.njnt)
+        ]
+    )
     for joint in range(alone.njnt):
-        name = named(obj.mjOBJ_JOINT, alone, joint)
+        name = given[joint]
         found = mujoco.mj_name2id(model, obj.mjOBJ_JOINT, part.prefix + name) if name else -1
         if found < 0:
             result.missing.append(f"joint '{part.prefix}{name}'")

@@ -124,13 +124,22 @@ def summarise(spec, model, label: str) -> PartSummary:
 
     obj = mujoco.mjtObj
     actuated = _actuated_joints(model)
+    given = joint_names(
+        [
+            (
+                mujoco.mj_id2name(model, obj.mjOBJ_JOINT, j) or "",
+                mujoco.mj_id2name(model, obj.mjOBJ_BODY, model.jnt_bodyid[j]) or "",
+            )
+            for j in range(model.njnt)
+        ]
+    )
     joints = []
     for j in range(model.njnt):
         kind = mujoco.mjtJoint(model.jnt_type[j]).name.removeprefix("mjJNT_").lower()
         limited = bool(model.jnt_limited[j])
         joints.append(
             PartJoint(
-                name=mujoco.mj_id2name(model, obj.mjOBJ_JOINT, j) or "",
+                name=given[j],
                 type=kind,
                 body=mujoco.mj_id2name(model, obj.mjOBJ_BODY, model.jnt_bodyid[j]) or "",
                 range=(float(model.jnt_range[j][0]), float(model.jnt_range[j][1]))
@@ -159,6 +168,15 @@ def summarise(spec, model, label: str) -> PartSummary:
         warnings.append(
             f"{label}: the part's keyframes {', '.join(repr(k) for k in others)} are left out "
             "(its 'home' keyframe fills its joints in the model's home)"
+        )
+    named_here = [
+        given[j] for j in range(model.njnt) if not mujoco.mj_id2name(model, obj.mjOBJ_JOINT, j)
+    ]
+    if any(named_here):
+        listed = ", ".join(f"'{name}'" for name in named_here if name)
+        warnings.append(
+            f"{label}: the part's joints without a name are named after their bodies ({listed}, "
+            "prefixed in the model): robot.yaml rules and home name them so"
         )
     unnamed = [j for j in joints if not j.name] + [
         a for a in range(model.nu) if not mujoco.mj_id2name(model, obj.mjOBJ_ACTUATOR, a)
@@ -296,10 +314,36 @@ def included_files(path: Path, label: str) -> list[Path]:
     return seen
 
 
+def joint_names(joints: list[tuple[str, str]]) -> list[str]:
+    """The name each of a part's joints (name, body name; in the model's order) has in the
+    model: its own, or for one without, its body's name with ``_joint`` (``_joint2``, ... for
+    more in one body). Unnamed, robot.yaml's rules and home could not name a joint, the check
+    took it for one without an actuator, and mujoco_ros2_control refuses to start. A joint of
+    an unnamed body keeps no name."""
+    taken = {name for name, _ in joints if name}
+    result = []
+    for name, body in joints:
+        if not name and body:
+            number, candidate = 1, f"{body}_joint"
+            while candidate in taken:
+                number += 1
+                candidate = f"{body}_joint{number}"
+            name = candidate
+            taken.add(name)
+        result.append(name)
+    return result
+
+
 def normalise(spec, model, stored: dict[str, Path]) -> None:
-    """Make everything the part's compiler decided explicit, and point its assets at the
-    stored copies (``stored``: absolute source path -> stored copy)."""
+    """Make everything the part's compiler decided explicit, name its unnamed joints
+    (:func:`joint_names`), and point its assets at the stored copies (``stored``: absolute
+    source path -> stored copy)."""
     import mujoco
+
+    ordered = [joint for body in spec.bodies for joint in body.joints]
+    names = joint_names([(joint.name, joint.parent.name) for joint in ordered])
+    for joint, name in zip(ordered, names, strict=True):
+        joint.name = name
 
     for key in list(spec.keys):
         spec.delete(key)

@@ -93,7 +93,8 @@ FAMILY = Family(
     # without an actuator that sag from home, curved feet's stance, warnings in the verdict;
     # 14: a free body compared where the URDF places it (a floating joint's origin), a
     # prismatic joint's travel along its unit axis; the runtime's start-up rules for tendon
-    # actuators, initial_keyframe and ros2_control transmissions
+    # actuators, initial_keyframe and ros2_control transmissions; a part's unnamed joint
+    # found by the name the build gave it
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

@@ -167,7 +167,9 @@ FAMILY = Family(
     name="mjcfpart",
     step="mjcfbuild.steps.mjcfpart:run",
     payload=MjcfPartPayload,
-    format=2,  # 2: a joint axis given at any length written as its unit axis at 12 digits
+    # 2: a joint axis given at any length written as its unit axis at 12 digits; a joint
+    # without a name named after its body
+    format=2,
     tools=("mujoco", "lxml"),
     tasks=_mjcf_part_tasks,
     stage="planning",

@@ -164,3 +164,29 @@ def test_bad_attachments_are_one_line_errors_and_write_nothing(
     assert errors[0].startswith(f"mjcfbuild: error: {location}"), errors[0]
     assert not (folder / "mjcf" / "arm_with_mjcf_hand.xml").exists()
     assert "Traceback" not in done.stderr
+
+
+def test_an_unnamed_joint_of_the_hand_is_named_after_its_body(tmp_path):
+    """A thumb joint with no name failed the check twice over ("joint '#6' has no actuator",
+    "joint 'hand_' not in the model"), and no rule or home could name it."""
+    folder = copy_example("arm_mjcf_gripper", tmp_path)
+    hand = folder / "hand" / "hand.xml"
+    text = hand.read_text()
+    thumb = (
+        '<body name="thumb" pos="0.03 0 0.03"><joint type="hinge" axis="1 0 0" '
+        'range="-0.5 0.5" damping="0.1"/><geom class="collision" type="capsule" '
+        'size="0.005 0.01"/></body>\n'
+    )
+    index = text.index("</body>", text.index('<body name="palm"'))
+    text = text[:index] + thumb + text[index:]
+    hand.write_text(text.replace('qpos="0.02 0.02"', 'qpos="0.02 0.02 0"'))
+    manifest = folder / "robot.yaml"
+    text = manifest.read_text().replace("  elbow: 0.6\n", "  elbow: 0.6\n  hand_thumb_joint: 0.2\n")
+    manifest.write_text(text)
+    result = run_cli("build", str(manifest))
+    assert result.code == EXIT_OK, result.stderr
+    assert "named after their bodies ('thumb_joint', prefixed in the model)" in result.stderr
+    model = mujoco.MjModel.from_xml_path(str(folder / "mjcf" / "scene.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, 0)
+    assert data.joint("hand_thumb_joint").qpos[0] == pytest.approx(0.2)
