@@ -218,7 +218,10 @@ def _hold_advice(model, key: int, joint: str | None) -> str:
         stiffen = (
             f"'{joint}' is driven by a velocity servo, which holds a speed, not a position: "
             "where it must hold a pose, make it a position servo with a rule (actuators: "
-            f"{{rules: [{{joints: [{joint}], type: position}}]}})"
+            f"{{rules: [{{joints: [{joint}], type: position}}]}}); where a <ros2_control> "
+            "velocity interface must command it (mujoco_ros2_control takes velocity on a "
+            "velocity servo only, or with PID gains), it holds under a controller alone: "
+            "raise check.hold_tolerance to say so"
         )
     elif f"joint '{joint}' has no actuator" in actuation_problems(model, set()):
         return (

@@ -79,7 +79,12 @@ HELD = """<mujoco>
         ),
         (
             '<velocity joint="swing" kv="0.5" ctrlrange="-5 5"/>',
-            "'swing' is driven by a velocity servo, which holds a speed, not a position",
+            "'swing' is driven by a velocity servo, which holds a speed, not a position: where "
+            "it must hold a pose, make it a position servo with a rule (actuators: {rules: "
+            "[{joints: [swing], type: position}]}); where a <ros2_control> velocity interface "
+            "must command it (mujoco_ros2_control takes velocity on a velocity servo only, or "
+            "with PID gains), it holds under a controller alone: raise check.hold_tolerance to "
+            "say so",
         ),
         (
             '<position joint="swing" kp="0.5" ctrlrange="-5 5"/>',
