@@ -163,8 +163,13 @@ def run(argv: Sequence[str] | None = None) -> int:
     from mjcfbuild.cli.suggest import unknown_arguments_line
 
     interrupts.forget()
+    words = list(sys.argv[1:] if argv is None else argv)
+    if "convert" in words and "--ros-args" in words:  # launched as the reference's ROS node
+        from mjcfbuild.cli.convert import without_ros_args
+
+        words = without_ros_args(words)
     parser = build_parser()
-    args, unknown = parser.parse_known_args(argv)
+    args, unknown = parser.parse_known_args(words)
     if unknown:
         print(unknown_arguments_line(parser, args.command, unknown), file=sys.stderr)
         return EXIT_USAGE

@@ -262,6 +262,21 @@ _FLAG_HINTS = (
 )
 
 
+def without_ros_args(argv: list[str]) -> list[str]:
+    """``argv`` without the ``--ros-args ... [--]`` sections ROS 2 launch files append to a
+    node's arguments, which the reference converter drops (rclpy's remove_ros_args)."""
+    kept: list[str] = []
+    inside = False
+    for word in argv:
+        if word == "--ros-args":
+            inside = True
+        elif inside and word == "--":
+            inside = False
+        elif not inside:
+            kept.append(word)
+    return kept
+
+
 def command_line_hint(hint: str) -> str:
     """``hint`` with robot.yaml keys replaced by the convert flags that set them."""
     import re

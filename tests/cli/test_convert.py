@@ -38,6 +38,18 @@ def test_convert_robot_description_string(cli, tmp_path):
     assert model.nq == 8  # free joint + hinge
 
 
+def test_ros_args_a_launch_file_appends_are_dropped_as_the_reference_drops_them(cli, tmp_path):
+    """A ROS 2 launch file runs the converter as a node: `--ros-args -r __node:=x --` was
+    refused as an unknown option."""
+    write(tmp_path / "robot.urdf", two_link_urdf())
+    args = ["--ros-args", "-r", "__node:=converter", "-p", "use_sim_time:=true"]
+    result = cli("convert", "-u", "robot.urdf", *args, "--", "-o", "out", cwd=tmp_path)
+    assert result.code == EXIT_OK, result.stderr
+    assert (tmp_path / "out" / "scene.xml").exists()
+    at_the_end = cli("convert", "-u", "robot.urdf", "-o", "out", *args, cwd=tmp_path)
+    assert at_the_end.code == EXIT_OK, at_the_end.stderr
+
+
 def test_publish_topic_says_ros_is_needed(cli, tmp_path):
     result = cli("convert", "-u", "x.urdf", "-p", "/mujoco_robot_description", cwd=tmp_path)
     assert result.code == EXIT_USAGE
