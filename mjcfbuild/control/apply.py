@@ -635,6 +635,16 @@ def _fill_user_records(readiness: Readiness, root) -> None:
     by_joint = {
         (e.get("joint") or e.get("jointinparent")): e for e in section if e.tag in ACTUATOR_TAGS
     }
+    # One on a fixed tendon drives the tendon's joints (the reference demo's gripper): the
+    # report named it "" of type "user".
+    tendons = {
+        tendon.get("name"): [j.get("joint") for j in tendon.findall("joint")]
+        for tendon in root.iter("fixed")
+    }
+    for element in section:
+        if element.tag in ACTUATOR_TAGS and element.get("tendon"):
+            for joint in tendons.get(element.get("tendon"), []):
+                by_joint.setdefault(joint, element)
     for record in readiness.actuators:
         if record.source == USER and record.joint in by_joint:
             element = by_joint[record.joint]

@@ -188,7 +188,8 @@ FAMILY = Family(
     # unused asset the user edited is kept; 19: a limit that is no limit is named at the
     # joint's file and line (placed in a xacro source); a URDF floating joint from `world`
     # floats the robot, stood on the floor; a joint whose inertia rounds away is refused; an
-    # axis given at any length written as its unit axis at 12 digits
+    # axis given at any length written as its unit axis at 12 digits; a user's tendon
+    # actuator named in its record
     format=19,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,

@@ -15,7 +15,7 @@ import pytest
 
 from mjcfbuild.errors import EXIT_CHECK
 from tests.conftest import run_cli, write
-from tests.control.helpers import build_two_link, load
+from tests.control.helpers import build_two_link, load, readiness
 
 
 def runtime_kind(model, actuator: int) -> str:
@@ -150,6 +150,10 @@ def test_the_reference_demo_passes_the_runtimes_rules(demo):
         ("lidar", True),
     ]
     assert section["devices"][1]["rays"] == 25
+    # The report names the user's tendon actuator and its kind (it showed "" and "user").
+    records = {r["joint"]: r for r in readiness(demo)["actuators"]}
+    gripper = records["gripper_left_finger_joint"]
+    assert (gripper["name"], gripper["type"]) == ("gripper_left_finger_joint", "position")
     # Its use_pid variant declares velocity beside position on position actuators, which the
     # runtime logs as an error for velocity: a warning, not a failure.
     assert "velocity command interface" in result.stderr
