@@ -88,10 +88,14 @@ def joint_speeds(
     # starts the test at qpos0, which may lie outside a joint's range (a knee bent one way):
     # the limit throws such a joint back faster than its line allows, so it keeps the free bound.
     named = {joint for joint, motor in drives.items() if motor.get("motor") != URDF_LIMITS}
+    # Only a servo the build made says so by its record: the user's own (or a part's) may be
+    # limited by its joint's actuatorfrcrange, which the URDF's effort gives.
     unlimited = {
         record["joint"]
         for record in actuators
-        if record.get("type") == "position" and not record.get("forcerange")
+        if record.get("type") == "position"
+        and not record.get("forcerange")
+        and record.get("source") not in ("user", "part")
     }
     result = []
     for joint, speed in sorted(top_speeds.items()):

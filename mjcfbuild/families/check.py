@@ -94,7 +94,7 @@ FAMILY = Family(
     # 14: a free body compared where the URDF places it (a floating joint's origin), a
     # prismatic joint's travel along its unit axis; the runtime's start-up rules for tendon
     # actuators, initial_keyframe and ros2_control transmissions; a part's unnamed joint
-    # found by the name the build gave it
+    # found by the name the build gave it; a user's servo not said to lack a URDF effort
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

@@ -151,3 +151,12 @@ def test_a_joint_without_an_effort_is_told_its_servo_has_no_line():
     assert len(failures) == 1
     assert "no force limit (the URDF gives no effort)" in failures[0]
     assert "forcerange" in failures[0]
+
+
+def test_a_users_servo_is_not_said_to_lack_the_effort_its_urdf_gives():
+    """The reference demo's own position servos (its inputs file) are held by their joints'
+    actuatorfrcrange from the URDF's effort of 1000: "the URDF gives no effort" was false."""
+    record = {"joint": "joint1", "type": "position", "source": "user"}
+    (speed,) = joint_speeds({"joint1": 2e4}, {"joint1": 3.14}, {}, [record])
+    _, failures = speed_results([speed])
+    assert len(failures) == 1 and "gives no effort" not in failures[0], failures
