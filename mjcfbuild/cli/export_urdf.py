@@ -58,6 +58,14 @@ def add_parser(commands) -> None:
         metavar="NAME:=VALUE",
         help="an argument for the xacro file --limits-from names (repeat for several)",
     )
+    parser.add_argument(
+        "--package",
+        action="append",
+        default=[],
+        metavar="NAME=DIR",
+        help="where a ROS package is, for $(find) in the xacro file --limits-from names "
+        "(repeatable; others come from ROS_PACKAGE_PATH / AMENT_PREFIX_PATH)",
+    )
     parser.set_defaults(handler=run)
 
 
@@ -108,14 +116,21 @@ def _limits(args: argparse.Namespace) -> dict[str, float]:
     import os
 
     from mjcfbuild.cli import MANIFEST_SUFFIXES
-    from mjcfbuild.cli.convert import is_xacro, parse_xacro_args
-    from mjcfbuild.errors import UsageError
+    from mjcfbuild.cli.convert import (
+        command_line_hint,
+        is_xacro,
+        parse_packages,
+        parse_xacro_args,
+    )
+    from mjcfbuild.errors import MjcfbuildError, UsageError
     from mjcfbuild.export.speeds import read_urdf_speeds, urdf_speeds
     from mjcfbuild.sources.expand import COMMAND_LINE, expand_xacro
     from mjcfbuild.sources.packages import PackageResolver
     from mjcfbuild.urdf.parse import parse_urdf
 
     source = Path(args.limits_from)
+    if args.package and not (source.is_file() and is_xacro(source)):
+        raise UsageError(f"--package is for a xacro file as --limits-from, and {source} is not one")
     if source.suffix.lower() in MANIFEST_SUFFIXES:
         if args.xacro_arg:
             raise UsageError(
@@ -126,10 +141,15 @@ def _limits(args: argparse.Namespace) -> dict[str, float]:
         if args.xacro_arg:
             raise UsageError(f"--xacro-arg needs a xacro file, and {source} is not one")
         return read_urdf_speeds(source)
-    # Packages as the build finds them without a manifest: the ROS environment and the
-    # package.xml files above the file.
-    resolver = PackageResolver({}, os.environ)
-    expansion = expand_xacro(source, parse_xacro_args(args.xacro_arg), resolver, COMMAND_LINE)
+    # Packages as the build finds them without a manifest: --package, the ROS environment
+    # and the package.xml files above the file.
+    given = {name: Path(folder) for name, folder in parse_packages(args.package).items()}
+    resolver = PackageResolver(given, os.environ)
+    try:
+        expansion = expand_xacro(source, parse_xacro_args(args.xacro_arg), resolver, COMMAND_LINE)
+    except MjcfbuildError as error:
+        error.hint = command_line_hint(error.hint) if error.hint else error.hint
+        raise
     return urdf_speeds(parse_urdf(expansion.urdf, str(source)))
 
 

@@ -91,3 +91,28 @@ def test_limits_from_a_robot_yaml_take_its_source_args(tmp_path):
     result = run_cli(*args, "--limits-from", str(tmp_path / "robot.yaml"))
     assert result.code == 0, result.stderr
     assert _velocities(out)["yaw"] == "3.5"
+
+
+def test_limits_from_a_xacro_file_finding_a_package_take_it_from_the_package_option(tmp_path):
+    """A missing package was to be added "under 'packages' in robot.yaml": export-urdf has
+    no robot.yaml, and had no way to say where the package is."""
+    model = write_model(tmp_path / "model")
+    config = tmp_path / "elsewhere" / "cfg"
+    (config / "config").mkdir(parents=True)
+    (config / "config" / "speeds.yaml").write_text("yaw: 2.25\n")
+    (tmp_path / "original.urdf.xacro").write_text(
+        XACRO.replace(
+            '<xacro:arg name="yaw_speed" default="1.5"/>',
+            "<xacro:property name=\"speeds\" value=\"${xacro.load_yaml('$(find cfg)/config/"
+            "speeds.yaml')}\"/>",
+        ).replace('velocity="$(arg yaw_speed)"', "velocity=\"${speeds['yaw']}\"")
+    )
+    out = tmp_path / "out" / "robot.urdf"
+    args = ["export-urdf", str(model), "-o", str(out), "--no-sites"]
+    source = ["--limits-from", str(tmp_path / "original.urdf.xacro")]
+    missing = run_cli(*args, *source)
+    assert missing.code != 0 and "pass --package cfg=<folder>" in missing.stderr, missing.stderr
+    assert "robot.yaml" not in missing.stderr
+    result = run_cli(*args, *source, "--package", f"cfg={config}")
+    assert result.code == 0, result.stderr
+    assert _velocities(out)["yaw"] == "2.25"
