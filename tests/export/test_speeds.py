@@ -103,7 +103,7 @@ def test_limits_from_a_xacro_file_finding_a_package_take_it_from_the_package_opt
     (tmp_path / "original.urdf.xacro").write_text(
         XACRO.replace(
             '<xacro:arg name="yaw_speed" default="1.5"/>',
-            "<xacro:property name=\"speeds\" value=\"${xacro.load_yaml('$(find cfg)/config/"
+            '<xacro:property name="speeds" value="${xacro.load_yaml(\'$(find cfg)/config/'
             "speeds.yaml')}\"/>",
         ).replace('velocity="$(arg yaw_speed)"', "velocity=\"${speeds['yaw']}\"")
     )
