@@ -168,6 +168,13 @@ def _convert(args: argparse.Namespace, key: str | None) -> int:
     cwd = Path.cwd()
     output = Path(args.output)
     xacro_args = parse_xacro_args(args.xacro_args)
+    if args.add_free_joint and _rooted_at_world(args):
+        from mjcfbuild.console import report_warning
+
+        # The reference's add_urdf_free_joint, word for word in effect: robot.yaml's
+        # free_joint would float each body the world holds fixed (a sensor frame falls away).
+        report_warning("-f: not adding a free joint, because world is the URDF's root")
+        args.add_free_joint = False
     if args.urdf:
         kind = "xacro" if is_xacro(Path(args.urdf)) else "urdf"
         if xacro_args and kind != "xacro":
@@ -223,6 +230,28 @@ def _convert(args: argparse.Namespace, key: str | None) -> int:
         hints=command_line_hint,
         check_command=check_command(args),
     )
+
+
+def _rooted_at_world(args: argparse.Namespace) -> bool:
+    """Whether the URDF given (a file that needs no xacro, or the -r text) has ``world`` for
+    its root link; False where that is not known before the build (xacro, stdin) or the text
+    does not read (the build says why)."""
+    from mjcfbuild.errors import MjcfbuildError
+    from mjcfbuild.urdf.parse import parse_urdf
+
+    try:
+        if args.urdf:
+            path = Path(args.urdf)
+            if is_xacro(path):
+                return False
+            data = path.read_bytes()
+        elif args.robot_description and args.robot_description != "-":
+            data = args.robot_description.encode("utf-8")
+        else:
+            return False
+        return parse_urdf(data, "robot.urdf").root == "world"
+    except (OSError, MjcfbuildError):
+        return False
 
 
 def check_command(args: argparse.Namespace) -> str:

@@ -50,6 +50,24 @@ def test_ros_args_a_launch_file_appends_are_dropped_as_the_reference_drops_them(
     assert at_the_end.code == EXIT_OK, at_the_end.stderr
 
 
+def test_a_free_joint_is_not_added_to_a_urdf_rooted_at_world_as_the_reference_does(cli, tmp_path):
+    """The reference's -f says "Not adding a free joint because world is the URDF root"; each
+    body the world held fixed got a free joint of its own, and a sensor frame fell away."""
+    urdf = two_link_urdf(
+        extra='<link name="world"/><joint name="w" type="fixed"><parent link="world"/>'
+        '<child link="base"/></joint><link name="lidar"/><joint name="l" type="fixed">'
+        '<parent link="world"/><child link="lidar"/><origin xyz="1 0 0.5"/></joint>'
+    )
+    write(tmp_path / "robot.urdf", urdf)
+    result = cli("convert", "-u", "robot.urdf", "-o", "out", "-f", cwd=tmp_path)
+    assert result.code == EXIT_OK, result.stderr
+    assert "-f: not adding a free joint, because world is the URDF's root" in result.stderr
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "out" / "scene.xml"))
+    assert model.nq == 1  # the hinge alone
+    text = cli("convert", "-r", urdf, "-o", "out2", "-f", cwd=tmp_path)
+    assert text.code == EXIT_OK and "not adding a free joint" in text.stderr
+
+
 def test_publish_topic_says_ros_is_needed(cli, tmp_path):
     result = cli("convert", "-u", "x.urdf", "-p", "/mujoco_robot_description", cwd=tmp_path)
     assert result.code == EXIT_USAGE
