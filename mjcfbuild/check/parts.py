@@ -14,7 +14,7 @@ import random
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from mjcfbuild.compose.mjcf import joint_names
+from mjcfbuild.compose.part_names import joint_names
 from mjcfbuild.urdf.transforms import rotation_angle_between
 
 
