@@ -195,17 +195,29 @@ def _build_and_compare(ctx, args: argparse.Namespace, workers: WorkerPool | None
     code = execute(ctx, args.quiet, args.debug, workers=workers)
     after = snapshot(published_files(ctx))
     created, changed = changes(before, after)
-    return code or _report_unadded(created, changed, list(after), args.debug)
+    elsewhere = tuple(ctx.session.removed_elsewhere)  # in an earlier output folder
+    return code or _report_unadded(created, changed, list(after), args.debug, elsewhere)
 
 
 def _report_unadded(
-    created: list[str], changed: list[str], published: list[str], debug: bool
+    created: list[str],
+    changed: list[str],
+    published: list[str],
+    debug: bool,
+    removed_elsewhere: tuple[str, ...] = (),
 ) -> int:
     """Report files the build created or changed, published files git does not track, and
-    removed ones git still has; the exit code (6 if there are any)."""
+    removed ones git still has (in the folders of ``published`` and ``removed_elsewhere``);
+    the exit code (6 if there are any)."""
     import os
 
-    from mjcfbuild.engine.published import git_removed, git_status, in_work_tree, unstaged
+    from mjcfbuild.engine.published import (
+        git_deleted,
+        git_removed,
+        git_status,
+        in_work_tree,
+        unstaged,
+    )
     from mjcfbuild.errors import CheckError
 
     untracked, ignored = git_status(published)
@@ -219,7 +231,8 @@ def _report_unadded(
     created = sorted(written & set(created), key=_top_first)
     changed = sorted(written & set(changed), key=_top_first)
     not_added = sorted(untracked - ignored - set(created), key=_top_first)
-    removed = sorted(git_removed(published), key=_top_first)
+    removed_files = git_removed(published) | git_deleted(list(removed_elsewhere))
+    removed = sorted(removed_files, key=_top_first)
     if not created and not changed and not not_added and not removed:
         return EXIT_OK
     parts = []

@@ -26,7 +26,7 @@ ALLOW_HINT = "set output.allow_outside: true in robot.yaml or pass --allow-outsi
 
 def check_output_folder(ctx: BuildContext) -> None:
     """Raise :class:`OutputError` unless the build of ``ctx`` may write its output folder."""
-    if _guarded(ctx):
+    if named_by_manifest(ctx):
         _check_inside(ctx)
         _check_not_a_file(ctx)
     for folder in build_folders(ctx):
@@ -40,7 +40,7 @@ def check_output_folder(ctx: BuildContext) -> None:
             )
 
 
-def _guarded(ctx: BuildContext) -> bool:
+def named_by_manifest(ctx: BuildContext) -> bool:
     """Whether the output folder comes from robot.yaml (``convert -o``, ``diff``'s scratch
     builds and the API's folders are named by their caller)."""
     return ctx.manifest_file is not None and ctx.output_override is None
@@ -399,7 +399,7 @@ def check_owner(ctx: BuildContext) -> str | None:
     ``ctx``'s manifest (None where the folder is named by a caller, not robot.yaml)."""
     import json
 
-    if not _guarded(ctx):
+    if not named_by_manifest(ctx):
         return None
     assert ctx.manifest_file is not None, "guarded only with a manifest file"
     mine = os.path.relpath(ctx.manifest_file, ctx.out_dir)

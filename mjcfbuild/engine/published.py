@@ -203,6 +203,25 @@ def git_removed(files: list[str]) -> set[str]:
     return found
 
 
+def git_deleted(files: list[str]) -> set[str]:
+    """Those of ``files`` (removed from the work tree, with their folders perhaps) that git's
+    index still has."""
+    by_folder: dict[str, list[str]] = {}
+    for name in files:
+        folder = os.path.dirname(os.path.abspath(name))
+        while not os.path.isdir(folder) and os.path.dirname(folder) != folder:
+            folder = os.path.dirname(folder)
+        by_folder.setdefault(folder, []).append(os.path.relpath(name, folder))
+    found: set[str] = set()
+    for folder, names in sorted(by_folder.items()):
+        try:
+            listed = _git_names(folder, ["ls-files", "--deleted", "-z", "--", *names])
+        except GitUnavailable:
+            continue
+        found |= listed or set()
+    return found
+
+
 def in_work_tree(folder: str) -> bool:
     """Whether ``folder`` is in a git work tree (False without git)."""
     try:

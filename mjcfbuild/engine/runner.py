@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 from mjcfbuild import interrupts
 from mjcfbuild.engine import stamp, written
 from mjcfbuild.engine.context import BuildContext
+from mjcfbuild.engine.earlier_folders import Abandoned, remove_earlier_folders
 from mjcfbuild.engine.guard import (
     check_output_folder,
     check_outputs_are_not_inputs,
@@ -249,6 +250,7 @@ def _build_locked(
             if model_built and ctx.robot_path.exists():
                 # once the new name's model is there, not before
                 _say_removed(ctx, progress, remove_renamed_model(ctx))
+                _say_abandoned(ctx, progress, remove_earlier_folders(ctx))
             _say_undone(ctx, progress)
             ctx.session.finish_sharing()  # uploads are done (or given up) before it returns
             failpoint("report")
@@ -286,6 +288,29 @@ def _say_removed(ctx: BuildContext, progress: Progress, removed: list[Path]) -> 
         f"model's files under names robot.yaml no longer gives (now {', '.join(now)})\n"
     )
     progress.stream.flush()
+
+
+def _say_abandoned(ctx: BuildContext, progress: Progress, abandoned: list[Abandoned]) -> None:
+    """Say which earlier output folders of robot.yaml the build emptied, and what of the
+    user's it kept there; the files removed go to the session (``--fail-on-change`` asks git
+    about them)."""
+    for folder in abandoned:
+        ctx.session.removed_elsewhere += [str(path) for path in folder.removed]
+        if progress.quiet or not (folder.removed or folder.kept):
+            continue
+        count = len(folder.removed)
+        said = f"removed {count} file{'s' if count != 1 else ''} a build wrote in"
+        kept = ""
+        if folder.kept:
+            shown = ", ".join(ctx.label(path) for path in folder.kept[:3])
+            more = f" and {len(folder.kept) - 3} more" if len(folder.kept) > 3 else ""
+            kept = f"; kept {shown}{more} (not written by a build, or edited since)"
+        progress.clear()
+        progress.stream.write(
+            f"{progress.prefix}mjcfbuild: {said} {ctx.label(folder.folder)}/, robot.yaml's "
+            f"output folder before (now {ctx.label(ctx.out_dir)}/){kept}\n"
+        )
+        progress.stream.flush()
 
 
 def _say_undone(ctx: BuildContext, progress: Progress) -> None:

@@ -44,6 +44,7 @@ class BuildSession:
         self.timings: dict[str, float] = {}
         self.notes: dict[str, str] = {}  # task -> a word for the progress line ("from cache")
         self.written: set[str] = set()  # files this build wrote (engine.written records them)
+        self.removed_elsewhere: list[str] = []  # outside the output folder (earlier folders)
         # Outputs edited since a build wrote them whose edit git has in HEAD, each with the MD5
         # of the edit: the build may write over them, and says so (engine.guard finds them).
         self.committed_edits: dict[str, str] = {}

@@ -41,8 +41,13 @@ def recorded(ctx: BuildContext) -> dict[str, str | None] | None:
     """The recorded files (relative to the output folder, sorted), each with the MD5 of what
     the build wrote (None in a record made before the hashes); None without a record (a folder
     no build wrote, or one an mjcfbuild from before the record built)."""
+    return recorded_in(ctx.out_dir, ctx.state_dir)
+
+
+def recorded_in(out_dir: Path, state_dir: Path) -> dict[str, str | None] | None:
+    """:func:`recorded` of the output folder ``out_dir`` with its state in ``state_dir``."""
     try:
-        data = json.loads(ctx.state(WRITTEN).read_text())
+        data = json.loads((state_dir / WRITTEN).read_text())
     except (OSError, ValueError):
         return None
     files = data.get("files") if isinstance(data, dict) else None
@@ -54,7 +59,7 @@ def recorded(ctx: BuildContext) -> dict[str, str | None] | None:
     kept = {
         name: digest if isinstance(digest, str) else None
         for name, digest in files.items()
-        if isinstance(name, str) and _relative(ctx.out_dir, ctx.out_dir / name) == name
+        if isinstance(name, str) and _relative(out_dir, out_dir / name) == name
     }
     return dict(sorted(kept.items()))
 

@@ -1,0 +1,131 @@
+"""The output folders robot.yaml named before its ``output.folder`` changed.
+
+Changing ``output.folder`` left the old folder with the old model, scene and assets, looking
+current: a launch file or a colleague went on loading a model no build kept in sync, and
+nothing said so. Every folder a build writes records which robot.yaml owns it
+(``.mjcfbuild/owner.json``, :mod:`mjcfbuild.engine.guard`). Once a build has written the model
+in its folder, the folders in robot.yaml's folder tree that record the same robot.yaml but are
+not its output folder any more lose the files builds wrote there that still hold the bytes a
+build wrote (:mod:`mjcfbuild.engine.written`), their state, and the folders left empty. A file
+the user put there or edited stays, and the build names it.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from mjcfbuild.engine.guard import OWNER, named_by_manifest
+from mjcfbuild.ownership import STATE_DIR
+
+if TYPE_CHECKING:
+    from mjcfbuild.engine.context import BuildContext
+
+# Folders visited looking for earlier output folders: a description repository has hundreds;
+# a build inside a workspace of thousands stops looking rather than slow every build.
+_MOST_FOLDERS = 5000
+# Folders no output folder is in (they are not the user's description).
+_SKIPPED = {"node_modules", "__pycache__"}
+
+
+@dataclass
+class Abandoned:
+    """An earlier output folder of the manifest, and what its removal did."""
+
+    folder: Path
+    removed: list[Path] = field(default_factory=list)  # the build's files, removed
+    kept: list[Path] = field(default_factory=list)  # the user's files (or edits), kept
+
+
+def remove_earlier_folders(ctx: BuildContext) -> list[Abandoned]:
+    """Empty each earlier output folder of ``ctx``'s robot.yaml of the files builds wrote there
+    (see the module's docstring); what was removed and kept in each."""
+    if not named_by_manifest(ctx):
+        return []
+    return [_empty(ctx, folder) for folder in earlier_folders(ctx)]
+
+
+def earlier_folders(ctx: BuildContext) -> list[Path]:
+    """The folders in robot.yaml's folder tree whose state says this robot.yaml built there,
+    other than its output folder now."""
+    assert ctx.manifest_file is not None, "only output folders robot.yaml names"
+    manifest = os.path.realpath(ctx.manifest_file)
+    current = os.path.realpath(ctx.out_dir)
+    found = []
+    for visited, (folder, subfolders, _) in enumerate(os.walk(ctx.base_dir)):
+        if visited == _MOST_FOLDERS:
+            break
+        subfolders[:] = sorted(
+            name
+            for name in subfolders
+            if not name.startswith(".")
+            and name not in _SKIPPED
+            and not os.path.islink(os.path.join(folder, name))
+        )
+        if os.path.realpath(folder) != current and _owner(folder) == manifest:
+            found.append(Path(folder))
+    return found
+
+
+def _owner(folder: str) -> str | None:
+    """The real path of the robot.yaml that ``folder``'s state says owns it, if any."""
+    try:
+        with open(os.path.join(folder, STATE_DIR, OWNER), encoding="utf-8") as file:
+            owner = json.load(file).get("manifest")
+    except (OSError, ValueError, AttributeError):
+        return None
+    if not isinstance(owner, str):
+        return None
+    return os.path.realpath(os.path.join(folder, owner))
+
+
+def _empty(ctx: BuildContext, folder: Path) -> Abandoned:
+    """Remove from ``folder`` the files its record says a build wrote and that still hold
+    those bytes, then its state and the folders left empty; what was removed and kept."""
+    from mjcfbuild.engine.written import edited, recorded_in, written_file
+
+    abandoned = Abandoned(folder)
+    state = folder / STATE_DIR
+    for name, digest in (recorded_in(folder, state) or {}).items():
+        if not written_file(folder, name):
+            continue
+        if edited(folder, name, digest):
+            abandoned.kept.append(folder / name)
+        else:
+            (folder / name).unlink()
+            abandoned.removed.append(folder / name)
+    shutil.rmtree(state, ignore_errors=True)
+    keep = {Path(os.path.realpath(path)) for path in (ctx.base_dir, ctx.out_dir)}
+    for emptied in sorted({p.parent for p in abandoned.removed}, key=_depth, reverse=True):
+        _remove_empty(emptied, folder, keep)
+    _remove_empty(folder, folder.parent, keep)
+    if folder.is_dir() and not _holds(folder, keep):
+        # A folder of its own (not robot.yaml's, nor one holding the output folder now): what
+        # is left in it is the user's.
+        left = (path for path in folder.rglob("*") if not path.is_dir())
+        abandoned.kept = sorted({*abandoned.kept, *left})
+    return abandoned
+
+
+def _holds(folder: Path, paths: set[Path]) -> bool:
+    """Whether ``folder`` is one of ``paths`` or above one of them."""
+    real = Path(os.path.realpath(folder))
+    return any(real == path or real in path.parents for path in paths)
+
+
+def _depth(path: Path) -> int:
+    return len(path.parts)
+
+
+def _remove_empty(folder: Path, stop: Path, keep: set[Path]) -> None:
+    """Remove ``folder`` and the folders above it, up to ``stop`` (not included), while they
+    are empty; never one in ``keep`` or one above them."""
+    while folder != stop and folder.is_dir() and not folder.is_symlink():
+        if _holds(folder, keep) or any(folder.iterdir()):
+            return
+        folder.rmdir()
+        folder = folder.parent

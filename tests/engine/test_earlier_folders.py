@@ -1,0 +1,83 @@
+"""A robot.yaml whose output.folder changed leaves no stale model in the old folder, and keeps
+the user's files there (real builds)."""
+
+from __future__ import annotations
+
+import subprocess
+
+import mjcfbuild
+from tests.conftest import copy_example, run_cli
+
+
+def build(folder):
+    return mjcfbuild.build(folder / "robot.yaml", jobs=1, check=False)
+
+
+def move_output(folder, old, new):
+    manifest = folder / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace(f"  folder: {old}\n", f"  folder: {new}\n"))
+
+
+def test_the_old_folder_loses_the_builds_files_and_keeps_the_users(tmp_path):
+    folder = copy_example("arm", tmp_path)
+    build(folder)
+    old = folder / "mjcf"
+    (old / "NOTES.md").write_text("mine\n")  # no build wrote it
+    scene = old / "scene.xml"
+    scene.write_text(scene.read_text() + "<!-- tuned -->\n")  # an edit of the build's file
+    move_output(folder, "mjcf", "models")
+    build(folder)
+    assert (folder / "models" / "example_arm.xml").exists()
+    left = sorted(str(p.relative_to(old)) for p in old.rglob("*"))
+    assert left == ["NOTES.md", "scene.xml"], left  # no model, assets, report or state
+    # Moved back: the folder is the output folder again, and models/ goes whole.
+    move_output(folder, "models", "mjcf")
+    (old / "scene.xml").unlink()
+    build(folder)
+    assert not (folder / "models").exists()
+    assert (old / "example_arm.xml").exists() and (old / "NOTES.md").exists()
+
+
+def test_another_robot_yaml_s_folder_and_a_folder_above_stay(tmp_path):
+    """Only folders recording this robot.yaml are emptied; robot.yaml's own folder (the
+    output folder was '.') loses the build's files, never the description."""
+    folder = copy_example("arm", tmp_path)
+    second = folder / "second.yaml"
+    second.write_text(
+        (folder / "robot.yaml").read_text().replace("  folder: mjcf\n", "  folder: other\n")
+    )
+    mjcfbuild.build(second, jobs=1, check=False)
+    move_output(folder, "mjcf", ".")
+    build(folder)
+    assert (folder / "example_arm.xml").exists()
+    move_output(folder, ".", "models")
+    build(folder)
+    assert not (folder / "example_arm.xml").exists() and not (folder / "scene.xml").exists()
+    assert not (folder / ".mjcfbuild").exists()
+    for kept in ("robot.yaml", "urdf", "meshes", "package.xml", "config"):
+        assert (folder / kept).exists(), kept
+    assert (folder / "other" / "example_arm.xml").exists()  # second.yaml's
+
+
+def test_the_build_says_so_and_the_commit_hook_asks_for_the_removal(tmp_path):
+    folder = copy_example("arm", tmp_path)
+
+    def git(*args):
+        subprocess.run(["git", *args], cwd=folder, check=True, capture_output=True)
+
+    git("init", "-q")
+    assert run_cli("build", "--no-check", "-q", cwd=folder).code == 0
+    (folder / "mjcf" / "NOTES.md").write_text("mine\n")
+    git("add", "-A")
+    git("-c", "user.name=t", "-c", "user.email=t@t", "commit", "-q", "-m", "built")
+    move_output(folder, "mjcf", "models")
+    moved = run_cli("build", "--no-check", "--fail-on-change", cwd=folder)
+    assert moved.code == 6, moved.stderr
+    assert (
+        "mjcfbuild: removed 10 files a build wrote in mjcf/, robot.yaml's output folder before "
+        "(now models/); kept mjcf/NOTES.md (not written by a build, or edited since)"
+    ) in moved.stdout.splitlines(), moved.stdout
+    assert "files were removed that git still has: mjcf/example_arm.xml" in moved.stderr
+    assert "mjcf/assets/" in moved.stderr  # in a folder the build removed too
+    git("add", "-A")
+    assert run_cli("build", "--no-check", "--fail-on-change", cwd=folder).code == 0
