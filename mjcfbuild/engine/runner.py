@@ -250,7 +250,8 @@ def _build_locked(
             if model_built and ctx.robot_path.exists():
                 # once the new name's model is there, not before
                 _say_removed(ctx, progress, remove_renamed_model(ctx))
-                _say_abandoned(ctx, progress, remove_earlier_folders(ctx))
+                if set(model_tasks) & set(progress.names(RAN)):  # a folder moves with a rebuild
+                    _say_abandoned(ctx, progress, remove_earlier_folders(ctx))
             _say_undone(ctx, progress)
             ctx.session.finish_sharing()  # uploads are done (or given up) before it returns
             failpoint("report")
