@@ -36,8 +36,9 @@ def home_values(
     fallback: dict[str, float] | None = None,
 ) -> list[HomeValue]:
     """The home position of every moving joint, in URDF order. ``fallback`` gives joints of
-    MJCF parts their part's own home."""
-    moving = [joint for joint in robot.joints if joint.moves]
+    MJCF parts their part's own home. A floating joint has none: its position is the base's
+    pose, which the assembly stands on the floor."""
+    moving = [joint for joint in robot.joints if joint.moves and joint.kind != "floating"]
     _check_patterns(moving, patterns, manifest_label)
     initial = {j.name: j.initial for j in control.joints if j.initial is not None}
     srdf_state = srdf_state or {}

@@ -37,7 +37,7 @@ def _tasks(graph: Graph) -> list[dict]:
     source_label = ctx.portable_label(ctx.source_path)
     decompositions = decomposition_files(ctx, graph.decomposed)
     matrix = self_collision_matrix(graph)
-    srdf = srdf_summary(ctx)
+    srdf = srdf_summary(graph)
     plan, parts = graph.plan, graph.parts
     payload = AssemblePayload(
         choices=[choice.to_dict() for choice in graph.choices],
@@ -189,8 +189,9 @@ FAMILY = Family(
     # joint's file and line (placed in a xacro source); a URDF floating joint from `world`
     # floats the robot, stood on the floor; a joint whose inertia rounds away is refused; an
     # axis given at any length written as its unit axis at 12 digits; a user's tendon
-    # actuator named in its record
-    format=19,
+    # actuator named in its record; 20: a URDF floating joint has no home value (the report
+    # listed it at 0)
+    format=20,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,
     compiles_model=True,

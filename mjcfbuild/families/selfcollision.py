@@ -33,7 +33,7 @@ def _tasks(graph: Graph) -> list[dict]:
         return []
     meshes = sorted(m for m, r in graph.roles.items() if set(r) - {"visual"})
     decompositions = decomposition_files(ctx, graph.decomposed)
-    srdf = srdf_summary(ctx)
+    srdf = srdf_summary(graph)
     initial = {
         joint["name"]: joint["initial"]
         for joint in graph.plan.ros2_control.get("joints", [])

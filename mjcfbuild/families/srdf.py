@@ -43,28 +43,33 @@ def _named_srdf(ctx: GraphContext) -> Path | None:
     return ctx.resolve(settings.srdf)
 
 
-def srdf_source(ctx: GraphContext) -> Path | None:
-    """The SRDF the build reads: the one robot.yaml names, else, for a floating robot whose
-    home robot.yaml does not give, the one shipped beside the description (for its standing
-    pose; see selfcollision.discover)."""
+def srdf_source(graph: Graph) -> Path | None:
+    """The SRDF the build reads: the one robot.yaml names, else, for a floating robot (by
+    robot.yaml's free_joint or the URDF's own floating joint), the one shipped beside the
+    description (for its standing pose; see selfcollision.discover)."""
+    from mjcfbuild.mjcf.bodies import floating_base
+
+    ctx = graph.ctx
     named = _named_srdf(ctx)
     if named is not None:
         return named
-    if not ctx.manifest.options.free_joint or ctx.source_kind == "description":
+    if ctx.source_kind == "description":
+        return None
+    if not floating_base(graph.robot, ctx.manifest.options.free_joint):
         return None
     from mjcfbuild.selfcollision.discover import find_srdf
 
     return find_srdf(ctx.source_path)
 
 
-def srdf_summary(ctx: GraphContext) -> Path | None:
+def srdf_summary(graph: Graph) -> Path | None:
     """What the ``srdf`` task writes, when the build reads an SRDF."""
-    return ctx.state(SRDF_SUMMARY) if srdf_source(ctx) else None
+    return graph.ctx.state(SRDF_SUMMARY) if srdf_source(graph) else None
 
 
 def _tasks(graph: Graph) -> list[dict]:
     ctx = graph.ctx
-    source = srdf_source(ctx)
+    source = srdf_source(graph)
     if source is None:
         return []
     named = _named_srdf(ctx) is not None

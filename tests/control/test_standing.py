@@ -86,6 +86,27 @@ def test_a_quadruped_stands_in_the_srdf_pose_shipped_beside_its_description(tmp_
     assert _check(tmp_path)["stand"]["max_tilt"] < 0.2
 
 
+def test_the_srdf_beside_a_urdf_floating_by_its_own_joint_gives_its_pose(tmp_path):
+    """A URDF that floats by its own floating joint from `world` (robot.yaml's free_joint
+    false) was not looked for an SRDF: the robot stood in a computed crouch instead."""
+    bent = "".join(
+        f'<joint name="{leg}_hip_joint" value="0"/><joint name="{leg}_thigh_joint" value="0.8"/>'
+        f'<joint name="{leg}_calf_joint" value="-1.6"/>'
+        for leg in ("FL", "FR", "RL", "RR")
+    )
+    write(tmp_path / "srdf/quad.srdf", STANDING_SRDF.format(straight="", bent=bent))
+    floating = robots.quadruped().replace(
+        '<robot name="quad">',
+        '<robot name="quad"><link name="world"/><joint name="float" type="floating">'
+        '<parent link="world"/><child link="trunk"/></joint>',
+    )
+    _build(tmp_path, floating, free_joint=False)
+    assert {v["source"] for v in readiness(tmp_path)["home"]} == {"srdf"}
+    model, data = _scene(tmp_path)
+    thigh = model.jnt_qposadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "FL_thigh_joint")]
+    assert data.qpos[thigh] == pytest.approx(0.8)
+
+
 def test_an_srdf_state_naming_an_unknown_joint_is_one_line_with_the_file(tmp_path):
     write(
         tmp_path / "robot.srdf",

@@ -37,7 +37,7 @@ BEFORE_FORMATS = {
     "plan": 13,
     "mesh": 9,
     "decompose": 3,
-    "assemble": 19,
+    "assemble": 20,
     "scene": 3,
     "check": 14,
     "reference": 1,
