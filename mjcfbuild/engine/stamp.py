@@ -44,8 +44,8 @@ if TYPE_CHECKING:
     from mjcfbuild.graph.hashes import HashCache
 
 # 4: warnings to replay, and whether the folder needed --allow-outside; 5: which files the
-# build wrote (mjcfbuild watch)
-FORMAT = 5
+# build wrote (mjcfbuild watch); 6: the file-name patterns xacro includes listed
+FORMAT = 6
 # Set to any value to skip the fast path (benchmarks of the full path, debugging).
 DISABLE_VARIABLE = "MJCFBUILD_FULL_BUILD"
 # Variables read by the build besides those a depfile records; every MJCFBUILD_* counts too.
@@ -154,6 +154,11 @@ def nothing_to_do_for(key: Path | str, run_check: bool, allow_outside: bool = Fa
             return None
         if any(os.path.lexists(name) for name in stamp["absent"]):
             return None
+        if stamp["globs"]:
+            from mjcfbuild.steps.depfile import globs_changed
+
+            if globs_changed(stamp["globs"]):
+                return None
         refreshed = _verify_files(stamp["files"], started)
     except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return None
@@ -279,13 +284,15 @@ def write(
     next_build: dict | None = None,
     outside: bool = False,
     started_ns: int | None = None,
+    globs: dict[str, list[str]] | None = None,
 ) -> None:
     """Record the state a successful build left, for :func:`nothing_to_do`.
 
     ``hashes`` is the build's :class:`~mjcfbuild.graph.hashes.HashCache`, so files hashed by
     the build are not read again; ``next_build`` is kept for :func:`previous_build`;
-    ``outside``: the output folder may be written only with ``--allow-outside``. No stamp is
-    written when an input the build did not write itself changed after ``started_ns``, when
+    ``outside``: the output folder may be written only with ``--allow-outside``; ``globs``:
+    the file-name patterns xacro listed, with their files (another match means a change). No
+    stamp is written when an input the build did not write itself changed after ``started_ns``, when
     the build began reading: a step may have read it before the change, and the stamp would
     then call the older model current (the next build takes the full path, which knows).
     """
@@ -312,6 +319,7 @@ def write(
         "environment": environment,
         "python_folders": _python_folders(),
         "absent": sorted(set(absent)),
+        "globs": dict(sorted((globs or {}).items())),
         "files": files,
         "written": sorted({os.fspath(p) for p in outputs} & set(files)),
         "next_build": next_build,
@@ -374,6 +382,7 @@ def record_build(
     outputs: list[Path | str] = [ctx.robot_path, ctx.scene_path]
     absent: list[str] = []
     variables: list[str] = []
+    globs: dict[str, list[str]] = {}
     for task in tasks:
         inputs += task["file_dep"]
         outputs += task["targets"]
@@ -382,6 +391,7 @@ def record_build(
         inputs += depfile.files
         absent += depfile.missing
         variables += list(depfile.environment)
+        globs.update(depfile.globs)
     outputs += files_under(ctx.state_dir, skip=STATE_NOT_CHECKED)
     for folder in (ctx.assets_dir, ctx.out_dir / "report", ctx.urdf_mesh_dir):
         if folder is not None:
@@ -416,6 +426,7 @@ def record_build(
         },
         _needs_allow_outside(ctx),
         ctx.started_ns,
+        globs=globs,
     )
 
 

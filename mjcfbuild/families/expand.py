@@ -96,8 +96,8 @@ FAMILY = Family(
     step="mjcfbuild.steps.expand:run",
     payload=ExpandPayload,
     # 2: the origins of the expanded lines; 3: xacro.arg reads and files not UTF-8 as xacro
-    # takes them
-    format=3,
+    # takes them; 4: the patterns xacro includes list, with their files
+    format=4,
     tools=("xacro",),
     tasks=_tasks,
     stage="planning",

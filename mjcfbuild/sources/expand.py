@@ -40,6 +40,8 @@ class Expansion:
     files: list[str] = field(default_factory=list)
     missing: list[str] = field(default_factory=list)
     environment: dict[str, str | None] = field(default_factory=dict)
+    # xacro includes of a pattern (parts/*.xacro): pattern -> the files it matched
+    globs: dict[str, list[str]] = field(default_factory=dict)
     # For xacro: line of the expanded URDF -> the file and line where its element was written.
     origins: dict[int, tuple[str, int]] = field(default_factory=dict)
 
@@ -51,6 +53,7 @@ class _Reading:
     track_lines: bool = True  # mark elements with where they were written
     files: list[str] = field(default_factory=list)  # origins name files by index in this
     declared: set[str] = field(default_factory=set)  # <xacro:arg> names and $(arg) uses
+    globs: dict[str, list[str]] = field(default_factory=dict)  # include patterns, matches
     refused: InputError | None = None  # a YAML file xacro.load_yaml must not expand
 
 
@@ -226,6 +229,7 @@ def _expand(
         files=sorted(files),
         missing=sorted(missing),
         environment=dict(sorted(reads.items())),
+        globs={pattern: sorted(found) for pattern, found in sorted(reading.globs.items())},
         origins=_origins(text, marks, reading.files) if track_lines else {},
     )
 
@@ -643,6 +647,17 @@ def _xacro_hooks(
             return document
         return original_parse(inp, filename)
 
+    original_includes = xacro_module.get_include_files
+
+    def include_files(spec: str, symbols: Any) -> Iterator[str]:
+        """xacro's files of an include; a pattern's matches are recorded (a file added to
+        the folder later changes the expansion)."""
+        found = list(original_includes(spec, symbols))
+        pattern = xacro_module.abs_filename_spec(xacro_module.eval_text(spec, symbols))
+        if re.search(r"[*[?]", pattern):
+            reading.globs[str(normalise(pattern))] = [str(normalise(f)) for f in found]
+        yield from found
+
     def guarded(load_yaml: Callable) -> Callable:
         def load_bounded(filename: str) -> Any:
             """xacro's load_yaml, first refusing aliases that expand without bound."""
@@ -665,6 +680,7 @@ def _xacro_hooks(
     saved_namespaced = symbols["xacro"]["load_yaml"]
     xacro_module.all_includes.clear()
     xacro_module.parse = parse
+    xacro_module.get_include_files = include_files
     try:
         symbols["xacro"]["load_yaml"] = guarded(saved_namespaced)
         if saved_symbols["load_yaml"] is not None:
@@ -675,6 +691,7 @@ def _xacro_hooks(
         yield
     finally:
         xacro_module.parse = original_parse
+        xacro_module.get_include_files = original_includes
         symbols["xacro"]["load_yaml"] = saved_namespaced
         if saved_symbols["load_yaml"] is not None:
             symbols["load_yaml"] = saved_symbols["load_yaml"]

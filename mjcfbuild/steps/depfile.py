@@ -2,7 +2,8 @@
 
 A step that discovers its inputs records them in a *depfile* next to its output (the idea of
 make's and ninja's ``.d`` files): the files it read, the files it looked for and did not find,
-and the environment variables it read. The next build declares those files as the task's
+the environment variables it read, and the file-name patterns it listed (a xacro include of
+``parts/*.xacro``) with the files each matched. The next build declares those files as the task's
 dependencies and reruns the task when a missing file appeared or a variable changed. The set
 of files a step reads only changes when one of the files it read changed, so the previous
 run's list is always the right one to check.
@@ -26,14 +27,17 @@ class Depfile:
     files: list[str] = field(default_factory=list)
     missing: list[str] = field(default_factory=list)
     environment: dict[str, str | None] = field(default_factory=dict)
+    globs: dict[str, list[str]] = field(default_factory=dict)  # pattern -> the files it matched
 
     def write(self, path: Path) -> None:
         """Store it (atomically, sorted, so equal content gives equal bytes)."""
-        data = {
+        data: dict[str, object] = {
             "files": sorted(set(self.files)),
             "missing": sorted(set(self.missing)),
             "environment": dict(sorted(self.environment.items())),
         }
+        if self.globs:
+            data["globs"] = {pattern: sorted(set(m)) for pattern, m in sorted(self.globs.items())}
         atomic_write(path, (json.dumps(data, indent=1) + "\n").encode())
 
     @staticmethod
@@ -41,7 +45,10 @@ class Depfile:
         """The depfile at ``path``, or None if there is none (or it is unreadable)."""
         try:
             data = json.loads(path.read_text())
-            return Depfile(list(data["files"]), list(data["missing"]), dict(data["environment"]))
+            globs = {str(p): [str(m) for m in found] for p, found in data.get("globs", {}).items()}
+            return Depfile(
+                list(data["files"]), list(data["missing"]), dict(data["environment"]), globs
+            )
         except (OSError, ValueError, KeyError, TypeError):
             return None
 
@@ -56,4 +63,18 @@ class Depfile:
         for variable, value in self.environment.items():
             if environ.get(variable) != value:
                 return f"environment variable {variable} changed"
+        changed = globs_changed(self.globs)
+        if changed:
+            return f"the files matching {changed} changed"
         return None
+
+
+def globs_changed(globs: Mapping[str, list[str]]) -> str | None:
+    """The first pattern of ``globs`` whose files are not the recorded ones any more (one was
+    added or removed), if any."""
+    import glob
+
+    for pattern, matched in sorted(globs.items()):
+        if sorted(glob.glob(pattern)) != sorted(matched):
+            return pattern
+    return None

@@ -29,5 +29,7 @@ def run(payload: dict) -> dict:
     write_output(Path(request.output), expansion.urdf, outputs)
     write_output(Path(request.origins), origins_json(expansion.origins), outputs)
     depfile = Path(request.depfile)
-    Depfile(expansion.files, expansion.missing, expansion.environment).write(depfile)
+    Depfile(expansion.files, expansion.missing, expansion.environment, expansion.globs).write(
+        depfile
+    )
     return {"outputs": outputs, "discovered": [f for f in expansion.files if f != str(source)]}

@@ -183,6 +183,34 @@ def test_environment_variables_read_by_xacro_are_dependencies(tmp_path, monkeypa
     assert 'name="torso"' in (tmp_path / "mjcf" / "r.xml").read_text()
 
 
+def test_a_file_added_to_a_xacro_include_pattern_is_built_in(tmp_path):
+    """xacro:include of parts/*.xacro: a part added or removed later left the old model,
+    and the no-op said it was current."""
+    part = (
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="{0}">'
+        '<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" '
+        'izz="0.01"/></inertial></link><joint name="{0}_joint" type="fixed">'
+        '<parent link="base"/><child link="{0}"/></joint></robot>'
+    )
+    write(
+        tmp_path / "r.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="base">'
+        '<inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" '
+        'izz="0.01"/></inertial></link><xacro:include filename="parts/*.xacro"/></robot>',
+    )
+    write(tmp_path / "parts" / "a.xacro", part.format("a"))
+    write(tmp_path / "robot.yaml", "name: r\nsource:\n  xacro: r.xacro\n")
+    assert run_cli("build", "--no-check", "-q", cwd=tmp_path).code == 0
+    write(tmp_path / "parts" / "b.xacro", part.format("b"))
+    stale = run_cli("check", "--up-to-date", cwd=tmp_path)
+    assert stale.code == 6 and "parts/*.xacro changed" in stale.stdout + stale.stderr
+    assert run_cli("build", "--no-check", "-q", cwd=tmp_path).code == 0
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "mjcf" / "r.xml"))
+    assert mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, "b") >= 0  # the new part's link
+    (tmp_path / "parts" / "b.xacro").unlink()
+    assert "expand" in build(tmp_path).ran
+
+
 def test_a_failed_build_leaves_no_output_that_looks_current(built_arm):
     robot = built_arm / "mjcf" / "example_arm.xml"
     before = robot.read_bytes()
