@@ -9,7 +9,10 @@ surface and are left out; any other primitive is an error naming it, never silen
 Ids are resolved as pycollada resolves them (an input's source within its own ``<mesh>``
 first), since exporters reuse source ids in every geometry; a reference that stays ambiguous,
 a dangling instance, a count that disagrees with its index list or a primitive collapsed to one
-point is an error naming the file and line, never a partial or wrong mesh.
+point is an error naming the file and line, never a partial or wrong mesh. Where pycollada
+departs from the spec, the spec wins: a concave polygon is ear-clipped (as rviz's importer
+does; a fan from its first corner covered its notch), an accessor's ``offset`` and unnamed
+``<param>`` columns are honoured, and a ``TEXCOORD`` may sit in ``<vertices>``.
 Float arrays are parsed in C by numpy, so a 30 MB file loads in a fraction of the time a
 general reader takes.
 
@@ -160,6 +163,12 @@ def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
     visual_scene = (
         reader.by_url(scene.get("url"), ("visual_scene",), scene) if scene is not None else None
     )
+    if scene is not None and visual_scene is None:
+        raise reader.error(
+            f'<instance_visual_scene url="{scene.get("url")}">: the file has no visual scene '
+            "of that id (what the file draws is not known)",
+            scene,
+        )
     if visual_scene is None:
         # No scene: every geometry at the origin, as some exporters write them.
         for geometry in reader.findall(reader.root, "library_geometries/geometry"):
@@ -387,11 +396,16 @@ def _source_array(reader: _Reader, referrer, mesh, cache: dict) -> np.ndarray:
             if accessor is not None
             else len(values) // stride
         )
-        if stride <= 0 or len(values) < count * stride:
+        # The accessor's first value, and its columns: a <param> without a name is skipped.
+        start = int(accessor.get("offset", "0")) if accessor is not None else 0
+        params = reader.findall(accessor, "param") if accessor is not None else []
+        if stride <= 0 or start < 0 or len(values) < start + count * stride:
             raise reader.error(
                 f"source '{source_id}' has fewer values than its accessor says", source
             )
-        result = values[: count * stride].reshape(count, stride)
+        result = values[start : start + count * stride].reshape(count, stride)
+        if params and len(params) <= stride and not all(p.get("name") for p in params):
+            result = result[:, [k for k, p in enumerate(params) if p.get("name")]]
     cache[key] = result
     return result
 
@@ -441,6 +455,14 @@ def _add_geometry(
             ),
             next((i for i in inputs if i.get("semantic") == "TEXCOORD"), None),
         )
+        uv_per_vertex = False  # a TEXCOORD of the <vertices>: indexed as the positions are
+        if uv_input is None:
+            vertices = reader.by_url(
+                vertex_input.get("source"), ("vertices",), vertex_input, scope=mesh
+            )
+            inputs_there = reader.findall(vertices, "input") if vertices is not None else []
+            uv_input = next((i for i in inputs_there if i.get("semantic") == "TEXCOORD"), None)
+            uv_per_vertex = uv_input is not None
         if kind == "polygons" and reader.find(primitive, "ph") is not None:
             raise reader.error(
                 f"geometry '{geometry.get('id')}' has polygons with holes (<ph>), which "
@@ -460,7 +482,14 @@ def _add_geometry(
                 )
             indices = _ints(reader, index_lists[0] if index_lists else None)
             if kind == "polylist":
-                counts = _ints(reader, reader.find(primitive, "vcount"))
+                vcount = reader.find(primitive, "vcount")
+                if vcount is None and index_lists:
+                    raise reader.error(
+                        f"a <polylist> of geometry '{geometry.get('id')}' has no <vcount> (the "
+                        "corners of each polygon)",
+                        primitive,
+                    )
+                counts = _ints(reader, vcount)
             else:
                 counts = np.full(len(indices) // (3 * stride), 3, dtype=np.int64)
         _check_count(reader, geometry, primitive, len(counts) if len(indices) else 0)
@@ -484,10 +513,17 @@ def _add_geometry(
         uv = None
         if uv_input is not None:
             texcoords = _source_array(reader, uv_input, mesh, cache)
-            uv_index = corners[:, int(uv_input.get("offset", "0"))]
+            uv_index = (
+                vertex_index if uv_per_vertex else corners[:, int(uv_input.get("offset", "0"))]
+            )
             if uv_index.size and uv_index.max() < len(texcoords):
                 uv = texcoords[uv_index][:, :2]
-        faces = _strip_triangles(counts) if kind == "tristrips" else _fan_triangles(counts)
+        if kind == "tristrips":
+            faces = _strip_triangles(counts)
+        elif kind == "trifans":
+            faces = _fan_triangles(counts)
+        else:
+            faces = polygon_triangles(counts, points)
         homogeneous = np.hstack([points, np.ones((len(points), 1))])
         placed = (homogeneous @ transform.T)[:, :3]
         if np.linalg.det(transform[:3, :3]) < 0:
@@ -536,6 +572,97 @@ def _strip_triangles(counts: np.ndarray) -> np.ndarray:
     return np.array(triangles, dtype=np.int64).reshape(-1, 3)
 
 
+def polygon_triangles(counts: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Triangles (as corner indices) of polygons of ``counts`` corners at ``points``: a fan
+    from the first corner where that covers the polygon (triangles, convex polygons), else
+    ear clipping, as rviz's importer does (a fan over a concave polygon, an L-shaped face
+    of a Blender n-gon, covers its notch and faces partly inward)."""
+    faces = _fan_triangles(counts)
+    if not len(counts) or np.all(counts == 3):
+        return faces
+    concave = _concave(counts, points)
+    if not concave.any():
+        return faces
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    firsts = np.concatenate([[0], np.cumsum(np.maximum(counts - 2, 0))[:-1]])  # in the fan
+    pieces = []
+    for polygon in range(len(counts)):
+        start, count, first = int(starts[polygon]), int(counts[polygon]), int(firsts[polygon])
+        fan = faces[first : first + max(count - 2, 0)]
+        if concave[polygon]:
+            clipped = _ear_clipped(points[start : start + count])
+            if clipped is not None:
+                fan = clipped + start
+        pieces.append(fan)
+    return np.concatenate(pieces).astype(np.int64).reshape(-1, 3)
+
+
+def _concave(counts: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Per polygon, whether one of its corners turns against the polygon's winding (by more
+    than rounding): where a fan from the first corner would not cover it."""
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    owner = np.repeat(np.arange(len(counts)), counts)
+    index = np.arange(len(owner))
+    following = np.where(index + 1 == starts[owner] + counts[owner], starts[owner], index + 1)
+    preceding = np.where(index == starts[owner], starts[owner] + counts[owner] - 1, index - 1)
+    corners = points[: len(owner)]
+    # Newell's normal of each polygon: the sum of its edges' cross products.
+    normals = np.add.reduceat(np.cross(corners, corners[following]), starts, axis=0)
+    into, out = corners - corners[preceding], corners[following] - corners
+    turns = np.einsum("ij,ij->i", np.cross(into, out), normals[owner])
+    sizes = np.linalg.norm(into, axis=1) * np.linalg.norm(out, axis=1)
+    sizes *= np.linalg.norm(normals, axis=1)[owner]
+    reflex = turns < -1e-9 * sizes
+    return np.logical_or.reduceat(reflex, starts) & (counts > 3)
+
+
+def _ear_clipped(corners: np.ndarray) -> np.ndarray | None:
+    """The ear-clipped triangles of a concave polygon (corner indices), or None where the fan
+    is right (a convex polygon) or ear clipping finds no way (a self-crossing one)."""
+    normal = np.zeros(3)
+    for i in range(len(corners)):  # Newell's normal: the polygon's plane, along its winding
+        a, b = corners[i], corners[(i + 1) % len(corners)]
+        normal += np.cross(a, b)
+    size = float(np.linalg.norm(normal))
+    if size == 0:
+        return None
+    normal /= size
+    # A basis of the plane with u x v = normal: the polygon winds counter-clockwise in it.
+    other = np.eye(3)[int(np.argmin(np.abs(normal)))]
+    u = np.cross(normal, other)
+    u /= np.linalg.norm(u)
+    v = np.cross(normal, u)
+    flat = np.stack([corners @ u, corners @ v], axis=1)
+    scale = max(float(np.ptp(flat, axis=0).max()), 1e-300) ** 2
+
+    def turn(a: int, b: int, c: int) -> float:
+        """Twice the signed area of a b c, relative to the polygon's size (> 0: a left turn)."""
+        (x1, y1), (x2, y2) = flat[b] - flat[a], flat[c] - flat[b]
+        return float(x1 * y2 - y1 * x2) / scale
+
+    order = list(range(len(corners)))
+    if all(turn(order[i - 1], order[i], order[(i + 1) % len(order)]) >= -1e-12 for i in order):
+        return None  # convex: the fan is right
+    triangles = []
+    while len(order) > 3:
+        for i in range(len(order)):
+            a, b, c = order[i - 1], order[i], order[(i + 1) % len(order)]
+            if turn(a, b, c) <= 1e-12:
+                continue  # a reflex (or straight) corner is no ear
+            others = (k for k in order if k not in (a, b, c))
+            if any(
+                turn(a, b, k) >= 0 and turn(b, c, k) >= 0 and turn(c, a, k) >= 0 for k in others
+            ):
+                continue  # another corner lies in the ear
+            triangles.append((a, b, c))
+            order.pop(i)
+            break
+        else:
+            return None
+    triangles.append((order[0], order[1], order[2]))
+    return np.array(triangles, dtype=np.int64)
+
+
 def _fan_triangles(counts: np.ndarray) -> np.ndarray:
     """Triangles (as corner indices) fanning every polygon from its first corner."""
     if len(counts) and np.all(counts == 3):
@@ -561,8 +688,13 @@ def _material_look(reader: _Reader, material_id: str):
     if effect is None:
         return None, None
     technique = None
-    for name in ("phong", "lambert", "blinn", "constant"):
-        technique = next(effect.iter(reader.tag(name)), None)
+    # The common profile's technique first: another profile's (an <extra>'s) is a tool's own.
+    common = reader.find(effect, "profile_COMMON/technique")
+    for within in (common, effect):
+        for name in ("phong", "lambert", "blinn", "constant"):
+            technique = next(within.iter(reader.tag(name)), None) if within is not None else None
+            if technique is not None:
+                break
         if technique is not None:
             break
     if technique is None:

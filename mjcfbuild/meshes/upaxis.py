@@ -84,8 +84,8 @@ def up_rotation(tag: str) -> list[list[float]]:
     """The rotation that turns data written ``tag`` up into Z-up data."""
     if tag == "Y_UP":  # y -> z, z -> -y
         return [[1, 0, 0], [0, 0, -1], [0, 1, 0]]
-    if tag == "X_UP":  # x -> z, z -> -x
-        return [[0, 0, -1], [0, 1, 0], [1, 0, 0]]
+    if tag == "X_UP":  # COLLADA's X_UP: right is -y, up x, in z; so x -> z, y -> -x, z -> -y
+        return [[0, -1, 0], [0, 0, -1], [1, 0, 0]]
     return [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
 
 

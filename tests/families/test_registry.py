@@ -35,7 +35,7 @@ from tests.families.toy_step import ToyPayload
 BEFORE_FORMATS = {
     "expand": 4,
     "plan": 13,
-    "mesh": 9,
+    "mesh": 10,
     "decompose": 3,
     "assemble": 20,
     "scene": 3,

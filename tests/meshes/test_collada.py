@@ -176,3 +176,102 @@ def test_a_placement_the_reader_cannot_apply_is_an_error_not_ignored(tmp_path, t
     with pytest.raises(InputError) as info:
         read_collada(write(tmp_path / "t.dae", dae(body, scene=scene(node))))
     assert says in str(info.value)
+
+
+def _prism_free(body_geometry: str) -> str:
+    """A file of one geometry ``g`` (its <mesh> content given) placed once, unbound."""
+    return dae(
+        f'<library_geometries><geometry id="g"><mesh>{body_geometry}</mesh></geometry>'
+        "</library_geometries>",
+        scene=scene('<node><instance_geometry url="#g"/></node>'),
+    )
+
+
+# An L-shaped face (2 x 2 with the corner [1, 2] x [1, 2] cut away), written from a corner
+# whose fan crosses the notch: area 3, where the fan covers 4.
+L_SHAPE = """
+  <source id="p"><float_array id="pa" count="18">2 1 0 1 1 0 1 2 0 0 2 0 0 0 0 2 0 0</float_array>
+    <technique_common><accessor source="#pa" count="6" stride="3"/></technique_common></source>
+  <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+  <polylist count="1"><input semantic="VERTEX" source="#v" offset="0"/>
+    <vcount>6</vcount><p>0 1 2 3 4 5</p></polylist>"""
+
+
+def _area(part) -> float:
+    corners = part.vertices[part.faces]
+    return float(
+        np.linalg.norm(
+            np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1
+        ).sum()
+        / 2
+    )
+
+
+def test_a_concave_polygon_is_ear_clipped_and_keeps_its_winding(tmp_path):
+    """A fan from the first corner covered the notch of an L-shaped n-gon (Blender writes
+    them as one polygon); rviz's importer clips ears."""
+    (part,) = read_collada(write(tmp_path / "l.dae", _prism_free(L_SHAPE))).parts
+    assert _area(part) == pytest.approx(3.0)
+    corners = part.vertices[part.faces]
+    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    assert np.all(normals[:, 2] > 0)  # every triangle faces as the polygon does
+    # A convex polygon keeps its fan (the quad of the other tests: [[0, 1, 2], [0, 2, 3]]).
+
+
+def test_x_up_data_is_turned_as_the_spec_s_axes_say(tmp_path):
+    """COLLADA's X_UP: right is -y, up is x, in is z; turned to Z-up, (0, 2, 5) is (-2, -5, 0)
+    (it was turned a quarter turn off about the vertical)."""
+    point = QUAD.replace("0 0 0 1 0 0 1 1 0 0 1 0", "0 2 5 1 0 0 1 1 0 0 1 0")
+    path = write(tmp_path / "x.dae", dae(point, up="X_UP", scene=scene(f"<node>{INSTANCE}</node>")))
+    assert np.allclose(read_collada(path, apply_up_axis=True).parts[0].vertices[0], [-2, -5, 0])
+
+
+def test_an_accessor_s_offset_and_unnamed_params_are_honoured(tmp_path):
+    """An accessor starting at value 3, of rows X, (unnamed), Y, Z: the unnamed column is
+    skipped, as the spec says (the reader took the first three columns from the start)."""
+    body = """
+  <source id="p"><float_array id="pa" count="15">9 9 9 0 7 0 0 1 7 0 0 0 7 1 0</float_array>
+    <technique_common><accessor source="#pa" count="3" stride="4" offset="3">
+      <param name="X" type="float"/><param type="float"/><param name="Y" type="float"/>
+      <param name="Z" type="float"/></accessor></technique_common></source>
+  <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+  <triangles count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>0 1 2</p></triangles>"""
+    (part,) = read_collada(write(tmp_path / "a.dae", _prism_free(body))).parts
+    assert part.vertices.tolist() == [[0, 0, 0], [1, 0, 0], [0, 1, 0]]
+
+
+def test_texture_coordinates_in_the_vertices_are_used(tmp_path):
+    checker_png(tmp_path / "skin.png")
+    body = QUAD.replace(
+        '<input semantic="POSITION" source="#p"/>',
+        '<input semantic="POSITION" source="#p"/><input semantic="TEXCOORD" source="#t"/>',
+    ).replace('<input semantic="TEXCOORD" source="#t" offset="1"/>', "")
+    body = body.replace("<p>0 0 1 1 2 2 3 3</p>", "<p>0 1 2 3</p>")
+    body += MATERIAL.format(diffuse='<texture texture="samp" texcoord="UV"/>')
+    (part,) = read_collada(
+        write(tmp_path / "q.dae", dae(body, scene=scene(f"<node>{INSTANCE}</node>")))
+    ).parts
+    assert part.texture == tmp_path / "skin.png"
+    assert part.uv is not None and part.uv.tolist()[2] == [1.0, 1.0]
+
+
+def test_the_common_profile_s_colour_wins_over_another_profile_s(tmp_path):
+    extra = MATERIAL.format(diffuse="<color>1 0 0 1</color>").replace(
+        "</profile_COMMON>",
+        '</profile_COMMON><extra><technique profile="X"><phong><diffuse><color>0 1 0 1</color>'
+        "</diffuse></phong></technique></extra>",
+    )
+    path = write(tmp_path / "q.dae", dae(QUAD + extra, scene=scene(f"<node>{INSTANCE}</node>")))
+    assert read_collada(path).parts[0].rgba == (1.0, 0.0, 0.0, 1.0)
+
+
+def test_a_scene_naming_no_visual_scene_and_a_polylist_without_vcount_are_errors(tmp_path):
+    missing = dae(QUAD, scene=scene("").replace('url="#s"', 'url="#nope"'))
+    with pytest.raises(InputError, match=r"no visual scene of that id") as error:
+        read_collada(write(tmp_path / "s.dae", missing))
+    assert error.value.location is not None and error.value.location.line
+    no_vcount = QUAD.replace("<vcount>4</vcount>", "")
+    with pytest.raises(InputError, match=r"has no <vcount>"):
+        read_collada(
+            write(tmp_path / "v.dae", dae(no_vcount, scene=scene(f"<node>{INSTANCE}</node>")))
+        )
