@@ -99,6 +99,13 @@ def _empty(ctx: BuildContext, folder: Path) -> Abandoned:
             (folder / name).unlink()
             abandoned.removed.append(folder / name)
     shutil.rmtree(state, ignore_errors=True)
+    if abandoned.kept:
+        # The edits stay the user's, as after clean: a build of this folder again must stop
+        # at them, not take them for a fresh clone's outputs and write over them.
+        from mjcfbuild.ownership import record_foreign
+
+        state.mkdir()
+        record_foreign(folder, (), [path.relative_to(folder).as_posix() for path in abandoned.kept])
     keep = {Path(os.path.realpath(path)) for path in (ctx.base_dir, ctx.out_dir)}
     for emptied in sorted({p.parent for p in abandoned.removed}, key=_depth, reverse=True):
         _remove_empty(emptied, folder, keep)
@@ -106,7 +113,11 @@ def _empty(ctx: BuildContext, folder: Path) -> Abandoned:
     if folder.is_dir() and not _holds(folder, keep):
         # A folder of its own (not robot.yaml's, nor one holding the output folder now): what
         # is left in it is the user's.
-        left = (path for path in folder.rglob("*") if not path.is_dir())
+        left = (
+            path
+            for path in folder.rglob("*")
+            if not path.is_dir() and path.relative_to(folder).parts[0] != STATE_DIR
+        )
         abandoned.kept = sorted({*abandoned.kept, *left})
     return abandoned
 

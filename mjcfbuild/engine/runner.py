@@ -249,7 +249,7 @@ def _build_locked(
             model_built = all(isinstance(e, CheckError) for e in result.errors)
             if model_built and ctx.robot_path.exists():
                 # once the new name's model is there, not before
-                _say_removed(ctx, progress, remove_renamed_model(ctx))
+                _say_removed(ctx, progress, *remove_renamed_model(ctx))
                 if set(model_tasks) & set(progress.names(RAN)):  # a folder moves with a rebuild
                     _say_abandoned(ctx, progress, remove_earlier_folders(ctx))
             _say_undone(ctx, progress)
@@ -277,17 +277,26 @@ def _build_locked(
     return list({task["name"]: task for task in (*planning, *tasks)}.values())
 
 
-def _say_removed(ctx: BuildContext, progress: Progress, removed: list[Path]) -> None:
-    """Say which files of the model under its old name the build removed: a user looking for
-    them must not think them lost."""
-    if not removed or progress.quiet:
+def _say_removed(
+    ctx: BuildContext, progress: Progress, removed: list[Path], kept: list[Path]
+) -> None:
+    """Say which files of the model under its old name the build removed, and which it kept
+    as edited: a user looking for them must not think them lost, nor current."""
+    if not (removed or kept) or progress.quiet:
         return
-    now = [ctx.label(ctx.robot_path), ctx.label(ctx.scene_path)]
+    now = ", ".join([ctx.label(ctx.robot_path), ctx.label(ctx.scene_path)])
     progress.clear()
-    progress.stream.write(
-        f"{progress.prefix}mjcfbuild: removed {', '.join(ctx.label(p) for p in removed)}: the "
-        f"model's files under names robot.yaml no longer gives (now {', '.join(now)})\n"
-    )
+    if removed:
+        progress.stream.write(
+            f"{progress.prefix}mjcfbuild: removed {', '.join(ctx.label(p) for p in removed)}: "
+            f"the model's files under names robot.yaml no longer gives (now {now})\n"
+        )
+    if kept:
+        progress.stream.write(
+            f"{progress.prefix}mjcfbuild: kept {', '.join(ctx.label(p) for p in kept)}: "
+            f"edited since a build wrote it, under a name robot.yaml no longer gives (now "
+            f"{now}); no build keeps it current\n"
+        )
     progress.stream.flush()
 
 

@@ -41,26 +41,29 @@ def remove_stale_variant(ctx: BuildContext) -> list[Path]:
     return removed
 
 
-def remove_renamed_model(ctx: BuildContext) -> list[Path]:
+def remove_renamed_model(ctx: BuildContext) -> tuple[list[Path], list[Path]]:
     """Remove the model and scene files an earlier build wrote under names this one will not
     write (robot.yaml's ``name:``, ``output.robot`` or ``output.scene`` changed): the MJCF
     files at the top of the output folder the record of written files names, that still hold
     what the build wrote (one the user edited stays, as ``clean`` keeps it); the paths
-    removed. A rename left the old model beside the new one, looking current. Called once
-    the build wrote the model under its new name: a failed build leaves the old one."""
+    removed, and those kept as edited. A rename left the old model beside the new one,
+    looking current. Called once the build wrote the model under its new name: a failed
+    build leaves the old one."""
     from mjcfbuild.engine import written
 
     recorded = written.recorded(ctx) or {}
     keep = {ctx.robot_path, ctx.scene_path}
     keep |= set(training_paths(ctx)) if ctx.manifest.training else set()
-    removed = []
+    removed, kept = [], []
     for name, digest in recorded.items():
         path = ctx.out_dir / name
         if "/" in name or not name.endswith(".xml") or path in keep or digest is None:
             continue
-        if written.written_file(ctx.out_dir, name) and not written.edited(
-            ctx.out_dir, name, digest
-        ):
+        if not written.written_file(ctx.out_dir, name):
+            continue
+        if written.edited(ctx.out_dir, name, digest):
+            kept.append(path)
+        else:
             path.unlink()
             removed.append(path)
-    return removed
+    return removed, kept

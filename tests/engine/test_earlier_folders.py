@@ -28,8 +28,10 @@ def test_the_old_folder_loses_the_builds_files_and_keeps_the_users(tmp_path):
     move_output(folder, "mjcf", "models")
     build(folder)
     assert (folder / "models" / "example_arm.xml").exists()
-    left = sorted(str(p.relative_to(old)) for p in old.rglob("*"))
-    assert left == ["NOTES.md", "scene.xml"], left  # no model, assets, report or state
+    left = sorted(str(p.relative_to(old)) for p in old.rglob("*") if ".mjcfbuild" not in p.parts)
+    assert left == ["NOTES.md", "scene.xml"], left  # no model, assets or report
+    # The edit stays recorded as the user's (as clean leaves it); nothing else of the state.
+    assert sorted(p.name for p in (old / ".mjcfbuild").iterdir()) == [".gitignore", "foreign.json"]
     # Moved back: the folder is the output folder again, and models/ goes whole.
     move_output(folder, "models", "mjcf")
     (old / "scene.xml").unlink()
@@ -81,3 +83,16 @@ def test_the_build_says_so_and_the_commit_hook_asks_for_the_removal(tmp_path):
     assert "mjcf/assets/" in moved.stderr  # in a folder the build removed too
     git("add", "-A")
     assert run_cli("build", "--no-check", "--fail-on-change", cwd=folder).code == 0
+
+
+def test_an_edit_kept_in_the_old_folder_stops_a_build_that_returns_to_it(tmp_path):
+    folder = copy_example("arm", tmp_path)
+    build(folder)
+    model = folder / "mjcf" / "example_arm.xml"
+    model.write_text(model.read_text() + "<!-- tuned -->\n")
+    move_output(folder, "mjcf", "models")
+    build(folder)
+    move_output(folder, "models", "mjcf")
+    back = run_cli("build", "--no-check", cwd=folder)
+    assert back.code == 7 and "mjcf/example_arm.xml: was edited" in back.stderr, back.stderr
+    assert model.read_text().endswith("<!-- tuned -->\n")

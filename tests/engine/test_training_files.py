@@ -97,3 +97,21 @@ def test_the_build_says_which_old_files_it_removed(tmp_path):
     manifest.write_text(manifest.read_text().replace("name: arm2", "name: arm3"))
     quiet = run_cli("build", "--no-check", "-q", cwd=folder)
     assert quiet.code == 0 and quiet.stdout == "", quiet.stdout
+
+
+def test_a_model_edited_before_a_rename_is_named_and_protected_when_the_name_returns(tmp_path):
+    """Renamed and back: the assembly that wrote the new name passed for the old name's (its
+    file was there, edited), 'model ready' named the edit, and the next change wrote over it."""
+    folder = copy_example("arm", tmp_path)
+    assert run_cli("build", "--no-check", "-q", cwd=folder).code == 0
+    model = folder / "mjcf" / "example_arm.xml"
+    model.write_text(model.read_text() + "<!-- tuned -->\n")
+    manifest = folder / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace("name: example_arm", "name: arm2"))
+    renamed = run_cli("build", "--no-check", cwd=folder)
+    assert renamed.code == 0, renamed.stderr
+    assert "mjcfbuild: kept mjcf/example_arm.xml: edited since a build wrote it" in renamed.stdout
+    manifest.write_text(manifest.read_text().replace("name: arm2", "name: example_arm"))
+    back = run_cli("build", "--no-check", cwd=folder)
+    assert back.code == 7 and "mjcf/example_arm.xml: was edited" in back.stderr, back.stderr
+    assert model.read_text().endswith("<!-- tuned -->\n")
