@@ -23,6 +23,7 @@ from mjcfbuild.mjcf.bodies import floating_base
 from mjcfbuild.mjcf.inertia import InertiaPolicy
 from mjcfbuild.mjcf.prepared import Decomposition
 from mjcfbuild.mjstopped import SimulationStopped, simulating
+from mjcfbuild.ownership import refuse_foreign
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import AssemblePayload
 from mjcfbuild.steps.plan_record import read_plan
@@ -85,6 +86,9 @@ def run(payload: dict) -> dict:
         raise CheckError(stop.line, file=request.manifest_label) from None
     assembly.warnings += _placement_warnings(assembly, request.floor)
 
+    # A model the build may not write (edited by hand) stops the step before any asset
+    # changes: the hand-tuned model must not be left pointing at new geometry.
+    refuse_foreign(Path(request.output), assembly.xml)
     outputs: dict[str, str] = {}
     assets_dir = Path(request.assets_dir)
     report_path = Path(request.report)

@@ -134,6 +134,14 @@ def test_deleted_outputs_are_rebuilt_and_edited_ones_kept(built_arm):
     with pytest.raises(BuildFailed, match="was edited since a build wrote it"):
         build(built_arm)
     assert robot.read_bytes() == tuned
+    # A mesh changed too: the assembly stops before any asset changes, so the tuned model
+    # is not left pointing at new geometry.
+    assets = {p.name: p.read_bytes() for p in (built_arm / "mjcf" / "assets").iterdir()}
+    forearm = built_arm / "meshes" / "forearm.obj"
+    forearm.write_text(forearm.read_text().replace("0.240000", "0.270000"))
+    with pytest.raises(BuildFailed, match="was edited since a build wrote it"):
+        build(built_arm)
+    assert {p.name: p.read_bytes() for p in (built_arm / "mjcf" / "assets").iterdir()} == assets
 
 
 def test_removed_mesh_disappears_from_assets(built_arm):
