@@ -319,10 +319,14 @@ def _users_files(ctx: BuildContext) -> tuple[list[str], list[str], str]:
     # An edit recorded before (clean kept it; a build stopped at it) is still one.
     edits += [name for name in found if name in before.edited]
     kept, problem = _not_in_git(ctx, edits)
+    from mjcfbuild.engine.published import has_conflict_markers
+
     for name in edits:
         if name not in kept:
             with contextlib.suppress(OSError):  # gone: writing it says what is wrong
                 ctx.session.committed_edits[name] = ctx.session.hashes.md5(ctx.out_dir / name)
+                if has_conflict_markers(str(ctx.out_dir / name)):
+                    ctx.session.conflicts.add(name)
     return [name for name in found if name not in before.edited], kept, problem
 
 

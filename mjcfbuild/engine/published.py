@@ -130,7 +130,9 @@ def git_holds(files: list[str]) -> set[str]:
         flagged = _git_names(folder, ["ls-files", "-v", "-z", "--", *names], tagged=True)
         if differ is None or conflicted is None or flagged is None:
             continue
-        held |= (committed - differ - flagged) | {path for path in conflicted if _has_markers(path)}
+        held |= (committed - differ - flagged) | {
+            path for path in conflicted if has_conflict_markers(path)
+        }
     return held
 
 
@@ -146,7 +148,7 @@ def git_modified(folder: str) -> set[str]:
         return set()
 
 
-def _has_markers(path: str) -> bool:
+def has_conflict_markers(path: str) -> bool:
     """Whether ``path`` still holds the markers of a merge conflict."""
     try:
         with open(path, "rb") as file:

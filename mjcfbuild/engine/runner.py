@@ -339,12 +339,21 @@ def _say_undone(ctx: BuildContext, progress: Progress) -> None:
     if not undone or progress.quiet:
         return
     progress.clear()
-    names = ", ".join(ctx.label(ctx.out_dir / name) for name in undone)
-    progress.stream.write(
-        f"{progress.prefix}mjcfbuild: wrote over {names}, which held bytes git has in HEAD "
-        "but no build here wrote (`git diff` shows what the build changed; keep a tuning in "
-        "robot.yaml)\n"
-    )
+    conflicts = [name for name in undone if name in ctx.session.conflicts]
+    held = [name for name in undone if name not in ctx.session.conflicts]
+    if held:
+        names = ", ".join(ctx.label(ctx.out_dir / name) for name in held)
+        progress.stream.write(
+            f"{progress.prefix}mjcfbuild: wrote over {names}, which held bytes git has in "
+            "HEAD but no build here wrote (`git diff` shows what the build changed; keep a "
+            "tuning in robot.yaml)\n"
+        )
+    if conflicts:
+        names = ", ".join(ctx.label(ctx.out_dir / name) for name in conflicts)
+        progress.stream.write(
+            f"{progress.prefix}mjcfbuild: wrote over {names}, which held a merge conflict "
+            "(its markers): the built model resolves it (`git add` it)\n"
+        )
     progress.stream.flush()
 
 

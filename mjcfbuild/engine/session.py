@@ -48,6 +48,7 @@ class BuildSession:
         # Outputs edited since a build wrote them whose edit git has in HEAD, each with the MD5
         # of the edit: the build may write over them, and says so (engine.guard finds them).
         self.committed_edits: dict[str, str] = {}
+        self.conflicts: set[str] = set()  # those of them held for their conflict markers
         self.cache_grew = False  # a product was stored: the cache may need pruning
         self.cache_report: dict[str, Any] | None = None
         self._hashes: HashCache | None = None

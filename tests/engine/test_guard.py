@@ -3,6 +3,8 @@ link. Every refusal comes before anything is written."""
 
 from __future__ import annotations
 
+import re
+
 from mjcfbuild.errors import EXIT_MANIFEST, EXIT_OUTPUT
 from tests.cli.error_catalogue import urdf
 from tests.conftest import run_cli
@@ -387,3 +389,35 @@ def test_a_picture_of_the_users_in_the_package_is_not_removed(tmp_path):
     picture.write_bytes(b"my own render")
     assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
     assert picture.read_bytes() == b"my own render"
+
+
+def test_a_model_in_a_merge_conflict_is_rebuilt_and_said_so(arm):
+    """Resolving robot.yaml's side of a conflict and building resolves the model's; the build
+    said the model 'held bytes git has in HEAD', where it held conflict markers."""
+    import subprocess
+
+    def git(*args):
+        command = ["git", "-c", "user.name=t", "-c", "user.email=t@t", *args]
+        return subprocess.run(command, cwd=arm, capture_output=True)
+
+    manifest = arm / "robot.yaml"
+    git("init", "-q", "-b", "main")
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    git("add", "-A")
+    git("commit", "-qm", "built")
+    for branch, elbow in (("other", "1.1"), ("main", "0.9")):
+        git("checkout", "-q", "-B", branch)  # other from main; then main as it was
+        manifest.write_text(re.sub(r"elbow: [-0-9.]+", f"elbow: {elbow}", manifest.read_text()))
+        assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+        git("commit", "-qam", elbow)
+        git("checkout", "-q", "main")
+    assert git("merge", "-q", "other").returncode != 0  # robot.yaml and the model conflict
+    git("checkout", "--theirs", "robot.yaml")
+    git("add", "robot.yaml")
+    result = run_cli("build", "--no-check", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert (
+        "mjcfbuild: wrote over mjcf/example_arm.xml, which held a merge conflict (its markers): "
+        "the built model resolves it (`git add` it)"
+    ) in result.stdout.splitlines(), result.stdout
+    assert "<<<<<<<" not in (arm / "mjcf" / "example_arm.xml").read_text()
