@@ -375,11 +375,18 @@ def _read_if_present(path: Path) -> bytes | None:
 
 
 def _up_to_date(ctx) -> int:
-    from mjcfbuild.engine.freshness import stale_outputs
+    from mjcfbuild.engine.freshness import report_behind, stale_outputs
 
     stale = stale_outputs(ctx)
     if not stale:
-        print(f"mjcfbuild: {ctx.manifest_label}: {ctx.label(ctx.out_dir)} is up to date")
+        behind = report_behind(ctx)
+        after = (
+            f" (its report is not: {', '.join(behind)} did not run since; mjcfbuild build "
+            "brings it up to date)"
+            if behind
+            else ""
+        )
+        print(f"mjcfbuild: {ctx.manifest_label}: {ctx.label(ctx.out_dir)} is up to date{after}")
         return EXIT_OK
     for line in stale:
         print(f"mjcfbuild: stale: {line}", file=sys.stderr)

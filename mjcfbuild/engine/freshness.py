@@ -34,6 +34,24 @@ def stale_from_database(ctx: BuildContext) -> list[str]:
     return []
 
 
+def report_behind(ctx: BuildContext) -> list[str]:
+    """The report's tasks (check, previews, tuning) that have not run since their inputs
+    changed, by their titles, as the folder's build database tells (a build cut short after
+    the model): the model is current, its report is not. Empty without a database."""
+    if not (ctx.state(DATABASE).exists() and ctx.state(PLAN).exists()):
+        return []
+    if not ctx.manifest.check.enabled:
+        return []
+    from mjcfbuild.engine.status import build_statuses
+
+    statuses, _ = build_statuses(replace(ctx, run_check=True))
+    return [
+        status.title
+        for status in statuses
+        if not status.up_to_date and status.name.split(":")[0] in REPORT_TASKS
+    ]
+
+
 def _from_database(ctx: BuildContext) -> list[str]:
     from mjcfbuild.engine.status import build_statuses
 

@@ -64,10 +64,7 @@ def outputs_intact(hashes: HashCache) -> Callable:
         for path, digest in outputs.items():
             try:
                 if hashes.md5(path) != digest:
-                    check.reason = (  # type: ignore[attr-defined]
-                        f"output edited since it was built: {path} (a build stops at it "
-                        "unless git has it in HEAD)"
-                    )
+                    check.reason = _changed_output(path)  # type: ignore[attr-defined]
                     return False
             except OSError:
                 check.reason = f"output deleted since it was built: {path}"  # type: ignore[attr-defined]
@@ -76,6 +73,20 @@ def outputs_intact(hashes: HashCache) -> Callable:
 
     check.reason = ""  # type: ignore[attr-defined]
     return check
+
+
+def _changed_output(path: str) -> str:
+    """Why a task whose output ``path`` no longer holds what its last run wrote is stale. The
+    build's own records and report pictures change only when a build is cut short, and no
+    build stops at them; a published output may have been edited by hand."""
+    from mjcfbuild.ownership import STATE_DIR
+
+    folders = Path(path).parts[-5:-1]  # those in the output folder (products/x/ at most)
+    if STATE_DIR in folders or "report" in folders:
+        return f"output changed since its task last finished (a build cut short): {path}"
+    return (
+        f"output edited since it was built: {path} (a build stops at it unless git has it in HEAD)"
+    )
 
 
 def always_stale(reason: str) -> Callable:
