@@ -170,11 +170,22 @@ def _say_history(ctx, history: list[Path]) -> None:
 def _say_kept(ctx, listed: set[Path]) -> None:
     """Name the files left in the output folder that no build wrote, a few of them (those in
     ``listed`` are named already)."""
-    kept = [
-        path
-        for path in _files_below(ctx.out_dir)
-        if path not in listed and ctx.state_dir not in path.parents
-    ]
+    from mjcfbuild.engine.guard import build_folders
+
+    # Where the output folder is the description's own (output.folder: .), its files are the
+    # description, not files left beside a model: only the folders builds fill are looked at.
+    own = ctx.manifest_file is not None and ctx.out_dir in ctx.manifest_file.parents
+    folders = [f for f in build_folders(ctx) if f != ctx.state_dir] if own else [ctx.out_dir]
+    kept = sorted(
+        {
+            path
+            for folder in folders
+            for path in (_files_below(folder) if folder.is_dir() else [])
+            if path not in listed
+            and ctx.state_dir not in path.parents
+            and ".git" not in path.relative_to(ctx.out_dir).parts
+        }
+    )
     if kept:
         shown = ", ".join(ctx.label(path) for path in kept[:_SHOWN])
         more = f" and {len(kept) - _SHOWN} more" if len(kept) > _SHOWN else ""

@@ -86,6 +86,20 @@ def test_an_output_folder_up_a_level_keeps_the_parents_own_files(arm):
     assert (parent / "assets" / "logo.png").read_bytes() == b"the parent's"
 
 
+def test_clean_of_the_description_s_own_folder_names_only_files_left_among_outputs(arm):
+    """output.folder: . - the kept line listed the description (and .git's files)."""
+    _output_setting(arm, "output:\n  folder: .\n")
+    (arm / ".git").mkdir()
+    (arm / ".git" / "HEAD").write_text("ref: refs/heads/main\n")
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    (arm / "assets" / "logo.png").write_bytes(b"mine")
+    result = run_cli("clean", cwd=arm)
+    assert result.code == 0, result.stderr
+    kept = [line for line in result.stdout.splitlines() if line.startswith("mjcfbuild: kept")]
+    assert kept == ["mjcfbuild: kept assets/logo.png (not written by mjcfbuild)"], kept
+    assert (arm / "robot.yaml").exists() and (arm / ".git" / "HEAD").exists()
+
+
 def test_a_dry_run_lists_what_would_go_and_removes_nothing(built_arm):
     arm = built_arm
     (arm / "mjcf" / "NOTES.md").write_text("mine\n")
