@@ -7,12 +7,21 @@ xacro file (included ones too) or inputs file is an error rather than something 
 
 from __future__ import annotations
 
+import re
+
 from mjcfbuild.errors import InputError
+
+# What cannot declare anything: comments and CDATA sections (their text is inert).
+_INERT = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>", re.DOTALL)
 
 
 def refuse_entities(data: bytes, display_file: str) -> None:
-    """Raise :class:`InputError` at the line of the first ``<!ENTITY`` declaration in ``data``."""
+    """Raise :class:`InputError` at the line of the first ``<!ENTITY`` declaration in ``data``
+    (the words in a comment declare nothing: the xacro command reads such a file)."""
     entity = data.find(b"<!ENTITY")
+    if entity >= 0:
+        # Blanked, not removed: the positions, and so the lines, stay where they were.
+        entity = _INERT.sub(lambda inert: b" " * len(inert.group()), data).find(b"<!ENTITY")
     if entity >= 0:
         raise InputError(
             "XML entity declarations are not allowed",

@@ -316,12 +316,18 @@ def command_line_hint(hint: str) -> str:
 
 
 def parse_xacro_args(values: list[str]) -> dict[str, str]:
-    """``NAME:=VALUE`` words as a dict; :class:`UsageError` for anything else."""
+    """``NAME:=VALUE`` words as a dict, read as the ``xacro`` command reads them: name and
+    value stripped of spaces, an empty value leaving the argument's default (what a launch
+    file's empty argument gives), a ``_name`` (a ROS 1 private parameter) not an argument;
+    :class:`UsageError` for anything else."""
     result = {}
     for value in values:
-        name, sep, text = value.partition(":=")
-        if not sep or not name:
+        parts = [part.strip() for part in value.split(":=")]
+        if len(parts) != 2 or not parts[0]:
             raise UsageError(f"'{value}' is not NAME:=VALUE")
+        name, text = parts
+        if not text or (len(name) > 1 and name[0] == "_" and name[1] != "_"):
+            continue
         result[name] = text
     return result
 

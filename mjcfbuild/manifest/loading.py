@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from mjcfbuild.errors import ManifestError
 
@@ -111,10 +111,26 @@ def parse_manifest(text: str, display_name: str = "robot.yaml") -> Manifest:
             line=1,
             column=1,
         )
+    _args_as_written(data, positions)
     try:
         return Manifest.model_validate(data)
     except ValidationError as exc:
         raise manifest_error_from_validation(exc, positions, display_name) from None
+
+
+def _args_as_written(data: dict, positions: Positions) -> None:
+    """Give every xacro argument (an ``args:`` mapping's value, anywhere in ``data``) written
+    unquoted as the text written: ``name:=value`` on xacro's command line passes text, where
+    YAML read ``1.10`` as 1.1 and ``0010`` as 8 (a link named base_v1.10_0010 came out
+    base_v1.1_8)."""
+    for path, text in positions.plain.items():
+        if len(path) < 2 or path[-2] != "args":
+            continue
+        parent: Any = data
+        for key in path[:-1]:
+            parent = parent[key]
+        if isinstance(parent, dict) and not isinstance(parent.get(path[-1]), (str, type(None))):
+            parent[path[-1]] = text
 
 
 def manifest_error_from_validation(

@@ -25,6 +25,7 @@ class Positions:
 
     values: dict[Path_, tuple[int, int]] = field(default_factory=dict)
     keys: dict[Path_, tuple[int, int]] = field(default_factory=dict)
+    plain: dict[Path_, str] = field(default_factory=dict)  # unquoted scalars, as written
 
     def of(self, path: Path_) -> tuple[int, int] | None:
         """The best position for ``path``: the key if known, else the value, else a parent."""
@@ -212,7 +213,10 @@ def _build(node: yaml.Node, path: Path_, positions: Positions, constructor: yaml
             if isinstance(key, (list, dict)):
                 line, column = _mark(key_node)
                 raise YamlSyntaxError("a mapping key must be a plain value", line, column)
-            key = str(key) if not isinstance(key, str) else key
+            if not isinstance(key, str):
+                # As written: YAML 1.1 reads the key `on:` (or `yes:`, `1.10:`) as a value.
+                plain = isinstance(key_node, yaml.ScalarNode) and key_node.style is None
+                key = key_node.value if plain else str(key)
             if key in result:
                 line, column = _mark(key_node)
                 first, _ = positions.keys.get((*path, key), (None, None))
@@ -229,6 +233,8 @@ def _build(node: yaml.Node, path: Path_, positions: Positions, constructor: yaml
             _build(item, (*path, index), positions, constructor)
             for index, item in enumerate(node.value)
         ]
+    if isinstance(node, yaml.ScalarNode) and node.style is None:
+        positions.plain[path] = node.value
     try:
         return constructor.construct_object(node, deep=True)
     except yaml.constructor.ConstructorError as exc:

@@ -30,6 +30,18 @@ _ORIGIN = "mjcfbuild-origin"
 _ARG_USE = re.compile(r"\$\(arg\s+([^\s)]+)\s*\)")
 # An argument read in an expression: ${xacro.arg('name')} (the xacro command takes it too).
 _ARG_READ = re.compile(r"""xacro\.arg\(\s*(['"])([^'"]+)\1\s*\)""")
+# $(eval ...) reads arguments by their bare names: every name in one may be an argument.
+_EVAL = re.compile(r"""\$\(eval\s([^"'<>]*)""")
+_NAME = re.compile(r"[A-Za-z_]\w*")
+
+
+def _arguments_named(text: str) -> set[str]:
+    """The argument names ``text`` uses: $(arg name), xacro.arg('name'), names in $(eval)."""
+    names = set(_ARG_USE.findall(text))
+    names.update(name for _, name in _ARG_READ.findall(text))
+    for expression in _EVAL.findall(text):
+        names.update(_NAME.findall(expression))
+    return names
 
 
 @dataclass
@@ -217,6 +229,7 @@ def _expand(
             raise failure(f"xacro failed: {message}", file=current, line=line, hint=hint) from None
         included = list(xacro.all_includes)
     _check_args(mappings, reading, packages, path, args_key)
+    _refuse_values_not_text(document, reading, path)
     marks = _take_origins(document) if track_lines else []
     text = document.toprettyxml(indent="  ", encoding="utf-8")
     files = {str(normalise(path))}
@@ -248,8 +261,14 @@ def _check_args(
     unknown = sorted(set(mappings) - declared)
     if args_key is None or not unknown:
         return
-    declared = declared | _declared_in_skipped_includes(reading.files, packages)
+    skipped, unresolved = _declared_in_skipped_includes(reading.files, packages)
+    declared = declared | skipped
     unknown = sorted(set(mappings) - declared)
+    if unresolved:
+        # A file included under a false condition by a name only xacro can evaluate may
+        # declare any argument (the xacro command takes them all): only a near miss of a
+        # declared name is taken for a misspelling.
+        unknown = [name for name in unknown if did_you_mean(name, declared)]
     if not unknown:
         return
     name = unknown[0]
@@ -275,15 +294,18 @@ _FIND = re.compile(r"\$\(find\s+([^\s)]+)\s*\)")
 _ARG_DECLARED = re.compile(r"""<xacro:arg\b[^>]*?\bname\s*=\s*(['"])(.*?)\1""", re.DOTALL)
 
 
-def _declared_in_skipped_includes(files: list[str], packages: PackageResolver) -> set[str]:
+def _declared_in_skipped_includes(
+    files: list[str], packages: PackageResolver
+) -> tuple[set[str], bool]:
     """The arguments declared or used in the files the ``files`` xacro read include but xacro
     did not read (an include inside an ``xacro:if`` that was false), and in theirs: found in
     the text, where an include's file name resolves without evaluating anything but
-    ``$(find)``."""
+    ``$(find)``; and whether an include's file name did not (an expression)."""
     read = {str(normalise(file)) for file in files}
     seen = set(read)
     pending = sorted(read)
     declared: set[str] = set()
+    unresolved = False
     while pending:
         current = pending.pop()
         try:
@@ -291,21 +313,22 @@ def _declared_in_skipped_includes(files: list[str], packages: PackageResolver) -
         except OSError:
             continue
         if current not in read:
-            declared.update(_ARG_USE.findall(text))
-            declared.update(name for _, name in _ARG_READ.findall(text))
+            declared.update(_arguments_named(text))
             declared.update(name for _, name in _ARG_DECLARED.findall(text))
         for _, name in _INCLUDE.findall(text):
             try:
                 name = _FIND.sub(lambda found: str(packages.find(found.group(1))), name)
             except InputError:
+                unresolved = True
                 continue
             if "$" in name:
-                continue  # an expression: only xacro can evaluate it
+                unresolved = True  # an expression: only xacro can evaluate it
+                continue
             resolved = str(normalise(Path(current).parent / name))
             if resolved not in seen and os.path.isfile(resolved):
                 seen.add(resolved)
                 pending.append(resolved)
-    return declared
+    return declared, unresolved
 
 
 def _line_of(file: str, pattern: str, after: str | None = None) -> int | None:
@@ -345,8 +368,7 @@ def _mark_origins(document: Any, data: bytes, file: str, reading: _Reading) -> N
     from lxml import etree
 
     text = data.decode("utf-8", "replace")
-    reading.declared.update(_ARG_USE.findall(text))
-    reading.declared.update(name for _, name in _ARG_READ.findall(text))
+    reading.declared.update(_arguments_named(text))
     nodes = document.getElementsByTagName("*")
     for node in nodes:
         if node.tagName == "xacro:arg" and node.getAttribute("name"):
@@ -386,6 +408,28 @@ def _qualified_name(element: Any) -> str:
 
     local = etree.QName(element).localname
     return f"{element.prefix}:{local}" if element.prefix else local
+
+
+def _refuse_values_not_text(document: Any, reading: _Reading, source: Path) -> None:
+    """An :class:`InputError` at the element for an attribute whose value xacro left a number
+    (``<xacro:attribute value="${2*pi}"/>``): the xacro command fails writing it, with a
+    traceback; here it was an internal error."""
+    for node in document.getElementsByTagName("*"):
+        for name, value in node.attributes.items():
+            if isinstance(value, str):
+                continue
+            file, line = str(source), None
+            origin = node.getAttribute(_ORIGIN)
+            if origin:
+                index, _, number = origin.partition(":")
+                file, line = reading.files[int(index)], int(number)
+            raise InputError(
+                f"xacro failed: attribute '{name}' of <{node.tagName}> is the number "
+                f"{value!r}, not text (the xacro command fails writing it too)",
+                file=file,
+                line=line,
+                hint='make the value text where it is computed: value="${str(2*pi)}"',
+            )
 
 
 def _take_origins(document: Any) -> list[str]:
@@ -642,7 +686,9 @@ def _xacro_hooks(
             except InputError as exc:
                 raised.append(exc)
                 raise
-            document = original_parse(io.BytesIO(data), filename)
+            # As text, as the xacro command opens it: the file's bytes are UTF-8 whatever
+            # its XML declaration says (given bytes, the parser obeyed encoding="ISO-8859-1").
+            document = original_parse(io.StringIO(data.decode("utf-8")), filename)
             _mark_origins(document, data, os.path.join(xacro_module.root_dir, filename), reading)
             return document
         return original_parse(inp, filename)

@@ -21,7 +21,7 @@ from mjcfbuild.errors import InputError
 ENV_VARIABLES = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")
 _IGNORE_MARKERS = ("CATKIN_IGNORE", "COLCON_IGNORE", "AMENT_IGNORE")
 _NAME_TAG = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
-_MAX_CRAWL_DEPTH = 6
+_MAX_CRAWL_DEPTH = 16
 
 
 class PackageResolver:
@@ -76,8 +76,9 @@ class PackageResolver:
         """Every package below ROS_PACKAGE_PATH, by name; the first one found wins."""
         if self._crawled is None:
             self._crawled = {}
+            seen: set[str] = set()
             for root in _split(self.environ["ROS_PACKAGE_PATH"]):
-                _crawl_folder(Path(root), 0, self._crawled)
+                _crawl_folder(Path(root), 0, self._crawled, seen)
         return self._crawled
 
 
@@ -85,7 +86,14 @@ def _split(value: str) -> list[str]:
     return [part for part in value.split(os.pathsep) if part]
 
 
-def _crawl_folder(folder: Path, depth: int, found: dict[str, Path]) -> None:
+def _crawl_folder(folder: Path, depth: int, found: dict[str, Path], seen: set[str]) -> None:
+    """Add the packages in and below ``folder`` to ``found``, as rospack crawls: into linked
+    folders too (a package linked into a workspace's src/ is a common layout), each real
+    folder once (``seen``), not below a package or a folder marked to be ignored."""
+    real = os.path.realpath(folder)
+    if real in seen:
+        return
+    seen.add(real)
     manifest = folder / "package.xml"
     if manifest.is_file():
         found.setdefault(package_name(manifest) or folder.name, folder)
@@ -97,8 +105,8 @@ def _crawl_folder(folder: Path, depth: int, found: dict[str, Path]) -> None:
     except OSError:
         return
     for child in children:
-        if child.is_dir() and not child.is_symlink():
-            _crawl_folder(child, depth + 1, found)
+        if child.is_dir():
+            _crawl_folder(child, depth + 1, found, seen)
 
 
 def package_name(package_xml: Path) -> str | None:
@@ -123,7 +131,7 @@ def did_you_mean(name: str, candidates: list[str] | set[str]) -> str:
     """``; did you mean 'x'?`` for the candidate closest to ``name``, or nothing."""
     import difflib
 
-    match = difflib.get_close_matches(name, sorted(candidates), n=1)
+    match = difflib.get_close_matches(name, sorted(set(candidates) - {name}), n=1)
     return f"; did you mean '{match[0]}'?" if match else ""
 
 

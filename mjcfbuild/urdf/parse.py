@@ -99,6 +99,7 @@ _PREFIX = re.compile(r"Namespace prefix (\S+)")
 # An XML declaration after leading white space (XML allows nothing before it), and its version.
 _DECLARATION = re.compile(rb"\A(\s*)(<\?xml\s[^>]*?\?>)")
 _VERSION = re.compile(rb"""(\sversion\s*=\s*)(["'])([^"']*)\2""")
+_ENCODING = re.compile(rb"""(\sencoding\s*=\s*)(["'])([^"']*)\2""")
 
 
 def _repair_declaration(data: bytes, display_file: str, warnings: list[str]) -> bytes:
@@ -119,12 +120,33 @@ def _repair_declaration(data: bytes, display_file: str, warnings: list[str]) -> 
             f"{display_file}:{line}: the XML declaration "
             f'says version "{written}"; read as 1.0 (write version="1.0")'
         )
+    encoding = _ENCODING.search(declaration)
+    named = encoding.group(3).decode("ascii", "replace") if encoding else "UTF-8"
+    if named.replace("-", "").lower() != "utf8" and _is_utf8(data):
+        # ROS's parser (urdfdom) and MuJoCo's read every file as UTF-8, whatever the
+        # declaration says: names with accents came out differently (or not at all) here.
+        assert encoding is not None
+        start, end = encoding.span(3)
+        declaration = declaration[:start] + b"UTF-8" + declaration[end:]
+        warnings.append(
+            f'{display_file}:{line}: the XML declaration says encoding="{named}" but the file '
+            "is UTF-8; read as UTF-8, as ROS's and MuJoCo's URDF parsers read it (write "
+            'encoding="UTF-8")'
+        )
     if space:
         warnings.append(
             f"{display_file}:{line}: the XML declaration follows blank "
             "lines; read as if it came first (remove what precedes it)"
         )
     return declaration + space + data[found.end() :]
+
+
+def _is_utf8(data: bytes) -> bool:
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        return False
+    return True
 
 
 def _drop_trailing_nuls(data: bytes, display_file: str, warnings: list[str]) -> bytes:

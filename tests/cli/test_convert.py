@@ -192,3 +192,17 @@ def test_a_description_piped_in_is_built_and_an_empty_pipe_is_named_as_stdin(tmp
     assert empty.stderr.startswith(
         "mjcfbuild: error: <stdin>: the robot description read from standard input is empty"
     )
+
+
+def test_xacro_arguments_are_read_as_the_xacro_command_reads_them():
+    """Stripped, an empty value leaves the default (a launch file's empty argument), a ROS 1
+    private parameter (_name) is no argument; a word that is no NAME:=VALUE is refused."""
+    import pytest
+
+    from mjcfbuild.cli.convert import parse_xacro_args
+    from mjcfbuild.errors import UsageError
+
+    given = ["prefix:=", " side := left ", "_foo:=1", "__dunder:=2", "count:=3"]
+    assert parse_xacro_args(given) == {"side": "left", "__dunder": "2", "count": "3"}
+    with pytest.raises(UsageError):
+        parse_xacro_args(["a:=b:=c"])

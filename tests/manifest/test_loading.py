@@ -30,6 +30,22 @@ def test_xacro_args_become_xacro_strings():
     assert manifest.source.xacro_args == {"count": "3", "prefix": "l_", "use_pid": "true"}
 
 
+def test_unquoted_xacro_args_pass_the_text_written():
+    """As name:=value on xacro's command line: YAML read 1.10 as 1.1 and 0010 as 8 (a link
+    named base_v1.10_0010 came out base_v1.1_8)."""
+    manifest = parse_manifest(
+        "name: arm\nsource:\n  xacro: arm.xacro\n"
+        '  args: {hw_rev: 1.10, id: 0010, on: True, quoted: "007", exp: 1e3}\n'
+    )
+    assert manifest.source.xacro_args == {
+        "exp": "1e3",
+        "hw_rev": "1.10",
+        "id": "0010",
+        "on": "True",
+        "quoted": "007",
+    }
+
+
 def test_unknown_key_names_line_column_and_allowed_keys():
     error = error_of("name: arm\nsource:\n  urdf: a.urdf\n  xacor: b.xacro\n")
     assert error.location.line == 4 and error.location.column == 3

@@ -378,3 +378,29 @@ def test_an_undefined_name_gets_the_closest_parameter_or_property(tmp_path):
         expand_xacro(source, {}, PackageResolver({}, {}))
     assert info.value.message.endswith("name 'sise' is not defined; did you mean 'size'?")
     assert info.value.location.line == 4
+
+
+def test_an_attribute_xacro_leaves_a_number_is_an_error_at_its_element(tmp_path):
+    """<xacro:attribute value="${2*pi}"/> leaves a float, which xacro fails to write with a
+    traceback; here it was an internal error (exit 70)."""
+    source = write(
+        tmp_path / "r.urdf.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <link name="base"/>\n'
+        '  <link name="arm"/>\n'
+        '  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>\n'
+        '    <limit effort="1" lower="0" upper="1">\n'
+        '      <xacro:attribute name="velocity" value="${2*pi}"/></limit></joint>\n'
+        "</robot>\n",
+    )
+    with pytest.raises(InputError) as error:
+        expand_xacro(source, {}, PackageResolver({}, {}))
+    assert error.value.location is not None and error.value.location.line == 5
+    assert "attribute 'velocity' of <limit> is the number 6.28" in error.value.message
+
+
+def test_did_you_mean_never_names_the_name_itself():
+    from mjcfbuild.sources.packages import did_you_mean
+
+    assert did_you_mean("size", {"size", "sizes"}) == "; did you mean 'sizes'?"
+    assert did_you_mean("size", {"size"}) == ""

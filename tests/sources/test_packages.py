@@ -29,6 +29,18 @@ def test_ros_package_path_is_crawled_by_package_xml_name(tmp_path):
     assert resolver.find("real_name") == folder
 
 
+def test_a_package_linked_into_a_workspace_is_found_and_a_link_loop_ends(tmp_path):
+    """rospack follows linked folders (a package linked into src/ is a common layout); they
+    were skipped ('unknown package')."""
+    folder = package(tmp_path / "code" / "demo_description", "demo_description")
+    source = tmp_path / "ws" / "src"
+    source.mkdir(parents=True)
+    (source / "demo_description").symlink_to(folder, target_is_directory=True)
+    (source / "loop").symlink_to(source, target_is_directory=True)
+    resolver = PackageResolver({}, {"ROS_PACKAGE_PATH": str(source)})
+    assert resolver.find("demo_description") == source / "demo_description"
+
+
 def test_ignore_markers_hide_packages(tmp_path):
     package(tmp_path / "src" / "hidden" / "pkg", "pkg")
     write(tmp_path / "src" / "hidden" / "COLCON_IGNORE", "")

@@ -384,3 +384,59 @@ def test_an_argument_of_a_file_included_under_a_false_condition_is_taken(tmp_pat
     assert_agrees(source, tmp_path / "again", args, {"pkg": pkg})
     with pytest.raises(ManifestError, match="did you mean 'finger_len'"):
         expand_xacro(source, {"finger_lne": "0.08"}, resolver, args_key="robot.yaml source.args")
+
+
+@pytest.mark.parametrize(
+    "data",
+    [
+        # Declared ISO-8859-1, written in UTF-8: xacro reads text as UTF-8 whatever the
+        # declaration says (read as bytes, the names came out 'arm_Ã¼').
+        '<?xml version="1.0" encoding="ISO-8859-1"?>\n<robot name="r" '
+        'xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="arm_\u00fc"/></robot>\n',
+        # Declared US-ASCII with a UTF-8 comment: refused as bytes, taken by xacro.
+        '<?xml version="1.0" encoding="us-ascii"?>\n<!-- J\u00fcrgen -->\n<robot name="r" '
+        'xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="base"/></robot>\n',
+        # An entity declaration named in a comment declares nothing.
+        '<!-- never use <!ENTITY declarations here -->\n<robot name="r" '
+        'xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="base"/></robot>\n',
+    ],
+    ids=["declared-latin1", "declared-ascii", "entity-in-comment"],
+)
+def test_declarations_that_do_not_change_what_xacro_reads(tmp_path, data):
+    source = tmp_path / "r.urdf.xacro"
+    source.write_bytes(data.encode("utf-8"))
+    assert assert_agrees(source, tmp_path) is not None
+
+
+def test_arguments_xacro_takes_without_a_declaration_here_are_taken(tmp_path):
+    """An argument read by its bare name in $(eval), and one declared only in a file a false
+    condition includes by an expression: the xacro command takes both; they were refused as
+    undeclared. A misspelling of a declared name is still refused."""
+    from mjcfbuild.errors import ManifestError
+
+    write(
+        tmp_path / "gazebo.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:arg name="gazebo_controllers" default=""/></robot>\n',
+    )
+    source = write(
+        tmp_path / "r.urdf.xacro",
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:arg name="use_gazebo" default="false"/>\n'
+        '  <xacro:property name="here" value="${xacro.abs_filename(\'.\')}"/>\n'
+        '  <xacro:if value="$(arg use_gazebo)">\n'
+        '    <xacro:include filename="${here}/gazebo.xacro"/>\n'
+        "  </xacro:if>\n"
+        '  <link name="base"/><link name="arm"/>\n'
+        '  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>\n'
+        '    <limit effort="1" velocity="1" lower="$(eval -1.0 * joint_range)" '
+        'upper="$(eval joint_range)"/></joint>\n'
+        "</robot>\n",
+    )
+    args = {"joint_range": "2.5", "gazebo_controllers": "/tmp/c.yaml"}
+    assert assert_agrees(source, tmp_path / "both", args) is not None
+    resolver = PackageResolver({}, {})
+    expand_xacro(source, args, resolver, args_key="robot.yaml source.args")
+    with pytest.raises(ManifestError, match="did you mean 'use_gazebo'"):
+        misspelt = {"joint_range": "2.5", "use_gazeb": "true"}
+        expand_xacro(source, misspelt, resolver, args_key="robot.yaml source.args")

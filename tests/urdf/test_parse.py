@@ -72,6 +72,20 @@ def test_an_xml_declaration_of_another_version_is_read_as_1_0_with_a_warning():
     assert parse('<?xml version="1.1"?>\n<robot name="a"><link name="l"/></robot>').warnings == []
 
 
+def test_a_declared_encoding_the_utf_8_bytes_are_not_in_is_read_as_utf_8_with_a_warning():
+    """ROS's and MuJoCo's parsers read every URDF as UTF-8: a name with an accent came out
+    another name here ('arm_\u00c3\u00bc'), obeying the declaration."""
+    text = '<?xml version="1.0" encoding="ISO-8859-1"?>\n<robot name="a"><link name="arm_\u00fc"/></robot>'
+    robot = parse_urdf(text.encode("utf-8"), "r.urdf")
+    assert [link.name for link in robot.links] == ["arm_\u00fc"]
+    assert robot.warnings == [
+        'r.urdf:1: the XML declaration says encoding="ISO-8859-1" but the file is UTF-8; read '
+        "as UTF-8, as ROS's and MuJoCo's URDF parsers read it (write encoding=\"UTF-8\")"
+    ]
+    latin = parse_urdf(text.encode("latin-1"), "r.urdf")  # truly ISO-8859-1: as declared
+    assert [link.name for link in latin.links] == ["arm_\u00fc"] and latin.warnings == []
+
+
 @pytest.mark.parametrize("encoding", ["utf-16", "utf-16-le", "utf-32"])
 def test_a_urdf_in_utf_16_or_32_is_read_with_its_nul_bytes(encoding):
     # Their characters hold NUL bytes, the last ones after the root element included.
