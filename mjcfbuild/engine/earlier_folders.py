@@ -12,6 +12,7 @@ the user put there or edited stays, and the build names it.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import shutil
@@ -51,10 +52,12 @@ def remove_earlier_folders(ctx: BuildContext) -> list[Abandoned]:
 
 def earlier_folders(ctx: BuildContext) -> list[Path]:
     """The folders in robot.yaml's folder tree whose state says this robot.yaml built there,
-    other than its output folder now."""
+    where robot.yaml put them (not a copy or a move of one), other than its output folder
+    now. Folders are compared as files (device and inode), not by name: a name in another
+    letter case is the same folder on macOS."""
     assert ctx.manifest_file is not None, "only output folders robot.yaml names"
-    manifest = os.path.realpath(ctx.manifest_file)
-    current = os.path.realpath(ctx.out_dir)
+    manifest = _identity(ctx.manifest_file)
+    current = _identity(ctx.out_dir)
     found = []
     for visited, (folder, subfolders, _) in enumerate(os.walk(ctx.base_dir)):
         if visited == _MOST_FOLDERS:
@@ -66,21 +69,42 @@ def earlier_folders(ctx: BuildContext) -> list[Path]:
             and name not in _SKIPPED
             and not os.path.islink(os.path.join(folder, name))
         )
-        if os.path.realpath(folder) != current and _owner(folder) == manifest:
+        here = _identity(folder)
+        if here is None or here == current or not os.path.isfile(_owner_file(folder)):
+            continue
+        owner, placed = _owner(folder)
+        if owner is None or _identity(owner) != manifest or placed is None:
+            continue
+        if _identity(os.path.join(os.path.dirname(owner), placed)) == here:
             found.append(Path(folder))
     return found
 
 
-def _owner(folder: str) -> str | None:
-    """The real path of the robot.yaml that ``folder``'s state says owns it, if any."""
+def _identity(path: str | os.PathLike) -> tuple[int, int] | None:
+    """The file ``path`` is (device and inode), None where there is none."""
     try:
-        with open(os.path.join(folder, STATE_DIR, OWNER), encoding="utf-8") as file:
-            owner = json.load(file).get("manifest")
-    except (OSError, ValueError, AttributeError):
+        status = os.stat(path)
+    except OSError:
         return None
-    if not isinstance(owner, str):
-        return None
-    return os.path.realpath(os.path.join(folder, owner))
+    return status.st_dev, status.st_ino
+
+
+def _owner_file(folder: str) -> str:
+    return os.path.join(folder, STATE_DIR, OWNER)
+
+
+def _owner(folder: str) -> tuple[str | None, str | None]:
+    """The robot.yaml that ``folder``'s state says owns it, and where that robot.yaml put its
+    output folder (relative to the robot.yaml's folder; None in a record from before)."""
+    try:
+        with open(_owner_file(folder), encoding="utf-8") as file:
+            record = json.load(file)
+    except (OSError, ValueError):
+        return None, None
+    if not isinstance(record, dict) or not isinstance(record.get("manifest"), str):
+        return None, None
+    placed = record.get("folder")
+    return os.path.join(folder, record["manifest"]), placed if isinstance(placed, str) else None
 
 
 def _empty(ctx: BuildContext, folder: Path) -> Abandoned:
@@ -93,19 +117,24 @@ def _empty(ctx: BuildContext, folder: Path) -> Abandoned:
     for name, digest in (recorded_in(folder, state) or {}).items():
         if not written_file(folder, name):
             continue
-        if edited(folder, name, digest):
-            abandoned.kept.append(folder / name)
-        else:
-            (folder / name).unlink()
-            abandoned.removed.append(folder / name)
+        try:
+            if not edited(folder, name, digest):
+                (folder / name).unlink()
+                abandoned.removed.append(folder / name)
+                continue
+        except OSError:  # not ours to remove (another user's file): it stays, and is named
+            pass
+        abandoned.kept.append(folder / name)
     shutil.rmtree(state, ignore_errors=True)
     if abandoned.kept:
         # The edits stay the user's, as after clean: a build of this folder again must stop
         # at them, not take them for a fresh clone's outputs and write over them.
         from mjcfbuild.ownership import record_foreign
 
-        state.mkdir()
-        record_foreign(folder, (), [path.relative_to(folder).as_posix() for path in abandoned.kept])
+        with contextlib.suppress(OSError):
+            state.mkdir(exist_ok=True)
+            kept = [path.relative_to(folder).as_posix() for path in abandoned.kept]
+            record_foreign(folder, (), kept)
     keep = {Path(os.path.realpath(path)) for path in (ctx.base_dir, ctx.out_dir)}
     for emptied in sorted({p.parent for p in abandoned.removed}, key=_depth, reverse=True):
         _remove_empty(emptied, folder, keep)
@@ -123,12 +152,15 @@ def _empty(ctx: BuildContext, folder: Path) -> Abandoned:
 
 
 def _holds(folder: Path, paths: set[Path]) -> bool:
-    """Whether ``folder`` is one of ``paths`` or above one of them."""
-    real = Path(os.path.realpath(folder))
-    return any(real == path or real in path.parents for path in paths)
+    """Whether ``folder`` is one of ``paths`` or above one of them (compared as files)."""
+    mine = _identity(folder)
+    return mine is not None and any(
+        _identity(above) == mine for path in paths for above in (path, *path.parents)
+    )
 
 
 def _depth(path: Path) -> int:
+    """How many folders deep ``path`` is: the deepest are emptied first."""
     return len(path.parts)
 
 
@@ -138,5 +170,8 @@ def _remove_empty(folder: Path, stop: Path, keep: set[Path]) -> None:
     while folder != stop and folder.is_dir() and not folder.is_symlink():
         if _holds(folder, keep) or any(folder.iterdir()):
             return
-        folder.rmdir()
+        try:
+            folder.rmdir()
+        except OSError:
+            return
         folder = folder.parent

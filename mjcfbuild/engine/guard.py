@@ -267,9 +267,10 @@ _NO_STATE = ("lock", OWNER, FOREIGN, ".gitignore")
 
 def claim_output_folder(ctx: BuildContext) -> None:
     """Record that the output folder is ``ctx``'s manifest's (``.mjcfbuild/owner.json``: the
-    manifest's path relative to the folder), after :func:`check_owner`, and which files in it
-    are the user's (:mod:`mjcfbuild.ownership`), which no step writes over. Called with the
-    folder's lock held."""
+    manifest's path relative to the folder, and the folder's relative to the manifest's),
+    after :func:`check_owner`, and which files in it are the user's
+    (:mod:`mjcfbuild.ownership`), which no step writes over. Called with the folder's lock
+    held."""
     import json
 
     from mjcfbuild.fsutil import write_if_changed
@@ -277,7 +278,12 @@ def claim_output_folder(ctx: BuildContext) -> None:
 
     mine = check_owner(ctx)
     if mine is not None:
-        write_if_changed(ctx.state(OWNER), (json.dumps({"manifest": mine}) + "\n").encode())
+        assert ctx.manifest_file is not None, "a name to record only for robot.yaml's folder"
+        # Where robot.yaml put the folder, too: a copy or a move of it (a snapshot) is not
+        # an output folder robot.yaml left (mjcfbuild.engine.earlier_folders).
+        placed = os.path.relpath(ctx.out_dir, ctx.manifest_file.parent)
+        record = {"manifest": mine, "folder": Path(placed).as_posix()}
+        write_if_changed(ctx.state(OWNER), (json.dumps(record) + "\n").encode())
     found, edited, git_problem = _users_files(ctx)
     record_foreign(ctx.out_dir, found, edited, git_problem)
 

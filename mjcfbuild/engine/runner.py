@@ -249,9 +249,16 @@ def _build_locked(
             model_built = all(isinstance(e, CheckError) for e in result.errors)
             if model_built and ctx.robot_path.exists():
                 # once the new name's model is there, not before
-                _say_removed(ctx, progress, *remove_renamed_model(ctx))
-                if set(model_tasks) & set(progress.names(RAN)):  # a folder moves with a rebuild
-                    _say_abandoned(ctx, progress, remove_earlier_folders(ctx))
+                # Names and folders change with a rebuild of the model: what is kept there is
+                # said then, not at every build after.
+                rebuilt = bool(set(model_tasks) & set(progress.names(RAN)))
+                removed, kept = remove_renamed_model(ctx)
+                _say_removed(ctx, progress, removed, kept if rebuilt else [])
+                if rebuilt:
+                    abandoned = remove_earlier_folders(ctx)
+                    for folder in abandoned:  # --fail-on-change asks git about them
+                        ctx.session.removed_elsewhere += map(str, folder.removed)
+                    _say_abandoned(ctx, progress, abandoned)
             _say_undone(ctx, progress)
             ctx.session.finish_sharing()  # uploads are done (or given up) before it returns
             failpoint("report")
@@ -302,10 +309,8 @@ def _say_removed(
 
 def _say_abandoned(ctx: BuildContext, progress: Progress, abandoned: list[Abandoned]) -> None:
     """Say which earlier output folders of robot.yaml the build emptied, and what of the
-    user's it kept there; the files removed go to the session (``--fail-on-change`` asks git
-    about them)."""
+    user's it kept there."""
     for folder in abandoned:
-        ctx.session.removed_elsewhere += [str(path) for path in folder.removed]
         if progress.quiet or not (folder.removed or folder.kept):
             continue
         count = len(folder.removed)
@@ -317,8 +322,9 @@ def _say_abandoned(ctx: BuildContext, progress: Progress, abandoned: list[Abando
             kept = f"; kept {shown}{more} (not written by a build, or edited since)"
         progress.clear()
         progress.stream.write(
-            f"{progress.prefix}mjcfbuild: {said} {ctx.label(folder.folder)}/, robot.yaml's "
-            f"output folder before (now {ctx.label(ctx.out_dir)}/){kept}\n"
+            f"{progress.prefix}mjcfbuild: {said} {ctx.label(folder.folder)}/, "
+            f"{ctx.manifest_label}'s output folder before (now {ctx.label(ctx.out_dir)}/)"
+            f"{kept}\n"
         )
         progress.stream.flush()
 

@@ -96,3 +96,23 @@ def test_an_edit_kept_in_the_old_folder_stops_a_build_that_returns_to_it(tmp_pat
     back = run_cli("build", "--no-check", cwd=folder)
     assert back.code == 7 and "mjcf/example_arm.xml: was edited" in back.stderr, back.stderr
     assert model.read_text().endswith("<!-- tuned -->\n")
+
+
+def test_a_copy_or_a_move_of_an_output_folder_is_never_emptied(tmp_path):
+    """A snapshot (cp -r) of the output folder, or the folder moved aside (mv), recorded the
+    same robot.yaml: the next build emptied and removed it as an 'earlier output folder'."""
+    import shutil
+
+    folder = copy_example("arm", tmp_path)
+    build(folder)
+    out = folder / "mjcf"
+    shutil.copytree(out, folder / "snapshot")
+    manifest = folder / "robot.yaml"
+    manifest.write_text(manifest.read_text().replace("elbow: 1.2", "elbow: 1.1"))
+    build(folder)
+    assert (folder / "snapshot" / "example_arm.xml").exists()
+    out.rename(folder / "mjcf_old")
+    manifest.write_text(manifest.read_text().replace("elbow: 1.1", "elbow: 1.0"))
+    build(folder)
+    assert (folder / "mjcf_old" / "example_arm.xml").exists()
+    assert (folder / "mjcf" / "example_arm.xml").exists()
