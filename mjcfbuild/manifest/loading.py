@@ -119,18 +119,28 @@ def parse_manifest(text: str, display_name: str = "robot.yaml") -> Manifest:
 
 
 def _args_as_written(data: dict, positions: Positions) -> None:
-    """Give every xacro argument (an ``args:`` mapping's value, anywhere in ``data``) written
-    unquoted as the text written: ``name:=value`` on xacro's command line passes text, where
-    YAML read ``1.10`` as 1.1 and ``0010`` as 8 (a link named base_v1.10_0010 came out
-    base_v1.1_8)."""
+    """Give every xacro argument written as an unquoted number (``source.args``, an
+    ``attach:`` part's ``args``) the text written: ``name:=value`` on xacro's command line
+    passes text, where YAML read ``1.10`` as 1.1 and ``0010`` as 8 (a link named
+    base_v1.10_0010 came out base_v1.1_8). Booleans stay as they were: ``yes``, ``on`` and
+    ``TRUE`` are YAML's true, which xacro is given as ``true``."""
     for path, text in positions.plain.items():
-        if len(path) < 2 or path[-2] != "args":
+        if not _is_args_value(path):
             continue
         parent: Any = data
         for key in path[:-1]:
             parent = parent[key]
-        if isinstance(parent, dict) and not isinstance(parent.get(path[-1]), (str, type(None))):
+        value = parent.get(path[-1]) if isinstance(parent, dict) else None
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
             parent[path[-1]] = text
+
+
+def _is_args_value(path: tuple) -> bool:
+    """Whether ``path`` is that of a xacro argument's value in robot.yaml."""
+    match path:
+        case ("source", "args", str()) | ("attach", int(), "source", "args", str()):
+            return True
+    return False
 
 
 def manifest_error_from_validation(

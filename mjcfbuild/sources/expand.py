@@ -30,17 +30,21 @@ _ORIGIN = "mjcfbuild-origin"
 _ARG_USE = re.compile(r"\$\(arg\s+([^\s)]+)\s*\)")
 # An argument read in an expression: ${xacro.arg('name')} (the xacro command takes it too).
 _ARG_READ = re.compile(r"""xacro\.arg\(\s*(['"])([^'"]+)\1\s*\)""")
-# $(eval ...) reads arguments by their bare names: every name in one may be an argument.
-_EVAL = re.compile(r"""\$\(eval\s([^"'<>]*)""")
-_NAME = re.compile(r"[A-Za-z_]\w*")
+# $(eval ...) reads arguments by their bare names: every name in one may be an argument. Its
+# expression runs to the closing parenthesis (nested ones, and strings in either quote, allowed
+# inside; an attribute's own quote ends it).
+_EVAL = re.compile(r"""\$\(eval\s((?:'[^'<]*'|\((?:[^()"<]|\([^()"<]*\))*\)|[^()"<'])*)\)""")
+_STRING = re.compile(r"'[^']*'|\"[^\"]*\"")
+_NAME = re.compile(r"(?<![\w.])[A-Za-z_]\w*")
 
 
 def _arguments_named(text: str) -> set[str]:
-    """The argument names ``text`` uses: $(arg name), xacro.arg('name'), names in $(eval)."""
+    """The argument names ``text`` uses: $(arg name), xacro.arg('name'), names in $(eval)
+    (outside its strings; not attributes like ``.upper``)."""
     names = set(_ARG_USE.findall(text))
     names.update(name for _, name in _ARG_READ.findall(text))
     for expression in _EVAL.findall(text):
-        names.update(_NAME.findall(expression))
+        names.update(_NAME.findall(_STRING.sub(" ", expression)))
     return names
 
 
@@ -424,8 +428,9 @@ def _refuse_values_not_text(document: Any, reading: _Reading, source: Path) -> N
                 index, _, number = origin.partition(":")
                 file, line = reading.files[int(index)], int(number)
             raise InputError(
-                f"xacro failed: attribute '{name}' of <{node.tagName}> is the number "
-                f"{value!r}, not text (the xacro command fails writing it too)",
+                f"xacro failed: attribute '{name}' of <{node.tagName}> is the "
+                f"{type(value).__name__} {value!r}, not text (the xacro command fails writing "
+                "it too)",
                 file=file,
                 line=line,
                 hint='make the value text where it is computed: value="${str(2*pi)}"',
@@ -700,8 +705,8 @@ def _xacro_hooks(
         the folder later changes the expansion)."""
         found = list(original_includes(spec, symbols))
         pattern = xacro_module.abs_filename_spec(xacro_module.eval_text(spec, symbols))
-        if re.search(r"[*[?]", pattern):
-            reading.globs[str(normalise(pattern))] = [str(normalise(f)) for f in found]
+        if re.search(r"[*[?]", pattern):  # kept as xacro globbed it, to glob it alike again
+            reading.globs[pattern] = list(found)
         yield from found
 
     def guarded(load_yaml: Callable) -> Callable:

@@ -49,7 +49,7 @@ class Depfile:
             return Depfile(
                 list(data["files"]), list(data["missing"]), dict(data["environment"]), globs
             )
-        except (OSError, ValueError, KeyError, TypeError):
+        except (OSError, ValueError, KeyError, TypeError, AttributeError):
             return None
 
     def stale_reason(self, environ: Mapping[str, str]) -> str | None:

@@ -122,7 +122,7 @@ def _repair_declaration(data: bytes, display_file: str, warnings: list[str]) -> 
         )
     encoding = _ENCODING.search(declaration)
     named = encoding.group(3).decode("ascii", "replace") if encoding else "UTF-8"
-    if named.replace("-", "").lower() != "utf8" and _is_utf8(data):
+    if named.replace("-", "").lower() != "utf8" and not data.isascii() and _is_utf8(data):
         # ROS's parser (urdfdom) and MuJoCo's read every file as UTF-8, whatever the
         # declaration says: names with accents came out differently (or not at all) here.
         assert encoding is not None

@@ -35,13 +35,14 @@ def test_unquoted_xacro_args_pass_the_text_written():
     named base_v1.10_0010 came out base_v1.1_8)."""
     manifest = parse_manifest(
         "name: arm\nsource:\n  xacro: arm.xacro\n"
-        '  args: {hw_rev: 1.10, id: 0010, on: True, quoted: "007", exp: 1e3}\n'
+        '  args: {hw_rev: 1.10, id: 0010, on: True, quoted: "007", exp: 1e3, cam: yes}\n'
     )
     assert manifest.source.xacro_args == {
+        "cam": "true",  # YAML's true, given to xacro as true (xacro refuses 'yes')
         "exp": "1e3",
         "hw_rev": "1.10",
         "id": "0010",
-        "on": "True",
+        "on": "true",  # the key as written (YAML 1.1 reads `on` as true)
         "quoted": "007",
     }
 

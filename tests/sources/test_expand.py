@@ -396,7 +396,7 @@ def test_an_attribute_xacro_leaves_a_number_is_an_error_at_its_element(tmp_path)
     with pytest.raises(InputError) as error:
         expand_xacro(source, {}, PackageResolver({}, {}))
     assert error.value.location is not None and error.value.location.line == 5
-    assert "attribute 'velocity' of <limit> is the number 6.28" in error.value.message
+    assert "attribute 'velocity' of <limit> is the float 6.28" in error.value.message
 
 
 def test_did_you_mean_never_names_the_name_itself():

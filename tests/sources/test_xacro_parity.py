@@ -427,16 +427,16 @@ def test_arguments_xacro_takes_without_a_declaration_here_are_taken(tmp_path):
         '  <xacro:if value="$(arg use_gazebo)">\n'
         '    <xacro:include filename="${here}/gazebo.xacro"/>\n'
         "  </xacro:if>\n"
-        '  <link name="base"/><link name="arm"/>\n'
+        '  <link name="base"/><link name="arm"/><link name="$(eval \'tool_\' + side)"/>\n'
         '  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>\n'
         '    <limit effort="1" velocity="1" lower="$(eval -1.0 * joint_range)" '
         'upper="$(eval joint_range)"/></joint>\n'
         "</robot>\n",
     )
-    args = {"joint_range": "2.5", "gazebo_controllers": "/tmp/c.yaml"}
+    args = {"joint_range": "2.5", "gazebo_controllers": "/tmp/c.yaml", "side": "left"}
     assert assert_agrees(source, tmp_path / "both", args) is not None
     resolver = PackageResolver({}, {})
     expand_xacro(source, args, resolver, args_key="robot.yaml source.args")
     with pytest.raises(ManifestError, match="did you mean 'use_gazebo'"):
-        misspelt = {"joint_range": "2.5", "use_gazeb": "true"}
+        misspelt = {"joint_range": "2.5", "side": "left", "use_gazeb": "true"}
         expand_xacro(source, misspelt, resolver, args_key="robot.yaml source.args")
