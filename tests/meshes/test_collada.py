@@ -215,7 +215,30 @@ def test_a_concave_polygon_is_ear_clipped_and_keeps_its_winding(tmp_path):
     corners = part.vertices[part.faces]
     normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     assert np.all(normals[:, 2] > 0)  # every triangle faces as the polygon does
-    # A convex polygon keeps its fan (the quad of the other tests: [[0, 1, 2], [0, 2, 3]]).
+    # A corner written twice in a row, and polygons of no corners beside it, change nothing.
+    doubled = L_SHAPE.replace('count="18">2 1 0 1 1 0', 'count="21">2 1 0 1 1 0 1 1 0')
+    doubled = doubled.replace('count="6" stride="3"', 'count="7" stride="3"')
+    doubled = doubled.replace(
+        "<vcount>6</vcount><p>0 1 2 3 4 5</p>", "<vcount>7 0</vcount><p>0 1 2 3 4 5 6</p>"
+    )
+    doubled = doubled.replace('<polylist count="1">', '<polylist count="2">')
+    (part,) = read_collada(write(tmp_path / "d.dae", _prism_free(doubled))).parts
+    assert _area(part) == pytest.approx(3.0)
+
+
+def test_a_convex_polygon_keeps_its_fan_beside_a_concave_one():
+    from mjcfbuild.meshes.collada import polygon_triangles
+
+    square = np.array([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], dtype=float)
+    notched = np.array(
+        [(2, 1, 0), (1, 1, 0), (1, 2, 0), (0, 2, 0), (0, 0, 0), (2, 0, 0)], dtype=float
+    )
+    faces = polygon_triangles(np.array([4, 6, 4]), np.vstack([square, notched, square]))
+    assert faces[:2].tolist() == [[0, 1, 2], [0, 2, 3]] and faces[-2:].tolist() == [
+        [10, 11, 12],
+        [10, 12, 13],
+    ]
+    assert faces[2:6].tolist() != [[4, 5, 6], [4, 6, 7], [4, 7, 8], [4, 8, 9]]  # not the fan
 
 
 def test_x_up_data_is_turned_as_the_spec_s_axes_say(tmp_path):
@@ -275,3 +298,31 @@ def test_a_scene_naming_no_visual_scene_and_a_polylist_without_vcount_are_errors
         read_collada(
             write(tmp_path / "v.dae", dae(no_vcount, scene=scene(f"<node>{INSTANCE}</node>")))
         )
+
+
+@pytest.mark.parametrize(
+    ("accessor", "says"),
+    [
+        ('offset="x"', r'offset="x", which is no index'),
+        ("unnamed", r"names none of its <param>s"),
+    ],
+)
+def test_an_accessor_that_gives_no_values_is_an_error_at_its_line(tmp_path, accessor, says):
+    body = """
+  <source id="p"><float_array id="pa" count="9">0 0 0 1 0 0 0 1 0</float_array>
+    <technique_common><accessor source="#pa" count="3" stride="3" OFFSET>PARAMS</accessor>
+    </technique_common></source>
+  <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+  <triangles count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>0 1 2</p></triangles>"""
+    params = '<param type="float"/>' * 3 if accessor == "unnamed" else XYZ_PARAMS
+    body = body.replace("OFFSET", accessor if accessor != "unnamed" else "").replace(
+        "PARAMS", params
+    )
+    with pytest.raises(InputError, match=says) as error:
+        read_collada(write(tmp_path / "a.dae", _prism_free(body)))
+    assert error.value.location is not None and error.value.location.line
+
+
+XYZ_PARAMS = (
+    '<param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>'
+)
