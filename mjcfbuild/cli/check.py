@@ -381,8 +381,8 @@ def _up_to_date(ctx) -> int:
     if not stale:
         behind = report_behind(ctx)
         after = (
-            f" (its report is not: {', '.join(behind)} did not run since; mjcfbuild build "
-            "brings it up to date)"
+            f" (its report is not: {', '.join(behind)} did not complete since their inputs "
+            "changed; mjcfbuild build runs them)"
             if behind
             else ""
         )

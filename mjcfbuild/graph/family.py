@@ -107,7 +107,7 @@ def file_task(
         "targets": [str(p) for p in targets],
         "uptodate": [
             ParamsUnchanged(params),
-            outputs_intact(ctx.session.hashes),
+            outputs_intact(ctx.session.hashes, ctx.out_dir),
             *(extra_uptodate or []),
         ],
         "verbosity": 0,

@@ -53,8 +53,9 @@ def _differences(old: object, new: object, prefix: str) -> list[str]:
 # mypy does not know attributes set on a function, hence the attr-defined ignores.
 
 
-def outputs_intact(hashes: HashCache) -> Callable:
-    """An uptodate check: the outputs recorded by the last run still have their bytes."""
+def outputs_intact(hashes: HashCache, out_dir: Path) -> Callable:
+    """An uptodate check: the outputs recorded by the last run still have their bytes (those
+    of the output folder ``out_dir``, named by where they are in it)."""
 
     def check(task: Any, values: dict) -> bool | None:
         outputs = values.get("outputs")
@@ -64,7 +65,7 @@ def outputs_intact(hashes: HashCache) -> Callable:
         for path, digest in outputs.items():
             try:
                 if hashes.md5(path) != digest:
-                    check.reason = _changed_output(path)  # type: ignore[attr-defined]
+                    check.reason = _changed_output(path, out_dir)  # type: ignore[attr-defined]
                     return False
             except OSError:
                 check.reason = f"output deleted since it was built: {path}"  # type: ignore[attr-defined]
@@ -75,14 +76,16 @@ def outputs_intact(hashes: HashCache) -> Callable:
     return check
 
 
-def _changed_output(path: str) -> str:
+def _changed_output(path: str, out_dir: Path) -> str:
     """Why a task whose output ``path`` no longer holds what its last run wrote is stale. The
     build's own records and report pictures change only when a build is cut short, and no
     build stops at them; a published output may have been edited by hand."""
+    import os
+
     from mjcfbuild.ownership import STATE_DIR
 
-    folders = Path(path).parts[-5:-1]  # those in the output folder (products/x/ at most)
-    if STATE_DIR in folders or "report" in folders:
+    first = Path(os.path.relpath(path, out_dir)).parts[0]
+    if first in (STATE_DIR, "report"):
         return f"output changed since its task last finished (a build cut short): {path}"
     return (
         f"output edited since it was built: {path} (a build stops at it unless git has it in HEAD)"
