@@ -560,7 +560,8 @@ def _place_failure(
                 line = _line_of(file, re.escape(expression.group(1)), after=start)
                 if line is not None:
                     return file, line, message, hint
-        pattern = rf"<xacro:{re.escape(name)}\b"
+        # A call of a macro from an include's namespace is written <xacro:ns.name ...>.
+        pattern = rf"<xacro:(?:[\w.]+\.)?{re.escape(name)}\b"
         places = places[1:]
         declared = [param.lstrip("*") for param in macro.params]
         invalid = re.search(r'Invalid parameter "([^"]+)"', message)
@@ -580,10 +581,18 @@ def _place_failure(
         # found where it is written, as ${...} or $(...) text.
         expression = re.search(r"when evaluating expression '(.*)'", str(exc))
         missing_default = "xacro:arg: missing attribute 'default'" in message
-        if expression is not None:
+        block = re.search(r'Undefined block "([^"]+)"', message)
+        circular = re.search(r"circular variable definition: (\S+) ->", message)
+        if circular is not None:  # before the expressions, which name only a property
+            pattern = rf"<xacro:property\s[^>]*name=[\"']{re.escape(circular.group(1))}[\"']"
+            hint = "define the property from values that do not lead back to it"
+        elif expression is not None:
             pattern = re.escape(expression.group(1))
         elif missing_default:
             pattern = r"<xacro:arg\b(?![^>]*\bdefault=)"
+        elif block is not None:
+            pattern = rf"<xacro:insert_block\s[^>]*name=[\"']{re.escape(block.group(1))}[\"']"
+            hint = "insert a block the macro declares as a *param, or a property's lazy block"
         else:
             return current, None, message, hint
     for file, start in places:

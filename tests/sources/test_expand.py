@@ -404,3 +404,43 @@ def test_did_you_mean_never_names_the_name_itself():
 
     assert did_you_mean("size", {"size", "sizes"}) == "; did you mean 'sizes'?"
     assert did_you_mean("size", {"size"}) == ""
+
+
+ROBOT = '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n{}\n</robot>\n'
+
+
+@pytest.mark.parametrize(
+    ("body", "line", "says"),
+    [
+        (
+            '<xacro:include filename="hand.xacro" ns="grip"/>\n<link name="base"/>\n'
+            '<xacro:grip.finger prefix="a" parnet="base"/>',
+            4,
+            "did you mean 'parent'?",
+        ),
+        ('<link name="base">\n<xacro:insert_block name="nope"/></link>', 3, 'block "nope"'),
+        (
+            '<link name="base"/>\n<xacro:property name="a" value="${b}"/>\n'
+            '<xacro:property name="b" value="${a}"/>\n<link name="${a}"/>',
+            3,
+            "circular variable definition",
+        ),
+    ],
+    ids=["namespaced-call", "undefined-block", "circular-property"],
+)
+def test_failures_xacro_names_no_line_for_are_placed(tmp_path, body, line, says):
+    """xacro's message gave no line for these (a call of a macro from an ns= include, an
+    undefined block); a circular property was placed at the <robot> line."""
+    write(
+        tmp_path / "hand.xacro",
+        ROBOT.format(
+            '<xacro:macro name="finger" params="prefix parent"><link name="${prefix}f"/>'
+            "</xacro:macro>"
+        ),
+    )
+    source = write(tmp_path / "r.urdf.xacro", ROBOT.format(body))
+    with pytest.raises(InputError) as error:
+        expand_xacro(source, {}, PackageResolver({}, {}))
+    assert error.value.location is not None
+    assert (error.value.location.file, error.value.location.line) == (str(source), line)
+    assert says in error.value.message
