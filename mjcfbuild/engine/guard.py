@@ -310,8 +310,10 @@ def _users_files(ctx: BuildContext) -> tuple[list[str], list[str], str]:
     ):
         found = sorted(name for name in before.files if written_file(ctx.out_dir, name))
         # No record of what the build wrote (a fresh clone, the state folder removed): an
-        # output whose bytes are not HEAD's is an edit all the same.
-        edits = _modified_in_git(ctx)
+        # output whose bytes are not HEAD's is an edit all the same, and so is one whose bytes
+        # are not those the last build here wrote, as its no-op stamp (outside the folder)
+        # remembers them: a model git ignores, edited, then the state folder removed.
+        edits = sorted({*_modified_in_git(ctx), *_edited_outputs(ctx, _stamped_outputs(ctx))})
     else:
         found = []
         for folder in [ctx.out_dir, *build_folders(ctx)]:
@@ -346,6 +348,29 @@ def _modified_in_git(ctx: BuildContext) -> list[str]:
     names = (Path(os.path.relpath(path, out)).as_posix() for path in git_modified(out))
     state = ctx.state_dir.name + "/"
     return sorted(n for n in names if not n.startswith(state) and written_file(ctx.out_dir, n))
+
+
+def _stamped_outputs(ctx: BuildContext) -> dict[str, str | None]:
+    """The files the last successful build of robot.yaml wrote in the output folder (names
+    relative to it, posix), each with the MD5 its no-op stamp recorded; empty without one."""
+    from mjcfbuild.engine import stamp
+
+    if ctx.manifest_file is None or ctx.output_override is not None:
+        return {}
+    recorded = stamp.recorded(ctx.manifest_file, ctx.run_check) or stamp.recorded(
+        ctx.manifest_file, not ctx.run_check
+    )
+    if recorded is None:
+        return {}
+    out = os.path.normpath(ctx.out_dir)
+    found: dict[str, str | None] = {}
+    for path in recorded.written:
+        name = Path(os.path.relpath(path, out)).as_posix()
+        entry = recorded.files.get(path)
+        if name.startswith(("../", ctx.state_dir.name + "/")) or not isinstance(entry, list):
+            continue
+        found[name] = entry[1] if len(entry) > 1 and isinstance(entry[1], str) else None
+    return found
 
 
 def _edited_outputs(ctx: BuildContext, names: dict[str, str | None]) -> list[str]:

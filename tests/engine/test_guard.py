@@ -421,3 +421,20 @@ def test_a_model_in_a_merge_conflict_is_rebuilt_and_said_so(arm):
         "the built model resolves it (`git add` it)"
     ) in result.stdout.splitlines(), result.stdout
     assert "<<<<<<<" not in (arm / "mjcf" / "example_arm.xml").read_text()
+
+
+def test_an_edit_git_cannot_give_back_survives_the_state_folder_removed(arm):
+    """A model git ignores, tuned by hand, then `rm -rf mjcf/.mjcfbuild`: with no record,
+    the build took the model for a fresh clone's and wrote over the tuning. The no-op stamp,
+    kept outside the folder, still knows the bytes the build wrote."""
+    import shutil
+
+    assert run_cli("build", "-q", "--no-check", cwd=arm).code == 0
+    model = arm / "mjcf" / "example_arm.xml"
+    tuned = model.read_text().replace("<mujoco", "<!-- tuned -->\n<mujoco", 1)
+    model.write_text(tuned)
+    shutil.rmtree(arm / "mjcf" / ".mjcfbuild")
+    result = run_cli("build", "-q", "--no-check", cwd=arm)
+    assert result.code == EXIT_OUTPUT, result.stderr
+    assert "example_arm.xml: was edited" in result.stderr
+    assert model.read_text() == tuned
