@@ -582,6 +582,8 @@ def _place_failure(
         expression = re.search(r"when evaluating expression '(.*)'", str(exc))
         missing_default = "xacro:arg: missing attribute 'default'" in message
         block = re.search(r'Undefined block "([^"]+)"', message)
+        # $(...) inside $(...): xacro reads the inner one's text up to its first ')'.
+        nested = re.search(r"invalid expression: (\$\(.+)", message)
         circular = re.search(r"circular variable definition: (\S+) ->", message)
         if circular is not None:  # before the expressions, which name only a property
             pattern = rf"<xacro:property\s[^>]*name=[\"']{re.escape(circular.group(1))}[\"']"
@@ -590,6 +592,9 @@ def _place_failure(
             pattern = re.escape(expression.group(1))
         elif missing_default:
             pattern = r"<xacro:arg\b(?![^>]*\bdefault=)"
+        elif nested is not None:
+            pattern = re.escape(nested.group(1).strip())
+            hint = "xacro does not read $(...) inside $(...): set a property or ${...} first"
         elif block is not None:
             pattern = rf"<xacro:insert_block\s[^>]*name=[\"']{re.escape(block.group(1))}[\"']"
             hint = "insert a block the macro declares as a *param, or a property's lazy block"

@@ -425,8 +425,14 @@ ROBOT = '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n{}\n</rob
             3,
             "circular variable definition",
         ),
+        (
+            '<xacro:arg name="arm_id" default="fr3"/>\n<link name="base"/>\n'
+            '<link name="$(optenv ARM_ID_UNSET $(arg arm_id))_link0"/>',
+            4,
+            "invalid expression: $(arg arm_id",
+        ),
     ],
-    ids=["namespaced-call", "undefined-block", "circular-property"],
+    ids=["namespaced-call", "undefined-block", "circular-property", "nested-substitution"],
 )
 def test_failures_xacro_names_no_line_for_are_placed(tmp_path, body, line, says):
     """xacro's message gave no line for these (a call of a macro from an ns= include, an
