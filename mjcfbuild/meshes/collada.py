@@ -182,8 +182,15 @@ def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
         vertices = np.concatenate([p[0] for p in pieces])
         offsets = np.cumsum([0] + [len(p[0]) for p in pieces[:-1]])
         faces = np.concatenate([p[1] + o for p, o in zip(pieces, offsets, strict=True)])
-        has_uv = all(p[2] is not None for p in pieces)
-        uv = np.concatenate([p[2] for p in pieces]) if has_uv else None
+        # A textured material used by one primitive with texture coordinates and one without:
+        # the one without reads the texture at (0, 0), as rviz's importer draws it (the texture
+        # was dropped for both).
+        has_uv = any(p[2] is not None for p in pieces)
+        uv = (
+            np.concatenate([p[2] if p[2] is not None else np.zeros((len(p[0]), 2)) for p in pieces])
+            if has_uv
+            else None
+        )
         rgba, texture = _material_look(reader, material)
         parts.append(ColladaPart(material, vertices, faces, uv if texture else None, rgba, texture))
     return ColladaMesh(parts, up_axis, unit)

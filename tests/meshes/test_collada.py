@@ -326,3 +326,21 @@ def test_an_accessor_that_gives_no_values_is_an_error_at_its_line(tmp_path, acce
 XYZ_PARAMS = (
     '<param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>'
 )
+
+
+def test_a_textured_material_keeps_its_texture_where_one_primitive_has_no_coordinates(tmp_path):
+    """One primitive with texture coordinates, one without, one textured material: the
+    texture was dropped for both (grey); the one without reads it at (0, 0), as rviz does."""
+    checker_png(tmp_path / "skin.png")
+    plain = (
+        '<triangles material="m" count="1"><input semantic="VERTEX" source="#v" offset="0"/>'
+        "<p>0 1 2</p></triangles>"
+    )
+    body = QUAD.replace("</polylist>", "</polylist>" + plain)
+    body += MATERIAL.format(diffuse='<texture texture="samp" texcoord="UV"/>')
+    (part,) = read_collada(
+        write(tmp_path / "q.dae", dae(body, scene=scene(f"<node>{INSTANCE}</node>")))
+    ).parts
+    assert part.texture == tmp_path / "skin.png"
+    assert part.uv is not None and part.uv.tolist()[-1] == [0.0, 0.0]
+    assert part.uv.tolist()[2] == [1.0, 1.0]
