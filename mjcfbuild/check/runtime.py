@@ -61,8 +61,9 @@ def check_runtime(model, control: Ros2Control) -> tuple[dict, list[str], list[st
     devices = [_device(model, sensor, failures) for sensor in control.sensors if sensor.kind]
     failures += _unmatched_tendon_actuators(model)
     failures += _missing_keyframe(model, control.hardware.get("initial_keyframe"))
-    failures += _unmatched_transmissions(model, control)
-    warnings = _refusals(joints) + _effort_on_dcmotors(joints)
+    unmatched, elsewhere = _unmatched_transmissions(model, control)
+    failures += unmatched
+    warnings = _refusals(joints) + _effort_on_dcmotors(joints) + elsewhere
     return {"joints": joints, "sensors": sensors, "devices": devices}, failures, warnings
 
 
@@ -103,13 +104,21 @@ def _missing_keyframe(model, keyframe: str | None) -> list[str]:
     ]
 
 
-def _unmatched_transmissions(model, control: Ros2Control) -> list[str]:
+# The hardware plugin of mujoco_ros2_control: a <ros2_control> block naming another one (a
+# real robot's driver) is not run by it as written.
+RUNTIME_PLUGIN = "mujoco_ros2_control/MujocoSystemInterface"
+
+
+def _unmatched_transmissions(model, control: Ros2Control) -> tuple[list[str], list[str]]:
     """A ``<ros2_control>`` transmission's actuators are looked up as joints, then as
     actuators of the model; one that is neither stops the runtime ("Transmission actuator
-    ... not found")."""
+    ... not found"): a failure in a block written for mujoco_ros2_control (or naming no
+    plugin), one warning per other block (a real robot's driver: the runtime would stop only
+    once the plugin is swapped for its own). The failures and the warnings."""
     import mujoco
 
-    failures = []
+    failures: list[str] = []
+    elsewhere: dict[str, list[str]] = {}  # plugin -> its transmissions' missing actuators
     for transmission in control.transmissions:
         if not transmission.in_ros2_control:
             continue
@@ -118,13 +127,26 @@ def _unmatched_transmissions(model, control: Ros2Control) -> list[str]:
                 continue
             if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, name) >= 0:
                 continue
+            if transmission.plugin not in ("", RUNTIME_PLUGIN):
+                elsewhere.setdefault(transmission.plugin, []).append(name)
+                continue
             failures.append(
                 f"transmission {transmission.element} of joint '{transmission.joint}' names "
                 f"actuator '{name}', which is neither a joint nor an actuator of the model: "
                 'mujoco_ros2_control stops at start-up ("Transmission actuator ... not '
                 'found"); name the joint or its actuator'
             )
-    return list(dict.fromkeys(failures))
+    warnings = []
+    for plugin, names in elsewhere.items():
+        names = list(dict.fromkeys(names))
+        shown = ", ".join(f"'{name}'" for name in names[:3])
+        more = f" and {len(names) - 3} more" if len(names) > 3 else ""
+        warnings.append(
+            f"the <ros2_control> block for {plugin} has transmissions naming actuators the "
+            f"model lacks ({shown}{more}): run under mujoco_ros2_control, with its plugin, "
+            "that block would stop at start-up; name the joints (or their actuators) there"
+        )
+    return list(dict.fromkeys(failures)), warnings
 
 
 def _effort_on_dcmotors(joints: list[dict]) -> list[str]:

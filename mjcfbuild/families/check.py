@@ -85,7 +85,7 @@ FAMILY = Family(
     name="check",
     step="mjcfbuild.steps.check:run",
     payload=CheckPayload,
-    format=14,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
+    format=15,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
     # measured again from inside the joint ranges, velocity limits of 1e6 and above taken for
     # none, unstable-state warnings naming their joint; 11: a hold failure of a servo whose
     # keyframe ctrl is not its position says so; 12: check.json holds the console's verdict and
@@ -94,7 +94,8 @@ FAMILY = Family(
     # 14: a free body compared where the URDF places it (a floating joint's origin), a
     # prismatic joint's travel along its unit axis; the runtime's start-up rules for tendon
     # actuators, initial_keyframe and ros2_control transmissions; a part's unnamed joint
-    # found by the name the build gave it; a user's servo not said to lack a URDF effort
+    # found by the name the build gave it; a user's servo not said to lack a URDF effort;
+    # 15: transmissions of a block for another hardware plugin warned of, not failed
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

@@ -63,6 +63,7 @@ class Transmission:
     element: str = ""  # which <transmission> element holds it ("#3": the document's third)
     kind: str = ""  # its type (transmission_interface/SimpleTransmission, a vendor's plugin)
     in_ros2_control: bool = False  # inside a <ros2_control> block, where the runtime reads it
+    plugin: str = ""  # that block's <hardware> <plugin>: the runtime it is written for
 
     def commands(self) -> bool:
         """Whether the transmission commands its joint: it names a hardware interface that
@@ -169,6 +170,7 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
     # ros2_control's own <transmission> (transmission_interface plugins): no hardware
     # interface, but the joint's mechanical_reduction.
     for block in root.findall("ros2_control"):
+        plugin = (block.findtext("hardware/plugin") or "").strip()
         for transmission in block.findall("transmission"):
             actuators = _actuators(transmission)
             element = elements[transmission]
@@ -184,6 +186,7 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                         element,
                         kind,
                         in_ros2_control=True,
+                        plugin=plugin,
                     )
                 )
     return result

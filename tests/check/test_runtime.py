@@ -242,6 +242,18 @@ def test_a_transmission_naming_no_joint_or_actuator_stops_the_runtime(tmp_path):
     assert "of joint 'hinge' names actuator 'actuator1', which is neither a joint" in stderr
     build_two_link(tmp_path / "fixed", urdf_extra=block("hinge"))
     assert check_record(tmp_path / "fixed")["passes"]
+    # A block written for a real robot's driver (TIAGo Pro's robot_control/RobotControl) is
+    # not run by mujoco_ros2_control as written: said, not failed.
+    driver = block("actuator1").replace(
+        "<hardware></hardware>", "<hardware><plugin>robot_control/RobotControl</plugin></hardware>"
+    )
+    result = build_two_link(tmp_path / "driver", urdf_extra=driver)
+    assert check_record(tmp_path / "driver")["passes"]
+    assert any(
+        "the <ros2_control> block for robot_control/RobotControl has transmissions naming "
+        "actuators the model lacks ('actuator1')" in warning
+        for warning in result.warnings
+    ), result.warnings
 
 
 def test_a_tendon_actuator_named_like_no_joint_stops_the_runtime(tmp_path):

@@ -34,12 +34,12 @@ from tests.families.toy_step import ToyPayload
 # that family's tasks in every folder built before.
 BEFORE_FORMATS = {
     "expand": 4,
-    "plan": 13,
+    "plan": 14,
     "mesh": 10,
     "decompose": 3,
     "assemble": 20,
     "scene": 3,
-    "check": 14,
+    "check": 15,
     "reference": 1,
     "previews": 5,
     "tuning": 1,
