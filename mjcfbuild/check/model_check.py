@@ -18,7 +18,7 @@ from mjcfbuild.check.control import check_control, menagerie_test, outside_at_qp
 from mjcfbuild.check.findings import Problem, structural_first
 from mjcfbuild.check.joints import compare_joints
 from mjcfbuild.check.kinematics import compare_kinematics
-from mjcfbuild.check.loading import AssetSource, compile_model
+from mjcfbuild.check.loading import AssetSource, compile_model, without_sensors
 from mjcfbuild.check.masses import compare_masses
 from mjcfbuild.check.meshstats import mesh_statistics
 from mjcfbuild.check.precision import relative_tolerance
@@ -82,7 +82,7 @@ def check_model(
     # The scene includes the model, so one load serves every check (meshes load once).
     path = simulate_path or model_path
     try:
-        model = compile_model(path, sources)
+        model = without_sensors(compile_model(path, sources))
     except Exception as exc:
         line = f"{path.name} does not load: {load_error(exc)}"
         return CheckResults(loads=False, failures=[line])

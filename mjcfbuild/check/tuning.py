@@ -109,11 +109,13 @@ def groups_of(actuators: list[dict], rules: list[dict]) -> dict[str, tuple[str, 
 
 
 def stand_spec(spec) -> None:
-    """Make ``spec`` (a copy of the built model) the test stand: contacts off, every free
-    joint removed (its body held where it is), keyframes dropped."""
+    """Make ``spec`` (a copy of the built model) the test stand: contacts and sensors off
+    (nothing reads them; a lidar's rays cost most of a step), every free joint removed (its
+    body held where it is), keyframes dropped."""
     import mujoco
 
     spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT
+    spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_SENSOR
     for joint in list(spec.joints):
         if joint.type == mujoco.mjtJoint.mjJNT_FREE:
             spec.delete(joint)

@@ -216,6 +216,8 @@ def _apply_additions(
         xml = etree.tostring(copy, encoding="unicode")
         try:
             model = mujoco.MjModel.from_xml_string(xml)
+            # The trials read no sensor; a lidar's rays would cost most of each step.
+            model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_SENSOR)
             compiled[id(tree)] = (tree, model)
             return model
         except Exception as exc:
