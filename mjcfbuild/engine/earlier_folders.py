@@ -3,11 +3,12 @@
 Changing ``output.folder`` left the old folder with the old model, scene and assets, looking
 current: a launch file or a colleague went on loading a model no build kept in sync, and
 nothing said so. Every folder a build writes records which robot.yaml owns it
-(``.mjcfbuild/owner.json``, :mod:`mjcfbuild.engine.guard`). Once a build has written the model
-in its folder, the folders in robot.yaml's folder tree that record the same robot.yaml but are
-not its output folder any more lose the files builds wrote there that still hold the bytes a
-build wrote (:mod:`mjcfbuild.engine.written`), their state, and the folders left empty. A file
-the user put there or edited stays, and the build names it.
+(``.mjcfbuild/owner.json``, :mod:`mjcfbuild.engine.guard`), and where that robot.yaml put it.
+Once a build has written the model anew in its folder, the folders in robot.yaml's folder tree
+that record the same robot.yaml and their own place (not a copy or a move: a snapshot) but
+are not its output folder any more lose the files builds wrote there that still hold the
+bytes a build wrote (:mod:`mjcfbuild.engine.written`), their state, and the folders left
+empty. A file the user put there or edited stays, and the build names it.
 """
 
 from __future__ import annotations
