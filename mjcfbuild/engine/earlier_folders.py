@@ -8,7 +8,9 @@ Once a build has written the model anew in its folder, the folders in robot.yaml
 that record the same robot.yaml and their own place (not a copy or a move: a snapshot) but
 are not its output folder any more lose the files builds wrote there that still hold the
 bytes a build wrote (:mod:`mjcfbuild.engine.written`), their state, and the folders left
-empty. A file the user put there or edited stays, and the build names it.
+empty. A file the user put there or edited stays, and the build names it; the edited ones
+stay recorded as the user's (``.mjcfbuild/foreign.json``, as ``clean`` leaves them), so a
+build into that folder again stops at them.
 """
 
 from __future__ import annotations
