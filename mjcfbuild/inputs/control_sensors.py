@@ -34,29 +34,12 @@ _FRAME_SENSORS = {"framequat", "framepos"}
 
 
 def add_control_sensors(
-    root: etree._Element,
-    control: Ros2Control,
-    links: dict[str, LinkPlace],
-    part_sensors: dict[str, str] | None = None,
+    root: etree._Element, control: Ros2Control, links: dict[str, LinkPlace]
 ) -> None:
     """Write the MJCF sensors the runtime looks up for ``control``'s sensors into the model
-    tree ``root`` (the check's mujoco_ros2_control section lists them). ``part_sensors``: the
-    sensors MJCF parts brought, by name, each with the part's ``prefix`` key in robot.yaml;
-    one named as a sensor written here is refused (docs/composition.md)."""
+    tree ``root`` (the check's mujoco_ros2_control section lists them)."""
     existing = {element.get("name") for element in _sensor_section(root, create=False)}
     for sensor in control.sensors:
-        for expected in expected_sensors(sensor):
-            where = (part_sensors or {}).get(expected.name)
-            if where is not None:
-                from mjcfbuild.errors import ManifestError
-
-                raise ManifestError(
-                    f"the prefix names a sensor of the part '{expected.name}', which is the "
-                    f"name the build gives the {expected.tag} of ros2_control sensor "
-                    f"'{sensor.name}' (mujoco_ros2_control reads it by that name)",
-                    file=where,
-                    hint="choose another prefix, or rename the part's sensor",
-                )
         wanted = [e for e in expected_sensors(sensor) if e.name not in existing]
         if not wanted:
             continue

@@ -197,12 +197,7 @@ def _apply_additions(
         [c.name for c in inputs.of(CameraInput)] + gazebo.cameras,
         result.lidar_sensors + gazebo.lidars,
     )
-    part_sensors = {
-        part.prefix + name: f"{part.key}.prefix"
-        for part in options.parts
-        for name in part.summary.names.get("sensor", [])
-    }
-    add_control_sensors(root, control, links, part_sensors)
+    add_control_sensors(root, control, links)
     write_excludes(root, options.excludes)
     unroll_lidar_rays(root)  # MuJoCo compiles a replicated lidar's rays in quadratic time
 

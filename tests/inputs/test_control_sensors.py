@@ -178,32 +178,3 @@ def test_a_sensor_the_build_cannot_place_is_one_line_with_the_urdf_line(tmp_path
     line = two_link_urdf(extra=block).splitlines().index(sensor) + 1
     assert f"robot.urdf:{line}:" in error[0], error[0]
     assert "Traceback" not in result.stderr
-
-
-def test_a_part_sensor_named_as_a_sensor_the_build_writes_is_refused_at_its_prefix(tmp_path):
-    """docs/composition.md promises the clash error for a part's sensor: the build skipped
-    its own sensor for the part's (on the part's frame, perhaps another type), silently."""
-    from mjcfbuild.errors import BuildFailed
-
-    imu = (
-        '<ros2_control name="s" type="system"><hardware><plugin>x</plugin></hardware>'
-        '<sensor name="grip"><param name="mujoco_type">imu</param>'
-        '<param name="frame_name">arm</param></sensor></ros2_control>'
-    )
-    write(tmp_path / "robot.urdf", two_link_urdf(extra=imu))
-    write(
-        tmp_path / "hand.xml",
-        '<mujoco><worldbody><body name="palm"><geom size="0.02" mass="0.1"/>'
-        '<site name="s"/></body></worldbody>'
-        '<sensor><accelerometer name="quat" site="s"/></sensor></mujoco>',
-    )
-    write(
-        tmp_path / "robot.yaml",
-        "name: r\nsource: {urdf: robot.urdf}\n"
-        "attach:\n  - source: {mjcf: hand.xml}\n    to: arm\n    prefix: grip_\n",
-    )
-    with pytest.raises(BuildFailed) as failed:
-        mjcfbuild.build(tmp_path / "robot.yaml", check=False)
-    message = str(failed.value)
-    assert "'grip_quat', which is the name the build gives the framequat of ros2_control" in message
-    assert "attach[0].prefix" in message
