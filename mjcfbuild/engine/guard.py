@@ -352,8 +352,11 @@ def _modified_in_git(ctx: BuildContext) -> list[str]:
 
 def _stamped_outputs(ctx: BuildContext) -> dict[str, str | None]:
     """The files the last successful build of robot.yaml wrote in the output folder (names
-    relative to it, posix), each with the MD5 its no-op stamp recorded; empty without one."""
+    relative to it, posix), each with the MD5 its no-op stamp recorded; empty without one.
+    Every build discards both kinds of stamp when it starts, so the one left is the last
+    build's. The report is left out: ``check`` rewrites it without a stamp of its own."""
     from mjcfbuild.engine import stamp
+    from mjcfbuild.outputs import report_dir
 
     if ctx.manifest_file is None or ctx.output_override is not None:
         return {}
@@ -363,13 +366,15 @@ def _stamped_outputs(ctx: BuildContext) -> dict[str, str | None]:
     if recorded is None:
         return {}
     out = os.path.normpath(ctx.out_dir)
+    report = Path(os.path.relpath(report_dir(ctx), out)).as_posix() + "/"
     found: dict[str, str | None] = {}
     for path in recorded.written:
         name = Path(os.path.relpath(path, out)).as_posix()
         entry = recorded.files.get(path)
-        if name.startswith(("../", ctx.state_dir.name + "/")) or not isinstance(entry, list):
+        if name.startswith(("../", ctx.state_dir.name + "/", report)):
             continue
-        found[name] = entry[1] if len(entry) > 1 and isinstance(entry[1], str) else None
+        if isinstance(entry, list):
+            found[name] = entry[1] if len(entry) > 1 and isinstance(entry[1], str) else None
     return found
 
 

@@ -224,7 +224,10 @@ def _build_locked(
     build began, for the line announcing the model."""
     tasks: list[dict] = []
     if ctx.stamp_key is not None:  # whichever way it was started
-        stamp.discard(ctx.stamp_key, ctx.run_check)
+        # Both kinds (with and without the check): the outputs this build writes must not be
+        # compared later with an older build's record of them (engine.guard's fallback).
+        for run_check in (True, False):
+            stamp.discard(ctx.stamp_key, run_check)
     prepare_state(ctx)
     remove_stale_variant(ctx)
     # Workers start while this process plans, importing until their first step comes.

@@ -79,9 +79,10 @@ class StepFormat:
 # mesh 8: COLLADA lookat/skew placements and nonsense units refused, not ignored; 9: a mesh
 # whose every triangle is degenerate refused at its file, not passed to MuJoCo; 10: COLLADA's
 # X_UP turned as the spec's table says, concave polygons ear-clipped, accessor offsets and
-# unnamed params, TEXCOORDs of <vertices>, the common profile's colour, a missing scene refused
+# unnamed params, TEXCOORDs of <vertices>, the common profile's colour, a missing scene refused;
+# 11: a textured material keeps its texture where a primitive has no texture coordinates
 MESH = StepFormat(
-    "mesh", 10, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy")
+    "mesh", 11, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy")
 )
 DECOMPOSE = StepFormat("decompose", 3, ("coacd", "trimesh", "numpy", "scipy"))
 # selfcollision 4: a URDF floating joint from `world` floats the robot (its standing home)

@@ -438,3 +438,17 @@ def test_an_edit_git_cannot_give_back_survives_the_state_folder_removed(arm):
     assert result.code == EXIT_OUTPUT, result.stderr
     assert "example_arm.xml: was edited" in result.stderr
     assert model.read_text() == tuned
+
+
+def test_without_the_state_folder_no_output_a_build_wrote_is_taken_for_an_edit(arm):
+    """The stamp of the other kind of build (with or without the check), or a report `check`
+    rewrote, was taken for edits: the build stopped at files nobody edited."""
+    import shutil
+
+    for argv in (["--no-check"], [], ["--no-check"]):
+        assert run_cli("build", "-q", *argv, cwd=arm).code == 0
+        assert run_cli("check", "-q", cwd=arm).code == 0
+        shutil.rmtree(arm / "mjcf" / ".mjcfbuild")
+    for argv in ([], ["--no-check"]):
+        result = run_cli("build", "-q", *argv, cwd=arm)
+        assert result.code == 0, result.stderr

@@ -35,7 +35,7 @@ from tests.families.toy_step import ToyPayload
 BEFORE_FORMATS = {
     "expand": 4,
     "plan": 14,
-    "mesh": 10,
+    "mesh": 11,
     "decompose": 3,
     "assemble": 20,
     "scene": 3,
@@ -107,7 +107,7 @@ def test_the_derived_tables_are_the_ones_the_engine_kept_before():
         "mjcfbuild.steps.decompose:run": "decompose",
     }
     version = registry.step_versions("mesh")
-    assert version["mjcfbuild-step"] == "mesh-10" and version["mjcfbuild"] == mjcfbuild.__version__
+    assert version["mjcfbuild-step"] == "mesh-11" and version["mjcfbuild"] == mjcfbuild.__version__
     assert list(version)[:6] == list(BEFORE_TOOLS["mesh"])
 
 
