@@ -93,16 +93,6 @@ def compile_model(path: Path, sources: dict[str, AssetSource] | None = None) -> 
     return spec_reading_sources(path, sources).compile()
 
 
-def without_sensors(model: Any) -> Any:
-    """``model`` with its sensors off, for a simulation that reads none (the check's and the
-    tuning report's): a lidar the build unrolled into 1,639 rangefinders (TIAGo Pro's) cast
-    every ray each step, 9 ms a step, and the check took 53 s instead of 0.4."""
-    import mujoco
-
-    model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_SENSOR)
-    return model
-
-
 def spec_reading_sources(path: Path, sources: dict[str, AssetSource]) -> Any:
     """The MjSpec of the MJCF file at ``path``, each mesh and texture that is byte-identical
     to its product in ``sources`` (by asset file name) read from the product's binary copy

@@ -18,7 +18,7 @@ from mjcfbuild.check.control import check_control, menagerie_test, outside_at_qp
 from mjcfbuild.check.findings import Problem, structural_first
 from mjcfbuild.check.joints import compare_joints
 from mjcfbuild.check.kinematics import compare_kinematics
-from mjcfbuild.check.loading import AssetSource, compile_model, without_sensors
+from mjcfbuild.check.loading import AssetSource, compile_model
 from mjcfbuild.check.masses import compare_masses
 from mjcfbuild.check.meshstats import mesh_statistics
 from mjcfbuild.check.precision import relative_tolerance
@@ -36,6 +36,7 @@ from mjcfbuild.check.results import (
 )
 from mjcfbuild.check.simulation import simulate
 from mjcfbuild.mjerrors import load_error
+from mjcfbuild.mjsensors import without_sensors
 from mjcfbuild.mjstopped import SimulationStopped, simulating
 from mjcfbuild.urdf.model import Robot
 

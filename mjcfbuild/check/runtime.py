@@ -104,9 +104,10 @@ def _missing_keyframe(model, keyframe: str | None) -> list[str]:
     ]
 
 
-# The hardware plugin of mujoco_ros2_control: a <ros2_control> block naming another one (a
-# real robot's driver) is not run by it as written.
-RUNTIME_PLUGIN = "mujoco_ros2_control/MujocoSystemInterface"
+# The hardware plugins of mujoco_ros2_control (MujocoSystemInterface, and older names) share
+# its package's prefix: a <ros2_control> block naming another (a real robot's driver) is not
+# run by it as written.
+RUNTIME_PLUGINS = "mujoco_ros2_control/"
 
 
 def _unmatched_transmissions(model, control: Ros2Control) -> tuple[list[str], list[str]]:
@@ -127,7 +128,7 @@ def _unmatched_transmissions(model, control: Ros2Control) -> tuple[list[str], li
                 continue
             if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, name) >= 0:
                 continue
-            if transmission.plugin not in ("", RUNTIME_PLUGIN):
+            if transmission.plugin and not transmission.plugin.startswith(RUNTIME_PLUGINS):
                 elsewhere.setdefault(transmission.plugin, []).append(name)
                 continue
             failures.append(
@@ -142,9 +143,9 @@ def _unmatched_transmissions(model, control: Ros2Control) -> tuple[list[str], li
         shown = ", ".join(f"'{name}'" for name in names[:3])
         more = f" and {len(names) - 3} more" if len(names) > 3 else ""
         warnings.append(
-            f"the <ros2_control> block for {plugin} has transmissions naming actuators the "
-            f"model lacks ({shown}{more}): run under mujoco_ros2_control, with its plugin, "
-            "that block would stop at start-up; name the joints (or their actuators) there"
+            f"<ros2_control> transmissions for the hardware plugin {plugin} name actuators "
+            f"the model lacks ({shown}{more}): run under mujoco_ros2_control, with its "
+            "plugin, they would stop it at start-up; name the joints (or their actuators) there"
         )
     return list(dict.fromkeys(failures)), warnings
 

@@ -34,6 +34,7 @@ from mjcfbuild.mjcf.depth import refuse_deep_bodies
 from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
 from mjcfbuild.mjcf.precise import precise_xml
 from mjcfbuild.mjcf.prepared import Decomposition, GeomRecord, Prepared, prepare
+from mjcfbuild.mjsensors import without_sensors
 from mjcfbuild.mjwarnings import capture_mujoco_warnings, take_mujoco_warnings
 from mjcfbuild.urdf.model import Robot
 
@@ -210,9 +211,7 @@ def _apply_additions(
             _drop_drawing_meshes(copy)
         xml = etree.tostring(copy, encoding="unicode")
         try:
-            model = mujoco.MjModel.from_xml_string(xml)
-            # The trials read no sensor; a lidar's rays would cost most of each step.
-            model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_SENSOR)
+            model = without_sensors(mujoco.MjModel.from_xml_string(xml))  # trials read none
             compiled[id(tree)] = (tree, model)
             return model
         except Exception as exc:

@@ -160,30 +160,3 @@ def test_a_build_records_the_product_of_every_asset(tmp_path, monkeypatch):
     from_copies = compile_model(result.robot, sources)
     assert published.mesh_vert.tobytes() == from_copies.mesh_vert.tobytes()
     assert published.mesh_face.tobytes() == from_copies.mesh_face.tobytes()
-
-
-def test_the_checks_simulations_run_without_the_models_sensors():
-    """A lidar unrolled into rangefinders casts every ray each step: TIAGo Pro's 1,639 made
-    its check take 53 s. The simulations read no sensor; their results are the same."""
-    import mujoco
-    import numpy as np
-
-    from mjcfbuild.check.loading import without_sensors
-
-    rays = "".join(f'<rangefinder site="s" name="r{i}"/>' for i in range(50))
-    xml = (
-        '<mujoco><worldbody><geom type="plane" size="1 1 1"/><body pos="0 0 0.3">'
-        '<freejoint/><geom size="0.05"/><site name="s"/></body></worldbody>'
-        f"<sensor>{rays}</sensor></mujoco>"
-    )
-    with_sensors = mujoco.MjModel.from_xml_string(xml)
-    without = without_sensors(mujoco.MjModel.from_xml_string(xml))
-    poses = []
-    for model in (with_sensors, without):
-        data = mujoco.MjData(model)
-        for _ in range(200):
-            mujoco.mj_step(model, data)
-        poses.append(data.qpos.copy())
-        sensed = data.sensordata.copy()
-    assert np.array_equal(poses[0], poses[1])
-    assert not sensed.any()  # computed no more: the rays were not cast

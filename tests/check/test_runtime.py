@@ -250,7 +250,7 @@ def test_a_transmission_naming_no_joint_or_actuator_stops_the_runtime(tmp_path):
     result = build_two_link(tmp_path / "driver", urdf_extra=driver)
     assert check_record(tmp_path / "driver")["passes"]
     assert any(
-        "the <ros2_control> block for robot_control/RobotControl has transmissions naming "
+        "<ros2_control> transmissions for the hardware plugin robot_control/RobotControl name "
         "actuators the model lacks ('actuator1')" in warning
         for warning in result.warnings
     ), result.warnings
