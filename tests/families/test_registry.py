@@ -37,7 +37,7 @@ BEFORE_FORMATS = {
     "plan": 14,
     "mesh": 11,
     "decompose": 3,
-    "assemble": 20,
+    "assemble": 21,
     "scene": 3,
     "check": 15,
     "reference": 1,

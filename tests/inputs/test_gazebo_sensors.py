@@ -354,3 +354,18 @@ def test_two_gazebo_sensors_of_one_name_are_written_once_and_warned(tmp_path):
         and w.endswith("so only that one is written; rename one")
         for w in result.warnings
     ), result.warnings
+
+
+def test_a_lidar_of_hundreds_of_rays_is_said_to_be_most_of_each_step(tmp_path):
+    """MuJoCo casts every rangefinder at each step: TIAGo Pro's 1,639 made a step 9 ms (0.07
+    without). A lidar of 13 rays says nothing; one of 400 says what it costs and the knob."""
+    _, built = build(tmp_path / "small", GAZEBO)
+    assert not any("rangefinders" in warning for warning in built.warnings)
+    many = GAZEBO.replace("<samples>13</samples>", "<samples>400</samples>")
+    model, result = build(tmp_path / "many", many)
+    assert model.nsensor >= 400
+    assert any(
+        warning.startswith("the model's 400 rangefinders (scan) are cast at every simulation step")
+        and "<horizontal><samples>" in warning
+        for warning in result.warnings
+    ), result.warnings
