@@ -98,7 +98,12 @@ class Options(StrictModel):
     """How the robot is turned into a MuJoCo model."""
 
     free_joint: bool = Field(
-        False, description="Give the robot's root body a free joint (a floating base)."
+        False,
+        description=(
+            "Give the robot's root body a free joint (a floating base). For a URDF rooted at "
+            "a `world` link, what the world holds floats as one whole: the heaviest link fixed "
+            "to it gets the free joint and carries the rest."
+        ),
     )
     fuse_static: bool = Field(
         True,

@@ -75,11 +75,15 @@ def build_bodies(robot: Robot, fuse_static: bool, float_from_world: bool = False
     """The bodies of the model, parents before children, in URDF order.
 
     A root link called ``world`` stands for MuJoCo's world body; links fixed to it become
-    static parts of the world when fusing, unless ``float_from_world`` asks for them to stay
-    bodies of their own (they get a free joint).
+    static parts of the world when fusing. ``float_from_world`` (robot.yaml's ``free_joint``
+    on such a URDF) floats what the world holds instead, as one rigid whole, as the URDF joins
+    it: the heaviest link fixed to the world becomes the floating body, and everything else
+    the world holds (a camera mount, a second fixed link, a joint whose parent is ``world``)
+    hangs from it where the URDF puts it, so that no part floats away on its own.
     """
     children = robot.child_joints()
     links = {link.name: link for link in robot.links}
+    carrier = _carrier(robot, children) if float_from_world and robot.root == WORLD else None
     bodies: list[Body] = []
     # Depth first with an explicit stack, not recursion: chains (snakes, ropes) are thousands
     # of links deep. An entry is a link to place in ``body`` at ``in_body``; a None body
@@ -100,10 +104,18 @@ def build_bodies(robot: Robot, fuse_static: bool, float_from_world: bool = False
                 PlacedShape(link_name, shape, in_body.compose(Transform.from_pose(shape.origin)))
             )
         below: list[tuple[str, Body | None, str | None, Joint | None, Transform]] = []
+        if carrier is not None and link_name == WORLD and body.parent is None:
+            # The carrier's body comes first, so that the world's other children can join it.
+            carrier_pose = Transform.from_pose(carrier.origin)
+            carried = Body(carrier.child, WORLD, carrier, carrier_pose, None, [], [])
+            bodies.append(carried)
+            below.append((carrier.child, carried, None, None, Transform()))
+            body, in_body = carried, carrier_pose.inverse()
         for child in children[link_name]:
+            if child is carrier:
+                continue
             joint_pose = in_body.compose(Transform.from_pose(child.origin))
-            keep_body = float_from_world and body.name == WORLD and body.parent is None
-            if fuse_static and not child.moves and not keep_body:
+            if fuse_static and not child.moves:
                 below.append((child.child, body, None, None, joint_pose))
             else:
                 below.append((child.child, None, body.name, child, joint_pose))
@@ -111,6 +123,27 @@ def build_bodies(robot: Robot, fuse_static: bool, float_from_world: bool = False
     for body in bodies:
         body.mass = combine_masses(robot, body)
     return bodies
+
+
+def _carrier(robot: Robot, children: dict[str, list[Joint]]) -> Joint | None:
+    """The fixed joint from ``world`` to the link that floats for the whole robot: the one
+    whose subtree is heaviest (the first of equals), or None when the world holds no link
+    fixed."""
+    fixed = [joint for joint in children[WORLD] if not joint.moves]
+    if not fixed:
+        return None
+
+    def subtree_mass(link_name: str) -> float:
+        total, stack = 0.0, [link_name]
+        while stack:
+            name = stack.pop()
+            inertial = robot.link(name).inertial
+            total += inertial.mass if inertial is not None else 0.0
+            stack.extend(joint.child for joint in children[name])
+        return total
+
+    heaviest = max(subtree_mass(joint.child) for joint in fixed)
+    return next(joint for joint in fixed if subtree_mass(joint.child) == heaviest)
 
 
 def combine_masses(robot: Robot, body: Body) -> MassProperties | None:
@@ -158,7 +191,8 @@ def floating_base(robot: Robot, free_joint: bool) -> bool:
 
 
 def floats(body: Body) -> bool:
-    """Whether a free joint goes on ``body``: the root, or what a ``world`` root holds fixed."""
+    """Whether a free joint goes on ``body``: the root, or the body a ``world`` root holds
+    fixed (``build_bodies`` leaves at most one, carrying the rest)."""
     if body.parent is None:
         return body.name != WORLD
     return body.parent == WORLD and (body.joint is None or not body.joint.moves)

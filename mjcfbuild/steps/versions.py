@@ -85,7 +85,8 @@ MESH = StepFormat(
     "mesh", 11, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy")
 )
 DECOMPOSE = StepFormat("decompose", 3, ("coacd", "trimesh", "numpy", "scipy"))
-# selfcollision 4: a URDF floating joint from `world` floats the robot (its standing home)
-SELFCOLLISION = StepFormat("selfcollision", 4, ("mujoco", "numpy"))
+# selfcollision 4: a URDF floating joint from `world` floats the robot (its standing home);
+# 5: free_joint on a URDF rooted at `world` floats what the world holds as one whole
+SELFCOLLISION = StepFormat("selfcollision", 5, ("mujoco", "numpy"))
 REFERENCE = StepFormat("reference", 1, ("yourdfpy", "numpy", "lxml"))
 PREVIEWS = StepFormat("previews", 5, ("mujoco", "numpy", "pillow"))

@@ -56,6 +56,26 @@ def test_free_joint_when_the_root_is_world(tmp_path):
     assert model.nq == 8
 
 
+def test_free_joint_when_the_world_holds_two_links_floats_them_together(tmp_path):
+    # A camera mount bolted to `world` beside the base: one free joint, on the base (the
+    # heavier), and the mount rides with it instead of floating off (and falling) alone.
+    import mujoco
+
+    urdf = two_link_urdf(
+        extra='<link name="world"/><joint name="w" type="fixed"><parent link="world"/>'
+        f'<child link="base"/></joint><link name="mount">{INERTIA}</link>'
+        '<joint name="wm" type="fixed"><parent link="world"/><child link="mount"/>'
+        '<origin xyz="1 0 1"/></joint>'
+    )
+    _, model = build(urdf, tmp_path, free_joint=True, fuse_static=False)
+    assert list(model.jnt_type).count(mujoco.mjtJoint.mjJNT_FREE) == 1
+    assert model.nq == 8
+    data = mujoco.MjData(model)
+    mujoco.mj_step(model, data, 50)
+    base, mount = (mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, n) for n in ("base", "mount"))
+    assert data.xpos[mount] - data.xpos[base] == pytest.approx([1, 0, 1])
+
+
 def test_a_world_link_with_an_inertia_mujoco_refuses_builds(tmp_path):
     # drake's Pendulum.urdf gives its root link 'world' the moments 0.01, 0, 0 (a stub for a
     # viewer): the world never moves, so its mass is left out instead of stopping the build

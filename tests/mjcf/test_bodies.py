@@ -60,3 +60,45 @@ def test_a_chain_thousands_of_links_deep_builds_without_recursion():
     assert pair.links[1].pose.position == pytest.approx((0.05, 0.0, 0.0))
     assert pair.parent == "l2495" and pair.mass is not None and pair.mass.mass == 0.1
     assert fused[-1].parent == "l2497"
+
+
+WORLD_HOLDS_TWO = """<robot name="r">
+  <link name="world"/>
+  <link name="mount"><inertial><mass value="0.1"/>
+    <inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="base"><inertial><mass value="2"/>
+    <inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="arm"><inertial><mass value="1"/>
+    <inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="rail"/>
+  <joint name="wm" type="fixed"><parent link="world"/><child link="mount"/>
+    <origin xyz="1 0 1"/></joint>
+  <joint name="wb" type="fixed"><parent link="world"/><child link="base"/>
+    <origin xyz="0 0 0.5" rpy="0 0 1.5707963267948966"/></joint>
+  <joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="wr" type="prismatic"><parent link="world"/><child link="rail"/>
+    <origin xyz="0 2 0"/><axis xyz="1 0 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+@pytest.mark.parametrize("fuse_static", [True, False])
+def test_floating_a_world_rooted_robot_floats_what_the_world_holds_as_one_whole(fuse_static):
+    # free_joint on a URDF bolted to `world`: the heaviest link the world holds fixed (base, not
+    # the mount listed first) floats, and the mount and the rail hang from it where the URDF
+    # puts them, so that neither floats away (or falls) on its own.
+    bodies = build_bodies(
+        parse_urdf(WORLD_HOLDS_TWO.encode()), fuse_static=fuse_static, float_from_world=True
+    )
+    by_name = {body.name: body for body in bodies}
+    assert by_name["base"].parent == "world" and by_name["base"].pose.position == (0, 0, 0.5)
+    assert by_name["rail"].parent == "base" and by_name["rail"].joint.name == "wr"
+    assert by_name["rail"].pose.position == pytest.approx((2.0, 0.0, -0.5))
+    if fuse_static:
+        mount = next(frame for frame in by_name["base"].links if frame.link == "mount")
+        assert mount.fused and mount.pose.position == pytest.approx((0.0, -1.0, 0.5))
+    else:
+        assert by_name["mount"].parent == "base" and not by_name["mount"].moves
+        assert by_name["mount"].pose.position == pytest.approx((0.0, -1.0, 0.5))
+    assert [body.name for body in bodies if body.parent == "world"] == ["base"]
