@@ -28,7 +28,7 @@ from mjcfbuild.inputs.processed import CameraInput
 from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.manifest.simulation import ActuatorSettings
 from mjcfbuild.meshes.product import MeshProduct
-from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies, floats, link_places
+from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies, link_places
 from mjcfbuild.mjcf.compile_errors import compile_error, spec_meshes, too_thin_mesh
 from mjcfbuild.mjcf.depth import refuse_deep_bodies
 from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
@@ -104,12 +104,9 @@ def assemble(
     capture_mujoco_warnings()
     take_mujoco_warnings()
 
-    bodies = build_bodies(robot, options.fuse_static, float_from_world=options.free_joint)
+    # A floating root moves too: a massless one gets the smallest repair, reported.
+    bodies = build_bodies(robot, options.fuse_static, free_joint=options.free_joint)
     refuse_deep_bodies(robot, bodies)
-    if options.free_joint:
-        for body in bodies:
-            # A floating root moves too: a massless one gets the smallest repair, reported.
-            body.floating = floats(body)
     lines = {
         link.name: (link.inertial.line if link.inertial else link.line) for link in robot.links
     }
@@ -149,6 +146,7 @@ def assemble(
         repairs=repairs,
         warnings=[
             *robot.warnings,
+            *_nothing_floats(robot, bodies, options),
             *prepared.warnings,
             *warnings,
             *(f"MuJoCo: {text}" for text in take_mujoco_warnings()),
@@ -158,6 +156,23 @@ def assemble(
         readiness=readiness,
         reads=dict(prepared.reads),
     )
+
+
+def _nothing_floats(robot: Robot, bodies: list[Body], options: AssemblyOptions) -> list[str]:
+    """A warning where robot.yaml's ``free_joint`` floats nothing: the URDF's ``world`` link
+    holds its robot only by moving joints (a rail, a turntable), none fixed or floating."""
+    if not options.free_joint or any(body.floating for body in bodies):
+        return []
+    held = [joint for joint in robot.joints if joint.parent == WORLD]
+    if not held or any(joint.kind == "floating" for joint in held):
+        return []
+    joint = held[0]
+    where = f"{robot.source}:{joint.line}" if joint.line else robot.source
+    return [
+        f"{where}: options.free_joint floats nothing: the `world` link holds the robot by the "
+        f"{joint.kind} joint '{joint.name}' and no fixed one, so the robot stays where that "
+        "joint holds it (set free_joint: false, or make the joint `floating`)"
+    ]
 
 
 def _apply_additions(
@@ -516,7 +531,7 @@ def _finish(
                 joint.info = _origin(
                     robot.source, joints[body.joint.name].line, f"joint '{body.joint.name}'"
                 )
-        if options.free_joint and floats(body):
+        if body.floating:
             target.add_freejoint(name=f"{body.name}_freejoint")
 
 

@@ -71,19 +71,20 @@ def link_places(bodies: list[Body]) -> dict[str, tuple[str | None, Transform]]:
     }
 
 
-def build_bodies(robot: Robot, fuse_static: bool, float_from_world: bool = False) -> list[Body]:
-    """The bodies of the model, parents before children, in URDF order.
+def build_bodies(robot: Robot, fuse_static: bool, free_joint: bool = False) -> list[Body]:
+    """The bodies of the model, parents before children, in URDF order; with ``free_joint``
+    (robot.yaml's), the one that gets a free joint is marked ``floating``: the root.
 
     A root link called ``world`` stands for MuJoCo's world body; links fixed to it become
-    static parts of the world when fusing. ``float_from_world`` (robot.yaml's ``free_joint``
-    on such a URDF) floats what the world holds instead, as one rigid whole, as the URDF joins
-    it: the heaviest link fixed to the world becomes the floating body, and everything else
-    the world holds (a camera mount, a second fixed link, a joint whose parent is ``world``)
-    hangs from it where the URDF puts it, so that no part floats away on its own.
+    static parts of the world when fusing. ``free_joint`` on such a URDF floats what the world
+    holds instead, as one rigid whole, as the URDF joins it: the heaviest link fixed to the
+    world becomes the floating body, and everything else the world holds (a camera mount, a
+    second fixed link, a joint whose parent is ``world``) hangs from it where the URDF puts
+    it, so that no part floats away on its own.
     """
     children = robot.child_joints()
     links = {link.name: link for link in robot.links}
-    carrier = _carrier(robot, children) if float_from_world and robot.root == WORLD else None
+    carrier = _carrier(robot, children) if free_joint and robot.root == WORLD else None
     bodies: list[Body] = []
     # Depth first with an explicit stack, not recursion: chains (snakes, ropes) are thousands
     # of links deep. An entry is a link to place in ``body`` at ``in_body``; a None body
@@ -94,7 +95,8 @@ def build_bodies(robot: Robot, fuse_static: bool, float_from_world: bool = False
     while pending:
         link_name, body, parent, joint, in_body = pending.pop()
         if body is None:
-            body = Body(link_name, parent, joint, in_body, None, [], [])
+            floating = free_joint and parent is None and link_name != WORLD
+            body = Body(link_name, parent, joint, in_body, None, [], [], floating)
             bodies.append(body)
             in_body = Transform()
         link = links[link_name]
@@ -107,7 +109,7 @@ def build_bodies(robot: Robot, fuse_static: bool, float_from_world: bool = False
         if carrier is not None and link_name == WORLD and body.parent is None:
             # The carrier's body comes first, so that the world's other children can join it.
             carrier_pose = Transform.from_pose(carrier.origin)
-            carried = Body(carrier.child, WORLD, carrier, carrier_pose, None, [], [])
+            carried = Body(carrier.child, WORLD, carrier, carrier_pose, None, [], [], True)
             bodies.append(carried)
             below.append((carrier.child, carried, None, None, Transform()))
             body, in_body = carried, carrier_pose.inverse()
@@ -127,8 +129,11 @@ def build_bodies(robot: Robot, fuse_static: bool, float_from_world: bool = False
 
 def _carrier(robot: Robot, children: dict[str, list[Joint]]) -> Joint | None:
     """The fixed joint from ``world`` to the link that floats for the whole robot: the one
-    whose subtree is heaviest (the first of equals), or None when the world holds no link
-    fixed."""
+    whose subtree is heaviest (the first of equals). None when the world holds no link fixed,
+    or when the URDF floats its robot by a ``floating`` joint of its own: what it bolts to the
+    world beside that stays bolted (and a free joint can only join a body to the world)."""
+    if any(joint.kind == "floating" for joint in children[WORLD]):
+        return None
     fixed = [joint for joint in children[WORLD] if not joint.moves]
     if not fixed:
         return None
@@ -188,11 +193,3 @@ def floating_base(robot: Robot, free_joint: bool) -> bool:
         robot.root == WORLD
         and any(joint.kind == "floating" and joint.parent == WORLD for joint in robot.joints)
     )
-
-
-def floats(body: Body) -> bool:
-    """Whether a free joint goes on ``body``: the root, or the body a ``world`` root holds
-    fixed (``build_bodies`` leaves at most one, carrying the rest)."""
-    if body.parent is None:
-        return body.name != WORLD
-    return body.parent == WORLD and (body.joint is None or not body.joint.moves)

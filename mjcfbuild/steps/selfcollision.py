@@ -16,7 +16,7 @@ from mjcfbuild.control.home import home_values
 from mjcfbuild.errors import InputError, ManifestError
 from mjcfbuild.inputs.ros2_control import ControlJoint, Ros2Control
 from mjcfbuild.meshes.product import read_product
-from mjcfbuild.mjcf.bodies import Body, build_bodies, floating_base, floats, link_places
+from mjcfbuild.mjcf.bodies import Body, build_bodies, floating_base, link_places
 from mjcfbuild.mjcf.compile_errors import compile_error, spec_meshes
 from mjcfbuild.mjcf.depth import refuse_deep_bodies
 from mjcfbuild.mjcf.prepared import Decomposition, prepare
@@ -48,7 +48,7 @@ def run(payload: dict) -> dict:
     import mujoco
 
     robot = robot_from_dict(request.robot)
-    bodies = build_bodies(robot, request.fuse_static, float_from_world=request.free_joint)
+    bodies = build_bodies(robot, request.fuse_static, free_joint=request.free_joint)
     refuse_deep_bodies(robot, bodies)
     body_of = {frame.link: body.name for body in bodies for frame in body.links}
     choices = [CollisionChoice.from_dict(choice) for choice in request.choices]
@@ -69,11 +69,9 @@ def run(payload: dict) -> dict:
         spec = mujoco.MjSpec.from_string(prepared.urdf)
     except Exception as exc:
         raise compile_error(exc, robot.source, prepared.meshes) from None
-    if request.free_joint:
-        for body in bodies:
-            if floats(body):
-                body.floating = True
-                spec.body(body.name).add_freejoint()
+    for body in bodies:
+        if body.floating:
+            spec.body(body.name).add_freejoint()
     parts = _attach_parts(spec, bodies, request)
     try:
         model = _compile(spec)

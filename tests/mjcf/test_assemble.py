@@ -76,6 +76,17 @@ def test_free_joint_when_the_world_holds_two_links_floats_them_together(tmp_path
     assert data.xpos[mount] - data.xpos[base] == pytest.approx([1, 0, 1])
 
 
+def test_free_joint_says_when_the_world_holds_the_robot_only_by_a_moving_joint(tmp_path):
+    urdf = two_link_urdf(
+        extra='<link name="world"/><joint name="turntable" type="continuous">'
+        '<parent link="world"/><child link="base"/><axis xyz="0 0 1"/></joint>'
+    )
+    assembly, model = build(urdf, tmp_path, free_joint=True)
+    assert model.nq == 2
+    (warning,) = [w for w in assembly.warnings if "free_joint" in w]
+    assert "floats nothing" in warning and "'turntable'" in warning, warning
+
+
 def test_a_world_link_with_an_inertia_mujoco_refuses_builds(tmp_path):
     # drake's Pendulum.urdf gives its root link 'world' the moments 0.01, 0, 0 (a stub for a
     # viewer): the world never moves, so its mass is left out instead of stopping the build

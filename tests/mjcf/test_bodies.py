@@ -89,7 +89,7 @@ def test_floating_a_world_rooted_robot_floats_what_the_world_holds_as_one_whole(
     # the mount listed first) floats, and the mount and the rail hang from it where the URDF
     # puts them, so that neither floats away (or falls) on its own.
     bodies = build_bodies(
-        parse_urdf(WORLD_HOLDS_TWO.encode()), fuse_static=fuse_static, float_from_world=True
+        parse_urdf(WORLD_HOLDS_TWO.encode()), fuse_static=fuse_static, free_joint=True
     )
     by_name = {body.name: body for body in bodies}
     assert by_name["base"].parent == "world" and by_name["base"].pose.position == (0, 0, 0.5)
@@ -102,3 +102,15 @@ def test_floating_a_world_rooted_robot_floats_what_the_world_holds_as_one_whole(
         assert by_name["mount"].parent == "base" and not by_name["mount"].moves
         assert by_name["mount"].pose.position == pytest.approx((0.0, -1.0, 0.5))
     assert [body.name for body in bodies if body.parent == "world"] == ["base"]
+
+
+def test_a_urdf_floating_joint_keeps_what_the_world_holds_beside_it_bolted():
+    # The URDF floats its robot itself: free_joint adds no free joint, and a mount the world
+    # holds beside it stays in the world (a free joint only joins a body to the world).
+    urdf = WORLD_HOLDS_TWO.replace(
+        '<joint name="wb" type="fixed">', '<joint name="wb" type="floating">'
+    )
+    bodies = build_bodies(parse_urdf(urdf.encode()), fuse_static=False, free_joint=True)
+    by_name = {body.name: body for body in bodies}
+    assert not any(body.floating for body in bodies)
+    assert by_name["base"].parent == "world" and by_name["mount"].parent == "world"
