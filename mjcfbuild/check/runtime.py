@@ -1,28 +1,47 @@
 """The model under mujoco_ros2_control's rules: what its hardware interface finds at start-up.
 
-For each ``<ros2_control>`` joint with command interfaces, the runtime finds the actuator on
-the joint (else one named like the joint), classifies it by its bias alone (motor, position,
-velocity or custom: :func:`~mjcfbuild.inputs.ros2_control.runtime_actuator_kind`) and refuses
-a command interface that kind does not take (without PID gains): it logs an error for each
-such interface and refuses to start when a joint has no interface left. For each sensor with a
-``mujoco_type`` it looks up MJCF sensors by name; cameras and lidars are matched by the
-sensor's name. What stops the runtime or leaves a sensor unread is a failure here, naming the
-joint or sensor, the rule and the fix; an interface refused beside one that works (the
-runtime starts, but a controller cannot switch to it) is a warning, one line per kind.
+Read from the runtime's source (``mujoco_system_interface.cpp``, its 2026 releases) and
+ros2_control's parser. For each ``<ros2_control>`` joint the runtime runs (a block written for
+its plugin; every block where none is) with command interfaces, it finds the actuator on the
+joint (else one named like the joint), classifies it by its bias
+(:func:`~mjcfbuild.inputs.ros2_control.runtime_actuator_kind`) and:
+
+- takes an interface that kind takes directly;
+- takes position on a velocity, motor or custom actuator, and velocity on a motor or custom
+  one, only through PID gains (``pid_gains.<interface>.<joint>`` of the ``pids_config_file``,
+  read here as ROS reads it), and without them stops at start-up;
+- logs an error for any other pairing (velocity on a position servo, effort on a servo) and
+  goes on: the interface is still offered, and a controller that switches to it has its
+  command written into the actuator's ctrl as it is (a velocity taken for a position);
+- stops when a joint has no interface left.
+
+A joint the URDF does not have stops ros2_control before the runtime ("not found in URDF");
+a joint without an actuator, or a mimic joint, gets no command interface. For each sensor
+with a ``mujoco_type`` it looks up MJCF sensors by name; cameras and lidars are matched by the
+sensor's name. What stops the runtime, or leaves an interface or sensor the block names
+unserved, is a failure here, naming the joint or sensor, the rule and the fix; what it logs
+and survives is a warning, one line per kind.
 """
 
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING
 
 from mjcfbuild.actuators import is_dcmotor
 from mjcfbuild.inputs.frames import ray_count
 from mjcfbuild.inputs.ros2_control import (
+    RUNTIME_PLUGINS,
+    ControlJoint,
     Ros2Control,
     expected_sensors,
     interface_support,
-    runtime_actuator_kind,
+    model_actuator_kind,
+    needs_pids,
 )
+
+if TYPE_CHECKING:
+    from mjcfbuild.inputs.pid_gains import PidGains
 
 # The MJCF element of each sensor the runtime reads, as MuJoCo's sensor type names it.
 _SENSOR_TYPES = {
@@ -41,30 +60,172 @@ _FIX = {
     "(a pids_config_file in <hardware>)",
     "effort": "a <motor> (actuators.rules: type: motor)",
 }
+# The command interfaces the runtime knows; it skips others with a warning.
+_KNOWN_INTERFACES = {"position", "velocity", "effort", "torque", "force"}
+# The free joint the runtime publishes odometry from, unless odom_free_joint_name names one.
+ODOM_FREE_JOINT = "floating_base_joint"
 
 
-def check_runtime(model, control: Ros2Control) -> tuple[dict, list[str], list[str]]:
+def check_runtime(
+    model,
+    control: Ros2Control,
+    urdf_joints: dict[str, str | None],
+    gains: PidGains | None = None,
+) -> tuple[dict, list[str], list[str]]:
     """The mapping mujoco_ros2_control makes of ``control`` on ``model`` (a JSON-friendly
-    record), the failures (what stops it or it cannot find) and warnings (interfaces it
-    refuses beside ones it takes)."""
+    record), the failures (what stops it or leaves unserved) and warnings (what it logs).
+    ``urdf_joints`` maps each URDF joint to the joint it mimics (None for others); ``gains``
+    are the pids_config_file's where it was read."""
     failures: list[str] = []
-    joints = [
-        _joint(model, joint.name, joint.commands, joint.pids, failures)
+    warnings: list[str] = []
+    failures += _not_in_urdf(control, urdf_joints)
+    served = [
+        joint
         for joint in control.joints
-        if joint.commands
+        if joint.commands and joint.name in urdf_joints and control.runs(joint.plugin)
     ]
+    mimics = [joint for joint in served if joint.mimic or urdf_joints.get(joint.name)]
+    warnings += _mimic_commands(mimics, urdf_joints)
+    judged = [joint for joint in served if joint not in mimics]
+    pids_file = control.hardware.get("pids_config_file")
+    joints = [_joint(model, joint, gains, bool(pids_file), failures) for joint in judged]
     sensors = [
         _sensor(model, sensor, failures)
         for sensor in control.sensors
-        if sensor.params.get("mujoco_type")
+        if sensor.params.get("mujoco_type") and control.runs(sensor.plugin)
     ]
-    devices = [_device(model, sensor, failures) for sensor in control.sensors if sensor.kind]
+    devices = [
+        _device(model, sensor, failures)
+        for sensor in control.sensors
+        if sensor.kind and control.runs(sensor.plugin)
+    ]
     failures += _unmatched_tendon_actuators(model)
     failures += _missing_keyframe(model, control.hardware.get("initial_keyframe"))
+    odometry_failures, odometry_warnings = _odometry(model, control)
+    failures += odometry_failures
     unmatched, elsewhere = _unmatched_transmissions(model, control)
     failures += unmatched
-    warnings = _refusals(joints) + _effort_on_dcmotors(joints) + elsewhere
+    warnings += (
+        _refusals(joints)
+        + _effort_on_dcmotors(joints)
+        + _effort_at_start(joints)
+        + _unknown_pids(joints, pids_file, gains)
+        + odometry_warnings
+        + _unread_sensors(control)
+        + _other_blocks(control)
+        + elsewhere
+    )
     return {"joints": joints, "sensors": sensors, "devices": devices}, failures, warnings
+
+
+def _not_in_urdf(control: Ros2Control, urdf_joints: dict[str, str | None]) -> list[str]:
+    """ros2_control (Jazzy and later) refuses a description whose <ros2_control> names a
+    joint the URDF lacks, in any block, before any hardware starts."""
+    from mjcfbuild.sources.packages import did_you_mean
+
+    failures = []
+    for joint in control.joints:
+        if joint.name in urdf_joints:
+            continue
+        failures.append(
+            f"{joint.origin}: <ros2_control> joint '{joint.name}' is not a joint of the "
+            'URDF: ros2_control refuses the description at start-up ("... not found in '
+            'URDF"); name a URDF joint, or use a <gpio> for what is no joint'
+            f"{did_you_mean(joint.name, set(urdf_joints))}"
+        )
+    return failures
+
+
+def _mimic_commands(mimics: list[ControlJoint], urdf_joints: dict[str, str | None]) -> list[str]:
+    """Mimic joints follow their leader (an equality in the model): the runtime gives their
+    command interfaces nothing to drive and logs an error."""
+    if not mimics:
+        return []
+    named = ", ".join(
+        f"{joint.name} (mimics {joint.mimic or urdf_joints.get(joint.name)})"
+        for joint in mimics[:3]
+    )
+    more = f" and {len(mimics) - 3} more" if len(mimics) > 3 else ""
+    return [
+        f"mujoco_ros2_control: {len(mimics)} mimic joint{'s' if len(mimics) > 1 else ''} "
+        f"({named}{more}) declare command interfaces, which the runtime ignores (it logs an "
+        "error): the joint follows its leader; command the leader, and remove the mimic "
+        "joint's command interfaces"
+    ]
+
+
+def _odometry(model, control: Ros2Control) -> tuple[list[str], list[str]]:
+    """The runtime publishes the floating base's odometry from the free joint named by
+    ``odom_free_joint_name`` (default ``floating_base_joint``); a joint of that name that is
+    not free stops it."""
+    import mujoco
+
+    if not any(control.runs(joint.plugin) for joint in control.joints):
+        return [], []
+    named = control.hardware.get("odom_free_joint_name")
+    wanted = named or ODOM_FREE_JOINT
+    index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, wanted)
+    free = [
+        model.joint(j).name
+        for j in range(model.njnt)
+        if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE and model.joint(j).name
+    ]
+    if index >= 0 and model.jnt_type[index] != mujoco.mjtJoint.mjJNT_FREE:
+        return [
+            f"<hardware> odom_free_joint_name names joint '{wanted}', which is not a free "
+            'joint: mujoco_ros2_control stops at start-up ("... since it is not a free '
+            f'joint"); name the free joint{f" ({free[0]})" if free else ""}'
+        ], []
+    if index < 0 and free:
+        where = (
+            f"odom_free_joint_name names '{wanted}'"
+            if named
+            else (f"no odom_free_joint_name is given (it defaults to '{ODOM_FREE_JOINT}')")
+        )
+        return [], [
+            f"mujoco_ros2_control: {where}, which the model does not have, so the runtime "
+            f"publishes no odometry of the floating base; add <param "
+            f'name="odom_free_joint_name">{free[0]}</param> to the <hardware>'
+        ]
+    return [], []
+
+
+def _unread_sensors(control: Ros2Control) -> list[str]:
+    """Sensors the runtime registers nothing for: no ``mujoco_type`` and no camera or lidar
+    parameters (a broadcaster then finds none of their state interfaces)."""
+    names = [
+        sensor.name
+        for sensor in control.sensors
+        if control.runs(sensor.plugin) and not sensor.params.get("mujoco_type") and not sensor.kind
+    ]
+    if not names:
+        return []
+    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    return [
+        f"mujoco_ros2_control: {len(names)} <ros2_control> sensor{'s' if len(names) > 1 else ''} "
+        f"({shown}) have no mujoco_type parameter, so the runtime serves none of their state "
+        'interfaces; add <param name="mujoco_type">imu</param> (or fts, pose, magnetometer)'
+    ]
+
+
+def _other_blocks(control: Ros2Control) -> list[str]:
+    """Blocks for other hardware beside one for mujoco_ros2_control: the runtime serves none
+    of their joints."""
+    lines = []
+    for plugin in dict.fromkeys(control.plugins):
+        if control.runs(plugin):
+            continue
+        names = [j.name for j in control.joints if j.plugin == plugin and j.commands]
+        if not names:
+            continue
+        shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+        lines.append(
+            f"mujoco_ros2_control: the <ros2_control> block for {plugin} is not the runtime's "
+            f"(another block is written for {RUNTIME_PLUGINS}...), so it serves none of its "
+            f"joints' command interfaces ({shown}); move them to that block to command them "
+            "in simulation"
+        )
+    return lines
 
 
 def _unmatched_tendon_actuators(model) -> list[str]:
@@ -102,12 +263,6 @@ def _missing_keyframe(model, keyframe: str | None) -> list[str]:
         f"not have (its keyframes: {listing}): mujoco_ros2_control stops at start-up "
         '("Failed to find keyframe"); name one of them'
     ]
-
-
-# The hardware plugins of mujoco_ros2_control (MujocoSystemInterface, and older names) share
-# its package's prefix: a <ros2_control> block naming another (a real robot's driver) is not
-# run by it as written.
-RUNTIME_PLUGINS = "mujoco_ros2_control/"
 
 
 def _unmatched_transmissions(model, control: Ros2Control) -> tuple[list[str], list[str]]:
@@ -170,24 +325,35 @@ def _effort_on_dcmotors(joints: list[dict]) -> list[str]:
 
 
 def _refusals(joints: list[dict]) -> list[str]:
-    """One warning per (interface, actuator kind) that the runtime refuses on joints where
-    another of their interfaces works."""
+    """One warning per (interface, actuator kind) the runtime logs an error for and goes on:
+    it still offers the interface, and a controller that switches to it has its command
+    written into the actuator's ctrl as it is."""
     refused: dict[tuple[str, str], list[str]] = {}
     for joint in joints:
-        usable = any(joint["how"].values())
         for interface, way in joint["how"].items():
-            if usable and way is None:
+            if way is None:
                 refused.setdefault((interface, joint["kind"]), []).append(joint["joint"])
     lines = []
     for (interface, kind), names in sorted(refused.items()):
         listed = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+        who = f"{len(names)} joint{'s' if len(names) > 1 else ''} ({listed})"
+        if _family(interface) not in _KNOWN_INTERFACES:
+            lines.append(
+                f"mujoco_ros2_control: {who} declare a {interface} command interface, which "
+                "the runtime does not know: it skips it with a warning; remove it"
+            )
+            continue
         lines.append(
-            f"mujoco_ros2_control: {len(names)} joint{'s' if len(names) > 1 else ''} "
-            f"({listed}) declare a {interface} command interface that their {kind} actuators "
-            f"do not take: the runtime logs an error for it and no controller can switch to "
-            f"it; {_switch_fix(interface, kind)}"
+            f"mujoco_ros2_control: {who} declare {_article(interface)} {interface} command "
+            f"interface that their {kind} actuators do not take: the runtime logs an error but "
+            f"offers it, and a controller that switches to it has its {interface} command "
+            f"written into the {kind} actuator's ctrl as it is; {_switch_fix(interface, kind)}"
         )
     return lines
+
+
+def _article(word: str) -> str:
+    return "an" if word[:1] in "aeiou" else "a"
 
 
 def _switch_fix(interface: str, kind: str) -> str:
@@ -198,6 +364,41 @@ def _switch_fix(interface: str, kind: str) -> str:
         "to switch between interfaces, drive the joint with a <motor> (actuators.rules: type: "
         "motor) and PID gains in a pids_config_file, or remove the interface"
     )
+
+
+def _effort_at_start(joints: list[dict]) -> list[str]:
+    """Joints the runtime starts under effort control: it writes their effort command (0
+    until a controller sends one) into ctrl, in place of the home keyframe's torques."""
+    names = [joint["joint"] for joint in joints if joint.get("starts") == "effort"]
+    if not names:
+        return []
+    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    return [
+        f"mujoco_ros2_control: {len(names)} joint{'s' if len(names) > 1 else ''} ({shown}) "
+        "start under effort control: the runtime writes their effort command, 0 until a "
+        "controller sends one, into ctrl in place of the home keyframe's, so the robot holds "
+        "home only once a controller does (the check's hold test keeps the keyframe's torques)"
+    ]
+
+
+def _unknown_pids(joints: list[dict], pids_file: str | None, gains: PidGains | None) -> list[str]:
+    """A pids_config_file the check could not read: which interfaces it then cannot judge."""
+    if not pids_file or gains is not None:
+        return []
+    names = [
+        f"{joint['joint']} {interface}"
+        for joint in joints
+        for interface, way in joint["how"].items()
+        if way == "pid?"
+    ]
+    if not names:
+        return []
+    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    return [
+        f"mujoco_ros2_control: the pids_config_file {pids_file} could not be read here, so "
+        f"whether the runtime finds PID gains for {shown} is not checked (without them it "
+        "stops at start-up); build where the file is, or give its package in robot.yaml"
+    ]
 
 
 def _family(interface: str) -> str:
@@ -218,29 +419,64 @@ def actuator_of(model, joint: str) -> int:
     return mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, joint)
 
 
-def _joint(model, name: str, commands: list[str], pids: bool, failures: list[str]) -> dict:
+def _joint(
+    model, joint: ControlJoint, gains: PidGains | None, pids_file: bool, failures: list[str]
+) -> dict:
+    """What the runtime makes of one commanded joint: its actuator, the actuator's kind and
+    how each interface is taken ('direct', 'pid', 'pid?' where the pids_config_file could not
+    be read, 'no pid' where the gains are missing, None where refused with a logged error)."""
     import mujoco
 
+    name, commands = joint.name, joint.commands
     actuator = actuator_of(model, name)
     if actuator < 0:
         failures.append(
-            f"mujoco_ros2_control: joint '{name}' commands {', '.join(commands)} but has no "
-            f"actuator (the runtime looks for one on the joint, then one named '{name}'); "
-            "drive it (actuators.rules) or remove its command interfaces"
+            f"{joint.origin}: mujoco_ros2_control: joint '{name}' commands "
+            f"{', '.join(commands)} but has no actuator (the runtime looks for one on the "
+            f"joint, then one named '{name}'): the runtime starts but offers none of its "
+            "command interfaces, so no controller can claim them; drive it (actuators.rules) "
+            "or remove its command interfaces"
         )
         return {"joint": name, "interfaces": commands, "actuator": None, "kind": None, "how": {}}
-    kind = runtime_actuator_kind(
-        int(model.actuator_biastype[actuator]),
-        tuple(float(v) for v in model.actuator_biasprm[actuator]),
-    )
+    kind = model_actuator_kind(model, actuator)
     label = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_ACTUATOR, actuator) or f"#{actuator}"
-    how = {interface: interface_support(kind, interface, pids) for interface in commands}
-    if not any(how.values()):
+    how: dict[str, str | None] = {}
+    for interface in commands:
+        family = _family(interface)
+        if interface_support(kind, interface, False) == "direct":
+            how[interface] = "direct"
+        elif needs_pids(kind, interface):
+            if gains is not None:
+                how[interface] = "pid" if gains.has(family, name) else "no pid"
+            else:
+                how[interface] = "pid?" if pids_file else "no pid"
+        else:
+            how[interface] = None
+    missing = [interface for interface, way in how.items() if way == "no pid"]
+    if missing:
+        why = [gains.faults.get((_family(i), name)) if gains else None for i in missing]
+        detail = "; ".join(
+            f"pid_gains.{_family(i)}.{name}: {fault}"
+            for i, fault in zip(missing, why, strict=True)
+            if fault
+        )
+        given = "the pids_config_file gives none" if gains else "no pids_config_file gives them"
+        failures.append(
+            f"{joint.origin}: mujoco_ros2_control: joint '{name}' commands "
+            f"{' and '.join(missing)} on its {kind} actuator '{label}', which the runtime "
+            f"takes only through PID gains, and {given}"
+            f'{f" ({detail})" if detail else ""}: it stops at start-up ("... not supported '
+            f'with motor or custom actuator without defining the PIDs"); give '
+            f"pid_gains.{_family(missing[0])}.{name}.p, .i and .d as doubles in a "
+            f"pids_config_file, or {_FIX.get(_family(missing[0]), '').split(', or')[0]}"
+        )
+    elif not any(how.values()):
         first = commands[0]
         failures.append(
-            f"mujoco_ros2_control: joint '{name}' commands {', '.join(commands)}, none of which "
-            f"its actuator '{label}' ({kind}, by its bias) takes, so the runtime refuses to "
-            f"start; give it {_FIX.get(_family(first), '')}"
+            f"{joint.origin}: mujoco_ros2_control: joint '{name}' commands "
+            f"{', '.join(commands)}, none of which its actuator '{label}' ({kind}, by its "
+            f'bias) takes, so the runtime stops at start-up ("... none are supported by its '
+            f'MuJoCo actuator(s)"); give it {_FIX.get(_family(first), "")}'
         )
     return {
         "joint": name,
@@ -249,7 +485,20 @@ def _joint(model, name: str, commands: list[str], pids: bool, failures: list[str
         "kind": kind,
         "how": how,
         "dcmotor": is_dcmotor(model, actuator),
+        "starts": _starting_mode(kind, how),
     }
+
+
+def _starting_mode(kind: str, how: dict[str, str | None]) -> str:
+    """The control mode the runtime starts a joint in: a position or velocity servo in its
+    own; a motor or custom actuator in position or velocity through PIDs where the joint has
+    them (in that order), else effort."""
+    if kind in ("position", "velocity"):
+        return kind
+    for interface in ("position", "velocity"):
+        if how.get(interface) in ("pid", "pid?"):
+            return interface
+    return "effort"
 
 
 def _sensor(model, sensor, failures: list[str]) -> dict:

@@ -60,10 +60,19 @@ def _tasks(graph: Graph) -> list[dict]:
             ctx.state(ASSEMBLY_REPORT),
             ctx.state(REFERENCE),
             *(Path(path) for part in parts for path in (part.xml, part.summary)),
+            *_pids_file(graph),
         ],
         targets=[ctx.state(CHECK_RESULTS)],
     )
     return [task]
+
+
+def _pids_file(graph: Graph) -> list[Path]:
+    """The pids_config_file the check reads for the mujoco_ros2_control section, if any."""
+    from mjcfbuild.inputs.pid_gains import pids_file
+
+    path = pids_file(graph.plan.control().hardware)
+    return [path] if path is not None else []
 
 
 def _report(ctx: GraphContext) -> dict:
@@ -85,7 +94,7 @@ FAMILY = Family(
     name="check",
     step="mjcfbuild.steps.check:run",
     payload=CheckPayload,
-    format=15,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
+    format=16,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
     # measured again from inside the joint ranges, velocity limits of 1e6 and above taken for
     # none, unstable-state warnings naming their joint; 11: a hold failure of a servo whose
     # keyframe ctrl is not its position says so; 12: check.json holds the console's verdict and
@@ -95,7 +104,10 @@ FAMILY = Family(
     # prismatic joint's travel along its unit axis; the runtime's start-up rules for tendon
     # actuators, initial_keyframe and ros2_control transmissions; a part's unnamed joint
     # found by the name the build gave it; a user's servo not said to lack a URDF effort;
-    # 15: transmissions of a block for another hardware plugin warned of, not failed
+    # 15: transmissions of a block for another hardware plugin warned of, not failed; 16: the
+    # runtime's 2026 rules: PID gains read from the pids_config_file, position or velocity
+    # without them a failure, joints the URDF lacks, mimic joints, other plugins' blocks,
+    # <intvelocity>, odometry's free joint, effort at start
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

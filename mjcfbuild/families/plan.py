@@ -74,8 +74,10 @@ FAMILY = Family(
     # 10: a revolute or prismatic joint without <limit> warned of; names twice say where first;
     # 12: each transmission's actuators and type (underactuated mechanisms); 13: a URDF's
     # <compiler inertiafromgeom> said not to be applied; <hardware> params and which
-    # transmissions are ros2_control's; 14: the hardware plugin of each of those
-    format=14,
+    # transmissions are ros2_control's; 14: the hardware plugin of each of those; 15: each
+    # joint's and sensor's block plugin, a joint's mimic param, <hardware> params of the
+    # blocks mujoco_ros2_control runs only
+    format=15,
     tools=("lxml",),
     tasks=_tasks,
     stage="planning",

@@ -24,7 +24,8 @@ class ControlJoint:
     commands: list[str]
     initial: float | None
     origin: str
-    pids: bool = False  # its <hardware> names a pids_config_file (PIDs may drive it)
+    plugin: str = ""  # its block's <hardware> <plugin>: the runtime the block is written for
+    mimic: str | None = None  # the joint a ``<param name="mimic">`` makes it follow
 
 
 @dataclass
@@ -37,6 +38,7 @@ class ControlSensor:
     # The <hardware> parameters of its block: mujoco_ros2_control reads the MJCF sensor
     # names' suffixes there (force_mjcf_suffix, ...), not from the sensor.
     hardware: dict[str, str] = field(default_factory=dict)
+    plugin: str = ""  # its block's <hardware> <plugin>
 
     @property
     def kind(self) -> str | None:
@@ -73,6 +75,17 @@ class Transmission:
         )
 
 
+# The hardware plugins of mujoco_ros2_control (MujocoSystemInterface, and older names) share
+# its package's prefix: a <ros2_control> block naming another (a real robot's driver) is not
+# run by it as written.
+RUNTIME_PLUGINS = "mujoco_ros2_control/"
+
+
+def runtime_plugin(plugin: str) -> bool:
+    """Whether a block of ``plugin`` is written for mujoco_ros2_control (or names none)."""
+    return not plugin or plugin.startswith(RUNTIME_PLUGINS)
+
+
 @dataclass
 class Ros2Control:
     """Every ``<ros2_control>`` of a URDF, combined, and its ROS 1 ``<transmission>`` elements."""
@@ -80,7 +93,18 @@ class Ros2Control:
     joints: list[ControlJoint] = field(default_factory=list)
     sensors: list[ControlSensor] = field(default_factory=list)
     transmissions: list[Transmission] = field(default_factory=list)
-    hardware: dict[str, str] = field(default_factory=dict)  # every <hardware> <param>
+    # The <hardware> <param>s mujoco_ros2_control reads: those of the blocks written for it,
+    # or of every block where none is (a description whose driver an argument swaps).
+    hardware: dict[str, str] = field(default_factory=dict)
+    plugins: list[str] = field(default_factory=list)  # each block's <hardware> <plugin>
+
+    def runs(self, plugin: str) -> bool:
+        """Whether mujoco_ros2_control runs a block of ``plugin``: where some block is
+        written for it, only those; where none is, every block (as it would run once the
+        plugin is swapped for its own, which descriptions do with a xacro argument)."""
+        if any(runtime_plugin(name) for name in self.plugins):
+            return runtime_plugin(plugin)
+        return True
 
     def to_dict(self) -> dict:
         """A JSON-friendly form."""
@@ -94,19 +118,23 @@ class Ros2Control:
             [ControlSensor(**s) for s in data.get("sensors", [])],
             [Transmission(**t) for t in data.get("transmissions", [])],
             dict(data.get("hardware", {})),
+            list(data.get("plugins", [])),
         )
 
 
 def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
     """The ros2_control joints and sensors of a parsed URDF."""
     result = Ros2Control()
-    for block in root.findall("ros2_control"):
+    blocks = root.findall("ros2_control")
+    result.plugins = [(block.findtext("hardware/plugin") or "").strip() for block in blocks]
+    for block, plugin in zip(blocks, result.plugins, strict=True):
         hardware = {
             p.get("name", ""): (p.text or "").strip()
             for element in block.findall("hardware")
             for p in element.findall("param")
         }
-        result.hardware.update(hardware)
+        if result.runs(plugin):
+            result.hardware.update(hardware)
         for joint in block.findall("joint"):
             commands = [c.get("name", "") for c in joint.findall("command_interface")]
             initial = None
@@ -118,20 +146,33 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                                 initial = float((param.text or "").strip())
                             except ValueError:
                                 initial = None
+            mimic = next(
+                (
+                    (p.text or "").strip()
+                    for p in joint.findall("param")
+                    if p.get("name") == "mimic"
+                ),
+                None,
+            )
             result.joints.append(
                 ControlJoint(
                     joint.get("name", ""),
                     [c for c in commands if c],
                     initial,
                     f"{label}:{joint.sourceline}",
-                    pids=bool(hardware.get("pids_config_file")),
+                    plugin,
+                    mimic or None,
                 )
             )
         for sensor in block.findall("sensor"):
             params = {p.get("name", ""): (p.text or "").strip() for p in sensor.findall("param")}
             result.sensors.append(
                 ControlSensor(
-                    sensor.get("name", ""), params, f"{label}:{sensor.sourceline}", hardware
+                    sensor.get("name", ""),
+                    params,
+                    f"{label}:{sensor.sourceline}",
+                    hardware,
+                    plugin,
                 )
             )
     # Each element by its place in the document: generated URDFs put many on one line. The
@@ -327,10 +368,22 @@ def sensor_frame(sensor: ControlSensor) -> str:
     return sensor.params.get("frame_name") or sensor.params.get("frame_id") or sensor.name
 
 
-# mujoco_ros2_control's actuator kinds, from the actuator's bias alone (getActuatorType).
-def runtime_actuator_kind(biastype: int, biasprm: tuple[float, ...]) -> str:
+# mujoco_ros2_control's actuator kinds, from the actuator's bias (getActuatorType), and since
+# its 2026 releases an <intvelocity>'s integrator: its ctrl is a velocity.
+def runtime_actuator_kind(
+    biastype: int, biasprm: tuple[float, ...], integrated_gain: float | None = None
+) -> str:
     """'motor', 'position', 'velocity' or 'custom', as mujoco_ros2_control classifies an
-    actuator with bias type ``biastype`` (mjtBias: 0 none, 1 affine) and ``biasprm``."""
+    actuator with bias type ``biastype`` (mjtBias: 0 none, 1 affine) and ``biasprm``;
+    ``integrated_gain`` is the fixed gain of an actuator whose ctrl an integrator turns into
+    its activation (dyntype integrator), None for others."""
+    if (
+        integrated_gain is not None
+        and biastype == 1
+        and biasprm[0] == 0
+        and biasprm[1] == -integrated_gain
+    ):
+        return "velocity"  # an <intvelocity>: kp (act - q), act the integral of ctrl
     if biastype == 0:
         return "motor"
     if biastype == 1 and biasprm[1] != 0:
@@ -338,6 +391,19 @@ def runtime_actuator_kind(biastype: int, biasprm: tuple[float, ...]) -> str:
     if biastype == 1 and biasprm[2] != 0:
         return "velocity"
     return "custom"
+
+
+def model_actuator_kind(model, actuator: int) -> str:
+    """:func:`runtime_actuator_kind` of actuator ``actuator`` of a compiled ``model``."""
+    import mujoco
+
+    integrated = model.actuator_dyntype[actuator] == mujoco.mjtDyn.mjDYN_INTEGRATOR
+    fixed = model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_FIXED
+    return runtime_actuator_kind(
+        int(model.actuator_biastype[actuator]),
+        tuple(float(v) for v in model.actuator_biasprm[actuator]),
+        float(model.actuator_gainprm[actuator][0]) if integrated and fixed else None,
+    )
 
 
 # The command interfaces each kind takes directly, and those it takes through the runtime's
@@ -359,10 +425,18 @@ EFFORT_NAMES = {"effort", "torque", "force"}
 
 def interface_support(kind: str, interface: str, pids: bool) -> str | None:
     """How the runtime commands ``interface`` on an actuator of ``kind``: 'direct', 'pid'
-    (only with PID gains), or None (refused at start-up)."""
+    (``pids``: with the PID gains of that interface and joint), or None (refused)."""
     name = "effort" if interface in EFFORT_NAMES else interface
     if name in _DIRECT.get(kind, set()):
         return "direct"
     if pids and name in _WITH_PIDS.get(kind, set()):
         return "pid"
     return None
+
+
+def needs_pids(kind: str, interface: str) -> bool:
+    """Whether the runtime takes ``interface`` on an actuator of ``kind`` only with PID gains:
+    without them it stops at start-up ("... not supported with motor or custom actuator
+    without defining the PIDs"), where other refusals are an error it logs and goes on."""
+    name = "effort" if interface in EFFORT_NAMES else interface
+    return name in _WITH_PIDS.get(kind, set())

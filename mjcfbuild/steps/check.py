@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from mjcfbuild.check.contacts import part_bodies
 from mjcfbuild.check.loading import AssetSource, asset_sources, compile_model
@@ -15,6 +16,9 @@ from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import CheckPayload, MjcfPartFiles
 from mjcfbuild.steps.plan_record import read_plan
 from mjcfbuild.urdf.transforms import vec3
+
+if TYPE_CHECKING:
+    from mjcfbuild.inputs.pid_gains import PidGains
 
 
 def run(payload: dict) -> dict:
@@ -63,7 +67,9 @@ def check_built(request: CheckPayload) -> CheckResults:
         results = _check_parts(
             results, Path(request.model), request.mjcf_parts, request.options, sources
         )
-    results = add_runtime_check(results, Path(request.model), plan.control(), sources)
+    results = add_runtime_check(
+        results, Path(request.model), plan.control(), _urdf_joints(plan.robot), sources
+    )
     gazebo = plan.gazebo()
     if gazebo:
         # What each Gazebo sensor became, and what of it MuJoCo does not model (noise, rates).
@@ -87,18 +93,44 @@ def write_results(results: CheckResults, path: Path, outputs: dict[str, str]) ->
 
 
 def add_runtime_check(
-    results: CheckResults, model_path: Path, control: Ros2Control, sources: dict[str, AssetSource]
+    results: CheckResults,
+    model_path: Path,
+    control: Ros2Control,
+    urdf_joints: dict[str, str | None],
+    sources: dict[str, AssetSource],
 ) -> CheckResults:
     """The mujoco_ros2_control section, where the description has a <ros2_control> block."""
     if not results.loads or not (control.joints or control.sensors):
         return results
     from mjcfbuild.check.runtime import check_runtime
 
-    found, failures, warnings = check_runtime(compile_model(model_path, sources), control)
+    model = compile_model(model_path, sources)
+    gains = _pid_gains(control.hardware.get("pids_config_file"))
+    found, failures, warnings = check_runtime(model, control, urdf_joints, gains)
     runtime = Runtime(
         found["joints"], found["sensors"], found["devices"], warnings, failed=bool(failures)
     )
     return results.add(failures, mujoco_ros2_control=runtime)
+
+
+def _urdf_joints(robot: dict) -> dict[str, str | None]:
+    """Each URDF joint of the plan's robot, with the joint it mimics (None for others)."""
+    return {joint["name"]: (joint.get("mimic") or {}).get("joint") for joint in robot["joints"]}
+
+
+def _pid_gains(named: str | None) -> PidGains | None:
+    """The gains of the pids_config_file the block names; None where there is none to read."""
+    import yaml
+
+    from mjcfbuild.inputs.pid_gains import read_pid_gains
+
+    path = Path(named.strip()) if named else None
+    if path is None or not path.is_absolute():
+        return None
+    try:
+        return read_pid_gains(path)
+    except (OSError, ValueError, yaml.YAMLError):
+        return None
 
 
 def _located(failure: str, source: str, model_label: str) -> tuple[str, int | None, str]:

@@ -19,8 +19,17 @@ from tests.control.helpers import build_two_link, load, readiness
 
 
 def runtime_kind(model, actuator: int) -> str:
-    """mujoco_ros2_control's getActuatorType: the bias alone decides."""
+    """mujoco_ros2_control's getActuatorType: an <intvelocity> (an integrator into a fixed
+    gain, an affine bias of -kp on position) is velocity; else the bias alone decides."""
     bias = model.actuator_biasprm[actuator]
+    if (
+        model.actuator_dyntype[actuator] == mujoco.mjtDyn.mjDYN_INTEGRATOR
+        and model.actuator_gaintype[actuator] == mujoco.mjtGain.mjGAIN_FIXED
+        and model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_AFFINE
+        and bias[0] == 0
+        and bias[1] == -model.actuator_gainprm[actuator][0]
+    ):
+        return "velocity"
     if model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_NONE:
         return "motor"
     if model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_AFFINE and bias[1] != 0:
@@ -119,12 +128,147 @@ def test_a_joint_whose_actuator_takes_none_of_its_interfaces_fails_the_check(tmp
     assert again.code == EXIT_CHECK and "none of which its actuator 'mine'" in again.stderr
 
 
-def test_pid_gains_let_a_motor_take_position(tmp_path):
-    hardware = '<param name="pids_config_file">/config/pids.yaml</param>'
-    rules = "actuators:\n  rules: [{joints: [hinge], type: motor}]\n"
-    build_two_link(tmp_path, rules, urdf_extra=control_block(["position"], hardware))
+MOTOR = "actuators:\n  rules: [{joints: [hinge], type: motor}]\n"
+PIDS = """mujoco_ros2_control_node:
+  ros__parameters:
+    pid_gains:
+      position:
+        hinge: {p: %s, i: 0.0, d: 2.0}
+"""
+
+
+def _pids_block(path) -> str:
+    return control_block(["position"], f'<param name="pids_config_file">{path}</param>')
+
+
+def test_pid_gains_of_the_pids_config_file_let_a_motor_take_position(tmp_path):
+    """The runtime builds a PID from pid_gains.position.<joint>.p, .i and .d, read as ROS
+    doubles; the file is read, and editing it reruns the check."""
+    pids = tmp_path / "pids.yaml"
+    write(pids, PIDS % "100.0")
+    build_two_link(tmp_path, MOTOR, urdf_extra=_pids_block(pids))
     (joint,) = check_record(tmp_path)["mujoco_ros2_control"]["joints"]
-    assert (joint["kind"], joint["how"]) == ("motor", {"position": "pid"})
+    assert (joint["kind"], joint["how"], joint["starts"]) == (
+        "motor",
+        {"position": "pid"},
+        "position",
+    )
+    # `p: 100` is an integer to ROS: PidROS reads no gain, and the runtime stops at start-up.
+    write(pids, PIDS % "100")
+    result = run_cli("build", str(tmp_path / "robot.yaml"))
+    assert result.code == EXIT_CHECK, result.stderr
+    assert "robot.urdf:" in result.stderr and "takes only through PID gains" in result.stderr
+    assert "pid_gains.position.hinge: its p gain 100 is not a double (write 100.0)" in result.stderr
+
+
+def test_a_position_command_on_a_motor_without_pid_gains_stops_the_runtime(tmp_path):
+    """Beside an effort interface the motor takes, a position interface without gains used to
+    be a warning: the runtime's register_urdf_joints throws for it."""
+    block = control_block(["position", "effort"])
+    write(tmp_path / "robot.urdf", _two_link_with(block))
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\n" + MOTOR)
+    result = run_cli("build", str(tmp_path / "robot.yaml"))
+    assert result.code == EXIT_CHECK, result.stderr
+    assert (
+        "joint 'hinge' commands position on its motor actuator 'hinge', which the runtime takes "
+        "only through PID gains, and no pids_config_file gives them" in result.stderr
+    )
+
+
+def test_a_pids_config_file_not_found_here_is_said_to_be_unchecked(tmp_path):
+    result = build_two_link(tmp_path, MOTOR, urdf_extra=_pids_block("/nowhere/pids.yaml"))
+    (joint,) = check_record(tmp_path)["mujoco_ros2_control"]["joints"]
+    assert joint["how"] == {"position": "pid?"}
+    assert any(
+        "the pids_config_file /nowhere/pids.yaml could not be read here" in w
+        and "hinge position" in w
+        for w in result.warnings
+    ), result.warnings
+
+
+def test_a_joint_the_urdf_lacks_is_refused_at_its_line(tmp_path):
+    """ros2_control (Jazzy and later) refuses a <ros2_control> joint the URDF does not have."""
+    block = control_block(["position"]).replace('name="hinge"', 'name="hnge"')
+    stderr = _fails_to_start(tmp_path, block)
+    assert "robot.urdf:" in stderr
+    assert "joint 'hnge' is not a joint of the URDF" in stderr
+    assert "what is no joint; did you mean 'hinge'?" in stderr
+
+
+def test_a_mimic_joint_with_a_command_interface_is_a_warning_not_a_failure(tmp_path):
+    """The runtime ignores a mimic joint's command interfaces (it logs an error); the check
+    failed it for having no actuator, and advised giving it one, which would fight the
+    mimic's equality."""
+    extra = (
+        '<link name="tip"><inertial><mass value="0.1"/><inertia ixx="0.001" iyy="0.001" '
+        'izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+        '<joint name="follower" type="revolute"><parent link="arm"/><child link="tip"/>'
+        '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+        '<mimic joint="hinge" multiplier="1"/></joint>'
+    )
+    block = control_block(["position"]).replace(
+        "</ros2_control>",
+        '<joint name="follower"><command_interface name="position"/>'
+        '<state_interface name="position"/></joint></ros2_control>',
+    )
+    result = build_two_link(tmp_path, urdf_extra=extra + block)
+    assert check_record(tmp_path)["passes"]
+    assert any(
+        "1 mimic joint (follower (mimics hinge)) declare command interfaces" in w
+        for w in result.warnings
+    ), result.warnings
+
+
+def test_a_block_for_other_hardware_beside_the_runtimes_is_not_judged_as_the_runtimes(tmp_path):
+    """A gripper driver's block beside mujoco_ros2_control's: its initial_keyframe is not the
+    runtime's (the build failed on it), and its joints are said to be unserved."""
+    runtime = control_block(["position"]).replace(
+        "<hardware></hardware>",
+        "<hardware><plugin>mujoco_ros2_control/MujocoSystemInterface</plugin>"
+        '<param name="initial_keyframe">home</param></hardware>',
+    )
+    driver = (
+        '<ros2_control name="gripper" type="system"><hardware>'
+        "<plugin>robotiq_driver/RobotiqGripperHardwareInterface</plugin>"
+        '<param name="initial_keyframe">pregrasp</param></hardware>'
+        '<joint name="hinge"><command_interface name="position"/></joint></ros2_control>'
+    )
+    result = build_two_link(tmp_path, urdf_extra=runtime + driver)
+    assert check_record(tmp_path)["passes"], check_record(tmp_path)["failures"]
+    assert any(
+        "the <ros2_control> block for robotiq_driver/RobotiqGripperHardwareInterface is not "
+        "the runtime's" in w
+        for w in result.warnings
+    ), result.warnings
+
+
+def test_an_intvelocity_takes_a_velocity_command_directly(tmp_path):
+    """The runtime classifies an <intvelocity> as a velocity actuator (its ctrl is a speed);
+    the check took it for a position servo and said the runtime would not start."""
+    raw = (
+        'mujoco_inputs:\n  raw: \'<actuator><intvelocity name="hinge" joint="hinge" '
+        'kp="50" actrange="-1 1"/></actuator>\'\n'
+    )
+    build_two_link(tmp_path, raw, urdf_extra=control_block(["velocity"]))
+    (joint,) = check_record(tmp_path)["mujoco_ros2_control"]["joints"]
+    assert (joint["kind"], joint["how"]) == ("velocity", {"velocity": "direct"})
+    assert check_record(tmp_path)["passes"]
+
+
+def test_effort_joints_are_said_to_start_without_the_keyframes_torques(tmp_path):
+    result = build_two_link(tmp_path, urdf_extra=control_block(["effort"]))
+    assert any("1 joint (hinge) start under effort control" in w for w in result.warnings)
+
+
+def test_a_floating_robot_is_told_which_free_joint_odometry_needs(tmp_path):
+    result = build_two_link(
+        tmp_path, "options: {free_joint: true}\n", urdf_extra=control_block(["position"])
+    )
+    assert any(
+        "no odom_free_joint_name is given (it defaults to 'floating_base_joint')" in w
+        and '<param name="odom_free_joint_name">base_freejoint</param>' in w
+        for w in result.warnings
+    ), result.warnings
 
 
 def _two_link_with(extra: str) -> str:
