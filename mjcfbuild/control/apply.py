@@ -211,6 +211,8 @@ def make_ready(
     attributes = {"name": HOME, "qpos": output_list(final_data.qpos)}
     if final.nu:
         attributes["ctrl"] = output_list(ctrl)
+    if final.na:
+        attributes["act"] = output_list(_home_act(final, final_data))
     keyframe.insert(0, etree.Element("key", attributes))
     readiness.home_written = True
     return readiness
@@ -532,6 +534,10 @@ def _effort_caps(
     return {cap.joint: cap for cap in caps}
 
 
+# A velocity servo's kv over the joint's damping: it then reaches 98 % of a commanded speed.
+VELOCITY_TRACKING = 49.0
+
+
 def _actuator(
     choice: ActuatorChoice,
     joint,
@@ -584,7 +590,11 @@ def _actuator(
         real = bounds is not None and bounds[0] < bounds[1] and not placeholder_range(bounds)
         record.ctrlrange = list(bounds) if real and bounds else None
     elif choice.type == VELOCITY:
-        record.kv = choice.kv or inertia * omega  # a first-order servo with bandwidth omega
+        # A first-order servo with bandwidth omega, that reaches its command: the joint's own
+        # damping b keeps b / (kv + b) of the speed from it (a wheel's 0.2 N m s against a kv
+        # of 0.044 from its inertia reached 18 %).
+        damping = choice.damping if choice.damping is not None else joint.damping
+        record.kv = choice.kv or max(inertia * omega, VELOCITY_TRACKING * damping)
         velocity = positive_velocity(joint)
         record.ctrlrange = [-velocity, velocity] if velocity else None
     else:  # motor
@@ -672,6 +682,41 @@ def _preset_ctrl(model, data, ctrl, preset: dict[str, float]) -> None:
             ctrl[index] = min(max(ctrl[index], low), high)
 
 
+def _integrates(model, actuator: int) -> bool:
+    """Whether ``actuator`` integrates its ctrl into the position it aims at (an
+    ``<intvelocity>``: an integrator into an affine position servo)."""
+    import mujoco
+
+    return bool(
+        model.actuator_dyntype[actuator] == mujoco.mjtDyn.mjDYN_INTEGRATOR
+        and model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_AFFINE
+        and model.actuator_biasprm[actuator][1] != 0
+        and model.actuator_actadr[actuator] >= 0
+    )
+
+
+def _home_act(model, data):
+    """Actuator states that hold the home pose: an ``<intvelocity>`` aims at it (its
+    activation is the position), every other state rests at 0."""
+    import mujoco
+    import numpy as np
+
+    act = np.zeros(model.na)
+    for actuator in range(model.nu):
+        if not _integrates(model, actuator):
+            continue
+        if model.actuator_trntype[actuator] != mujoco.mjtTrn.mjTRN_JOINT:
+            continue
+        joint = model.actuator_trnid[actuator, 0]
+        gear = model.actuator_gear[actuator, 0] or 1.0
+        value = gear * data.qpos[model.jnt_qposadr[joint]]
+        if model.actuator_actlimited[actuator]:
+            low, high = model.actuator_actrange[actuator]
+            value = min(max(value, low), high)
+        act[model.actuator_actadr[actuator] + model.actuator_actnum[actuator] - 1] = value
+    return act
+
+
 def _home_ctrl(model, data, torques):
     """Controls that hold the home pose: position servos aim at it, velocity servos rest, and
     motors push the ``torques`` that hold it (gravity, less the floor's support for a standing
@@ -688,7 +733,9 @@ def _home_ctrl(model, data, torques):
         address, dof = model.jnt_qposadr[joint], model.jnt_dofadr[joint]
         bias = model.actuator_biasprm[actuator]
         affine = model.actuator_biastype[actuator] == mujoco.mjtBias.mjBIAS_AFFINE
-        if affine and bias[1] != 0:  # a position servo: force = kp (ctrl - length) ...
+        if _integrates(model, actuator):  # an <intvelocity>: its ctrl is a speed, act the aim
+            ctrl[actuator] = 0.0
+        elif affine and bias[1] != 0:  # a position servo: force = kp (ctrl - length) ...
             ctrl[actuator] = gear * data.qpos[address]
         elif is_dcmotor(model, actuator):  # issue 33
             ctrl[actuator] = gear * data.qpos[address]  # a drive's position servo

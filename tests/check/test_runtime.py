@@ -246,12 +246,16 @@ def test_an_intvelocity_takes_a_velocity_command_directly(tmp_path):
     """The runtime classifies an <intvelocity> as a velocity actuator (its ctrl is a speed);
     the check took it for a position servo and said the runtime would not start."""
     raw = (
-        'mujoco_inputs:\n  raw: \'<actuator><intvelocity name="hinge" joint="hinge" '
-        'kp="50" actrange="-1 1"/></actuator>\'\n'
+        'home: {hinge: 0.5}\nmujoco_inputs:\n  raw: \'<actuator><intvelocity name="hinge" '
+        'joint="hinge" kp="50" actrange="-1 1"/></actuator>\'\n'
     )
-    build_two_link(tmp_path, raw, urdf_extra=control_block(["velocity"]))
+    result = build_two_link(tmp_path, raw, urdf_extra=control_block(["velocity"]))
     (joint,) = check_record(tmp_path)["mujoco_ros2_control"]["joints"]
     assert (joint["kind"], joint["how"]) == ("velocity", {"velocity": "direct"})
+    # Its home: at rest (ctrl, a speed, 0) aiming at the pose (act), which it holds; the
+    # keyframe wrote the position into ctrl, and the hold check failed.
+    model = load(result)
+    assert (list(model.key_ctrl[0]), list(model.key_act[0])) == ([0.0], [0.5])
     assert check_record(tmp_path)["passes"]
 
 

@@ -186,3 +186,30 @@ def test_the_speed_lines_rotor_adds_to_the_armature_the_joint_has(tmp_path):
     )
     joint = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "hinge")
     assert model.dof_armature[model.jnt_dofadr[joint]] == pytest.approx(0.05 + 10 / 1 * 0.002)
+
+
+def test_a_velocity_servo_reaches_its_command_against_the_joints_damping(tmp_path):
+    """kv from the joint's inertia alone (0.04 here) left a wheel with URDF damping 0.2 at a
+    sixth of the commanded speed; the servo now dominates the damping (98 %)."""
+    from tests.conftest import two_link_urdf, write
+
+    urdf = two_link_urdf(
+        extra='<ros2_control name="s" type="system"><hardware/><joint name="hinge">'
+        '<command_interface name="velocity"/></joint></ros2_control>',
+        joint_type="continuous",
+    ).replace('<axis xyz="0 1 0"/>', '<axis xyz="0 1 0"/><dynamics damping="0.2"/>')
+    write(tmp_path / "robot.urdf", urdf)
+    write(
+        tmp_path / "robot.yaml",
+        "name: r\nsource: {urdf: robot.urdf}\n"
+        "mujoco_inputs:\n  raw: '<option gravity=\"0 0 0\"/>'\n",
+    )
+    import mjcfbuild
+
+    model = load(mjcfbuild.build(tmp_path / "robot.yaml"))
+    assert model.actuator_biastype[0] == mujoco.mjtBias.mjBIAS_AFFINE
+    assert model.dof_damping[0] == pytest.approx(0.2)
+    data = mujoco.MjData(model)
+    data.ctrl[0] = 0.5
+    mujoco.mj_step(model, data, int(2.0 / model.opt.timestep))
+    assert data.qvel[0] == pytest.approx(0.5, rel=0.03)
