@@ -192,7 +192,8 @@ FAMILY = Family(
     # actuator named in its record; 20: a URDF floating joint has no home value (the report
     # listed it at 0); 21: a warning where lidar rays are most of a step; 22: free_joint on a
     # URDF rooted at `world` floats what the world holds as one whole; an <intvelocity>'s
-    # home is ctrl 0 and act at the pose
+    # home is ctrl 0 and act at the pose; a root holding the robot by a floating joint is the
+    # world body
     format=22,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,

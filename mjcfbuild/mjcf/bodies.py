@@ -92,11 +92,15 @@ def build_bodies(robot: Robot, fuse_static: bool, free_joint: bool = False) -> l
     pending: list[tuple[str, Body | None, str | None, Joint | None, Transform]] = [
         (robot.root, None, None, None, Transform())
     ]
+    ground = ground_link(robot)
     while pending:
         link_name, body, parent, joint, in_body = pending.pop()
         if body is None:
-            floating = free_joint and parent is None and link_name != WORLD
-            body = Body(link_name, parent, joint, in_body, None, [], [], floating)
+            # The ground link is MuJoCo's world body, whatever its name (a root holding the
+            # robot by a floating joint keeps its name as a site there).
+            name = WORLD if parent is None and link_name == ground else link_name
+            floating = free_joint and parent is None and name != WORLD
+            body = Body(name, parent, joint, in_body, None, [], [], floating)
             bodies.append(body)
             in_body = Transform()
         link = links[link_name]
@@ -185,11 +189,23 @@ def combine_masses(robot: Robot, body: Body) -> MassProperties | None:
     )
 
 
+def ground_link(robot: Robot) -> str | None:
+    """The URDF link that stands for MuJoCo's world body: a root called ``world``, or a root
+    (a massless placeholder, HyQ's) that holds the robot by a ``floating`` joint, which MuJoCo
+    allows only from the world (its own import fuses such a root into the world)."""
+    root = robot.root
+    if root == WORLD:
+        return root
+    holds_floating = any(j.kind == "floating" and j.parent == root for j in robot.joints)
+    return root if holds_floating else None
+
+
 def floating_base(robot: Robot, free_joint: bool) -> bool:
     """Whether the model's base floats: robot.yaml's ``options.free_joint`` asks for it, or the
-    URDF itself joins its root to the ``world`` link with a floating joint (MuJoCo's import
-    makes that a free joint: the robot then stands on the floor as any floating base does)."""
-    return free_joint or (
-        robot.root == WORLD
-        and any(joint.kind == "floating" and joint.parent == WORLD for joint in robot.joints)
+    URDF itself joins its robot to the ground link (``world``, or a root standing for it) with
+    a floating joint (MuJoCo's import makes that a free joint: the robot then stands on the
+    floor as any floating base does)."""
+    ground = ground_link(robot)
+    return free_joint or any(
+        joint.kind == "floating" and joint.parent == ground for joint in robot.joints
     )

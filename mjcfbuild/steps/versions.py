@@ -86,7 +86,8 @@ MESH = StepFormat(
 )
 DECOMPOSE = StepFormat("decompose", 3, ("coacd", "trimesh", "numpy", "scipy"))
 # selfcollision 4: a URDF floating joint from `world` floats the robot (its standing home);
-# 5: free_joint on a URDF rooted at `world` floats what the world holds as one whole
+# 5: free_joint on a URDF rooted at `world` floats what the world holds as one whole; a root
+# holding the robot by a floating joint is the world body
 SELFCOLLISION = StepFormat("selfcollision", 5, ("mujoco", "numpy"))
 REFERENCE = StepFormat("reference", 1, ("yourdfpy", "numpy", "lxml"))
 PREVIEWS = StepFormat("previews", 5, ("mujoco", "numpy", "pillow"))

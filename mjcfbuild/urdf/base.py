@@ -49,10 +49,10 @@ class BaseKind:
 
 def classify_base(robot: Robot) -> BaseKind:
     """Decide whether ``robot``'s base floats (see the module's rules)."""
+    kinds = {joint.kind for joint in robot.joints if joint.parent == robot.root}
+    if "floating" in kinds:  # MuJoCo's import makes it a free joint: the build floats it
+        return BaseKind(True, "its URDF joins it to the world with a floating joint")
     if robot.root == "world":
-        kinds = {joint.kind for joint in robot.joints if joint.parent == "world"}
-        if "floating" in kinds:  # MuJoCo's import makes it a free joint: the build floats it
-            return BaseKind(True, "its URDF joins it to the world with a floating joint")
         return BaseKind(False, "its root is joined to the world link")
     if all(joint.kind == "fixed" for joint in robot.joints):
         return BaseKind(

@@ -87,6 +87,23 @@ def test_free_joint_says_when_the_world_holds_the_robot_only_by_a_moving_joint(t
     assert "floats nothing" in warning and "'turntable'" in warning, warning
 
 
+@pytest.mark.parametrize("free_joint", [False, True])
+def test_a_floating_joint_from_a_placeholder_root_floats_the_robot(tmp_path, free_joint):
+    # HyQReal2's layout: a massless root link holds the trunk by a floating joint. MuJoCo's
+    # own import takes the root for the world; the build stopped at "free joint can only be
+    # used on top level", advising the free_joint it already had.
+    import mujoco
+
+    urdf = two_link_urdf(
+        extra='<link name="root"/><joint name="float" type="floating"><parent link="root"/>'
+        '<child link="base"/><origin xyz="0 0 0.5"/></joint>'
+    )
+    _, model = build(urdf, tmp_path, free_joint=free_joint)
+    assert list(model.jnt_type).count(mujoco.mjtJoint.mjJNT_FREE) == 1
+    assert model.joint(0).name == "float" and model.body(model.jnt_bodyid[0]).name == "base"
+    assert model.site_bodyid[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, "root")] == 0
+
+
 def test_a_world_link_with_an_inertia_mujoco_refuses_builds(tmp_path):
     # drake's Pendulum.urdf gives its root link 'world' the moments 0.01, 0, 0 (a stub for a
     # viewer): the world never moves, so its mass is left out instead of stopping the build

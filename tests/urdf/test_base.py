@@ -114,3 +114,12 @@ def test_a_robot_without_moving_joints_floats():
         '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>',
     )
     assert not classify_base(parse_urdf(arm.encode(), "arm.urdf")).floating
+
+
+def test_a_floating_joint_from_a_placeholder_root_floats():
+    arm = (
+        '<robot name="r"><link name="root"/><link name="trunk"/><joint name="f" '
+        'type="floating"><parent link="root"/><child link="trunk"/></joint></robot>'
+    )
+    kind = classify_base(parse_urdf(arm.encode(), "r.urdf"))
+    assert kind.floating and "floating joint" in kind.why
