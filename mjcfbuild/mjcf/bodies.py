@@ -200,6 +200,23 @@ def ground_link(robot: Robot) -> str | None:
     return root if holds_floating else None
 
 
+def refuse_nested_floating(robot: Robot) -> None:
+    """A ``floating`` joint below the root: MuJoCo has free joints only on bodies of the
+    world, so no model has it (urdfdom reads it; MuJoCo's import refuses it)."""
+    from mjcfbuild.errors import ModelError
+
+    for joint in robot.joints:
+        if joint.kind == "floating" and joint.parent != robot.root:
+            raise ModelError(
+                f"joint '{joint.name}' is floating below link '{joint.parent}', which is not "
+                f"the root ('{robot.root}'): MuJoCo allows a floating joint only from the root",
+                file=robot.source,
+                line=joint.line,
+                hint="make it fixed or another kind; options.free_joint floats the whole "
+                "robot from its root",
+            )
+
+
 def floating_base(robot: Robot, free_joint: bool) -> bool:
     """Whether the model's base floats: robot.yaml's ``options.free_joint`` asks for it, or the
     URDF itself joins its robot to the ground link (``world``, or a root standing for it) with

@@ -9,6 +9,7 @@ from mjcfbuild.errors import InputError
 from mjcfbuild.inputs.gazebo import read_gazebo_sensors, urdf_sensor_warnings
 from mjcfbuild.inputs.ros2_control import read_ros2_control
 from mjcfbuild.inputs.xml_inputs import inputs_in_urdf, read_inputs_file
+from mjcfbuild.mjcf.bodies import refuse_nested_floating
 from mjcfbuild.mjcf.depth import refuse_deep_chains
 from mjcfbuild.sources.packages import PackageResolver
 from mjcfbuild.steps.outputs import write_output
@@ -30,6 +31,7 @@ def run(payload: dict) -> dict:
     try:
         robot = parse_urdf(data, display)
         refuse_deep_chains(robot)  # before any work: MuJoCo could not read the model back
+        refuse_nested_floating(robot)  # nor compile it
         prebuilt = request.prebuilt_meshes
         resolve_files(
             robot,

@@ -15,6 +15,7 @@ from pathlib import Path
 from mjcfbuild.errors import (
     EXIT_INPUT,
     EXIT_MANIFEST,
+    EXIT_MODEL,
     EXIT_OUTPUT,
     EXIT_USAGE,
 )
@@ -863,6 +864,18 @@ CASES: list[Case] = [
         },
         EXIT_INPUT,
         ["robot.urdf:6:", "mass -1"],
+    ),
+    Case(
+        "floating joint below the root",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": two_link_urdf(
+                extra='<link name="tip"/><joint name="loose" type="floating"><parent '
+                'link="arm"/><child link="tip"/></joint>'
+            ),
+        },
+        EXIT_MODEL,
+        ["robot.urdf:15:", "joint 'loose' is floating below link 'arm'", "make it fixed"],
     ),
     # ---- meshes -------------------------------------------------------------------------------
     Case(
