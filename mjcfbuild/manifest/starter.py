@@ -19,7 +19,6 @@ from mjcfbuild.sources.infer import (
 from mjcfbuild.sources.kind import not_a_description, xacro_evidence
 from mjcfbuild.sources.packages import PackageResolver, find_enclosing_package
 
-_ARG = re.compile(rb"<xacro:arg\s+name=\"([^\"]+)\"(?:\s+default=\"([^\"]*)\")?")
 _PACKAGE_URI = re.compile(rb"package://([A-Za-z0-9_.-]+)/")
 _FIND = re.compile(rb"\$\(find\s+([A-Za-z0-9_.-]+)\)")
 _ROBOT_NAME = re.compile(rb"<robot[^>]*\sname=\"([^\"]+)\"")
@@ -93,6 +92,20 @@ def starter_manifest_text(
         if package in known:
             continue
         claimed = find_package_xml(package, source)
+        named = references.get(package, [])
+        if claimed and named and not any((claimed[0] / path).exists() for path in named):
+            # A package.xml naming it beside none of the files the description names in it
+            # (hpp-environments' wheel keeps its package.xml apart from its meshes): the build
+            # would stop at the first file, so the files decide where they are found.
+            found = infer_package(package, named, source)
+            if found is not None:
+                known[package] = str(found.folder)
+                notes[package] = (
+                    f"  # {package}: the package.xml naming it "
+                    f"({_relative(claimed[0], manifest_dir)}) holds none of the files the "
+                    "description names in it; they are in this folder"
+                )
+                continue
         if claimed:
             known[package] = str(claimed[0])
             if len(claimed) > 1:
@@ -127,9 +140,7 @@ def starter_manifest_text(
         f"  {'xacro' if is_xacro else 'urdf'}: {relative}",
     ]
     if is_xacro:
-        arguments = [
-            (m.group(1).decode(), (m.group(2) or b"").decode()) for m in _ARG.finditer(data)
-        ]
+        arguments = _declared_args(data)
         if arguments:
             lines.append("  # xacro arguments as name: value. The file declares these defaults:")
             lines += [f"  #   {arg}: {_yaml_scalar(default)}" for arg, default in arguments]
@@ -139,9 +150,20 @@ def starter_manifest_text(
         "# ROS packages named by package:// URIs and $(find ...), as name: folder.",
         "# Packages not listed are looked up in ROS_PACKAGE_PATH and AMENT_PREFIX_PATH.",
     ]
+    free_joint, unread, expanded = _free_joint_lines(source, is_xacro, known, data, label)
     unresolved = [package for package in needed if package not in known]
+    # Read with its default arguments, the description did without these: xacro skipped what
+    # names them (a $(find) under a false <xacro:if>), and its URDF names none.
+    optional = (
+        [p for p in unresolved if p.encode() not in _uris(expanded)] if expanded is not None else []
+    )
+    unresolved = [package for package in unresolved if package not in optional]
     lines += [
         f"#   {package}: path/to/{package}  # needed by the description" for package in unresolved
+    ]
+    lines += [
+        f"#   {package}: path/to/{package}  # only with other xacro arguments than the defaults"
+        for package in optional
     ]
     lines.append("packages:" if known else "packages: {}")
     for package in sorted(known):
@@ -157,7 +179,6 @@ def starter_manifest_text(
             f"under packages: give {'each' if len(missing) > 1 else 'it'} its folder (or pass "
             "--package NAME=DIR)"
         )
-    free_joint, unread = _free_joint_lines(source, is_xacro, known, data, label)
     # A package not found is what kept the description from being read: said once, above.
     if unread is not None and not any(f"'{package}'" in unread for package in missing):
         warnings.append(f"{unread}; the build stops there until the description is fixed")
@@ -247,12 +268,17 @@ def _first_line_naming(data: bytes, package: str) -> int:
     return data[: match.start()].count(b"\n") + 1 if match else 1
 
 
+def _uris(urdf: bytes | None) -> set[bytes]:
+    """The package names a URDF's ``package://`` URIs name."""
+    return set(_PACKAGE_URI.findall(urdf or b""))
+
+
 def _free_joint_lines(
     source: Path, is_xacro: bool, packages: dict[str, str], data: bytes, label: str
-) -> tuple[list[str], str | None]:
+) -> tuple[list[str], str | None, bytes | None]:
     """The manifest's free_joint line, decided from the robot's kinematics and geometry
     (urdf.base); from its names only where the description cannot be read here, with the
-    error (one line) that kept it from being read."""
+    error (one line) that kept it from being read; and the URDF it read (None where none)."""
     from mjcfbuild.urdf.base import classify_base
 
     try:
@@ -268,20 +294,30 @@ def _free_joint_lines(
         unread = exc.relocate(here, here).one_line() if isinstance(exc, MjcfbuildError) else None
         legs = _leg_words(data)
         if legs:
-            return [
-                f"  # Names like {', '.join(legs)} suggest a walking robot (the description",
-                "  # could not be read to tell): its base floats.",
-                "  free_joint: true",
-            ], unread
-        return [
-            "  free_joint: false   # true for a floating base (legged robots, humanoids)"
-        ], unread
+            return (
+                [
+                    f"  # Names like {', '.join(legs)} suggest a walking robot (the description",
+                    "  # could not be read to tell): its base floats.",
+                    "  free_joint: true",
+                ],
+                unread,
+                None,
+            )
+        return (
+            ["  free_joint: false   # true for a floating base (legged robots, humanoids)"],
+            unread,
+            None,
+        )
     if kind.floating:
-        return [
-            f"  # Its base floats: {kind.why}. The build stands it on the floor at home.",
-            "  free_joint: true",
-        ], None
-    return [f"  free_joint: false   # {kind.why}; true for a floating base"], None
+        return (
+            [
+                f"  # Its base floats: {kind.why}. The build stands it on the floor at home.",
+                "  free_joint: true",
+            ],
+            None,
+            expansion.urdf,
+        )
+    return [f"  free_joint: false   # {kind.why}; true for a floating base"], None, expansion.urdf
 
 
 _LEG_WORDS = ("hip", "thigh", "knee", "calf", "shank", "ankle", "foot", "HFE", "KFE", "HAA")
@@ -312,3 +348,21 @@ def _yaml_scalar(text: str) -> str:
     if text in ("true", "false") or re.fullmatch(r"-?[0-9.]+", text or "x"):
         return text
     return '"' + text.replace('"', '\\"') + '"'
+
+
+def _declared_args(data: bytes) -> list[tuple[str, str]]:
+    """The ``<xacro:arg>`` elements of a xacro file, as (name, default), in file order: read as
+    XML, as xacro reads them (either quote, spaces around ``=``, attributes in any order);
+    none where the file is no well-formed XML (the build then says why)."""
+    from lxml import etree
+
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=False)
+    try:
+        root = etree.fromstring(data, parser)
+    except etree.XMLSyntaxError:
+        return []
+    return [
+        (element.get("name", ""), element.get("default", ""))
+        for element in root.iter("{*}arg")
+        if "xacro" in (etree.QName(element).namespace or "") and element.get("name")
+    ]

@@ -478,3 +478,59 @@ def test_a_folder_the_description_names_twice_says_both_names_are_it(cli, tmp_pa
     assert "  pkg_a: pkg\n" in text and "  pkg_b: pkg\n" in text
     assert "names it 'pkg_a', which the description uses too: both names are this folder" in text
     assert "does not use" not in text
+
+
+def test_a_package_xml_beside_none_of_the_files_does_not_take_the_name(cli, tmp_path):
+    """hpp-environments' wheel: share/hpp-environments/package.xml names the package, its
+    meshes sit in share/hpp_environments; the build then stopped at the first mesh."""
+    from tests.conftest import write
+
+    urdf = _described_package(tmp_path / "share", "jvrc_description", None)
+    write(
+        tmp_path / "share" / "jvrc-description" / "package.xml",
+        "<package format='3'><name>jvrc_description</name></package>\n",
+    )
+    assert cli("init", str(urdf), "-o", "robot.yaml", cwd=tmp_path).code == EXIT_OK
+    text = (tmp_path / "robot.yaml").read_text()
+    assert _packages_section(text)[-1] == "  jvrc_description: share/jvrc_description"
+    assert "holds none of the files the description names in it" in text
+    assert cli("build", "-q", "--no-check", cwd=tmp_path).code == EXIT_OK
+
+
+# ---- xacro arguments --------------------------------------------------------------------------
+
+ARGS_XACRO = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">
+  <xacro:arg name="robot_name" default = "px100"/>
+  <xacro:arg name='prefix' default='left_'/>
+  <xacro:arg default="0.3" name="length"/>
+  <xacro:arg name="with_gazebo" default="false"/>
+  <xacro:if value="$(arg with_gazebo)">
+    <xacro:include filename="$(find arm_gazebo)/urdf/arm.gazebo"/>
+  </xacro:if>
+  <link name="$(arg prefix)base"/>
+</robot>
+"""
+
+
+def test_init_lists_every_declared_argument_as_xacro_reads_it(cli, tmp_path):
+    """Spaces around '=', single quotes and default before name: xacro reads all three; init
+    listed one of them, with an empty default."""
+    from tests.conftest import write
+
+    write(tmp_path / "arm.urdf.xacro", ARGS_XACRO)
+    assert cli("init", "arm.urdf.xacro", "-o", "robot.yaml", cwd=tmp_path).code == EXIT_OK
+    text = (tmp_path / "robot.yaml").read_text()
+    for line in ('#   robot_name: "px100"', '#   prefix: "left_"', "#   length: 0.3"):
+        assert line in text, text
+
+
+def test_a_package_only_a_false_condition_names_is_not_called_needed(cli, tmp_path):
+    """$(find arm_gazebo) under <xacro:if> of an argument false by default (every Interbotix
+    xsarm xacro): xacro and the build do without it, and init warned that it was missing."""
+    from tests.conftest import write
+
+    write(tmp_path / "arm.urdf.xacro", ARGS_XACRO)
+    result = cli("init", "arm.urdf.xacro", "-o", "robot.yaml", cwd=tmp_path)
+    assert result.code == EXIT_OK and "arm_gazebo" not in result.stderr, result.stderr
+    text = (tmp_path / "robot.yaml").read_text()
+    assert "#   arm_gazebo: path/to/arm_gazebo  # only with other xacro arguments" in text
