@@ -93,3 +93,12 @@ def test_densities_far_outside_what_robots_are_made_of_are_named_with_their_caus
     foam = density_problem(0.03, part)  # 30 kg/m^3: a placeholder, a warning
     assert foam is not None and not density_fails(foam[1])
     assert "mm" in density_cause(1e-7) and "cm" in density_cause(1e-4)
+
+
+def test_a_density_just_past_a_bound_does_not_read_as_the_bound():
+    from mjcfbuild.check.density import LOW_DENSITY, Volume, density_problem
+
+    problem = density_problem(LOW_DENSITY * 0.02 * 0.99999, Volume(0.02, 0.02))
+    assert problem is not None
+    assert f"is {LOW_DENSITY:.6g} kg/m^3" not in problem[0]
+    assert "49.9995 kg/m^3" in problem[0], problem[0]
