@@ -16,6 +16,7 @@ if TYPE_CHECKING:
 
 SOURCE_URDF = "source.urdf"
 SOURCE_DEPS = "source.deps.json"
+CHECK_DEPS = "check.deps.json"  # what the check read besides its inputs (a pids_config_file)
 COMPOSED_URDF = "composed.urdf"
 PARTS_DIR = "attach"  # the attach: parts' expanded URDFs and normalised MJCF
 # How the comment atop every model a build writes begins (a fresh clone's committed model is

@@ -426,6 +426,16 @@ def _gazebo(sensors: list[GazeboSensor] | None) -> list[str]:
     return [*lines, ""]
 
 
+# How the runtime takes a command interface (check.runtime's record), in words.
+_WAYS = {
+    "direct": "direct",
+    "pid": "through PID gains",
+    "pid?": "through PID gains (file not read here)",
+    "no pid": "NO PID GAINS (the runtime stops)",
+    None: "not taken (offered, written into ctrl as is)",
+}
+
+
 def _runtime(runtime: Runtime | None) -> list[str]:
     """What mujoco_ros2_control finds for the <ros2_control> block (check.runtime)."""
     if not runtime:
@@ -433,12 +443,12 @@ def _runtime(runtime: Runtime | None) -> list[str]:
     lines = ["### mujoco_ros2_control", ""]
     if runtime.joints:
         lines += [
-            "| joint | command interfaces | actuator | kind (by its bias) |",
+            "| joint | command interfaces | actuator | kind (as the runtime classifies it) |",
             "|---|---|---|---|",
         ]
         for joint in runtime.joints:
             how = ", ".join(
-                f"{name}: {way or 'REFUSED'}" for name, way in joint["how"].items()
+                f"{name}: {_WAYS.get(way, way)}" for name, way in joint["how"].items()
             ) or ", ".join(joint["interfaces"])
             lines.append(
                 f"| {md(joint['joint'])} | {md(how)} | {md(joint['actuator'] or 'none')} | "

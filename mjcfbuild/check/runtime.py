@@ -35,9 +35,9 @@ from mjcfbuild.inputs.ros2_control import (
     ControlJoint,
     Ros2Control,
     expected_sensors,
-    interface_support,
     model_actuator_kind,
     needs_pids,
+    takes_directly,
 )
 
 if TYPE_CHECKING:
@@ -78,11 +78,15 @@ def check_runtime(
     are the pids_config_file's where it was read."""
     failures: list[str] = []
     warnings: list[str] = []
-    failures += _not_in_urdf(control, urdf_joints)
+    ghosts, part_joints = _not_in_urdf(model, control, urdf_joints)
+    failures += ghosts
+    warnings += part_joints
     served = [
         joint
         for joint in control.joints
-        if joint.commands and joint.name in urdf_joints and control.runs(joint.plugin)
+        if joint.commands
+        and control.runs(joint.plugin)
+        and (joint.name in urdf_joints or actuator_of(model, joint.name) >= 0)
     ]
     mimics = [joint for joint in served if joint.mimic or urdf_joints.get(joint.name)]
     warnings += _mimic_commands(mimics, urdf_joints)
@@ -118,14 +122,28 @@ def check_runtime(
     return {"joints": joints, "sensors": sensors, "devices": devices}, failures, warnings
 
 
-def _not_in_urdf(control: Ros2Control, urdf_joints: dict[str, str | None]) -> list[str]:
+def _not_in_urdf(
+    model, control: Ros2Control, urdf_joints: dict[str, str | None]
+) -> tuple[list[str], list[str]]:
     """ros2_control (Jazzy and later) refuses a description whose <ros2_control> names a
-    joint the URDF lacks, in any block, before any hardware starts."""
+    joint its URDF lacks, in any block, before any hardware starts: a failure; a warning
+    for a joint of an attached MJCF part (the model has it; the URDF handed to ros2_control
+    must have it too)."""
+    import mujoco
+
     from mjcfbuild.sources.packages import did_you_mean
 
-    failures = []
+    failures, warnings = [], []
     for joint in control.joints:
         if joint.name in urdf_joints:
+            continue
+        if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint.name) >= 0:
+            warnings.append(
+                f"{joint.origin}: <ros2_control> joint '{joint.name}' is a joint of an "
+                "attached MJCF part, not of the URDF: ros2_control (Jazzy and later) refuses a "
+                "<ros2_control> joint its robot_description lacks, so give the controller "
+                "manager a URDF that has it"
+            )
             continue
         failures.append(
             f"{joint.origin}: <ros2_control> joint '{joint.name}' is not a joint of the "
@@ -133,7 +151,7 @@ def _not_in_urdf(control: Ros2Control, urdf_joints: dict[str, str | None]) -> li
             'URDF"); name a URDF joint, or use a <gpio> for what is no joint'
             f"{did_you_mean(joint.name, set(urdf_joints))}"
         )
-    return failures
+    return failures, warnings
 
 
 def _mimic_commands(mimics: list[ControlJoint], urdf_joints: dict[str, str | None]) -> list[str]:
@@ -148,7 +166,8 @@ def _mimic_commands(mimics: list[ControlJoint], urdf_joints: dict[str, str | Non
     more = f" and {len(mimics) - 3} more" if len(mimics) > 3 else ""
     return [
         f"mujoco_ros2_control: {len(mimics)} mimic joint{'s' if len(mimics) > 1 else ''} "
-        f"({named}{more}) declare command interfaces, which the runtime ignores (it logs an "
+        f"({named}{more}) {_verb(mimics, 'declares', 'declare')} command interfaces, which "
+        "the runtime ignores (it logs an "
         "error): the joint follows its leader; command the leader, and remove the mimic "
         "joint's command interfaces"
     ]
@@ -203,7 +222,8 @@ def _unread_sensors(control: Ros2Control) -> list[str]:
     shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
     return [
         f"mujoco_ros2_control: {len(names)} <ros2_control> sensor{'s' if len(names) > 1 else ''} "
-        f"({shown}) have no mujoco_type parameter, so the runtime serves none of their state "
+        f"({shown}) {_verb(names, 'has', 'have')} no mujoco_type parameter, so the runtime "
+        "serves none of their state "
         'interfaces; add <param name="mujoco_type">imu</param> (or fts, pose, magnetometer)'
     ]
 
@@ -339,17 +359,24 @@ def _refusals(joints: list[dict]) -> list[str]:
         who = f"{len(names)} joint{'s' if len(names) > 1 else ''} ({listed})"
         if _family(interface) not in _KNOWN_INTERFACES:
             lines.append(
-                f"mujoco_ros2_control: {who} declare a {interface} command interface, which "
-                "the runtime does not know: it skips it with a warning; remove it"
+                f"mujoco_ros2_control: {who} {_verb(names, 'declares', 'declare')} "
+                f"{_article(interface)} {interface} command interface, which the runtime does "
+                "not know: it skips it with a warning; remove it"
             )
             continue
         lines.append(
-            f"mujoco_ros2_control: {who} declare {_article(interface)} {interface} command "
+            f"mujoco_ros2_control: {who} {_verb(names, 'declares', 'declare')} "
+            f"{_article(interface)} {interface} command "
             f"interface that their {kind} actuators do not take: the runtime logs an error but "
             f"offers it, and a controller that switches to it has its {interface} command "
             f"written into the {kind} actuator's ctrl as it is; {_switch_fix(interface, kind)}"
         )
     return lines
+
+
+def _verb(subjects: list, one: str, many: str) -> str:
+    """The verb agreeing with a count of ``subjects``."""
+    return one if len(subjects) == 1 else many
 
 
 def _article(word: str) -> str:
@@ -375,9 +402,10 @@ def _effort_at_start(joints: list[dict]) -> list[str]:
     shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
     return [
         f"mujoco_ros2_control: {len(names)} joint{'s' if len(names) > 1 else ''} ({shown}) "
-        "start under effort control: the runtime writes their effort command, 0 until a "
-        "controller sends one, into ctrl in place of the home keyframe's, so the robot holds "
-        "home only once a controller does (the check's hold test keeps the keyframe's torques)"
+        f"{_verb(names, 'starts', 'start')} under effort control: the runtime writes the "
+        "effort command, 0 until a controller sends one, into ctrl in place of the home "
+        "keyframe's, so the robot holds home only once a controller does (the check's hold "
+        "test keeps the keyframe's torques)"
     ]
 
 
@@ -443,7 +471,7 @@ def _joint(
     how: dict[str, str | None] = {}
     for interface in commands:
         family = _family(interface)
-        if interface_support(kind, interface, False) == "direct":
+        if takes_directly(kind, interface):
             how[interface] = "direct"
         elif needs_pids(kind, interface):
             if gains is not None:
@@ -471,12 +499,17 @@ def _joint(
             f"pids_config_file, or {_FIX.get(_family(missing[0]), '').split(', or')[0]}"
         )
     elif not any(how.values()):
-        first = commands[0]
+        known = [i for i in commands if _family(i) in _FIX]
+        fix = (
+            f"give it {_FIX[_family(known[0])]}"
+            if known
+            else "declare position, velocity or effort, which the runtime knows"
+        )
         failures.append(
             f"{joint.origin}: mujoco_ros2_control: joint '{name}' commands "
-            f"{', '.join(commands)}, none of which its actuator '{label}' ({kind}, by its "
-            f'bias) takes, so the runtime stops at start-up ("... none are supported by its '
-            f'MuJoCo actuator(s)"); give it {_FIX.get(_family(first), "")}'
+            f"{', '.join(commands)}, none of which its actuator '{label}' ({kind}, as the "
+            'runtime classifies it) takes, so the runtime stops at start-up ("... none are '
+            f'supported by its MuJoCo actuator(s)"); {fix}'
         )
     return {
         "joint": name,
@@ -489,10 +522,12 @@ def _joint(
     }
 
 
-def _starting_mode(kind: str, how: dict[str, str | None]) -> str:
+def _starting_mode(kind: str, how: dict[str, str | None]) -> str | None:
     """The control mode the runtime starts a joint in: a position or velocity servo in its
     own; a motor or custom actuator in position or velocity through PIDs where the joint has
-    them (in that order), else effort."""
+    them (in that order), else effort; None where it does not start (PIDs missing)."""
+    if "no pid" in how.values():
+        return None
     if kind in ("position", "velocity"):
         return kind
     for interface in ("position", "velocity"):

@@ -371,7 +371,7 @@ def record_build(
 ) -> None:
     """Write the stamp of the successful build of ``ctx`` that ran ``tasks``; ``warnings``
     are those of the tasks that made its outputs, for the fast path to print."""
-    from mjcfbuild.outputs import ASSEMBLY_REPORT, SOURCE_DEPS
+    from mjcfbuild.outputs import ASSEMBLY_REPORT, CHECK_DEPS, SOURCE_DEPS
     from mjcfbuild.steps.depfile import Depfile
 
     manifest = ctx.stamp_key
@@ -386,7 +386,11 @@ def record_build(
     for task in tasks:
         inputs += task["file_dep"]
         outputs += task["targets"]
-    depfiles = [ctx.state(SOURCE_DEPS), *sorted(ctx.products_dir.glob("*.deps.json"))]
+    depfiles = [
+        ctx.state(SOURCE_DEPS),
+        ctx.state(CHECK_DEPS),
+        *sorted(ctx.products_dir.glob("*.deps.json")),
+    ]
     for depfile in filter(None, (Depfile.read(path) for path in depfiles)):
         inputs += depfile.files
         absent += depfile.missing

@@ -6,8 +6,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.graph.family import Family, file_task, read_record
-from mjcfbuild.outputs import ASSEMBLY_REPORT, CHECK_RESULTS, PLAN, REFERENCE
+from mjcfbuild.graph.family import Family, discovered_inputs, file_task, read_record
+from mjcfbuild.outputs import ASSEMBLY_REPORT, CHECK_DEPS, CHECK_RESULTS, PLAN, REFERENCE
 from mjcfbuild.steps.payloads import CheckPayload, MjcfPartFiles
 
 if TYPE_CHECKING:
@@ -39,6 +39,7 @@ def check_payload(
         reference=str(ctx.state(REFERENCE)),
         output=str(ctx.state(CHECK_RESULTS)),
         mjcf_parts=parts,  # each compared with the part compiled alone
+        depfile=str(ctx.state(CHECK_DEPS)),
     )
 
 
@@ -46,6 +47,7 @@ def _tasks(graph: Graph) -> list[dict]:
     if not graph.checks:
         return []
     ctx, parts = graph.ctx, graph.parts
+    read, stale = discovered_inputs(ctx, ctx.state(CHECK_DEPS))
     task = file_task(
         ctx,
         FAMILY,
@@ -60,19 +62,12 @@ def _tasks(graph: Graph) -> list[dict]:
             ctx.state(ASSEMBLY_REPORT),
             ctx.state(REFERENCE),
             *(Path(path) for part in parts for path in (part.xml, part.summary)),
-            *_pids_file(graph),
+            *read,
         ],
         targets=[ctx.state(CHECK_RESULTS)],
+        extra_uptodate=stale,
     )
     return [task]
-
-
-def _pids_file(graph: Graph) -> list[Path]:
-    """The pids_config_file the check reads for the mujoco_ros2_control section, if any."""
-    from mjcfbuild.inputs.pid_gains import pids_file
-
-    path = pids_file(graph.plan.control().hardware)
-    return [path] if path is not None else []
 
 
 def _report(ctx: GraphContext) -> dict:
@@ -107,7 +102,8 @@ FAMILY = Family(
     # 15: transmissions of a block for another hardware plugin warned of, not failed; 16: the
     # runtime's 2026 rules: PID gains read from the pids_config_file, position or velocity
     # without them a failure, joints the URDF lacks, mimic joints, other plugins' blocks,
-    # <intvelocity>, odometry's free joint, effort at start
+    # <intvelocity>, odometry's free joint, effort at start; a density just past its bound
+    # shown with the digits that tell it from the bound
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

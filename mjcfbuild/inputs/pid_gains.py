@@ -35,24 +35,33 @@ class PidGains:
 
 
 def pids_file(hardware: dict[str, str]) -> Path | None:
-    """The pids_config_file a block's ``<hardware>`` names, where it is a file here (a path
-    ``$(find pkg)`` made absolute): the check reads it, so it is a dependency."""
+    """The pids_config_file a block's ``<hardware>`` names, where it names one by an absolute
+    path (``$(find pkg)`` makes one): the check reads it, so it is a dependency (a missing
+    one too: its appearing reruns the check)."""
     named = hardware.get("pids_config_file", "").strip()
     path = Path(named) if named else None
-    return path if path is not None and path.is_absolute() and path.is_file() else None
+    return path if path is not None and path.is_absolute() else None
 
 
 def read_pid_gains(path: Path) -> PidGains:
-    """The gains of the file at ``path``; OSError where it cannot be read, ValueError where it
-    is no YAML mapping."""
+    """The gains of the file at ``path``, its values typed as ROS types them; OSError where it
+    cannot be read, ValueError (naming the line) where ROS could not load it either."""
     import yaml
 
-    document = yaml.safe_load(path.read_text(encoding="utf-8"))
+    text = path.read_text(encoding="utf-8", errors="replace")
+    try:
+        node = yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.YAMLError as exc:
+        # Where the construct began (an unclosed bracket's line), else where YAML noticed.
+        mark = getattr(exc, "context_mark", None) or getattr(exc, "problem_mark", None)
+        where = f"line {mark.line + 1}: " if mark is not None else ""
+        raise ValueError(f"{where}{getattr(exc, 'problem', None) or exc}") from None
+    document = _ros_value(node) if node is not None else {}
     if not isinstance(document, dict):
         raise ValueError("not a mapping of node names to parameters")
     parameters: dict[str, object] = {}
-    for node, content in document.items():
-        if not _names_the_node(str(node)) or not isinstance(content, dict):
+    for name, content in document.items():
+        if not _names_the_node(str(name)) or not isinstance(content, dict):
             continue
         ros = content.get("ros__parameters")
         if isinstance(ros, dict):
@@ -71,6 +80,38 @@ def read_pid_gains(path: Path) -> PidGains:
         else:
             gains.faults[(interface, joint)] = fault
     return gains
+
+
+# rcl_yaml_param_parser's booleans, among plain scalars (before integers and doubles).
+_TRUE = {"y", "Y", "yes", "Yes", "YES", "true", "True", "TRUE", "on", "On", "ON"}
+_FALSE = {"n", "N", "no", "No", "NO", "false", "False", "FALSE", "off", "Off", "OFF"}
+
+
+def _ros_value(node) -> object:
+    """A YAML node's value as ROS's parameter parser types it: a quoted scalar is a string; a
+    plain one a boolean, else an integer where the whole of it is one, else a double where
+    the whole of it is one (``1e-3`` too, a string to YAML 1.1), else a string."""
+    import yaml
+
+    if isinstance(node, yaml.MappingNode):
+        return {str(_ros_value(key)): _ros_value(value) for key, value in node.value}
+    if isinstance(node, yaml.SequenceNode):
+        return [_ros_value(item) for item in node.value]
+    text = node.value
+    if node.style is not None:
+        return text
+    if text in _TRUE or text in _FALSE:
+        return text in _TRUE
+    if "_" in text:  # Python reads 1_000 as a number; strtol and strtod do not
+        return text
+    try:
+        return int(text, 10)
+    except ValueError:
+        pass
+    try:
+        return float(text)
+    except ValueError:
+        return text
 
 
 def _names_the_node(node: str) -> bool:

@@ -8,7 +8,7 @@ parameters and ROS 1 transmissions feed the actuators and home pose (see mjcfbui
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, fields
 
 from lxml import etree
 
@@ -114,12 +114,19 @@ class Ros2Control:
     def from_dict(data: dict) -> Ros2Control:
         """Rebuild from :meth:`to_dict`."""
         return Ros2Control(
-            [ControlJoint(**j) for j in data.get("joints", [])],
-            [ControlSensor(**s) for s in data.get("sensors", [])],
-            [Transmission(**t) for t in data.get("transmissions", [])],
+            [_known(ControlJoint, j) for j in data.get("joints", [])],
+            [_known(ControlSensor, s) for s in data.get("sensors", [])],
+            [_known(Transmission, t) for t in data.get("transmissions", [])],
             dict(data.get("hardware", {})),
             list(data.get("plugins", [])),
         )
+
+
+def _known(kind, data: dict):
+    """``kind`` from a record's fields it has: a plan an earlier version wrote (which
+    ``mjcfbuild check`` reads as it is) may hold fields since removed."""
+    names = {item.name for item in fields(kind)}
+    return kind(**{key: value for key, value in data.items() if key in names})
 
 
 def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
@@ -423,15 +430,11 @@ _WITH_PIDS = {
 EFFORT_NAMES = {"effort", "torque", "force"}
 
 
-def interface_support(kind: str, interface: str, pids: bool) -> str | None:
-    """How the runtime commands ``interface`` on an actuator of ``kind``: 'direct', 'pid'
-    (``pids``: with the PID gains of that interface and joint), or None (refused)."""
+def takes_directly(kind: str, interface: str) -> bool:
+    """Whether the runtime writes an ``interface`` command straight into the ctrl of an
+    actuator of ``kind`` (torque and force are effort to it)."""
     name = "effort" if interface in EFFORT_NAMES else interface
-    if name in _DIRECT.get(kind, set()):
-        return "direct"
-    if pids and name in _WITH_PIDS.get(kind, set()):
-        return "pid"
-    return None
+    return name in _DIRECT.get(kind, set())
 
 
 def needs_pids(kind: str, interface: str) -> bool:

@@ -152,10 +152,14 @@ def starter_manifest_text(
     ]
     free_joint, unread, expanded = _free_joint_lines(source, is_xacro, known, data, label)
     unresolved = [package for package in needed if package not in known]
-    # Read with its default arguments, the description did without these: xacro skipped what
-    # names them (a $(find) under a false <xacro:if>), and its URDF names none.
+    # Read with its default arguments, the description did without these: found nowhere, so
+    # xacro skipped what names them (a $(find) under a false <xacro:if>), and its URDF names
+    # none. (One found in ROS_PACKAGE_PATH may have been used: it stays "needed".)
+    nowhere = set(_not_in_the_environment(unresolved))
     optional = (
-        [p for p in unresolved if p.encode() not in _uris(expanded)] if expanded is not None else []
+        [p for p in unresolved if p in nowhere and p.encode() not in _uris(expanded)]
+        if expanded is not None
+        else []
     )
     unresolved = [package for package in unresolved if package not in optional]
     lines += [

@@ -28,7 +28,7 @@ from mjcfbuild.inputs.processed import CameraInput
 from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.manifest.simulation import ActuatorSettings
 from mjcfbuild.meshes.product import MeshProduct
-from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies, link_places
+from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies, ground_notes, link_places
 from mjcfbuild.mjcf.compile_errors import compile_error, spec_meshes, too_thin_mesh
 from mjcfbuild.mjcf.depth import refuse_deep_bodies
 from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
@@ -147,6 +147,7 @@ def assemble(
         warnings=[
             *robot.warnings,
             *_nothing_floats(robot, bodies, options),
+            *ground_notes(robot),
             *prepared.warnings,
             *warnings,
             *(f"MuJoCo: {text}" for text in take_mujoco_warnings()),

@@ -136,7 +136,7 @@ def _carrier(robot: Robot, children: dict[str, list[Joint]]) -> Joint | None:
     whose subtree is heaviest (the first of equals). None when the world holds no link fixed,
     or when the URDF floats its robot by a ``floating`` joint of its own: what it bolts to the
     world beside that stays bolted (and a free joint can only join a body to the world)."""
-    if any(joint.kind == "floating" for joint in children[WORLD]):
+    if _floating_from(robot, fixed_to_root(robot)):
         return None
     fixed = [joint for joint in children[WORLD] if not joint.moves]
     if not fixed:
@@ -189,27 +189,47 @@ def combine_masses(robot: Robot, body: Body) -> MassProperties | None:
     )
 
 
+def fixed_to_root(robot: Robot) -> set[str]:
+    """The root and every link joined to it by fixed joints alone: with fusing on, the root's
+    body (the world's, for a ground root)."""
+    children = robot.child_joints()
+    found, pending = {robot.root}, [robot.root]
+    while pending:
+        for joint in children[pending.pop()]:
+            if not joint.moves:
+                found.add(joint.child)
+                pending.append(joint.child)
+    return found
+
+
+def _floating_from(robot: Robot, links: set[str]) -> list[Joint]:
+    return [joint for joint in robot.joints if joint.kind == "floating" and joint.parent in links]
+
+
 def ground_link(robot: Robot) -> str | None:
     """The URDF link that stands for MuJoCo's world body: a root called ``world``, or a root
-    (a massless placeholder, HyQ's) that holds the robot by a ``floating`` joint, which MuJoCo
-    allows only from the world (its own import fuses such a root into the world)."""
+    that holds the robot by a ``floating`` joint (on it, or on a link fixed to it), which
+    MuJoCo allows only from the world: its own import fuses such a root into the world, as
+    the placeholder root of HyQ's generated URDF."""
     root = robot.root
-    if root == WORLD:
+    if root == WORLD or _floating_from(robot, fixed_to_root(robot)):
         return root
-    holds_floating = any(j.kind == "floating" and j.parent == root for j in robot.joints)
-    return root if holds_floating else None
+    return None
 
 
 def refuse_nested_floating(robot: Robot) -> None:
-    """A ``floating`` joint below the root: MuJoCo has free joints only on bodies of the
-    world, so no model has it (urdfdom reads it; MuJoCo's import refuses it)."""
+    """A ``floating`` joint below a moving joint: MuJoCo has free joints only on bodies of the
+    world, so no model has it (urdfdom reads it; MuJoCo's import refuses it). One below links
+    fixed to the root hangs from the world once they are fused (``options.fuse_static``)."""
     from mjcfbuild.errors import ModelError
 
+    grounded = fixed_to_root(robot)
     for joint in robot.joints:
-        if joint.kind == "floating" and joint.parent != robot.root:
+        if joint.kind == "floating" and joint.parent not in grounded:
             raise ModelError(
-                f"joint '{joint.name}' is floating below link '{joint.parent}', which is not "
-                f"the root ('{robot.root}'): MuJoCo allows a floating joint only from the root",
+                f"joint '{joint.name}' is floating below link '{joint.parent}', which a moving "
+                "joint holds: MuJoCo allows a floating joint only from the root (or links "
+                "fixed to it)",
                 file=robot.source,
                 line=joint.line,
                 hint="make it fixed or another kind; options.free_joint floats the whole "
@@ -217,12 +237,41 @@ def refuse_nested_floating(robot: Robot) -> None:
             )
 
 
+def ground_notes(robot: Robot) -> list[str]:
+    """What a root that stands for the world because it holds a floating joint leaves fixed
+    in the world: its mass and geometry, and what its moving joints carry (MuJoCo's import
+    does the same, silently)."""
+    root = robot.root
+    if root == WORLD or ground_link(robot) != root:
+        return []
+    link = robot.link(root)
+    kept = []
+    if link.inertial is not None and link.inertial.mass > 0:
+        kept.append(f"its {link.inertial.mass:g} kg")
+    if link.shapes:
+        kept.append("its geometry")
+    grounded = fixed_to_root(robot)
+    moving = [
+        j.name for j in robot.joints if j.parent in grounded and j.moves and j.kind != "floating"
+    ]
+    if moving:
+        kept.append(f"joint{'s' if len(moving) > 1 else ''} {', '.join(moving[:3])}")
+    if not kept:
+        return []
+    floating = _floating_from(robot, grounded)[0]
+    where = f"{robot.source}:{floating.line}" if floating.line else robot.source
+    return [
+        f"{where}: link '{root}' holds the robot by the floating joint '{floating.name}', so "
+        f"it stands for the world, as MuJoCo's import takes it: {', '.join(kept)} stay fixed "
+        "there; root the floating joint at a link of its own if they belong to the robot"
+    ]
+
+
 def floating_base(robot: Robot, free_joint: bool) -> bool:
     """Whether the model's base floats: robot.yaml's ``options.free_joint`` asks for it, or the
     URDF itself joins its robot to the ground link (``world``, or a root standing for it) with
     a floating joint (MuJoCo's import makes that a free joint: the robot then stands on the
     floor as any floating base does)."""
-    ground = ground_link(robot)
-    return free_joint or any(
-        joint.kind == "floating" and joint.parent == ground for joint in robot.joints
+    return free_joint or (
+        ground_link(robot) is not None and bool(_floating_from(robot, fixed_to_root(robot)))
     )

@@ -14,7 +14,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from mjcfbuild.errors import ModelError
-from mjcfbuild.mjcf.bodies import WORLD
+from mjcfbuild.mjcf.bodies import WORLD, ground_link
 
 if TYPE_CHECKING:
     from mjcfbuild.mjcf.bodies import Body
@@ -27,7 +27,7 @@ def refuse_deep_chains(robot: Robot) -> None:
     """Raise :class:`ModelError` where moving joints alone nest bodies deeper than
     :data:`MAX_BODY_DEPTH` (fixed joints may be fused away; moving ones always make a body)."""
     children = robot.child_joints()
-    depth = {robot.root: 0 if robot.root == WORLD else 1}
+    depth = {robot.root: 0 if ground_link(robot) is not None else 1}
     joint_to: dict[str, Joint] = {}
     pending = [robot.root]
     while pending:

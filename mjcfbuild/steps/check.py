@@ -4,21 +4,18 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from mjcfbuild.check.contacts import part_bodies
 from mjcfbuild.check.loading import AssetSource, asset_sources, compile_model
 from mjcfbuild.check.model_check import CheckOptions, check_model
 from mjcfbuild.check.results import CheckResults, GazeboSensor, Runtime
 from mjcfbuild.errors import CheckError
+from mjcfbuild.inputs.pid_gains import PidGains
 from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import CheckPayload, MjcfPartFiles
 from mjcfbuild.steps.plan_record import read_plan
 from mjcfbuild.urdf.transforms import vec3
-
-if TYPE_CHECKING:
-    from mjcfbuild.inputs.pid_gains import PidGains
 
 
 def run(payload: dict) -> dict:
@@ -68,7 +65,12 @@ def check_built(request: CheckPayload) -> CheckResults:
             results, Path(request.model), request.mjcf_parts, request.options, sources
         )
     results = add_runtime_check(
-        results, Path(request.model), plan.control(), _urdf_joints(plan.robot), sources
+        results,
+        Path(request.model),
+        plan.control(),
+        _urdf_joints(plan.robot),
+        sources,
+        request.depfile,
     )
     gazebo = plan.gazebo()
     if gazebo:
@@ -98,15 +100,20 @@ def add_runtime_check(
     control: Ros2Control,
     urdf_joints: dict[str, str | None],
     sources: dict[str, AssetSource],
+    depfile: str = "",
 ) -> CheckResults:
-    """The mujoco_ros2_control section, where the description has a <ros2_control> block."""
+    """The mujoco_ros2_control section, where the description has a <ros2_control> block; the
+    files it reads besides its inputs are recorded in ``depfile``."""
+    if depfile:
+        _record_reads(control, Path(depfile))
     if not results.loads or not (control.joints or control.sensors):
         return results
     from mjcfbuild.check.runtime import check_runtime
 
     model = compile_model(model_path, sources)
-    gains = _pid_gains(control.hardware.get("pids_config_file"))
+    gains, unloadable = _pid_gains(control)
     found, failures, warnings = check_runtime(model, control, urdf_joints, gains)
+    failures += unloadable
     runtime = Runtime(
         found["joints"], found["sensors"], found["devices"], warnings, failed=bool(failures)
     )
@@ -118,19 +125,35 @@ def _urdf_joints(robot: dict) -> dict[str, str | None]:
     return {joint["name"]: (joint.get("mimic") or {}).get("joint") for joint in robot["joints"]}
 
 
-def _pid_gains(named: str | None) -> PidGains | None:
-    """The gains of the pids_config_file the block names; None where there is none to read."""
-    import yaml
+def _record_reads(control: Ros2Control, depfile: Path) -> None:
+    """The pids_config_file the section reads, in ``depfile``: a dependency where it exists,
+    and where it does not, a file whose appearing reruns the check."""
+    from mjcfbuild.inputs.pid_gains import pids_file
+    from mjcfbuild.steps.depfile import Depfile
 
-    from mjcfbuild.inputs.pid_gains import read_pid_gains
+    path = pids_file(control.hardware)
+    there = path is not None and path.exists()
+    missing = path is not None and not there
+    Depfile([str(path)] if there else [], [str(path)] if missing else [], {}).write(depfile)
 
-    path = Path(named.strip()) if named else None
-    if path is None or not path.is_absolute():
-        return None
+
+def _pid_gains(control: Ros2Control) -> tuple[PidGains | None, list[str]]:
+    """The gains of the pids_config_file the runtime's block names (None where there is none,
+    or it cannot be read here), and a failure where the runtime could not load it."""
+    from mjcfbuild.inputs.pid_gains import pids_file, read_pid_gains
+
+    path = pids_file(control.hardware)
+    if path is None:
+        return None, []
     try:
-        return read_pid_gains(path)
-    except (OSError, ValueError, yaml.YAMLError):
-        return None
+        return read_pid_gains(path), []
+    except OSError:
+        return None, []
+    except ValueError as exc:
+        return PidGains(), [
+            f"mujoco_ros2_control: the pids_config_file {path} is no ROS parameter file "
+            f"({exc}): the runtime cannot load it and stops at start-up; fix its YAML"
+        ]
 
 
 def _located(failure: str, source: str, model_label: str) -> tuple[str, int | None, str]:

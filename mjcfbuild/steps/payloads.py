@@ -364,6 +364,7 @@ class CheckPayload(Payload):
     reference: FileDependency  # what the independent reader read from the URDF
     output: Output
     mjcf_parts: list[MjcfPartFiles]  # each compared with the part compiled alone
+    depfile: Output = ""  # the files it read besides these (the pids_config_file), or looked for
 
 
 @dataclass(frozen=True)

@@ -119,8 +119,8 @@ def test_a_joint_whose_actuator_takes_none_of_its_interfaces_fails_the_check(tmp
     result = run_cli("build", str(tmp_path / "robot.yaml"))
     assert result.code == EXIT_CHECK, result.stderr
     assert (
-        "joint 'hinge' commands velocity, none of which its actuator 'mine' (position, by its "
-        "bias) takes" in result.stderr
+        "joint 'hinge' commands velocity, none of which its actuator 'mine' (position, as the "
+        "runtime classifies it) takes" in result.stderr
     )
     assert not check_record(tmp_path)["passes"]
     # mjcfbuild check says the same.
@@ -214,7 +214,7 @@ def test_a_mimic_joint_with_a_command_interface_is_a_warning_not_a_failure(tmp_p
     result = build_two_link(tmp_path, urdf_extra=extra + block)
     assert check_record(tmp_path)["passes"]
     assert any(
-        "1 mimic joint (follower (mimics hinge)) declare command interfaces" in w
+        "1 mimic joint (follower (mimics hinge)) declares command interfaces" in w
         for w in result.warnings
     ), result.warnings
 
@@ -261,7 +261,7 @@ def test_an_intvelocity_takes_a_velocity_command_directly(tmp_path):
 
 def test_effort_joints_are_said_to_start_without_the_keyframes_torques(tmp_path):
     result = build_two_link(tmp_path, urdf_extra=control_block(["effort"]))
-    assert any("1 joint (hinge) start under effort control" in w for w in result.warnings)
+    assert any("1 joint (hinge) starts under effort control" in w for w in result.warnings)
 
 
 def test_a_floating_robot_is_told_which_free_joint_odometry_needs(tmp_path):
@@ -419,3 +419,30 @@ def test_a_tendon_actuator_named_like_no_joint_stops_the_runtime(tmp_path):
         "actuator 'grip' drives tendon 'split' and no joint is named like it" in failure
         for failure in failures
     ), failures
+
+
+def test_a_pids_config_file_that_appears_later_reruns_the_check(tmp_path):
+    """Missing at the first build (a warning that it was not read), then written with an
+    integer gain: the next build was a no-op that replayed the warning."""
+    pids = tmp_path / "later" / "pids.yaml"
+    build_two_link(tmp_path, MOTOR, urdf_extra=_pids_block(pids))
+    write(pids, PIDS % "100")
+    result = run_cli("build", str(tmp_path / "robot.yaml"))
+    assert result.code == EXIT_CHECK, result.stdout + result.stderr
+    assert "its p gain 100 is not a double" in result.stderr
+
+
+def test_a_pids_config_file_ros_cannot_load_fails_and_an_empty_one_defines_no_gains(tmp_path):
+    pids = tmp_path / "pids dir" / "pids.yaml"
+    write(pids, "mujoco_ros2_control_node:\n  ros__parameters: [1, 2\n")
+    write(tmp_path / "robot.urdf", _two_link_with(_pids_block(pids)))
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\n" + MOTOR)
+    result = run_cli("build", str(tmp_path / "robot.yaml"))
+    assert result.code == EXIT_CHECK
+    record = check_record(tmp_path)
+    assert any("is no ROS parameter file (line 2" in f for f in record["failures"]), record
+    write(pids, "")
+    result = run_cli("build", str(tmp_path / "robot.yaml"))
+    assert result.code == EXIT_CHECK and "the pids_config_file gives none" in result.stderr
+    # The joint does not start, so it is not also said to start under effort control.
+    assert "starts under effort control" not in result.stderr

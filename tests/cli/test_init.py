@@ -534,3 +534,25 @@ def test_a_package_only_a_false_condition_names_is_not_called_needed(cli, tmp_pa
     assert result.code == EXIT_OK and "arm_gazebo" not in result.stderr, result.stderr
     text = (tmp_path / "robot.yaml").read_text()
     assert "#   arm_gazebo: path/to/arm_gazebo  # only with other xacro arguments" in text
+
+
+def test_a_package_found_in_ros_package_path_and_used_stays_needed(cli, tmp_path):
+    """An always-taken include through $(find inc_pkg), found in ROS_PACKAGE_PATH, leaves no
+    package:// in the URDF; it is used all the same, not "only with other arguments"."""
+    from tests.conftest import write
+
+    write(tmp_path / "ws" / "inc_pkg" / "package.xml", "<package><name>inc_pkg</name></package>\n")
+    write(
+        tmp_path / "ws" / "inc_pkg" / "part.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="base"/></robot>\n',
+    )
+    write(
+        tmp_path / "desc" / "robot.urdf.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="r">\n'
+        '  <xacro:include filename="$(find inc_pkg)/part.xacro"/>\n</robot>\n',
+    )
+    env = {"ROS_PACKAGE_PATH": str(tmp_path / "ws")}
+    result = cli("init", "robot.urdf.xacro", "-o", "robot.yaml", cwd=tmp_path / "desc", env=env)
+    assert result.code == EXIT_OK, result.stderr
+    text = (tmp_path / "desc" / "robot.yaml").read_text()
+    assert "#   inc_pkg: path/to/inc_pkg  # needed by the description" in text, text

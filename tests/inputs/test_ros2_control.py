@@ -107,3 +107,18 @@ def test_a_transmission_names_its_actuators_and_its_type_in_either_form():
         ),
         ("a", ["m1"], "#2", "pr2_mechanism_model/SimpleTransmission", True),
     ]
+
+
+def test_a_plan_an_earlier_version_wrote_is_read_without_its_removed_fields():
+    """`mjcfbuild check` reads the plan a build left; one written before a joint's `pids`
+    field was removed stopped it with a TypeError."""
+    from mjcfbuild.inputs.ros2_control import Ros2Control
+
+    control = Ros2Control.from_dict(
+        {
+            "joints": [
+                {"name": "j", "commands": ["position"], "initial": None, "origin": "", "pids": True}
+            ]
+        }
+    )
+    assert control.joints[0].name == "j" and control.joints[0].plugin == ""

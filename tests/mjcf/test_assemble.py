@@ -104,6 +104,32 @@ def test_a_floating_joint_from_a_placeholder_root_floats_the_robot(tmp_path, fre
     assert model.site_bodyid[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, "root")] == 0
 
 
+def test_a_floating_joint_below_links_fixed_to_the_root_floats_the_robot(tmp_path):
+    # world -> fixed -> footprint -> floating -> base: fused, the floating joint hangs from the
+    # world, as MuJoCo's own import reads it (the first refusal of nested floating joints
+    # stopped it).
+    import mujoco
+
+    urdf = two_link_urdf(
+        extra='<link name="world"/><link name="footprint"/><joint name="w" type="fixed">'
+        '<parent link="world"/><child link="footprint"/></joint><joint name="float" '
+        'type="floating"><parent link="footprint"/><child link="base"/></joint>'
+    )
+    _, model = build(urdf, tmp_path)
+    assert model.jnt_type[0] == mujoco.mjtJoint.mjJNT_FREE and model.joint(0).name == "float"
+
+
+def test_a_root_with_mass_that_holds_a_floating_joint_says_what_stays_in_the_world(tmp_path):
+    urdf = two_link_urdf(
+        extra='<link name="ball">' + INERTIA + '</link><joint name="float" type="floating">'
+        '<parent link="base"/><child link="ball"/><origin xyz="1 0 1"/></joint>'
+    )
+    assembly, _ = build(urdf, tmp_path)
+    (note,) = [w for w in assembly.warnings if "stands for the world" in w]
+    assert "link 'base' holds the robot by the floating joint 'float'" in note
+    assert "its 1 kg, its geometry, joint hinge stay fixed there" in note
+
+
 def test_a_world_link_with_an_inertia_mujoco_refuses_builds(tmp_path):
     # drake's Pendulum.urdf gives its root link 'world' the moments 0.01, 0, 0 (a stub for a
     # viewer): the world never moves, so its mass is left out instead of stopping the build
