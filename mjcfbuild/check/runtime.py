@@ -159,14 +159,12 @@ def _mimic_commands(mimics: list[ControlJoint], urdf_joints: dict[str, str | Non
     command interfaces nothing to drive and logs an error."""
     if not mimics:
         return []
-    named = ", ".join(
-        f"{joint.name} (mimics {joint.mimic or urdf_joints.get(joint.name)})"
-        for joint in mimics[:3]
+    named = _first_few(
+        [f"{joint.name} (mimics {joint.mimic or urdf_joints.get(joint.name)})" for joint in mimics]
     )
-    more = f" and {len(mimics) - 3} more" if len(mimics) > 3 else ""
     return [
         f"mujoco_ros2_control: {len(mimics)} mimic joint{'s' if len(mimics) > 1 else ''} "
-        f"({named}{more}) {_verb(mimics, 'declares', 'declare')} command interfaces, which "
+        f"({named}) {_verb(mimics, 'declares', 'declare')} command interfaces, which "
         "the runtime ignores (it logs an "
         "error): the joint follows its leader; command the leader, and remove the mimic "
         "joint's command interfaces"
@@ -219,7 +217,7 @@ def _unread_sensors(control: Ros2Control) -> list[str]:
     ]
     if not names:
         return []
-    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    shown = _first_few(names)
     return [
         f"mujoco_ros2_control: {len(names)} <ros2_control> sensor{'s' if len(names) > 1 else ''} "
         f"({shown}) {_verb(names, 'has', 'have')} no mujoco_type parameter, so the runtime "
@@ -238,7 +236,7 @@ def _other_blocks(control: Ros2Control) -> list[str]:
         names = [j.name for j in control.joints if j.plugin == plugin and j.commands]
         if not names:
             continue
-        shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+        shown = _first_few(names)
         lines.append(
             f"mujoco_ros2_control: the <ros2_control> block for {plugin} is not the runtime's "
             f"(another block is written for {RUNTIME_PLUGINS}...), so it serves none of its "
@@ -315,12 +313,11 @@ def _unmatched_transmissions(model, control: Ros2Control) -> tuple[list[str], li
     warnings = []
     for plugin, names in elsewhere.items():
         names = list(dict.fromkeys(names))
-        shown = ", ".join(f"'{name}'" for name in names[:3])
-        more = f" and {len(names) - 3} more" if len(names) > 3 else ""
         warnings.append(
             f"<ros2_control> transmissions for the hardware plugin {plugin} name actuators "
-            f"the model lacks ({shown}{more}): run under mujoco_ros2_control, with its "
-            "plugin, they would stop it at start-up; name the joints (or their actuators) there"
+            f"the model lacks ({_first_few([repr(name) for name in names])}): run under "
+            "mujoco_ros2_control, with its plugin, they would stop it at start-up; name the "
+            "joints (or their actuators) there"
         )
     return list(dict.fromkeys(failures)), warnings
 
@@ -355,7 +352,7 @@ def _refusals(joints: list[dict]) -> list[str]:
                 refused.setdefault((interface, joint["kind"]), []).append(joint["joint"])
     lines = []
     for (interface, kind), names in sorted(refused.items()):
-        listed = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+        listed = _first_few(names)
         who = f"{len(names)} joint{'s' if len(names) > 1 else ''} ({listed})"
         if _family(interface) not in _KNOWN_INTERFACES:
             lines.append(
@@ -372,6 +369,11 @@ def _refusals(joints: list[dict]) -> list[str]:
             f"written into the {kind} actuator's ctrl as it is; {_switch_fix(interface, kind)}"
         )
     return lines
+
+
+def _first_few(names: list[str]) -> str:
+    """The first three of ``names``, and how many more there are."""
+    return ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
 
 
 def _verb(subjects: list, one: str, many: str) -> str:
@@ -399,7 +401,7 @@ def _effort_at_start(joints: list[dict]) -> list[str]:
     names = [joint["joint"] for joint in joints if joint.get("starts") == "effort"]
     if not names:
         return []
-    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    shown = _first_few(names)
     return [
         f"mujoco_ros2_control: {len(names)} joint{'s' if len(names) > 1 else ''} ({shown}) "
         f"{_verb(names, 'starts', 'start')} under effort control: the runtime writes the "
@@ -421,7 +423,7 @@ def _unknown_pids(joints: list[dict], pids_file: str | None, gains: PidGains | N
     ]
     if not names:
         return []
-    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    shown = _first_few(names)
     return [
         f"mujoco_ros2_control: the pids_config_file {pids_file} could not be read here, so "
         f"whether the runtime finds PID gains for {shown} is not checked (without them it "
