@@ -9,8 +9,8 @@ from mjcfbuild.mjcf.prepared import MeshAsset, Prepared
 # What to do about the MuJoCo compile errors a URDF can cause, by a phrase of their message.
 _COMPILE_HINTS = {
     "free joint can only be used on top level": (
-        "MuJoCo allows a floating joint only from the root link (the world); make this one "
-        "fixed or another kind; options.free_joint floats the whole robot from its root"
+        "MuJoCo allows a floating joint only from the world: from the root link, or a link "
+        "fixed to it with options.fuse_static on; else make it fixed or another kind"
     ),
     "repeated in equality constraint": "a joint cannot <mimic> itself",
 }
