@@ -62,6 +62,10 @@ _FIX = {
 }
 # The command interfaces the runtime knows; it skips others with a warning.
 _KNOWN_INTERFACES = {"position", "velocity", "effort", "torque", "force"}
+# qpos entries of each joint type (free, ball, slide, hinge), and the distance (m or rad)
+# within which a start position counts as home's.
+_QPOS_SIZE = {0: 7, 1: 4, 2: 1, 3: 1}
+_SAME_POSITION = 1e-6
 # The free joint the runtime publishes odometry from, unless odom_free_joint_name names one.
 ODOM_FREE_JOINT = "floating_base_joint"
 
@@ -105,6 +109,7 @@ def check_runtime(
     ]
     failures += _unmatched_tendon_actuators(model)
     failures += _missing_keyframe(model, control.hardware.get("initial_keyframe"))
+    warnings += _start_away_from_home(model, control, urdf_joints)
     odometry_failures, odometry_warnings = _odometry(model, control)
     failures += odometry_failures
     unmatched, elsewhere = _unmatched_transmissions(model, control)
@@ -280,6 +285,64 @@ def _missing_keyframe(model, keyframe: str | None) -> list[str]:
         f"<hardware> param initial_keyframe names keyframe '{keyframe}', which the model does "
         f"not have (its keyframes: {listing}): mujoco_ros2_control stops at start-up "
         '("Failed to find keyframe"); name one of them'
+    ]
+
+
+def _start_away_from_home(
+    model, control: Ros2Control, urdf_joints: dict[str, str | None]
+) -> list[str]:
+    """Without an ``initial_keyframe`` the runtime never applies the home keyframe: it starts
+    each joint of its blocks that has a position state interface at its ``initial_value`` (0
+    without one) and every other joint, a floating base included, where the MJCF puts it
+    (qpos0). The check judges standing and holding from home, so a start elsewhere is said."""
+    import mujoco
+
+    if control.hardware.get("initial_keyframe"):
+        return []
+    home = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home")
+    if home < 0:
+        return []
+    starts = {
+        joint.name: joint.initial if joint.initial is not None else 0.0
+        for joint in control.joints
+        if control.runs(joint.plugin) and joint.position_state
+    }
+    away: list[str] = []
+    base_away = False
+    for index in range(model.njnt):
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, index) or ""
+        if urdf_joints.get(name):
+            continue  # a mimic follower: its equality puts it where its leader is
+        first = model.jnt_qposadr[index]
+        size = _QPOS_SIZE[int(model.jnt_type[index])]
+        at_home = model.key_qpos[home, first : first + size]
+        start = model.qpos0[first : first + size].copy()
+        if size == 1 and name in starts:
+            start[0] = starts[name]
+        if max(abs(start - at_home)) <= _SAME_POSITION:
+            continue
+        if size == 1:
+            away.append(f"{name} at {start[0]:.3g} instead of {at_home[0]:.3g}")
+        elif model.jnt_type[index] == mujoco.mjtJoint.mjJNT_FREE:
+            base_away = True
+        else:
+            away.append(f"{name} where the MJCF puts it")
+    if not away and not base_away:
+        return []
+    what = []
+    if away:
+        what.append(
+            f"{len(away)} joint{'s' if len(away) > 1 else ''} away from the home keyframe "
+            f"the check judges ({_first_few(away)})"
+        )
+    if base_away:
+        what.append("the floating base where the MJCF puts it, not at home")
+    return [
+        "mujoco_ros2_control: <hardware> names no initial_keyframe, so the runtime starts "
+        + " and ".join(what)
+        + " (a joint with a position state interface starts at its initial_value, 0 without "
+        'one; any other where the MJCF puts it); add <param name="initial_keyframe">home'
+        "</param> to <hardware> to start where the check's stand and hold tests start"
     ]
 
 

@@ -76,8 +76,9 @@ FAMILY = Family(
     # <compiler inertiafromgeom> said not to be applied; <hardware> params and which
     # transmissions are ros2_control's; 14: the hardware plugin of each of those; 15: each
     # joint's and sensor's block plugin, a joint's mimic param, <hardware> params of the
-    # blocks mujoco_ros2_control runs only; a floating joint below the root refused at its line
-    format=15,
+    # blocks mujoco_ros2_control runs only; a floating joint below the root refused at its line;
+    # 16: whether each ros2_control joint has a position state interface
+    format=16,
     tools=("lxml",),
     tasks=_tasks,
     stage="planning",

@@ -26,6 +26,9 @@ class ControlJoint:
     origin: str
     plugin: str = ""  # its block's <hardware> <plugin>: the runtime the block is written for
     mimic: str | None = None  # the joint a ``<param name="mimic">`` makes it follow
+    # Whether it has a position state interface: the runtime starts such a joint at its
+    # initial_value (0 without one) unless an initial_keyframe is given.
+    position_state: bool = True
 
 
 @dataclass
@@ -145,6 +148,7 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
         for joint in block.findall("joint"):
             commands = [c.get("name", "") for c in joint.findall("command_interface")]
             initial = None
+            states = [state.get("name") for state in joint.findall("state_interface")]
             for state in joint.findall("state_interface"):
                 if state.get("name") == "position":
                     for param in state.findall("param"):
@@ -169,6 +173,7 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                     f"{label}:{joint.sourceline}",
                     plugin,
                     mimic or None,
+                    "position" in states,
                 )
             )
         for sensor in block.findall("sensor"):

@@ -446,3 +446,27 @@ def test_a_pids_config_file_ros_cannot_load_fails_and_an_empty_one_defines_no_ga
     assert result.code == EXIT_CHECK and "the pids_config_file gives none" in result.stderr
     # The joint does not start, so it is not also said to start under effort control.
     assert "starts under effort control" not in result.stderr
+
+
+def test_a_start_away_from_home_without_an_initial_keyframe_is_said(tmp_path):
+    # The runtime applies no keyframe unless <hardware> names one: a joint with a position
+    # state interface starts at its initial_value, 0 without one, whatever home says.
+    moved = build_two_link(tmp_path / "moved", "home: {hinge: 0.5}\n", control_block(["position"]))
+    said = [w for w in moved.warnings if "names no initial_keyframe" in w]
+    assert len(said) == 1, moved.warnings
+    assert "1 joint away from the home keyframe" in said[0]
+    assert "hinge at 0 instead of 0.5" in said[0]
+    assert '<param name="initial_keyframe">home</param>' in said[0]
+    keyframe = '<param name="initial_keyframe">home</param>'
+    named = build_two_link(
+        tmp_path / "named", "home: {hinge: 0.5}\n", control_block(["position"], keyframe)
+    )
+    assert not [w for w in named.warnings if "initial_keyframe" in w], named.warnings
+    # home taken from initial_value: the runtime starts there too.
+    block = control_block(["position"]).replace(
+        '<state_interface name="position"/>',
+        '<state_interface name="position"><param name="initial_value">0.4</param>'
+        "</state_interface>",
+    )
+    same = build_two_link(tmp_path / "same", urdf_extra=block)
+    assert not [w for w in same.warnings if "initial_keyframe" in w], same.warnings
