@@ -32,11 +32,18 @@ def lowest_collision_point(model, data) -> LowestPoint | None:
 
 
 def geom_lowest_points(model, data) -> dict:
-    """For every colliding geom: a point at its lowest height (x and y are its centre's for
-    primitives, the lowest vertex's for meshes)."""
+    """For every colliding geom of the robot: a point at its lowest height (x and y are its
+    centre's for primitives, the lowest vertex's for meshes). In a floating model, geometry
+    welded to the world (a root link that holds the robot by a floating joint) is the
+    ground, not the robot, and is left out."""
+    import mujoco
+
+    floats = mujoco.mjtJoint.mjJNT_FREE in model.jnt_type
     result = {}
     for geom in range(model.ngeom):
         if model.geom_contype[geom] == 0 and model.geom_conaffinity[geom] == 0:
+            continue
+        if floats and model.body_weldid[model.geom_bodyid[geom]] == 0:
             continue
         point = geom_lowest_points_of(model, data, geom)
         if point is not None:

@@ -193,8 +193,9 @@ FAMILY = Family(
     # listed it at 0); 21: a warning where lidar rays are most of a step; 22: free_joint on a
     # URDF rooted at `world` floats what the world holds as one whole; an <intvelocity>'s
     # home is ctrl 0 and act at the pose; a root holding the robot by a floating joint is the
-    # world body; a velocity servo's kv at least 49 times the joint's damping
-    format=22,
+    # world body; a velocity servo's kv at least 49 times the joint's damping; 23: a floating
+    # robot stood on the floor by its own geometry, not the world body's
+    format=23,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,
     compiles_model=True,

@@ -262,8 +262,10 @@ def ground_notes(robot: Robot) -> list[str]:
     where = f"{robot.source}:{floating.line}" if floating.line else robot.source
     return [
         f"{where}: link '{root}' holds the robot by the floating joint '{floating.name}', so "
-        f"it stands for the world, as MuJoCo's import takes it: {', '.join(kept)} stay fixed "
-        "there; root the floating joint at a link of its own if they belong to the robot"
+        f"it stands for the world, as MuJoCo's import takes it: {', '.join(kept)} "
+        f"{'stays' if kept == ['its geometry'] else 'stay'} fixed there (the floor and the "
+        "check take it for the ground, not the robot); root the floating joint at a link of its "
+        f"own if {'it belongs' if kept == ['its geometry'] else 'they belong'} to the robot"
     ]
 
 

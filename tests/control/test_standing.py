@@ -20,7 +20,7 @@ from mjcfbuild.control.standing import MARGIN
 from mjcfbuild.errors import BuildFailed
 from tests.conftest import run_cli, two_link_urdf, write
 from tests.control import robots
-from tests.control.helpers import actuator, readiness
+from tests.control.helpers import actuator, build_two_link, load, readiness
 
 pytestmark = pytest.mark.slow  # each builds and simulates a robot for 5 s
 
@@ -231,6 +231,29 @@ def test_a_floating_joint_with_an_origin_stands_on_the_floor_and_passes_the_chec
         assert data.qpos[3] == pytest.approx(math.cos(0.35)) and data.qpos[6] == pytest.approx(
             math.sin(0.35)
         )
+
+
+def test_a_ground_roots_geometry_is_not_what_stands_on_the_floor(tmp_path):
+    """A root holding the robot by a floating joint stays in the world with its geometry (a
+    slab below the floor here). The build stood the robot so the slab touched the floor and
+    the check measured the floor gap from it: the robot hung 0.85 m up and the check failed."""
+    slab = (
+        '<link name="ground"><collision><origin xyz="0 0 -0.3"/><geometry>'
+        '<box size="2 2 0.2"/></geometry></collision></link><joint name="float" '
+        'type="floating"><parent link="ground"/><child link="base"/><origin xyz="0 0 0.5"/>'
+        "</joint>"
+    )
+    result = build_two_link(tmp_path, urdf_extra=slab)
+    (note,) = [w for w in result.warnings if "stands for the world" in w]
+    assert "its geometry stays fixed there" in note
+    model = load(result)
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, 0)
+    mujoco.mj_kinematics(model, data)
+    base = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "base")
+    assert data.xpos[base][2] == pytest.approx(0.05)  # its 0.1 m box on the floor
+    record = json.loads((tmp_path / "mjcf/.mjcfbuild/check.json").read_text())
+    assert record["passes"], record["failures"]
 
 
 def test_unknown_effort_and_velocity_are_not_limits(tmp_path):
