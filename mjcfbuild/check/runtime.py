@@ -29,7 +29,7 @@ import re
 from typing import TYPE_CHECKING
 
 from mjcfbuild.actuators import is_dcmotor
-from mjcfbuild.inputs.frames import ray_count
+from mjcfbuild.inputs.frames import ray_count, rays_short_of_max
 from mjcfbuild.inputs.ros2_control import (
     RUNTIME_PLUGINS,
     ControlJoint,
@@ -103,7 +103,7 @@ def check_runtime(
         if sensor.params.get("mujoco_type") and control.runs(sensor.plugin)
     ]
     devices = [
-        _device(model, sensor, failures)
+        _device(model, sensor, failures, warnings)
         for sensor in control.sensors
         if sensor.kind and control.runs(sensor.plugin)
     ]
@@ -629,18 +629,24 @@ def _sensor(model, sensor, failures: list[str]) -> dict:
     return {"sensor": sensor.name, "type": sensor.params["mujoco_type"], "mjcf": found}
 
 
-def _device(model, sensor, failures: list[str]) -> dict:
+def _device(model, sensor, failures: list[str], warnings: list[str]) -> dict:
     """A camera (by name) or lidar (rangefinders named after it, one per ray)."""
     import mujoco
 
     if sensor.kind == "camera":
-        present = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, sensor.name) >= 0
-        if not present:
+        camera = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, sensor.name)
+        if camera < 0:
             failures.append(
                 f"mujoco_ros2_control: camera sensor '{sensor.name}' has no MuJoCo camera of "
                 "its name; add one (mujoco_inputs cameras)"
             )
-        return {"sensor": sensor.name, "kind": "camera", "found": present}
+        elif list(model.cam_resolution[camera]) == [1, 1]:
+            warnings.append(
+                f"{sensor.origin}: camera '{sensor.name}' has no resolution, so "
+                "mujoco_ros2_control renders it at MuJoCo's default of 1 x 1 pixels; give "
+                "its input a resolution (mujoco_inputs cameras: resolution: [640, 480])"
+            )
+        return {"sensor": sensor.name, "kind": "camera", "found": camera >= 0}
     pattern = re.compile(rf"{re.escape(sensor.name)}(-\d+)?")
     rays = sum(
         1
@@ -659,6 +665,13 @@ def _device(model, sensor, failures: list[str]) -> dict:
             f"mujoco_ros2_control: lidar sensor '{sensor.name}' has {rays} rangefinders, but "
             f"its angles give {expected} rays; make the lidar input's angles match"
         )
+    if expected is not None and _short_of_max(sensor.params):
+        warnings.append(
+            f"{sensor.origin}: lidar sensor '{sensor.name}': (max_angle - min_angle) / "
+            f"angle_increment falls just short of a whole number in floating point, so "
+            f"mujoco_ros2_control scans {expected} rays and none at max_angle, which its scan "
+            "message still states; raise max_angle by a hair (1e-7) to scan there too"
+        )
     return {
         "sensor": sensor.name,
         "kind": "lidar",
@@ -675,3 +688,9 @@ def _rays(params: dict[str, str]) -> int | None:
     except (KeyError, ValueError):
         return None
     return ray_count(low, high, step) if step > 0 and high >= low else None
+
+
+def _short_of_max(params: dict[str, str]) -> bool:
+    """Whether the runtime's ray count leaves out the ray at max_angle the angles mean."""
+    low, high = float(params["min_angle"]), float(params["max_angle"])
+    return rays_short_of_max(low, high, float(params["angle_increment"]))

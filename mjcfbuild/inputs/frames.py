@@ -39,13 +39,19 @@ def lidar_body_pose(link: Transform, min_angle: float) -> Transform:
 
 
 def ray_count(min_angle: float, max_angle: float, increment: float) -> int:
-    """How many rays from ``min_angle`` to ``max_angle`` inclusive, ``increment`` apart.
+    """How many rays from ``min_angle`` by ``increment``: mujoco_ros2_control's count (and the
+    reference converter's), ``int((max - min) / increment) + 1``, which is the number of
+    ranges its scan holds. It truncates in floating point: -0.3 to 0.3 by 0.025 is 24 rays,
+    0.6 / 0.025 being 23.999999999999996 (see :func:`rays_short_of_max`)."""
+    return int((max_angle - min_angle) / increment) + 1
 
-    Rounding is tolerant: -0.3 to 0.3 by 0.025 is 25 rays, as ROS expects, although
-    0.6 / 0.025 is 23.999999999999996 in floating point.
-    """
+
+def rays_short_of_max(min_angle: float, max_angle: float, increment: float) -> bool:
+    """Whether :func:`ray_count`'s truncation leaves out a ray at ``max_angle`` that the
+    angles mean to have (their span a whole number of increments but for rounding)."""
     steps = (max_angle - min_angle) / increment
-    return math.floor(steps + 1e-9 * max(1.0, abs(steps))) + 1
+    whole = math.floor(steps + 1e-9 * max(1.0, abs(steps)))
+    return whole + 1 != ray_count(min_angle, max_angle, increment)
 
 
 def ray_direction(link: Transform, min_angle: float, increment: float, index: int):

@@ -297,7 +297,7 @@ def test_the_reference_demo_passes_the_runtimes_rules(demo):
         ("camera", True),
         ("lidar", True),
     ]
-    assert section["devices"][1]["rays"] == 25
+    assert section["devices"][1]["rays"] == 24
     # The report names the user's tendon actuator and its kind (it showed "" and "user").
     records = {r["joint"]: r for r in readiness(demo)["actuators"]}
     gripper = records["gripper_left_finger_joint"]

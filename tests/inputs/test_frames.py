@@ -8,7 +8,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from mjcfbuild.inputs.frames import ray_count
+from mjcfbuild.inputs.frames import ray_count, rays_short_of_max
 from tests.conftest import INERTIA, write
 
 URDF = """<robot name="r">
@@ -89,13 +89,17 @@ def test_lidar_rays_sweep_counterclockwise_about_the_link_z(tmp_path, rpy):
 
 
 @pytest.mark.parametrize(
-    ("low", "high", "step", "count"),
+    ("low", "high", "step", "count", "short"),
     [
-        (-0.3, 0.3, 0.025, 25),
-        (0, 1.57, 0.025, 63),
-        (0, 0, 0.1, 1),
-        (-math.pi, math.pi, math.pi / 180, 361),
+        # mujoco_ros2_control (and the reference converter) count int((max - min) / step) + 1
+        # in doubles: 0.6 / 0.025 is 23.999999999999996, so 24 rays, the one at 0.3 left out.
+        (-0.3, 0.3, 0.025, 24, True),
+        (0, 1.57, 0.025, 63, False),
+        (0, 0, 0.1, 1, False),
+        (-math.pi, math.pi, math.pi / 180, 361, False),
+        (-0.3, 0.3000001, 0.025, 25, False),
     ],
 )
-def test_ray_count_is_tolerant_of_floating_point(low, high, step, count):
-    assert ray_count(low, high, step) == count
+def test_ray_count_is_the_runtimes(low, high, step, count, short):
+    assert ray_count(low, high, step) == count == int((high - low) / step) + 1
+    assert rays_short_of_max(low, high, step) is short

@@ -1,9 +1,8 @@
 """The reference converter's demo converts, in all three forms, to a model equivalent to the
-reference converter's own output - except the lidar, which has the 25 rays ROS expects."""
+reference converter's own output, the lidar's 24 rays included (mujoco_ros2_control's count)."""
 
 from __future__ import annotations
 
-import math
 import shutil
 from pathlib import Path
 
@@ -118,14 +117,13 @@ def test_actuators_tendon_equality_option(built, reference):
     )
 
 
-def test_sensors_except_the_lidar_have_the_reference_names(built, reference):
+def test_sensors_have_the_reference_names(built, reference):
+    # The lidar's -0.3 to 0.3 by 0.025 is 24 rays to the reference converter and to the
+    # runtime, which both count int(0.6 / 0.025) + 1 and 0.6 / 0.025 is 23.999999999999996.
     ours = names(built, mujoco.mjtObj.mjOBJ_SENSOR, built.nsensor)
     theirs = names(reference, mujoco.mjtObj.mjOBJ_SENSOR, reference.nsensor)
-    assert [n for n in ours if not n.startswith("lidar")] == [
-        n for n in theirs if not n.startswith("lidar")
-    ]
-    assert len([n for n in theirs if n.startswith("lidar-")]) == 24
-    assert [n for n in ours if n.startswith("lidar")] == [f"lidar-{i:02d}" for i in range(25)]
+    assert ours == theirs
+    assert [n for n in ours if n.startswith("lidar")] == [f"lidar-{i:02d}" for i in range(24)]
 
 
 def test_modified_attributes(built):
@@ -163,18 +161,17 @@ def test_every_link_at_its_urdf_pose(built, urdf_robot):
     assert result.passes(), result
 
 
-def test_lidar_has_25_rays_each_along_its_sweep(built, urdf_robot):
+def test_lidar_has_the_runtimes_24_rays_each_along_its_sweep(built, urdf_robot):
     data = mujoco.MjData(built)
     mujoco.mj_kinematics(built, data)
     frame = link_poses(urdf_robot)["lidar_sensor_frame"]
-    for index in range(25):
+    for index in range(24):
         site = mujoco.mj_name2id(built, mujoco.mjtObj.mjOBJ_SITE, f"rf-{index:02d}")
         assert site >= 0
         ray = data.site_xmat[site].reshape(3, 3)[:, 2]  # rangefinders measure along +z
         assert np.allclose(ray, ray_direction(frame, -0.3, 0.025, index), atol=1e-9)
         assert np.allclose(data.site_xpos[site], frame.position, atol=1e-12)
-    assert mujoco.mj_name2id(built, mujoco.mjtObj.mjOBJ_SITE, "rf-25") == -1
-    assert math.isclose(-0.3 + 24 * 0.025, 0.3)
+    assert mujoco.mj_name2id(built, mujoco.mjtObj.mjOBJ_SITE, "rf-24") == -1
 
 
 def test_the_reference_output_is_found_from_a_clone_at_any_depth(tmp_path, monkeypatch):
