@@ -75,15 +75,17 @@ def check_runtime(
     control: Ros2Control,
     urdf_joints: dict[str, str | None],
     gains: PidGains | None = None,
+    fixed_joints: frozenset[str] = frozenset(),
 ) -> tuple[dict, list[str], list[str]]:
     """The mapping mujoco_ros2_control makes of ``control`` on ``model`` (a JSON-friendly
     record), the failures (what stops it or leaves unserved) and warnings (what it logs).
-    ``urdf_joints`` maps each URDF joint to the joint it mimics (None for others); ``gains``
-    are the pids_config_file's where it was read."""
+    ``urdf_joints`` maps each URDF joint to the joint it mimics (None for others),
+    ``fixed_joints`` names the URDF's fixed ones; ``gains`` are the pids_config_file's where
+    it was read."""
     failures: list[str] = []
     warnings: list[str] = []
     ghosts, part_joints = _not_in_urdf(model, control, urdf_joints)
-    failures += ghosts
+    failures += ghosts + _parser_refusals(control, urdf_joints, fixed_joints)
     warnings += part_joints
     served = [
         joint
@@ -91,8 +93,10 @@ def check_runtime(
         if joint.commands
         and control.runs(joint.plugin)
         and (joint.name in urdf_joints or actuator_of(model, joint.name) >= 0)
+        and joint.name not in fixed_joints
+        and not _activated_mimic(joint, urdf_joints)
     ]
-    mimics = [joint for joint in served if joint.mimic or urdf_joints.get(joint.name)]
+    mimics = [joint for joint in served if joint.mimic]
     warnings += _mimic_commands(mimics, urdf_joints)
     judged = [joint for joint in served if joint not in mimics]
     pids_file = control.hardware.get("pids_config_file")
@@ -159,14 +163,60 @@ def _not_in_urdf(
     return failures, warnings
 
 
+def _activated_mimic(joint: ControlJoint, urdf_joints: dict[str, str | None]) -> bool:
+    """Whether ros2_control's parser takes ``joint`` for an activated mimic joint: it has a
+    URDF <mimic> and its block does not say mimic="false"."""
+    return bool(urdf_joints.get(joint.name)) and joint.mimic_attribute != "false"
+
+
+def _parser_refusals(
+    control: Ros2Control, urdf_joints: dict[str, str | None], fixed_joints: frozenset[str]
+) -> list[str]:
+    """What ros2_control's URDF parser (parse_control_resources_from_urdf, Jazzy and later)
+    refuses before any hardware starts, in every block: a fixed joint; a mimic joint (a URDF
+    <mimic>, unless mimic="false") with command interfaces, or whose leader is not in its
+    block; mimic="true" on a joint the URDF gives no <mimic>."""
+    failures = []
+    for joint in control.joints:
+        if joint.name not in urdf_joints:
+            continue  # refused as a joint the URDF lacks
+        refused = "ros2_control refuses the description at start-up"
+        leader = urdf_joints.get(joint.name)
+        if joint.name in fixed_joints:
+            failures.append(
+                f"{joint.origin}: <ros2_control> joint '{joint.name}' is a fixed joint: {refused} "
+                '("Fixed joints do not make sense in ros2_control"); leave it out of the block'
+            )
+        elif joint.mimic_attribute == "true" and not leader:
+            failures.append(
+                f"{joint.origin}: <ros2_control> joint '{joint.name}' says mimic=\"true\" but "
+                f'the URDF gives it no <mimic>: {refused} ("... has no mimic information in '
+                'the URDF"); remove the attribute or add the <mimic>'
+            )
+        elif _activated_mimic(joint, urdf_joints):
+            block = {other.name for other in control.joints if other.block == joint.block}
+            if joint.commands:
+                failures.append(
+                    f"{joint.origin}: <ros2_control> joint '{joint.name}' mimics '{leader}' "
+                    f'and has command interfaces: {refused} ("Activated mimic joints cannot '
+                    'have command interfaces"); remove them (the joint follows its leader), or '
+                    'say mimic="false" to command it on its own'
+                )
+            if leader not in block:
+                failures.append(
+                    f"{joint.origin}: <ros2_control> joint '{joint.name}' mimics '{leader}', "
+                    f"which its block does not list: {refused} (\"Mimic joint '{leader}' not "
+                    'found in <ros2_control> tag"); add the leader to the block'
+                )
+    return failures
+
+
 def _mimic_commands(mimics: list[ControlJoint], urdf_joints: dict[str, str | None]) -> list[str]:
-    """Mimic joints follow their leader (an equality in the model): the runtime gives their
+    """Joints a ``<param name="mimic">`` makes follow a leader: the runtime gives their
     command interfaces nothing to drive and logs an error."""
     if not mimics:
         return []
-    named = _first_few(
-        [f"{joint.name} (mimics {joint.mimic or urdf_joints.get(joint.name)})" for joint in mimics]
-    )
+    named = _first_few([f"{joint.name} (mimics {joint.mimic})" for joint in mimics])
     return [
         f"mujoco_ros2_control: {len(mimics)} mimic joint{'s' if len(mimics) > 1 else ''} "
         f"({named}) {_verb(mimics, 'declares', 'declare')} command interfaces, which "
@@ -347,42 +397,92 @@ def _start_away_from_home(
 
 
 def _unmatched_transmissions(model, control: Ros2Control) -> tuple[list[str], list[str]]:
-    """A ``<ros2_control>`` transmission's actuators are looked up as joints, then as
-    actuators of the model; one that is neither stops the runtime ("Transmission actuator
-    ... not found"): a failure in a block written for mujoco_ros2_control (or naming no
-    plugin), one warning per other block (a real robot's driver: the runtime would stop only
-    once the plugin is swapped for its own). The failures and the warnings."""
-    import mujoco
-
+    """What stops register_transmissions at start-up, for each ``<ros2_control>``
+    transmission: no ``<actuator>`` ("has no joints or actuators defined"); an actuator name
+    that is neither a joint nor an actuator of the model ("Transmission actuator ... not
+    found"); one that is an MJCF actuator's name, not its joint's (the handles are looked up by
+    the joint an actuator drives: "Actuator ... not found in the MuJoCo actuator data"); a joint
+    without an actuator ("... is passive and cannot be used"). And what it does wrong: a
+    reduction between a joint and its own actuator drives the joint to reduction x command.
+    Failures in a block written for mujoco_ros2_control (or naming no plugin); one warning
+    per other block (a real robot's driver: the runtime would stop only once the plugin is
+    swapped for its own). The failures and the warnings."""
     failures: list[str] = []
-    elsewhere: dict[str, list[str]] = {}  # plugin -> its transmissions' missing actuators
+    elsewhere: dict[str, list[str]] = {}  # plugin -> what its transmissions get wrong
     for transmission in control.transmissions:
         if not transmission.in_ros2_control:
             continue
-        for name in transmission.actuators:
-            if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name) >= 0:
-                continue
-            if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, name) >= 0:
-                continue
-            if transmission.plugin and not transmission.plugin.startswith(RUNTIME_PLUGINS):
-                elsewhere.setdefault(transmission.plugin, []).append(name)
-                continue
-            failures.append(
-                f"transmission {transmission.element} of joint '{transmission.joint}' names "
-                f"actuator '{name}', which is neither a joint nor an actuator of the model: "
-                'mujoco_ros2_control stops at start-up ("Transmission actuator ... not '
+        problems = _transmission_problems(model, transmission)
+        if transmission.plugin and not transmission.plugin.startswith(RUNTIME_PLUGINS):
+            elsewhere.setdefault(transmission.plugin, []).extend(problems)
+            continue
+        failures += [
+            f"{transmission.origin}: transmission {transmission.element} of joint "
+            f"'{transmission.joint}' {problem}"
+            for problem in problems
+        ]
+    warnings = []
+    for plugin, problems in elsewhere.items():
+        if problems:
+            problems = list(dict.fromkeys(problems))
+            warnings.append(
+                f"<ros2_control> transmissions for the hardware plugin {plugin} would stop "
+                f"mujoco_ros2_control run with its plugin: {problems[0]}"
+                + (f" (and {len(problems) - 1} more)" if len(problems) > 1 else "")
+            )
+    return list(dict.fromkeys(failures)), warnings
+
+
+def _transmission_problems(model, transmission) -> list[str]:
+    """What register_transmissions refuses in one joint of a transmission, or gets wrong."""
+    import mujoco
+
+    if not transmission.actuators:
+        return [
+            'has no <actuator>: mujoco_ros2_control stops at start-up ("... has no joints or '
+            "actuators defined\"); name the joint's actuator (the joint itself) in one"
+        ]
+    problems = []
+    for name in transmission.actuators:
+        joint = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
+        actuator = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, name)
+        if joint >= 0 and actuator_of(model, name) < 0:
+            problems.append(
+                f"names actuator '{name}', a joint without an actuator: mujoco_ros2_control "
+                'stops at start-up ("... is passive and cannot be used in a transmission"); '
+                "drive the joint (actuators.rules) or name a driven one"
+            )
+        elif joint < 0 and actuator >= 0:
+            driven = _driven_joint(model, actuator)
+            problems.append(
+                f"names actuator '{name}' by the MJCF actuator's name: mujoco_ros2_control finds "
+                "a transmission's actuators by the joint they drive (\"Actuator ... not found "
+                'in the MuJoCo actuator data") and stops at start-up; name '
+                + (f"joint '{driven}'" if driven else "the joint it drives")
+            )
+        elif joint < 0:
+            problems.append(
+                f"names actuator '{name}', which is neither a joint nor an actuator of the "
+                'model: mujoco_ros2_control stops at start-up ("Transmission actuator ... not '
                 'found"); name the joint or its actuator'
             )
-    warnings = []
-    for plugin, names in elsewhere.items():
-        names = list(dict.fromkeys(names))
-        warnings.append(
-            f"<ros2_control> transmissions for the hardware plugin {plugin} name actuators "
-            f"the model lacks ({_first_few([repr(name) for name in names])}): run under "
-            "mujoco_ros2_control, with its plugin, they would stop it at start-up; name the "
-            "joints (or their actuators) there"
+    if transmission.reduction and transmission.joint in transmission.actuators:
+        problems.append(
+            f"has a reduction of {transmission.reduction:g} to its own actuator: "
+            "mujoco_ros2_control drives the joint to the command times the reduction and reports "
+            "the position divided by it, as if a motor turned ahead of the joint; in the block "
+            "the runtime runs, set the reduction to 1 (or leave the transmission out)"
         )
-    return list(dict.fromkeys(failures)), warnings
+    return problems
+
+
+def _driven_joint(model, actuator: int) -> str | None:
+    """The joint an actuator drives directly, if it does."""
+    import mujoco
+
+    if model.actuator_trntype[actuator] != mujoco.mjtTrn.mjTRN_JOINT:
+        return None
+    return mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, model.actuator_trnid[actuator, 0])
 
 
 def _effort_on_dcmotors(joints: list[dict]) -> list[str]:

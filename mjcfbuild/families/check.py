@@ -89,7 +89,7 @@ FAMILY = Family(
     name="check",
     step="mjcfbuild.steps.check:run",
     payload=CheckPayload,
-    format=19,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
+    format=20,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
     # measured again from inside the joint ranges, velocity limits of 1e6 and above taken for
     # none, unstable-state warnings naming their joint; 11: a hold failure of a servo whose
     # keyframe ctrl is not its position says so; 12: check.json holds the console's verdict and
@@ -105,7 +105,8 @@ FAMILY = Family(
     # <intvelocity>, odometry's free joint, effort at start; a density just past its bound
     # shown with the digits that tell it from the bound; 17: a runtime start away from home
     # (no initial_keyframe) said; 18: the floor gap of a floating robot's own geometry; 19: the
-    # runtime's lidar ray count, cameras without a resolution
+    # runtime's lidar ray count, cameras without a resolution; 20: ros2_control's parser
+    # refusals (fixed and mimic joints) and register_transmissions' (2026)
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

@@ -77,8 +77,9 @@ FAMILY = Family(
     # transmissions are ros2_control's; 14: the hardware plugin of each of those; 15: each
     # joint's and sensor's block plugin, a joint's mimic param, <hardware> params of the
     # blocks mujoco_ros2_control runs only; a floating joint below the root refused at its line;
-    # 16: whether each ros2_control joint has a position state interface
-    format=16,
+    # 16: whether each ros2_control joint has a position state interface; 17: its block and
+    # mimic attribute
+    format=17,
     tools=("lxml",),
     tasks=_tasks,
     stage="planning",

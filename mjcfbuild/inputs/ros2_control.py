@@ -29,6 +29,10 @@ class ControlJoint:
     # Whether it has a position state interface: the runtime starts such a joint at its
     # initial_value (0 without one) unless an initial_keyframe is given.
     position_state: bool = True
+    block: int = 0  # which <ros2_control> block of the URDF holds it (0 the first)
+    # Its mimic="..." attribute ("true", "false" or ""): ros2_control's parser takes a joint with
+    # a URDF <mimic> for an activated mimic joint unless it is "false".
+    mimic_attribute: str = ""
 
 
 @dataclass
@@ -137,7 +141,7 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
     result = Ros2Control()
     blocks = root.findall("ros2_control")
     result.plugins = [(block.findtext("hardware/plugin") or "").strip() for block in blocks]
-    for block, plugin in zip(blocks, result.plugins, strict=True):
+    for number, (block, plugin) in enumerate(zip(blocks, result.plugins, strict=True)):
         hardware = {
             p.get("name", ""): (p.text or "").strip()
             for element in block.findall("hardware")
@@ -174,6 +178,8 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                     plugin,
                     mimic or None,
                     "position" in states,
+                    number,
+                    (joint.get("mimic") or "").strip().lower(),
                 )
             )
         for sensor in block.findall("sensor"):

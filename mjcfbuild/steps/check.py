@@ -71,6 +71,7 @@ def check_built(request: CheckPayload) -> CheckResults:
         _urdf_joints(plan.robot),
         sources,
         request.depfile,
+        frozenset(j["name"] for j in plan.robot["joints"] if j["kind"] == "fixed"),
     )
     gazebo = plan.gazebo()
     if gazebo:
@@ -101,9 +102,11 @@ def add_runtime_check(
     urdf_joints: dict[str, str | None],
     sources: dict[str, AssetSource],
     depfile: str = "",
+    fixed_joints: frozenset[str] = frozenset(),
 ) -> CheckResults:
     """The mujoco_ros2_control section, where the description has a <ros2_control> block; the
-    files it reads besides its inputs are recorded in ``depfile``."""
+    files it reads besides its inputs are recorded in ``depfile``. ``fixed_joints`` names the
+    URDF's fixed joints (ros2_control refuses one in a block)."""
     if depfile:
         _record_reads(control, Path(depfile))
     if not results.loads or not (control.joints or control.sensors):
@@ -112,7 +115,7 @@ def add_runtime_check(
 
     model = compile_model(model_path, sources)
     gains, unloadable = _pid_gains(control)
-    found, failures, warnings = check_runtime(model, control, urdf_joints, gains)
+    found, failures, warnings = check_runtime(model, control, urdf_joints, gains, fixed_joints)
     failures += unloadable
     runtime = Runtime(
         found["joints"], found["sensors"], found["devices"], warnings, failed=bool(failures)

@@ -195,28 +195,78 @@ def test_a_joint_the_urdf_lacks_is_refused_at_its_line(tmp_path):
     assert "what is no joint; did you mean 'hinge'?" in stderr
 
 
-def test_a_mimic_joint_with_a_command_interface_is_a_warning_not_a_failure(tmp_path):
-    """The runtime ignores a mimic joint's command interfaces (it logs an error); the check
-    failed it for having no actuator, and advised giving it one, which would fight the
-    mimic's equality."""
-    extra = (
-        '<link name="tip"><inertial><mass value="0.1"/><inertia ixx="0.001" iyy="0.001" '
-        'izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>'
-        '<joint name="follower" type="revolute"><parent link="arm"/><child link="tip"/>'
-        '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
-        '<mimic joint="hinge" multiplier="1"/></joint>'
-    )
+FOLLOWER = (
+    '<link name="tip"><inertial><mass value="0.1"/><inertia ixx="0.001" iyy="0.001" '
+    'izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+    '<joint name="follower" type="revolute"><parent link="arm"/><child link="tip"/>'
+    '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+    '<mimic joint="hinge" multiplier="1"/></joint>'
+)
+
+
+def test_a_urdf_mimic_joint_with_command_interfaces_is_refused_by_ros2_control(tmp_path):
+    """ros2_control's parser (Jazzy and later) refuses an activated mimic joint with command
+    interfaces, and one whose leader its block does not list; mimic="false" lets the joint be
+    commanded on its own."""
     block = control_block(["position"]).replace(
         "</ros2_control>",
         '<joint name="follower"><command_interface name="position"/>'
         '<state_interface name="position"/></joint></ros2_control>',
     )
-    result = build_two_link(tmp_path, urdf_extra=extra + block)
-    assert check_record(tmp_path)["passes"]
+    _fails_to_start(tmp_path / "commanded", FOLLOWER + block)
+    failures = check_record(tmp_path / "commanded")["failures"]
+    assert any(
+        "joint 'follower' mimics 'hinge' and has command interfaces" in f
+        and "Activated mimic joints cannot have command interfaces" in f
+        for f in failures
+    ), failures
+    alone = (
+        '<ros2_control name="s" type="system"><hardware></hardware><joint name="follower">'
+        '<state_interface name="position"/></joint></ros2_control>'
+    )
+    _fails_to_start(tmp_path / "alone", FOLLOWER + alone)
+    failures = check_record(tmp_path / "alone")["failures"]
+    assert any("mimics 'hinge', which its block does not list" in f for f in failures), failures
+    stated = block.replace('<joint name="follower">', '<joint name="follower" mimic="false">')
+    _fails_to_start(tmp_path / "stated", FOLLOWER + stated)
+    failures = check_record(tmp_path / "stated")["failures"]
+    assert not any("Activated mimic" in f for f in failures), failures
+    assert any("'follower'" in f for f in failures)  # commanded, it needs an actuator
+
+
+def test_a_param_mimic_joint_with_a_command_interface_is_a_warning_not_a_failure(tmp_path):
+    """A <param name="mimic"> makes mujoco_ros2_control itself ignore the joint's command
+    interfaces (it logs an error), without ros2_control's parser refusing anything."""
+    block = control_block(["position"]).replace(
+        "</ros2_control>",
+        '<joint name="follower"><param name="mimic">hinge</param>'
+        '<command_interface name="position"/><state_interface name="position"/></joint>'
+        "</ros2_control>",
+    )
+    plain = FOLLOWER.replace('<mimic joint="hinge" multiplier="1"/>', "")
+    result = build_two_link(tmp_path, urdf_extra=plain + block)
     assert any(
         "1 mimic joint (follower (mimics hinge)) declares command interfaces" in w
         for w in result.warnings
     ), result.warnings
+
+
+def test_a_fixed_joint_in_a_block_is_refused_by_ros2_control(tmp_path):
+    fixed = (
+        '<link name="tool"/><joint name="mount" type="fixed"><parent link="arm"/>'
+        '<child link="tool"/></joint>'
+    )
+    block = control_block(["position"]).replace(
+        "</ros2_control>",
+        '<joint name="mount"><state_interface name="position"/></joint></ros2_control>',
+    )
+    _fails_to_start(tmp_path, fixed + block)
+    failures = check_record(tmp_path)["failures"]
+    assert any(
+        "<ros2_control> joint 'mount' is a fixed joint" in f
+        and "Fixed joints do not make sense in ros2_control" in f
+        for f in failures
+    ), failures
 
 
 def test_a_block_for_other_hardware_beside_the_runtimes_is_not_judged_as_the_runtimes(tmp_path):
@@ -398,10 +448,48 @@ def test_a_transmission_naming_no_joint_or_actuator_stops_the_runtime(tmp_path):
     result = build_two_link(tmp_path / "driver", urdf_extra=driver)
     assert check_record(tmp_path / "driver")["passes"]
     assert any(
-        "<ros2_control> transmissions for the hardware plugin robot_control/RobotControl name "
-        "actuators the model lacks ('actuator1')" in warning
+        "<ros2_control> transmissions for the hardware plugin robot_control/RobotControl would "
+        "stop mujoco_ros2_control run with its plugin: names actuator 'actuator1'" in warning
         for warning in result.warnings
     ), result.warnings
+
+
+def _transmission(body: str) -> str:
+    return control_block(["position"]).replace(
+        "</ros2_control>",
+        '<transmission name="t"><plugin>transmission_interface/SimpleTransmission</plugin>'
+        f"{body}</transmission></ros2_control>",
+    )
+
+
+def test_a_transmission_the_runtimes_register_transmissions_refuses_stops_it(tmp_path):
+    """From register_transmissions (2026): a transmission without an <actuator> stops it ("has
+    no joints or actuators defined"), and so does one naming an MJCF actuator by its own name:
+    the handles are found by the joint an actuator drives ("Actuator ... not found in the
+    MuJoCo actuator data"), though the first lookup accepts an actuator's name."""
+    joint = '<joint name="hinge" role="joint1"/>'
+    stderr = _fails_to_start(tmp_path / "none", _transmission(joint))
+    assert "transmission #1 of joint 'hinge' has no <actuator>" in stderr
+    motor = (
+        'mujoco_inputs:\n  raw: \'<actuator><motor name="hinge_motor" joint="hinge"/>'
+        "</actuator>'\n"
+    )
+    named = _transmission('<actuator name="hinge_motor" role="actuator1"/>' + joint)
+    _fails_to_start(tmp_path / "named", named, motor)
+    (failure,) = [f for f in check_record(tmp_path / "named")["failures"] if "transmission" in f]
+    assert "names actuator 'hinge_motor' by the MJCF actuator's name" in failure
+    assert failure.endswith("name joint 'hinge'")
+
+
+def test_a_reduction_between_a_joint_and_its_own_actuator_fails(tmp_path):
+    """The runtime applies the transmission even where the actuator is the joint's own: a
+    position command of 0.2 drives the joint to 0.4, and the state it reports is halved."""
+    geared = _transmission(
+        '<actuator name="hinge" role="actuator1"/><joint name="hinge" role="joint1">'
+        "<mechanical_reduction>2.0</mechanical_reduction></joint>"
+    )
+    stderr = _fails_to_start(tmp_path, geared)
+    assert "has a reduction of 2 to its own actuator" in stderr
 
 
 def test_a_tendon_actuator_named_like_no_joint_stops_the_runtime(tmp_path):
