@@ -164,6 +164,12 @@ def _hold_and_stand(
             why = motors_need_a_controller(motors, every)
             fell = replace(standing, fell_without_controller=why)
             report.add(stand=fell, needs_controller=why)
+        elif stand.fails(hold_tolerance) and measure.passive_deviation > hold_tolerance:
+            # Joints robot.yaml asks to leave without an actuator gave way: the stand is not
+            # the servos' to keep (nothing holds those joints), as a fixed base's sag is not.
+            why = _passive_give_way(measure)
+            fell = replace(standing, fell_without_controller=why)
+            report.add(stand=fell, needs_controller=why)
         elif stand.fails(hold_tolerance):
             advice = _hold_advice(model, home, stand.joint)
             fallen = replace(standing, failed=True)
@@ -182,6 +188,17 @@ def torque_motors(model, passive: set[str]) -> list[str]:
         for j in watched_joints(model, passive)
     ]
     return [name for name in names if drives.get(name) == "motor"]
+
+
+def _passive_give_way(measure: HoldMeasure) -> str:
+    """Why a floating robot with joints left without an actuator fell."""
+    count = measure.passive_count
+    return (
+        f"{count} of its joints {'has' if count == 1 else 'have'} no actuator, as robot.yaml's "
+        f"actuators ask, and gave way, up to {measure.passive_deviation:.3g} at "
+        f"{measure.passive_joint}, so nothing holds it up: it stands once a controller or an "
+        "actuator holds the joints that carry it"
+    )
 
 
 def motors_need_a_controller(motors: list[str], every: bool = False) -> str:

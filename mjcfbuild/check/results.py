@@ -522,7 +522,9 @@ class CheckResults:
                 else f"largest deviation {hold.max_deviation:.3g}{joint}"
             )
             passive = hold.passive_words()
-            if hold.floating:  # it stands on the floor, or falls, as it holds: one judge
+            if hold.floating and self.stand and self.stand.needs_controller:
+                deviation += ", not judged: the stand test below was not run"
+            elif hold.floating:  # it stands on the floor, or falls, as it holds: one judge
                 deviation += ", judged by the stand test below"
             add("hold home 1 s", f"{deviation}; {passive}" if passive else deviation, hold.failed)
         stand = self.stand

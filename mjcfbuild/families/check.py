@@ -89,7 +89,7 @@ FAMILY = Family(
     name="check",
     step="mjcfbuild.steps.check:run",
     payload=CheckPayload,
-    format=20,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
+    format=21,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
     # measured again from inside the joint ranges, velocity limits of 1e6 and above taken for
     # none, unstable-state warnings naming their joint; 11: a hold failure of a servo whose
     # keyframe ctrl is not its position says so; 12: check.json holds the console's verdict and
@@ -106,7 +106,8 @@ FAMILY = Family(
     # shown with the digits that tell it from the bound; 17: a runtime start away from home
     # (no initial_keyframe) said; 18: the floor gap of a floating robot's own geometry; 19: the
     # runtime's lidar ray count, cameras without a resolution; 20: ros2_control's parser
-    # refusals (fixed and mimic joints) and register_transmissions' (2026)
+    # refusals (fixed and mimic joints) and register_transmissions' (2026); 21: a floating
+    # robot whose passive joints give way needs a controller, not stiffer servos
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

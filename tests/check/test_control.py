@@ -225,6 +225,32 @@ def test_an_effort_only_quadruped_needs_a_controller_and_the_rule_the_check_give
     assert check["stand"]["max_tilt"] < 0.2
 
 
+def test_a_floating_robot_left_passive_by_robot_yaml_falls_with_that_reason_not_a_failure(
+    tmp_path,
+):
+    """actuators: {default: none} on a quadruped: it collapses, as a fixed arm's passive joints
+    sag, which the verdict says ("checks pass, but"); the check failed it advising to stiffen
+    its servos, which it does not have."""
+    import json
+
+    import mjcfbuild
+    from tests.conftest import write
+    from tests.control.robots import quadruped
+
+    write(tmp_path / "robot.urdf", quadruped(foot_offset=0.05))
+    write(
+        tmp_path / "robot.yaml",
+        "name: q\nsource: {urdf: robot.urdf}\noptions: {free_joint: true}\n"
+        "actuators: {default: none}\n",
+    )
+    result = mjcfbuild.build(tmp_path / "robot.yaml", jobs=1)
+    check = json.loads((result.robot.parent / ".mjcfbuild/check.json").read_text())
+    assert check["passes"], check["failures"]
+    why = check["needs_controller"]
+    assert why.startswith("12 of its joints have no actuator, as robot.yaml's actuators ask"), why
+    assert "stiffen" not in why
+
+
 def test_wheels_on_velocity_servos_are_judged_by_not_rolling_away(tmp_path):
     """A rover on a slope (gravity tilted 12 degrees): its wheels' angles are theirs to change,
     but the robot must not roll away. The check names the wheels and the kv that holds it;

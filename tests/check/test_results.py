@@ -144,6 +144,14 @@ def test_a_floating_robots_hold_row_says_the_stand_test_judges_it():
     assert row == "largest deviation 3.43 (knee), judged by the stand test below"
     fixed = CheckResults(loads=True, hold=Hold(0.01, "elbow"))
     assert dict(fixed.console_lines())["hold home 1 s"] == "largest deviation 0.01 (elbow)"
+    # A biped on point feet: the stand test does not run, so nothing judges the hold row.
+    unstood = CheckResults(
+        loads=True,
+        hold=Hold(3.43, "knee", floating=True),
+        stand=Stand(needs_controller="its feet touch the floor at points"),
+    )
+    row = dict(unstood.console_lines())["hold home 1 s"]
+    assert row == "largest deviation 3.43 (knee), not judged: the stand test below was not run"
 
 
 def test_the_stand_verdict_in_a_word():

@@ -39,7 +39,7 @@ BEFORE_FORMATS = {
     "decompose": 3,
     "assemble": 24,
     "scene": 3,
-    "check": 20,
+    "check": 21,
     "reference": 1,
     "previews": 5,
     "tuning": 1,
