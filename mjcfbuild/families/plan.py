@@ -78,7 +78,7 @@ FAMILY = Family(
     # joint's and sensor's block plugin, a joint's mimic param, <hardware> params of the
     # blocks mujoco_ros2_control runs only; a floating joint below the root refused at its line;
     # 16: whether each ros2_control joint has a position state interface; 17: its block and
-    # mimic attribute
+    # mimic attribute, each geometry's own line
     format=17,
     tools=("lxml",),
     tasks=_tasks,

@@ -41,6 +41,7 @@ class Geometry:
     path: str | None = None
     scale: Vec3 = (1.0, 1.0, 1.0)
     mesh_id: str | None = None
+    line: int | None = None  # of its element (<mesh>, <box>, ...): where to fix what it names
 
 
 @dataclass

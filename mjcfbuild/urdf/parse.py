@@ -364,6 +364,7 @@ def _parse_shape(
             "<visual> or <collision> of its own"
         )
     geometry = _parse_geometry(geometry_element[0], reader)
+    geometry.line = geometry_element[0].sourceline
     material = None
     material_element = element.find("material")
     if role == "visual" and material_element is not None:

