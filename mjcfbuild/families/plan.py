@@ -78,8 +78,8 @@ FAMILY = Family(
     # joint's and sensor's block plugin, a joint's mimic param, <hardware> params of the
     # blocks mujoco_ros2_control runs only; a floating joint below the root refused at its line;
     # 16: whether each ros2_control joint has a position state interface; 17: its block and
-    # mimic attribute, each geometry's own line
-    format=17,
+    # mimic attribute; 18: each geometry's own line
+    format=18,
     tools=("lxml",),
     tasks=_tasks,
     stage="planning",

@@ -34,7 +34,7 @@ from tests.families.toy_step import ToyPayload
 # that family's tasks in every folder built before.
 BEFORE_FORMATS = {
     "expand": 4,
-    "plan": 17,
+    "plan": 18,
     "mesh": 11,
     "decompose": 3,
     "assemble": 24,
