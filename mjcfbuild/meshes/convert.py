@@ -42,8 +42,8 @@ def convert_mesh(
 
     ``max_faces`` budgets the visual parts, ``collision_max_faces`` the collision mesh, and
     ``max_hull_vertices`` the convex hull."""
-    original = load_parts(source, apply_up_axis=apply_up_axis)
     warnings: list[str] = []
+    original = load_parts(source, apply_up_axis=apply_up_axis, warnings=warnings)
     parts = _within_budget(original, max_faces, f"{source.name} (visual)", warnings)
     whole_parts = _within_budget(
         original, collision_max_faces, f"{source.name} (collision)", warnings

@@ -72,14 +72,17 @@ class MeshPart:
 FARTHEST_COORDINATE = 1e5
 
 
-def load_parts(path: Path, apply_up_axis: bool = False) -> list[MeshPart]:
+def load_parts(
+    path: Path, apply_up_axis: bool = False, warnings: list[str] | None = None
+) -> list[MeshPart]:
     """The triangles of ``path`` grouped by look, in a stable order, vertices shared.
 
-    ``apply_up_axis`` rotates DAE files tagged Y_UP or X_UP to Z up.
+    ``apply_up_axis`` rotates DAE files tagged Y_UP or X_UP to Z up; what is left out (a
+    texture that is no image) is said in ``warnings``.
     """
     suffix = path.suffix.lower()
     if suffix == ".dae":
-        pieces = _collada_pieces(path, apply_up_axis)
+        pieces = _collada_pieces(path, apply_up_axis, [] if warnings is None else warnings)
     elif suffix == ".stl" and (binary := _binary_stl_pieces(path)) is not None:
         pieces = binary
     else:
@@ -160,12 +163,25 @@ def _cut_stl(path: Path) -> str | None:
     )
 
 
-def _collada_pieces(path: Path, apply_up_axis: bool) -> list[MeshPart]:
+def _collada_pieces(path: Path, apply_up_axis: bool, warnings: list[str]) -> list[MeshPart]:
     from mjcfbuild.meshes.collada import read_collada
 
     pieces = []
+    unreadable: set[Path] = set()
     for part in read_collada(path, apply_up_axis=apply_up_axis).parts:
-        texture = Texture.from_file(part.texture) if part.texture is not None else None
+        texture = None
+        if part.texture is not None and part.texture not in unreadable:
+            try:
+                texture = Texture.from_file(part.texture)
+            except InputError:
+                # As a texture that is not there: the geometry is still the mesh's (a
+                # texture saved as a web page, in bullet-safety-gym's kinect.dae).
+                unreadable.add(part.texture)
+                warnings.append(
+                    f"{path.name}: its texture {part.texture.name} is no image mjcfbuild "
+                    "can read; the model shows the mesh without it (re-save the texture as "
+                    "PNG or JPEG)"
+                )
         uv = part.uv if texture is not None else None
         pieces.append(
             MeshPart(part.vertices, part.faces, part.rgba, uv, texture if uv is not None else None)

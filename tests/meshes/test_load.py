@@ -164,3 +164,20 @@ def test_a_text_mesh_trimesh_cannot_read_is_an_error_at_its_line(tmp_path, name,
     with pytest.raises(InputError) as info:
         load_parts(path)
     assert says in str(info.value) and info.value.location.line == line
+
+
+def test_a_dae_texture_that_is_no_image_is_left_out_with_a_warning(tmp_path):
+    """bullet-safety-gym's kinect.dae names kinect.tga, which is a web page: the build stopped
+    ("cannot read texture image") where a missing texture only warns."""
+    from tests.meshes.test_collada import INSTANCE, MATERIAL, QUAD, dae, scene
+
+    write(tmp_path / "skin.png", "<html>not found</html>")
+    body = QUAD + MATERIAL.format(diffuse='<texture texture="samp" texcoord="UV"/>')
+    path = write(tmp_path / "q.dae", dae(body, scene=scene(f"<node>{INSTANCE}</node>")))
+    warnings: list[str] = []
+    (part,) = load_parts(path, warnings=warnings)
+    assert part.texture is None and len(part.faces) == 2
+    assert warnings == [
+        "q.dae: its texture skin.png is no image mjcfbuild can read; the model shows the mesh "
+        "without it (re-save the texture as PNG or JPEG)"
+    ]
