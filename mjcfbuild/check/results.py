@@ -570,8 +570,9 @@ class CheckResults:
             runtime = self.mujoco_ros2_control
             add(
                 "mujoco_ros2_control",
-                f"{len(runtime.joints)} joints, {len(runtime.sensors)} sensors, "
-                f"{len(runtime.devices)} cameras/lidars",
+                f"{plural(len(runtime.joints), 'joint')}, "
+                f"{plural(len(runtime.sensors), 'sensor')}, "
+                f"{len(runtime.devices)} cameras and lidars",
                 runtime.failed,
             )
         return lines

@@ -236,7 +236,21 @@ def _pair(args) -> int:
             error.message += f" [line {expanded} of its expansion]"
         raise
     results = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))
+    results = _runtime_section(results, text, robot, mjcf, str(urdf))
     return _print(results, f"{mjcf} against {urdf}", bool(getattr(args, "quiet", False)))
+
+
+def _runtime_section(results, text: bytes, robot, mjcf: Path, label: str):
+    """The mujoco_ros2_control section a build's check adds, from the URDF's <ros2_control>
+    blocks: the runtime's rules hold for a model made by any tool."""
+    from mjcfbuild.inputs.ros2_control import read_ros2_control
+    from mjcfbuild.steps.check import add_runtime_check
+    from mjcfbuild.urdf.parse import parse_xml
+
+    control = read_ros2_control(parse_xml(text, label, []), label)
+    joints = {joint.name: joint.mimic.joint if joint.mimic else None for joint in robot.joints}
+    fixed = frozenset(joint.name for joint in robot.joints if joint.kind == "fixed")
+    return add_runtime_check(results, mjcf, control, joints, {}, fixed_joints=fixed)
 
 
 def refuse_other_models(path: Path, hint: str) -> None:

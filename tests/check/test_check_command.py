@@ -363,3 +363,32 @@ def test_check_writes_the_same_check_json_as_the_build_mjcf_parts_included(tmp_p
     assert any(
         line.strip().startswith(f"MJCF part {prefix}") for line in result.stdout.splitlines()
     )
+
+
+def test_a_urdf_and_mjcf_pair_is_held_to_mujoco_ros2_controls_rules(tmp_path):
+    """`check --urdf --mjcf` (a model from any tool, the reference converter's) adds the
+    runtime section a build's check has: a model without the MJCF sensors the <ros2_control>
+    block reads fails there, naming them (it said nothing of them)."""
+    from tests.conftest import two_link_urdf
+
+    block = (
+        '<ros2_control name="s" type="system"><hardware><plugin>mujoco_ros2_control/'
+        'MujocoSystemInterface</plugin><param name="initial_keyframe">home</param></hardware>'
+        '<joint name="hinge"><command_interface name="position"/>'
+        '<state_interface name="position"/></joint><sensor name="imu">'
+        '<param name="mujoco_type">imu</param><param name="frame_name">arm</param></sensor>'
+        "</ros2_control>"
+    )
+    urdf = write(tmp_path / "robot.urdf", two_link_urdf(extra=block))
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\n")
+    assert run_cli("build", "-q", str(tmp_path / "robot.yaml")).code == EXIT_OK
+    model = tmp_path / "mjcf" / "r.xml"
+    result = run_cli("check", "--urdf", str(urdf), "--mjcf", str(model))
+    assert result.code == EXIT_OK, result.stdout + result.stderr
+    assert "mujoco_ros2_control          1 joint, 1 sensor" in result.stdout
+    text = model.read_text()
+    start, end = text.index("<sensor>"), text.index("</sensor>") + len("</sensor>")
+    bare = write(tmp_path / "mjcf" / "bare.xml", text[:start] + text[end:])
+    result = run_cli("check", "--urdf", str(urdf), "--mjcf", str(bare))
+    assert result.code == EXIT_CHECK
+    assert "reads the MJCF framequat 'imu_quat', which the model does not have" in result.stderr
