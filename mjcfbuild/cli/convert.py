@@ -105,11 +105,18 @@ def add_parser(commands) -> None:
 
 def parse_packages(values: list[str]) -> dict[str, str]:
     """``NAME=DIR`` arguments as a dict; :class:`UsageError` for malformed ones."""
+    from mjcfbuild.sources.packages import PACKAGE_PATTERN
+
     packages = {}
     for value in values:
         name, sep, folder = value.partition("=")
         if not sep or not name or not folder:
             raise UsageError(f"--package '{value}' is not NAME=DIR")
+        if not PACKAGE_PATTERN.match(name):
+            raise UsageError(
+                f"--package '{value}': '{name}' is no ROS package name (letters, digits, '_', "
+                "'-' and '.')"
+            )
         packages[name] = str(Path(folder).resolve())
     return packages
 

@@ -7,7 +7,6 @@ manifest's folder and resolved by :class:`mjcfbuild.graph.context.GraphContext`.
 
 from __future__ import annotations
 
-import re
 from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 from pydantic import (
@@ -30,9 +29,9 @@ from mjcfbuild.manifest.simulation import (
     Placement,
     SelfCollisionSettings,
 )
+from mjcfbuild.sources.packages import PACKAGE_PATTERN
 
 NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9_.-]*$"
-PACKAGE_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
 
 RelPath = Annotated[str, Field(min_length=1, description="A path, relative to robot.yaml.")]
 FileName = Annotated[

@@ -18,6 +18,10 @@ from pathlib import Path
 
 from mjcfbuild.errors import InputError
 
+# What robot.yaml's packages accept as a name: ROS's (REP 144), and the capitals, dashes and
+# dots packages in the wild have.
+PACKAGE_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
+
 ENV_VARIABLES = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")
 _IGNORE_MARKERS = ("CATKIN_IGNORE", "COLCON_IGNORE", "AMENT_IGNORE")
 _NAME_TAG = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
@@ -52,6 +56,12 @@ class PackageResolver:
         found = self._find_in_ament(name) or self._find_in_ros_package_path(name)
         if found is not None:
             return found
+        if not PACKAGE_PATTERN.match(name):
+            raise InputError(
+                f"'{name}' is no ROS package name (letters, digits, '_', '-' and '.'), so no "
+                "package provides it",
+                hint="fix the package:// or $(find) that names it",
+            )
         known = sorted(set(self.explicit) | set(self._crawl()))
         listing = ", ".join(known) if known else "none"
         raise InputError(

@@ -93,3 +93,21 @@ def test_a_pattern_with_a_misspelt_word_gets_the_pattern_with_the_closest_word()
     assert suggestion(["*fingr*"], names) == "; did you mean '*finger*'?"
     assert suggestion(["elbw"], names) == "; did you mean 'elbow'?"
     assert suggestion(["*gripper*"], names) == ""
+
+
+def test_a_name_no_package_can_have_is_said_to_be_one_not_to_be_added(tmp_path):
+    """xacrodoc's mesh_with_spaces names package://pkg with spaces/...: the advice to add it
+    under 'packages' led to robot.yaml's own refusal of the name."""
+    with pytest.raises(InputError) as info:
+        PackageResolver({}, {}).find("pkg with spaces")
+    assert info.value.message.startswith("'pkg with spaces' is no ROS package name")
+    assert "packages" not in (info.value.hint or "")
+
+
+def test_init_and_convert_refuse_such_a_name_for_package(tmp_path):
+    from tests.conftest import run_cli, two_link_urdf
+
+    urdf = write(tmp_path / "robot.urdf", two_link_urdf())
+    result = run_cli("init", "--package", f"pkg with spaces={tmp_path}", str(urdf), cwd=tmp_path)
+    assert result.code == 2 and "'pkg with spaces' is no ROS package name" in result.stderr
+    assert not (tmp_path / "robot.yaml").exists()
