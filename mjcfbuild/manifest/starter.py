@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import re
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from mjcfbuild.console import shown_path
 from mjcfbuild.errors import InputError, MjcfbuildError, OutputError, UsageError
@@ -18,6 +19,9 @@ from mjcfbuild.sources.infer import (
 )
 from mjcfbuild.sources.kind import not_a_description, xacro_evidence
 from mjcfbuild.sources.packages import PackageResolver, find_enclosing_package
+
+if TYPE_CHECKING:
+    from mjcfbuild.urdf.model import Robot
 
 _PACKAGE_URI = re.compile(rb"package://([A-Za-z0-9_.-]+)/")
 _FIND = re.compile(rb"\$\(find\s+([A-Za-z0-9_.-]+)\)")
@@ -290,7 +294,8 @@ def _free_joint_lines(
         from mjcfbuild.urdf.parse import parse_urdf
 
         expansion = expand_source(source, is_xacro, {}, packages, dict(os.environ))
-        kind = classify_base(parse_urdf(expansion.urdf, label))
+        robot = parse_urdf(expansion.urdf, label)
+        kind = classify_base(robot)
     except Exception as exc:  # an unreadable description: init still writes a starting manifest
         # The build reports anything else itself; a user error is worth telling now.
         # Its file named from the current folder, as the build names it.
@@ -312,16 +317,38 @@ def _free_joint_lines(
             unread,
             None,
         )
+    stop = _first_stop(robot, source, packages)
     if kind.floating:
         return (
             [
                 f"  # Its base floats: {kind.why}. The build stands it on the floor at home.",
                 "  free_joint: true",
             ],
-            None,
+            stop,
             expansion.urdf,
         )
-    return [f"  free_joint: false   # {kind.why}; true for a floating base"], None, expansion.urdf
+    return [f"  free_joint: false   # {kind.why}; true for a floating base"], stop, expansion.urdf
+
+
+def _first_stop(robot: Robot, source: Path, packages: dict[str, str]) -> str | None:
+    """What the first build would stop at in a description that reads (a mesh that is not
+    there, an absolute path from another machine, no mass anywhere), as one line: init says
+    it now, not one build later."""
+    from mjcfbuild.urdf.resolve import resolve_files
+
+    try:
+        folders = {name: Path(folder) for name, folder in packages.items()}
+        resolve_files(robot, source.parent, PackageResolver(folders, dict(os.environ)))
+    except MjcfbuildError as exc:
+        here = Path.cwd()
+        return exc.relocate(here, here).one_line()
+    moving = [joint for joint in robot.joints if joint.moves]
+    if moving and not any(link.inertial and link.inertial.mass > 0 for link in robot.links):
+        return (
+            f"{robot.source}: no link of the robot has a mass (<inertial>), so it cannot be "
+            "simulated (add each link's <inertial>: mass, centre of mass, inertia)"
+        )
+    return None
 
 
 _LEG_WORDS = ("hip", "thigh", "knee", "calf", "shank", "ankle", "foot", "HFE", "KFE", "HAA")

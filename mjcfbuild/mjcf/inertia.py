@@ -63,7 +63,7 @@ def validate_masses(
         # unstable and nothing about the model's dynamics is the robot's.
         raise InputError(
             f"no link of the robot has a mass (<inertial>), so its {len(moving)} moving "
-            "bodies cannot be simulated",
+            f"{'body cannot' if len(moving) == 1 else 'bodies cannot'} be simulated",
             file=source,
             hint="add each link's <inertial> (mass, centre of mass, inertia) to the "
             "description: MuJoCo needs them to simulate it",

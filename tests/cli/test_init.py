@@ -381,6 +381,24 @@ def test_init_says_what_the_first_build_will_stop_at(cli, tmp_path):
     assert f"robot.urdf:{line}: joint 'hinge' has lower limit 0.3 above" in built.stderr
 
 
+def test_init_says_a_missing_mesh_or_a_robot_without_mass_stops_the_first_build(cli, tmp_path):
+    # dart's missing_mesh.urdf and joint_properties.urdf: init wrote the manifest and said
+    # nothing; the first build then stopped.
+    from tests.conftest import two_link_urdf, write
+
+    urdf = two_link_urdf().replace('<box size="0.2 0.2 0.1"/>', '<mesh filename="gone.stl"/>')
+    write(tmp_path / "robot.urdf", urdf)
+    result = cli("init", "robot.urdf", cwd=tmp_path)
+    line = next(n for n, text in enumerate(urdf.splitlines(), 1) if "gone.stl" in text)
+    assert result.code == EXIT_OK, result.stderr
+    assert result.stderr.startswith(f"mjcfbuild: warning: robot.urdf:{line}: file 'gone.stl'")
+    assert result.stderr.rstrip().endswith("the build stops there until the description is fixed")
+    massless = re.sub(r"<inertial>.*?</inertial>", "", two_link_urdf(), flags=re.DOTALL)
+    write(tmp_path / "massless.urdf", massless)
+    result = cli("init", "-o", "massless.yaml", "massless.urdf", cwd=tmp_path)
+    assert "massless.urdf: no link of the robot has a mass (<inertial>)" in result.stderr
+
+
 def test_init_names_an_included_file_that_fails_from_the_current_folder(cli, tmp_path):
     """A failure in a file the description includes is named as the build names it, from
     the folder init runs in, not by its absolute path."""
@@ -452,6 +470,7 @@ def test_init_does_not_warn_of_a_package_the_ros_environment_holds(cli, tmp_path
         tmp_path / "ros" / "robot_meshes" / "package.xml",
         "<package><name>robot_meshes</name></package>",
     )
+    write(tmp_path / "ros" / "robot_meshes" / "base.stl", "solid a\nendsolid a\n")
     result = cli(
         "init", "robot.urdf", cwd=tmp_path, env={"ROS_PACKAGE_PATH": str(tmp_path / "ros")}
     )
