@@ -138,11 +138,33 @@ def find_enclosing_package(path: Path) -> tuple[str, Path] | None:
 
 
 def did_you_mean(name: str, candidates: list[str] | set[str]) -> str:
-    """``; did you mean 'x'?`` for the candidate closest to ``name``, or nothing."""
+    """``; did you mean 'x'?`` for the candidate closest to ``name``, or nothing.
+
+    A candidate is offered when it is one edit away ('j2' for 'j1'), or similar as difflib
+    measures it and within a few edits for its length: 'head' shares letters with 'r_hand'
+    but is three edits from it, a suggestion that sends a user the wrong way."""
     import difflib
 
-    match = difflib.get_close_matches(name, sorted(set(candidates) - {name}), n=1)
+    others = sorted(set(candidates) - {name})
+    close = [
+        c
+        for c in difflib.get_close_matches(name, others, n=3)
+        if _edits(name, c) <= len(name) // 3 + 1
+    ]
+    near = [c for c in others if len(name) > 1 and _edits(name, c) == 1]
+    match = (close or near)[:1]
     return f"; did you mean '{match[0]}'?" if match else ""
+
+
+def _edits(a: str, b: str) -> int:
+    """The Levenshtein distance between ``a`` and ``b``."""
+    previous = list(range(len(b) + 1))
+    for i, x in enumerate(a, 1):
+        current = [i]
+        for j, y in enumerate(b, 1):
+            current.append(min(previous[j] + 1, current[j - 1] + 1, previous[j - 1] + (x != y)))
+        previous = current
+    return previous[-1]
 
 
 def suggestion(patterns: list[str], names: list[str]) -> str:

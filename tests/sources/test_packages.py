@@ -111,3 +111,19 @@ def test_init_and_convert_refuse_such_a_name_for_package(tmp_path):
     result = run_cli("init", "--package", f"pkg with spaces={tmp_path}", str(urdf), cwd=tmp_path)
     assert result.code == 2 and "'pkg with spaces' is no ROS package name" in result.stderr
     assert not (tmp_path / "robot.yaml").exists()
+
+
+@pytest.mark.parametrize(
+    ("name", "candidates", "offered"),
+    [
+        ("head", ["r_hand", "l_hand", "torso"], None),  # atlas_v3: three edits away
+        ("j2", ["j1", "base"], "j1"),  # one edit, though difflib finds it too different
+        ("elbw", ["elbow", "wrist"], "elbow"),
+        ("shouldr_pan_jiont", ["shoulder_pan_joint", "elbow"], "shoulder_pan_joint"),
+        ("zzzz_nothing", ["upper_arm"], None),
+    ],
+)
+def test_a_suggestion_is_a_name_a_few_edits_away(name, candidates, offered):
+    from mjcfbuild.sources.packages import did_you_mean
+
+    assert did_you_mean(name, candidates) == (f"; did you mean '{offered}'?" if offered else "")
