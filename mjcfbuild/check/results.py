@@ -709,4 +709,9 @@ class CheckResults:
                 f"| masses and inertias | total {masses.urdf_total:.6g} kg in the URDF, "
                 f"{masses.model_total:.6g} kg in the model; {len(masses.problems)} problems |"
             )
+        # The console's other checks, in its words: the report leaves out none it shows.
+        console = dict(self.console_lines())
+        for label in ("resting contacts", "joint speeds", "plausibility", "mujoco_ros2_control"):
+            if label in console:
+                rows.append(f"| {label} | {md(console[label])} |")
         return rows

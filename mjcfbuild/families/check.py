@@ -89,7 +89,7 @@ FAMILY = Family(
     name="check",
     step="mjcfbuild.steps.check:run",
     payload=CheckPayload,
-    format=21,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
+    format=22,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
     # measured again from inside the joint ranges, velocity limits of 1e6 and above taken for
     # none, unstable-state warnings naming their joint; 11: a hold failure of a servo whose
     # keyframe ctrl is not its position says so; 12: check.json holds the console's verdict and
@@ -107,7 +107,8 @@ FAMILY = Family(
     # (no initial_keyframe) said; 18: the floor gap of a floating robot's own geometry; 19: the
     # runtime's lidar ray count, cameras without a resolution; 20: ros2_control's parser
     # refusals (fixed and mimic joints) and register_transmissions' (2026); 21: a floating
-    # robot whose passive joints give way needs a controller, not stiffer servos
+    # robot whose passive joints give way needs a controller, not stiffer servos; 22: the
+    # report's table has every check the console shows
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

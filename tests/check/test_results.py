@@ -190,3 +190,16 @@ def test_the_fastest_joint_is_on_the_console():
         "(finger at 1.2 times its limit)",
     )
     assert line in results.console_lines() and results.passes
+
+
+def test_the_reports_table_has_every_check_the_console_shows():
+    """The console showed joint speeds, resting contacts and plausibility; report.md's table
+    of checks left them out."""
+    results = CheckResults(
+        loads=True,
+        speeds=Speeds(FastestJoint("knee", 3.14159, 2.0)),
+        plausibility=PlausibilityResults(bodies=3, warnings=["body 'a': a wrong origin"]),
+    )
+    table = "\n".join(results.table_rows())
+    assert "| joint speeds | fastest knee 3.14 (limit 2), within the bound |" in table
+    assert "| plausibility | 0 failures, 1 warning |" in table

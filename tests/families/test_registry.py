@@ -39,7 +39,7 @@ BEFORE_FORMATS = {
     "decompose": 3,
     "assemble": 24,
     "scene": 3,
-    "check": 21,
+    "check": 22,
     "reference": 1,
     "previews": 5,
     "tuning": 1,
