@@ -756,14 +756,48 @@ def _material_look(reader: _Reader, material_id: str):
             texture = _texture_file(reader, effect, sampler.get("texture"))
         if rgba or texture:
             break
-    transparency = reader.find(technique, "transparency/float")
-    if rgba is not None and transparency is not None and transparency.text:
-        opacity = float(transparency.text)
-        if 0.0 < opacity < 1.0:  # exporters disagree on its meaning; only trust a clear value
-            rgba = (*rgba[:3], rgba[3] * opacity)
+    if rgba is not None:
+        rgba = (*rgba[:3], rgba[3] * _opacity(reader, technique))
     if rgba is not None:
         rgba = tuple(round(min(max(c, 0.0), 1.0), 6) for c in rgba)
     return rgba, texture
+
+
+# COLLADA's luminance weights for <transparent opaque="RGB_ZERO"> (1.4.1 spec, "Determining
+# Transparency").
+_LUMINANCE = (0.212671, 0.715160, 0.072169)
+
+
+def _opacity(reader: _Reader, technique) -> float:
+    """How opaque a technique's <transparent> and <transparency> make it, as the COLLADA spec
+    computes it (A_ONE: the colour's alpha times the transparency; RGB_ZERO: one minus its
+    luminance times the transparency). Exporters write values the spec reads as invisible
+    (A_ONE with a transparency of 0, a transparent colour with alpha 0) for parts they mean
+    opaque: a result of none at all is taken as opaque. Without a <transparent>, only a
+    transparency strictly between 0 and 1 is trusted, for the same reason."""
+    element = reader.find(technique, "transparency/float")
+    try:
+        transparency = float(element.text) if element is not None and element.text else None
+    except ValueError:
+        transparency = None
+    transparent = reader.find(technique, "transparent")
+    colour = reader.find(transparent, "color") if transparent is not None else None
+    values = [float(v) for v in _floats(reader, colour)] if colour is not None else []
+    if transparent is None or len(values) < 3:
+        if transparency is not None and 0.0 < transparency < 1.0:
+            return transparency
+        return 1.0
+    factor = 1.0 if transparency is None else transparency
+    if transparent is not None and transparent.get("opaque", "A_ONE") in ("RGB_ZERO", "RGB_ONE"):
+        luminance = sum(weight * v for weight, v in zip(_LUMINANCE, values[:3], strict=True))
+        seen = luminance * factor
+        opacity = 1.0 - seen if transparent.get("opaque") == "RGB_ZERO" else seen
+    else:  # A_ONE (the default), A_ZERO
+        alpha = values[3] if len(values) > 3 else 1.0
+        seen = alpha * factor
+        opacity = 1.0 - seen if transparent.get("opaque") == "A_ZERO" else seen
+    opacity = min(max(opacity, 0.0), 1.0)
+    return opacity if opacity > 0.0 else 1.0
 
 
 def _texture_file(reader: _Reader, effect, sampler_sid: str | None) -> Path | None:

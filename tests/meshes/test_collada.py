@@ -344,3 +344,26 @@ def test_a_textured_material_keeps_its_texture_where_one_primitive_has_no_coordi
     assert part.texture == tmp_path / "skin.png"
     assert part.uv is not None and part.uv.tolist()[-1] == [0.0, 0.0]
     assert part.uv.tolist()[2] == [1.0, 1.0]
+
+
+@pytest.mark.parametrize(
+    ("transparent", "transparency", "alpha"),
+    [
+        # The COLLADA 1.4.1 spec's opacity: A_ONE takes the colour's alpha, RGB_ZERO one
+        # minus its luminance, each times <transparency>.
+        ('<transparent opaque="A_ONE"><color>1 1 1 0.25</color></transparent>', "1", 0.25),
+        ('<transparent opaque="RGB_ZERO"><color>0.3 0.3 0.3 1</color></transparent>', "1", 0.7),
+        # Black under RGB_ZERO is opaque whatever the transparency (it was drawn at 0.4).
+        ('<transparent opaque="RGB_ZERO"><color>0 0 0 1</color></transparent>', "0.4", 1.0),
+        # What exporters write for an opaque part, invisible by the spec: kept opaque.
+        ('<transparent opaque="A_ONE"><color>1 1 1 1</color></transparent>', "0", 1.0),
+        # No <transparent>: a clear fraction is trusted, 0 and 1 are not.
+        ("", "0.5", 0.5),
+        ("", "0", 1.0),
+    ],
+)
+def test_transparency_is_the_specs_opacity(tmp_path, transparent, transparency, alpha):
+    seen = f"</diffuse>{transparent}<transparency><float>{transparency}</float></transparency>"
+    body = QUAD + MATERIAL.format(diffuse="<color>1 0 0 1</color>").replace("</diffuse>", seen)
+    path = write(tmp_path / "q.dae", dae(body, scene=scene(f"<node>{INSTANCE}</node>")))
+    assert read_collada(path).parts[0].rgba == pytest.approx((1.0, 0.0, 0.0, alpha))
