@@ -80,9 +80,10 @@ class StepFormat:
 # whose every triangle is degenerate refused at its file, not passed to MuJoCo; 10: COLLADA's
 # X_UP turned as the spec's table says, concave polygons ear-clipped, accessor offsets and
 # unnamed params, TEXCOORDs of <vertices>, the common profile's colour, a missing scene refused;
-# 11: a textured material keeps its texture where a primitive has no texture coordinates
+# 11: a textured material keeps its texture where a primitive has no texture coordinates; 12:
+# the COLLADA spec's opacity, a texture that is no image left out with a warning
 MESH = StepFormat(
-    "mesh", 11, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy")
+    "mesh", 12, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy")
 )
 DECOMPOSE = StepFormat("decompose", 3, ("coacd", "trimesh", "numpy", "scipy"))
 # selfcollision 4: a URDF floating joint from `world` floats the robot (its standing home);

@@ -35,7 +35,7 @@ from tests.families.toy_step import ToyPayload
 BEFORE_FORMATS = {
     "expand": 4,
     "plan": 18,
-    "mesh": 11,
+    "mesh": 12,
     "decompose": 3,
     "assemble": 24,
     "scene": 3,
