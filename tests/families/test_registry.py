@@ -107,7 +107,7 @@ def test_the_derived_tables_are_the_ones_the_engine_kept_before():
         "mjcfbuild.steps.decompose:run": "decompose",
     }
     version = registry.step_versions("mesh")
-    assert version["mjcfbuild-step"] == "mesh-11" and version["mjcfbuild"] == mjcfbuild.__version__
+    assert version["mjcfbuild-step"] == "mesh-12" and version["mjcfbuild"] == mjcfbuild.__version__
     assert list(version)[:6] == list(BEFORE_TOOLS["mesh"])
 
 
