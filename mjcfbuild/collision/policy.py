@@ -230,6 +230,25 @@ def mesh_names(shape: Shape) -> list[str]:
     return [n for n in names if n]
 
 
+def robot_mesh_names(robot: Robot) -> list[str]:
+    """Every name a mesh pattern can match in ``robot`` (:func:`mesh_names` of each shape)."""
+    return sorted(
+        {name for link in robot.links for shape in link.shapes for name in mesh_names(shape)}
+    )
+
+
+def robot_mesh_ids(robot: Robot) -> list[str]:
+    """The mjcfbuild names of ``robot``'s meshes, for a message's list of them."""
+    return sorted(
+        {
+            shape.geometry.mesh_id
+            for link in robot.links
+            for shape in link.shapes
+            if shape.geometry.kind == "mesh" and shape.geometry.mesh_id
+        }
+    )
+
+
 def _mesh_matches(shape: Shape, patterns: tuple[str, ...]) -> bool:
     return any(fnmatch.fnmatchcase(name, p) for name in mesh_names(shape) for p in patterns)
 
@@ -296,9 +315,7 @@ def check_rules(robot: Robot, rules: Sequence[_PatternRule], manifest_label: str
     from mjcfbuild.sources.packages import listing, suggestion
 
     links = [link.name for link in robot.links]
-    meshes = sorted(
-        {name for link in robot.links for shape in link.shapes for name in mesh_names(shape)}
-    )
+    meshes = robot_mesh_names(robot)
     for index, rule in enumerate(rules):
         for key, noun, names in (("links", "link", links), ("meshes", "mesh", meshes)):
             patterns = list(getattr(rule, key))

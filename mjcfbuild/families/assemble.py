@@ -97,11 +97,12 @@ def _tasks(graph: Graph) -> list[dict]:
 
 
 def _verify(graph: Graph) -> None:
-    """Refuse actuator rules and home values that name no joint, and collision rules that
-    match no link or mesh, before anything is built."""
+    """Refuse actuator rules and home values that name no joint, and collision rules and
+    decompose_mesh inputs that match no link or mesh, before anything is built."""
     from mjcfbuild.collision.policy import check_rules as check_collision_rules
     from mjcfbuild.control.choose import check_rules
     from mjcfbuild.control.home import home_values
+    from mjcfbuild.manifest.collision_settings import check_decompose_inputs
     from mjcfbuild.manifest.pinpoint import pinpoint
 
     ctx = graph.ctx
@@ -109,6 +110,7 @@ def _verify(graph: Graph) -> None:
     try:
         check_rules(robot, ctx.manifest.actuators, ctx.manifest_label)
         check_collision_rules(graph.robot, ctx.manifest.collision.rules, ctx.manifest_label)
+        check_decompose_inputs(ctx.manifest, graph.plan.inputs, graph.robot, ctx.manifest_label)
         _motors(ctx)  # an unknown motor or a bad motor file, before anything is built
         home_values(robot, graph.plan.control(), ctx.manifest.home, None, ctx.manifest_label)
         _check_kept_pairs(robot, ctx)

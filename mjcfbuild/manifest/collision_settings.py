@@ -65,14 +65,52 @@ def collision_settings(manifest: Manifest, plan_inputs: FoundInputs) -> Effectiv
     return EffectiveCollisionSettings(settings.default, rules, defaults)
 
 
-def _decompose_inputs(manifest: Manifest, plan_inputs: FoundInputs) -> list[DecomposeInput]:
-    """The ``decompose_mesh`` inputs of the URDF, the inputs file and robot.yaml, in that order."""
+def check_decompose_inputs(
+    manifest: Manifest, plan_inputs: FoundInputs, robot: Robot, manifest_label: str
+) -> None:
+    """Refuse, at its line, a ``decompose_mesh`` input (URDF, inputs file or robot.yaml) that
+    names no mesh of ``robot``: its rule would decompose nothing without a word, as a
+    ``collision.rules[].meshes`` pattern that matches nothing would (``check_rules``)."""
+    import fnmatch
+
+    from mjcfbuild.collision.policy import robot_mesh_ids, robot_mesh_names
+    from mjcfbuild.errors import InputError
+    from mjcfbuild.inputs.model import origin_location
+    from mjcfbuild.sources.packages import listing, suggestion
+
+    names = robot_mesh_names(robot)
+    where = f"{manifest_label} mujoco_inputs.decompose"
+    own = [
+        item.given_at(f"{where}[{index}]")
+        for index, item in enumerate(manifest.mujoco_inputs.decompose)
+    ]
+    for item in _found_decompose_inputs(plan_inputs) + own:
+        if any(fnmatch.fnmatchcase(name, item.mesh) for name in names):
+            continue
+        file, line = origin_location(item.origin)
+        raise InputError(
+            f"decompose_mesh '{item.mesh}' names no mesh of the robot"
+            f"{suggestion([item.mesh], names)}",
+            file=file,
+            line=line,
+            hint=f"fix the name; mesh names: {listing(robot_mesh_ids(robot))}, or a mesh's "
+            "file name, stem or URI",
+        )
+
+
+def _found_decompose_inputs(plan_inputs: FoundInputs) -> list[DecomposeInput]:
+    """The ``decompose_mesh`` inputs of the URDF and the inputs file, in that order."""
     from mjcfbuild.inputs.model import inputs_from_dict
     from mjcfbuild.inputs.processed import DecomposeInput
 
-    items = []
+    items: list[DecomposeInput] = []
     for source in ("urdf", "file"):
         data = plan_inputs.get(source)
         if data:
             items += inputs_from_dict(data).of(DecomposeInput)
-    return items + list(manifest.mujoco_inputs.decompose)
+    return items
+
+
+def _decompose_inputs(manifest: Manifest, plan_inputs: FoundInputs) -> list[DecomposeInput]:
+    """The ``decompose_mesh`` inputs of the URDF, the inputs file and robot.yaml, in that order."""
+    return _found_decompose_inputs(plan_inputs) + list(manifest.mujoco_inputs.decompose)

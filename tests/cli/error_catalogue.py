@@ -1101,6 +1101,39 @@ CASES: list[Case] = [
         ["robot.yaml:6:", "unknown key 'seed'; allowed keys: mesh, threshold"],
     ),
     Case(
+        "decompose naming no mesh of the robot, in robot.yaml",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  decompose:\n    - {mesh: amr, threshold: 0.1}\n",
+            "robot.urdf": mesh_urdf("meshes/arm.stl"),
+            "meshes/arm.stl": TETRAHEDRON_STL,
+        },
+        EXIT_INPUT,
+        [
+            "robot.yaml:6:",
+            "mujoco_inputs.decompose[0]: decompose_mesh 'amr' names no mesh of the robot; "
+            "did you mean 'arm'?",
+            "mesh names: arm",
+        ],
+    ),
+    Case(
+        "decompose_mesh naming no mesh of the robot, in an inputs file",
+        {
+            "robot.yaml": MANIFEST + "mujoco_inputs:\n  file: inputs.xml\n",
+            "robot.urdf": mesh_urdf("meshes/arm.stl"),
+            "meshes/arm.stl": TETRAHEDRON_STL,
+            "inputs.xml": "<mujoco_inputs>\n<processed_inputs>\n"
+            "<decompose_mesh mesh_name='arm.stll' threshold='0.1'/>\n"
+            "</processed_inputs>\n</mujoco_inputs>\n",
+        },
+        EXIT_INPUT,
+        [
+            "inputs.xml:3: decompose_mesh 'arm.stll' names no mesh of the robot; "
+            "did you mean 'arm.stl'?",
+            "mesh names: arm",
+        ],
+    ),
+    Case(
         "camera attribute MuJoCo does not have, in robot.yaml",
         {
             "robot.yaml": MANIFEST
