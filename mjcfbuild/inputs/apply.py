@@ -461,23 +461,12 @@ def _merge_attributes(target, source, where: str, origin: str, warnings: list[st
 def _modify_targets(
     root: etree._Element, modify: ModifyInput, mesh_aliases: dict[str, set[str]]
 ) -> list[etree._Element]:
+    _refuse_unknown_element_type(root, modify)
     _mujoco_has(
         modify.attributes, modify.type, f"modify_element {modify.describe()}", modify.origin
     )
     if modify.type == "geom":
-        meshes = {name for name, aliases in mesh_aliases.items() if modify.mesh in aliases}
-        found = [
-            geom
-            for geom in root.find("worldbody").iter("geom")
-            if geom.get("mesh") in meshes and geom.get("class") == modify.geom_class
-        ]
-        if not found:
-            raise input_error(
-                modify.origin,
-                f"modify_element: no {modify.describe()}",
-                hint=f"meshes: {_listing(mesh_aliases)}; classes: visual, collision",
-            )
-        return found
+        return _modified_geoms(root, modify, mesh_aliases)
     candidates = [
         element
         for element in root.iter(modify.type)
@@ -485,13 +474,63 @@ def _modify_targets(
     ]
     found = [element for element in candidates if element.get("name") == modify.name]
     if not found:
-        existing = [e.get("name") for e in candidates if e.get("name")]
+        assert modify.name is not None, "ModifyInput names every element but a geom"
+        existing = {str(e.get("name")) for e in candidates if e.get("name")}
         raise input_error(
             modify.origin,
-            f"modify_element: no {modify.type} named '{modify.name}'",
+            f"modify_element: no {modify.type} named '{modify.name}'"
+            f"{did_you_mean(modify.name, existing)}",
             hint=f"{modify.type} names: {_listing(existing)}",
         )
     return found
+
+
+def _refuse_unknown_element_type(root: etree._Element, modify: ModifyInput) -> None:
+    """Refuse a modification whose ``type`` is no MuJoCo element that has a name ('jiont'),
+    naming the closest type and the types of the model's named elements."""
+    from mjcfbuild.inputs.mujoco_schema import mujoco_named_elements
+
+    known = mujoco_named_elements()
+    if modify.type in known:
+        return
+    present = {
+        str(element.tag)
+        for element in root.iter()
+        if isinstance(element.tag, str) and element.tag in known and element.get("name")
+    }
+    raise input_error(
+        modify.origin,
+        f"modify_element: unknown element type '{modify.type}'"
+        f"{did_you_mean(modify.type, set(known))}",
+        hint=f"element types with names in the model: {_listing(present | {'geom'})}",
+    )
+
+
+def _modified_geoms(
+    root: etree._Element, modify: ModifyInput, mesh_aliases: dict[str, set[str]]
+) -> list[etree._Element]:
+    """The geoms ``modify`` finds by mesh and class; none is an error naming the closest mesh
+    (or the classes that mesh's geoms have)."""
+    assert modify.mesh is not None and modify.geom_class is not None, "validated by ModifyInput"
+    meshes = {name for name, aliases in mesh_aliases.items() if modify.mesh in aliases}
+    geoms = [geom for geom in root.find("worldbody").iter("geom") if geom.get("mesh") in meshes]
+    found = [geom for geom in geoms if geom.get("class") == modify.geom_class]
+    if found:
+        return found
+    if not meshes:
+        aliases = {alias for names in mesh_aliases.values() for alias in names}
+        why = f"no mesh is named '{modify.mesh}'{did_you_mean(modify.mesh, aliases)}"
+    else:
+        classes = {str(geom.get("class")) for geom in geoms if geom.get("class")}
+        why = (
+            f"the geoms of mesh '{modify.mesh}' have class {_listing(classes)}"
+            f"{did_you_mean(modify.geom_class, classes)}"
+        )
+    raise input_error(
+        modify.origin,
+        f"modify_element: no {modify.describe()}: {why}",
+        hint=f"meshes: {_listing(mesh_aliases)}; classes: visual, collision",
+    )
 
 
 # Attributes that name other elements, and the kind of element they name.

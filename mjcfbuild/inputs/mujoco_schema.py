@@ -59,3 +59,10 @@ def mujoco_attributes_anywhere(element: str) -> frozenset[str]:
     element MuJoCo does not have): what raw MJCF, whose place this module does not follow,
     may set without being refused wrongly."""
     return _schema()[1].get(element, frozenset())
+
+
+def mujoco_named_elements() -> frozenset[str]:
+    """The MuJoCo elements that can have a name: what a modification's ``type`` may be."""
+    return frozenset(
+        element for element, attributes in _schema()[1].items() if "name" in attributes
+    )

@@ -1036,7 +1036,38 @@ CASES: list[Case] = [
             "robot.urdf": urdf(),
         },
         EXIT_INPUT,
-        ["robot.yaml:6:", "elbow", "hinge"],
+        ["robot.yaml:6:", "no joint named 'elbow'", "hinge"],
+    ),
+    Case(
+        "modify element type misspelt, in robot.yaml",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  modify:\n    - type: jiont\n      name: hinge\n"
+            "      attributes: {damping: 1}\n",
+            "robot.urdf": urdf(),
+        },
+        EXIT_INPUT,
+        [
+            "robot.yaml:6:",
+            "mujoco_inputs.modify[0]: modify_element: unknown element type 'jiont'; "
+            "did you mean 'joint'?",
+        ],
+    ),
+    Case(
+        "modify geom class misspelt, in robot.yaml",
+        {
+            "robot.yaml": MANIFEST
+            + "mujoco_inputs:\n  modify:\n    - {type: geom, mesh: arm, class: visul,"
+            " attributes: {rgba: '1 0 0 1'}}\n",
+            "robot.urdf": mesh_urdf("meshes/arm.stl"),
+            "meshes/arm.stl": TETRAHEDRON_STL,
+        },
+        EXIT_INPUT,
+        [
+            "robot.yaml:6:",
+            "no geom with mesh 'arm' and class 'visul': the geoms of mesh 'arm' have class "
+            "visual; did you mean 'visual'?",
+        ],
     ),
     Case(
         "inputs file missing",

@@ -51,6 +51,39 @@ def test_unknown_modify_target_lists_what_exists(tmp_path):
     assert "modify_element: no joint named 'nope'" in text and "joint names: hinge" in text
 
 
+@pytest.mark.parametrize(
+    ("target", "says"),
+    [
+        ('type="joint" name="hinj"', "no joint named 'hinj'; did you mean 'hinge'? (joint names:"),
+        ('type="body" name="amr"', "no body named 'amr'; did you mean 'arm'? (body names: arm,"),
+        ('type="site" name="bse"', "no site named 'bse'; did you mean 'base'? (site names:"),
+        (
+            'type="camera" name="ey"',
+            "no camera named 'ey'; did you mean 'eye'? (camera names: eye)",
+        ),
+        (
+            'type="geom" mesh="amr" class="visual"',
+            "no geom with mesh 'amr' and class 'visual': no mesh is named 'amr'",
+        ),
+        (
+            'type="jiont" name="hinge"',
+            "unknown element type 'jiont'; did you mean 'joint'? "
+            "(element types with names in the model: body, camera, geom, joint",
+        ),
+    ],
+)
+def test_a_misspelt_modify_target_names_the_closest(tmp_path, target, says):
+    """Every type of element a modification looks up by name says the closest name, and a
+    misspelt type is said to be unknown, with the closest type (issue 43)."""
+    text = error(
+        tmp_path,
+        '<processed_inputs>\n<camera site="arm" name="eye"/>\n'
+        f'<modify_element {target} user="1"/></processed_inputs>',
+    )
+    assert "inputs.xml:3: modify_element: " in text
+    assert says in text
+
+
 def test_camera_at_unknown_link(tmp_path):
     text = error(tmp_path, '<processed_inputs>\n<camera site="eye" name="c"/></processed_inputs>')
     assert (

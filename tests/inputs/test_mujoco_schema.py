@@ -40,3 +40,11 @@ def test_mujoco_knows_every_attribute_the_table_gives_and_none_it_lacks(tag):
     for attribute in ("fovyy", "dampng", "polycoef"):
         assert attribute not in known
         assert not recognised(f"<{tag} {attribute}='1'/>"), attribute
+
+
+def test_named_elements_are_what_a_modification_may_look_up():
+    from mjcfbuild.inputs.mujoco_schema import mujoco_named_elements
+
+    named = mujoco_named_elements()
+    assert {"joint", "body", "geom", "site", "camera", "position", "tendon"} <= named
+    assert "jiont" not in named and "option" not in named
