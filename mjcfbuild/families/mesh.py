@@ -72,17 +72,55 @@ def _mesh_task(
     )
 
 
+def _verify(graph: Graph) -> None:
+    """Refuse a ``meshes.collada_up_axis_files`` entry that matches no mesh file of the robot
+    (a typo would leave the file it meant to the default without a word), at its robot.yaml
+    line, with the closest file and the robot's DAE files."""
+    from mjcfbuild.errors import ManifestError
+    from mjcfbuild.manifest.pinpoint import key_segment, pinpoint
+    from mjcfbuild.sources.packages import listing, suggestion
+
+    ctx = graph.ctx
+    paths = sorted(set(graph.paths.values()))
+    for pattern in sorted(ctx.manifest.meshes.collada_up_axis_files):
+        if any(_path_matches(path, pattern) for path in paths):
+            continue
+        tails = sorted({tail for path in paths for tail in _path_tails(path)})
+        dae = sorted({Path(p).name for p in paths if p.lower().endswith(".dae")})
+        error = ManifestError(
+            f"'{pattern}' matches no mesh file of the robot{suggestion([pattern], tails)}",
+            file=f"{ctx.manifest_label} meshes.collada_up_axis_files{key_segment(pattern)}",
+            hint=f"fix the name, or remove the entry; the robot's DAE files: {listing(dae)}",
+        )
+        if ctx.manifest_file is not None:
+            pinpoint(error, ctx.manifest_label, ctx.manifest_file)
+        raise error
+
+
+def _path_tails(path: str) -> list[str]:
+    """The ends of a mesh file's path a pattern is likely to name: its file name, and its
+    folder and file name."""
+    parts = path.replace("\\", "/").split("/")
+    return ["/".join(parts[-count:]) for count in (1, 2) if len(parts) >= count]
+
+
+def _path_matches(path: str, pattern: str) -> bool:
+    """Whether a ``collada_up_axis_files`` pattern names the mesh file ``path`` (it is matched
+    against the end of the path)."""
+    from fnmatch import fnmatchcase
+
+    posix = path.replace("\\", "/")
+    return fnmatchcase(posix, pattern) or fnmatchcase(posix, "*/" + pattern.lstrip("/"))
+
+
 def up_axis_mode(mode: str, files: Mapping[str, str], path: str) -> str:
     """The up-axis option of one mesh file: a ``collada_up_axis_files`` entry matching the end
     of its path, else ``mode``; only DAE files are ever ``auto`` (other formats have no tag,
     and keep the product keys they had before ``auto`` existed)."""
-    from fnmatch import fnmatchcase
-
-    posix = path.replace("\\", "/")
     for pattern, choice in sorted(files.items()):
-        if fnmatchcase(posix, pattern) or fnmatchcase(posix, "*/" + pattern.lstrip("/")):
+        if _path_matches(path, pattern):
             return choice
-    if mode == "auto" and not posix.lower().endswith(".dae"):
+    if mode == "auto" and not path.lower().endswith(".dae"):
         return "ignore"
     return mode
 
@@ -114,5 +152,6 @@ FAMILY = Family(
     format=MESH.format,  # declared beside the step, which keys its products by it
     tools=MESH.tools,
     tasks=_tasks,
+    verify=_verify,
     report=_report,
 )

@@ -14,7 +14,8 @@ from mjcfbuild.errors import MjcfbuildError
 
 # A key is anything but dots and brackets: a home: key may be a glob ("*finger*") or a joint
 # name with characters no identifier has.
-_KEY_PART = re.compile(r"([^.\[\]]+)|\[(\d+)\]")
+# A key with dots or brackets in it (a file name: 'torso.dae') is written ["torso.dae"].
+_KEY_PART = re.compile(r'([^.\[\]]+)|\[(\d+)\]|\["([^"]*)"\]')
 _BLOCK_INDICATORS = ("|", ">")
 
 
@@ -26,9 +27,20 @@ def key_path(dotted: str) -> tuple[str | int, ...] | None:
         gap = dotted[position : match.start()]
         if gap not in ("", "."):
             return None
-        parts.append(match.group(1) if match.group(1) else int(match.group(2)))
+        if match.group(1):
+            parts.append(match.group(1))
+        elif match.group(2):
+            parts.append(int(match.group(2)))
+        else:
+            parts.append(match.group(3))
         position = match.end()
     return tuple(parts) if parts and position == len(dotted) else None
+
+
+def key_segment(key: str) -> str:
+    """``key`` as a part of a dotted key path: ``.key``, or ``["key"]`` where it has dots or
+    brackets (a file name)."""
+    return f'["{key}"]' if re.search(r"[.\[\]]", key) and '"' not in key else f".{key}"
 
 
 def key_line(manifest_file: Path | None, dotted: str) -> int | None:

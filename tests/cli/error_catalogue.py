@@ -372,6 +372,20 @@ CASES: list[Case] = [
         ["robot.yaml:6:", "rule matches no mesh of the robot (forarm*)", "its meshes: none"],
     ),
     Case(
+        "collada_up_axis_files naming no mesh file",
+        {
+            "robot.yaml": MANIFEST + "meshes:\n  collada_up_axis_files: {arm.stll: ignore}\n",
+            "robot.urdf": mesh_urdf("meshes/arm.stl"),
+            "meshes/arm.stl": TETRAHEDRON_STL,
+        },
+        EXIT_MANIFEST,
+        [
+            "robot.yaml:5:",
+            "'arm.stll' matches no mesh file of the robot; did you mean 'arm.stl'?",
+            "fix the name, or remove the entry",
+        ],
+    ),
+    Case(
         "not a number",
         {"robot.yaml": MANIFEST + "inertia:\n  min_mass: .nan\n"},
         EXIT_MANIFEST,

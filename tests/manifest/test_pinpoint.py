@@ -46,3 +46,17 @@ def test_a_key_that_is_no_identifier_points_at_its_line(tmp_path: Path, key: str
     error = InputError("matches no moving joint", file=f"robot.yaml home.{key}")
     pinpoint(error, "robot.yaml", manifest)
     assert error.one_line() == f"robot.yaml:10:3: home.{key}: matches no moving joint"
+
+
+def test_a_key_with_dots_is_written_in_brackets_and_points_at_its_line(tmp_path: Path):
+    """A file name as a key (meshes.collada_up_axis_files) has dots in it."""
+    from mjcfbuild.manifest.pinpoint import key_path, key_segment
+
+    assert key_segment("torso.dae") == '["torso.dae"]' and key_segment("elbow") == ".elbow"
+    assert key_path('meshes.files["a.dae"]') == ("meshes", "files", "a.dae")
+    manifest = tmp_path / "robot.yaml"
+    manifest.write_text(f"{MANIFEST}meshes:\n  collada_up_axis_files:\n    arm.dae: ignore\n")
+    key = f"meshes.collada_up_axis_files{key_segment('arm.dae')}"
+    error = InputError("matches no mesh file", file=f"robot.yaml {key}")
+    pinpoint(error, "robot.yaml", manifest)
+    assert error.one_line() == f"robot.yaml:10:5: {key}: matches no mesh file"

@@ -157,6 +157,23 @@ def test_robot_yaml_forces_a_choice_per_file_and_the_check_names_the_cause(robot
     assert visual_extent(model, "lower") == pytest.approx([0.06, 0.4, 0.1], abs=1e-6)
 
 
+def test_a_per_file_choice_naming_no_mesh_file_is_refused_at_its_line(robot_folder):
+    """A misspelt file would be left to the default without a word (issue 43)."""
+    from mjcfbuild.errors import ManifestError
+
+    manifest = simple_manifest(
+        robot_folder, extra="meshes:\n  collada_up_axis_files:\n    uper.dae: ignore\n"
+    )
+    with pytest.raises(ManifestError) as info:
+        mjcfbuild.build(manifest, jobs=1)
+    line = len(manifest.read_text().splitlines())
+    assert info.value.one_line().startswith(
+        f"robot.yaml:{line}:5: meshes.collada_up_axis_files[\"uper.dae\"]: 'uper.dae' matches "
+        "no mesh file of the robot; did you mean 'upper.dae'? (fix the name, or remove the "
+        "entry; the robot's DAE files: lower.dae, upper.dae)"
+    ), info.value.one_line()
+
+
 def test_the_evidence_is_in_the_mesh_frame_and_decides_only_when_clear(robot_folder):
     robot = parse_urdf((robot_folder / "robot.urdf").read_bytes(), "robot.urdf")
     robot.links[1].visuals[0].geometry.mesh_id = "upper"
