@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from mjcfbuild.errors import InputError, ManifestError
+from mjcfbuild.sources.packages import did_you_mean
 
 if TYPE_CHECKING:
     from mjcfbuild.manifest.motors import Motor, MotorSettings
@@ -80,7 +81,7 @@ def resolve_motors(
         if found is None:
             known = sorted({motor for source in sources for motor in source})
             raise ManifestError(
-                f"unknown motor '{name}'",
+                f"unknown motor '{name}'{did_you_mean(name, known)}",
                 file=f"{manifest_label} actuators.rules[{index}].motor",
                 hint=f"use one of {', '.join(known)}, or define it under motors.define",
             )

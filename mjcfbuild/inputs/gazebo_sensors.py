@@ -40,6 +40,7 @@ from mjcfbuild.inputs.ros2_control import (
     sensor_frame,
 )
 from mjcfbuild.numbers import output
+from mjcfbuild.sources.packages import did_you_mean
 from mjcfbuild.urdf.model import Pose, Robot
 from mjcfbuild.urdf.transforms import Transform, matrix3, vec3
 
@@ -88,10 +89,11 @@ def add_gazebo_sensors(
             continue
         link = children.get(sensor.reference, sensor.reference)
         if link not in links:
+            closest = did_you_mean(sensor.reference, set(links) | set(children))
             raise input_error(
                 sensor.origin,
                 f"Gazebo sensor '{sensor.name}' is on '{sensor.reference}', which is not a link "
-                "(or joint) of the URDF",
+                f"(or joint) of the URDF{closest}",
                 hint="set <gazebo reference> to the link the sensor is mounted on",
             )
         if sensor.name in seen:

@@ -19,6 +19,7 @@ from typing import Literal, NoReturn, overload
 from lxml import etree
 
 from mjcfbuild.errors import InputError
+from mjcfbuild.sources.packages import did_you_mean
 from mjcfbuild.urdf.model import (
     JOINT_TYPES,
     RGBA,
@@ -430,7 +431,8 @@ def _parse_joint(element: etree._Element, reader: _Reader) -> Joint:
     if kind not in JOINT_TYPES:
         raise reader.error(
             element,
-            f"joint '{name}' has unknown type '{kind}'",
+            f"joint '{name}' has unknown type '{kind}'"
+            + ("" if kind == "spherical" else did_you_mean(kind, list(JOINT_TYPES))),
             hint=f"use one of {', '.join(JOINT_TYPES)}"
             + (_SPHERICAL if kind == "spherical" else ""),
         )

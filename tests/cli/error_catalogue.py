@@ -813,6 +813,12 @@ CASES: list[Case] = [
         ["robot.urdf:11:", "unknown type 'hinge'", "revolute"],
     ),
     Case(
+        "misspelt joint type",
+        {"robot.yaml": MANIFEST, "robot.urdf": urdf(('type="revolute"', 'type="revolte"'))},
+        EXIT_INPUT,
+        ["robot.urdf:11:", "unknown type 'revolte'; did you mean 'revolute'? (use one of"],
+    ),
+    Case(
         "bad number",
         {"robot.yaml": MANIFEST, "robot.urdf": urdf(('xyz="0 0 0.1"', 'xyz="0 0 O.1"'))},
         EXIT_INPUT,

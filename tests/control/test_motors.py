@@ -277,7 +277,8 @@ BAD = {
     "an unknown motor": (
         "actuators:\n  rules:\n    - {joints: [hinge], motor: go7_knee}\n",
         "robot.yaml:5",
-        "unknown motor 'go7_knee' (use one of dynamixel_xm430_w350, go1_hip, go1_knee",
+        "unknown motor 'go7_knee'; did you mean 'go1_knee'? (use one of dynamixel_xm430_w350, "
+        "go1_hip, go1_knee",
     ),
     "a ratio that is not positive": (
         "motors:\n  define:\n    m: {rotor_inertia: 1.0e-5, ratio: 0, peak_torque: 3}\n",

@@ -312,6 +312,21 @@ def test_a_gazebo_sensor_on_a_missing_link_is_one_line_with_the_urdf_line(tmp_pa
     assert "Traceback" not in result.stderr
 
 
+def test_a_gazebo_sensor_on_a_misspelt_link_names_the_closest(tmp_path):
+    """Issue 43: the closest link (or joint) is named."""
+    write(
+        tmp_path / "robot.urdf",
+        two_link_urdf(extra='<gazebo reference="amr"><sensor name="imu1" type="imu"/></gazebo>'),
+    )
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\n")
+    result = run_cli("build", str(tmp_path / "robot.yaml"))
+    assert result.code == EXIT_INPUT, result.stderr
+    assert (
+        "Gazebo sensor 'imu1' is on 'amr', which is not a link (or joint) of the URDF; "
+        "did you mean 'arm'?"
+    ) in result.stderr
+
+
 def test_a_force_torque_sensor_on_a_fused_link_is_warned_and_measures_the_weld_unfused(
     built, tmp_path
 ):
