@@ -162,12 +162,38 @@ def check_rules(robot: Robot, settings: ActuatorSettings, manifest_label: str) -
     names = [joint.name for joint in actuated_joints(robot)]
     for index, rule in enumerate(settings.rules):
         if not any(matches(name, rule.joints) for name in names):
+            named = next((j for j in robot.joints if matches(j.name, rule.joints)), None)
+            if named is not None:  # a joint of the robot, which no actuator drives: say why
+                raise ManifestError(
+                    f"rule matches no actuated joint: {not_actuated(named)}",
+                    file=f"{manifest_label} actuators.rules[{index}].joints",
+                    hint=_instead(named, names),
+                )
             raise ManifestError(
                 f"rule matches no actuated joint ({', '.join(rule.joints)})"
                 f"{suggestion(rule.joints, names)}",
                 file=f"{manifest_label} actuators.rules[{index}].joints",
                 hint=f"actuated joints: {listing(names)}",
             )
+
+
+def not_actuated(joint: Joint) -> str:
+    """Why ``joint``, a joint of the robot, has no actuator of its own."""
+    if joint.mimic is not None:
+        return (
+            f"'{joint.name}' is a mimic follower: its leader '{joint.mimic.joint}' drives it "
+            "through a joint equality, and it has no actuator of its own"
+        )
+    if not joint.moves:
+        return f"'{joint.name}' is a fixed joint, which nothing moves"
+    return f"'{joint.name}' is a {joint.kind} joint, which no one-axis actuator drives"
+
+
+def _instead(joint: Joint, actuated: list[str]) -> str:
+    """What to write instead of ``joint`` in an actuator rule."""
+    if joint.mimic is not None:
+        return f"name its leader '{joint.mimic.joint}' instead: its actuator moves both"
+    return f"remove it from the rule; actuated joints: {listing(actuated)}"
 
 
 def _first_rule(name: str, rules: list[ActuatorRule]) -> tuple[int | None, ActuatorRule | None]:

@@ -39,7 +39,7 @@ def home_values(
     MJCF parts their part's own home. A floating joint has none: its position is the base's
     pose, which the assembly stands on the floor."""
     moving = [joint for joint in robot.joints if joint.moves and joint.kind != "floating"]
-    _check_patterns(moving, patterns, manifest_label)
+    _check_patterns(moving, patterns, manifest_label, robot.joints)
     initial = {j.name: j.initial for j in control.joints if j.initial is not None}
     srdf_state = srdf_state or {}
     values: dict[str, HomeValue] = {}
@@ -84,6 +84,16 @@ def _mimic_value(joint: Joint, robot: Robot, values: dict[str, HomeValue]) -> fl
     return multiplier * base + offset
 
 
+def _no_home(joint: Joint) -> str:
+    """Why ``joint``, a joint of the robot that is not a moving one, has no home value."""
+    if not joint.moves:
+        return f"'{joint.name}' is a fixed joint, which has no position to set"
+    return (
+        f"'{joint.name}' is a floating joint: its position is the base's pose, which the build "
+        "stands on the floor"
+    )
+
+
 def _clip(value: float, joint: Joint) -> float:
     bounds = joint_range(joint)
     if bounds is None:
@@ -91,11 +101,22 @@ def _clip(value: float, joint: Joint) -> float:
     return min(max(value, bounds[0]), bounds[1])
 
 
-def _check_patterns(moving: list[Joint], patterns: dict[str, float], label: str) -> None:
-    """Every pattern names a moving joint, and its value lies in the range of each it names."""
+def _check_patterns(
+    moving: list[Joint], patterns: dict[str, float], label: str, joints: list[Joint]
+) -> None:
+    """Every pattern names a moving joint, and its value lies in the range of each it names;
+    one naming only a joint with no home (fixed, floating: among ``joints``) says so."""
     names = [joint.name for joint in moving]
     for pattern, value in patterns.items():
         named = [joint for joint in moving if matches(joint.name, [pattern])]
+        other = next((j for j in joints if matches(j.name, [pattern])), None)
+        if not named and other is not None:
+            said = "" if pattern == other.name else f"'{pattern}' matches no moving joint: "
+            raise ManifestError(
+                f"{said}{_no_home(other)}",
+                file=f"{label} home.{pattern}",
+                hint=f"remove it; moving joints: {listing(names)}",
+            )
         if not named:
             raise ManifestError(
                 f"'{pattern}' matches no moving joint{suggestion([pattern], names)}",
