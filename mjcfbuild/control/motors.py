@@ -191,8 +191,11 @@ def apply_motors(
                 )
         result.append(_driven(choice, rule, drive))
     warnings += [_mechanism_warning(mechanism) for mechanism in mechanisms]
+    actuated = {choice.joint for choice in choices}
     for joint, transmission in sorted(geared.items()):
-        if joint not in used:
+        # Only a joint an actuator drives can take a motor (one the URDF lacks is the plan's
+        # warning, and a rule naming a fixed or mimic joint is refused).
+        if joint not in used and joint in actuated:
             warnings.append(
                 f"{transmission.origin}: joint '{joint}' has a <transmission> reduction of "
                 f"{transmission.reduction:g} but no motor, so it sets nothing; name the drive "

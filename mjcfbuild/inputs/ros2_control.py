@@ -251,6 +251,23 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
     return result
 
 
+def transmission_joint_warnings(control: Ros2Control, joints: list[str]) -> list[str]:
+    """A warning for each ROS 1 ``<transmission>`` joint the URDF does not have (``joints``:
+    the URDF's), at its line, with the closest name: it sets nothing, and MuJoCo's tools, which
+    ignore ROS 1 transmissions, would not say so either. (A ros2_control block's transmission
+    is the runtime check's: mujoco_ros2_control refuses it at start-up.)"""
+    from mjcfbuild.sources.packages import did_you_mean
+
+    known = set(joints)
+    return [
+        f"{transmission.origin}: <transmission> {transmission.element} names joint "
+        f"'{transmission.joint}', which the URDF does not have, so it is ignored"
+        f"{did_you_mean(transmission.joint, known)}"
+        for transmission in control.transmissions
+        if not transmission.in_ros2_control and transmission.joint not in known
+    ]
+
+
 def _actuators(transmission: etree._Element) -> list[str]:
     """The names of a transmission's ``<actuator>`` elements (unnamed ones left out)."""
     return [name for a in transmission.findall("actuator") if (name := a.get("name", ""))]

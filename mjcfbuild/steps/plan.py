@@ -7,7 +7,7 @@ from pathlib import Path
 
 from mjcfbuild.errors import InputError
 from mjcfbuild.inputs.gazebo import read_gazebo_sensors, urdf_sensor_warnings
-from mjcfbuild.inputs.ros2_control import read_ros2_control
+from mjcfbuild.inputs.ros2_control import read_ros2_control, transmission_joint_warnings
 from mjcfbuild.inputs.xml_inputs import inputs_in_urdf, read_inputs_file
 from mjcfbuild.mjcf.bodies import refuse_nested_floating
 from mjcfbuild.mjcf.depth import refuse_deep_chains
@@ -46,6 +46,8 @@ def run(payload: dict) -> dict:
         gazebo = read_gazebo_sensors(root, display)
         described = {sensor.name for sensor in control.sensors}
         sensor_warnings = urdf_sensor_warnings(root, display, gazebo, described)
+        joints = [joint.name for joint in robot.joints]
+        transmission_warnings = transmission_joint_warnings(control, joints)
     except InputError as exc:
         if request.expanded_from and exc.hint is None:
             exc.hint = f"the line is in the expansion of {request.expanded_from}"
@@ -72,4 +74,5 @@ def run(payload: dict) -> dict:
     )
     outputs: dict[str, str] = {}
     write_output(Path(request.output), plan.text(), outputs)
-    return {"outputs": outputs, "warnings": [*robot.warnings, *sensor_warnings]}
+    warnings = [*robot.warnings, *sensor_warnings, *transmission_warnings]
+    return {"outputs": outputs, "warnings": warnings}

@@ -35,6 +35,36 @@ def test_cameras_and_sensors_without_partners_are_warned_both_ways(tmp_path):
     )
 
 
+def test_a_ros1_transmission_naming_a_joint_the_urdf_lacks_is_warned_at_its_line(tmp_path):
+    """Issue 43: never ignored in silence, and no advice to name the missing joint in an
+    actuator rule (the reduction would need a motor there)."""
+    transmission = (
+        '<transmission name="t"><type>transmission_interface/SimpleTransmission</type>\n'
+        '<joint name="hinj"><hardwareInterface>hardware_interface/EffortJointInterface'
+        '</hardwareInterface></joint>\n<actuator name="m"><mechanicalReduction>50'
+        "</mechanicalReduction></actuator></transmission>"
+    )
+    result = build(
+        tmp_path,
+        "actuators:\n  rules:\n    - {joints: [hinge], motor: go1_knee}\n",
+        control=transmission,
+    )
+    line = (
+        (tmp_path / "robot.urdf")
+        .read_text()
+        .splitlines()
+        .index(
+            '<joint name="hinj">'
+            "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>"
+        )
+    )
+    assert (
+        f"robot.urdf:{line + 1}: <transmission> #1 names joint 'hinj', which the URDF does not "
+        "have, so it is ignored; did you mean 'hinge'?"
+    ) in result.warnings, result.warnings
+    assert not [w for w in result.warnings if "hinj" in w and "rules" in w], result.warnings
+
+
 def test_transmission_reductions_are_read_from_ros1_and_ros2_control():
     from lxml import etree
 
