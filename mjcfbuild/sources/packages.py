@@ -12,7 +12,6 @@ rule's pattern) and the listing of the names there are come from here too.
 from __future__ import annotations
 
 import os
-import re
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -24,7 +23,6 @@ PACKAGE_PATTERN = re.compile(r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
 
 ENV_VARIABLES = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")
 _IGNORE_MARKERS = ("CATKIN_IGNORE", "COLCON_IGNORE", "AMENT_IGNORE")
-_NAME_TAG = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 _MAX_CRAWL_DEPTH = 16
 
 
@@ -120,12 +118,30 @@ def _crawl_folder(folder: Path, depth: int, found: dict[str, Path], seen: set[st
 
 
 def package_name(package_xml: Path) -> str | None:
-    """The ``<name>`` of a ``package.xml``, read without a full XML parse."""
+    """The ``<name>`` of a ``package.xml``: the first ``name`` child of its ``<package>``, read
+    as XML, so a ``<name>`` inside a comment (``<!-- renamed from <name>old</name> -->``) or
+    another element is not taken for it; None when the file is unreadable, not XML or has no
+    name."""
+    from lxml import etree
+
     try:
-        match = _NAME_TAG.search(package_xml.read_bytes()[:65536])
+        data = package_xml.read_bytes()
     except OSError:
         return None
-    return match.group(1).decode("utf-8", "replace") if match else None
+    parser = etree.XMLParser(
+        resolve_entities=False, no_network=True, remove_comments=True, recover=False
+    )
+    try:
+        root = etree.fromstring(data, parser)
+    except (etree.XMLSyntaxError, ValueError):
+        return None
+    if etree.QName(root).localname != "package":
+        return None
+    for child in root:
+        if isinstance(child.tag, str) and etree.QName(child).localname == "name":
+            name = (child.text or "").strip()
+            return name or None
+    return None
 
 
 def find_enclosing_package(path: Path) -> tuple[str, Path] | None:

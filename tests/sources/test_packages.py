@@ -127,3 +127,46 @@ def test_a_suggestion_is_a_name_a_few_edits_away(name, candidates, offered):
     from mjcfbuild.sources.packages import did_you_mean
 
     assert did_you_mean(name, candidates) == (f"; did you mean '{offered}'?" if offered else "")
+
+
+RENAMED = """<?xml version="1.0"?>
+<package format="3">
+  <!-- renamed from <name>old_parts</name> -->
+  <description>parts: a <b><name>nested</name></b> name is not it</description>
+  <name>my_parts</name><version>0.0.1</version></package>
+"""
+
+
+def test_the_name_is_the_package_elements_name_child_not_one_in_a_comment(tmp_path):
+    """package.xml's <name> was found by a regex on the raw text: a commented-out earlier
+    name was taken for it, and $(find my_parts) was refused, suggesting 'old_parts'."""
+    folder = tmp_path / "src" / "parts_folder"
+    write(folder / "package.xml", RENAMED)
+    resolver = PackageResolver({}, {"ROS_PACKAGE_PATH": str(tmp_path / "src")})
+    assert resolver.find("my_parts") == folder
+    with pytest.raises(InputError, match=r"known packages: my_parts\)"):
+        resolver.find("old_parts")
+    urdf = write(folder / "urdf" / "part.urdf", "<robot/>")
+    assert find_enclosing_package(urdf) == ("my_parts", folder)
+
+
+def test_init_finds_a_renamed_package_by_its_name(tmp_path):
+    from mjcfbuild.sources.infer import find_package_xml
+
+    folder = tmp_path / "ws" / "parts_folder"
+    write(folder / "package.xml", RENAMED)
+    source = write(tmp_path / "ws" / "robot" / "robot.urdf.xacro", "<robot/>")
+    assert find_package_xml("my_parts", source) == [folder]
+    assert find_package_xml("old_parts", source) == []
+
+
+@pytest.mark.parametrize(
+    "text",
+    ["<package><name>", "<robot><name>arm</name></robot>", "<package><version/></package>"],
+    ids=["not-xml", "not-a-package", "no-name"],
+)
+def test_a_package_xml_without_a_readable_name_falls_back_to_its_folder(tmp_path, text):
+    folder = tmp_path / "src" / "arm"
+    write(folder / "package.xml", text)
+    resolver = PackageResolver({}, {"ROS_PACKAGE_PATH": str(tmp_path / "src")})
+    assert resolver.find("arm") == folder
