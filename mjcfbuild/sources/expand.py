@@ -149,10 +149,17 @@ def expand_xacro(
         raise InputError(
             f"xacro source {problem}", file=path, hint="fix 'source.xacro' in robot.yaml"
         )
+    mappings = as_the_command_takes(mappings)
     try:
         return _expand(path, mappings, packages, args_key, track_lines=True)
     except _XacroFailed:
         return _expand(path, mappings, packages, args_key, track_lines=False)
+
+
+def as_the_command_takes(mappings: Mapping[str, str]) -> dict[str, str]:
+    """The arguments as the ``xacro`` command takes ``name:=value`` words: each value stripped
+    of the spaces around it (``load_mappings`` strips them)."""
+    return {name: value.strip() for name, value in mappings.items()}
 
 
 class _XacroFailed(InputError):

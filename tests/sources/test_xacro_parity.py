@@ -440,3 +440,23 @@ def test_arguments_xacro_takes_without_a_declaration_here_are_taken(tmp_path):
     with pytest.raises(ManifestError, match="did you mean 'use_gazebo'"):
         misspelt = {"joint_range": "2.5", "side": "left", "use_gazeb": "true"}
         expand_xacro(source, misspelt, resolver, args_key="robot.yaml source.args")
+
+
+ARGS = (
+    '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+    '  <xacro:arg name="prefix" default="def_"/>\n'
+    '  <xacro:arg name="flag" default="false"/>\n'
+    '  <link name="$(arg prefix)base"/>\n'
+    "  <link name=\"${xacro.arg('prefix')}tool\"/>\n"
+    '  <xacro:if value="$(arg flag)"><link name="flagged"/></xacro:if>\n'
+    "</robot>\n"
+)
+
+
+def test_argument_values_are_stripped_of_spaces_as_the_xacro_command_strips_them(tmp_path):
+    """The xacro command strips NAME:=VALUE's value (load_mappings); robot.yaml's " sp_ "
+    was passed with its spaces (a link named " sp_base", a flag " true " xacro refuses)."""
+    source = write(tmp_path / "r.urdf.xacro", ARGS)
+    urdf = assert_agrees(source, tmp_path, {"prefix": " sp_ ", "flag": " true\t"})
+    assert urdf is not None
+    assert b'name="sp_base"' in urdf and b'name="sp_tool"' in urdf and b"flagged" in urdf
