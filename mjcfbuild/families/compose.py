@@ -43,7 +43,7 @@ def _composition_tasks(graph: Graph) -> list[dict]:
                 packages,
                 output,
                 output.with_suffix(".deps.json"),
-                args_key=f"{ctx.manifest_label} attach[{index}].source.args",
+                args_at=f"attach[{index}].source.args",
             )
         )
         entries.append(

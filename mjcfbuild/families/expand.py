@@ -35,7 +35,7 @@ def _tasks(graph: Graph) -> list[dict]:
             ctx.resolver.explicit,
             ctx.state(SOURCE_URDF),
             ctx.state(SOURCE_DEPS),
-            args_key=_args_key(ctx, "source.args"),
+            args_at="source.args",
         )
     ]
 
@@ -49,6 +49,23 @@ def _args_key(ctx: GraphContext, key: str) -> str:
     return f"{ctx.manifest_label} {key}"
 
 
+def _empty_args(ctx: GraphContext, args: dict[str, str], key: str) -> dict[str, str]:
+    """Each argument of ``args`` (robot.yaml's ``key``) given an empty value -> where it is
+    written, as a warning names it: ``robot.yaml:7: source.args.prefix``."""
+    from mjcfbuild.manifest.pinpoint import key_line
+
+    empty = sorted(name for name, value in args.items() if not value.strip())
+    if not empty:
+        return {}
+    where = {}
+    for name in empty:
+        setting = f"{key}.{name}"
+        line = key_line(ctx.manifest_file, setting)
+        label = ctx.manifest_output_label
+        where[name] = f"{label}:{line}: {setting}" if line else f"{label} {setting}"
+    return where
+
+
 def expand_file_task(
     ctx: GraphContext,
     name: str,
@@ -58,12 +75,12 @@ def expand_file_task(
     packages: dict[str, Path],
     output: Path,
     deps: Path,
-    args_key: str | None = None,
+    args_at: str | None = None,
 ) -> dict:
     """The task expanding (xacro) or reading (URDF) ``source`` into ``output``; the files it
     read are listed in ``deps`` and checked from the next build on, where each line's element
-    was written in :func:`~mjcfbuild.sources.origins.origins_file`. ``args_key`` is where
-    ``args`` were given (:func:`~mjcfbuild.sources.expand.expand_xacro`)."""
+    was written in :func:`~mjcfbuild.sources.origins.origins_file`. ``args_at`` is the
+    robot.yaml key giving ``args`` (``source.args``), for the messages about them."""
     from mjcfbuild.sources.origins import origins_file
 
     read, stale = discovered_inputs(ctx, deps)
@@ -76,7 +93,8 @@ def expand_file_task(
         output=str(output),
         depfile=str(deps),
         origins=str(origins_file(output)),
-        args_key=args_key or "",
+        args_key=_args_key(ctx, args_at) if args_at else "",
+        empty_args=_empty_args(ctx, args, args_at) if args_at else {},
     )
     return file_task(
         ctx,

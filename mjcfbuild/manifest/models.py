@@ -55,7 +55,10 @@ class Source(StrictModel):
     )
     args: dict[str, str | int | float | bool] = Field(
         default_factory=dict,
-        description="xacro arguments (name: value), as `name:=value` on the xacro command line.",
+        description=(
+            "xacro arguments (name: value), as `name:=value` on the xacro command line: values "
+            "stripped of surrounding spaces, an empty value ignored (the default applies)."
+        ),
     )
     description: RelPath | None = Field(
         None,

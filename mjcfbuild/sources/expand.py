@@ -60,6 +60,9 @@ class Expansion:
     globs: dict[str, list[str]] = field(default_factory=dict)
     # For xacro: line of the expanded URDF -> the file and line where its element was written.
     origins: dict[int, tuple[str, int]] = field(default_factory=dict)
+    # Arguments given an empty value, which the xacro command ignores: name -> the non-empty
+    # default that applies instead.
+    ignored_args: dict[str, str] = field(default_factory=dict)
 
 
 @dataclass
@@ -158,7 +161,8 @@ def expand_xacro(
 
 def as_the_command_takes(mappings: Mapping[str, str]) -> dict[str, str]:
     """The arguments as the ``xacro`` command takes ``name:=value`` words: each value stripped
-    of the spaces around it (``load_mappings`` strips them)."""
+    of the spaces around it (``load_mappings`` strips them). An empty value stays here, for
+    the check of the names; :func:`_expand` passes xacro only the others."""
     return {name: value.strip() for name, value in mappings.items()}
 
 
@@ -181,9 +185,12 @@ def _expand(
     reads: dict[str, str | None] = {}
     raised: list[InputError] = []
     reading = _Reading(track_lines=track_lines)
+    # The xacro command ignores NAME:= with an empty value (load_mappings: "if src and dst"),
+    # so the default applies. xacro adds each declared argument's default to this dict.
+    passed = {name: value for name, value in mappings.items() if value}
     with _xacro_hooks(xacro, packages, reads, raised, reading):
         try:
-            document = xacro.process_file(str(path), mappings=dict(mappings))
+            document = xacro.process_file(str(path), mappings=passed)
         except xml.parsers.expat.ExpatError as exc:
             raise InputError(
                 f"XML error: {xml.parsers.expat.errors.messages.get(exc.code, exc)}",
@@ -211,7 +218,7 @@ def _expand(
             line = None
             undefined = re.search(r"(?i)undefined substitution argument (\S+)", message)
             read = re.fullmatch(r"'([^']+)'", message.strip())  # xacro.arg's KeyError
-            if read and read.group(1) not in mappings:
+            if read and read.group(1) not in passed:
                 name = read.group(1)
                 line = _line_of(current, rf"""xacro\.arg\(\s*['"]{re.escape(name)}['"]""")
                 if line is not None:
@@ -255,6 +262,11 @@ def _expand(
         environment=dict(sorted(reads.items())),
         globs={pattern: sorted(found) for pattern, found in sorted(reading.globs.items())},
         origins=_origins(text, marks, reading.files) if track_lines else {},
+        ignored_args={
+            name: str(passed[name])
+            for name in sorted(mappings)
+            if not mappings[name] and passed.get(name)
+        },
     )
 
 

@@ -32,4 +32,18 @@ def run(payload: dict) -> dict:
     Depfile(expansion.files, expansion.missing, expansion.environment, expansion.globs).write(
         depfile
     )
-    return {"outputs": outputs, "discovered": [f for f in expansion.files if f != str(source)]}
+    return {
+        "outputs": outputs,
+        "discovered": [f for f in expansion.files if f != str(source)],
+        "warnings": _ignored_args(expansion.ignored_args, request.empty_args),
+    }
+
+
+def _ignored_args(defaults: dict[str, str], where: dict[str, str]) -> list[str]:
+    """A warning for each argument given an empty value that xacro ignored for a default that
+    is not empty (``defaults``), at its place in robot.yaml (``where``)."""
+    return [
+        f"{where.get(name, name)}: the empty value is ignored, as the xacro command ignores "
+        f"'{name}:='; the default '{default}' applies (give a value, or leave the argument out)"
+        for name, default in sorted(defaults.items())
+    ]

@@ -123,6 +123,9 @@ class ExpandPayload(Payload):
     depfile: Output
     origins: Output  # where each expanded line's element was written (xacro)
     args_key: MessageLabel  # where args were given: a manifest key, the command line, or ""
+    # An argument given an empty value (which xacro ignores) -> where robot.yaml gives it
+    # ("robot.yaml:7: source.args.prefix"), for the warning; counted, so the line stays right.
+    empty_args: dict[str, str] = dataclasses.field(default_factory=dict)
 
 
 @dataclass(frozen=True)

@@ -460,3 +460,14 @@ def test_argument_values_are_stripped_of_spaces_as_the_xacro_command_strips_them
     urdf = assert_agrees(source, tmp_path, {"prefix": " sp_ ", "flag": " true\t"})
     assert urdf is not None
     assert b'name="sp_base"' in urdf and b'name="sp_tool"' in urdf and b"flagged" in urdf
+
+
+def test_an_empty_argument_value_is_ignored_as_the_xacro_command_ignores_it(tmp_path):
+    """``xacro f.xacro prefix:=`` leaves the default ("if src and dst" in load_mappings);
+    robot.yaml's prefix: "" was passed as ''. Which default applied is recorded (a
+    warning says it), where it is not empty."""
+    source = write(tmp_path / "r.urdf.xacro", ARGS)
+    urdf = assert_agrees(source, tmp_path, {"prefix": "", "flag": " "})
+    assert urdf is not None and b'name="def_base"' in urdf and b"flagged" not in urdf
+    expansion = expand_xacro(source, {"prefix": "", "flag": "true"}, PackageResolver({}, {}))
+    assert expansion.ignored_args == {"prefix": "def_"}
