@@ -11,6 +11,7 @@ from __future__ import annotations
 import io
 import os
 import re
+import sys
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -188,7 +189,8 @@ def _expand(
     # The xacro command ignores NAME:= with an empty value (load_mappings: "if src and dst"),
     # so the default applies. xacro adds each declared argument's default to this dict.
     passed = {name: value for name, value in mappings.items() if value}
-    with _xacro_hooks(xacro, packages, reads, raised, reading):
+    extra = _recursion_depth() - _COMMAND_DEPTH
+    with _xacro_hooks(xacro, packages, reads, raised, reading), _recursion_limit_raised(extra):
         try:
             document = xacro.process_file(str(path), mappings=passed)
         except xml.parsers.expat.ExpatError as exc:
@@ -247,9 +249,10 @@ def _expand(
             raise failure(f"xacro failed: {message}", file=current, line=line, hint=hint) from None
         included = list(xacro.all_includes)
     _check_args(mappings, reading, packages, path, args_key)
-    _refuse_values_not_text(document, reading, path)
-    marks = _take_origins(document) if track_lines else []
-    text = document.toprettyxml(indent="  ", encoding="utf-8")
+    with _recursion_limit_raised(extra):  # minidom walks the document recursively
+        _refuse_values_not_text(document, reading, path)
+        marks = _take_origins(document) if track_lines else []
+        text = document.toprettyxml(indent="  ", encoding="utf-8")
     files = {str(normalise(path))}
     missing: set[str] = set()
     for name in included:
@@ -268,6 +271,39 @@ def _expand(
             if not mappings[name] and passed.get(name)
         },
     )
+
+
+# How deep the xacro command's process_file is called, as _recursion_depth counts from the
+# function calling it (the script's module, main(), _process()), found by the test that holds
+# both to the depth where a recursive macro first fails.
+_COMMAND_DEPTH = 3
+
+
+def _recursion_depth() -> int:
+    """How deep the caller runs in the count Python's recursion limit bounds: found by
+    recursing to the limit (about 0.1 ms), since the count includes calls through C that no
+    frame shows."""
+
+    def deeper(levels: int) -> int:
+        try:
+            return deeper(levels + 1)
+        except RecursionError:
+            return levels
+
+    return sys.getrecursionlimit() - deeper(0)
+
+
+@contextmanager
+def _recursion_limit_raised(extra: int) -> Iterator[None]:
+    """Python's recursion limit raised by ``extra`` levels, then restored: xacro given the
+    headroom the xacro command gives it, though mjcfbuild's own calls (the build engine, a
+    worker, a test runner) lie below it, so a macro recursing deep fails at the same depth."""
+    limit = sys.getrecursionlimit()
+    sys.setrecursionlimit(limit + max(extra, 0))
+    try:
+        yield
+    finally:
+        sys.setrecursionlimit(limit)
 
 
 def _check_args(
