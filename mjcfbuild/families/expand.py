@@ -95,6 +95,7 @@ def expand_file_task(
         origins=str(origins_file(output)),
         args_key=_args_key(ctx, args_at) if args_at else "",
         empty_args=_empty_args(ctx, args, args_at) if args_at else {},
+        base_dir=str(ctx.base_dir),
     )
     return file_task(
         ctx,

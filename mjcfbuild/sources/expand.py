@@ -64,6 +64,19 @@ class Expansion:
     # Arguments given an empty value, which the xacro command ignores: name -> the non-empty
     # default that applies instead.
     ignored_args: dict[str, str] = field(default_factory=dict)
+    # What xacro warned of (on its standard error, for the xacro command), each once.
+    warnings: list[XacroWarning] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class XacroWarning:
+    """A warning xacro gave: its text, the file it was reading (the file of the macro it was
+    instantiating, inside one) and the line there, where a search of the file finds it."""
+
+    message: str
+    file: str
+    line: int | None = None
+    macro: str | None = None
 
 
 @dataclass
@@ -75,6 +88,7 @@ class _Reading:
     declared: set[str] = field(default_factory=set)  # <xacro:arg> names and $(arg) uses
     globs: dict[str, list[str]] = field(default_factory=dict)  # include patterns, matches
     refused: InputError | None = None  # a YAML file xacro.load_yaml must not expand
+    warnings: list[XacroWarning] = field(default_factory=list)  # what xacro warned of
 
 
 def expand_source(
@@ -190,7 +204,11 @@ def _expand(
     # so the default applies. xacro adds each declared argument's default to this dict.
     passed = {name: value for name, value in mappings.items() if value}
     extra = _recursion_depth() - _COMMAND_DEPTH
-    with _xacro_hooks(xacro, packages, reads, raised, reading), _recursion_limit_raised(extra):
+    with (
+        _xacro_hooks(xacro, packages, reads, raised, reading),
+        _xacro_warnings(xacro, reading),
+        _recursion_limit_raised(extra),
+    ):
         try:
             document = xacro.process_file(str(path), mappings=passed)
         except xml.parsers.expat.ExpatError as exc:
@@ -265,6 +283,7 @@ def _expand(
         environment=dict(sorted(reads.items())),
         globs={pattern: sorted(found) for pattern, found in sorted(reading.globs.items())},
         origins=_origins(text, marks, reading.files) if track_lines else {},
+        warnings=list(dict.fromkeys(reading.warnings)),
         ignored_args={
             name: str(passed[name])
             for name in sorted(mappings)
@@ -818,6 +837,55 @@ def _xacro_hooks(
         for name, function in saved_functions.items():
             setattr(subst, name, function)
         subst._eval_dict.update(saved_eval)
+
+
+@contextmanager
+def _xacro_warnings(xacro_module: Any, reading: _Reading) -> Iterator[None]:
+    """Keep xacro's warnings in ``reading`` instead of letting them print to standard error,
+    where a build's worker left them in the expand step's log: its own (a redefined global
+    symbol, a deprecated name, ...) and those an expression asks for with xacro.warning()."""
+
+    def warning(*args: Any, **_: Any) -> str:
+        message = " ".join(" ".join(str(arg) for arg in args).split())
+        reading.warnings.append(_placed_warning(xacro_module, message))
+        return ""  # what xacro.warning() gives an expression
+
+    def print_location(*_: Any, **__: Any) -> str:
+        return ""  # xacro's trace after a warning: the warning records where it is
+
+    namespace = xacro_module._global_symbols["xacro"]
+    saved = (xacro_module.warning, xacro_module.print_location, namespace["warning"])
+    xacro_module.warning, xacro_module.print_location = warning, print_location
+    namespace["warning"] = warning
+    try:
+        yield
+    finally:
+        xacro_module.warning, xacro_module.print_location, namespace["warning"] = saved
+
+
+def _placed_warning(xacro_module: Any, message: str) -> XacroWarning:
+    """``message`` at the file xacro is reading (the body of the macro it is instantiating,
+    inside one) and, where the file's text shows what it is about, that line."""
+    macros = list(getattr(xacro_module, "macrostack", None) or [])
+    current = _current_file(xacro_module, Path("?"))
+    start = None
+    macro = None
+    if macros:
+        macro = macros[-1].body.getAttribute("name")
+        current = str(macros[-1].history[-1][-1] or current)
+        start = rf"<xacro:macro\s[^>]*name=[\"']{re.escape(macro)}[\"']"
+    redefined = re.fullmatch(r"redefining global symbol: (\S+)", message)
+    deprecated = re.match(r"Using (\w+)\(\) directly is deprecated", message)
+    attributes = re.match(r"(\S+): unknown attribute\(s\): ([^,\s]+)", message)
+    pattern = None
+    if redefined:
+        pattern = rf"<xacro:property\s[^>]*name=[\"']{re.escape(redefined.group(1))}[\"']"
+    elif deprecated:
+        pattern = rf"\$\{{[^}}]*(?<![\w.]){re.escape(deprecated.group(1))}\s*\("
+    elif attributes:
+        pattern = rf"<{re.escape(attributes.group(1))}\s[^>]*\b{re.escape(attributes.group(2))}="
+    line = _line_of(current, pattern, after=start) if pattern else None
+    return XacroWarning(message, current, line, macro)
 
 
 def _refuse_yaml_bombs(path: str, reading: _Reading) -> None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from mjcfbuild.failpoints import failpoint
-from mjcfbuild.sources.expand import expand_source
+from mjcfbuild.sources.expand import XacroWarning, expand_source
 from mjcfbuild.sources.origins import origins_json
 from mjcfbuild.steps.depfile import Depfile
 from mjcfbuild.steps.outputs import write_output
@@ -35,8 +35,22 @@ def run(payload: dict) -> dict:
     return {
         "outputs": outputs,
         "discovered": [f for f in expansion.files if f != str(source)],
-        "warnings": _ignored_args(expansion.ignored_args, request.empty_args),
+        "warnings": [
+            *(_said(warning, request.base_dir) for warning in expansion.warnings),
+            *_ignored_args(expansion.ignored_args, request.empty_args),
+        ],
     }
+
+
+def _said(warning: XacroWarning, base_dir: str) -> str:
+    """One of xacro's warnings as a build warning: at its file (relative to robot.yaml's
+    folder, as the report names files) and line, marked as xacro's."""
+    file = Path(warning.file)
+    if base_dir and file.is_relative_to(base_dir):
+        file = file.relative_to(base_dir)
+    where = f"{file}:{warning.line}" if warning.line else str(file)
+    inside = f" (in macro '{warning.macro}')" if warning.macro else ""
+    return f"{where}: xacro warns{inside}: {warning.message}"
 
 
 def _ignored_args(defaults: dict[str, str], where: dict[str, str]) -> list[str]:

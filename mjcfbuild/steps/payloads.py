@@ -126,6 +126,8 @@ class ExpandPayload(Payload):
     # An argument given an empty value (which xacro ignores) -> where robot.yaml gives it
     # ("robot.yaml:7: source.args.prefix"), for the warning; counted, so the line stays right.
     empty_args: dict[str, str] = dataclasses.field(default_factory=dict)
+    # robot.yaml's folder: xacro's warnings name files relative to it, as the report does.
+    base_dir: str = ""
 
 
 @dataclass(frozen=True)
