@@ -212,11 +212,14 @@ def _expand(
         try:
             document = xacro.process_file(str(path), mappings=passed)
         except xml.parsers.expat.ExpatError as exc:
+            reason = xml.parsers.expat.errors.messages.get(exc.code, str(exc))
+            current = _current_file(xacro, path)
             raise InputError(
-                f"XML error: {xml.parsers.expat.errors.messages.get(exc.code, exc)}",
-                file=_current_file(xacro, path),
+                f"XML error: {reason}",
+                file=current,
                 line=exc.lineno,
                 column=exc.offset + 1 if exc.offset is not None else None,
+                hint=_unbound_prefix_hint(current, exc) if "unbound prefix" in reason else None,
             ) from None
         except Exception as exc:  # xacro raises many kinds; all mean "this input is wrong"
             if reading.refused is not None:  # names the YAML file itself, not the xacro file
@@ -412,16 +415,31 @@ def _declared_in_skipped_includes(
 def _line_of(file: str, pattern: str, after: str | None = None) -> int | None:
     """The first line of ``file`` matching ``pattern``, if any; with ``after``, the first from
     the line matching ``after`` on."""
+    return _first_line(file, after, lambda line: re.search(pattern, line) is not None)
+
+
+def _lines_matching(file: str, pattern: str, after: str | None = None) -> list[int]:
+    """Every line of ``file`` matching ``pattern`` (from the line matching ``after`` on)."""
+    return [number for number, line in _numbered_lines(file, after) if re.search(pattern, line)]
+
+
+def _first_line(file: str, after: str | None, test: Callable[[str], bool]) -> int | None:
+    """The first line of ``file`` that passes ``test``, from the line matching ``after`` on."""
+    return next((number for number, line in _numbered_lines(file, after) if test(line)), None)
+
+
+def _numbered_lines(file: str, after: str | None) -> list[tuple[int, str]]:
+    """The lines of ``file`` with their numbers, from the first matching ``after`` on (all
+    without it); none where it cannot be read."""
     try:
         with open(file, encoding="utf-8", errors="replace") as handle:
-            started = after is None
-            for number, line in enumerate(handle, 1):
-                started = started or bool(re.search(after or "", line))
-                if started and re.search(pattern, line):
-                    return number
+            lines = list(enumerate(handle, 1))
     except OSError:
-        pass
-    return None
+        return []
+    if after is not None:
+        start = next((i for i, (_, line) in enumerate(lines) if re.search(after, line)), None)
+        lines = lines[start:] if start is not None else []
+    return lines
 
 
 def _refuse_other_encodings(data: bytes, filename: str) -> None:
@@ -606,6 +624,14 @@ def _place_failure(
             places.append((current, None))
     else:
         places.append((current, None))
+    failure = _extension_failure(exc)
+    if failure is not None:  # a $(...): found by its own text, in the macro or the file
+        hint = _substitution_hint(failure, hint)
+        for file, start in places:
+            line = _substitution_line(file, failure, start)
+            if line is not None:
+                return file, line, message, hint
+        return places[0][0], None, message, hint
     undefined = re.search(r"name '([^']+)' is not defined", message)
     unknown = re.search(r"unknown macro name: (xacro:\S+)", message)
     conditional = re.search(r'Xacro conditional "(.*?)" evaluated to', message)
@@ -618,6 +644,9 @@ def _place_failure(
     elif unknown:
         pattern = rf"<{re.escape(unknown.group(1))}\b"
         hint = "define the macro, or include the file that does, before this call"
+        called = unknown.group(1).removeprefix("xacro:")
+        files = [*(getattr(xacro_module, "all_includes", None) or []), *stack, current]
+        message = message.rstrip() + did_you_mean(called, _macros_defined(files))
     elif conditional:
         # Found where it is written: in the macro's body (the call site only after that)
         value = re.escape(conditional.group(1))
@@ -631,7 +660,7 @@ def _place_failure(
         expression = re.search(r"when evaluating expression '(.*)'", str(exc))
         if expression is not None:
             for file, start in places:
-                line = _line_of(file, re.escape(expression.group(1)), after=start)
+                line = _line_of(file, _expression_token(expression.group(1)), after=start)
                 if line is not None:
                     return file, line, message, hint
         # A call of a macro from an include's namespace is written <xacro:ns.name ...>.
@@ -663,7 +692,7 @@ def _place_failure(
             pattern = rf"<xacro:property\s[^>]*name=[\"']{re.escape(circular.group(1))}[\"']"
             hint = "define the property from values that do not lead back to it"
         elif expression is not None:
-            pattern = re.escape(expression.group(1))
+            pattern = _expression_token(expression.group(1))
         elif missing_default:
             pattern = r"<xacro:arg\b(?![^>]*\bdefault=)"
         elif nested is not None:
@@ -679,6 +708,25 @@ def _place_failure(
         if line is not None:
             return file, line, message, hint
     return places[0][0] if places else current, None, message, hint
+
+
+def _expression_token(expression: str) -> str:
+    """A pattern of ``expression`` as written: the whole of a ``${...}`` (xacro names what is
+    between the braces), so a short one ('e') is not found inside other text."""
+    return rf"\$\{{\s*{re.escape(expression.strip())}\s*\}}"
+
+
+def _macros_defined(files: list[str]) -> set[str]:
+    """The names of the macros ``files`` define (by their text: xacro's own table is not left
+    behind)."""
+    names: set[str] = set()
+    for file in dict.fromkeys(files):
+        try:
+            text = Path(file).read_text(errors="replace")
+        except OSError:
+            continue
+        names.update(re.findall(r"<xacro:macro\s[^>]*\bname=[\"']([^\"']+)[\"']", text))
+    return names
 
 
 def _names_in_scope(macros: list[Any], stack: list[str], current: str) -> set[str]:
@@ -710,10 +758,106 @@ def _include_cycle(stack: list[str]) -> list[str]:
 
 
 def _xacro_message(exc: Exception) -> str:
+    """xacro's error as one line of text."""
+    failure = _extension_failure(exc)
+    if failure is not None:
+        return _substitution_message(failure)
     text = str(exc).strip() or type(exc).__name__
     if type(exc).__name__ == "ArgException":
         return f"undefined substitution argument {text}"
     return text.splitlines()[0] if text else type(exc).__name__
+
+
+def _extension_failure(exc: BaseException | None) -> BaseException | None:
+    """The error a $(...) substitution raised, where xacro wrapped it as "<class '...'>: text"
+    (which prints its text twice, and no line), else None."""
+    while exc is not None:
+        inner = getattr(exc, "exc", None)
+        if not isinstance(inner, BaseException):
+            return None
+        if exc.args and exc.args[0] == f"{type(inner)}: {inner}":
+            return inner
+        exc = inner
+    return None
+
+
+def _substitution_message(failure: BaseException) -> str:
+    """What a failed $(...) substitution means, in one line."""
+    text = " ".join(str(failure).split())
+    unknown = re.search(r"Unknown substitution command \[([^\]]*)\]", text)
+    if isinstance(failure, SyntaxError):
+        return f"$(eval ...) is not a Python expression: {failure.msg}"
+    if "Cannot substitute $(dirname)" in text:
+        return (
+            "$(dirname) cannot be substituted: xacro 2.1.1 does not know the file's name there "
+            "(the xacro command fails on it too)"
+        )
+    if unknown is not None:
+        return (
+            f"unknown substitution $({unknown.group(1)}): xacro knows find, env, optenv, arg, eval"
+        )
+    if type(failure).__name__ == "SubstitutionException":
+        return text
+    return f"$(eval ...) failed: {text or type(failure).__name__}"
+
+
+def _substitution_hint(failure: BaseException, hint: str) -> str:
+    """What to do about a failed $(...) substitution (``hint`` where nothing better is known)."""
+    if "Cannot substitute $(dirname)" in str(failure):
+        return "write ${xacro.abs_filename('.')} for this file's folder, or $(find package)"
+    if isinstance(failure, SyntaxError):
+        return "fix the expression: $(eval) takes one Python expression of the arguments"
+    if isinstance(failure, NameError):
+        return "$(eval) reads arguments by name: pass it under 'source.args' in robot.yaml"
+    return hint
+
+
+def _substitution_line(file: str, failure: BaseException, after: str | None) -> int | None:
+    """The line of ``file`` (from the line matching ``after`` on) with the $(...) that failed:
+    found by its text, or for an $(eval) that does not parse, as the first that does not."""
+    text = str(failure)
+    unknown = re.search(r"Unknown substitution command \[([^\]]*)\]", text)
+    named = re.search(r"name '([^']+)' is not defined", text)
+    bracketed = re.search(r"\[([^\]]*)\]\s*$", text)
+    if "Cannot substitute $(dirname)" in text:
+        return _line_of(file, r"\$\(dirname\)", after=after)
+    if unknown is not None:
+        return _line_of(file, rf"\$\(\s*{re.escape(unknown.group(1))}\s*\)", after=after)
+    if isinstance(failure, SyntaxError):
+        return _first_line(
+            file,
+            after,
+            lambda line: any(not _compiles(found.group(1)) for found in _EVAL.finditer(line)),
+        )
+    if named is not None:
+        return _line_of(file, rf"\$\(eval\s[^)]*\b{re.escape(named.group(1))}\b", after=after)
+    if type(failure).__name__ == "SubstitutionException":
+        token = rf"\$\({re.escape(bracketed.group(1))}\)" if bracketed else None
+        return _line_of(file, token, after=after) if token else None
+    # Any other error of an $(eval): placed only where the file has one $(eval).
+    lines = _lines_matching(file, r"\$\(eval\s", after)
+    return lines[0] if len(lines) == 1 else None
+
+
+def _compiles(expression: str) -> bool:
+    """Whether ``expression`` is one Python expression."""
+    try:
+        compile(expression.strip(), "<eval>", "eval")
+    except (SyntaxError, ValueError):
+        return False
+    return True
+
+
+def _unbound_prefix_hint(file: str, exc: Any) -> str:
+    """What to declare for the prefix an expat "unbound prefix" error is about (``exc``: its
+    line and offset point at the element that uses it)."""
+    lines = _numbered_lines(file, None)
+    text = lines[exc.lineno - 1][1] if 0 < exc.lineno <= len(lines) else ""
+    used = re.search(r"([A-Za-z_][\w.-]*):[A-Za-z_]", text[exc.offset or 0 :])
+    prefix = used.group(1) if used else "xacro"
+    if prefix == "xacro":
+        return 'declare xacro\'s namespace on the root element: xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    return f'declare the prefix on the root element: xmlns:{prefix}="<its namespace URI>"'
 
 
 def _current_file(xacro_module: Any, fallback: Path) -> str:  # the untyped xacro module

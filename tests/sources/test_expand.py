@@ -450,3 +450,79 @@ def test_failures_xacro_names_no_line_for_are_placed(tmp_path, body, line, says)
     assert error.value.location is not None
     assert (error.value.location.file, error.value.location.line) == (str(source), line)
     assert says in error.value.message
+
+
+DECLARED = '<?xml version="1.0" encoding="utf-8"?>\n' + ROBOT
+
+
+@pytest.mark.parametrize(
+    ("body", "line", "says"),
+    [
+        (
+            '<xacro:macro name="wheel" params="n"><link name="${n}"/></xacro:macro>\n'
+            '<xacro:wheeel n="w1"/>',
+            4,
+            "unknown macro name: xacro:wheeel; did you mean 'wheel'?",
+        ),
+        (
+            '<link name="base"/>\n<link name="$(dirname)/tool"/>',
+            4,
+            "$(dirname) cannot be substituted: xacro 2.1.1 does not know the file's name there",
+        ),
+        (
+            '<link name="base"/>\n<link name="$(eval 2 *)"/>',
+            4,
+            "$(eval ...) is not a Python expression: invalid syntax",
+        ),
+        ('<link name="base"/>\n<link name="$(dirnam)"/>', 4, "unknown substitution $(dirnam)"),
+        (
+            '<xacro:property name="v" value="$(eval 1 +)"/>\n<link name="base"/>\n'
+            '<link name="${v}"/>',
+            3,
+            "$(eval ...) is not a Python expression",
+        ),
+        (
+            '<!-- link names are l_ + size + 1 -->\n<xacro:property name="size" value="s"/>\n'
+            '<link name="l_${size + 1}"/>',
+            5,
+            "can only concatenate str",
+        ),
+    ],
+    ids=[
+        "misspelt-macro",
+        "dirname",
+        "eval-syntax",
+        "unknown-command",
+        "eval-in-property",
+        "token",
+    ],
+)
+def test_substitution_and_macro_failures_are_one_clean_line_at_their_line(
+    tmp_path, body, line, says
+):
+    """A misspelt macro call had no "did you mean"; $(dirname) and $(eval) errors printed
+    xacro's text twice, with "<class '...SubstitutionException'>" and no line; a short
+    expression was placed at the first line holding its text anywhere (<?xml version)."""
+    source = write(tmp_path / "r.urdf.xacro", DECLARED.format(body))
+    with pytest.raises(InputError) as error:
+        expand_xacro(source, {}, PackageResolver({}, {}))
+    text = error.value.one_line()
+    assert error.value.location is not None
+    assert (error.value.location.file, error.value.location.line) == (str(source), line), text
+    assert says in error.value.message and "<class" not in text, text
+    assert text.count(says) == 1, text  # xacro printed its text twice
+
+
+def test_a_missing_xacro_namespace_declaration_is_said_with_the_line_to_add(tmp_path):
+    """xacro's own message says to check for xmlns:xacro; mjcfbuild said only 'unbound
+    prefix'."""
+    source = write(
+        tmp_path / "r.urdf.xacro",
+        '<?xml version="1.0"?>\n<robot name="r">\n  <xacro:arg name="n" default="x"/>\n</robot>\n',
+    )
+    with pytest.raises(InputError) as error:
+        expand_xacro(source, {}, PackageResolver({}, {}))
+    assert error.value.one_line() == (
+        f"{source}:3:3: XML error: unbound prefix (declare xacro's namespace on the root "
+        'element: xmlns:xacro="http://www.ros.org/wiki/xacro")'
+    )
