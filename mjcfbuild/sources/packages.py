@@ -12,6 +12,7 @@ rule's pattern) and the listing of the names there are come from here too.
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Mapping
 from pathlib import Path
 
