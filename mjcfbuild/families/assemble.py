@@ -197,8 +197,9 @@ FAMILY = Family(
     # home is ctrl 0 and act at the pose; a root holding the robot by a floating joint is the
     # world body; a velocity servo's kv at least 49 times the joint's damping; 23: a floating
     # robot stood on the floor by its own geometry, not the world body's; 24: lidar rays counted
-    # as mujoco_ros2_control and the reference converter count them
-    format=24,
+    # as mujoco_ros2_control and the reference converter count them; 25: modify and Gazebo
+    # link lookups suggest a name, no reduction advice for a joint nothing drives
+    format=25,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,
     compiles_model=True,

@@ -116,7 +116,7 @@ FAMILY = Family(
     payload=ExpandPayload,
     # 2: the origins of the expanded lines; 3: xacro.arg reads and files not UTF-8 as xacro
     # takes them; 4: the patterns xacro includes list, with their files
-    format=4,
+    format=5,  # 5: args stripped and empty ones ignored as the xacro command does; its warnings
     tools=("xacro",),
     tasks=_tasks,
     stage="planning",

@@ -78,8 +78,9 @@ FAMILY = Family(
     # joint's and sensor's block plugin, a joint's mimic param, <hardware> params of the
     # blocks mujoco_ros2_control runs only; a floating joint below the root refused at its line;
     # 16: whether each ros2_control joint has a position state interface; 17: its block and
-    # mimic attribute; 18: each geometry's own line
-    format=18,
+    # mimic attribute; 18: each geometry's own line; 19: a ROS 1 transmission naming a joint the
+    # URDF lacks warned of, joint types suggested
+    format=19,
     tools=("lxml",),
     tasks=_tasks,
     stage="planning",
