@@ -180,6 +180,11 @@ def run(argv: Sequence[str] | None = None) -> int:
             from mjcfbuild.jobs import default_jobs
 
             args.jobs = default_jobs()
+        if args.command in CACHE_COMMANDS and os.environ.get("MJCFBUILD_CACHE_MAX"):
+            # Likewise a bad $MJCFBUILD_CACHE_MAX, which only some paths would read.
+            from mjcfbuild.products.store import default_max_bytes
+
+            default_max_bytes()
         code: int = args.handler(args)
         interrupts.check()  # a SIGINT whose KeyboardInterrupt was lost: not a success
         return code
@@ -208,6 +213,10 @@ def run(argv: Sequence[str] | None = None) -> int:
         )
         report_error(internal, debug=args.debug)
         return EXIT_INTERNAL
+
+
+CACHE_COMMANDS = frozenset({"build", "watch", "check", "convert", "diff", "cache"})
+"""The commands that may read or prune the shared cache, and so its cap."""
 
 
 def _interrupted() -> int:

@@ -63,10 +63,26 @@ def default_cache_folder() -> Path:
     return user_cache_dir() / "products"
 
 
+MAX_VARIABLE = "MJCFBUILD_CACHE_MAX"
+
+
 def default_max_bytes() -> int:
-    """``$MJCFBUILD_CACHE_MAX`` (for example ``2G``), or 5 GiB."""
-    text = os.environ.get("MJCFBUILD_CACHE_MAX")
-    return parse_size(text) if text else DEFAULT_MAX_BYTES
+    """``$MJCFBUILD_CACHE_MAX`` (for example ``2G``), or 5 GiB. A value that is not a size is
+    a :class:`~mjcfbuild.errors.UsageError` naming the variable (exit 2, as a bad
+    ``$MJCFBUILD_JOBS``), not an internal error."""
+    from mjcfbuild.errors import UsageError
+
+    text = os.environ.get(MAX_VARIABLE, "").strip()
+    if not text:
+        return DEFAULT_MAX_BYTES
+    try:
+        return parse_size(text)
+    except ValueError:
+        raise UsageError(
+            f"{MAX_VARIABLE}={text}: not a size",
+            hint="set it to a size such as 500M or 2G (bytes, with K, M, G or T), or unset "
+            "it for 5G",
+        ) from None
 
 
 def open_store(settings: dict) -> ProductStore | None:

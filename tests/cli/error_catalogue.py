@@ -41,6 +41,13 @@ EXPORT_MODEL = (
     "<mujoco><worldbody><body name='arm'><joint name='shoulder' range='-1 1'/>"
     "<geom size='0.1'/></body></worldbody></mujoco>\n"
 )
+# The same model drawn by a mesh, so that the export writes a mesh folder.
+EXPORT_MESH_MODEL = (
+    "<mujoco><asset><mesh name='arm' file='arm.obj'/></asset><worldbody><body name='arm'>"
+    "<joint name='shoulder' range='-1 1'/><geom type='mesh' mesh='arm'/></body></worldbody>"
+    "</mujoco>\n"
+)
+OBJ = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n"
 EXPORT_ARGS = ["export-urdf", "model.xml", "-o", "out/robot.urdf", "--limits-from", "original.urdf"]
 TETRAHEDRON_STL = """solid t
 facet normal 0 0 -1
@@ -1502,6 +1509,18 @@ CASES: list[Case] = [
         EXIT_USAGE,
         ["--executor", "not an executor", "dask://host:port"],
         args=["build", "--executor", "ray://head:10001"],
+    ),
+    # ---- the environment -----------------------------------------------------------------------
+    *(
+        Case(
+            f"MJCFBUILD_CACHE_MAX that is no size ({command[0]})",
+            {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+            EXIT_USAGE,
+            ["MJCFBUILD_CACHE_MAX=zz: not a size", "500M or 2G", "unset it"],
+            args=command,
+            env={"MJCFBUILD_CACHE_MAX": "zz"},
+        )
+        for command in (["build"], ["check"], ["cache", "show"])
     ),
     Case(
         "export-urdf over a file it did not write (the description's own URDF)",

@@ -52,7 +52,7 @@ def test_bad_input(case: Case, tmp_path: Path):
         (tmp_path / relative).write_text(text)
     before = snapshot(tmp_path)
 
-    result = run_cli(*case.args, cwd=tmp_path)
+    result = run_cli(*case.args, cwd=tmp_path, env=case.env)
 
     assert result.code == case.code, result.stderr
     assert case.code in EXIT_CODES
