@@ -42,11 +42,26 @@ def publish(
             written[str(path)] = data
         urdf_path.parent.mkdir(parents=True, exist_ok=True)
         write_if_changed(urdf_path, result.urdf)
-    except (NotADirectoryError, FileExistsError, PermissionError, IsADirectoryError) as exc:
-        raise OutputError(
-            f"cannot write the URDF export: {exc.strerror}",
-            file=exc.filename or urdf_path,
-            hint="choose another -o or mesh folder",
-        ) from None
+    except OSError as exc:
+        raise _unwritable(exc, urdf_path) from None
     written[str(urdf_path)] = result.urdf
     return written
+
+
+def _unwritable(exc: OSError, urdf_path: Path) -> OutputError:
+    """The one-line error of a file or folder of the export that cannot be written. A folder
+    that cannot be made where nothing says it is missing (``/proc/m``: a file system that
+    refuses new folders) is said so, rather than as the system's "no such file"."""
+    from mjcfbuild.errors import write_failure
+
+    name = exc.filename or urdf_path
+    if isinstance(exc, FileNotFoundError):
+        why = "cannot create it there (that file system, or a folder above it, refuses it)"
+    else:
+        known = write_failure(exc, name)
+        why = known.message if known is not None else f"cannot write: {exc.strerror or exc}"
+    return OutputError(
+        f"cannot write the URDF export: {why.removeprefix('cannot write: ')}",
+        file=name,
+        hint="choose another -o or --mesh-folder",
+    )

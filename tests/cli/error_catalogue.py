@@ -92,6 +92,7 @@ class Case:
     says: list[str]
     args: list[str] = field(default_factory=lambda: ["build", "robot.yaml"])
     needs_unprivileged: bool = False
+    env: dict[str, str] = field(default_factory=dict)  # variables the command runs with
 
     def write(self, folder: Path) -> None:
         """Create the case's files under ``folder``."""
@@ -1528,6 +1529,14 @@ CASES: list[Case] = [
         EXIT_USAGE,
         ["robot.urdf already exists and was not written by export-urdf", "--force"],
         args=["export-urdf", "model.xml", "-o", "robot.urdf"],
+    ),
+    Case(
+        # /proc refuses new folders with "no such file": not an internal error.
+        "export-urdf: --mesh-folder where no folder can be made",
+        {"model.xml": EXPORT_MESH_MODEL, "arm.obj": OBJ},
+        EXIT_OUTPUT,
+        ["/proc/mjcfbuild-meshes: cannot write the URDF export", "--mesh-folder"],
+        args=[*EXPORT_ARGS[:4], "--mesh-folder", "/proc/mjcfbuild-meshes"],
     ),
     Case(
         "export-urdf: --limits-from a missing URDF",
