@@ -21,7 +21,8 @@ EXIT_CHECK = 6
 EXIT_OUTPUT = 7
 EXIT_INTERNAL = 70
 EXIT_RESTART = 75  # sysexits' EX_TEMPFAIL: try again
-EXIT_INTERRUPTED = 130
+EXIT_INTERRUPTED = 130  # 128 + SIGINT
+EXIT_TERMINATED = 143  # 128 + SIGTERM
 
 EXIT_CODES: dict[int, str] = {
     EXIT_OK: "success",
@@ -35,7 +36,8 @@ EXIT_CODES: dict[int, str] = {
     "held the output folder past --timeout",
     EXIT_INTERNAL: "internal error in mjcfbuild (please report it, with --debug output)",
     EXIT_RESTART: "watch ended: mjcfbuild or an installed package changed; start it again",
-    EXIT_INTERRUPTED: "interrupted",
+    EXIT_INTERRUPTED: "interrupted (Ctrl-C, SIGINT)",
+    EXIT_TERMINATED: "interrupted by SIGTERM",
 }
 
 

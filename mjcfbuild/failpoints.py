@@ -4,6 +4,7 @@ The interruption tests kill real builds at chosen moments (during mesh conversio
 decomposition, between publishing assets and writing the model, in the middle of writing a
 file) to prove the next build recovers. ``action`` is ``kill`` (SIGKILL to the build and the
 worker, as ``kill -9`` would), ``interrupt`` (SIGINT to the build, as Ctrl-C would),
+``terminate`` (SIGTERM to the build, as ``kill`` or a CI runner cancelling a job would),
 ``interrupt-swallowed`` (SIGINT to the build process reaching the point, whose
 ``KeyboardInterrupt`` is then caught there, as a finalizer or code that catches everything
 would: mjcfbuild.interrupts), ``raise`` (an unexpected exception, as a bug in mjcfbuild would
@@ -52,8 +53,8 @@ def failpoint(name: str, spec: str | None = None, once_dir: str | None = None) -
                 pass
             return
         build = int(os.environ.get(BUILD_PID, os.getpid()))
-        if action == "interrupt":
-            os.kill(build, signal.SIGINT)
+        if action in ("interrupt", "terminate"):
+            os.kill(build, signal.SIGINT if action == "interrupt" else signal.SIGTERM)
             time.sleep(2.0)  # let the build react while this step is still busy
             return
         os.kill(build, signal.SIGKILL)

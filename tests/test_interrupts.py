@@ -1,5 +1,5 @@
-"""SIGINT in a process whose command installed mjcfbuild's handler: raised, and remembered
-even where the KeyboardInterrupt it raised is caught and lost."""
+"""SIGINT and SIGTERM in a process whose command installed mjcfbuild's handler: raised, and
+remembered even where the KeyboardInterrupt it raised is caught and lost."""
 
 from __future__ import annotations
 
@@ -13,17 +13,19 @@ from mjcfbuild import interrupts
 
 @pytest.fixture
 def handler_restored():
-    """Put back the test process's own SIGINT handler and forget any SIGINT received."""
-    saved = signal.getsignal(signal.SIGINT)
+    """Put back the test process's own SIGINT and SIGTERM handlers and forget any signal
+    received."""
+    saved = {number: signal.getsignal(number) for number in interrupts.SIGNALS}
     yield
-    signal.signal(signal.SIGINT, saved)
+    for number, handler in saved.items():
+        signal.signal(number, handler)
     interrupts.forget()
 
 
 def test_sigint_raises_and_is_remembered(handler_restored):
     signal.signal(signal.SIGINT, signal.SIG_DFL)
     interrupts.forget()
-    interrupts.handle_sigint()
+    interrupts.handle_signals()
     with pytest.raises(KeyboardInterrupt):
         signal.raise_signal(signal.SIGINT)
     assert interrupts.received()
@@ -32,7 +34,7 @@ def test_sigint_raises_and_is_remembered(handler_restored):
 def test_a_process_started_with_sigint_ignored_keeps_ignoring_it(handler_restored):
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # as a script's `cmd &` starts it
     interrupts.forget()
-    interrupts.handle_sigint()
+    interrupts.handle_signals()
     signal.raise_signal(signal.SIGINT)
     assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN and not interrupts.received()
 
@@ -40,7 +42,7 @@ def test_a_process_started_with_sigint_ignored_keeps_ignoring_it(handler_restore
 def test_a_lost_keyboard_interrupt_is_raised_again_at_the_next_check(handler_restored):
     signal.signal(signal.SIGINT, signal.SIG_DFL)
     interrupts.forget()
-    interrupts.handle_sigint()
+    interrupts.handle_signals()
     interrupts.check()  # nothing received: nothing raised
     with contextlib.suppress(KeyboardInterrupt):  # lost, as in a finalizer would be
         signal.raise_signal(signal.SIGINT)
@@ -48,3 +50,25 @@ def test_a_lost_keyboard_interrupt_is_raised_again_at_the_next_check(handler_res
         interrupts.check()
     interrupts.forget()
     interrupts.check()  # a command run again in this process starts afresh
+
+
+def test_sigterm_raises_as_ctrl_c_does_with_its_own_exit_code(handler_restored):
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    interrupts.forget()
+    assert interrupts.exit_code() == 130  # a KeyboardInterrupt no signal of ours raised
+    interrupts.handle_signals()
+    with pytest.raises(KeyboardInterrupt):
+        signal.raise_signal(signal.SIGTERM)
+    assert interrupts.received() and interrupts.terminated()
+    assert interrupts.exit_code() == 143
+    with contextlib.suppress(KeyboardInterrupt):  # a second signal: the first one's code
+        signal.raise_signal(signal.SIGINT)
+    assert interrupts.exit_code() == 143
+
+
+def test_a_process_started_with_sigterm_ignored_keeps_ignoring_it(handler_restored):
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    interrupts.forget()
+    interrupts.handle_signals()
+    signal.raise_signal(signal.SIGTERM)
+    assert signal.getsignal(signal.SIGTERM) is signal.SIG_IGN and not interrupts.received()

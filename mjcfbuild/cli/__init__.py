@@ -13,7 +13,6 @@ from mjcfbuild.console import report_error
 from mjcfbuild.errors import (
     EXIT_CODES,
     EXIT_INTERNAL,
-    EXIT_INTERRUPTED,
     EXIT_OK,
     EXIT_USAGE,
     InternalError,
@@ -149,11 +148,11 @@ def main(argv: Sequence[str] | None = None) -> None:
     """Run the command line and exit with its code."""
     from mjcfbuild import interrupts
 
-    interrupts.handle_sigint()  # this process is the command's: Ctrl-C stops it
+    interrupts.handle_signals()  # this process is the command's: Ctrl-C and SIGTERM stop it
     try:
         code = run(argv)
     except KeyboardInterrupt:  # a second Ctrl-C while the first was being reported
-        code = EXIT_INTERRUPTED
+        code = interrupts.exit_code()
     sys.exit(code)
 
 
@@ -220,9 +219,12 @@ CACHE_COMMANDS = frozenset({"build", "watch", "check", "convert", "diff", "cache
 
 
 def _interrupted() -> int:
-    """Say that the command was interrupted; its exit code."""
+    """Say that the command was interrupted; its exit code (130 for Ctrl-C, 143 for
+    SIGTERM)."""
+    from mjcfbuild import interrupts
+
     print("mjcfbuild: interrupted", file=sys.stderr)
-    return EXIT_INTERRUPTED
+    return interrupts.exit_code()
 
 
 def jobs_argument(parser: argparse.ArgumentParser) -> None:

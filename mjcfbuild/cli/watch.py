@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 from mjcfbuild import interrupts
 from mjcfbuild.cli import chosen_manifests, positive_seconds
-from mjcfbuild.errors import EXIT_OK, EXIT_RESTART
+from mjcfbuild.errors import EXIT_OK, EXIT_RESTART, EXIT_TERMINATED
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.watched import Watched
@@ -72,9 +72,13 @@ def run(args: argparse.Namespace) -> int:
     except _BuildInterrupted:
         raise KeyboardInterrupt from None  # the command's: exit code 130, "interrupted"
     except KeyboardInterrupt:
-        # Ctrl-C while no build runs is how the command ends: not an interruption.
+        # Ctrl-C while no build runs is how the command ends: not an interruption. SIGTERM
+        # (how `mjcfbuild watch &` is stopped) keeps its code, 143, as before it was handled.
+        terminated = interrupts.terminated()
         interrupts.forget()
         _say(args, "stopped watching")
+        if terminated:
+            return EXIT_TERMINATED
     return _last_code(manifests)
 
 

@@ -18,7 +18,7 @@ import pytest
 
 from mjcfbuild.cli import run
 from mjcfbuild.engine import stamp
-from mjcfbuild.errors import EXIT_RESTART
+from mjcfbuild.errors import EXIT_RESTART, EXIT_TERMINATED
 from tests.conftest import ROOT, copy_example, run_cli, sigint_at_default
 
 # Generous: a line comes when a build ends, and CI machines are slow and busy.
@@ -131,6 +131,16 @@ def test_it_builds_each_edit_says_what_failed_and_stops_at_ctrl_c(arm, watching)
     assert any(line.startswith("mjcfbuild: built example_arm.xml") for line in fixed)
 
     assert watch.stop() == 0  # Ctrl-C while waiting ends it: the last build succeeded
+    watch.until(r"^mjcfbuild: stopped watching$")
+
+
+def test_sigterm_while_waiting_ends_it_with_143(arm, watching):
+    """`mjcfbuild watch &` ignores SIGINT and is stopped with SIGTERM: it says it stopped and
+    exits 143 (128 + SIGTERM), which the process killed by the signal only implied."""
+    watch = watching()
+    watch.until(r"^mjcfbuild: watching \d+ files for changes \(Ctrl-C to stop\)$")
+    watch.process.send_signal(signal.SIGTERM)
+    assert watch.process.wait(timeout=LINE_SECONDS) == EXIT_TERMINATED
     watch.until(r"^mjcfbuild: stopped watching$")
 
 

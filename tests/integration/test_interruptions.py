@@ -2,7 +2,8 @@
 build finishes, its outputs are byte-identical to a clean build's, and converted meshes and
 decompositions that were finished are not redone. An interrupted build exits 130 saying so in
 one line, also where its KeyboardInterrupt was lost; one started with SIGINT ignored keeps
-ignoring it."""
+ignoring it. SIGTERM (``kill``, a CI runner cancelling a job) stops a build as Ctrl-C does,
+with exit 143."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ import sys
 
 import pytest
 
-from mjcfbuild.errors import EXIT_INTERRUPTED
+from mjcfbuild.errors import EXIT_INTERRUPTED, EXIT_TERMINATED
 from tests.conftest import CliResult, copy_example, run_cli
 
 pytestmark = pytest.mark.slow
@@ -35,6 +36,9 @@ MOMENTS = [
     ("stages", "interrupt-swallowed"),
     ("report", "interrupt-swallowed"),
     ("stamp", "interrupt-swallowed"),
+    # SIGTERM, as `kill` or a CI runner cancelling the job sends it: handled as Ctrl-C.
+    ("assemble", "terminate"),
+    ("stages", "terminate"),
 ]
 
 
@@ -72,6 +76,8 @@ def test_interrupted_build_recovers(tmp_path, clean_build, point, action):
     )
     if action.startswith("interrupt"):
         assert_interrupted(stopped)
+    elif action == "terminate":
+        assert_interrupted(stopped, EXIT_TERMINATED)
     else:
         assert stopped.code == -9, stopped.stdout + stopped.stderr
     assert_recovers(arm, env, stopped, clean_build)
@@ -100,9 +106,10 @@ def test_a_build_started_with_sigint_ignored_keeps_ignoring_it(tmp_path, clean_b
     assert mismatch == [] and errors == []
 
 
-def assert_interrupted(stopped: CliResult) -> None:
-    """The build stopped with the interruption's code and one line, and claimed nothing."""
-    assert stopped.code == EXIT_INTERRUPTED, stopped.stdout + stopped.stderr
+def assert_interrupted(stopped: CliResult, code: int = EXIT_INTERRUPTED) -> None:
+    """The build stopped with the interruption's code (130 for Ctrl-C, 143 for SIGTERM) and
+    one line, and claimed nothing."""
+    assert stopped.code == code, stopped.stdout + stopped.stderr
     assert stopped.stderr.splitlines() == ["mjcfbuild: interrupted"], stopped.stderr
     assert "mjcfbuild: built" not in stopped.stdout
 
@@ -126,6 +133,28 @@ def assert_recovers(arm, env: dict[str, str], stopped: CliResult, clean_build) -
     assert outputs(built) == outputs(clean_build)
     _, mismatch, errors = filecmp.cmpfiles(built, clean_build, outputs(built), shallow=False)
     assert mismatch == [] and errors == []
+
+
+def test_a_build_stopped_by_sigterm_keeps_its_finished_tasks(tmp_path):
+    # The next build runs with an empty cache of its own: a mesh it converted again could not
+    # hide behind "from cache". Every mesh finished before the assembly, where SIGTERM comes.
+    arm = copy_example("arm", tmp_path)
+    stopped = run_cli(
+        "build",
+        "-j",
+        "2",
+        cwd=arm,
+        env={
+            "MJCFBUILD_CACHE_DIR": str(tmp_path / "cache"),
+            "MJCFBUILD_FAILPOINT": "assemble:terminate",
+        },
+    )
+    assert_interrupted(stopped, EXIT_TERMINATED)
+    assert re.findall(r"\] mesh \S+", stopped.stdout), stopped.stdout
+    again = run_cli("build", "-j", "2", cwd=arm, env={"MJCFBUILD_CACHE_DIR": str(tmp_path / "c2")})
+    assert again.code == 0, again.stdout + again.stderr
+    assert not re.findall(r"\] (expand|plan|mesh) ", again.stdout), again.stdout
+    assert "assemble" in again.stdout and not list(arm.rglob("*.mjcfbuild-tmp"))
 
 
 def test_a_step_running_in_the_build_process_finishes_before_the_build_ends(tmp_path):
