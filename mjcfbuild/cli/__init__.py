@@ -72,8 +72,16 @@ class Parser(argparse.ArgumentParser):
         """Print ``message`` as one line with what to do, and exit with the usage code; an
         option it does not know comes first, with the closest it does (a required option
         misspelled, or a misspelled option whose value was taken for a positional argument)."""
-        from mjcfbuild.cli.suggest import unknown_arguments_line, unknown_option, usage_error_line
+        from mjcfbuild.cli.suggest import (
+            misplaced_option,
+            unknown_arguments_line,
+            unknown_option,
+            usage_error_line,
+        )
 
+        misplaced = misplaced_option(self, getattr(self, "words", []))
+        if misplaced is not None:  # a command's option before the command
+            self.exit(EXIT_USAGE, misplaced + "\n")
         word = unknown_option(self, getattr(self, "words", []))
         if word is not None:
             self.exit(EXIT_USAGE, unknown_arguments_line(self, None, [word]) + "\n")

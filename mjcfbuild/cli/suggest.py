@@ -64,6 +64,9 @@ def unknown_arguments_line(
     owner = commands.get(command or "", parser)
     if len(words) > len(getattr(owner, "unrecognized", words)):
         owner = parser  # the command did not leave the first: it came before the command
+        misplaced = misplaced_option(parser, getattr(parser, "words", []))
+        if misplaced is not None:
+            return misplaced
     word = words[0]
     hint = ""
     if word.startswith("-"):
@@ -75,6 +78,54 @@ def unknown_arguments_line(
     else:
         what = f"unexpected argument '{word}'"
     return _line(owner.prog, what + (hint or f" (see {owner.prog} --help)"))
+
+
+def misplaced_option(parser: argparse.ArgumentParser, words: list[str]) -> str | None:
+    """The line for an option of a command given before the command (``mjcfbuild -j 2
+    build``, where argparse took the ``2`` for the command), else None: which command it
+    belongs to and the command line with it after the command."""
+    commands: dict[str, argparse.ArgumentParser] = getattr(parser, "commands", {})
+    if not commands:
+        return None
+    for index, word in enumerate(words):
+        if word == "--" or word in commands:
+            return None  # options from here on are the command's
+        if not word.startswith("-") or word.split("=", 1)[0] in parser._option_string_actions:
+            continue
+        found = _command_option(commands, word)
+        if found is None:
+            continue
+        name, given = found
+        owners = [c for c, sub in commands.items() if name in sub._option_string_actions]
+        rest = words[index + 1 :]
+        takes_value = commands[owners[0]]._option_string_actions[name].nargs != 0
+        if takes_value and word == name and rest:
+            given, rest = [*given, rest[0]], rest[1:]  # its value, taken for the command
+        command = next((w for w in rest if w in commands), None)
+        if command not in owners:
+            command = None
+        shown = " ".join(given)
+        if command is not None:
+            example = f"mjcfbuild {command} {shown} ..."
+            return _line(parser.prog, f"{name} is an option of {command}: {example}")
+        return _line(
+            parser.prog,
+            f"{name} is an option of {', '.join(owners)}, not of mjcfbuild: put it after the "
+            f"command (mjcfbuild {owners[0]} {shown} ...)",
+        )
+    return None
+
+
+def _command_option(
+    commands: dict[str, argparse.ArgumentParser], word: str
+) -> tuple[str, list[str]] | None:
+    """The option of some command that ``word`` gives (``-j``, ``--jobs=2``, ``-j2``) and the
+    words that give it, else None."""
+    name = word.split("=", 1)[0]
+    for candidate in (name, word[:2] if not word.startswith("--") else name):
+        if any(candidate in sub._option_string_actions for sub in commands.values()):
+            return candidate, [word]
+    return None
 
 
 def unknown_option(parser: argparse.ArgumentParser, words: list[str]) -> str | None:

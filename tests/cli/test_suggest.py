@@ -60,6 +60,26 @@ from tests.conftest import run_cli
         ),
         # Before: "build: no option", though it came before the command.
         (["--qiet", "build"], "mjcfbuild: error: no option '--qiet' (did you mean '--quiet'?)"),
+        # A command's option before the command. Before: "no command '2'", the value of -j
+        # taken for the command, or "no option '-n'".
+        (
+            ["-j", "2", "build"],
+            "mjcfbuild: error: -j is an option of build: mjcfbuild build -j 2 ...",
+        ),
+        (
+            ["-q", "--jobs=2", "watch"],
+            "mjcfbuild: error: --jobs is an option of watch: mjcfbuild watch --jobs=2 ...",
+        ),
+        (["-n", "clean"], "mjcfbuild: error: -n is an option of clean: mjcfbuild clean -n ..."),
+        (
+            ["--timeout", "5", "check", "robot.yaml"],
+            "mjcfbuild: error: --timeout is an option of check: mjcfbuild check --timeout 5 ...",
+        ),
+        (
+            ["-j", "2"],
+            "mjcfbuild: error: -j is an option of build, watch, convert, diff, not of mjcfbuild: "
+            "put it after the command (mjcfbuild build -j 2 ...)",
+        ),
     ],
 )
 def test_a_usage_error_is_one_line_with_a_suggestion(argv, line, tmp_path):
