@@ -79,6 +79,10 @@ class Parser(argparse.ArgumentParser):
             usage_error_line,
         )
 
+        misuse = getattr(self, "misuse", None)  # a command's own reading of what went wrong
+        problem = misuse(getattr(self, "words", [])) if misuse is not None else None
+        if problem is not None:
+            self.exit(EXIT_USAGE, f"mjcfbuild: error: {problem.one_line()}\n")
         misplaced = misplaced_option(self, getattr(self, "words", []))
         if misplaced is not None:  # a command's option before the command
             self.exit(EXIT_USAGE, misplaced + "\n")

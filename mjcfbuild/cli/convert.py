@@ -101,6 +101,30 @@ def add_parser(commands) -> None:
         "xacro_args", nargs="*", metavar="NAME:=VALUE", help="xacro arguments, when -u is xacro"
     )
     parser.set_defaults(handler=run)
+    parser.misuse = manifest_given  # read by Parser.error
+
+
+# Options whose value is never the description: a .yaml there is no mistake.
+_NOT_THE_SOURCE = ("-o", "--output", "--scene", "-a", "--asset_dir", "--package", "-p")
+
+
+def manifest_given(words: list[str]) -> UsageError | None:
+    """The error for a manifest (a .yaml or .yml file) given to convert as its source, as a
+    positional word, or as -u, -r or -m (``mjcfbuild convert robot.yaml``), else None.
+    convert takes the reference converter's flags: argparse only said that -u or -r is
+    required, and ``-u ... -m robot.yaml`` read the manifest as XML ("malformed XML")."""
+    for index, word in enumerate(words):
+        if ":=" in word or (index and words[index - 1] in _NOT_THE_SOURCE):
+            continue  # a xacro argument, or the value of an option that is not the source
+        value = word.split("=", 1)[1] if word.startswith("--") and "=" in word else word
+        if value.endswith((".yaml", ".yml")) and not value.startswith("-"):
+            return UsageError(
+                f"{value} is a manifest: convert takes the reference converter's flags "
+                "(-u URDF or xacro, -r description, -m an XML file of <mujoco_inputs>), "
+                "not a robot.yaml",
+                hint=f"build the manifest with: mjcfbuild build {value}",
+            )
+    return None
 
 
 def parse_packages(values: list[str]) -> dict[str, str]:
@@ -151,6 +175,16 @@ def run(args: argparse.Namespace) -> int:
     from mjcfbuild.cli.build import report_nothing_to_do
     from mjcfbuild.engine import stamp
 
+    misuse = manifest_given(
+        [
+            word
+            for name in ("urdf", "robot_description", "mujoco_inputs")
+            if (word := getattr(args, name))
+        ]
+        + list(args.xacro_args)
+    )
+    if misuse is not None:
+        raise misuse
     if args.publish_topic:
         raise UsageError(
             "-p/--publish_topic needs ROS, which mjcfbuild does not use",
@@ -290,6 +324,10 @@ _FLAG_HINTS = (
     (rf"fix 'source(?:\.xacro|\.urdf)?' {_IN}", "fix -u"),
     (rf"fix 'mujoco_inputs\.file' {_IN}", "fix -m"),
     (rf"fix 'scene\.file' {_IN}", "fix --scene"),
+    (r"set output\.folder to a folder of the build's own", "choose another -o, one of its own"),
+    (r"set output\.folder to the folder it points at", "give -o the folder it points at"),
+    (r"give this one an output\.folder of its own", "choose another -o for this conversion"),
+    (r"set output\.folder", "choose another -o"),
     (
         r"carry the edit into robot\.yaml's mujoco_inputs or actuators, which every build "
         r"applies",

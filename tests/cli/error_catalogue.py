@@ -1463,6 +1463,22 @@ CASES: list[Case] = [
         args=["explain", "mesh:nothing"],
     ),
     Case("convert without input", {}, EXIT_USAGE, ["-u", "-r"], args=["convert", "-o", "out"]),
+    # A manifest given to convert. Before: "one of -u/-r is required", or with -u, -m robot.yaml
+    # read as XML: "robot.yaml:1:1: malformed XML".
+    *(
+        Case(
+            f"convert given a robot.yaml ({' '.join(args)})",
+            {"robot.yaml": MANIFEST, "robot.urdf": urdf()},
+            EXIT_USAGE,
+            [
+                "robot.yaml is a manifest",
+                "reference converter's flags",
+                "mjcfbuild build robot.yaml",
+            ],
+            args=["convert", *args],
+        )
+        for args in (["robot.yaml"], ["-m", "robot.yaml"], ["-u", "robot.urdf", "-m", "robot.yaml"])
+    ),
     # ---- diff (more in tests/cli/test_diff.py, with git) -----------------------------------------
     Case(
         "diff of a folder with no build",

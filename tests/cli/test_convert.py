@@ -206,3 +206,26 @@ def test_xacro_arguments_are_read_as_the_xacro_command_reads_them():
     assert parse_xacro_args(given) == {"side": "left", "__dunder": "2", "count": "3"}
     with pytest.raises(UsageError):
         parse_xacro_args(["a:=b:=c"])
+
+
+def test_write_errors_suggest_the_o_flag_not_robot_yamls_output_folder():
+    from mjcfbuild.cli.convert import command_line_hint
+
+    assert command_line_hint("check its permissions, or set output.folder") == (
+        "check its permissions, or choose another -o"
+    )
+    assert "output.folder" not in command_line_hint(
+        "move it out of the folder (or remove it), or set output.folder to a folder of the "
+        "build's own"
+    )
+    assert "-o" in command_line_hint(
+        "remove the link and let the build make the folder, or set output.folder to the folder "
+        "it points at"
+    )
+
+
+def test_a_yaml_file_given_as_a_xacro_argument_value_is_no_manifest():
+    from mjcfbuild.cli.convert import manifest_given
+
+    assert manifest_given(["-u", "r.urdf.xacro", "config:=robot.yaml", "--scene", "s.yaml"]) is None
+    assert manifest_given(["-u", "r.urdf", "x.yml"]) is not None
