@@ -44,6 +44,7 @@ def _composition_tasks(graph: Graph) -> list[dict]:
                 output,
                 output.with_suffix(".deps.json"),
                 args_at=f"attach[{index}].source.args",
+                written=part.source.urdf or "",
             )
         )
         entries.append(

@@ -36,6 +36,7 @@ def _tasks(graph: Graph) -> list[dict]:
             ctx.state(SOURCE_URDF),
             ctx.state(SOURCE_DEPS),
             args_at="source.args",
+            written=ctx.manifest.source.urdf or "",
         )
     ]
 
@@ -76,11 +77,13 @@ def expand_file_task(
     output: Path,
     deps: Path,
     args_at: str | None = None,
+    written: str = "",
 ) -> dict:
     """The task expanding (xacro) or reading (URDF) ``source`` into ``output``; the files it
     read are listed in ``deps`` and checked from the next build on, where each line's element
     was written in :func:`~mjcfbuild.sources.origins.origins_file`. ``args_at`` is the
-    robot.yaml key giving ``args`` (``source.args``), for the messages about them."""
+    robot.yaml key giving ``args`` (``source.args``), for the messages about them; ``written``,
+    the source's path as robot.yaml writes it, for the hint that names it as xacro."""
     from mjcfbuild.sources.origins import origins_file
 
     read, stale = discovered_inputs(ctx, deps)
@@ -96,6 +99,7 @@ def expand_file_task(
         args_key=_args_key(ctx, args_at) if args_at else "",
         empty_args=_empty_args(ctx, args, args_at) if args_at else {},
         base_dir=str(ctx.base_dir),
+        written=written,
     )
     return file_task(
         ctx,

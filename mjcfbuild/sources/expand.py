@@ -98,20 +98,24 @@ def expand_source(
     packages: Mapping[str, str],
     environment: Mapping[str, str],
     args_key: str | None = None,
+    written: str = "",
 ) -> Expansion:
     """A source as URDF (or SRDF) text: expanded with xacro, or read as it is. ``packages`` maps
     package names to folders; ``environment`` holds the ROS variables that find the others;
-    ``args_key`` says where ``args`` were given (see :func:`expand_xacro`)."""
+    ``args_key`` says where ``args`` were given (see :func:`expand_xacro`); ``written`` is the
+    source's path as robot.yaml writes it (see :func:`read_urdf_file`)."""
     if not xacro:
-        return read_urdf_file(source)
+        return read_urdf_file(source, written)
     from mjcfbuild.sources.packages import PackageResolver
 
     resolver = PackageResolver({name: Path(f) for name, f in packages.items()}, environment)
     return expand_xacro(source, args, resolver, args_key)
 
 
-def read_urdf_file(path: Path) -> Expansion:
-    """A plain URDF source: its bytes, unchanged (it is parsed as bytes later)."""
+def read_urdf_file(path: Path, written: str = "") -> Expansion:
+    """A plain URDF source: its bytes, unchanged (it is parsed as bytes later). A xacro file
+    is refused with a hint naming it as robot.yaml should: ``written``, the path as robot.yaml
+    writes it (its folder kept), else the file's name."""
     try:
         data = path.read_bytes()
     except FileNotFoundError:
@@ -140,7 +144,7 @@ def read_urdf_file(path: Path) -> Expansion:
             f"this file is xacro ({used} at line {line}), not a URDF",
             file=path,
             line=line,
-            hint=f"name it with source: {{xacro: {path.name}}} in robot.yaml",
+            hint=f"name it with source: {{xacro: {written or path.name}}} in robot.yaml",
         )
     return Expansion(urdf=data, files=[str(normalise(path))])
 

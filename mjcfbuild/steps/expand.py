@@ -23,6 +23,7 @@ def run(payload: dict) -> dict:
         request.packages,
         request.environment,
         request.args_key or None,
+        request.written,
     )
     outputs: dict[str, str] = {}
     failpoint("expand")  # in the build process for a URDF: the tests interrupt the build here

@@ -128,6 +128,7 @@ class ExpandPayload(Payload):
     empty_args: dict[str, str] = dataclasses.field(default_factory=dict)
     # robot.yaml's folder: xacro's warnings name files relative to it, as the report does.
     base_dir: str = ""
+    written: MessageLabel = ""  # the source's path as robot.yaml writes it ("": not known)
 
 
 @dataclass(frozen=True)

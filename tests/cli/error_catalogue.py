@@ -482,6 +482,17 @@ CASES: list[Case] = [
         ["error: robot.stl: this is an STL mesh, not a URDF or xacro file"],
     ),
     Case(
+        # The hint keeps the folder. Before: source: {xacro: robot.urdf.xacro}, a file that
+        # is not there.
+        "xacro file in a folder named as urdf:",
+        {
+            "robot.yaml": MANIFEST.replace("robot.urdf", "urdf/robot.urdf.xacro"),
+            "urdf/robot.urdf.xacro": ARG_XACRO,
+        },
+        EXIT_INPUT,
+        ["urdf/robot.urdf.xacro:2: this file is xacro", "source: {xacro: urdf/robot.urdf.xacro}"],
+    ),
+    Case(
         "xacro XML syntax",
         {
             "robot.yaml": XACRO_MANIFEST,
