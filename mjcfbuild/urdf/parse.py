@@ -656,16 +656,7 @@ def validate_structure(robot: Robot, root: etree._Element, reader: _Reader) -> N
             line=robot.joints[0].line if robot.joints else None,
         )
     if len(roots) > 1:
-        # The robot's own root carries the most links; the error is at an extra one (often
-        # a link an optional include adds).
-        extra = min(roots, key=lambda root: (_tree_size(robot, root), roots.index(root)))
-        raise InputError(
-            f"the robot has {len(roots)} root links ({', '.join(roots[:6])}"
-            f"{', ...' if len(roots) > 6 else ''}); a URDF has exactly one",
-            file=reader.file,
-            line=robot.link(extra).line,
-            hint=f"connect '{extra}' (and any other extra root) to the robot with a joint",
-        )
+        raise _several_roots(robot, roots, reader.file)
     children = robot.child_joints()
     reached = {roots[0]}
     pending = [roots[0]]
@@ -698,6 +689,24 @@ def _unique_names(kind: str, named: list[tuple[str, int | None]], reader: _Reade
             )
         first_line[name] = line
     return set(first_line)
+
+
+def _several_roots(robot: Robot, roots: list[str], file: str) -> InputError:
+    """The error for a URDF with more than one root link. The robot's own root carries the
+    most links (the first written, where trees tie); the others are the extras, often links an
+    optional include adds: the error is at the first of them, and says to connect or remove
+    them, never the robot's own root."""
+    main = max(roots, key=lambda root: (_tree_size(robot, root), -roots.index(root)))
+    extras = [root for root in roots if root != main]
+    named = ", ".join(f"'{root}'" for root in extras[:6]) + (", ..." if len(extras) > 6 else "")
+    them = "it" if len(extras) == 1 else "them"
+    return InputError(
+        f"the robot has {len(roots)} root links ({', '.join(roots[:6])}"
+        f"{', ...' if len(roots) > 6 else ''}); a URDF has exactly one",
+        file=file,
+        line=robot.link(extras[0]).line,
+        hint=f"connect {named} to the robot (below '{main}') with a joint, or remove {them}",
+    )
 
 
 def _tree_size(robot: Robot, root: str) -> int:

@@ -303,6 +303,38 @@ def test_defects_are_errors_with_lines(text, message, line):
     assert error.location.line == line
 
 
+def test_two_roots_of_equal_trees_name_the_extra_one_not_the_robots_own():
+    # base and c each carry one child: base, written first, is the robot's; c is the extra.
+    # Before: "connect 'base' ... to the robot".
+    chain = "<joint name='{j}' type='fixed'><parent link='{p}'/><child link='{c}'/></joint>"
+    text = (
+        "<robot>\n<link name='base'/>\n<link name='a'/>\n<link name='c'/>\n<link name='d'/>\n"
+        + chain.format(j="j1", p="base", c="a")
+        + chain.format(j="j2", p="c", c="d")
+        + "</robot>"
+    )
+    from mjcfbuild.errors import InputError
+
+    with pytest.raises(InputError) as refused:
+        parse(text)
+    assert refused.value.location is not None and refused.value.location.line == 4
+    assert refused.value.hint == (
+        "connect 'c' to the robot (below 'base') with a joint, or remove it"
+    )
+
+
+def test_every_extra_root_is_named():
+    links = "".join(f"<link name='{name}'/>" for name in ("x", "base", "a", "y"))
+    joint = "<joint name='j' type='fixed'><parent link='base'/><child link='a'/></joint>"
+    from mjcfbuild.errors import InputError
+
+    with pytest.raises(InputError) as refused:
+        parse(f"<robot>{links}{joint}</robot>")
+    assert refused.value.hint == (
+        "connect 'x', 'y' to the robot (below 'base') with a joint, or remove them"
+    )
+
+
 def test_an_unreadable_axis_of_a_fixed_or_floating_joint_is_ignored_with_a_warning():
     # urdfdom (ROS) reads no axis there; a moving joint's axis must still be a number.
     for kind in ("fixed", "floating"):
