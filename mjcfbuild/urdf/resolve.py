@@ -110,14 +110,20 @@ def _resolve_existing(
         raise InputError(exc.message, file=robot.source, line=_line(shape), hint=exc.hint) from None
     problem = unreadable_file(path)
     match = case_match(path) if problem and problem.startswith("not found") else None
-    # Where the file was looked for, unless the URI already says it (a plain absolute path)
-    looked = "" if os.path.normpath(uri.strip()) == str(path) else f" (looked at {path})"
+    looked = _looked_at(uri, path)
     if match is not None:
         raise InputError(
             f"file '{uri}' not found; did you mean '{_respelt(uri, path, match)}'?{looked}",
             file=robot.source,
             line=_line(shape),
             hint="write the name as the file is spelt: letter case matters here",
+        )
+    if problem and problem.startswith("not found") and _from_elsewhere(uri):
+        raise InputError(
+            f"file '{uri}' not found: an absolute path, likely written on another machine",
+            file=robot.source,
+            line=_line(shape),
+            hint="make it relative to the URDF's folder, or a package:// URI",
         )
     if problem:
         raise InputError(
@@ -132,6 +138,22 @@ def _resolve_existing(
 def _line(shape: Shape) -> int | None:
     """Where a shape's mesh file is named: its <mesh> element's line, else the shape's."""
     return shape.geometry.line or shape.line
+
+
+def _from_elsewhere(uri: str) -> bool:
+    """Whether ``uri`` is a plain absolute path whose folder is not on this machine either
+    (``/home/someone/ws/src/...``): written where the description was made, not here."""
+    written = uri.strip()
+    return os.path.isabs(written) and not os.path.isdir(os.path.dirname(written))
+
+
+def _looked_at(uri: str, path: Path) -> str:
+    """`` (looked at PATH)``: where a URI that names a package (``package://``, ``file://``,
+    ``$(find)``) was looked for; nothing for a plain path, which the message already shows
+    as written (relative to the URDF, or absolute)."""
+    if "://" not in uri or os.path.normpath(uri.strip()) == str(path):
+        return ""
+    return f" (looked at {path})"
 
 
 def _respelt(uri: str, path: Path, match: Path) -> str:

@@ -220,15 +220,34 @@ def test_a_mesh_spelt_in_another_letter_case_is_named(tmp_path, written, meant):
     assert "letter case" in (error.hint or "")
 
 
-def test_a_missing_mesh_at_an_absolute_path_is_named_once(tmp_path):
-    gone = tmp_path / "nowhere" / "base.stl"
+def test_a_missing_mesh_is_named_once(tmp_path):
+    gone = tmp_path / "base.stl"
     with pytest.raises(InputError) as info:
         resolve_files(robot_with(str(gone)), tmp_path, PackageResolver({}, {}))
     assert info.value.message == f"file '{gone}' not found"
-    # a relative one says where it was looked for
+    # A relative one too: before, it was followed by "(looked at /abs/.../base.stl)".
     with pytest.raises(InputError) as info:
         resolve_files(robot_with("nowhere/base.stl"), tmp_path, PackageResolver({}, {}))
-    assert info.value.message == f"file 'nowhere/base.stl' not found (looked at {gone})"
+    assert info.value.message == "file 'nowhere/base.stl' not found"
+    # A package's URI says where the package put it.
+    with pytest.raises(InputError) as info:
+        resolve_files(
+            robot_with("package://pkg/base2.stl"), tmp_path, PackageResolver({"pkg": tmp_path}, {})
+        )
+    assert info.value.message == (
+        f"file 'package://pkg/base2.stl' not found (looked at {tmp_path / 'base2.stl'})"
+    )
+
+
+def test_an_absolute_mesh_path_from_another_machine_says_so(tmp_path):
+    # hyqreal2's URDF names /home/iit.local/...: before, "check the path and the 'packages'".
+    written = "/home/iit.local/nobody/ws/src/robot/meshes/base.stl"
+    with pytest.raises(InputError) as info:
+        resolve_files(robot_with(written), tmp_path, PackageResolver({}, {}))
+    assert info.value.message == (
+        f"file '{written}' not found: an absolute path, likely written on another machine"
+    )
+    assert info.value.hint == "make it relative to the URDF's folder, or a package:// URI"
 
 
 def test_a_missing_mesh_with_no_file_of_its_name_suggests_nothing(tmp_path):
