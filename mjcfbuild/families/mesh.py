@@ -58,6 +58,7 @@ def _mesh_task(
         cache=ctx.cache_settings(),
         evidence=[u.to_dict() for u in mesh_uses(robot, mesh_id)] if up_axis == "auto" else [],
         label=ctx.portable_label(path),
+        named_at=_named_at(robot, mesh_id),
     )
     return file_task(
         ctx,
@@ -111,6 +112,17 @@ def _path_matches(path: str, pattern: str) -> bool:
 
     posix = path.replace("\\", "/")
     return fnmatchcase(posix, pattern) or fnmatchcase(posix, "*/" + pattern.lstrip("/"))
+
+
+def _named_at(robot: Robot, mesh_id: str) -> str:
+    """``file:line`` of the first URDF element naming the mesh ``mesh_id``, else ``""``."""
+    for link in robot.links:
+        for shape in link.shapes:
+            geometry = shape.geometry
+            line = geometry.line or shape.line  # its <mesh> element's, where known
+            if geometry.kind == "mesh" and geometry.mesh_id == mesh_id and line:
+                return f"{robot.source}:{line}"
+    return ""
 
 
 def up_axis_mode(mode: str, files: Mapping[str, str], path: str) -> str:

@@ -94,10 +94,13 @@ def load_parts(
         key = (piece.rgba, piece.texture.key if piece.texture else None)
         groups.setdefault(key, []).append(piece)
     if not groups:
+        why = (_cut_stl(path) if suffix == ".stl" else None) or "mesh has no triangles"
         raise InputError(
-            (_cut_stl(path) if suffix == ".stl" else None) or "mesh has no triangles",
+            why,
             file=path,
-            hint="re-export it with its faces",
+            hint="export the mesh again as STL, or name the right file"
+            if why.startswith("not an STL file")
+            else "re-export it with its faces",
         )
     parts = []
     for pieces_of_look in groups.values():
@@ -143,8 +146,13 @@ def _cut_stl(path: Path) -> str | None:
             ascii_text = b"facet" in head + handle.read(1024)
     except OSError:
         return None
-    if ascii_text or len(head) < HEADER_BYTES + 4:
-        return None
+    if ascii_text or (len(head) < HEADER_BYTES + 4 and head.lstrip().startswith(b"solid")):
+        return None  # ASCII STL: "no triangles" is what is wrong with it
+    if len(head) < HEADER_BYTES + 4:
+        return (
+            "not an STL file: it is not ASCII STL (it does not start with 'solid'), and at "
+            f"{size} bytes it is too short for binary STL ({HEADER_BYTES + 4} bytes at least)"
+        )
     count = int.from_bytes(head[HEADER_BYTES:], "little")
     expected = HEADER_BYTES + 4 + count * TRIANGLE.itemsize
     if size == expected:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import os
 from pathlib import Path
 from typing import Any
 
@@ -19,8 +20,38 @@ from mjcfbuild.steps.versions import MESH
 
 
 def run(payload: dict) -> dict:
-    """Convert the ``source`` mesh into ``product_dir``; write the summary."""
+    """Convert the ``source`` mesh into ``product_dir``; write the summary. An error about
+    the whole mesh file (no line of its own) points at the URDF line naming it, as a missing
+    mesh does (:func:`at_urdf_line`)."""
     request = MeshPayload.from_dict(payload)
+    try:
+        return _run(request)
+    except InputError as error:
+        raise at_urdf_line(error, request) from None
+
+
+def at_urdf_line(error: InputError, request: MeshPayload) -> InputError:
+    """``error``, about the mesh file as a whole, pointed at the URDF line that names the mesh
+    (``robot.urdf:6: meshes/arm.stl: not an STL file ...``), so that it says which element to
+    fix; an error at a line of the mesh file (a DAE's), or with no URDF line known, as it is."""
+    location = error.location
+    file, _, line = request.named_at.rpartition(":")
+    if location is None or location.line is not None or not line.isdigit():
+        return error
+    if os.path.normpath(location.file) != os.path.normpath(request.source):
+        return error
+    moved = InputError(
+        f"{request.label or location.file}: {error.message}",
+        file=file,
+        line=int(line),
+        hint=error.hint,
+    )
+    moved.details = error.details
+    return moved
+
+
+def _run(request: MeshPayload) -> dict:
+    """:func:`run`, given its payload."""
     source = Path(request.source)
     product_dir = Path(request.product_dir)
     check_size(source, request.max_file_bytes)

@@ -211,6 +211,9 @@ class MeshPayload(Payload):
     # A DAE file's up axis under ``auto``: what the links using it say (meshes.upaxis).
     evidence: list[dict[str, Any]] = dataclasses.field(default_factory=list)  # MeshUse
     label: MessageLabel = ""  # the mesh file as warnings name it (relative to robot.yaml)
+    # The first URDF line naming the mesh, "file:line" as the plan's errors name it: where an
+    # error about the whole file points ("" where no line is known).
+    named_at: MessageLabel = ""
 
 
 @dataclass(frozen=True)

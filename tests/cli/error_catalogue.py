@@ -937,7 +937,19 @@ CASES: list[Case] = [
         "mesh file empty",
         {"robot.yaml": MANIFEST, "robot.urdf": mesh_urdf("meshes/arm.stl"), "meshes/arm.stl": b""},
         EXIT_INPUT,
-        ["meshes/arm.stl", "the mesh file is empty"],
+        ["robot.urdf:6: meshes/arm.stl: the mesh file is empty"],
+    ),
+    Case(
+        # A text file named .stl. Before: "meshes/arm.stl: mesh has no triangles (re-export it
+        # with its faces)", and no URDF line.
+        "text file named as an STL mesh",
+        {
+            "robot.yaml": MANIFEST,
+            "robot.urdf": mesh_urdf("meshes/arm.stl"),
+            "meshes/arm.stl": "This is not a valid STL file.\n",
+        },
+        EXIT_INPUT,
+        ["robot.urdf:6: meshes/arm.stl: not an STL file", "ASCII STL", "binary STL"],
     ),
     Case(
         "mesh file corrupt",

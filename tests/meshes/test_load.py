@@ -181,3 +181,15 @@ def test_a_dae_texture_that_is_no_image_is_left_out_with_a_warning(tmp_path):
         "q.dae: its texture skin.png is no image mjcfbuild can read; the model shows the mesh "
         "without it (re-save the texture as PNG or JPEG)"
     ]
+
+
+def test_a_short_text_file_named_stl_is_said_to_be_no_stl(tmp_path):
+    text = tmp_path / "arm.stl"
+    text.write_text("This is not a valid STL file.\n")  # before: "mesh has no triangles"
+    with pytest.raises(InputError, match="not an STL file: it is not ASCII STL") as refused:
+        load_parts(text)
+    assert "too short for binary STL (84 bytes at least)" in refused.value.message
+    empty_ascii = tmp_path / "empty.stl"
+    empty_ascii.write_text("solid a\nendsolid a\n")  # an STL file, without triangles
+    with pytest.raises(InputError, match="mesh has no triangles"):
+        load_parts(empty_ascii)
