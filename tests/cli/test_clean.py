@@ -67,8 +67,26 @@ def test_files_the_user_put_among_the_outputs_stay(built_arm):
     assert result.code == 0, result.stderr
     assert _files_below(out) == ["assets/my_texture.png", "report/notes.md"]
     assert (out / "assets" / "my_texture.png").read_bytes() == b"my own picture"
-    assert "mjcf/assets/ (5 files)" in result.stdout
+    # The folders stay, with the user's files: the line does not say they went. Before:
+    # "removed ... mjcf/assets/ (5 files)", as for a folder removed with its files.
+    assert "5 files in mjcf/assets/" in result.stdout
+    assert "mjcf/assets/ (5 files)" not in result.stdout
     assert "kept mjcf/assets/my_texture.png, mjcf/report/notes.md" in result.stdout
+
+
+def test_the_removal_line_says_what_of_the_state_folder_stays_and_why(built_arm):
+    arm = built_arm
+    scene = arm / "mjcf" / "scene.xml"
+    scene.write_text(scene.read_text() + "<!-- my edit -->\n")
+    result = run_cli("clean", cwd=arm)
+    assert result.code == 0, result.stderr
+    first = result.stdout.splitlines()[0]
+    assert first.endswith(
+        "the build state in mjcf/.mjcfbuild/ (but for foreign.json, which records the edited "
+        "file kept as yours, so that no build writes over it)"
+    ), first
+    assert (arm / "mjcf" / ".mjcfbuild" / "foreign.json").is_file()
+    assert "mjcfbuild: kept mjcf/scene.xml (edited since mjcfbuild wrote it)" in result.stdout
 
 
 def test_an_output_folder_up_a_level_keeps_the_parents_own_files(arm):
