@@ -191,11 +191,8 @@ def run(argv: Sequence[str] | None = None) -> int:
             from mjcfbuild.jobs import default_jobs
 
             args.jobs = default_jobs()
-        if args.command in CACHE_COMMANDS and os.environ.get("MJCFBUILD_CACHE_MAX"):
-            # Likewise a bad $MJCFBUILD_CACHE_MAX, which only some paths would read.
-            from mjcfbuild.products.store import default_max_bytes
-
-            default_max_bytes()
+        if args.command in CACHE_COMMANDS:
+            _check_cache_settings(quiet=args.quiet)
         code: int = args.handler(args)
         interrupts.check()  # a SIGINT whose KeyboardInterrupt was lost: not a success
         return code
@@ -224,6 +221,23 @@ def run(argv: Sequence[str] | None = None) -> int:
         )
         report_error(internal, debug=args.debug)
         return EXIT_INTERNAL
+
+
+def _check_cache_settings(quiet: bool) -> None:
+    """Refuse a bad ``$MJCFBUILD_CACHE_MAX`` (only some paths would read it), and warn once
+    (unless ``quiet``) about a ``$MJCFBUILD_CACHE_DIR`` that cannot be used (every step would
+    quietly store and find nothing), before any fast path."""
+    from mjcfbuild.cachedir import cache_dir_problem
+
+    if os.environ.get("MJCFBUILD_CACHE_MAX"):
+        from mjcfbuild.products.store import default_max_bytes
+
+        default_max_bytes()
+    problem = cache_dir_problem()
+    if problem is not None and not quiet:
+        from mjcfbuild.console import report_warning
+
+        report_warning(problem)
 
 
 CACHE_COMMANDS = frozenset({"build", "watch", "check", "convert", "diff", "cache"})
