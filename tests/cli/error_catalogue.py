@@ -1059,7 +1059,7 @@ CASES: list[Case] = [
         "mesh package name escapes",
         {"robot.yaml": MANIFEST, "robot.urdf": mesh_urdf("package://../../etc/arm.stl")},
         EXIT_INPUT,
-        ["robot.urdf:6:", "unknown package '..'"],
+        ["robot.urdf:6:", "'..' is no ROS package name"],
     ),
     Case(
         "mesh remote URL",

@@ -75,7 +75,8 @@ def test_build_failure_in_a_worker_is_reported_with_its_file(cli, arm):
     (arm / "meshes" / "finger.stl").write_bytes(b"garbage")
     result = cli("build", cwd=arm)
     assert result.code == EXIT_INPUT
-    assert "mjcfbuild: error: meshes/finger.stl: " in result.stderr
+    # at the URDF line naming the mesh, then the mesh's own file
+    assert "mjcfbuild: error: urdf/finger.xacro:13: meshes/finger.stl: " in result.stderr
     assert "Traceback" not in result.stderr
 
 

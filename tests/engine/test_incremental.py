@@ -261,7 +261,7 @@ def test_a_mesh_deleted_after_a_build_gives_the_clean_build_message(arm):
     after_clean = run_cli("build", "-q", "--no-check", cwd=arm)
     assert after_clean.code == EXIT_INPUT
     error = [line for line in after_clean.stderr.splitlines() if "error" in line]
-    assert error and "base.stl" in error[0] and "source.urdf:18" in error[0], after_clean.stderr
+    assert error and "base.stl" in error[0] and "source.urdf:20" in error[0], after_clean.stderr
     assert after_build.code == EXIT_INPUT, after_build.stderr
     assert [line for line in after_build.stderr.splitlines() if "error" in line] == error
 
