@@ -143,18 +143,26 @@ def starter_manifest_text(
         "source:",
         f"  {'xacro' if is_xacro else 'urdf'}: {relative}",
     ]
+    early = _read_before_declared(live, data) if is_xacro else {}
     if is_xacro:
         arguments = _declared_args(data)
         if arguments:
             lines.append("  # xacro arguments as name: value. The file declares these defaults:")
             lines += [f"  #   {arg}: {_yaml_scalar(default)}" for arg, default in arguments]
-        lines.append("  args: {}")
+        if early:
+            # ur_description's <robot name="$(arg name)"> comes before <xacro:arg name="name">:
+            # xacro reads in order, so such a default never applies and the argument is needed.
+            lines.append("  # Read before the file declares them, so xacro needs these given:")
+            lines.append("  args:")
+            lines += [f"    {arg}: {_yaml_scalar(value)}" for arg, value in early.items()]
+        else:
+            lines.append("  args: {}")
     lines += [
         "",
         "# ROS packages named by package:// URIs and $(find ...), as name: folder.",
         "# Packages not listed are looked up in ROS_PACKAGE_PATH and AMENT_PREFIX_PATH.",
     ]
-    free_joint, unread, expanded = _free_joint_lines(source, is_xacro, known, data, label)
+    free_joint, unread, expanded = _free_joint_lines(source, is_xacro, known, data, label, early)
     unresolved = [package for package in needed if package not in known]
     # Read with its default arguments, the description did without these: found nowhere, so
     # xacro skipped what names them (a $(find) under a false <xacro:if>), and its URDF names
@@ -282,7 +290,12 @@ def _uris(urdf: bytes | None) -> set[bytes]:
 
 
 def _free_joint_lines(
-    source: Path, is_xacro: bool, packages: dict[str, str], data: bytes, label: str
+    source: Path,
+    is_xacro: bool,
+    packages: dict[str, str],
+    data: bytes,
+    label: str,
+    args: dict[str, str] | None = None,
 ) -> tuple[list[str], str | None, bytes | None]:
     """The manifest's free_joint line, decided from the robot's kinematics and geometry
     (urdf.base); from its names only where the description cannot be read here, with the
@@ -293,7 +306,7 @@ def _free_joint_lines(
         from mjcfbuild.sources.expand import expand_source
         from mjcfbuild.urdf.parse import parse_urdf
 
-        expansion = expand_source(source, is_xacro, {}, packages, dict(os.environ))
+        expansion = expand_source(source, is_xacro, args or {}, packages, dict(os.environ))
         robot = parse_urdf(expansion.urdf, label)
         kind = classify_base(robot)
     except Exception as exc:  # an unreadable description: init still writes a starting manifest
@@ -379,6 +392,28 @@ def _yaml_scalar(text: str) -> str:
     if text in ("true", "false") or re.fullmatch(r"-?[0-9.]+", text or "x"):
         return text
     return '"' + text.replace('"', '\\"') + '"'
+
+
+def _read_before_declared(live: bytes, data: bytes) -> dict[str, str]:
+    """The arguments a xacro file reads (``$(arg name)``, outside comments) on a line before
+    its ``<xacro:arg>`` declares them, with their declared defaults: xacro reads the file in
+    order, so it fails there unless they are given."""
+    from lxml import etree
+
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=False)
+    try:
+        root = etree.fromstring(data, parser)
+    except etree.XMLSyntaxError:
+        return {}
+    early: dict[str, str] = {}
+    for element in root.iter("{*}arg"):
+        name = element.get("name")
+        if not name or "xacro" not in (etree.QName(element).namespace or ""):
+            continue
+        use = re.search(rb"\$\(arg\s+" + re.escape(name.encode()) + rb"\s*\)", live)
+        if use is not None and live.count(b"\n", 0, use.start()) + 1 < (element.sourceline or 0):
+            early.setdefault(name, element.get("default", ""))
+    return early
 
 
 def _declared_args(data: bytes) -> list[tuple[str, str]]:

@@ -268,6 +268,18 @@ def _expand(
                 hint = (
                     "pass it under 'source.args' in robot.yaml, or give its <xacro:arg> a default"
                 )
+                declared = _line_of(
+                    current, rf"""<[\w.-]+:arg\s[^>]*name\s*=\s*['"]{re.escape(name)}['"]"""
+                )
+                if declared is not None and line is not None and declared > line:
+                    # ur_description's <robot name="$(arg name)"> before <xacro:arg name="name">:
+                    # the default exists, but not yet where the argument is read.
+                    hint = (
+                        f"its <xacro:arg> (line {declared}) comes after this use, and xacro "
+                        "reads the file in order, so its default does not apply here: pass it "
+                        "under 'source.args' in robot.yaml (the xacro command needs "
+                        f"{name}:=... too)"
+                    )
             else:
                 current, line, message, hint = _place_failure(exc, message, xacro, current, hint)
             failure = _XacroFailed if track_lines else InputError

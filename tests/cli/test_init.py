@@ -575,3 +575,24 @@ def test_a_package_found_in_ros_package_path_and_used_stays_needed(cli, tmp_path
     assert result.code == EXIT_OK, result.stderr
     text = (tmp_path / "desc" / "robot.yaml").read_text()
     assert "#   inc_pkg: path/to/inc_pkg  # needed by the description" in text, text
+
+
+def test_an_argument_read_before_its_declaration_is_given_its_default(cli, tmp_path):
+    """ur_description's <robot name="$(arg name)"> comes before <xacro:arg name="name"
+    default="ur"/>: xacro reads in order, so the default never applies there. init wrote
+    args: {} and the first build failed; the build's hint said to give a default it has."""
+    from tests.conftest import INERTIA, write
+
+    write(
+        tmp_path / "r.urdf.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="$(arg name)">\n'
+        '  <xacro:arg name="name" default="ur"/>\n  <xacro:arg name="other" default="1"/>\n'
+        f'  <link name="base">{INERTIA}</link>\n</robot>\n',
+    )
+    assert cli("init", "r.urdf.xacro", cwd=tmp_path).code == EXIT_OK
+    text = (tmp_path / "robot.yaml").read_text()
+    assert '  args:\n    name: "ur"\n' in text and "    other:" not in text
+    assert cli("build", "--no-check", cwd=tmp_path).code == EXIT_OK
+    (tmp_path / "robot.yaml").write_text(text.replace('  args:\n    name: "ur"\n', "  args: {}\n"))
+    failed = cli("build", "--no-check", cwd=tmp_path)
+    assert "its <xacro:arg> (line 2) comes after this use" in failed.stderr
