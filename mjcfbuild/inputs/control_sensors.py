@@ -65,7 +65,7 @@ def _site_at_frame(root: etree._Element, sensor: ControlSensor, links: dict[str,
         given = "its frame_name" if sensor.params.get("frame_name") else "its name"
         raise InputError(
             f"ros2_control sensor '{sensor.name}': {given} '{frame}' is not a link of the "
-            f"URDF{did_you_mean(frame, set(links))}, so the build cannot place its MJCF sensors",
+            f"URDF, so the build cannot place its MJCF sensors{did_you_mean(frame, set(links))}",
             file=file,
             line=line,
             hint='set <param name="frame_name"> to the link it measures at',
