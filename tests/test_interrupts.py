@@ -72,3 +72,28 @@ def test_a_process_started_with_sigterm_ignored_keeps_ignoring_it(handler_restor
     interrupts.handle_signals()
     signal.raise_signal(signal.SIGTERM)
     assert signal.getsignal(signal.SIGTERM) is signal.SIG_IGN and not interrupts.received()
+
+
+def test_a_signal_python_wraps_in_another_exception_still_ends_as_interrupted(
+    handler_restored, monkeypatch, capsys
+):
+    """A KeyboardInterrupt raised while a class is made (pydantic's models, imported mid-build)
+    reaches the command as a RuntimeError: it ended as 'internal error', exit 70."""
+    import os
+
+    import mjcfbuild.cli as cli
+
+    def signalled(quiet: bool) -> None:
+        class Field:
+            def __set_name__(self, owner, name):
+                os.kill(os.getpid(), signal.SIGTERM)
+
+        class Model:  # made for its Field's __set_name__
+            field = Field()
+
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    interrupts.forget()
+    interrupts.handle_signals()
+    monkeypatch.setattr(cli, "_check_cache_settings", signalled)
+    assert cli.run(["build", "robot.yaml"]) == 143
+    assert "interrupted" in capsys.readouterr().err

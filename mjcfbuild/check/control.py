@@ -164,7 +164,11 @@ def _hold_and_stand(
             why = motors_need_a_controller(motors, every)
             fell = replace(standing, fell_without_controller=why)
             report.add(stand=fell, needs_controller=why)
-        elif stand.fails(hold_tolerance) and measure.passive_deviation > hold_tolerance:
+        elif (
+            stand.fails(hold_tolerance)
+            and measure.passive_deviation > hold_tolerance
+            and measure.deviation <= hold_tolerance  # its servos held: the passive joints fell
+        ):
             # Joints robot.yaml asks to leave without an actuator gave way: the stand is not
             # the servos' to keep (nothing holds those joints), as a fixed base's sag is not.
             why = _passive_give_way(measure)

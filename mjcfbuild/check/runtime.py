@@ -414,7 +414,10 @@ def _unmatched_transmissions(model, control: Ros2Control) -> tuple[list[str], li
             continue
         problems = _transmission_problems(model, transmission)
         if transmission.plugin and not transmission.plugin.startswith(RUNTIME_PLUGINS):
-            elsewhere.setdefault(transmission.plugin, []).extend(problems)
+            elsewhere.setdefault(transmission.plugin, []).extend(
+                f"transmission {transmission.element} of joint '{transmission.joint}' {problem}"
+                for problem in problems
+            )
             continue
         failures += [
             f"{transmission.origin}: transmission {transmission.element} of joint "
@@ -426,9 +429,9 @@ def _unmatched_transmissions(model, control: Ros2Control) -> tuple[list[str], li
         if problems:
             problems = list(dict.fromkeys(problems))
             warnings.append(
-                f"<ros2_control> transmissions for the hardware plugin {plugin} would stop "
-                f"mujoco_ros2_control run with its plugin: {problems[0]}"
-                + (f" (and {len(problems) - 1} more)" if len(problems) > 1 else "")
+                f"<ros2_control> transmissions for the hardware plugin {plugin} are not run by "
+                "mujoco_ros2_control as written; with its plugin in their block, it would refuse "
+                "or misdrive them: " + "; ".join(problems)
             )
     return list(dict.fromkeys(failures)), warnings
 

@@ -210,6 +210,8 @@ def run(argv: Sequence[str] | None = None) -> int:
         os.dup2(devnull, sys.stdout.fileno())
         return EXIT_OK
     except Exception as exc:  # a bug: say so plainly, traceback only with --debug
+        if interrupts.received():  # a KeyboardInterrupt Python wrapped (in a class's creation)
+            return _interrupted()
         import traceback
 
         unwritable = write_failure(exc)  # a full disk, a folder it may not write in
@@ -230,7 +232,7 @@ def _check_cache_settings(quiet: bool) -> None:
     from mjcfbuild.cachedir import cache_dir_problem
 
     if os.environ.get("MJCFBUILD_CACHE_MAX"):
-        from mjcfbuild.products.store import default_max_bytes
+        from mjcfbuild.cachedir import default_max_bytes
 
         default_max_bytes()
     problem = cache_dir_problem()

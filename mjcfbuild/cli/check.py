@@ -236,21 +236,42 @@ def _pair(args) -> int:
             error.message += f" [line {expanded} of its expansion]"
         raise
     results = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))
-    results = _runtime_section(results, text, robot, mjcf, str(urdf))
+    results = _runtime_section(results, text, robot, mjcf, str(urdf), origins)
     return _print(results, f"{mjcf} against {urdf}", bool(getattr(args, "quiet", False)))
 
 
-def _runtime_section(results, text: bytes, robot, mjcf: Path, label: str):
+def _runtime_section(
+    results, text: bytes, robot, mjcf: Path, label: str, origins: dict[int, tuple[str, int]]
+):
     """The mujoco_ros2_control section a build's check adds, from the URDF's <ros2_control>
-    blocks: the runtime's rules hold for a model made by any tool."""
+    blocks: the runtime's rules hold for a model made by any tool. A xacro source's lines are
+    named where its ``origins`` say each expanded line was written."""
     from mjcfbuild.inputs.ros2_control import read_ros2_control
     from mjcfbuild.steps.check import add_runtime_check
     from mjcfbuild.urdf.parse import parse_xml
 
     control = read_ros2_control(parse_xml(text, label, []), label)
+    for joint in control.joints:
+        joint.origin = _written_at(joint.origin, origins)
+    for sensor in control.sensors:
+        sensor.origin = _written_at(sensor.origin, origins)
+    for transmission in control.transmissions:
+        transmission.origin = _written_at(transmission.origin, origins)
     joints = {joint.name: joint.mimic.joint if joint.mimic else None for joint in robot.joints}
     fixed = frozenset(joint.name for joint in robot.joints if joint.kind == "fixed")
     return add_runtime_check(results, mjcf, control, joints, {}, fixed_joints=fixed)
+
+
+def _written_at(origin: str, origins: dict[int, tuple[str, int]]) -> str:
+    """``file:line`` of an expanded URDF's line where the xacro file wrote it (as it is, for a
+    URDF read as written)."""
+    line = origin.rpartition(":")[2]
+    lines = [n for n in origins if line.isdigit() and n <= int(line)]
+    if not lines:
+        return origin
+    file, written = origins[max(lines)]
+    relative = os.path.relpath(file)
+    return f"{file if relative.startswith('..') else relative}:{written}"
 
 
 def refuse_other_models(path: Path, hint: str) -> None:

@@ -139,7 +139,7 @@ def _state_removed(ctx, yours: list[Path]) -> str:
     """How the removal line names the build state: its folder, gone; or, where clean
     recorded the edited files it kept as the user's, what stays in it and why."""
     state = ctx.label(ctx.state_dir) + "/"
-    if not ctx.state_dir.is_dir():
+    if not yours:  # gone (or made again by a build that waited for clean: its own, not ours)
         return state
     from mjcfbuild.ownership import FOREIGN
 

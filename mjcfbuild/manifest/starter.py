@@ -330,7 +330,7 @@ def _free_joint_lines(
             unread,
             None,
         )
-    stop = _first_stop(robot, source, packages)
+    stop = _first_stop(robot, source, packages, expansion.origins)
     if kind.floating:
         return (
             [
@@ -343,16 +343,23 @@ def _free_joint_lines(
     return [f"  free_joint: false   # {kind.why}; true for a floating base"], stop, expansion.urdf
 
 
-def _first_stop(robot: Robot, source: Path, packages: dict[str, str]) -> str | None:
+def _first_stop(
+    robot: Robot, source: Path, packages: dict[str, str], origins: dict[int, tuple[str, int]]
+) -> str | None:
     """What the first build would stop at in a description that reads (a mesh that is not
     there, an absolute path from another machine, no mass anywhere), as one line: init says
-    it now, not one build later."""
+    it now, not one build later. A xacro source's line is the one ``origins`` says wrote the
+    expanded line, as the build names it."""
     from mjcfbuild.urdf.resolve import resolve_files
 
     try:
         folders = {name: Path(folder) for name, folder in packages.items()}
         resolve_files(robot, source.parent, PackageResolver(folders, dict(os.environ)))
     except MjcfbuildError as exc:
+        where = exc.location
+        lines = [n for n in origins if where and where.line and n <= where.line]
+        if where is not None and lines:
+            where.file, where.line = origins[max(lines)]
         here = Path.cwd()
         return exc.relocate(here, here).one_line()
     moving = [joint for joint in robot.joints if joint.moves]
@@ -405,14 +412,25 @@ def _read_before_declared(live: bytes, data: bytes) -> dict[str, str]:
         root = etree.fromstring(data, parser)
     except etree.XMLSyntaxError:
         return {}
+    # A macro's body is read where the macro is called, not where it is written.
+    macros = [
+        (macro.sourceline or 0, max(e.sourceline or 0 for e in macro.iter()))
+        for macro in root.iter("{*}macro")
+        if "xacro" in (etree.QName(macro).namespace or "")
+    ]
     early: dict[str, str] = {}
     for element in root.iter("{*}arg"):
         name = element.get("name")
         if not name or "xacro" not in (etree.QName(element).namespace or ""):
             continue
-        use = re.search(rb"\$\(arg\s+" + re.escape(name.encode()) + rb"\s*\)", live)
-        if use is not None and live.count(b"\n", 0, use.start()) + 1 < (element.sourceline or 0):
-            early.setdefault(name, element.get("default", ""))
+        declared = element.sourceline or 0
+        for use in re.finditer(rb"\$\(arg\s+" + re.escape(name.encode()) + rb"\s*\)", live):
+            line = live.count(b"\n", 0, use.start()) + 1
+            if line >= declared:
+                break
+            if not any(start <= line <= end for start, end in macros):
+                early.setdefault(name, element.get("default", ""))
+                break
     return early
 
 

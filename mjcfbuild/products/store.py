@@ -30,59 +30,27 @@ import uuid
 from dataclasses import dataclass
 from pathlib import Path
 
-from mjcfbuild.cachedir import user_cache_dir
+from mjcfbuild.cachedir import (  # noqa: F401 (the cache size is settled there, for the CLI)
+    DEFAULT_MAX_BYTES,
+    MAX_VARIABLE,
+    default_max_bytes,
+    parse_size,
+    user_cache_dir,
+)
 from mjcfbuild.fsutil import atomic_write, md5_file
 from mjcfbuild.products.usable import product_problem
 
-DEFAULT_MAX_BYTES = 5 * 1024**3
 _SUMMARY = "summary.json"
 _USAGE = ".usage.json"  # {"bytes": the cache's size when last measured, "measured": when}
 _ADDED = ".added"  # the size of each entry stored since, one per line
 # How long a measurement is trusted: what other programs did to the folder (a user's rm, a
 # build killed while storing) is seen within this time.
 REMEASURE_SECONDS = 3600.0
-_UNITS = {"": 1, "K": 1024, "M": 1024**2, "G": 1024**3, "T": 1024**4}
-
-
-def parse_size(text: str) -> int:
-    """'500M', '2G', '1.5G' or a plain number of bytes."""
-    value = text.strip().upper().removesuffix("B").removesuffix("I")
-    unit = value[-1] if value and value[-1] in _UNITS else ""
-    number = value[: -len(unit)] if unit else value
-    try:
-        size = float(number) * _UNITS[unit]
-    except ValueError:
-        raise ValueError(f"'{text}' is not a size; use a number with K, M, G or T") from None
-    if size < 0:
-        raise ValueError(f"'{text}' is negative")
-    return int(size)
 
 
 def default_cache_folder() -> Path:
     """The product cache inside the user cache folder."""
     return user_cache_dir() / "products"
-
-
-MAX_VARIABLE = "MJCFBUILD_CACHE_MAX"
-
-
-def default_max_bytes() -> int:
-    """``$MJCFBUILD_CACHE_MAX`` (for example ``2G``), or 5 GiB. A value that is not a size is
-    a :class:`~mjcfbuild.errors.UsageError` naming the variable (exit 2, as a bad
-    ``$MJCFBUILD_JOBS``), not an internal error."""
-    from mjcfbuild.errors import UsageError
-
-    text = os.environ.get(MAX_VARIABLE, "").strip()
-    if not text:
-        return DEFAULT_MAX_BYTES
-    try:
-        return parse_size(text)
-    except ValueError:
-        raise UsageError(
-            f"{MAX_VARIABLE}={text}: not a size",
-            hint="set it to a size such as 500M or 2G (bytes, with K, M, G or T), or unset "
-            "it for 5G",
-        ) from None
 
 
 def open_store(settings: dict) -> ProductStore | None:

@@ -753,13 +753,11 @@ def _refuse_impossible_mimics(robot: Robot, file: str) -> None:
 
 def _closest(name: str, candidates: set[str], kind: str) -> str:
     """``did you mean 'x'?`` for the closest of ``candidates``, else the ``kind`` there are."""
-    import difflib
+    from mjcfbuild.sources.packages import did_you_mean, listing
 
-    from mjcfbuild.sources.packages import listing
-
-    match = difflib.get_close_matches(name, sorted(candidates), n=1)
-    if match:
-        return f"did you mean '{match[0]}'?"
+    suggested = did_you_mean(name, candidates)
+    if suggested:
+        return suggested.removeprefix("; ")
     return f"{kind}: {listing(sorted(candidates))}"
 
 

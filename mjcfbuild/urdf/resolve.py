@@ -40,7 +40,7 @@ def resolve_files(
             geometry = shape.geometry
             if geometry.kind == "mesh":
                 geometry.path = _resolve_existing(
-                    robot, shape, geometry.uri or "", base_dir, packages
+                    robot, _line(shape), geometry.uri or "", base_dir, packages
                 )
                 reads.append((geometry.uri or "", Path(geometry.path), _line(shape)))
                 if prebuilt is not None:
@@ -56,7 +56,10 @@ def resolve_files(
                 mesh_paths.append(geometry.path)
             if shape.material is not None and shape.material.texture:
                 uri = shape.material.texture
-                shape.material.texture = _resolve_existing(robot, shape, uri, base_dir, packages)
+                # at the shape's line: a texture is named in its <material>, not its geometry
+                shape.material.texture = _resolve_existing(
+                    robot, shape.line, uri, base_dir, packages
+                )
                 reads.append((uri, Path(shape.material.texture), shape.line))
     if roots is not None:
         _warn_outside(robot, reads, packages, roots)
@@ -102,12 +105,14 @@ def _warn_outside(
 
 
 def _resolve_existing(
-    robot: Robot, shape: Shape, uri: str, base_dir: Path, packages: PackageResolver
+    robot: Robot, line: int | None, uri: str, base_dir: Path, packages: PackageResolver
 ) -> str:
+    """The path ``uri`` names (at ``line`` of the URDF), or an error saying why there is
+    none."""
     try:
         path = resolve_uri(uri, base_dir, packages)
     except InputError as exc:
-        raise InputError(exc.message, file=robot.source, line=_line(shape), hint=exc.hint) from None
+        raise InputError(exc.message, file=robot.source, line=line, hint=exc.hint) from None
     problem = unreadable_file(path)
     match = case_match(path) if problem and problem.startswith("not found") else None
     looked = _looked_at(uri, path)
@@ -115,21 +120,21 @@ def _resolve_existing(
         raise InputError(
             f"file '{uri}' not found; did you mean '{_respelt(uri, path, match)}'?{looked}",
             file=robot.source,
-            line=_line(shape),
+            line=line,
             hint="write the name as the file is spelt: letter case matters here",
         )
     if problem and problem.startswith("not found") and _from_elsewhere(uri):
         raise InputError(
             f"file '{uri}' not found: an absolute path, likely written on another machine",
             file=robot.source,
-            line=_line(shape),
+            line=line,
             hint="make it relative to the URDF's folder, or a package:// URI",
         )
     if problem:
         raise InputError(
             f"file '{uri}' {problem}{looked}",
             file=robot.source,
-            line=_line(shape),
+            line=line,
             hint="check the path and the 'packages' in robot.yaml",
         )
     return str(path)

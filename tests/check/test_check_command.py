@@ -392,3 +392,35 @@ def test_a_urdf_and_mjcf_pair_is_held_to_mujoco_ros2_controls_rules(tmp_path):
     result = run_cli("check", "--urdf", str(urdf), "--mjcf", str(bare))
     assert result.code == EXIT_CHECK
     assert "reads the MJCF framequat 'imu_quat', which the model does not have" in result.stderr
+
+
+def test_the_pair_checks_runtime_failures_name_the_xacro_files_lines(tmp_path):
+    """Its lines were the expanded text's (line 245 of a 172-line xacro file)."""
+    from tests.conftest import two_link_urdf
+
+    urdf = two_link_urdf(
+        extra='<link name="tool"/><joint name="mount" type="fixed"><parent link="arm"/>'
+        '<child link="tool"/></joint>\n'
+        '<ros2_control name="s" type="system"><hardware><plugin>mujoco_ros2_control/'
+        "MujocoSystemInterface</plugin></hardware>\n"
+        '<joint name="mount"><state_interface name="position"/></joint></ros2_control>'
+    )
+    xacro = urdf.replace(
+        '<robot name="two_link">',
+        '<robot name="two_link" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:property name="unused" value="1"/>\n<xacro:property name="other" value="2"/>',
+    )
+    source = write(tmp_path / "robot.urdf.xacro", xacro)
+    write(
+        tmp_path / "robot.urdf",
+        urdf.replace("<ros2_control", "<!-- --><no_block").replace(
+            "</ros2_control>", "</no_block>"
+        ),
+    )
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\n")
+    assert run_cli("build", "-q", "--no-check", str(tmp_path / "robot.yaml")).code == EXIT_OK
+    result = run_cli("check", "--urdf", str(source), "--mjcf", str(tmp_path / "mjcf" / "r.xml"))
+    line = next(n for n, text in enumerate(xacro.splitlines(), 1) if '<joint name="mount">' in text)
+    assert (
+        f"robot.urdf.xacro:{line}: <ros2_control> joint 'mount' is a fixed joint" in result.stderr
+    )

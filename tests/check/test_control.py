@@ -234,6 +234,7 @@ def test_a_floating_robot_left_passive_by_robot_yaml_falls_with_that_reason_not_
     import json
 
     import mjcfbuild
+    from mjcfbuild.errors import BuildFailed
     from tests.conftest import write
     from tests.control.robots import quadruped
 
@@ -249,6 +250,27 @@ def test_a_floating_robot_left_passive_by_robot_yaml_falls_with_that_reason_not_
     why = check["needs_controller"]
     assert why.startswith("12 of its joints have no actuator, as robot.yaml's actuators ask"), why
     assert "stiffen" not in why
+    # Servos too weak to carry it, beside one passive joint (a tail): the servos' failure, which
+    # the passive joint moving as the robot falls does not excuse.
+    tail = (
+        '<link name="tail"><inertial><mass value="0.01"/><inertia ixx="1e-5" iyy="1e-5" '
+        'izz="1e-5" ixy="0" ixz="0" iyz="0"/></inertial></link><joint name="tail_joint" '
+        'type="revolute"><parent link="trunk"/><child link="tail"/><origin xyz="-0.3 0 0"/>'
+        '<axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>'
+    )
+    write(
+        tmp_path / "robot.urdf", quadruped(foot_offset=0.05).replace("</robot>", tail + "</robot>")
+    )
+    write(
+        tmp_path / "robot.yaml",
+        "name: q\nsource: {urdf: robot.urdf}\noptions: {free_joint: true}\nactuators:\n"
+        "  rules:\n    - {joints: [tail_joint], type: none}\n"
+        '    - {joints: ["*"], frequency: 0.2}\n',
+    )
+    with pytest.raises(BuildFailed):
+        mjcfbuild.build(tmp_path / "robot.yaml", jobs=1)
+    check = json.loads((result.robot.parent / ".mjcfbuild/check.json").read_text())
+    assert any("does not stand at home" in f for f in check["failures"]), check
 
 
 def test_wheels_on_velocity_servos_are_judged_by_not_rolling_away(tmp_path):

@@ -448,8 +448,10 @@ def test_a_transmission_naming_no_joint_or_actuator_stops_the_runtime(tmp_path):
     result = build_two_link(tmp_path / "driver", urdf_extra=driver)
     assert check_record(tmp_path / "driver")["passes"]
     assert any(
-        "<ros2_control> transmissions for the hardware plugin robot_control/RobotControl would "
-        "stop mujoco_ros2_control run with its plugin: names actuator 'actuator1'" in warning
+        "<ros2_control> transmissions for the hardware plugin robot_control/RobotControl are "
+        "not run by mujoco_ros2_control as written"
+        in warning
+        and "transmission #1 of joint 'hinge' names actuator 'actuator1'" in warning
         for warning in result.warnings
     ), result.warnings
 
@@ -558,3 +560,40 @@ def test_a_start_away_from_home_without_an_initial_keyframe_is_said(tmp_path):
     )
     same = build_two_link(tmp_path / "same", urdf_extra=block)
     assert not [w for w in same.warnings if "initial_keyframe" in w], same.warnings
+
+
+def test_a_transmission_to_a_joint_without_an_actuator_stops_the_runtime(tmp_path):
+    """register_transmissions: "Actuator ... is passive and cannot be used in a transmission"."""
+    passive = control_block([]).replace(
+        "</ros2_control>",
+        '<transmission name="t"><plugin>transmission_interface/SimpleTransmission</plugin>'
+        '<actuator name="hinge" role="actuator1"/><joint name="hinge" role="joint1"/>'
+        "</transmission></ros2_control>",
+    )
+    _fails_to_start(tmp_path, passive, "actuators: {default: none}\n")
+    failures = check_record(tmp_path)["failures"]
+    assert any("names actuator 'hinge', a joint without an actuator" in f for f in failures)
+
+
+def test_a_camera_without_resolution_and_a_lidar_short_of_its_max_angle_are_said(tmp_path):
+    """The runtime renders a camera without a resolution at 1 x 1, and scans int((max - min)
+    / increment) + 1 rays: -0.3 to 0.3 by 0.025 leaves out the ray at 0.3."""
+    sensors = (
+        '<sensor name="cam"><param name="image_topic">/image</param></sensor><sensor name="laser">'
+        '<param name="frame_name">arm</param><param name="min_angle">-0.3</param>'
+        '<param name="max_angle">0.3</param><param name="angle_increment">0.025</param>'
+        '<param name="laserscan_topic">/scan</param></sensor>'
+    )
+    inputs = (
+        "mujoco_inputs:\n  cameras: [{name: cam, link: arm}]\n"
+        "  lidars: [{sensor_name: rf, link: arm, min_angle: -0.3, max_angle: 0.3, "
+        "angle_increment: 0.025}]\n"
+        '  raw: \'<sensor><rangefinder name="laser" site="rf"/></sensor>\'\n'
+    )
+    block = control_block(["position"], '<param name="initial_keyframe">home</param>')
+    result = build_two_link(
+        tmp_path, inputs, block.replace("</ros2_control>", sensors + "</ros2_control>")
+    )
+    said = "\n".join(result.warnings)
+    assert "camera 'cam' has no resolution, so mujoco_ros2_control renders it at" in said
+    assert "lidar sensor 'laser'" in said and "scans 24 rays and none at max_angle" in said

@@ -586,8 +586,12 @@ def test_an_argument_read_before_its_declaration_is_given_its_default(cli, tmp_p
     write(
         tmp_path / "r.urdf.xacro",
         '<robot xmlns:xacro="http://www.ros.org/wiki/xacro" name="$(arg name)">\n'
+        # a macro's body is read where it is called, after the declaration
+        '  <xacro:macro name="m"><link name="$(arg other)x"/></xacro:macro>\n'
         '  <xacro:arg name="name" default="ur"/>\n  <xacro:arg name="other" default="1"/>\n'
-        f'  <link name="base">{INERTIA}</link>\n</robot>\n',
+        f'  <link name="base">{INERTIA}</link>\n  <xacro:m/>\n'
+        '  <joint name="j" type="fixed"><parent link="base"/><child link="1x"/></joint>\n'
+        "</robot>\n",
     )
     assert cli("init", "r.urdf.xacro", cwd=tmp_path).code == EXIT_OK
     text = (tmp_path / "robot.yaml").read_text()
@@ -595,4 +599,4 @@ def test_an_argument_read_before_its_declaration_is_given_its_default(cli, tmp_p
     assert cli("build", "--no-check", cwd=tmp_path).code == EXIT_OK
     (tmp_path / "robot.yaml").write_text(text.replace('  args:\n    name: "ur"\n', "  args: {}\n"))
     failed = cli("build", "--no-check", cwd=tmp_path)
-    assert "its <xacro:arg> (line 2) comes after this use" in failed.stderr
+    assert "its <xacro:arg> (line 3) comes after this use" in failed.stderr

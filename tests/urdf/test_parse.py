@@ -421,3 +421,18 @@ def test_a_joint_urdfdom_refuses_for_want_of_a_limit_is_warned_of(kind):
         "<joint name='j' type='continuous'><parent link='a'/><child link='b'/></joint></robot>"
     )
     assert not [w for w in continuous.warnings if "without <limit>" in w]
+
+
+def test_a_missing_link_is_not_matched_to_one_that_merely_shares_letters():
+    """atlas_v3's neck_ry names a link 'head' the file lacks: 'did you mean r_hand?' sent the
+    user the wrong way (the URDF reader kept its own difflib call)."""
+    urdf = (
+        '<robot name="r"><link name="base"/><link name="r_hand"/><link name="l_hand"/>'
+        '<joint name="a" type="fixed"><parent link="base"/><child link="r_hand"/></joint>'
+        '<joint name="b" type="fixed"><parent link="base"/><child link="l_hand"/></joint>'
+        '<joint name="neck_ry" type="fixed"><parent link="base"/><child link="head"/></joint>'
+        "</robot>"
+    )
+    with pytest.raises(InputError) as info:
+        parse_urdf(urdf.encode(), "r.urdf")
+    assert "head" in info.value.message and "did you mean" not in (info.value.hint or "")

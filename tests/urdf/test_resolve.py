@@ -53,6 +53,18 @@ def test_a_missing_mesh_is_named_at_its_mesh_element_not_its_visual(tmp_path):
     assert info.value.location.line == 5
 
 
+def test_a_missing_texture_is_named_at_its_shape_not_its_geometry(tmp_path):
+    robot = parse_urdf(
+        b'<robot name="r"><link name="a">\n<visual>\n<geometry>\n<box size="1 1 1"/>\n'
+        b'</geometry>\n<material name="m"><texture filename="gone.png"/></material>\n'
+        b"</visual></link></robot>",
+        "r.urdf",
+    )
+    with pytest.raises(InputError) as info:
+        resolve_files(robot, tmp_path, PackageResolver({}, {}))
+    assert info.value.location.line == 2  # the <visual>; its <box> on line 4 names no file
+
+
 def test_unsupported_format(tmp_path):
     write(tmp_path / "a.3ds", "x")
     with pytest.raises(InputError, match="unsupported format"):
