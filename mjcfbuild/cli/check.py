@@ -226,13 +226,13 @@ def _pair(args) -> int:
         robot = parse_urdf(text, str(urdf))
     except InputError as error:
         # A line of the expanded text: point at the xacro line that wrote its element.
+        from mjcfbuild.sources.origins import written_in
+
         where = error.location
-        lines = [line for line in origins if where and where.line and line <= where.line]
-        if where is not None and where.line is not None and lines:
+        written = written_in(origins, where.line) if where and where.line else None
+        if where is not None and written is not None:
             expanded = where.line
-            file, where.line = origins[max(lines)]
-            relative = os.path.relpath(file)
-            where.file = file if relative.startswith("..") else relative
+            where.file, where.line = shown_path(written[0]), written[1]
             error.message += f" [line {expanded} of its expansion]"
         raise
     results = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))
@@ -265,13 +265,11 @@ def _runtime_section(
 def _written_at(origin: str, origins: dict[int, tuple[str, int]]) -> str:
     """``file:line`` of an expanded URDF's line where the xacro file wrote it (as it is, for a
     URDF read as written)."""
+    from mjcfbuild.sources.origins import written_in
+
     line = origin.rpartition(":")[2]
-    lines = [n for n in origins if line.isdigit() and n <= int(line)]
-    if not lines:
-        return origin
-    file, written = origins[max(lines)]
-    relative = os.path.relpath(file)
-    return f"{file if relative.startswith('..') else relative}:{written}"
+    written = written_in(origins, int(line)) if line.isdigit() else None
+    return f"{shown_path(written[0])}:{written[1]}" if written else origin
 
 
 def refuse_other_models(path: Path, hint: str) -> None:

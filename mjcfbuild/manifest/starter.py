@@ -350,6 +350,7 @@ def _first_stop(
     there, an absolute path from another machine, no mass anywhere), as one line: init says
     it now, not one build later. A xacro source's line is the one ``origins`` says wrote the
     expanded line, as the build names it."""
+    from mjcfbuild.sources.origins import written_in
     from mjcfbuild.urdf.resolve import resolve_files
 
     try:
@@ -357,9 +358,9 @@ def _first_stop(
         resolve_files(robot, source.parent, PackageResolver(folders, dict(os.environ)))
     except MjcfbuildError as exc:
         where = exc.location
-        lines = [n for n in origins if where and where.line and n <= where.line]
-        if where is not None and lines:
-            where.file, where.line = origins[max(lines)]
+        written = written_in(origins, where.line) if where and where.line else None
+        if where is not None and written is not None:
+            where.file, where.line = written
         here = Path.cwd()
         return exc.relocate(here, here).one_line()
     moving = [joint for joint in robot.joints if joint.moves]

@@ -35,11 +35,15 @@ def written_at(urdf: Path, line: int) -> tuple[str, int] | None:
         return None
     if not isinstance(data, dict):
         return None
-    before = [int(key) for key in data if key.isdigit() and int(key) <= line]
-    if not before:
-        return None
-    file, written = data[str(max(before))]
-    return str(file), int(written)
+    origins = {int(key): (str(f), int(n)) for key, (f, n) in data.items() if key.isdigit()}
+    return written_in(origins, line)
+
+
+def written_in(origins: dict[int, tuple[str, int]], line: int) -> tuple[str, int] | None:
+    """Where ``origins`` (an expansion's, in memory) say the element at (or, inside it,
+    before) an expanded ``line`` was written; None for a URDF read as written."""
+    before = [number for number in origins if number <= line]
+    return origins[max(before)] if before else None
 
 
 def point_at_source(
