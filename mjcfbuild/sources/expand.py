@@ -21,7 +21,7 @@ from typing import IO, Any
 from mjcfbuild.errors import InputError, ManifestError, UsageError
 from mjcfbuild.fsutil import case_match, case_suggestion, normalise, unreadable_file
 from mjcfbuild.sources.kind import mesh_kind, xacro_evidence
-from mjcfbuild.sources.packages import PackageResolver, did_you_mean
+from mjcfbuild.sources.packages import PackageResolver, did_you_mean, within_edits
 from mjcfbuild.xmlguard import refuse_entities
 
 # ``args_key`` of arguments given as NAME:=VALUE on the command line (``convert``).
@@ -363,9 +363,10 @@ def _check_args(
     unknown = sorted(set(mappings) - declared)
     if unresolved:
         # A file included under a false condition by a name only xacro can evaluate may
-        # declare any argument (the xacro command takes them all): only a near miss of a
-        # declared name is taken for a misspelling.
-        unknown = [name for name in unknown if did_you_mean(name, declared)]
+        # declare any argument (the xacro command takes them all): only a typo's distance
+        # from a declared name (two edits: 'use_gazeb', not 'use_gazebo_gui', which such a
+        # file may well declare) is taken for a misspelling.
+        unknown = [name for name in unknown if within_edits(name, declared, _TYPO_EDITS)]
     if not unknown:
         return
     name = unknown[0]
@@ -385,6 +386,9 @@ def _check_args(
         hint="fix its name, or declare it in the xacro file with <xacro:arg name=...>",
     )
 
+
+# The most edits a misspelt argument name is taken to be from the name meant.
+_TYPO_EDITS = 2
 
 _INCLUDE = re.compile(r"""<xacro:include\b[^>]*?\bfilename\s*=\s*(['"])(.*?)\1""", re.DOTALL)
 _FIND = re.compile(r"\$\(find\s+([^\s)]+)\s*\)")

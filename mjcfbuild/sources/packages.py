@@ -173,6 +173,11 @@ def did_you_mean(name: str, candidates: list[str] | set[str]) -> str:
     return f"; did you mean '{match[0]}'?" if match else ""
 
 
+def within_edits(name: str, candidates: list[str] | set[str], edits: int) -> bool:
+    """Whether a candidate other than ``name`` is at most ``edits`` edits from it."""
+    return any(_edits(name, c) <= edits for c in set(candidates) - {name})
+
+
 def _edits(a: str, b: str) -> int:
     """The Levenshtein distance between ``a`` and ``b``."""
     previous = list(range(len(b) + 1))

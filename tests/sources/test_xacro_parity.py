@@ -437,6 +437,11 @@ def test_arguments_xacro_takes_without_a_declaration_here_are_taken(tmp_path):
     assert assert_agrees(source, tmp_path / "both", args) is not None
     resolver = PackageResolver({}, {})
     expand_xacro(source, args, resolver, args_key="robot.yaml source.args")
+    # Four edits from 'use_gazebo', and a name the skipped file may declare: taken, as the
+    # xacro command takes it (it had been refused as a misspelling of 'use_gazebo').
+    wider = {**args, "use_gazebo_gui": "true"}
+    assert assert_agrees(source, tmp_path / "gui", wider) is not None
+    expand_xacro(source, wider, resolver, args_key="robot.yaml source.args")
     with pytest.raises(ManifestError, match="did you mean 'use_gazebo'"):
         misspelt = {"joint_range": "2.5", "side": "left", "use_gazeb": "true"}
         expand_xacro(source, misspelt, resolver, args_key="robot.yaml source.args")
