@@ -47,6 +47,14 @@ def add_parser(commands) -> None:
         "(repeatable; others come from ROS_PACKAGE_PATH / AMENT_PREFIX_PATH)",
     )
     parser.add_argument(
+        "--xacro-arg",
+        action="append",
+        default=[],
+        metavar="NAME:=VALUE",
+        help="with --urdf: an argument for its xacro file (repeatable; NAME:=VALUE words "
+        "after the other arguments work too, as in convert and the xacro command)",
+    )
+    parser.add_argument(
         "--up-to-date",
         action="store_true",
         help="exit with 6, naming what is stale, when the outputs no longer match their inputs",
@@ -79,6 +87,7 @@ def add_parser(commands) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Dispatch to one of the three modes."""
+    _split_xacro_args(args)
     if args.urdf or args.mjcf:
         _refuse_with_pair(args)
         if not (args.urdf and args.mjcf):
@@ -86,6 +95,11 @@ def run(args: argparse.Namespace) -> int:
         return _pair(args)
     if args.package:
         raise UsageError("--package goes with --urdf", hint="a manifest lists its packages")
+    if args.xacro_arg:
+        raise UsageError(
+            f"{args.xacro_arg[0]}: xacro arguments go with --urdf",
+            hint="a manifest gives its own, under source.args",
+        )
     code = EXIT_OK
     for manifest in chosen_manifests(args):
         try:
@@ -96,6 +110,16 @@ def run(args: argparse.Namespace) -> int:
             result = error.exit_code
         code = code or result
     return code
+
+
+def _split_xacro_args(args: argparse.Namespace) -> None:
+    """Move ``NAME:=VALUE`` words from the manifests to ``args.xacro_arg``: the positional
+    words of ``check --urdf X.xacro --mjcf M name:=ur`` are xacro arguments, as convert's
+    and the xacro command's are (no manifest is named that way)."""
+    words = args.manifest or []
+    args.xacro_arg = [*(args.xacro_arg or []), *(w for w in words if ":=" in w)]
+    if args.manifest is not None:
+        args.manifest = [w for w in words if ":=" not in w]
 
 
 def _refuse_with_pair(args: argparse.Namespace) -> None:
@@ -217,7 +241,7 @@ def _pair(args) -> int:
     from mjcfbuild.errors import MjcfbuildError
 
     try:
-        text, origins = _urdf_bytes(urdf, parse_packages(args.package))
+        text, origins = _urdf_bytes(urdf, parse_packages(args.package), args.xacro_arg)
     except MjcfbuildError as error:  # no robot.yaml here: its hints name --package instead
         if error.hint:
             error.hint = command_line_hint(error.hint)
@@ -283,18 +307,25 @@ def refuse_other_models(path: Path, hint: str) -> None:
         raise InputError(f"this is {kind}, not an MJCF model", file=path, hint=hint)
 
 
-def _urdf_bytes(path: Path, packages: dict[str, str]) -> tuple[bytes, dict[int, tuple[str, int]]]:
+def _urdf_bytes(
+    path: Path, packages: dict[str, str], xacro_args: list[str]
+) -> tuple[bytes, dict[int, tuple[str, int]]]:
     """The URDF text of ``path`` and, for xacro, where each line's element was written; a
-    xacro file is expanded first (default arguments, packages from ``packages``, else
-    ROS_PACKAGE_PATH / AMENT_PREFIX_PATH), as ``convert -u`` does."""
-    from mjcfbuild.cli.convert import is_xacro
-    from mjcfbuild.sources.expand import expand_xacro
+    xacro file is expanded first (``xacro_args`` as ``NAME:=VALUE``, else its defaults;
+    packages from ``packages``, else ROS_PACKAGE_PATH / AMENT_PREFIX_PATH), as ``convert -u``
+    does."""
+    from mjcfbuild.cli.convert import is_xacro, parse_xacro_args
+    from mjcfbuild.sources.expand import COMMAND_LINE, expand_xacro
     from mjcfbuild.sources.packages import PackageResolver
 
+    mappings = parse_xacro_args(xacro_args)
     if not is_xacro(path):
+        if mappings:
+            raise UsageError(f"{path} is not a xacro file; NAME:=VALUE arguments need one")
         return path.read_bytes(), {}
     folders = {name: Path(folder) for name, folder in packages.items()}
-    expansion = expand_xacro(path.resolve(), {}, PackageResolver(folders, os.environ))
+    resolver = PackageResolver(folders, os.environ)
+    expansion = expand_xacro(path.resolve(), mappings, resolver, COMMAND_LINE)
     return expansion.urdf, expansion.origins
 
 

@@ -245,6 +245,38 @@ def test_check_urdf_takes_package_for_a_xacro_that_finds_one(tmp_path):
     assert "checks pass, but 1 actuation problem" in result.stdout
 
 
+def test_check_urdf_takes_xacro_arguments_as_convert_and_the_xacro_command_do(tmp_path):
+    """A xacro whose include needs an argument (as ur_description's ur_type): the error's
+    advice, NAME:=VALUE after the other arguments, is taken (it was refused as a manifest),
+    and so is --xacro-arg; a misspelt argument is refused at the command line."""
+    write(
+        tmp_path / "urdf" / "arm.xacro",
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        + URDF[URDF.index('<link name="arm">') : URDF.index("</robot>")]
+        + "</robot>",
+    )
+    write(
+        tmp_path / "p.urdf.xacro",
+        '<robot name="pendulum" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:arg name="part" default="missing"/>\n  <link name="base"/>\n'
+        '  <xacro:include filename="urdf/$(arg part).xacro"/>\n</robot>\n',
+    )
+    write(tmp_path / "p.xml", MJCF)
+    argv = ["check", "--urdf", "p.urdf.xacro", "--mjcf", "p.xml"]
+    defaults = run_cli(*argv, cwd=tmp_path)
+    assert defaults.code == 4 and "urdf/missing.xacro" in defaults.stderr
+    for given in (["part:=arm"], ["--xacro-arg", "part:=arm"]):
+        result = run_cli(*argv, *given, cwd=tmp_path)
+        assert result.code == EXIT_OK, result.stdout + result.stderr
+    misspelt = run_cli(*argv, "part:=arm", "prat:=arm", cwd=tmp_path)
+    assert misspelt.code == 2 and "did you mean 'part'?" in misspelt.stderr
+    assert "manifest" not in misspelt.stderr
+    urdf = run_cli("check", "--urdf", "p.xml", "--mjcf", "p.xml", "part:=arm", cwd=tmp_path)
+    assert urdf.code == 2 and "not a xacro file" in urdf.stderr
+    alone = run_cli("check", "part:=arm", cwd=tmp_path)
+    assert alone.code == 2 and "go with --urdf" in alone.stderr
+
+
 def test_check_urdf_points_a_xacro_mistake_at_the_included_file_and_line(tmp_path):
     write(
         tmp_path / "urdf" / "arm.xacro",
