@@ -80,9 +80,20 @@ def mass_findings(
         elif links and links[0] != name:
             text += f" (link '{links[0]}' carries most of it)"
         fails = not welded and density_fails(density)
-        findings.append(
-            BodyFinding(name, [text], "mass units", density_cause(density), fails, where=where)
-        )
+        cause = density_cause(density)
+        markers = _massless_with_geometry(robot, links) if density < HIGH_DENSITY else []
+        if markers and _marker_decides(robot, markers, volume):
+            # A massless link fused into the body (a gunsight, a sensor's field of view)
+            # adds volume that holds none of the mass: too light is then no proof of a unit.
+            marker = robot.link(markers[0]) if robot is not None else None
+            at = f" (line {marker.line})" if marker is not None and marker.line else ""
+            cause = (
+                f"link '{markers[0]}'{at} adds geometry with no mass (a marker, a sensor's "
+                "field of view), whose volume is not the part's: give it a mass, or leave the "
+                "warning"
+            )
+            fails = False
+        findings.append(BodyFinding(name, [text], "mass units", cause, fails, where=where))
     # Mass on moving bodies without geometry weighs too.
     total_mass += sum(
         float(model.body_mass[b])
@@ -111,6 +122,45 @@ def _marker(model: mujoco.MjModel, body: int) -> bool:
     reach = float(np.max(offsets + model.geom_rbound[geoms]))
     size = float(np.max(model.geom_rbound[geoms]))
     return size < MARKER_SIZE or gyration > MARKER_REACH * reach
+
+
+def _massless_with_geometry(robot: Robot | None, links: list[str]) -> list[str]:
+    """Those of ``links`` that carry geometry but no mass (no ``<inertial>``, or mass 0)."""
+    if robot is None:
+        return []
+    found = []
+    for name in links:
+        link = robot.link(name)
+        if link.shapes and (link.inertial is None or link.inertial.mass <= 0):
+            found.append(name)
+    return found
+
+
+def _marker_decides(robot: Robot | None, markers: list[str], volume: Volume) -> bool:
+    """Whether the geometry of the massless ``markers`` may be what makes the body look too
+    light: the largest volume one of their shapes holds reaches the body's lower bound (or a
+    mesh, whose volume the URDF does not tell, is among them)."""
+    import math
+
+    if robot is None:
+        return False
+    largest = 0.0
+    for name in markers:
+        for shape in robot.link(name).shapes:
+            size = shape.geometry.size
+            kind = shape.geometry.kind
+            if kind == "box" and len(size) == 3:
+                largest = max(largest, size[0] * size[1] * size[2])
+            elif kind == "cylinder" and len(size) == 2:
+                largest = max(largest, math.pi * size[0] ** 2 * size[1])
+            elif kind == "sphere" and size:
+                largest = max(largest, 4.0 / 3.0 * math.pi * size[0] ** 3)
+            elif kind == "capsule" and len(size) == 2:
+                radius, length = size
+                largest = max(largest, math.pi * radius**2 * (length + 4.0 / 3.0 * radius))
+            else:
+                return True
+    return largest >= volume.low * (1.0 - 1e-6)
 
 
 def _urdf_mass(robot: Robot, links: list[str]) -> float:

@@ -204,6 +204,39 @@ def test_a_link_in_tonnes_fails_the_check(tmp_path):
     assert "tonnes written as kilograms" in finding["detail"]
 
 
+def marked_arm_urdf(arm_mass: float, marker_length: float) -> str:
+    """The arm with a massless link fused onto it whose only geometry is a thin see-through
+    cylinder ``marker_length`` long (a gunsight, a sensor's field of view), as PyFlyt's
+    acrowing has."""
+    marker = (
+        '  <link name="sight"><inertial><mass value="0"/>\n'
+        '    <inertia ixx="0" iyy="0" izz="0" ixy="0" ixz="0" iyz="0"/></inertial>\n'
+        f'    <visual><geometry><cylinder radius="0.15" length="{marker_length}"/></geometry>'
+        "</visual></link>\n"
+        '  <joint name="sight_joint" type="fixed"><parent link="arm"/><child link="sight"/>\n'
+        '    <origin xyz="10 0 0" rpy="0 1.5708 0"/></joint>\n'
+    )
+    return arm_urdf(arm_mass, arm_mass / 1.5 * 0.0115).replace("</robot>", marker + "</robot>")
+
+
+def test_a_massless_marker_fused_into_a_link_is_warned_about_not_failed(tmp_path):
+    """A 20 m see-through cylinder on a massless link makes the arm look 1 kg/m^3: the check
+    failed the build, blaming a mass in tonnes. It now warns, naming the marker link; the
+    same arm really written in tonnes, with a marker too small to decide, still fails."""
+    urdf = marked_arm_urdf(1.5, 20.0)
+    done, check = build_arm(tmp_path / "marker", urdf)
+    assert done.code == 0, done.stderr
+    (finding,) = check["plausibility"]["findings"]
+    assert finding["body"] == "arm" and not finding["fails"]
+    sight = line_of(urdf, '<link name="sight">')
+    assert f"link 'sight' (line {sight})" in finding["detail"]
+    assert "tonnes" not in finding["detail"]
+    done, check = build_arm(tmp_path / "tonnes", marked_arm_urdf(0.0015, 0.01))
+    assert done.code == EXIT_CHECK, done.stderr
+    (finding,) = check["plausibility"]["findings"]
+    assert finding["fails"] and "tonnes written as kilograms" in finding["detail"]
+
+
 def test_a_link_welded_to_the_world_is_judged_and_its_impossible_inertia_reported(tmp_path):
     world = (
         '  <link name="world"/>\n'

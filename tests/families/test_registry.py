@@ -39,7 +39,7 @@ BEFORE_FORMATS = {
     "decompose": 3,
     "assemble": 25,
     "scene": 3,
-    "check": 23,
+    "check": 24,
     "reference": 1,
     "previews": 5,
     "tuning": 1,
