@@ -24,7 +24,6 @@ real descriptions tag Z-up coordinates ``Y_UP`` (go1's trunk), so the tag alone 
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import unquote
@@ -33,6 +32,8 @@ import numpy as np
 from lxml import etree
 
 from mjcfbuild.errors import InputError
+from mjcfbuild.meshes.collada_looks import material_look
+from mjcfbuild.meshes.collada_xml import Reader, floats, ints
 
 
 @dataclass
@@ -56,91 +57,9 @@ class ColladaMesh:
     unit: float
 
 
-class _Reader:
-    def __init__(self, path: Path) -> None:
-        self.path = path
-        try:
-            parser = etree.XMLParser(
-                resolve_entities=False, no_network=True, load_dtd=False, huge_tree=True
-            )
-            self.root = etree.parse(str(path), parser).getroot()
-        except (etree.XMLSyntaxError, OSError) as exc:
-            raise InputError(f"cannot read COLLADA file: {exc}", file=path) from None
-        self.ns = self.root.nsmap.get(None)
-        # Every element by id, in document order. Exporters reuse ids (every geometry's
-        # positions called "verts"), so one id may name several elements: lookups choose by
-        # scope and kind (see `by_url`), never by whichever came last.
-        self.ids: dict[str, list] = {}
-        for element in self.root.iter(etree.Element):
-            element_id = element.get("id")
-            if element_id:
-                self.ids.setdefault(element_id, []).append(element)
-
-    def tag(self, name: str) -> str:
-        return f"{{{self.ns}}}{name}" if self.ns else name
-
-    def find(self, element, path: str):
-        return element.find(_any_namespace(path))
-
-    def findall(self, element, path: str):
-        return element.findall(_any_namespace(path))
-
-    def by_url(self, url: str | None, kinds: tuple[str, ...], referrer=None, scope=None):
-        """The element of one of ``kinds`` (local names) that ``url`` ("#id") names.
-
-        Ids are looked up as pycollada does: first among ``scope`` (the children of a
-        ``<mesh>``, where sources and vertices live), then in the whole document among
-        elements of the right kind. An id that still names two different elements is an
-        error naming both lines: the readings would disagree, and guessing could hand over
-        another geometry's vertices."""
-        if not url:
-            return None
-        element_id = url[1:] if url.startswith("#") else url
-        for candidates in (
-            [e for e in scope if e.get("id") == element_id] if scope is not None else [],
-            self.ids.get(element_id, []),
-        ):
-            found = [e for e in candidates if etree.QName(e).localname in kinds]
-            if not found:
-                continue
-            first = found[0]
-            if any(_differs(first, other) for other in found[1:]):
-                lines = " and ".join(str(e.sourceline) for e in found)
-                kind = etree.QName(first).localname
-                raise InputError(
-                    f"id '{element_id}' names {len(found)} different <{kind}> "
-                    f"elements (lines {lines}); the reference cannot tell which one it means",
-                    file=self.path,
-                    line=referrer.sourceline if referrer is not None else None,
-                    hint="give each element its own id (re-export the mesh), or convert it to OBJ",
-                )
-            return first
-        return None
-
-    def error(self, message: str, element=None) -> InputError:
-        return InputError(
-            message,
-            file=self.path,
-            line=element.sourceline if element is not None else None,
-            hint="re-export the mesh, or convert it to OBJ",
-        )
-
-
-def _differs(one, other) -> bool:
-    """Whether two elements with the same id say different things. Copies are harmless, except
-    <vertices> in different meshes: their inputs name sources of their own mesh."""
-    if etree.QName(one).localname == "vertices" and one.getparent() is not other.getparent():
-        return True
-    return etree.tostring(one, with_tail=False) != etree.tostring(other, with_tail=False)
-
-
-def _any_namespace(path: str) -> str:
-    return "/".join(f"{{*}}{part}" for part in path.split("/"))
-
-
 def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
     """Read a DAE file into parts by material, vertices in metres."""
-    reader = _Reader(path)
+    reader = Reader(path)
     if reader.root.tag != reader.tag("COLLADA"):
         raise reader.error("not a COLLADA file (its root element is not <COLLADA>)")
     asset = reader.find(reader.root, "asset")
@@ -191,12 +110,12 @@ def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
             if has_uv
             else None
         )
-        rgba, texture = _material_look(reader, material)
+        rgba, texture = material_look(reader, material)
         parts.append(ColladaPart(material, vertices, faces, uv if texture else None, rgba, texture))
     return ColladaMesh(parts, up_axis, unit)
 
 
-def _unit(reader: _Reader, element) -> float:
+def _unit(reader: Reader, element) -> float:
     """The metres in one of the file's units: a positive, finite number, or an error at its
     line (pycollada ignores ``meter="0,001"``, which would make a millimetre mesh a thousand
     times too large)."""
@@ -222,7 +141,7 @@ def _up_axis_rotation(up_axis: str) -> np.ndarray:
     return rotation
 
 
-def _walk(reader: _Reader, node, parent: np.ndarray, groups: dict, depth: int) -> None:
+def _walk(reader: Reader, node, parent: np.ndarray, groups: dict, depth: int) -> None:
     if depth > 64:
         raise reader.error("node hierarchy nested more than 64 levels (a cycle?)")
     transform = parent @ _node_transform(reader, node)
@@ -257,7 +176,7 @@ def _walk(reader: _Reader, node, parent: np.ndarray, groups: dict, depth: int) -
         _walk(reader, child, transform, groups, depth + 1)
 
 
-def _controlled_geometry(reader: _Reader, instance):
+def _controlled_geometry(reader: Reader, instance):
     """The geometry a ``<controller>`` deforms and the matrix placing it in its bind pose: a
     skin's ``bind_shape_matrix``, or none for a morph (its base mesh)."""
     url = instance.get("url")
@@ -280,8 +199,8 @@ def _controlled_geometry(reader: _Reader, instance):
         )
     bind_shape = np.eye(4)
     matrix = reader.find(skin, "bind_shape_matrix") if skin is not None else None
-    if matrix is not None and len(_floats(reader, matrix)) == 16:
-        bind_shape = _floats(reader, matrix).reshape(4, 4)
+    if matrix is not None and len(floats(reader, matrix)) == 16:
+        bind_shape = floats(reader, matrix).reshape(4, 4)
     return geometry, bind_shape
 
 
@@ -289,13 +208,13 @@ def _controlled_geometry(reader: _Reader, instance):
 _TRANSFORM_SIZES = {"matrix": 16, "translate": 3, "rotate": 4, "scale": 3}
 
 
-def _node_transform(reader: _Reader, node) -> np.ndarray:
+def _node_transform(reader: Reader, node) -> np.ndarray:
     transform = np.eye(4)
     for child in node:
         if not isinstance(child.tag, str):
             continue  # comments (a transform commented out), processing instructions
         tag = etree.QName(child).localname
-        values = _floats(reader, child)
+        values = floats(reader, child)
         if tag == "matrix" and len(values) == 16:
             step = values.reshape(4, 4)
         elif tag == "translate" and len(values) == 3:
@@ -339,44 +258,7 @@ def _axis_angle(axis: np.ndarray, angle: float) -> np.ndarray:
     )
 
 
-def _floats(reader: _Reader, element) -> np.ndarray:
-    """The numbers of ``element``'s text (none for no element); anything else in it is an
-    error at its line (``0,2``: a decimal comma)."""
-    return _numbers(reader, element, np.float64, "numbers")
-
-
-def _ints(reader: _Reader, element) -> np.ndarray:
-    """The whole numbers of ``element``'s text, as :func:`_floats`."""
-    return _numbers(reader, element, np.int64, "whole numbers")
-
-
-def _numbers(reader: _Reader, element, dtype, what: str) -> np.ndarray:
-    text = element.text if element is not None else None
-    if not text or not text.strip():
-        return np.zeros(0, dtype=dtype)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeprecationWarning)
-        try:
-            return np.fromstring(text, dtype=dtype, sep=" ")
-        except ValueError:
-            pass
-    words = text.split()
-    kind = float if dtype is np.float64 else int
-    bad = next((word for word in words if not _parses(kind, word)), words[0])
-    raise reader.error(
-        f"<{etree.QName(element).localname}> holds '{bad[:20]}' among its {what}", element
-    )
-
-
-def _parses(kind: type, word: str) -> bool:
-    try:
-        kind(word)
-    except ValueError:
-        return False
-    return True
-
-
-def _source_array(reader: _Reader, referrer, mesh, cache: dict) -> np.ndarray:
+def _source_array(reader: Reader, referrer, mesh, cache: dict) -> np.ndarray:
     """The values of the <source> (or <vertices>' POSITION source) that ``referrer`` (an
     <input>) names, as rows of its accessor's stride; ids are looked up in ``mesh`` first."""
     source_id = referrer.get("source") or ""
@@ -396,7 +278,7 @@ def _source_array(reader: _Reader, referrer, mesh, cache: dict) -> np.ndarray:
     else:
         array = reader.find(source, "float_array")
         accessor = reader.find(source, "technique_common/accessor")
-        values = _floats(reader, array)
+        values = floats(reader, array)
         stride = int(accessor.get("stride", "1")) if accessor is not None else 3
         count = (
             int(accessor.get("count", str(len(values) // max(stride, 1))))
@@ -436,7 +318,7 @@ _NOT_SURFACES = ("source", "vertices", "extra", "lines", "linestrips")
 
 
 def _add_geometry(
-    reader: _Reader, geometry, transform: np.ndarray, bindings: dict, groups: dict
+    reader: Reader, geometry, transform: np.ndarray, bindings: dict, groups: dict
 ) -> None:
     mesh = reader.find(geometry, "mesh")
     if mesh is None:
@@ -489,7 +371,7 @@ def _add_geometry(
                 "mjcfbuild does not read"
             )
         if kind in ("polygons", "tristrips", "trifans"):  # one <p> per polygon, strip or fan
-            polygons = [_ints(reader, p) for p in reader.findall(primitive, "p")]
+            polygons = [ints(reader, p) for p in reader.findall(primitive, "p")]
             counts = np.array([len(p) // stride for p in polygons], dtype=np.int64)
             indices = np.concatenate(polygons) if polygons else np.zeros(0, dtype=np.int64)
         else:
@@ -500,7 +382,7 @@ def _add_geometry(
                     "index lists (COLLADA allows one)",
                     primitive,
                 )
-            indices = _ints(reader, index_lists[0] if index_lists else None)
+            indices = ints(reader, index_lists[0] if index_lists else None)
             if kind == "polylist":
                 vcount = reader.find(primitive, "vcount")
                 if vcount is None and index_lists:
@@ -509,7 +391,7 @@ def _add_geometry(
                         "corners of each polygon)",
                         primitive,
                     )
-                counts = _ints(reader, vcount)
+                counts = ints(reader, vcount)
             else:
                 counts = np.full(len(indices) // (3 * stride), 3, dtype=np.int64)
         _check_count(reader, geometry, primitive, len(counts) if len(indices) else 0)
@@ -552,7 +434,7 @@ def _add_geometry(
         groups.setdefault(material, []).append((placed, faces, uv))
 
 
-def _check_count(reader: _Reader, geometry, primitive, found: int) -> None:
+def _check_count(reader: Reader, geometry, primitive, found: int) -> None:
     """Refuse a primitive whose ``count`` says more or fewer faces (polygons, strips) than its
     index list holds: a truncated or hand-edited file, which would be read in part."""
     declared = primitive.get("count")
@@ -565,7 +447,7 @@ def _check_count(reader: _Reader, geometry, primitive, found: int) -> None:
     )
 
 
-def _refuse_collapsed(reader: _Reader, geometry, primitive, points: np.ndarray, count: int) -> None:
+def _refuse_collapsed(reader: Reader, geometry, primitive, points: np.ndarray, count: int) -> None:
     """Refuse a primitive of several faces whose corners all lie on one point: no exporter
     writes one on purpose, and it is what a source read from the wrong place looks like."""
     if count > 1 and len(points) and np.all(points == points[0]):
@@ -714,127 +596,6 @@ def _fan_triangles(counts: np.ndarray) -> np.ndarray:
     return np.stack([start, start + k, start + k + 1], axis=1).reshape(-1, 3)
 
 
-def _material_look(reader: _Reader, material_id: str):
-    """(rgba, texture path) of a material; (None, None) when the file gives no colour."""
-    material = reader.by_url(material_id, ("material",))
-    if material is None:
-        return None, None
-    instance = reader.find(material, "instance_effect")
-    effect = (
-        reader.by_url(instance.get("url"), ("effect",), instance) if instance is not None else None
-    )
-    if effect is None:
-        return None, None
-    technique = None
-    # The common profile's technique first: another profile's (an <extra>'s) is a tool's own.
-    common = reader.find(effect, "profile_COMMON/technique")
-    for within in (common, effect):
-        for name in ("phong", "lambert", "blinn", "constant"):
-            technique = next(within.iter(reader.tag(name)), None) if within is not None else None
-            if technique is not None:
-                break
-        if technique is not None:
-            break
-    if technique is None:
-        return None, None
-    rgba = None
-    texture = None
-    for channel in (
-        ("diffuse", "emission") if etree.QName(technique).localname == "constant" else ("diffuse",)
-    ):
-        element = reader.find(technique, channel)
-        if element is None:
-            continue
-        colour = reader.find(element, "color")
-        if colour is not None:
-            values = _floats(reader, colour)
-            if len(values) >= 3:
-                alpha = float(values[3]) if len(values) > 3 else 1.0
-                rgba = (*(float(v) for v in values[:3]), alpha)
-        sampler = reader.find(element, "texture")
-        if sampler is not None:
-            texture = _texture_file(reader, effect, sampler.get("texture"))
-        if rgba or texture:
-            break
-    if rgba is not None:
-        rgba = (*rgba[:3], rgba[3] * _opacity(reader, technique))
-    if rgba is not None:
-        rgba = tuple(round(min(max(c, 0.0), 1.0), 6) for c in rgba)
-    return rgba, texture
-
-
-# COLLADA's luminance weights for <transparent opaque="RGB_ZERO"> (1.4.1 spec, "Determining
-# Transparency").
-_LUMINANCE = (0.212671, 0.715160, 0.072169)
-
-
-def _opacity(reader: _Reader, technique) -> float:
-    """How opaque a technique's <transparent> and <transparency> make it, as the COLLADA spec
-    computes it (A_ONE: the colour's alpha times the transparency; RGB_ZERO: one minus its
-    luminance times the transparency). Exporters write values the spec reads as invisible
-    (A_ONE with a transparency of 0, a transparent colour with alpha 0) for parts they mean
-    opaque: a result of none at all is taken as opaque. Without a <transparent>, only a
-    transparency strictly between 0 and 1 is trusted, for the same reason."""
-    element = reader.find(technique, "transparency/float")
-    try:
-        transparency = float(element.text) if element is not None and element.text else None
-    except ValueError:
-        transparency = None
-    transparent = reader.find(technique, "transparent")
-    colour = reader.find(transparent, "color") if transparent is not None else None
-    values = [float(v) for v in _floats(reader, colour)] if colour is not None else []
-    if transparent is None or len(values) < 3:
-        if transparency is not None and 0.0 < transparency < 1.0:
-            return transparency
-        return 1.0
-    factor = 1.0 if transparency is None else transparency
-    if transparent is not None and transparent.get("opaque", "A_ONE") in ("RGB_ZERO", "RGB_ONE"):
-        luminance = sum(weight * v for weight, v in zip(_LUMINANCE, values[:3], strict=True))
-        seen = luminance * factor
-        opacity = 1.0 - seen if transparent.get("opaque") == "RGB_ZERO" else seen
-    else:  # A_ONE (the default), A_ZERO
-        alpha = values[3] if len(values) > 3 else 1.0
-        seen = alpha * factor
-        opacity = 1.0 - seen if transparent.get("opaque") == "A_ZERO" else seen
-    opacity = min(max(opacity, 0.0), 1.0)
-    return opacity if opacity > 0.0 else 1.0
-
-
-def _texture_file(reader: _Reader, effect, sampler_sid: str | None) -> Path | None:
-    """Follow sampler2D -> surface -> image to the texture file of a <texture> reference."""
-    if not sampler_sid:
-        return None
-    image_id = sampler_sid
-    params = {p.get("sid"): p for p in effect.iter(reader.tag("newparam"))}
-    sampler = params.get(sampler_sid)
-    if sampler is not None:
-        source = next(sampler.iter(reader.tag("source")), None)
-        surface = params.get(source.text.strip()) if source is not None and source.text else None
-        if surface is not None:
-            init = next(surface.iter(reader.tag("init_from")), None)
-            if init is not None and init.text:
-                image_id = init.text.strip()
-        else:  # COLLADA 1.5: the sampler names the image directly
-            instance = next(sampler.iter(reader.tag("instance_image")), None)
-            if instance is not None:
-                image_id = instance.get("url", "").lstrip("#")
-    image = reader.by_url(image_id, ("image",))
-    if image is None:
-        return None
-    init = next(image.iter(reader.tag("init_from")), None)
-    if init is None:
-        return None
-    ref = next(init.iter(reader.tag("ref")), None)
-    text = (ref.text if ref is not None else init.text) or ""
-    text = unquote(text.strip())
-    if text.startswith("file://"):
-        text = text[len("file://") :]
-    path = Path(text)
-    if not path.is_absolute():
-        path = reader.path.parent / path
-    return path if path.is_file() else None
-
-
 def referenced_files(path: Path) -> list[Path]:
     """Texture files a DAE refers to (only those that exist)."""
     return [p for p in named_files(path) if p.is_file()]
@@ -844,7 +605,7 @@ def named_files(path: Path) -> list[Path]:
     """The files a DAE's images name (``<image><init_from>``, or its ``<ref>`` in COLLADA
     1.5), whether they exist or not."""
     try:
-        reader = _Reader(path)
+        reader = Reader(path)
     except InputError:
         return []
     found = []

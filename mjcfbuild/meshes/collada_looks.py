@@ -1,0 +1,132 @@
+"""A COLLADA material's look: its colour (Phong, Lambert, Blinn or constant, with the spec's
+transparency) and its diffuse texture file."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from urllib.parse import unquote
+
+from lxml import etree
+
+from mjcfbuild.meshes.collada_xml import Reader, floats
+
+
+def material_look(reader: Reader, material_id: str):
+    """(rgba, texture path) of a material; (None, None) when the file gives no colour."""
+    material = reader.by_url(material_id, ("material",))
+    if material is None:
+        return None, None
+    instance = reader.find(material, "instance_effect")
+    effect = (
+        reader.by_url(instance.get("url"), ("effect",), instance) if instance is not None else None
+    )
+    if effect is None:
+        return None, None
+    technique = None
+    # The common profile's technique first: another profile's (an <extra>'s) is a tool's own.
+    common = reader.find(effect, "profile_COMMON/technique")
+    for within in (common, effect):
+        for name in ("phong", "lambert", "blinn", "constant"):
+            technique = next(within.iter(reader.tag(name)), None) if within is not None else None
+            if technique is not None:
+                break
+        if technique is not None:
+            break
+    if technique is None:
+        return None, None
+    rgba = None
+    texture = None
+    for channel in (
+        ("diffuse", "emission") if etree.QName(technique).localname == "constant" else ("diffuse",)
+    ):
+        element = reader.find(technique, channel)
+        if element is None:
+            continue
+        colour = reader.find(element, "color")
+        if colour is not None:
+            values = floats(reader, colour)
+            if len(values) >= 3:
+                alpha = float(values[3]) if len(values) > 3 else 1.0
+                rgba = (*(float(v) for v in values[:3]), alpha)
+        sampler = reader.find(element, "texture")
+        if sampler is not None:
+            texture = _texture_file(reader, effect, sampler.get("texture"))
+        if rgba or texture:
+            break
+    if rgba is not None:
+        rgba = (*rgba[:3], rgba[3] * _opacity(reader, technique))
+    if rgba is not None:
+        rgba = tuple(round(min(max(c, 0.0), 1.0), 6) for c in rgba)
+    return rgba, texture
+
+
+# COLLADA's luminance weights for <transparent opaque="RGB_ZERO"> (1.4.1 spec, "Determining
+# Transparency").
+_LUMINANCE = (0.212671, 0.715160, 0.072169)
+
+
+def _opacity(reader: Reader, technique) -> float:
+    """How opaque a technique's <transparent> and <transparency> make it, as the COLLADA spec
+    computes it (A_ONE: the colour's alpha times the transparency; RGB_ZERO: one minus its
+    luminance times the transparency). Exporters write values the spec reads as invisible
+    (A_ONE with a transparency of 0, a transparent colour with alpha 0) for parts they mean
+    opaque: a result of none at all is taken as opaque. Without a <transparent>, only a
+    transparency strictly between 0 and 1 is trusted, for the same reason."""
+    element = reader.find(technique, "transparency/float")
+    try:
+        transparency = float(element.text) if element is not None and element.text else None
+    except ValueError:
+        transparency = None
+    transparent = reader.find(technique, "transparent")
+    colour = reader.find(transparent, "color") if transparent is not None else None
+    values = [float(v) for v in floats(reader, colour)] if colour is not None else []
+    if transparent is None or len(values) < 3:
+        if transparency is not None and 0.0 < transparency < 1.0:
+            return transparency
+        return 1.0
+    factor = 1.0 if transparency is None else transparency
+    if transparent is not None and transparent.get("opaque", "A_ONE") in ("RGB_ZERO", "RGB_ONE"):
+        luminance = sum(weight * v for weight, v in zip(_LUMINANCE, values[:3], strict=True))
+        seen = luminance * factor
+        opacity = 1.0 - seen if transparent.get("opaque") == "RGB_ZERO" else seen
+    else:  # A_ONE (the default), A_ZERO
+        alpha = values[3] if len(values) > 3 else 1.0
+        seen = alpha * factor
+        opacity = 1.0 - seen if transparent.get("opaque") == "A_ZERO" else seen
+    opacity = min(max(opacity, 0.0), 1.0)
+    return opacity if opacity > 0.0 else 1.0
+
+
+def _texture_file(reader: Reader, effect, sampler_sid: str | None) -> Path | None:
+    """Follow sampler2D -> surface -> image to the texture file of a <texture> reference."""
+    if not sampler_sid:
+        return None
+    image_id = sampler_sid
+    params = {p.get("sid"): p for p in effect.iter(reader.tag("newparam"))}
+    sampler = params.get(sampler_sid)
+    if sampler is not None:
+        source = next(sampler.iter(reader.tag("source")), None)
+        surface = params.get(source.text.strip()) if source is not None and source.text else None
+        if surface is not None:
+            init = next(surface.iter(reader.tag("init_from")), None)
+            if init is not None and init.text:
+                image_id = init.text.strip()
+        else:  # COLLADA 1.5: the sampler names the image directly
+            instance = next(sampler.iter(reader.tag("instance_image")), None)
+            if instance is not None:
+                image_id = instance.get("url", "").lstrip("#")
+    image = reader.by_url(image_id, ("image",))
+    if image is None:
+        return None
+    init = next(image.iter(reader.tag("init_from")), None)
+    if init is None:
+        return None
+    ref = next(init.iter(reader.tag("ref")), None)
+    text = (ref.text if ref is not None else init.text) or ""
+    text = unquote(text.strip())
+    if text.startswith("file://"):
+        text = text[len("file://") :]
+    path = Path(text)
+    if not path.is_absolute():
+        path = reader.path.parent / path
+    return path if path.is_file() else None
