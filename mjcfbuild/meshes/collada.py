@@ -4,7 +4,9 @@ Written for the DAE files robot descriptions ship (exported from CAD tools and B
 ``triangles``, ``polylist``, ``polygons``, ``tristrips`` and ``trifans`` primitives, node
 transforms (``matrix``, ``translate``, ``rotate``, ``scale``), ``instance_node``, skinned or
 morphed geometry through ``instance_controller`` (in its bind pose), materials bound through
-``bind_material``, Phong/Lambert/Blinn/constant colours and diffuse textures. Lines carry no
+``bind_material``, Phong/Lambert/Blinn/constant colours and diffuse textures, mapped with the
+texture coordinate set the material's instance binds (``bind_vertex_input``). What the model
+cannot show is said in :attr:`ColladaMesh.warnings`. Lines carry no
 surface and are left out; any other primitive is an error naming it, never silently dropped.
 Ids are resolved as pycollada resolves them (an input's source within its own ``<mesh>``
 first), since exporters reuse source ids in every geometry; a reference that stays ambiguous,
@@ -24,7 +26,7 @@ real descriptions tag Z-up coordinates ``Y_UP`` (go1's trunk), so the tag alone 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from urllib.parse import unquote
 
@@ -32,7 +34,7 @@ import numpy as np
 from lxml import etree
 
 from mjcfbuild.errors import InputError
-from mjcfbuild.meshes.collada_looks import material_look
+from mjcfbuild.meshes.collada_looks import MaterialLook, material_look
 from mjcfbuild.meshes.collada_xml import Reader, floats, ints
 
 
@@ -55,6 +57,39 @@ class ColladaMesh:
     parts: list[ColladaPart]
     up_axis: str
     unit: float
+    warnings: list[str] = field(default_factory=list)  # what the model cannot show, a line each
+
+
+@dataclass(frozen=True)
+class _Binding:
+    """An ``<instance_material>``: the material its symbol stands for, and the TEXCOORD set
+    each name of the effect's texture coordinates stands for (``<bind_vertex_input>``)."""
+
+    material: str
+    texcoord_sets: dict[str, str]
+
+
+class _Drawing:
+    """What walking a file's scene collects: triangles by material, each material's look (read
+    once), and warnings."""
+
+    def __init__(self, reader: Reader) -> None:
+        self.reader = reader
+        self.groups: dict[str, list] = {}
+        self.looks: dict[str, MaterialLook] = {}
+        self.warnings: list[str] = []
+
+    def look(self, material: str) -> MaterialLook:
+        """The look of the material of id ``material``."""
+        if material not in self.looks:
+            self.looks[material] = material_look(self.reader, material)
+        return self.looks[material]
+
+    def warn(self, message: str) -> None:
+        """Say ``message`` about the file, once."""
+        line = f"{self.reader.path.name}: {message}"
+        if line not in self.warnings:
+            self.warnings.append(line)
 
 
 def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
@@ -77,7 +112,7 @@ def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
     if apply_up_axis:
         root_transform = _up_axis_rotation(up_axis) @ root_transform
 
-    groups: dict[str, list] = {}
+    drawing = _Drawing(reader)
     scene = reader.find(reader.root, "scene/instance_visual_scene")
     visual_scene = (
         reader.by_url(scene.get("url"), ("visual_scene",), scene) if scene is not None else None
@@ -91,13 +126,13 @@ def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
     if visual_scene is None:
         # No scene: every geometry at the origin, as some exporters write them.
         for geometry in reader.findall(reader.root, "library_geometries/geometry"):
-            _add_geometry(reader, geometry, root_transform, {}, groups)
+            _add_geometry(drawing, geometry, root_transform, {})
     else:
         for node in reader.findall(visual_scene, "node"):
-            _walk(reader, node, root_transform, groups, depth=0)
+            _walk(drawing, node, root_transform, depth=0)
 
     parts = []
-    for material, pieces in groups.items():
+    for material, pieces in drawing.groups.items():
         vertices = np.concatenate([p[0] for p in pieces])
         offsets = np.cumsum([0] + [len(p[0]) for p in pieces[:-1]])
         faces = np.concatenate([p[1] + o for p, o in zip(pieces, offsets, strict=True)])
@@ -110,9 +145,13 @@ def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
             if has_uv
             else None
         )
-        rgba, texture = material_look(reader, material)
-        parts.append(ColladaPart(material, vertices, faces, uv if texture else None, rgba, texture))
-    return ColladaMesh(parts, up_axis, unit)
+        look = drawing.look(material)
+        parts.append(
+            ColladaPart(
+                material, vertices, faces, uv if look.texture else None, look.rgba, look.texture
+            )
+        )
+    return ColladaMesh(parts, up_axis, unit, drawing.warnings)
 
 
 def _unit(reader: Reader, element) -> float:
@@ -141,7 +180,8 @@ def _up_axis_rotation(up_axis: str) -> np.ndarray:
     return rotation
 
 
-def _walk(reader: Reader, node, parent: np.ndarray, groups: dict, depth: int) -> None:
+def _walk(drawing: _Drawing, node, parent: np.ndarray, depth: int) -> None:
+    reader = drawing.reader
     if depth > 64:
         raise reader.error("node hierarchy nested more than 64 levels (a cycle?)")
     transform = parent @ _node_transform(reader, node)
@@ -152,18 +192,10 @@ def _walk(reader: Reader, node, parent: np.ndarray, groups: dict, depth: int) ->
                 f"<instance_geometry> refers to '{instance.get('url')}', which does not exist",
                 instance,
             )
-        bindings = {
-            bound.get("symbol"): (bound.get("target") or "").lstrip("#")
-            for bound in instance.iter(reader.tag("instance_material"))
-        }
-        _add_geometry(reader, geometry, transform, bindings, groups)
+        _add_geometry(drawing, geometry, transform, _bindings(reader, instance))
     for instance in reader.findall(node, "instance_controller"):
         geometry, bind_shape = _controlled_geometry(reader, instance)
-        bindings = {
-            bound.get("symbol"): (bound.get("target") or "").lstrip("#")
-            for bound in instance.iter(reader.tag("instance_material"))
-        }
-        _add_geometry(reader, geometry, transform @ bind_shape, bindings, groups)
+        _add_geometry(drawing, geometry, transform @ bind_shape, _bindings(reader, instance))
     for instance in reader.findall(node, "instance_node"):
         target = reader.by_url(instance.get("url"), ("node",), instance)
         if target is None:
@@ -171,9 +203,23 @@ def _walk(reader: Reader, node, parent: np.ndarray, groups: dict, depth: int) ->
                 f"<instance_node> refers to '{instance.get('url')}', which does not exist",
                 instance,
             )
-        _walk(reader, target, transform, groups, depth + 1)
+        _walk(drawing, target, transform, depth + 1)
     for child in reader.findall(node, "node"):
-        _walk(reader, child, transform, groups, depth + 1)
+        _walk(drawing, child, transform, depth + 1)
+
+
+def _bindings(reader: Reader, instance) -> dict[str, _Binding]:
+    """The materials an ``<instance_geometry>`` or ``<instance_controller>`` binds, by symbol."""
+    found = {}
+    for bound in instance.iter(reader.tag("instance_material")):
+        sets = {
+            (vertex_input.get("semantic") or "").strip(): vertex_input.get("input_set").strip()
+            for vertex_input in reader.findall(bound, "bind_vertex_input")
+            if vertex_input.get("input_semantic") == "TEXCOORD"
+            and vertex_input.get("input_set") is not None
+        }
+        found[bound.get("symbol")] = _Binding((bound.get("target") or "").lstrip("#"), sets)
+    return found
 
 
 def _controlled_geometry(reader: Reader, instance):
@@ -318,8 +364,9 @@ _NOT_SURFACES = ("source", "vertices", "extra", "lines", "linestrips")
 
 
 def _add_geometry(
-    reader: Reader, geometry, transform: np.ndarray, bindings: dict, groups: dict
+    drawing: _Drawing, geometry, transform: np.ndarray, bindings: dict[str, _Binding]
 ) -> None:
+    reader = drawing.reader
     mesh = reader.find(geometry, "mesh")
     if mesh is None:
         shapes = [etree.QName(e).localname for e in geometry if isinstance(e.tag, str)]
@@ -349,22 +396,13 @@ def _add_geometry(
         vertex_input = next((i for i in inputs if i.get("semantic") == "VERTEX"), None)
         if vertex_input is None:
             raise reader.error(f"a <{kind}> of geometry '{geometry.get('id')}' has no VERTEX input")
-        uv_input = next(
-            (
-                i
-                for i in inputs
-                if i.get("semantic") == "TEXCOORD" and i.get("set", "0") in ("0", None)
-            ),
-            next((i for i in inputs if i.get("semantic") == "TEXCOORD"), None),
+        symbol = primitive.get("material")
+        binding = bindings.get(symbol)
+        material = binding.material if binding is not None else symbol or ""
+        # uv_per_vertex: a TEXCOORD of the <vertices>, indexed as the positions are
+        uv_input, uv_per_vertex = _texcoord_input(
+            drawing, geometry, mesh, primitive, vertex_input, material, binding
         )
-        uv_per_vertex = False  # a TEXCOORD of the <vertices>: indexed as the positions are
-        if uv_input is None:
-            vertices = reader.by_url(
-                vertex_input.get("source"), ("vertices",), vertex_input, scope=mesh
-            )
-            inputs_there = reader.findall(vertices, "input") if vertices is not None else []
-            uv_input = next((i for i in inputs_there if i.get("semantic") == "TEXCOORD"), None)
-            uv_per_vertex = uv_input is not None
         if kind == "polygons" and reader.find(primitive, "ph") is not None:
             raise reader.error(
                 f"geometry '{geometry.get('id')}' has polygons with holes (<ph>), which "
@@ -430,8 +468,45 @@ def _add_geometry(
         placed = (homogeneous @ transform.T)[:, :3]
         if np.linalg.det(transform[:3, :3]) < 0:
             faces = faces[:, ::-1]
-        material = bindings.get(primitive.get("material"), primitive.get("material") or "")
-        groups.setdefault(material, []).append((placed, faces, uv))
+        drawing.groups.setdefault(material, []).append((placed, faces, uv))
+
+
+def _texcoord_input(
+    drawing: _Drawing, geometry, mesh, primitive, vertex_input, material: str, binding
+) -> tuple:
+    """The TEXCOORD input whose coordinates a primitive's texture reads, and whether it is
+    indexed as the positions are (an input of the ``<vertices>``): the set that the material's
+    instance binds to the name the texture gives its coordinates (``<bind_vertex_input>``, as
+    pycollada reads the binding and the inputs' sets); without a binding, set 0 or the first.
+    A bound set the geometry lacks, where it has several, is said in a warning."""
+    reader = drawing.reader
+    own = [i for i in reader.findall(primitive, "input") if i.get("semantic") == "TEXCOORD"]
+    vertices = reader.by_url(vertex_input.get("source"), ("vertices",), vertex_input, scope=mesh)
+    inputs_there = reader.findall(vertices, "input") if vertices is not None else []
+    shared = [i for i in inputs_there if i.get("semantic") == "TEXCOORD"]
+    candidates = [(i, False) for i in own] + [(i, True) for i in shared]
+    if not candidates:
+        return None, False
+    default = next((c for c in candidates[: len(own)] if _set(c[0]) in ("0", "")), candidates[0])
+    texcoord = drawing.look(material).texcoord
+    wanted = binding.texcoord_sets.get(texcoord) if binding is not None and texcoord else None
+    if wanted is None:
+        return default
+    chosen = next((c for c in candidates if _set(c[0]) == wanted), None)
+    if chosen is not None:
+        return chosen
+    if len(candidates) > 1:
+        drawing.warn(
+            f"material '{material}' maps its texture with texture coordinate set {wanted}, "
+            f"which geometry '{geometry.get('id')}' does not have; the model maps it with set "
+            f"{_set(default[0]) or 0} (bind a set the geometry has, or re-export the mesh)"
+        )
+    return default
+
+
+def _set(texcoord_input) -> str:
+    """The ``set`` an input says it belongs to ("" where it says none)."""
+    return (texcoord_input.get("set") or "").strip()
 
 
 def _check_count(reader: Reader, geometry, primitive, found: int) -> None:

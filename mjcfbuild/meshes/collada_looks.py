@@ -3,6 +3,7 @@ transparency) and its diffuse texture file."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import unquote
 
@@ -10,18 +11,34 @@ from lxml import etree
 
 from mjcfbuild.meshes.collada_xml import Reader, floats
 
+RGBA = tuple[float, float, float, float]
 
-def material_look(reader: Reader, material_id: str):
-    """(rgba, texture path) of a material; (None, None) when the file gives no colour."""
+
+@dataclass(frozen=True)
+class MaterialLook:
+    """What a material shows: a colour and a texture file, each where the file gives one."""
+
+    rgba: RGBA | None = None
+    texture: Path | None = None
+    # The name the texture gives its texture coordinates (``<texture texcoord="UVMap">``): a
+    # <bind_vertex_input> of the material's instance says which TEXCOORD set it is.
+    texcoord: str | None = None
+
+
+NO_LOOK = MaterialLook()
+
+
+def material_look(reader: Reader, material_id: str) -> MaterialLook:
+    """The look of a material; :data:`NO_LOOK` when the file gives it no colour."""
     material = reader.by_url(material_id, ("material",))
     if material is None:
-        return None, None
+        return NO_LOOK
     instance = reader.find(material, "instance_effect")
     effect = (
         reader.by_url(instance.get("url"), ("effect",), instance) if instance is not None else None
     )
     if effect is None:
-        return None, None
+        return NO_LOOK
     technique = None
     # The common profile's technique first: another profile's (an <extra>'s) is a tool's own.
     common = reader.find(effect, "profile_COMMON/technique")
@@ -33,9 +50,10 @@ def material_look(reader: Reader, material_id: str):
         if technique is not None:
             break
     if technique is None:
-        return None, None
-    rgba = None
+        return NO_LOOK
+    rgba: RGBA | None = None
     texture = None
+    texcoord = None
     for channel in (
         ("diffuse", "emission") if etree.QName(technique).localname == "constant" else ("diffuse",)
     ):
@@ -47,17 +65,23 @@ def material_look(reader: Reader, material_id: str):
             values = floats(reader, colour)
             if len(values) >= 3:
                 alpha = float(values[3]) if len(values) > 3 else 1.0
-                rgba = (*(float(v) for v in values[:3]), alpha)
+                r, g, b = (float(v) for v in values[:3])
+                rgba = (r, g, b, alpha)
         sampler = reader.find(element, "texture")
         if sampler is not None:
             texture = _texture_file(reader, effect, sampler.get("texture"))
+            texcoord = sampler.get("texcoord") if texture is not None else None
         if rgba or texture:
             break
     if rgba is not None:
-        rgba = (*rgba[:3], rgba[3] * _opacity(reader, technique))
-    if rgba is not None:
-        rgba = tuple(round(min(max(c, 0.0), 1.0), 6) for c in rgba)
-    return rgba, texture
+        r, g, b, a = rgba
+        a *= _opacity(reader, technique)
+        rgba = (_unit_interval(r), _unit_interval(g), _unit_interval(b), _unit_interval(a))
+    return MaterialLook(rgba, texture, texcoord)
+
+
+def _unit_interval(value: float) -> float:
+    return round(min(max(value, 0.0), 1.0), 6)
 
 
 # COLLADA's luminance weights for <transparent opaque="RGB_ZERO"> (1.4.1 spec, "Determining

@@ -176,7 +176,9 @@ def _collada_pieces(path: Path, apply_up_axis: bool, warnings: list[str]) -> lis
 
     pieces = []
     unreadable: set[Path] = set()
-    for part in read_collada(path, apply_up_axis=apply_up_axis).parts:
+    mesh = read_collada(path, apply_up_axis=apply_up_axis)
+    warnings.extend(mesh.warnings)
+    for part in mesh.parts:
         texture = None
         if part.texture is not None and part.texture not in unreadable:
             try:

@@ -1,0 +1,106 @@
+"""What a DAE's materials show, checked against pycollada's reading of the same file: the
+texture coordinate set a material binds, per-vertex colours and emission."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from mjcfbuild.meshes.collada import read_collada
+from tests.conftest import write
+from tests.meshes.samples import checker_png
+from tests.meshes.test_collada import MATERIAL, dae, scene
+
+ST = '<param name="S" type="float"/><param name="T" type="float"/>'
+XYZ = '<param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>'
+TWO_SETS = f"""
+<library_geometries><geometry id="g"><mesh>
+  <source id="p"><float_array id="pa" count="12">0 0 0 1 0 0 1 1 0 0 1 0</float_array>
+    <technique_common><accessor source="#pa" count="4" stride="3">{XYZ}</accessor></technique_common></source>
+  <source id="t0"><float_array id="t0a" count="8">0 0 1 0 1 1 0 1</float_array>
+    <technique_common><accessor source="#t0a" count="4" stride="2">{ST}</accessor></technique_common></source>
+  <source id="t1"><float_array id="t1a" count="8">0.5 0.5 0.75 0.5 0.75 0.75 0.5 0.75</float_array>
+    <technique_common><accessor source="#t1a" count="4" stride="2">{ST}</accessor></technique_common></source>
+  <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+  <polylist material="m" count="1">
+    <input semantic="VERTEX" source="#v" offset="0"/>
+    <input semantic="TEXCOORD" source="#t0" offset="1" set="0"/>
+    <input semantic="TEXCOORD" source="#t1" offset="2" set="1"/>
+    <vcount>4</vcount><p>0 0 0 1 1 1 2 2 2 3 3 3</p>
+  </polylist>
+</mesh></geometry></library_geometries>"""
+
+
+def bound_instance(input_set: str | None) -> str:
+    binding = (
+        f'<bind_vertex_input semantic="UVMap" input_semantic="TEXCOORD" input_set="{input_set}"/>'
+        if input_set is not None
+        else ""
+    )
+    return (
+        '<node><instance_geometry url="#g"><bind_material><technique_common>'
+        f'<instance_material symbol="m" target="#mat">{binding}</instance_material>'
+        "</technique_common></bind_material></instance_geometry></node>"
+    )
+
+
+def textured(tmp_path, input_set: str | None):
+    checker_png(tmp_path / "skin.png")
+    body = TWO_SETS + MATERIAL.format(diffuse='<texture texture="samp" texcoord="UVMap"/>')
+    return write(tmp_path / "two_sets.dae", dae(body, scene=scene(bound_instance(input_set))))
+
+
+def corners(positions: np.ndarray, uv: np.ndarray) -> list:
+    """Each triangle corner as (x, y, z, u, v), sorted: the same for any triangle order."""
+    rows = np.hstack([positions.reshape(-1, 3), uv.reshape(-1, 2)])
+    return sorted(map(tuple, np.round(rows, 9).tolist()))
+
+
+def pycollada_corners(path, material_symbol: str = "m") -> list:
+    """The texture coordinates pycollada gives the set the material's binding names."""
+    import collada
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # numpy.matrix inside pycollada
+        document = collada.Collada(str(path))
+        (bound,) = document.scene.objects("geometry")
+        (primitive,) = bound.primitives()
+        triangles = primitive.triangleset()
+    (binding,) = bound.materialnodebysymbol[material_symbol].inputs
+    texcoords = primitive.original.sources["TEXCOORD"]
+    index = next(k for k, entry in enumerate(texcoords) if entry[3] == binding[2])
+    uv = triangles.texcoordset[index][triangles.texcoord_indexset[index]]
+    return corners(triangles.vertex[triangles.vertex_index], uv)
+
+
+def test_a_texture_reads_the_coordinate_set_its_material_binds(tmp_path):
+    path = textured(tmp_path, "1")
+    mesh = read_collada(path)
+    (part,) = mesh.parts
+    assert part.uv is not None
+    assert corners(part.vertices[part.faces], part.uv[part.faces]) == pycollada_corners(path)
+    assert part.uv.min() == 0.5  # set 1's coordinates, not set 0's
+    assert mesh.warnings == []
+
+
+def test_without_a_binding_the_texture_reads_set_0(tmp_path):
+    (part,) = read_collada(textured(tmp_path, None)).parts
+    assert part.uv is not None and part.uv.min() == 0.0 and part.uv.max() == 1.0
+
+
+def test_a_bound_set_the_geometry_lacks_is_said_and_set_0_is_used(tmp_path):
+    mesh = read_collada(textured(tmp_path, "7"))
+    (part,) = mesh.parts
+    assert part.uv is not None and part.uv.max() == 1.0
+    (warning,) = mesh.warnings
+    assert warning.startswith("two_sets.dae: material 'mat' maps its texture with texture ")
+    assert "set 7, which geometry 'g' does not have; the model maps it with set 0" in warning
+
+
+def test_the_reader_s_warnings_reach_the_mesh_s(tmp_path):
+    from mjcfbuild.meshes.load import load_parts
+
+    said: list[str] = []
+    load_parts(textured(tmp_path, "7"), warnings=said)
+    assert len(said) == 1 and said[0].startswith("two_sets.dae: material 'mat' maps its texture")
