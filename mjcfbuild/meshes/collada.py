@@ -5,8 +5,10 @@ Written for the DAE files robot descriptions ship (exported from CAD tools and B
 transforms (``matrix``, ``translate``, ``rotate``, ``scale``), ``instance_node``, skinned or
 morphed geometry through ``instance_controller`` (in its bind pose), materials bound through
 ``bind_material``, Phong/Lambert/Blinn/constant colours and diffuse textures, mapped with the
-texture coordinate set the material's instance binds (``bind_vertex_input``). What the model
-cannot show is said in :attr:`ColladaMesh.warnings`. Lines carry no
+texture coordinate set the material's instance binds (``bind_vertex_input``), glows
+(``emission``) as a share of their colour (:mod:`mjcfbuild.meshes.collada_looks`), and per-vertex
+colours where no material colours the faces (:mod:`mjcfbuild.meshes.collada_colours`). What
+the model cannot show is said in :attr:`ColladaMesh.warnings`, a line each. Lines carry no
 surface and are left out; any other primitive is an error naming it, never silently dropped.
 Ids are resolved as pycollada resolves them (an input's source within its own ``<mesh>``
 first), since exporters reuse source ids in every geometry; a reference that stays ambiguous,
@@ -34,7 +36,8 @@ import numpy as np
 from lxml import etree
 
 from mjcfbuild.errors import InputError
-from mjcfbuild.meshes.collada_looks import MaterialLook, material_look
+from mjcfbuild.meshes.collada_colours import MOST_COLOURS, average, by_colour, face_colours
+from mjcfbuild.meshes.collada_looks import RGBA, MaterialLook, material_look
 from mjcfbuild.meshes.collada_xml import Reader, floats, ints
 
 
@@ -46,8 +49,9 @@ class ColladaPart:
     vertices: np.ndarray
     faces: np.ndarray
     uv: np.ndarray | None
-    rgba: tuple[float, float, float, float] | None
+    rgba: RGBA | None
     texture: Path | None
+    emission: float | None = None  # MuJoCo's: a share of the colour the part glows with
 
 
 @dataclass
@@ -75,14 +79,18 @@ class _Drawing:
 
     def __init__(self, reader: Reader) -> None:
         self.reader = reader
-        self.groups: dict[str, list] = {}
+        # (material, vertex colour) -> pieces (placed vertices, faces, uv); the colour where
+        # per-vertex colours colour the faces (collada_colours), else None
+        self.groups: dict[tuple[str, RGBA | None], list] = {}
         self.looks: dict[str, MaterialLook] = {}
         self.warnings: list[str] = []
 
     def look(self, material: str) -> MaterialLook:
-        """The look of the material of id ``material``."""
+        """The look of the material of id ``material`` (what it cannot show said once)."""
         if material not in self.looks:
             self.looks[material] = material_look(self.reader, material)
+            for note in self.looks[material].notes:
+                self.warn(note)
         return self.looks[material]
 
     def warn(self, message: str) -> None:
@@ -131,8 +139,9 @@ def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
         for node in reader.findall(visual_scene, "node"):
             _walk(drawing, node, root_transform, depth=0)
 
+    _average_excess_colours(drawing)
     parts = []
-    for material, pieces in drawing.groups.items():
+    for (material, colour), pieces in drawing.groups.items():
         vertices = np.concatenate([p[0] for p in pieces])
         offsets = np.cumsum([0] + [len(p[0]) for p in pieces[:-1]])
         faces = np.concatenate([p[1] + o for p, o in zip(pieces, offsets, strict=True)])
@@ -148,10 +157,42 @@ def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
         look = drawing.look(material)
         parts.append(
             ColladaPart(
-                material, vertices, faces, uv if look.texture else None, look.rgba, look.texture
+                material,
+                vertices,
+                faces,
+                uv if look.texture else None,
+                colour if colour is not None else look.rgba,
+                look.texture,
+                look.emission,
             )
         )
     return ColladaMesh(parts, up_axis, unit, drawing.warnings)
+
+
+def _average_excess_colours(drawing: _Drawing) -> None:
+    """Past :data:`MOST_COLOURS` vertex colours in the file, each material's vertex-coloured
+    faces take their average colour (a part each), with a warning."""
+    colours = {colour for _, colour in drawing.groups if colour is not None}
+    if len(colours) <= MOST_COLOURS:
+        return
+    counts: dict[str, list[tuple[RGBA, int]]] = {}  # material -> (colour, faces)
+    for (material, colour), pieces in drawing.groups.items():
+        if colour is not None:
+            counts.setdefault(material, []).append((colour, sum(len(p[1]) for p in pieces)))
+    means = {
+        material: average([colour for colour, _ in found], [faces for _, faces in found])
+        for material, found in counts.items()
+    }
+    grouped: dict[tuple[str, RGBA | None], list] = {}
+    for (material, colour), pieces in drawing.groups.items():
+        key = (material, means[material] if colour is not None else None)
+        grouped.setdefault(key, []).extend(pieces)
+    drawing.groups = grouped
+    drawing.warn(
+        f"its per-vertex colours (COLOR) hold {len(colours)} colours, more than the "
+        f"{MOST_COLOURS} parts mjcfbuild makes of them: the model shows each material's "
+        "vertex-coloured faces in their average colour"
+    )
 
 
 def _unit(reader: Reader, element) -> float:
@@ -468,7 +509,55 @@ def _add_geometry(
         placed = (homogeneous @ transform.T)[:, :3]
         if np.linalg.det(transform[:3, :3]) < 0:
             faces = faces[:, ::-1]
-        drawing.groups.setdefault(material, []).append((placed, faces, uv))
+        colours = _corner_colours(drawing, mesh, primitive, vertex_input, material, cache)
+        if colours is None:
+            drawing.groups.setdefault((material, None), []).append((placed, faces, uv))
+            continue
+        index = vertex_index if colours[1] else corners[:, int(colours[0].get("offset", "0"))]
+        if index.size and (index.max() >= len(colours[2]) or index.min() < 0):
+            raise reader.error(
+                f"a <{kind}> of geometry '{geometry.get('id')}' uses colour "
+                f"{int(index.max() if index.max() >= len(colours[2]) else index.min())}, but its "
+                f"source has {len(colours[2])} colours (colour index out of range)",
+                primitive,
+            )
+        rgb, blended = face_colours(colours[2][index][:, :3], faces)
+        if blended:
+            drawing.warn(
+                "its per-vertex colours (COLOR) blend across faces, which a MuJoCo mesh "
+                "cannot show: the model colours each face with the mean of its corners' colours"
+            )
+        for colour, chosen in by_colour(rgb):
+            piece = (placed, faces[chosen], uv)
+            drawing.groups.setdefault((material, colour), []).append(piece)
+
+
+def _corner_colours(drawing: _Drawing, mesh, primitive, vertex_input, material: str, cache):
+    """A primitive's COLOR input (set 0 or the first), whether it is indexed as the positions
+    are, and its colours; None where it has none, or where its material gives the colour (as
+    RViz shows it, which draws no vertex colours), with a warning then."""
+    found = _inputs_of(drawing.reader, mesh, primitive, vertex_input, "COLOR")
+    if not found:
+        return None
+    look = drawing.look(material)
+    if look.rgba is not None or look.texture is not None:
+        drawing.warn(
+            "its per-vertex colours (COLOR) are not shown where a material gives the colour, "
+            "as RViz shows them (a MuJoCo mesh has no colour per vertex)"
+        )
+        return None
+    chosen, per_vertex = next((f for f in found if _set(f[0]) in ("0", "")), found[0])
+    return chosen, per_vertex, _source_array(drawing.reader, chosen, mesh, cache)
+
+
+def _inputs_of(reader: Reader, mesh, primitive, vertex_input, semantic: str) -> list[tuple]:
+    """The inputs of ``semantic`` a primitive reads, each with whether it is indexed as the
+    positions are: the primitive's own, then those of its ``<vertices>``."""
+    own = [i for i in reader.findall(primitive, "input") if i.get("semantic") == semantic]
+    vertices = reader.by_url(vertex_input.get("source"), ("vertices",), vertex_input, scope=mesh)
+    inputs_there = reader.findall(vertices, "input") if vertices is not None else []
+    shared = [i for i in inputs_there if i.get("semantic") == semantic]
+    return [(i, False) for i in own] + [(i, True) for i in shared]
 
 
 def _texcoord_input(
@@ -479,15 +568,11 @@ def _texcoord_input(
     instance binds to the name the texture gives its coordinates (``<bind_vertex_input>``, as
     pycollada reads the binding and the inputs' sets); without a binding, set 0 or the first.
     A bound set the geometry lacks, where it has several, is said in a warning."""
-    reader = drawing.reader
-    own = [i for i in reader.findall(primitive, "input") if i.get("semantic") == "TEXCOORD"]
-    vertices = reader.by_url(vertex_input.get("source"), ("vertices",), vertex_input, scope=mesh)
-    inputs_there = reader.findall(vertices, "input") if vertices is not None else []
-    shared = [i for i in inputs_there if i.get("semantic") == "TEXCOORD"]
-    candidates = [(i, False) for i in own] + [(i, True) for i in shared]
+    candidates = _inputs_of(drawing.reader, mesh, primitive, vertex_input, "TEXCOORD")
     if not candidates:
         return None, False
-    default = next((c for c in candidates[: len(own)] if _set(c[0]) in ("0", "")), candidates[0])
+    own = [c for c in candidates if not c[1]]
+    default = next((c for c in own if _set(c[0]) in ("0", "")), candidates[0])
     texcoord = drawing.look(material).texcoord
     wanted = binding.texcoord_sets.get(texcoord) if binding is not None and texcoord else None
     if wanted is None:

@@ -1,5 +1,10 @@
 """A COLLADA material's look: its colour (Phong, Lambert, Blinn or constant, with the spec's
-transparency) and its diffuse texture file."""
+transparency), its diffuse texture file and its glow (``<emission>``).
+
+A MuJoCo material's emission is one number, a share of its own colour added to the lit one;
+COLLADA's is a colour, which RViz adds as Ogre's self-illumination. The share that comes
+closest to the colour is used, and a glow it cannot show (another hue, a texture) is noted.
+"""
 
 from __future__ import annotations
 
@@ -23,6 +28,8 @@ class MaterialLook:
     # The name the texture gives its texture coordinates (``<texture texcoord="UVMap">``): a
     # <bind_vertex_input> of the material's instance says which TEXCOORD set it is.
     texcoord: str | None = None
+    emission: float | None = None  # MuJoCo's: a share of the colour it glows with
+    notes: tuple[str, ...] = ()  # what the look cannot show, for warnings
 
 
 NO_LOOK = MaterialLook()
@@ -77,7 +84,58 @@ def material_look(reader: Reader, material_id: str) -> MaterialLook:
         r, g, b, a = rgba
         a *= _opacity(reader, technique)
         rgba = (_unit_interval(r), _unit_interval(g), _unit_interval(b), _unit_interval(a))
-    return MaterialLook(rgba, texture, texcoord)
+    emission: float | None = None
+    notes: tuple[str, ...] = ()
+    if etree.QName(technique).localname != "constant":  # a constant's emission is its colour
+        emission, notes = _emission(reader, technique, rgba, texture is not None, material_id)
+    return MaterialLook(rgba, texture, texcoord, emission, notes)
+
+
+# How far (per channel, 0-1) a glow may be from the share of the colour that shows it before
+# a warning says so: 5 of 255 levels.
+_GLOW_TOLERANCE = 0.02
+
+
+def _emission(
+    reader: Reader, technique, rgba: RGBA | None, textured: bool, material_id: str
+) -> tuple[float | None, tuple[str, ...]]:
+    """MuJoCo's emission for a technique's ``<emission>``, and what it cannot show: the share
+    of the material's colour (white for a texture) closest to the glow's colour, in least
+    squares. A material that gives no colour of its own leaves the URDF's, and glows not."""
+    element = reader.find(technique, "emission")
+    if element is None:
+        return None, ()
+    glows = f"material '{material_id}' glows"
+    if reader.find(element, "texture") is not None:
+        return None, (
+            f"{glows} with a texture (<emission>), which a MuJoCo material cannot show; the "
+            "model shows it without its glow",
+        )
+    colour = reader.find(element, "color")
+    values = floats(reader, colour)[:3] if colour is not None else ()
+    glow = [min(max(float(v), 0.0), 1.0) for v in values]
+    if len(glow) < 3 or not any(glow):
+        return None, ()
+    written = " ".join(f"{g:g}" for g in glow)
+    if rgba is None and not textured:
+        return None, (
+            f"{glows} {written} (<emission>) but gives no colour, and a MuJoCo material glows "
+            "only in a share of its own: the model shows it without its glow",
+        )
+    base = list(rgba[:3]) if rgba is not None else [1.0, 1.0, 1.0]
+    weight = sum(b * b for b in base)
+    fit = sum(g * b for g, b in zip(glow, base, strict=True)) / weight if weight else 0.0
+    share = _unit_interval(fit)
+    missed = max(abs(g - share * b) for g, b in zip(glow, base, strict=True))
+    notes = (
+        (
+            f"{glows} {written} (<emission>), and a MuJoCo material glows only in a share of "
+            f"its own colour: the model gives it emission {share:g}",
+        )
+        if missed > _GLOW_TOLERANCE
+        else ()
+    )
+    return share or None, notes
 
 
 def _unit_interval(value: float) -> float:

@@ -83,6 +83,7 @@ def convert_mesh(
                 file=name,
                 rgba=[float(v) for v in part.rgba] if part.rgba is not None else None,
                 texture=texture_file,
+                emission=part.emission,
                 vertices=len(part.vertices),
                 faces=len(part.faces),
                 volume=_volume(part.vertices, part.faces),
@@ -193,5 +194,8 @@ def _simplify(part: MeshPart, target_faces: int) -> MeshPart:
         target_count=target_faces,
     )
     return MeshPart(
-        np.asarray(points, dtype=np.float64), np.asarray(faces, dtype=np.int64), part.rgba
+        np.asarray(points, dtype=np.float64),
+        np.asarray(faces, dtype=np.int64),
+        part.rgba,
+        emission=part.emission,
     )

@@ -65,6 +65,7 @@ class MeshPart:
     rgba: tuple[float, float, float, float] | None
     uv: np.ndarray | None = None
     texture: Texture | None = None
+    emission: float | None = None  # MuJoCo's: a share of the colour the part glows with
 
 
 # The largest coordinate a mesh file may hold, in its own unit: 100 km in metres, 100 m in
@@ -91,7 +92,7 @@ def load_parts(
     for piece in pieces:
         if len(piece.faces) == 0:
             continue
-        key = (piece.rgba, piece.texture.key if piece.texture else None)
+        key = (piece.rgba, piece.texture.key if piece.texture else None, piece.emission)
         groups.setdefault(key, []).append(piece)
     if not groups:
         why = (_cut_stl(path) if suffix == ".stl" else None) or "mesh has no triangles"
@@ -194,7 +195,14 @@ def _collada_pieces(path: Path, apply_up_axis: bool, warnings: list[str]) -> lis
                 )
         uv = part.uv if texture is not None else None
         pieces.append(
-            MeshPart(part.vertices, part.faces, part.rgba, uv, texture if uv is not None else None)
+            MeshPart(
+                part.vertices,
+                part.faces,
+                part.rgba,
+                uv,
+                texture if uv is not None else None,
+                part.emission,
+            )
         )
     return pieces
 
@@ -415,6 +423,7 @@ def _concatenate(pieces: list[MeshPart]) -> MeshPart:
         rgba=pieces[0].rgba,
         uv=uv,
         texture=pieces[0].texture if uv is not None else None,
+        emission=pieces[0].emission,
     )
 
 
@@ -445,6 +454,7 @@ def merge_vertices(part: MeshPart) -> MeshPart:
         rgba=part.rgba,
         uv=part.uv[kept] + 0.0 if part.uv is not None else None,
         texture=part.texture,
+        emission=part.emission,
     )
 
 

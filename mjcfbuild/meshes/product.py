@@ -27,6 +27,7 @@ class ProductPart(Record):
     vertices: int
     faces: int
     volume: float  # 0 for an open shell
+    emission: float | None = None  # MuJoCo's material emission: a share of its colour
 
 
 @dataclass(frozen=True)

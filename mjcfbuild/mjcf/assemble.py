@@ -482,6 +482,8 @@ def _finish(
             added.rgba = list(material.rgba)
         if material.texture is not None:
             added.textures[mujoco.mjtTextureRole.mjTEXROLE_RGB] = material.texture
+        if material.emission is not None:
+            added.emission = material.emission
 
     by_file = {(asset.read_file, tuple(asset.scale)): asset for asset in prepared.meshes}
     for mesh in spec.meshes:

@@ -76,6 +76,7 @@ class Material:
     name: str
     rgba: tuple[float, ...] | None
     texture: str | None = None
+    emission: float | None = None
 
 
 @dataclass
@@ -127,7 +128,7 @@ class _Geom:
     record: GeomRecord
     primitive: str | None = None  # geometry XML of a primitive
     mesh: _MeshUse | None = None
-    look: tuple | None = None  # (rgba, texture md5, texture file) of a textured/coloured part
+    look: tuple | None = None  # (rgba, texture md5, texture file, emission) of a part's look
 
 
 class _Names:
@@ -300,7 +301,8 @@ class _Builder:
                 texture_path = (
                     str(self.product_dirs[geometry.mesh_id] / texture) if texture else None
                 )
-                look = (tuple(part.rgba) if part.rgba else None, texture_md5, texture_path)
+                rgba = tuple(part.rgba) if part.rgba else None
+                look = (rgba, texture_md5, texture_path, part.emission)
                 self.looks.setdefault(look, (stem, geometry.mesh_id))
             geoms.append(_Geom("visual", placed.pose, record, mesh=use, look=look))
         return geoms
@@ -503,14 +505,15 @@ def _assign_names(uses: dict, looks: dict, prepared: Prepared) -> _AssetNames:
             names.asset_by_key[key] = asset
             prepared.meshes.append(asset)
     for look, (stem, _) in sorted(looks.items(), key=lambda item: item[1][0]):
-        rgba, texture_md5, texture_path = look
+        rgba, texture_md5, texture_path, emission = look
         texture = None
         if texture_md5 is not None:
             texture = names.publish(texture_md5, f"{stem}_texture", ".png", texture_path)
             prepared.textures[texture[:-4]] = texture
         name = names.materials.claim(stem)
         names.material_by_look[look] = name
-        prepared.materials.append(Material(name, rgba, texture[:-4] if texture else None))
+        texture_name = texture[:-4] if texture else None
+        prepared.materials.append(Material(name, rgba, texture_name, emission))
     return names
 
 

@@ -104,3 +104,121 @@ def test_the_reader_s_warnings_reach_the_mesh_s(tmp_path):
     said: list[str] = []
     load_parts(textured(tmp_path, "7"), warnings=said)
     assert len(said) == 1 and said[0].startswith("two_sets.dae: material 'mat' maps its texture")
+
+
+RGB = '<param name="R" type="float"/><param name="G" type="float"/><param name="B" type="float"/>'
+
+
+def coloured(corner_colours: str, colour_index: str, material: str = "") -> str:
+    """Two triangles whose corners index the colours ``corner_colours`` (RGB rows)."""
+    count = len(corner_colours.split()) // 3
+    return f"""
+<library_geometries><geometry id="g"><mesh>
+  <source id="p"><float_array id="pa" count="12">0 0 0 1 0 0 1 1 0 0 1 0</float_array>
+    <technique_common><accessor source="#pa" count="4" stride="3">{XYZ}</accessor></technique_common></source>
+  <source id="c"><float_array id="ca" count="{count * 3}">{corner_colours}</float_array>
+    <technique_common><accessor source="#ca" count="{count}" stride="3">{RGB}</accessor></technique_common></source>
+  <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+  <triangles count="2"{material}>
+    <input semantic="VERTEX" source="#v" offset="0"/><input semantic="COLOR" source="#c" offset="1"/>
+    <p>{colour_index}</p>
+  </triangles>
+</mesh></geometry></library_geometries>"""
+
+
+PLAIN = '<node><instance_geometry url="#g"/></node>'
+
+
+def pycollada_face_colours(path) -> list:
+    """Each triangle's corner colours as pycollada reads them, sorted."""
+    import collada
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        document = collada.Collada(str(path))
+        (bound,) = document.scene.objects("geometry")
+        (primitive,) = bound.primitives()
+    offset, _, _, _, source = primitive.original.sources["COLOR"][0]
+    colours = source.data[primitive.original.index[:, :, offset]]
+    return sorted(map(tuple, np.round(colours.mean(axis=1), 6).tolist()))
+
+
+def test_vertex_colours_colour_the_faces_where_no_material_does(tmp_path):
+    # red triangle (0 1 2), blue triangle (0 2 3): each face's corners share a colour
+    body = coloured("1 0 0 0 0 1", "0 0 1 0 2 0 0 1 2 1 3 1")
+    path = write(tmp_path / "painted.dae", dae(body, scene=scene(PLAIN)))
+    mesh = read_collada(path)
+    looks = sorted((part.rgba, len(part.faces)) for part in mesh.parts)
+    assert looks == [((0.0, 0.0, 1.0, 1.0), 1), ((1.0, 0.0, 0.0, 1.0), 1)]
+    ours = sorted(part.rgba[:3] for part in mesh.parts for _ in part.faces)
+    assert ours == pycollada_face_colours(path)
+    assert mesh.warnings == []
+
+
+def test_a_face_whose_corners_differ_takes_their_mean_with_a_warning(tmp_path):
+    body = coloured("1 0 0 0 0 1", "0 0 1 0 2 1 0 1 2 1 3 1")
+    mesh = read_collada(write(tmp_path / "blend.dae", dae(body, scene=scene(PLAIN))))
+    assert sorted(part.rgba for part in mesh.parts) == [
+        (0.0, 0.0, 1.0, 1.0),
+        (0.666667, 0.0, 0.333333, 1.0),
+    ]
+    (warning,) = mesh.warnings
+    assert warning.startswith("blend.dae: its per-vertex colours (COLOR) blend across faces")
+    assert "each face with the mean of its corners' colours" in warning
+
+
+def test_a_material_s_colour_wins_over_vertex_colours_with_a_warning(tmp_path):
+    body = coloured("1 0 0 0 0 1", "0 0 1 0 2 0 0 1 2 1 3 1", ' material="m"')
+    body += MATERIAL.format(diffuse="<color>0.2 0.6 0.2 1</color>")
+    node = (
+        '<node><instance_geometry url="#g"><bind_material><technique_common>'
+        '<instance_material symbol="m" target="#mat"/></technique_common></bind_material>'
+        "</instance_geometry></node>"
+    )
+    mesh = read_collada(write(tmp_path / "both.dae", dae(body, scene=scene(node))))
+    (part,) = mesh.parts
+    assert part.rgba == (0.2, 0.6, 0.2, 1.0)
+    (warning,) = mesh.warnings
+    assert warning.startswith("both.dae: its per-vertex colours (COLOR) are not shown where")
+
+
+def test_more_vertex_colours_than_parts_are_averaged_with_a_warning(tmp_path):
+    shades = " ".join(f"{k / 20:g} 0 0" for k in range(20))
+    triangles = " ".join(f"0 {k} 1 {k} 2 {k}" for k in range(20))
+    body = coloured(shades, triangles).replace('<triangles count="2"', '<triangles count="20"')
+    mesh = read_collada(write(tmp_path / "many.dae", dae(body, scene=scene(PLAIN))))
+    (part,) = mesh.parts
+    assert part.rgba == (0.475, 0.0, 0.0, 1.0) and len(part.faces) == 20
+    (warning,) = mesh.warnings
+    assert "(COLOR) hold 20 colours, more than the 16 parts" in warning
+
+
+def glowing(tmp_path, emission: str):
+    body = TWO_SETS + MATERIAL.format(diffuse="<color>0.8 0.4 0 1</color>").replace(
+        "<lambert>", f"<lambert><emission><color>{emission} 1</color></emission>"
+    )
+    node = bound_instance(None)
+    return write(tmp_path / "glow.dae", dae(body, scene=scene(node)))
+
+
+def test_an_emission_in_the_material_s_own_colour_is_its_share(tmp_path):
+    mesh = read_collada(glowing(tmp_path, "0.4 0.2 0"))
+    (part,) = mesh.parts
+    assert part.emission == 0.5
+    assert mesh.warnings == []
+
+
+def test_an_emission_of_another_hue_is_the_closest_share_with_a_warning(tmp_path):
+    mesh = read_collada(glowing(tmp_path, "0 0 0.5"))
+    (part,) = mesh.parts
+    assert part.emission is None  # no share of orange comes closer to blue than none
+    (warning,) = mesh.warnings
+    assert warning == (
+        "glow.dae: material 'mat' glows 0 0 0.5 (<emission>), and a MuJoCo material glows "
+        "only in a share of its own colour: the model gives it emission 0"
+    )
+
+
+def test_black_emission_is_no_glow(tmp_path):
+    mesh = read_collada(glowing(tmp_path, "0 0 0"))
+    assert mesh.parts[0].emission is None and mesh.warnings == []

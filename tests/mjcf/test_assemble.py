@@ -273,3 +273,18 @@ def test_a_mesh_mujoco_cannot_hull_is_named_by_its_file_not_its_asset_name(tmp_p
     error = next(e for e in result.stderr.splitlines() if "error:" in e)
     assert f"robot.urdf:{line}:" in error and "mesh 'flat.obj'" in error, error
     assert "'mesh" not in error.replace("mesh 'flat.obj'", ""), error
+
+
+def test_a_dae_material_s_glow_is_the_model_material_s_emission(tmp_path):
+    """<emission> in the DAE material's own colour becomes MuJoCo's scalar emission."""
+    from tests.meshes.test_collada_looks import glowing
+
+    glowing(tmp_path, "0.4 0.2 0")
+    urdf = (
+        '<robot name="r"><link name="base"><visual><geometry><mesh filename="glow.dae"/>'
+        "</geometry></visual></link></robot>"
+    )
+    _, model = build(urdf, tmp_path)
+    assert model.nmat == 1
+    assert model.mat_emission[0] == pytest.approx(0.5)
+    assert model.mat_rgba[0].tolist() == pytest.approx([0.8, 0.4, 0.0, 1.0])
