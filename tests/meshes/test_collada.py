@@ -227,7 +227,7 @@ def test_a_concave_polygon_is_ear_clipped_and_keeps_its_winding(tmp_path):
 
 
 def test_a_convex_polygon_keeps_its_fan_beside_a_concave_one():
-    from mjcfbuild.meshes.collada import polygon_triangles
+    from mjcfbuild.meshes.collada_polygons import polygon_triangles
 
     square = np.array([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], dtype=float)
     notched = np.array(
