@@ -63,6 +63,9 @@ class ColladaMesh:
     up_axis: str
     unit: float
     warnings: list[str] = field(default_factory=list)  # what the model cannot show, a line each
+    # Whether the file names a scene: without one, viewers draw nothing of it, and the model
+    # has nothing of it either (no parts, which is no error then).
+    scene: bool = True
 
 
 @dataclass(frozen=True)
@@ -133,12 +136,17 @@ def read_collada(path: Path, apply_up_axis: bool = False) -> ColladaMesh:
             scene,
         )
     if visual_scene is None:
-        # No scene: every geometry at the origin, as some exporters write them.
-        for geometry in reader.findall(reader.root, "library_geometries/geometry"):
-            _add_geometry(drawing, geometry, root_transform, {})
-    else:
-        for node in reader.findall(visual_scene, "node"):
-            _walk(drawing, node, root_transform, depth=0)
+        geometries = len(reader.findall(reader.root, "library_geometries/geometry"))
+        drawing.warn(
+            "it has no <scene> (no <instance_visual_scene>), so RViz (whose Assimp refuses the "
+            "file) and pycollada draw nothing of it; the model has nothing of it either, to see "
+            f"or to collide with (put the {geometries} "
+            f"geometr{'y' if geometries == 1 else 'ies'} of its library in a visual scene that "
+            "a <scene> names, or re-export the mesh)"
+        )
+        return ColladaMesh([], up_axis, unit, drawing.warnings, scene=False)
+    for node in reader.findall(visual_scene, "node"):
+        _walk(drawing, node, root_transform, depth=0)
 
     _average_excess_colours(drawing)
     parts = []

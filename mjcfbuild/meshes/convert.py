@@ -9,6 +9,9 @@ A product is a folder of files and a summary:
   geometry (MuJoCo collides with its convex hull);
 * ``hull.obj`` - the convex hull, when a collision policy asks for it (hull, primitive).
 
+A file that shows nothing (a DAE without a scene, of which viewers draw nothing) is an empty
+product: no parts, no collision mesh, no hull; the model leaves out the geoms that name it.
+
 File names inside a product do not depend on what the mesh is called in a robot, so the same
 input gives the same product wherever it is used; the assembly names the published files.
 Meshes over the manifest's face budget are simplified, with a warning. (MuJoCo's limit of
@@ -50,6 +53,9 @@ def convert_mesh(
     )
     product_dir.mkdir(parents=True, exist_ok=True)
     files: dict[str, str] = {}
+    if not original:  # a file that shows nothing (a DAE without a scene): an empty product
+        _remove_stale(product_dir, files)
+        return MeshProduct(PRODUCT_FORMAT, [], None, 0.0, None, 0, files, warnings)
 
     def store(name: str, data: bytes) -> str:
         write_if_changed(product_dir / name, data)
@@ -97,9 +103,7 @@ def convert_mesh(
     hull = None
     if "hull" in roles:
         hull = store_mesh("hull.obj", *_hull(_whole(original)[0], max_hull_vertices))
-    for stale in product_dir.iterdir():
-        if stale.name not in files:
-            stale.unlink()
+    _remove_stale(product_dir, files)
     return MeshProduct(
         format=PRODUCT_FORMAT,
         parts=summary_parts,
@@ -124,6 +128,13 @@ def convert_with_options(source: Path, product_dir: Path, options: dict) -> Mesh
         collision_max_faces=options.get("collision_max_faces"),
         max_hull_vertices=options.get("max_hull_vertices"),
     )
+
+
+def _remove_stale(product_dir: Path, files: dict[str, str]) -> None:
+    """Remove what an earlier product left in ``product_dir`` that is not one of ``files``."""
+    for stale in product_dir.iterdir():
+        if stale.name not in files:
+            stale.unlink()
 
 
 def _within_budget(

@@ -79,11 +79,15 @@ def load_parts(
     """The triangles of ``path`` grouped by look, in a stable order, vertices shared.
 
     ``apply_up_axis`` rotates DAE files tagged Y_UP or X_UP to Z up; what is left out (a
-    texture that is no image) is said in ``warnings``.
+    texture that is no image) is said in ``warnings``. A DAE file without a scene gives no
+    parts, as viewers draw nothing of it (said in ``warnings``).
     """
     suffix = path.suffix.lower()
     if suffix == ".dae":
-        pieces = _collada_pieces(path, apply_up_axis, [] if warnings is None else warnings)
+        found = _collada_pieces(path, apply_up_axis, [] if warnings is None else warnings)
+        if found is None:
+            return []
+        pieces = found
     elif suffix == ".stl" and (binary := _binary_stl_pieces(path)) is not None:
         pieces = binary
     else:
@@ -172,13 +176,16 @@ def _cut_stl(path: Path) -> str | None:
     )
 
 
-def _collada_pieces(path: Path, apply_up_axis: bool, warnings: list[str]) -> list[MeshPart]:
+def _collada_pieces(path: Path, apply_up_axis: bool, warnings: list[str]) -> list[MeshPart] | None:
+    """The pieces of a DAE file; None where it has no scene (and so nothing to draw)."""
     from mjcfbuild.meshes.collada import read_collada
 
     pieces = []
     unreadable: set[Path] = set()
     mesh = read_collada(path, apply_up_axis=apply_up_axis)
     warnings.extend(mesh.warnings)
+    if not mesh.scene:
+        return None
     for part in mesh.parts:
         texture = None
         if part.texture is not None and part.texture not in unreadable:

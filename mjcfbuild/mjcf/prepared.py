@@ -318,6 +318,9 @@ class _Builder:
             )
         if any(s == 0 for s in geometry.scale):
             return self._zero_size(placed, f"mesh scale {exact_list(geometry.scale)}", "collision")
+        assert geometry.mesh_id is not None, "resolve gives every mesh an id"
+        if not self.products[geometry.mesh_id].parts:
+            return []  # a file that shows nothing (its mesh task said so): nothing collides
         return policy.geoms(_MeshCollision(self, placed, body, record, choice))
 
     def _decomposition(self, mesh_id: str, params: dict) -> Decomposition:

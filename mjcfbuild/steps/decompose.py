@@ -16,8 +16,10 @@ from mjcfbuild.steps.versions import DECOMPOSE
 def run(payload: dict) -> dict:
     """Decompose the collision mesh of a mesh product into ``output_dir``."""
     request = DecomposePayload.from_dict(payload)
-    mesh_file = collision_mesh(request)
     output_dir = Path(request.output_dir)
+    if read_product(Path(request.product_summary)).collision is None:
+        return _nothing_to_decompose(request)
+    mesh_file = collision_mesh(request)
     params = request.params
     store = open_store(request.cache)
     key = cache_key(request)
@@ -42,9 +44,27 @@ def run(payload: dict) -> dict:
     }
 
 
+def _nothing_to_decompose(request: DecomposePayload) -> dict:
+    """The empty decomposition of a mesh product without a collision mesh: a file that shows
+    nothing (a DAE without a scene), whose mesh task said so and whose geoms the model leaves
+    out."""
+    from mjcfbuild.collision.decompose import DECOMPOSITION_FORMAT
+
+    output_dir = Path(request.output_dir)
+    output_dir.mkdir(parents=True, exist_ok=True)
+    for stale in output_dir.iterdir():
+        stale.unlink()
+    summary = {"format": DECOMPOSITION_FORMAT, "parts": [], "files": {}, "method": "none"}
+    text = json.dumps(summary, indent=1, sort_keys=True) + "\n"
+    write_output(Path(request.summary), text.encode(), {})
+    return {"outputs": {}, "cached": False, "stored": False, "dropped": 0, "note": note(summary)}
+
+
 def note(summary: dict) -> str:
     """What the build prints for a decomposition: parts, concavity reached, seconds."""
     count = len(summary["parts"])
+    if summary.get("method") == "none":
+        return "nothing to decompose: the mesh shows nothing"
     if summary.get("method") == "hull":
         how = f"hull kept ({summary['hull_concavity']:.3f} <= {summary['hull_tolerance']:g})"
     else:

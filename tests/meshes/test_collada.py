@@ -367,3 +367,23 @@ def test_transparency_is_the_specs_opacity(tmp_path, transparent, transparency, 
     body = QUAD + MATERIAL.format(diffuse="<color>1 0 0 1</color>").replace("</diffuse>", seen)
     path = write(tmp_path / "q.dae", dae(body, scene=scene(f"<node>{INSTANCE}</node>")))
     assert read_collada(path).parts[0].rgba == pytest.approx((1.0, 0.0, 0.0, alpha))
+
+
+def test_a_file_without_a_scene_shows_nothing_as_rviz_and_pycollada_show_it(tmp_path):
+    """Assimp refuses a DAE that names no visual scene ("File came out empty"), so RViz draws
+    nothing of it, and pycollada's scene is None: the model has nothing of it either."""
+    import collada
+
+    body = QUAD + MATERIAL.format(diffuse="<color>1 0 0 1</color>")
+    path = write(tmp_path / "loose.dae", dae(body))
+    # (QUAD's accessors name no <param>s, which pycollada needs to read its geometry)
+    read = collada.Collada(str(path), ignore=[collada.common.DaeIncompleteError])
+    assert read.scene is None
+    mesh = read_collada(path)
+    assert mesh.parts == [] and not mesh.scene
+    assert mesh.warnings == [
+        "loose.dae: it has no <scene> (no <instance_visual_scene>), so RViz (whose Assimp "
+        "refuses the file) and pycollada draw nothing of it; the model has nothing of it "
+        "either, to see or to collide with (put the 1 geometry of its library in a visual "
+        "scene that a <scene> names, or re-export the mesh)"
+    ]

@@ -288,3 +288,19 @@ def test_a_dae_material_s_glow_is_the_model_material_s_emission(tmp_path):
     assert model.nmat == 1
     assert model.mat_emission[0] == pytest.approx(0.5)
     assert model.mat_rgba[0].tolist() == pytest.approx([0.8, 0.4, 0.0, 1.0])
+
+
+def test_a_dae_without_a_scene_is_left_out_of_the_model_seen_and_colliding(tmp_path):
+    from tests.meshes.test_collada import MATERIAL, QUAD, dae
+
+    (tmp_path / "loose.dae").write_text(
+        dae(QUAD + MATERIAL.format(diffuse="<color>1 0 0 1</color>"))
+    )
+    mesh = '<geometry><mesh filename="loose.dae"/></geometry>'
+    box = '<geometry><box size="0.1 0.1 0.1"/></geometry>'
+    urdf = (
+        f'<robot name="r"><link name="base"><visual>{box}</visual><collision>{box}</collision>'
+        f"<visual>{mesh}</visual><collision>{mesh}</collision></link></robot>"
+    )
+    _, model = build(urdf, tmp_path)
+    assert model.ngeom == 2 and model.nmesh == 0  # the boxes
