@@ -244,7 +244,7 @@ def _walk(drawing: _Drawing, node, parent: np.ndarray, depth: int) -> None:
             )
         _add_geometry(drawing, geometry, transform, _bindings(reader, instance))
     for instance in reader.findall(node, "instance_controller"):
-        geometry, bind_shape = _controlled_geometry(reader, instance)
+        geometry, bind_shape = _controlled_geometry(drawing, instance)
         _add_geometry(drawing, geometry, transform @ bind_shape, _bindings(reader, instance))
     for instance in reader.findall(node, "instance_node"):
         target = reader.by_url(instance.get("url"), ("node",), instance)
@@ -272,9 +272,13 @@ def _bindings(reader: Reader, instance) -> dict[str, _Binding]:
     return found
 
 
-def _controlled_geometry(reader: Reader, instance):
+def _controlled_geometry(drawing: _Drawing, instance):
     """The geometry a ``<controller>`` deforms and the matrix placing it in its bind pose: a
-    skin's ``bind_shape_matrix``, or none for a morph (its base mesh)."""
+    skin's ``bind_shape_matrix``, as pycollada's scene places a skin, or none for a morph (its
+    base mesh). What that leaves out is said once: a skin's joints (neither RViz nor pycollada
+    poses a skin; RViz, which leaves the bind shape to the joints, draws it without that
+    matrix too) and a morph's targets."""
+    reader = drawing.reader
     url = instance.get("url")
     controller = reader.by_url(url, ("controller",), instance)
     if controller is None:
@@ -295,8 +299,28 @@ def _controlled_geometry(reader: Reader, instance):
         )
     bind_shape = np.eye(4)
     matrix = reader.find(skin, "bind_shape_matrix") if skin is not None else None
-    if matrix is not None and len(floats(reader, matrix)) == 16:
-        bind_shape = floats(reader, matrix).reshape(4, 4)
+    if matrix is not None:
+        values = floats(reader, matrix)
+        if len(values) != 16:  # pycollada refuses it; left out, the skin would sit elsewhere
+            raise reader.error(
+                f"the <bind_shape_matrix> of controller '{controller.get('id')}' has "
+                f"{len(values)} numbers (a matrix has 16)",
+                matrix,
+            )
+        bind_shape = values.reshape(4, 4)
+    name, target = controller.get("id"), geometry.get("id")
+    if skin is None:
+        drawing.warn(
+            f"controller '{name}' morphs geometry '{target}': the model draws its base mesh, "
+            "as RViz does, without its morph targets"
+        )
+    else:
+        rviz = "" if np.allclose(bind_shape, np.eye(4)) else " (RViz draws it without that matrix)"
+        drawing.warn(
+            f"controller '{name}' skins geometry '{target}': the model draws it in its bind "
+            f"pose, placed by its <bind_shape_matrix> as pycollada places it{rviz}, not posed "
+            "by its joints"
+        )
     return geometry, bind_shape
 
 

@@ -79,6 +79,8 @@ def pycollada_triangles(path: Path) -> Reference:
             placed = getattr(bound, "geometry", bound)  # a skin binds its geometry
             mirrored = np.linalg.det(np.asarray(placed.matrix, dtype=float)[:3, :3]) < 0
             for primitive in bound.primitives():
+                if isinstance(primitive, collada.controller.BoundSkinPrimitive):
+                    primitive = primitive.primitive  # the skin's geometry, bound in place
                 if isinstance(primitive, collada.lineset.BoundLineSet):
                     continue  # no surface
                 if not isinstance(primitive, collada.triangleset.BoundTriangleSet):
