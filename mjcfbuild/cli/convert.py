@@ -85,7 +85,8 @@ def add_parser(commands) -> None:
         "--asset_dir",
         help="a folder with pre-generated OBJ meshes (the reference converter's assets/ "
         "from an earlier run, or <stem>.obj files): a URDF mesh whose file stem has an OBJ "
-        "there is read from that OBJ instead of being converted again",
+        "there is read from that OBJ instead of being converted again, in the mesh file's "
+        "colour where the OBJ has none of its own",
     )
     parser.add_argument("--scene", help="a scene file to use instead of the generated one")
     parser.add_argument(

@@ -27,13 +27,27 @@ if TYPE_CHECKING:
 def _tasks(graph: Graph) -> list[dict]:
     paths, roles = graph.paths, graph.roles
     return [
-        _mesh_task(graph.ctx, mesh_id, paths[mesh_id], roles[mesh_id], graph.prefix, graph.robot)
+        _mesh_task(
+            graph.ctx,
+            mesh_id,
+            paths[mesh_id],
+            roles[mesh_id],
+            graph.prefix,
+            graph.robot,
+            graph.looks_from.get(mesh_id),
+        )
         for mesh_id in largest_first(roles, lambda mesh_id: paths[mesh_id])
     ]
 
 
 def _mesh_task(
-    ctx: GraphContext, mesh_id: str, path: str, roles: list[str], prefix: str, robot: Robot
+    ctx: GraphContext,
+    mesh_id: str,
+    path: str,
+    roles: list[str],
+    prefix: str,
+    robot: Robot,
+    looks_from: str | None = None,
 ) -> dict:
     from mjcfbuild.urdf.mesh_uses import mesh_uses
 
@@ -59,6 +73,7 @@ def _mesh_task(
         evidence=[u.to_dict() for u in mesh_uses(robot, mesh_id)] if up_axis == "auto" else [],
         label=ctx.portable_label(path),
         named_at=_named_at(robot, mesh_id),
+        looks_from=looks_from,
     )
     return file_task(
         ctx,
@@ -67,7 +82,7 @@ def _mesh_task(
         f"mesh {mesh_id}",
         payload,
         in_worker=True,
-        file_dep=[Path(path), *read],
+        file_dep=[Path(path), *([Path(looks_from)] if looks_from else []), *read],
         targets=[product_summary(ctx, mesh_id)],
         extra_uptodate=stale,
     )

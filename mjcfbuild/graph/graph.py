@@ -72,6 +72,11 @@ class Graph:
         return {mesh.id: mesh.path for mesh in self.plan.meshes}
 
     @cached_property
+    def looks_from(self) -> dict[str, str]:
+        """Mesh id -> the mesh file whose look its pre-generated OBJ takes (convert -a)."""
+        return {mesh.id: mesh.looks_from for mesh in self.plan.meshes if mesh.looks_from}
+
+    @cached_property
     def decomposed(self) -> dict[str, tuple[str, dict]]:
         """Decomposition name -> the mesh it decomposes and its parameters."""
         from mjcfbuild.collision.policy import decompositions

@@ -40,13 +40,19 @@ def convert_mesh(
     apply_up_axis: bool = False,
     collision_max_faces: int | None = None,
     max_hull_vertices: int | None = None,
+    looks_from: Path | None = None,
 ) -> MeshProduct:
     """Write the product of ``source`` into ``product_dir`` and return its summary.
 
     ``max_faces`` budgets the visual parts, ``collision_max_faces`` the collision mesh, and
-    ``max_hull_vertices`` the convex hull."""
+    ``max_hull_vertices`` the convex hull. ``looks_from`` is the mesh file a pre-generated
+    OBJ stands for (``convert -a``), whose look it takes where it has none of its own."""
     warnings: list[str] = []
     original = load_parts(source, apply_up_axis=apply_up_axis, warnings=warnings)
+    if looks_from is not None:
+        from mjcfbuild.meshes.prebuilt_look import with_look_of
+
+        original = with_look_of(original, source, looks_from, warnings)
     parts = _within_budget(original, max_faces, f"{source.name} (visual)", warnings)
     whole_parts = _within_budget(
         original, collision_max_faces, f"{source.name} (collision)", warnings
@@ -116,7 +122,9 @@ def convert_mesh(
     )
 
 
-def convert_with_options(source: Path, product_dir: Path, options: dict) -> MeshProduct:
+def convert_with_options(
+    source: Path, product_dir: Path, options: dict, looks_from: Path | None = None
+) -> MeshProduct:
     """:func:`convert_mesh` with a mesh task's options (as build steps and cluster workers get
     them)."""
     return convert_mesh(
@@ -127,6 +135,7 @@ def convert_with_options(source: Path, product_dir: Path, options: dict) -> Mesh
         apply_up_axis=options["collada_up_axis"] == "apply",
         collision_max_faces=options.get("collision_max_faces"),
         max_hull_vertices=options.get("max_hull_vertices"),
+        looks_from=looks_from,
     )
 
 

@@ -4,6 +4,8 @@ mujoco_ros2_control's converter takes ``-a/--asset_dir``, "an existing folder wi
 pre-generated OBJ meshes", and uses the OBJ found there for a URDF mesh of the same file stem
 instead of converting the mesh again. Its own output keeps them in ``assets/full/<stem>/``
 (``assets/visual/`` in later versions); a plain folder of ``<stem>.obj`` files works too.
+Such an OBJ often carries no colour of its own (it stayed with the model it was written for):
+it then takes the look of the mesh file it stands for (:mod:`mjcfbuild.meshes.prebuilt_look`).
 """
 
 from __future__ import annotations

@@ -97,6 +97,8 @@ class ProductSharing:
             from mjcfbuild.steps.mesh import check_size, conversion_options
 
             request = MeshPayload.from_dict(payload)
+            if request.looks_from:
+                return None  # convert -a borrowing a look: two mesh files, converted here
             main = Path(request.source)
             check_size(main, request.max_file_bytes)
             inputs = [main, *referenced_files(main)]

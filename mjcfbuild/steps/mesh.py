@@ -58,7 +58,8 @@ def _run(request: MeshPayload) -> dict:
     references = referenced_files(source)
     store = open_store(request.cache)
     params, decision = conversion_options(request)
-    key = _key(params, source, references)
+    looks_from = Path(request.looks_from) if request.looks_from else None
+    key = _key(params, source, references, looks_from)
     stored = store.fetch(key, product_dir, "mesh") if store else None
     cached = stored is not None
     if stored is not None:
@@ -67,7 +68,7 @@ def _run(request: MeshPayload) -> dict:
         # numpy and trimesh: only when a conversion is needed
         from mjcfbuild.meshes.convert import convert_with_options
 
-        summary = convert_with_options(source, product_dir, params)
+        summary = convert_with_options(source, product_dir, params, looks_from)
         if store:
             store.store(key, product_dir, summary.to_dict(), "mesh")
     # The decision's reason follows this build's evidence; the product follows only its verdict.
@@ -75,12 +76,14 @@ def _run(request: MeshPayload) -> dict:
     failpoint("mesh")
     # A file the mesh names that is not there reruns the task when it appears.
     missing = [str(p) for p in missing_paths(source)]
-    Depfile([str(p) for p in references], missing, {}).write(Path(request.depfile))
+    # The files the look comes from count as the mesh's own references do.
+    read = [*references, *(referenced_files(looks_from) if looks_from else [])]
+    Depfile([str(p) for p in read], missing, {}).write(Path(request.depfile))
     outputs = {str(product_dir / name): digest for name, digest in summary.files.items()}
     write_output(Path(request.summary), summary.text(), outputs)
     return {
         "outputs": outputs,
-        "discovered": [str(p) for p in references],
+        "discovered": [str(p) for p in read],
         "warnings": [*_missing_warning(source, request.label), *summary.warnings],
         "cached": cached,
         "stored": not cached and store is not None,
@@ -108,11 +111,18 @@ def cache_key(request: MeshPayload, references: list[Path] | None = None) -> str
     source = Path(request.source)
     if references is None:
         references = referenced_files(source)
-    return _key(conversion_options(request)[0], source, references)
+    looks_from = Path(request.looks_from) if request.looks_from else None
+    return _key(conversion_options(request)[0], source, references, looks_from)
 
 
-def _key(params: dict[str, Any], source: Path, references: list[Path]) -> str:
-    return product_key("mesh", {**params, "versions": MESH.versions()}, [source, *references])
+def _key(
+    params: dict[str, Any], source: Path, references: list[Path], looks_from: Path | None = None
+) -> str:
+    files: list[str | Path] = [source, *references]
+    if looks_from is not None:  # convert -a: the look of the file the OBJ stands for
+        params = {**params, "looks_from": True}
+        files += [looks_from, *referenced_files(looks_from)]
+    return product_key("mesh", {**params, "versions": MESH.versions()}, files)
 
 
 def conversion_options(request: MeshPayload) -> tuple[dict[str, Any], UpAxisDecision | None]:

@@ -214,6 +214,9 @@ class MeshPayload(Payload):
     # The first URDF line naming the mesh, "file:line" as the plan's errors name it: where an
     # error about the whole file points ("" where no line is known).
     named_at: MessageLabel = ""
+    # convert -a: the mesh file the pre-generated OBJ ``source`` stands for, whose look it
+    # takes where it has none of its own (meshes.prebuilt)
+    looks_from: OptionalFileDependency = None
 
 
 @dataclass(frozen=True)

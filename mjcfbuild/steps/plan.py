@@ -33,7 +33,7 @@ def run(payload: dict) -> dict:
         refuse_deep_chains(robot)  # before any work: MuJoCo could not read the model back
         refuse_nested_floating(robot)  # nor compile it
         prebuilt = request.prebuilt_meshes
-        resolve_files(
+        originals = resolve_files(
             robot,
             Path(request.base_dir),
             packages,
@@ -64,7 +64,10 @@ def run(payload: dict) -> dict:
                 meshes[mesh_id] = path
     plan = Plan(
         robot=robot.to_dict(),
-        meshes=[PlannedMesh(mesh_id, path) for mesh_id, path in sorted(meshes.items())],
+        meshes=[
+            PlannedMesh(mesh_id, path, originals.get(path))
+            for mesh_id, path in sorted(meshes.items())
+        ],
         inputs=PlannedInputs(
             urdf=urdf_inputs.to_dict(),
             file=file_inputs.to_dict() if file_inputs is not None else None,

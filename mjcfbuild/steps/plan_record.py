@@ -27,6 +27,9 @@ class PlannedMesh(Record):
 
     id: str
     path: str
+    # convert -a: the mesh file a pre-generated OBJ stands for, whose look it takes where it
+    # has none of its own (meshes.prebuilt)
+    looks_from: str | None = None
 
 
 @dataclass(frozen=True)

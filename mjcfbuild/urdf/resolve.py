@@ -22,7 +22,7 @@ def resolve_files(
     packages: PackageResolver,
     prebuilt: Path | None = None,
     roots: Sequence[Path] | None = None,
-) -> None:
+) -> dict[str, str]:
     """Fill in the real path of every mesh and texture, and give each mesh file an id.
 
     Relative references are relative to ``base_dir``, the folder of the URDF or xacro file.
@@ -31,10 +31,13 @@ def resolve_files(
     folder of meshes converted before, a mesh with a pre-generated OBJ there is read from it.
     With ``roots`` (the folders the description may read: robot.yaml's, its packages'), a
     file outside them and outside every package a URI names gets a warning in
-    ``robot.warnings``, once per URI.
+    ``robot.warnings``, once per URI. Returns the mesh file each pre-generated OBJ stands for
+    (a visual's where several do), whose look it takes where it has none of its own.
     """
     reads: list[tuple[str, Path, int | None]] = []
     mesh_paths: list[str] = []
+    originals: dict[str, str] = {}  # pre-generated OBJ -> the mesh file it stands for
+    seen_visual: set[str] = set()
     for link in robot.links:
         for shape in link.shapes:
             geometry = shape.geometry
@@ -45,7 +48,15 @@ def resolve_files(
                 reads.append((geometry.uri or "", Path(geometry.path), _line(shape)))
                 if prebuilt is not None:
                     found = prebuilt_mesh(prebuilt, geometry.path)
-                    geometry.path = str(found) if found is not None else geometry.path
+                    if found is not None and str(found) != geometry.path:
+                        visual = shape.role == "visual"
+                        if str(found) not in originals or (
+                            visual and str(found) not in seen_visual
+                        ):
+                            originals[str(found)] = geometry.path
+                        if visual:
+                            seen_visual.add(str(found))
+                        geometry.path = str(found)
                 if mesh_format(geometry.path) is None:
                     raise InputError(
                         f"mesh '{geometry.uri}' has an unsupported format",
@@ -69,6 +80,7 @@ def resolve_files(
             if shape.geometry.kind == "mesh":
                 assert shape.geometry.path is not None, "every mesh was resolved above"
                 shape.geometry.mesh_id = ids[shape.geometry.path]
+    return originals
 
 
 def _warn_outside(

@@ -130,6 +130,35 @@ def test_asset_dir_reads_pre_generated_obj_meshes(cli, tmp_path):
     assert missing.code == EXIT_USAGE and "not a folder" in missing.stderr
 
 
+def test_asset_dir_keeps_the_colour_of_a_dae_its_obj_stands_for(cli, tmp_path):
+    """An OBJ of an earlier run carries no colour of its own (mjcfbuild's own output keeps it
+    in the model's <material>, the reference converter's in obj2mjcf's XML): it takes the
+    colour of the DAE it stands for, which it lost before."""
+    from tests.meshes.test_collada_looks import coloured_dae
+
+    (tmp_path / "meshes").mkdir()
+    coloured_dae(tmp_path / "meshes" / "base.dae", "0.9 0.1 0.1")
+    urdf = two_link_urdf().replace(
+        '<collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>',
+        '<visual><geometry><mesh filename="meshes/base.dae"/></geometry></visual>',
+    )
+    write(tmp_path / "robot.urdf", urdf)
+    # the reference converter's layout, its OBJ without a material library
+    write(
+        tmp_path / "previous" / "assets" / "full" / "base" / "base.obj",
+        "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    )
+    plain = cli("convert", "-u", "robot.urdf", "-o", "plain", cwd=tmp_path)
+    assert plain.code == EXIT_OK, plain.stderr
+    for earlier in ("previous", "plain"):  # the reference's folder, mjcfbuild's own
+        out = f"from_{earlier}"
+        reused = cli("convert", "-u", "robot.urdf", "-o", out, "-a", earlier, cwd=tmp_path)
+        assert reused.code == EXIT_OK, reused.stderr
+        model = mujoco.MjModel.from_xml_path(str(tmp_path / out / "scene.xml"))
+        rgbas = [[round(float(v), 3) for v in model.mat_rgba[k]] for k in range(model.nmat)]
+        assert [0.9, 0.1, 0.1, 1.0] in rgbas, (earlier, rgbas)
+
+
 def test_help_says_what_each_reference_flag_does(cli):
     text = " ".join(cli("convert", "--help").stdout.split()).split("options:", 1)[1]
     for flag in ("--convert_stl_to_obj", "--save_only", "--use_collision_tags"):

@@ -222,3 +222,17 @@ def test_an_emission_of_another_hue_is_the_closest_share_with_a_warning(tmp_path
 def test_black_emission_is_no_glow(tmp_path):
     mesh = read_collada(glowing(tmp_path, "0 0 0"))
     assert mesh.parts[0].emission is None and mesh.warnings == []
+
+
+def coloured_dae(path, rgb: str):
+    """A tetrahedron of one material coloured ``rgb``, as CAD exporters write one."""
+    body = f"""
+<library_geometries><geometry id="g"><mesh>
+  <source id="p"><float_array id="pa" count="12">0 0 0 0.1 0 0 0 0.1 0 0 0 0.1</float_array>
+    <technique_common><accessor source="#pa" count="4" stride="3">{XYZ}</accessor></technique_common></source>
+  <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+  <triangles material="m" count="4"><input semantic="VERTEX" source="#v" offset="0"/>
+    <p>0 2 1 0 1 3 0 3 2 1 2 3</p></triangles>
+</mesh></geometry></library_geometries>"""
+    body += MATERIAL.format(diffuse=f"<color>{rgb} 1</color>")
+    return write(path, dae(body, scene=scene(bound_instance(None))))

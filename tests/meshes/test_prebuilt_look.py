@@ -1,0 +1,44 @@
+"""A pre-generated OBJ (convert -a) without a colour of its own takes the colour of the mesh
+file it stands for."""
+
+from __future__ import annotations
+
+from mjcfbuild.meshes.load import load_parts
+from mjcfbuild.meshes.prebuilt_look import with_look_of
+from tests.conftest import write
+from tests.meshes.test_collada_looks import coloured_dae
+
+TETRAHEDRON = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"
+
+
+def test_an_uncoloured_obj_takes_the_colour_of_its_dae(tmp_path):
+    obj = write(tmp_path / "base.obj", TETRAHEDRON)
+    dae = coloured_dae(tmp_path / "base.dae", "0.9 0.1 0.1")
+    said: list[str] = []
+    (part,) = with_look_of(load_parts(obj), obj, dae, said)
+    assert part.rgba == (0.9, 0.1, 0.1, 1.0) and said == []
+
+
+def test_an_obj_coloured_by_its_own_material_library_keeps_its_colour(tmp_path):
+    write(tmp_path / "own.mtl", "newmtl m\nKd 0 0 1\n")
+    obj = write(tmp_path / "base.obj", "mtllib own.mtl\nusemtl m\n" + TETRAHEDRON)
+    dae = coloured_dae(tmp_path / "base.dae", "0.9 0.1 0.1")
+    (part,) = with_look_of(load_parts(obj), obj, dae, [])
+    assert part.rgba == (0.0, 0.0, 1.0, 1.0)
+
+
+def test_colours_the_obj_cannot_tell_apart_are_said(tmp_path):
+    obj = write(tmp_path / "base.obj", TETRAHEDRON)
+    write(tmp_path / "looks.mtl", "newmtl a\nKd 1 0 0\nnewmtl b\nKd 0 1 0\n")
+    original = write(
+        tmp_path / "two.obj",
+        "mtllib looks.mtl\n" + TETRAHEDRON.replace("f 1 3 2\n", "usemtl a\nf 1 3 2\nusemtl b\n"),
+    )
+    said: list[str] = []
+    (part,) = with_look_of(load_parts(obj), obj, original, said)
+    assert part.rgba is None
+    assert said == [
+        "base.obj, the pre-generated OBJ (-a) for two.obj, has no colour of its own, and the 2 "
+        "colours of two.obj cannot be told apart on it: the model shows it uncoloured (convert "
+        "without -a to show them)"
+    ]
