@@ -542,19 +542,13 @@ def _add_geometry(
         placed = (homogeneous @ transform.T)[:, :3]
         if np.linalg.det(transform[:3, :3]) < 0:
             faces = faces[:, ::-1]
-        colours = _corner_colours(drawing, mesh, primitive, vertex_input, material, cache)
-        if colours is None:
+        corner_rgb = _corner_colours(
+            drawing, geometry, primitive, vertex_input, material, corners, vertex_index, cache
+        )
+        if corner_rgb is None:
             drawing.groups.setdefault((material, None), []).append((placed, faces, uv))
             continue
-        index = vertex_index if colours[1] else corners[:, int(colours[0].get("offset", "0"))]
-        if index.size and (index.max() >= len(colours[2]) or index.min() < 0):
-            raise reader.error(
-                f"a <{kind}> of geometry '{geometry.get('id')}' uses colour "
-                f"{int(index.max() if index.max() >= len(colours[2]) else index.min())}, but its "
-                f"source has {len(colours[2])} colours (colour index out of range)",
-                primitive,
-            )
-        rgb, blended = face_colours(colours[2][index][:, :3], faces)
+        rgb, blended = face_colours(corner_rgb, faces)
         if blended:
             drawing.warn(
                 "its per-vertex colours (COLOR) blend across faces, which a MuJoCo mesh "
@@ -565,11 +559,22 @@ def _add_geometry(
             drawing.groups.setdefault((material, colour), []).append(piece)
 
 
-def _corner_colours(drawing: _Drawing, mesh, primitive, vertex_input, material: str, cache):
-    """A primitive's COLOR input (set 0 or the first), whether it is indexed as the positions
-    are, and its colours; None where it has none, or where its material gives the colour (as
-    RViz shows it, which draws no vertex colours), with a warning then."""
-    found = _inputs_of(drawing.reader, mesh, primitive, vertex_input, "COLOR")
+def _corner_colours(
+    drawing: _Drawing,
+    geometry,
+    primitive,
+    vertex_input,
+    material: str,
+    corners: np.ndarray,
+    vertex_index: np.ndarray,
+    cache: dict,
+) -> np.ndarray | None:
+    """The RGB colour of each corner of a primitive, from its COLOR input (set 0 or the
+    first); None where it has none, or where its material gives the colour (as RViz shows it,
+    which draws no vertex colours), with a warning then."""
+    reader = drawing.reader
+    mesh = primitive.getparent()
+    found = _inputs_of(reader, mesh, primitive, vertex_input, "COLOR")
     if not found:
         return None
     look = drawing.look(material)
@@ -580,7 +585,17 @@ def _corner_colours(drawing: _Drawing, mesh, primitive, vertex_input, material: 
         )
         return None
     chosen, per_vertex = next((f for f in found if _set(f[0]) in ("0", "")), found[0])
-    return chosen, per_vertex, _source_array(drawing.reader, chosen, mesh, cache)
+    colours = _source_array(reader, chosen, mesh, cache)
+    index = vertex_index if per_vertex else corners[:, int(chosen.get("offset", "0"))]
+    if index.size and (index.max() >= len(colours) or index.min() < 0):
+        outside = index.min() if index.min() < 0 else index.max()
+        raise reader.error(
+            f"a <{etree.QName(primitive).localname}> of geometry '{geometry.get('id')}' uses "
+            f"colour {int(outside)}, but its source has {len(colours)} colours (colour index "
+            "out of range)",
+            primitive,
+        )
+    return colours[index][:, :3]
 
 
 def _inputs_of(reader: Reader, mesh, primitive, vertex_input, semantic: str) -> list[tuple]:

@@ -236,3 +236,14 @@ def coloured_dae(path, rgb: str):
 </mesh></geometry></library_geometries>"""
     body += MATERIAL.format(diffuse=f"<color>{rgb} 1</color>")
     return write(path, dae(body, scene=scene(bound_instance(None))))
+
+
+def test_a_colour_index_beyond_its_source_is_refused_with_its_line(tmp_path):
+    import pytest
+
+    from mjcfbuild.errors import InputError
+
+    body = coloured("1 0 0 0 0 1", "0 0 1 0 2 0 0 1 2 1 3 5")
+    with pytest.raises(InputError, match=r"uses colour 5, but its source has 2 colours") as error:
+        read_collada(write(tmp_path / "bad.dae", dae(body, scene=scene(PLAIN))))
+    assert error.value.location is not None and error.value.location.line
