@@ -34,8 +34,8 @@ def with_look_of(
         warnings.append(f"{said}, and {original.name} cannot be read for one ({error.message})")
         return parts
     distinct = {(part.rgba, part.texture.key if part.texture else None) for part in looks}
-    if distinct == {(None, None)}:
-        return parts  # neither is coloured
+    if not looks or distinct == {(None, None)}:
+        return parts  # neither is coloured (or the file shows nothing: a DAE without a scene)
     if len(distinct) > 1:
         warnings.append(
             f"{said}, and the {len(distinct)} colours of {original.name} cannot be told apart "

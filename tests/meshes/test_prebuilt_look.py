@@ -42,3 +42,15 @@ def test_colours_the_obj_cannot_tell_apart_are_said(tmp_path):
         "colours of two.obj cannot be told apart on it: the model shows it uncoloured (convert "
         "without -a to show them)"
     ]
+
+
+def test_a_file_that_shows_nothing_leaves_the_obj_as_it_is(tmp_path):
+    from tests.meshes.test_collada import MATERIAL, QUAD, dae
+
+    obj = write(tmp_path / "base.obj", TETRAHEDRON)
+    loose = write(
+        tmp_path / "base.dae", dae(QUAD + MATERIAL.format(diffuse="<color>1 0 0 1</color>"))
+    )
+    said: list[str] = []
+    (part,) = with_look_of(load_parts(obj), obj, loose, said)
+    assert part.rgba is None and said == []
