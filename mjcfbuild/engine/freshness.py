@@ -15,8 +15,8 @@ from pathlib import Path
 
 from mjcfbuild.engine.context import BuildContext
 from mjcfbuild.engine.loader import DATABASE
-from mjcfbuild.families.registry import REPORT_TASKS
-from mjcfbuild.outputs import PLAN
+from mjcfbuild.families.registry import CHECK_ONLY_TASKS, REPORT_TASKS
+from mjcfbuild.outputs import PACKAGE_CHANGELOG, PACKAGE_FOLDER, PLAN
 
 
 def stale_outputs(ctx: BuildContext) -> list[str]:
@@ -53,13 +53,17 @@ def report_behind(ctx: BuildContext) -> list[str]:
 
 
 def _from_database(ctx: BuildContext) -> list[str]:
+    """The stale tasks of the graph ``mjcfbuild build`` (and ``build -n``, ``explain``) plans,
+    the check's included: a task that reads the check's results (the package's README, its
+    picture) is planned with them, as the build that wrote it planned it. The tasks only the
+    check needs write no output of the model, and are not counted."""
     from mjcfbuild.engine.status import build_statuses
 
-    statuses, _ = build_statuses(replace(ctx, run_check=False))
+    statuses, _ = build_statuses(replace(ctx, run_check=True))
     return [
         f"{status.title}: {'; '.join(status.reasons)}"
         for status in statuses
-        if not status.up_to_date and status.name.split(":")[0] not in REPORT_TASKS
+        if not status.up_to_date and status.name.split(":")[0] not in CHECK_ONLY_TASKS
     ]
 
 
@@ -68,15 +72,20 @@ def _by_rebuilding(ctx: BuildContext) -> list[str]:
     from mjcfbuild.engine.runner import run_build
 
     with tempfile.TemporaryDirectory(prefix="mjcfbuild-fresh-") as scratch:
+        # Without the check, unless the package's README and picture read what it finds.
         shadow = replace(
             ctx,
             output_override=Path(scratch) / "out",
-            run_check=False,
+            run_check=bool(ctx.manifest.output.package),
         )
         result = run_build(shadow, Progress(quiet=True))
         if result.errors:
             return [f"the inputs do not build: {result.errors[0].one_line()}"]
         return _compare(ctx.out_dir, shadow.out_dir, ctx)
+
+
+# The package's CHANGELOG: its history of earlier builds, kept across builds, not built anew.
+_KEPT = f"{PACKAGE_FOLDER}/{PACKAGE_CHANGELOG}"
 
 
 def _files(folder: Path) -> dict[str, Path]:
@@ -88,6 +97,7 @@ def _files(folder: Path) -> dict[str, Path]:
         if path.is_file()
         and not {".mjcfbuild", "report"} & set(path.relative_to(folder).parts)
         and not path.name.startswith(".")
+        and path.relative_to(folder).as_posix() != _KEPT
     }
 
 

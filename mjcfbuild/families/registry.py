@@ -60,6 +60,9 @@ STEP_TOOLS = {family.name: family.tools for family in FAMILIES}
 COMPILES_MODEL = frozenset(family.step for family in FAMILIES if family.compiles_model)
 # The tasks whose output is the report's only: freshness does not count them.
 REPORT_TASKS = tuple(family.name for family in FAMILIES if family.report_only)
+# The tasks a build makes only for the check: the report's, and the reference reading of the
+# URDF the check compares the model with (a build without the check makes none of them).
+CHECK_ONLY_TASKS = (*REPORT_TASKS, reference.FAMILY.name)
 # Their modules, which a build that checks preloads in its workers.
 CHECK_MODULES = tuple(family.module for family in FAMILIES if family.report_only)
 
