@@ -371,7 +371,7 @@ def record_build(
 ) -> None:
     """Write the stamp of the successful build of ``ctx`` that ran ``tasks``; ``warnings``
     are those of the tasks that made its outputs, for the fast path to print."""
-    from mjcfbuild.outputs import ASSEMBLY_REPORT, CHECK_DEPS, SOURCE_DEPS
+    from mjcfbuild.outputs import ASSEMBLY_REPORT, PARTS_DIR
     from mjcfbuild.steps.depfile import Depfile
 
     manifest = ctx.stamp_key
@@ -386,9 +386,12 @@ def record_build(
     for task in tasks:
         inputs += task["file_dep"]
         outputs += task["targets"]
+    # Every depfile a task keeps: the source's, the SRDF's, the check's (in the state folder),
+    # the attach: parts' and the meshes'. A task's file_dep above is what it declared before it
+    # ran, without what it discovered then.
     depfiles = [
-        ctx.state(SOURCE_DEPS),
-        ctx.state(CHECK_DEPS),
+        *sorted(ctx.state_dir.glob("*.deps.json")),
+        *sorted((ctx.state_dir / PARTS_DIR).glob("*.deps.json")),
         *sorted(ctx.products_dir.glob("*.deps.json")),
     ]
     for depfile in filter(None, (Depfile.read(path) for path in depfiles)):

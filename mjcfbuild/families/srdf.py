@@ -8,12 +8,13 @@ from typing import TYPE_CHECKING
 
 from mjcfbuild.graph.family import (
     Family,
+    discovered_inputs,
     file_task,
     package_folders,
     require_file,
     ros_environment,
 )
-from mjcfbuild.outputs import SRDF_SUMMARY
+from mjcfbuild.outputs import SRDF_DEPS, SRDF_SUMMARY
 from mjcfbuild.steps.payloads import SrdfPayload
 
 if TYPE_CHECKING:
@@ -75,6 +76,9 @@ def _tasks(graph: Graph) -> list[dict]:
     named = _named_srdf(ctx) is not None
     if named:
         require_file(ctx, source, "SRDF", "self_collision.srdf")
+    # The files an SRDF xacro included, as its last run recorded them (the expand family's
+    # depfile): declared, so an edit of one reruns the task.
+    read, stale = discovered_inputs(ctx, ctx.state(SRDF_DEPS))
     payload = SrdfPayload(
         source=str(source),
         label=ctx.label(source),
@@ -82,6 +86,7 @@ def _tasks(graph: Graph) -> list[dict]:
         packages=package_folders(ctx.resolver.explicit),
         environment=ros_environment(ctx),
         output=str(ctx.state(SRDF_SUMMARY)),
+        depfile=str(ctx.state(SRDF_DEPS)),
         discovered=not named,
         home_state=_given_home_state(ctx) if named else None,
         manifest_label=ctx.manifest_output_label,
@@ -93,8 +98,9 @@ def _tasks(graph: Graph) -> list[dict]:
         f"srdf {ctx.label(source)}",
         payload,
         in_worker=source.name.endswith(".xacro"),
-        file_dep=[source],
-        targets=[ctx.state(SRDF_SUMMARY)],
+        file_dep=[source, *read],
+        targets=[ctx.state(SRDF_SUMMARY), ctx.state(SRDF_DEPS)],
+        extra_uptodate=stale,
     )
     return [task]
 

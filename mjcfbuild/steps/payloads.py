@@ -278,6 +278,7 @@ class SrdfPayload(Payload):
     packages: dict[str, str]
     environment: dict[str, str]
     output: Output
+    depfile: Output  # what it read (its includes), for the next build to check
     discovered: bool = False  # found beside the description, not named in robot.yaml
     # self_collision.home_state where robot.yaml gives it, which the SRDF must then have.
     home_state: str | None = None

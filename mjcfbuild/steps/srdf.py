@@ -7,6 +7,7 @@ from pathlib import Path
 
 from mjcfbuild.selfcollision.srdf import parse_srdf
 from mjcfbuild.sources.expand import expand_source
+from mjcfbuild.steps.depfile import Depfile
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import SrdfPayload
 
@@ -29,6 +30,9 @@ def run(payload: dict) -> dict:
     outputs: dict[str, str] = {}
     text = json.dumps(srdf.to_dict(), indent=1, sort_keys=True) + "\n"
     write_output(Path(request.output), text.encode(), outputs)
+    Depfile(expansion.files, expansion.missing, expansion.environment, expansion.globs).write(
+        Path(request.depfile)
+    )
     return {"outputs": outputs, "discovered": [f for f in expansion.files if f != str(source)]}
 
 

@@ -12,7 +12,7 @@ import pytest
 import mjcfbuild
 from mjcfbuild import filesig
 from mjcfbuild.errors import BuildFailed
-from tests.conftest import file_clock_past, run_cli, write
+from tests.conftest import file_clock_past, run_cli, two_link_urdf, write
 
 ALL_ARM_TASKS = {
     "expand",
@@ -284,3 +284,44 @@ def test_a_xacro_argument_that_swaps_an_include_runs_expansion_once(built_arm):
     lines = [line for line in result.stdout.splitlines() if line.startswith("[")]
     assert sum("expand" in line for line in lines) == 1, result.stdout
     assert f"{len(lines)} run," in result.stdout, result.stdout
+
+
+SRDF_PAIRS = """<?xml version="1.0"?>
+<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="pairs">
+    <group name="arm"><joint name="hinge"/></group>{state}
+    <disable_collisions link1="base" link2="arm" reason="Never"/>
+  </xacro:macro>
+</robot>
+"""
+HOME = '<group_state name="home" group="arm"><joint name="hinge" value="0.5"/></group_state>'
+
+
+def test_the_files_an_srdf_xacro_includes_are_its_inputs(tmp_path):
+    # The srdf task keeps what its xacro included in a depfile, as expand does: declared on
+    # the next plan, and in the no-op stamp, so an edit of one is never "up to date".
+    write(tmp_path / "robot.urdf", two_link_urdf())
+    write(tmp_path / "pkg" / "pairs.xacro", SRDF_PAIRS.format(state=""))
+    write(
+        tmp_path / "pkg" / "robot.srdf.xacro",
+        '<?xml version="1.0"?>\n<robot name="two_link" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="pairs.xacro"/>\n  <xacro:pairs/>\n</robot>\n',
+    )
+    write(
+        tmp_path / "robot.yaml",
+        "name: r\nsource:\n  urdf: robot.urdf\nself_collision: {srdf: pkg/robot.srdf.xacro}\n",
+    )
+    assert run_cli("build", "--no-check", "-j", "1", cwd=tmp_path).code == 0
+    write(tmp_path / "pkg" / "pairs.xacro", SRDF_PAIRS.format(state=HOME))
+    edited = run_cli("build", "--no-check", "-j", "1", cwd=tmp_path)
+    assert edited.code == 0 and "srdf pkg/robot.srdf.xacro" in edited.stdout + edited.stderr
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "mjcf" / "r.xml"))
+    assert model.key_qpos[0][0] == pytest.approx(0.5)
+    again = run_cli("build", "--no-check", "-j", "1", cwd=tmp_path)
+    assert again.code == 0 and " 0 run, " in again.stdout + again.stderr
+    full = run_cli(
+        "build", "--no-check", "-j", "1", cwd=tmp_path, env={"MJCFBUILD_FULL_BUILD": "1"}
+    )
+    assert full.code == 0 and " 0 run, " in full.stdout + full.stderr  # doit's own test agrees
+    current = run_cli("check", "--up-to-date", cwd=tmp_path)
+    assert current.code == 0, current.stderr
