@@ -3,6 +3,10 @@
 "Best" is the smallest volume that still encloses every point, so no contact is missed.
 Cylinders and capsules are tried along the axes of the oriented bounding box and the principal
 axes of the points; their cross-section is the smallest circle around the projected points.
+Points that span no volume (a flat plate, a rod) are first given a thickness of
+:data:`FLAT_THICKNESS` of their largest extent across what they lack, so a plate gets a thin box
+(a disc a thin cylinder) rather than a zero-width shape that collides with nothing and holds no
+mass.
 """
 
 from __future__ import annotations
@@ -11,6 +15,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+
+# The thickness given to points that span no volume, as a fraction of their largest extent.
+FLAT_THICKNESS = 0.01
 
 
 @dataclass
@@ -28,7 +35,7 @@ def fit_primitive(points: np.ndarray, kinds: tuple[str, ...] | None = None) -> P
     (only those of ``kinds``, when given)."""
     import trimesh
 
-    points = np.asarray(points, dtype=np.float64)
+    points = _thickened(np.asarray(points, dtype=np.float64))
     candidates = []
 
     to_origin, extents = trimesh.bounds.oriented_bounds(points)
@@ -36,10 +43,9 @@ def fit_primitive(points: np.ndarray, kinds: tuple[str, ...] | None = None) -> P
     extents = np.maximum(extents, 1e-6)
     candidates.append(Primitive("box", tuple(extents / 2), box_transform, float(np.prod(extents))))
 
-    center, radius = trimesh.nsphere.minimum_nsphere(points)
+    center, radius = _ball(points)
     sphere = np.eye(4)
     sphere[:3, 3] = center
-    radius = max(float(radius), 1e-6)
     candidates.append(Primitive("sphere", (radius,), sphere, 4.0 / 3.0 * math.pi * radius**3))
 
     centred = points - points.mean(axis=0)
@@ -63,11 +69,66 @@ def _frame_with_z(axis: np.ndarray) -> np.ndarray:
     return np.column_stack([x, np.cross(z, x), z])
 
 
-def _circle(points_2d: np.ndarray) -> tuple[np.ndarray, float]:
+def _rank(spread: np.ndarray) -> int:
+    """How many dimensions points span, from their singular values (relative to the largest)."""
+    if spread.size == 0 or spread[0] <= 0:
+        return 0
+    return int(np.sum(spread > spread[0] * 1e-9))
+
+
+def _thickened(points: np.ndarray) -> np.ndarray:
+    """``points``, or where they span less than a volume (a plane, a line, one point) the points
+    moved both ways by half of :data:`FLAT_THICKNESS` of their extent along each direction they
+    lack, so every fit has a volume to enclose (qhull refuses flat input)."""
+    mean = points.mean(axis=0)
+    _, spread, principal = np.linalg.svd(points - mean, full_matrices=False)
+    rank = _rank(spread)
+    if rank == 3:
+        return points
+    if rank == 0:
+        thickness, spanned = 2e-6, np.eye(3)[:0]
+    else:
+        extent = np.ptp((points - mean) @ principal[:rank].T, axis=0).max()
+        thickness, spanned = max(float(extent) * FLAT_THICKNESS, 2e-6), principal[:rank]
+    lacking = _complement(spanned)
+    grown = points
+    for direction in lacking:
+        offset = direction * thickness / 2
+        grown = np.concatenate([grown + offset, grown - offset])
+    return grown
+
+
+def _complement(spanned: np.ndarray) -> np.ndarray:
+    """Unit vectors (rows) orthogonal to the rows of ``spanned`` and to each other, making 3."""
+    _, _, vt = np.linalg.svd(np.vstack([spanned, np.zeros((3, 3))]))
+    return vt[len(spanned) :]
+
+
+def _ball(points: np.ndarray) -> tuple[np.ndarray, float]:
+    """The smallest ball (circle, for 2-D points) around ``points``, also where they span fewer
+    dimensions than they have: qhull then refuses them, so it is given only the ones spanned."""
     import trimesh
 
-    center, radius = trimesh.nsphere.minimum_nsphere(points_2d)
-    return np.asarray(center, dtype=np.float64), max(float(radius), 1e-6)
+    mean = points.mean(axis=0)
+    _, spread, principal = np.linalg.svd(points - mean, full_matrices=False)
+    rank = _rank(spread)
+    if rank == 0:
+        return mean, 1e-6
+    if rank == points.shape[1]:
+        center, radius = trimesh.nsphere.minimum_nsphere(points)
+        return np.asarray(center, dtype=np.float64), max(float(radius), 1e-6)
+    basis = principal[:rank]
+    reduced = (points - mean) @ basis.T
+    if rank == 1:
+        low, high = float(reduced.min()), float(reduced.max())
+        center, radius = np.array([(low + high) / 2]), (high - low) / 2
+    else:
+        center, radius = trimesh.nsphere.minimum_nsphere(reduced)
+    return mean + np.asarray(center, dtype=np.float64) @ basis, max(float(radius), 1e-6)
+
+
+def _circle(points_2d: np.ndarray) -> tuple[np.ndarray, float]:
+    return _ball(points_2d)
 
 
 def _cylinder_along(points: np.ndarray, rotation: np.ndarray) -> Primitive:

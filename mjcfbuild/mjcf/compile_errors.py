@@ -13,6 +13,10 @@ _COMPILE_HINTS = {
         "fixed to it with options.fuse_static on; else make it fixed or another kind"
     ),
     "repeated in equality constraint": "a joint cannot <mimic> itself",
+    "coplanar vertices": (
+        "a robot.yaml collision rule {meshes: [<its file name>], policy: primitive} gives it a "
+        "thin box, policy: none no contact"
+    ),
 }
 
 

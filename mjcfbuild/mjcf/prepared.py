@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from mjcfbuild.collision.policy import CollisionChoice, collision_policy
-from mjcfbuild.errors import InputError
+from mjcfbuild.errors import InputError, ModelError
 from mjcfbuild.markup import xml_attribute
 from mjcfbuild.meshes.mshfile import read_file
 from mjcfbuild.meshes.product import MeshProduct
@@ -178,6 +178,8 @@ def prepare(
                     placed[(choice.link, choice.role, choice.index)], body, choice
                 )
         geoms_of[body.name] = geoms
+    if builder.flat:
+        raise _flat_error(builder.flat, source)
     names = _assign_names(builder.uses, builder.looks, prepared)
 
     lines = [f"<robot name={xml_attribute(robot_name)}>"]
@@ -232,6 +234,23 @@ class _Builder:
         self.prepared = prepared
         self.uses: dict[tuple, _MeshUse] = {}
         self.looks: dict[tuple, tuple] = {}
+        # Collision meshes whose vertices lie in a plane (or on a line), which MuJoCo cannot
+        # take the convex hull of: all of them are named at once (one per file and link).
+        self.flat: dict[tuple[str, str], PlacedShape] = {}
+        self._flat_files: dict[str, bool] = {}
+
+    def check_flat(self, placed: PlacedShape, geoms: list[_Geom]) -> list[_Geom]:
+        """``geoms``; notes ``placed`` as flat where the mesh of one of them is."""
+        for geom in geoms:
+            if geom.mesh is None or not geom.mesh.product_file.endswith(".obj"):
+                continue
+            path = geom.mesh.product_file
+            if path not in self._flat_files:
+                self._flat_files[path] = _is_flat(path)
+            if self._flat_files[path]:
+                self.flat.setdefault((_rule_name(placed), placed.link), placed)
+                break
+        return geoms
 
     def _record(self, placed: PlacedShape, body: Body, role: str, kind: str, policy: str = ""):
         shape = placed.shape
@@ -407,7 +426,8 @@ class _MeshCollision:
         stem = mesh_id if product.collision_is_whole else f"{mesh_id}_collision"
         shell = abs(product.collision_volume) < 1e-9
         use = self.builder._use(mesh_id, file, product.files[file], stem, self.placed, shell)
-        return [_Geom("collision", self.placed.pose, self.record, mesh=use)]
+        geoms = [_Geom("collision", self.placed.pose, self.record, mesh=use)]
+        return self.builder.check_flat(self.placed, geoms) if shell else geoms
 
     def hull(self) -> list[_Geom]:
         """The mesh's convex hull."""
@@ -416,7 +436,9 @@ class _MeshCollision:
         use = self.builder._use(
             mesh_id, product.hull, product.files[product.hull], f"{mesh_id}_hull", self.placed
         )
-        return [_Geom("collision", self.placed.pose, self.record, mesh=use)]
+        return self.builder.check_flat(
+            self.placed, [_Geom("collision", self.placed.pose, self.record, mesh=use)]
+        )
 
     def fitted_primitive(self) -> list[_Geom]:
         """The primitive that fits the mesh's hull best."""
@@ -439,7 +461,56 @@ class _MeshCollision:
                 self.placed,
             )
             geoms.append(_Geom("collision", self.placed.pose, part_record, mesh=use))
-        return geoms
+        return builder.check_flat(self.placed, geoms)
+
+
+def _is_flat(path: str) -> bool:
+    """Whether the vertices of the OBJ file ``path`` lie in a plane, on a line or at a point."""
+    from mjcfbuild.meshes.objfile import read_obj_vertices
+
+    points = read_obj_vertices(path)
+    if len(points) < 4:
+        return True
+    spread = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
+    return bool(spread[0] <= 0 or spread[2] <= spread[0] * 1e-9)
+
+
+def _rule_name(placed: PlacedShape) -> str:
+    """The name of a shape's mesh that a robot.yaml collision rule's ``meshes`` matches."""
+    geometry = placed.shape.geometry
+    if geometry.path:
+        return Path(geometry.path).name
+    return geometry.mesh_id or geometry.uri or ""
+
+
+def _flat_error(flat: dict[tuple[str, str], PlacedShape], source: str) -> ModelError:
+    """One error naming every flat collision mesh, and the robot.yaml rule that fits them."""
+    shapes = sorted(flat.values(), key=lambda placed: placed.shape.line or 0)
+    first = shapes[0]
+
+    def named(placed: PlacedShape, line: bool = True) -> str:
+        where = f" (line {placed.shape.line})" if placed.shape.line and line else ""
+        return f"'{_rule_name(placed)}' of link '{placed.link}'{where}"
+
+    files = list(dict.fromkeys(_rule_name(placed) for placed in shapes))
+    listed = ", ".join(f'"{name}"' for name in files)
+    if len(shapes) == 1:
+        what = f"collision mesh {named(first, False)} is flat (its vertices lie in a plane)"
+    else:
+        others = ", ".join(named(p) for p in shapes[1:])
+        what = (
+            f"{len(shapes)} collision meshes are flat (their vertices lie in a plane): "
+            f"{named(first, False)}, {others}"
+        )
+    return ModelError(
+        f"{what}; MuJoCo cannot take the convex hull it collides with",
+        file=source,
+        line=first.shape.line,
+        hint=(
+            f"add to robot.yaml's collision.rules: {{meshes: [{listed}], policy: primitive}} "
+            "for a thin box, or policy: none for no contact"
+        ),
+    )
 
 
 def _primitive_xml(kind: str, size: tuple) -> str:

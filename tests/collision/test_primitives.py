@@ -46,3 +46,32 @@ def test_kinds_limit_the_candidates_and_the_fit_still_encloses():
     radial = np.hypot(local[:, 0], local[:, 1])
     capped = np.maximum(np.abs(local[:, 2]) - fit.size[1], 0)
     assert np.all(np.hypot(radial, capped) <= fit.size[0] + 1e-9)
+
+
+@pytest.mark.parametrize(
+    ("points", "kind"),
+    [
+        ([[0, 0, 0], [0.1, 0, 0], [0.1, 0.1, 0], [0, 0.1, 0]], "box"),  # a square plate
+        ([[0, 0, 0], [0, 0, 0.3]], "box"),  # a rod
+        ([[0.1, 0.2, 0.3]], "box"),  # one point
+    ],
+)
+def test_points_without_volume_get_a_thin_primitive_around_them(points, kind):
+    # qhull refuses flat input (QH6022), which stopped the build with an internal error
+    points = np.array(points, dtype=float)
+    fit = fit_primitive(points)
+    assert fit.kind == kind
+    local = (np.c_[points, np.ones(len(points))] @ np.linalg.inv(fit.transform).T)[:, :3]
+    assert np.all(np.abs(local) <= np.array(fit.size) + 1e-9)
+    extent = np.ptp(points, axis=0).max()
+    assert min(fit.size) * 2 == pytest.approx(max(extent * 0.01, 2e-6), rel=0.2)
+    for kinds in (("sphere",), ("capsule",), ("cylinder",)):
+        assert fit_primitive(points, kinds).kind == kinds[0]
+
+
+def test_a_flat_disc_gets_a_thin_cylinder():
+    angles = np.linspace(0, 2 * np.pi, 64, endpoint=False)
+    points = np.c_[0.1 * np.cos(angles), 0.1 * np.sin(angles), np.zeros(64)]
+    fit = fit_primitive(points)
+    assert fit.kind == "cylinder"
+    assert fit.size[0] == pytest.approx(0.1, rel=1e-3) and fit.size[1] < 0.002

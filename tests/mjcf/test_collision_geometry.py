@@ -134,3 +134,51 @@ def test_the_hull_vertex_limit_reaches_mujoco_and_coacd(arm):
     assert model.mesh_vertnum[mesh] <= 16
     text = (arm / "mjcf" / "example_arm.xml").read_text()
     assert 'maxhullvert="16"' in text
+
+
+PLATE_OBJ = "v 0 0 0\nv 0.1 0 0\nv 0.1 0.1 0\nv 0 0.1 0\nf 1 2 3\nf 1 3 4\n"
+
+
+def flat_collision_robot(tmp_path, rules: str = ""):
+    """A robot whose two links collide with flat plates (one file each)."""
+    from tests.conftest import INERTIA
+
+    write(tmp_path / "plate.obj", PLATE_OBJ)
+    write(tmp_path / "sheet.obj", PLATE_OBJ.replace("v 0.1 0.1 0", "v 0.1 0.2 0"))
+    links = "".join(
+        f'\n  <link name="{name}">{INERTIA}\n'
+        f'    <collision><geometry><mesh filename="{mesh}"/></geometry></collision></link>'
+        for name, mesh in (("a", "plate.obj"), ("b", "sheet.obj"))
+    )
+    joint = (
+        '\n  <joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+        '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+    )
+    write(tmp_path / "robot.urdf", f'<robot name="r">{links}{joint}\n</robot>\n')
+    write(tmp_path / "robot.yaml", "name: r\nsource: {urdf: robot.urdf}\n" + rules)
+
+
+@pytest.mark.parametrize("policy", ["authored", "hull", "decompose"])
+def test_every_flat_collision_mesh_is_named_at_once_with_the_rule_to_add(cli, tmp_path, policy):
+    flat_collision_robot(tmp_path, f"collision: {{default: {policy}}}\n")
+    result = cli("build", "--no-check", cwd=tmp_path)
+    assert result.code == 5, result.stderr
+    error = [line for line in result.stderr.splitlines() if "error:" in line]
+    assert len(error) == 1 and "Traceback" not in result.stderr
+    assert (
+        "robot.urdf:3: 2 collision meshes are flat (their vertices lie in a plane): "
+        "'plate.obj' of link 'a', 'sheet.obj' of link 'b' (line 5)" in error[0]
+    )
+    assert '{meshes: ["plate.obj", "sheet.obj"], policy: primitive}' in error[0]
+
+
+def test_the_primitive_policy_gives_a_flat_mesh_a_thin_box(cli, tmp_path):
+    flat_collision_robot(
+        tmp_path,
+        "collision:\n  rules:\n    - {meshes: [plate.obj, sheet.obj], policy: primitive}\n",
+    )
+    result = cli("build", "--no-check", cwd=tmp_path)
+    assert result.code == 0, result.stderr
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "mjcf" / "r.xml"))
+    assert collision_geoms(model, "a") == [("box", None)]
+    assert 2e-4 < min(model.geom_size[model.geom_group == 3][0]) < 1e-3
