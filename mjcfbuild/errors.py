@@ -71,11 +71,16 @@ class MjcfbuildError(Exception):
         line: int | None = None,
         column: int | None = None,
         hint: str | None = None,
+        first_line: int | None = None,
     ) -> None:
         super().__init__(message)
         self.message = message
         self.location = Location(str(file), line, column) if file is not None else None
         self.hint = hint
+        # A second line of the same file the message names as " (first at line N)" (a name
+        # defined twice): moved with the location where an expanded URDF's lines are mapped
+        # back to the xacro files that wrote them (sources.origins.map_lines).
+        self.first_line = first_line
         # The traceback where the error was raised in another process (a worker), for --debug.
         self.details = ""
 
@@ -109,6 +114,7 @@ class MjcfbuildError(Exception):
             "line": loc.line if loc else None,
             "column": loc.column if loc else None,
             "hint": self.hint,
+            "first_line": self.first_line,
             "details": self.details or _traceback_of(self),
         }
 
@@ -122,6 +128,7 @@ class MjcfbuildError(Exception):
             line=data.get("line"),
             column=data.get("column"),
             hint=data.get("hint"),
+            first_line=data.get("first_line"),
         )
         error.details = data.get("details") or ""
         return error
@@ -130,6 +137,14 @@ class MjcfbuildError(Exception):
         """The traceback to show with ``--debug``: where the error was raised (in a worker
         process, or in this one), or empty when it was made without being raised."""
         return self.details or _traceback_of(self)
+
+
+def first_at(line: int | None, file: str | None = None) -> str:
+    """`` (first at line N)`` in an error about a name given twice (``file:N`` where the first
+    is in another file than the one the error points at)."""
+    if not line:
+        return ""
+    return f" (first at {file}:{line})" if file else f" (first at line {line})"
 
 
 def _traceback_of(error: BaseException) -> str:

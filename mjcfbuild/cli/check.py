@@ -250,13 +250,10 @@ def _pair(args) -> int:
         robot = parse_urdf(text, str(urdf))
     except InputError as error:
         # A line of the expanded text: point at the xacro line that wrote its element.
-        from mjcfbuild.sources.origins import written_in
+        from mjcfbuild.sources.origins import map_lines
 
-        where = error.location
-        written = written_in(origins, where.line) if where and where.line else None
-        if where is not None and written is not None:
-            expanded = where.line
-            where.file, where.line = shown_path(written[0]), written[1]
+        expanded = map_lines(error, origins, shown_path)
+        if expanded is not None:
             error.message += f" [line {expanded} of its expansion]"
         raise
     results = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))

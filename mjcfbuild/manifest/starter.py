@@ -300,8 +300,10 @@ def _free_joint_lines(
     """The manifest's free_joint line, decided from the robot's kinematics and geometry
     (urdf.base); from its names only where the description cannot be read here, with the
     error (one line) that kept it from being read; and the URDF it read (None where none)."""
+    from mjcfbuild.sources.origins import map_lines
     from mjcfbuild.urdf.base import classify_base
 
+    expansion = None
     try:
         from mjcfbuild.sources.expand import expand_source
         from mjcfbuild.urdf.parse import parse_urdf
@@ -311,7 +313,10 @@ def _free_joint_lines(
         kind = classify_base(robot)
     except Exception as exc:  # an unreadable description: init still writes a starting manifest
         # The build reports anything else itself; a user error is worth telling now.
-        # Its file named from the current folder, as the build names it.
+        # Its file named from the current folder, as the build names it; a line of the
+        # expanded text where the xacro file wrote it.
+        if isinstance(exc, MjcfbuildError) and expansion is not None:
+            map_lines(exc, expansion.origins)
         here = Path.cwd()
         unread = exc.relocate(here, here).one_line() if isinstance(exc, MjcfbuildError) else None
         legs = _leg_words(data)
@@ -350,17 +355,14 @@ def _first_stop(
     there, an absolute path from another machine, no mass anywhere), as one line: init says
     it now, not one build later. A xacro source's line is the one ``origins`` says wrote the
     expanded line, as the build names it."""
-    from mjcfbuild.sources.origins import written_in
+    from mjcfbuild.sources.origins import map_lines
     from mjcfbuild.urdf.resolve import resolve_files
 
     try:
         folders = {name: Path(folder) for name, folder in packages.items()}
         resolve_files(robot, source.parent, PackageResolver(folders, dict(os.environ)))
     except MjcfbuildError as exc:
-        where = exc.location
-        written = written_in(origins, where.line) if where and where.line else None
-        if where is not None and written is not None:
-            where.file, where.line = written
+        map_lines(exc, origins)
         here = Path.cwd()
         return exc.relocate(here, here).one_line()
     moving = [joint for joint in robot.joints if joint.moves]

@@ -10,9 +10,10 @@ from __future__ import annotations
 
 import json
 import os
+from collections.abc import Callable
 from pathlib import Path
 
-from mjcfbuild.errors import MjcfbuildError
+from mjcfbuild.errors import MjcfbuildError, first_at
 
 
 def origins_file(urdf: Path) -> Path:
@@ -29,14 +30,18 @@ def origins_json(origins: dict[int, tuple[str, int]]) -> bytes:
 
 def written_at(urdf: Path, line: int) -> tuple[str, int] | None:
     """Where the element at (or, inside it, before) ``line`` of ``urdf`` was written."""
+    return written_in(read_origins(urdf), line)
+
+
+def read_origins(urdf: Path) -> dict[int, tuple[str, int]]:
+    """The origins file of the expanded URDF ``urdf`` (empty where it has none)."""
     try:
         data = json.loads(origins_file(urdf).read_text())
     except (OSError, ValueError):
-        return None
+        return {}
     if not isinstance(data, dict):
-        return None
-    origins = {int(key): (str(f), int(n)) for key, (f, n) in data.items() if key.isdigit()}
-    return written_in(origins, line)
+        return {}
+    return {int(key): (str(f), int(n)) for key, (f, n) in data.items() if key.isdigit()}
 
 
 def written_in(origins: dict[int, tuple[str, int]], line: int) -> tuple[str, int] | None:
@@ -44,6 +49,34 @@ def written_in(origins: dict[int, tuple[str, int]], line: int) -> tuple[str, int
     before) an expanded ``line`` was written; None for a URDF read as written."""
     before = [number for number in origins if number <= line]
     return origins[max(before)] if before else None
+
+
+def map_lines(
+    error: MjcfbuildError,
+    origins: dict[int, tuple[str, int]],
+    shown: Callable[[str], str] = str,
+) -> int | None:
+    """Point ``error``, at an expanded URDF's line, where ``origins`` say that element was
+    written (its file as ``shown`` names it), and its second line (``first at line N``) too:
+    the one mapping of an error's lines, for build, init and check. Returns the expanded line
+    it pointed at; None where it points at no line ``origins`` know (a URDF read as written)."""
+    location = error.location
+    if location is None or location.line is None:
+        return None
+    found = written_in(origins, location.line)
+    if found is None:
+        return None
+    expanded = location.line
+    location.file, location.line, location.column = shown(found[0]), found[1], None
+    if error.first_line is not None:
+        old = first_at(error.first_line)
+        first = written_in(origins, error.first_line)
+        if first is not None and old in error.message:
+            other = shown(first[0])
+            new = first_at(first[1], None if other == location.file else other)
+            error.message = error.message.replace(old, new, 1)
+            error.first_line = None  # mapped: said once
+    return expanded
 
 
 def point_at_source(
@@ -69,13 +102,10 @@ def point_at_source(
             error.message += f" [expanded: {expanded}]"
             location.file = _shown(str(xacro), base_dir)
         return
-    found = written_at(urdf, location.line)
-    if found is None:
+    expanded_line = map_lines(error, read_origins(urdf), lambda file: _shown(file, base_dir))
+    if expanded_line is None:
         return
-    error.message += f" [expanded: {expanded}:{location.line}]"
-    file, line = found
-    location.file = _shown(file, base_dir)
-    location.line, location.column = line, None
+    error.message += f" [expanded: {expanded}:{expanded_line}]"
     if error.hint and error.hint.startswith("the line is in the expansion of"):
         error.hint = None
 

@@ -18,7 +18,7 @@ from typing import Literal, NoReturn, overload
 
 from lxml import etree
 
-from mjcfbuild.errors import InputError
+from mjcfbuild.errors import InputError, first_at
 from mjcfbuild.sources.packages import did_you_mean
 from mjcfbuild.urdf.model import (
     JOINT_TYPES,
@@ -682,10 +682,11 @@ def _unique_names(kind: str, named: list[tuple[str, int | None]], reader: _Reade
     for name, line in named:
         if name in first_line:
             raise InputError(
-                f"{kind} '{name}' is defined twice{_first_at(first_line[name])}",
+                f"{kind} '{name}' is defined twice{first_at(first_line[name])}",
                 file=reader.file,
                 line=line,
                 hint="rename one of them, or remove it",
+                first_line=first_line[name],
             )
         first_line[name] = line
     return set(first_line)
@@ -759,7 +760,3 @@ def _closest(name: str, candidates: set[str], kind: str) -> str:
     if suggested:
         return suggested.removeprefix("; ")
     return f"{kind}: {listing(sorted(candidates))}"
-
-
-def _first_at(line: int | None) -> str:
-    return f" (first at line {line})" if line else ""

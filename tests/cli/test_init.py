@@ -600,3 +600,32 @@ def test_an_argument_read_before_its_declaration_is_given_its_default(cli, tmp_p
     (tmp_path / "robot.yaml").write_text(text.replace('  args:\n    name: "ur"\n', "  args: {}\n"))
     failed = cli("build", "--no-check", cwd=tmp_path)
     assert "its <xacro:arg> (line 3) comes after this use" in failed.stderr
+
+
+DUPLICATE_XACRO = """<?xml version="1.0"?>
+<robot name="dup" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="extra" default="true"/>
+  <link name="base"/>
+<xacro:if value="$(arg extra)">
+  <link name="plate"/>
+  <joint name="j" type="fixed"><parent link="base"/><child link="plate"/></joint>
+</xacro:if>
+  <link name="plate"/>
+</robot>
+"""
+
+
+def test_a_name_defined_twice_names_both_xacro_lines_in_init_build_and_check(cli, tmp_path):
+    """init named the expanded line of both (line 23 of a 16-line file), build the expanded
+    line of the first ("xacro:13 ... first at line 13")."""
+    from tests.conftest import write
+
+    write(tmp_path / "robot.urdf.xacro", DUPLICATE_XACRO)
+    write(tmp_path / "m.xml", "<mujoco><worldbody/></mujoco>\n")
+    said = "robot.urdf.xacro:9: link 'plate' is defined twice (first at line 6)"
+    init = cli("init", "robot.urdf.xacro", "-o", "robot.yaml", cwd=tmp_path)
+    assert said in init.stderr, init.stderr
+    build = cli("build", "--no-check", cwd=tmp_path)
+    assert build.code == 4 and said + " [expanded: mjcf/.mjcfbuild/source.urdf:" in build.stderr
+    check = cli("check", "--urdf", "robot.urdf.xacro", "--mjcf", "m.xml", cwd=tmp_path)
+    assert said + " [line " in check.stderr, check.stderr

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from mjcfbuild.errors import InputError
 from mjcfbuild.sources.origins import (
+    map_lines,
     origins_file,
     origins_json,
     point_at_source,
@@ -68,3 +69,22 @@ def test_an_error_about_the_whole_expanded_urdf_names_the_xacro_it_came_from(tmp
     kept = InputError("no link of the robot has a mass", file=label)
     point_at_source(kept, urdf, label, tmp_path)
     assert (kept.location.file, kept.message) == (label, "no link of the robot has a mass")
+
+
+def test_the_first_line_of_a_name_given_twice_is_mapped_with_the_error(tmp_path):
+    # it was left an expanded line: "xacro:13: ... (first at line 13)", the first at xacro:8
+    origins = {8: ("arm.xacro", 8), 13: ("arm.xacro", 8), 23: ("arm.xacro", 13)}
+    error = InputError(
+        "link 'plate' is defined twice (first at line 13)",
+        file="source.urdf",
+        line=23,
+        first_line=13,
+    )
+    assert map_lines(error, origins) == 23
+    assert str(error.location) == "arm.xacro:13"
+    assert error.message == "link 'plate' is defined twice (first at line 8)"
+    other = InputError("x is defined twice (first at line 13)", file="s", line=23, first_line=13)
+    map_lines(other, {13: ("macros.xacro", 4), 23: ("arm.xacro", 13)})
+    assert other.message == "x is defined twice (first at macros.xacro:4)"
+    sent = InputError.from_dict(InputError("m", file="f", line=2, first_line=1).to_dict())
+    assert sent.first_line == 1
