@@ -69,6 +69,15 @@ def parse_xml(data: bytes, display_file: str, warnings: list[str]) -> etree._Ele
     try:
         return etree.fromstring(data, secure_parser())
     except etree.XMLSyntaxError as exc:
+        stray = _stray_closing_tag(data, exc)
+        if stray is not None:
+            tag, offset = stray
+            warnings.append(
+                f"{display_file}:{exc.lineno}: a closing tag {tag} after the root element's "
+                "end; ignored with what follows it, as MuJoCo's and urdfdom's parser (tinyxml2) "
+                "stop reading there (remove it)"
+            )
+            return parse_xml(data[:offset], display_file, warnings)
         if exc.code != 201:  # 201: namespace prefix not defined
             raise InputError(
                 f"malformed XML: {_clean_xml_message(exc.msg)}",
@@ -161,6 +170,31 @@ def _drop_trailing_nuls(data: bytes, display_file: str, warnings: list[str]) -> 
         f"{display_file}:{line}: NUL bytes after the end of the XML; ignored (remove them)"
     )
     return kept + b"\n"
+
+
+# A closing tag as tinyxml2 reads one: a name right after "</", then anything up to ">".
+_CLOSING_TAG = re.compile(rb"</[A-Za-z_:][^\s>/]*(?:\s[^>]*)?>")
+
+
+def _stray_closing_tag(data: bytes, exc: etree.XMLSyntaxError) -> tuple[str, int] | None:
+    """(the tag, its offset in ``data``) where ``exc`` is about a closing tag after the root
+    element's end (PyFlyt's rocket.urdf ends ``</robot>`` twice). tinyxml2, MuJoCo's and
+    urdfdom's parser, ends the document there and reads the model; other content after the
+    root (text, an unclosed element) it refuses as lxml does, so only this is taken."""
+    if exc.code != 5 or not exc.position or exc.lineno is None:  # 5: extra content at end
+        return None
+    line, column = exc.position
+    lines = data.split(b"\n")
+    if not 0 < line <= len(lines) or column < 1:
+        return None
+    start = sum(len(text) + 1 for text in lines[: line - 1])
+    # libxml2 counts columns in characters; the file is UTF-8 (or ASCII) where it matters
+    before = lines[line - 1].decode("utf-8", "replace")[: column - 1].encode("utf-8")
+    offset = start + len(before)
+    found = _CLOSING_TAG.match(data, offset)
+    if found is None or not data[:offset].strip():
+        return None
+    return found.group().decode("utf-8", "replace"), offset
 
 
 def _clean_xml_message(message: str) -> str:

@@ -62,6 +62,40 @@ def test_an_xml_declaration_after_blank_lines_is_read_with_a_warning():
     ]
 
 
+@pytest.mark.parametrize(
+    ("after", "read"),
+    [
+        ("\n</robot>\n", True),  # PyFlyt's rocket.urdf
+        ("</robot> what follows is never read <", True),
+        ('\n  </other a="1">\n', True),
+        ("\ntext\n", False),  # MuJoCo's parser refuses these as lxml does
+        ("\n</ robot>\n", False),
+        ("\n<extra>\n", False),
+    ],
+)
+def test_a_closing_tag_after_the_root_is_read_where_mujoco_reads_it(after, read):
+    import mujoco
+
+    text = '<robot name="a">\n<link name="l"/>\n</robot>' + after
+    try:
+        mujoco.MjModel.from_xml_string(text)
+        mujoco_reads = True
+    except ValueError:
+        mujoco_reads = False
+    assert mujoco_reads == read
+    if not read:
+        assert "Extra content" in error_of(text).message
+        return
+    robot = parse(text)
+    assert [link.name for link in robot.links] == ["l"]
+    line = 3 if after.startswith("<") else 4
+    assert robot.warnings == [
+        f"r.urdf:{line}: a closing tag {after.strip().split('>')[0]}> after the root "
+        "element's end; ignored with what follows it, as MuJoCo's and urdfdom's parser "
+        "(tinyxml2) stop reading there (remove it)"
+    ]
+
+
 def test_an_xml_declaration_of_another_version_is_read_as_1_0_with_a_warning():
     # pybullet_data's bicycle/bike.urdf says version="0.0".
     robot = parse('<?xml version=\'0.0\' ?>\n<robot name="a"><link name="l"/></robot>')
