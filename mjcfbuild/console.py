@@ -81,7 +81,8 @@ def shown_path(path: str | Path) -> str:
     import os
 
     relative = os.path.relpath(path)
-    return str(path) if relative.startswith("..") else relative
+    # normalised: a file beside the manifest's folder was named ".../robot/../../src/..."
+    return os.path.normpath(path) if relative.startswith("..") else relative
 
 
 def _from_here(warning: str, base_dir: Path) -> str:

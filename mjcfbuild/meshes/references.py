@@ -26,13 +26,14 @@ def referenced_files(path: Path) -> list[Path]:
 
 def missing_references(path: Path) -> list[str]:
     """What ``path`` refers to that is not there (an OBJ's ``mtllib`` or a texture its
-    material names, a DAE's or a glTF's image), each once as ``name (what it is)``, sorted;
+    material names, a DAE's or a glTF's image), each once as ``'name' (what it is)`` (quoted: the
+    console groups warnings that differ in quoted names), sorted;
     the name is the path from the mesh's folder (``../textures/wood.png``), where the file
     was looked for, or the name of a file outside the mesh's description (an absolute
     ``file:///opt/textures/wood.png``): a path from the mesh up to the root would depend on
     the folder the description sits in."""
     missing = {(kind, p) for kind, p in _references(path) if not p.is_file()}
-    return sorted({f"{_from_folder(p, path.parent)} ({kind})" for kind, p in missing})
+    return sorted({f"'{_from_folder(p, path.parent)}' ({kind})" for kind, p in missing})
 
 
 # A relative path climbing this many folders is no description's own (../../materials is).

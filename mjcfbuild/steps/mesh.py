@@ -84,15 +84,21 @@ def _run(request: MeshPayload) -> dict:
     return {
         "outputs": outputs,
         "discovered": [str(p) for p in read],
-        "warnings": [*_missing_warning(source, request.label), *summary.warnings],
+        "warnings": [
+            *_missing_warning(source, request.label, request.options.roles),
+            *summary.warnings,
+        ],
         "cached": cached,
         "stored": not cached and store is not None,
         "dropped": len(store.dropped) if store else 0,
     }
 
 
-def _missing_warning(source: Path, label: str) -> list[str]:
-    """One warning naming what ``source`` refers to that is not there, or none."""
+def _missing_warning(source: Path, label: str, roles: list[str] | None = None) -> list[str]:
+    """One warning naming what ``source`` refers to that is not there, or none; none for a
+    mesh only collided with (``roles`` without "visual"), whose materials nothing shows."""
+    if roles is not None and "visual" not in roles:
+        return []
     missing = missing_references(source)
     if not missing:
         return []

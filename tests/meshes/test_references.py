@@ -24,7 +24,7 @@ def test_an_obj_whose_material_library_is_missing(tmp_path):
     obj = samples.obj_with_named_mtl_and_texture(tmp_path)
     (tmp_path / "looks.mtl").unlink()
     assert referenced_files(obj) == []
-    assert missing_references(obj) == ["looks.mtl (material library)"]
+    assert missing_references(obj) == ["'looks.mtl' (material library)"]
     assert missing_paths(obj) == [tmp_path / "looks.mtl"]
 
 
@@ -32,7 +32,7 @@ def test_an_obj_whose_material_names_a_missing_texture(tmp_path):
     obj = samples.obj_with_named_mtl_and_texture(tmp_path)
     (tmp_path / "skin.png").unlink()
     assert referenced_files(obj) == [tmp_path / "looks.mtl"]
-    assert missing_references(obj) == ["skin.png (texture)"]
+    assert missing_references(obj) == ["'skin.png' (texture)"]
 
 
 def test_a_dae_image_that_is_missing_and_image_ids_that_are_no_files(tmp_path):
@@ -43,7 +43,7 @@ def test_a_dae_image_that_is_missing_and_image_ids_that_are_no_files(tmp_path):
     # the path from the mesh's folder, where it was looked for (roboschool's atlas meshes
     # name ../materials/textures/*.png; "extremities_diffuse.png, not found beside it" sent
     # the user to the wrong folder)
-    assert missing_references(dae) == ["textures/wood.png (texture)"]
+    assert missing_references(dae) == ["'textures/wood.png' (texture)"]
     assert missing_paths(dae) == [tmp_path / "textures" / "wood.png"]
 
 
@@ -60,4 +60,4 @@ def test_a_missing_file_far_outside_the_mesh_is_named_without_the_way_there(tmp_
     dae = folder / "part.dae"
     far = tmp_path.parent / "elsewhere" / "textures" / "wood.png"
     dae.write_text(DAE.replace("textures/wood.png", far.as_uri()).replace("here.png", "x.png"))
-    assert missing_references(dae) == ["wood.png (texture)", "x.png (texture)"]
+    assert missing_references(dae) == ["'wood.png' (texture)", "'x.png' (texture)"]
