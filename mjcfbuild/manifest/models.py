@@ -7,6 +7,7 @@ manifest's folder and resolved by :class:`mjcfbuild.graph.context.GraphContext`.
 
 from __future__ import annotations
 
+import re
 from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 from pydantic import (
@@ -452,10 +453,36 @@ class Scene(StrictModel):
 RESERVED_OUTPUT_NAMES = {"assets", "report", ".mjcfbuild"}
 
 
+def urdf_file_name(value: object) -> object:
+    """``value``, an output URDF's file name; a ValueError that says what is expected where it
+    is none (``true``, a path with folders: "is not a valid name" said neither)."""
+    expected = (
+        "a file name such as 'my_robot.urdf', written in the output folder "
+        "(or a mapping with file, meshes, asset_prefix and sites)"
+    )
+    if value is True:
+        raise ValueError(f"expected {expected}, got true")
+    if value is False:
+        raise ValueError(f"expected {expected}, got false; leave the key out for no URDF")
+    if isinstance(value, str) and re.search(r"[/\\]", value):
+        name = re.split(r"[/\\]", value)[-1] or "my_robot.urdf"
+        raise ValueError(
+            f"{value!r} names a folder; expected a file name such as '{name}', written in "
+            "the output folder (output.folder chooses that folder)"
+        )
+    return value
+
+
 class UrdfExport(StrictModel):
     """A URDF of the built model, for RViz, MoveIt and other ROS tools."""
 
     file: FileName = Field(description="File name of the URDF, in the output folder.")
+
+    @field_validator("file", mode="before")
+    @classmethod
+    def _file_name(cls, value: object) -> object:
+        return urdf_file_name(value)
+
     meshes: FileName | None = Field(
         None,
         description=(
@@ -639,6 +666,14 @@ class Output(StrictModel):
         if value is True:
             return {}
         return None if value is False else value
+
+    @field_validator("urdf", mode="before")
+    @classmethod
+    def _urdf_switch(cls, value: object) -> object:
+        # true and false name no file ("expected a non-empty string, got True")
+        if isinstance(value, (bool, str)):
+            return urdf_file_name(value)
+        return value
 
     @field_validator("urdf")
     @classmethod

@@ -102,6 +102,26 @@ def test_bad_name_is_explained():
     assert "is not a valid name" in error.message
 
 
+@pytest.mark.parametrize(
+    ("value", "said"),
+    [
+        # were "expected a non-empty string, got True" and "is not a valid name"
+        ("true", "expected a file name such as 'my_robot.urdf', written in the output folder"),
+        (
+            "urdf/x.urdf",
+            "'urdf/x.urdf' names a folder; expected a file name such as 'x.urdf', written in "
+            "the output folder",
+        ),
+        ("{file: a/b.urdf}", "'a/b.urdf' names a folder; expected a file name such as 'b.urdf'"),
+        ("false", "got false; leave the key out for no URDF"),
+    ],
+)
+def test_an_output_urdf_that_is_no_file_name_says_what_is_expected(value, said):
+    error = error_of(f"name: a\nsource: {{urdf: a.urdf}}\noutput:\n  urdf: {value}\n")
+    assert error.location.line == 4
+    assert said in error.message, error.message
+
+
 def test_robot_and_scene_file_must_differ():
     error = error_of("name: scene\nsource: {urdf: a.urdf}\n")
     assert "both 'scene.xml'" in error.message
