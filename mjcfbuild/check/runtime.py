@@ -29,6 +29,8 @@ import re
 from typing import TYPE_CHECKING
 
 from mjcfbuild.actuators import is_dcmotor
+from mjcfbuild.check.runtime_actuators import actuator_of
+from mjcfbuild.check.runtime_transmissions import unmatched_transmissions
 from mjcfbuild.inputs.frames import ray_count, rays_short_of_max
 from mjcfbuild.inputs.ros2_control import (
     RUNTIME_PLUGINS,
@@ -116,7 +118,7 @@ def check_runtime(
     warnings += _start_away_from_home(model, control, urdf_joints)
     odometry_failures, odometry_warnings = _odometry(model, control)
     failures += odometry_failures
-    unmatched, elsewhere = _unmatched_transmissions(model, control)
+    unmatched, elsewhere = unmatched_transmissions(model, control)
     failures += unmatched
     warnings += (
         _refusals(joints)
@@ -396,98 +398,6 @@ def _start_away_from_home(
     ]
 
 
-def _unmatched_transmissions(model, control: Ros2Control) -> tuple[list[str], list[str]]:
-    """What stops register_transmissions at start-up, for each ``<ros2_control>``
-    transmission: no ``<actuator>`` ("has no joints or actuators defined"); an actuator name
-    that is neither a joint nor an actuator of the model ("Transmission actuator ... not
-    found"); one that is an MJCF actuator's name, not its joint's (the handles are looked up by
-    the joint an actuator drives: "Actuator ... not found in the MuJoCo actuator data"); a joint
-    without an actuator ("... is passive and cannot be used"). And what it does wrong: a
-    reduction between a joint and its own actuator drives the joint to reduction x command.
-    Failures in a block written for mujoco_ros2_control (or naming no plugin); one warning
-    per other block (a real robot's driver: the runtime would stop only once the plugin is
-    swapped for its own). The failures and the warnings."""
-    failures: list[str] = []
-    elsewhere: dict[str, list[str]] = {}  # plugin -> what its transmissions get wrong
-    for transmission in control.transmissions:
-        if not transmission.in_ros2_control:
-            continue
-        problems = _transmission_problems(model, transmission)
-        if transmission.plugin and not transmission.plugin.startswith(RUNTIME_PLUGINS):
-            elsewhere.setdefault(transmission.plugin, []).extend(
-                f"transmission {transmission.element} of joint '{transmission.joint}' {problem}"
-                for problem in problems
-            )
-            continue
-        failures += [
-            f"{transmission.origin}: transmission {transmission.element} of joint "
-            f"'{transmission.joint}' {problem}"
-            for problem in problems
-        ]
-    warnings = []
-    for plugin, problems in elsewhere.items():
-        if problems:
-            problems = list(dict.fromkeys(problems))
-            warnings.append(
-                f"<ros2_control> transmissions for the hardware plugin {plugin} are not run by "
-                "mujoco_ros2_control as written; with its plugin in their block, it would refuse "
-                "or misdrive them: " + "; ".join(problems)
-            )
-    return list(dict.fromkeys(failures)), warnings
-
-
-def _transmission_problems(model, transmission) -> list[str]:
-    """What register_transmissions refuses in one joint of a transmission, or gets wrong."""
-    import mujoco
-
-    if not transmission.actuators:
-        return [
-            'has no <actuator>: mujoco_ros2_control stops at start-up ("... has no joints or '
-            "actuators defined\"); name the joint's actuator (the joint itself) in one"
-        ]
-    problems = []
-    for name in transmission.actuators:
-        joint = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
-        actuator = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, name)
-        if joint >= 0 and actuator_of(model, name) < 0:
-            problems.append(
-                f"names actuator '{name}', a joint without an actuator: mujoco_ros2_control "
-                'stops at start-up ("... is passive and cannot be used in a transmission"); '
-                "drive the joint (actuators.rules) or name a driven one"
-            )
-        elif joint < 0 and actuator >= 0:
-            driven = _driven_joint(model, actuator)
-            problems.append(
-                f"names actuator '{name}' by the MJCF actuator's name: mujoco_ros2_control finds "
-                "a transmission's actuators by the joint they drive (\"Actuator ... not found "
-                'in the MuJoCo actuator data") and stops at start-up; name '
-                + (f"joint '{driven}'" if driven else "the joint it drives")
-            )
-        elif joint < 0:
-            problems.append(
-                f"names actuator '{name}', which is neither a joint nor an actuator of the "
-                'model: mujoco_ros2_control stops at start-up ("Transmission actuator ... not '
-                'found"); name the joint or its actuator'
-            )
-    if transmission.reduction and transmission.joint in transmission.actuators:
-        problems.append(
-            f"has a reduction of {transmission.reduction:g} to its own actuator: "
-            "mujoco_ros2_control drives the joint to the command times the reduction and reports "
-            "the position divided by it, as if a motor turned ahead of the joint; in the block "
-            "the runtime runs, set the reduction to 1 (or leave the transmission out)"
-        )
-    return problems
-
-
-def _driven_joint(model, actuator: int) -> str | None:
-    """The joint an actuator drives directly, if it does."""
-    import mujoco
-
-    if model.actuator_trntype[actuator] != mujoco.mjtTrn.mjTRN_JOINT:
-        return None
-    return mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, model.actuator_trnid[actuator, 0])
-
-
 def _effort_on_dcmotors(joints: list[dict]) -> list[str]:
     """One warning for joints whose effort command would reach a <dcmotor>: the runtime takes
     it for a custom actuator and writes the effort into its ctrl, which the <dcmotor> reads as
@@ -599,20 +509,6 @@ def _unknown_pids(joints: list[dict], pids_file: str | None, gains: PidGains | N
 
 def _family(interface: str) -> str:
     return "effort" if interface in ("torque", "force") else interface
-
-
-def actuator_of(model, joint: str) -> int:
-    """The actuator the runtime finds for ``joint``: one on the joint, else one of its name
-    (a tendon's, say); -1 where there is none."""
-    import mujoco
-
-    index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint)
-    if index >= 0:
-        for actuator in range(model.nu):
-            trn = model.actuator_trntype[actuator]
-            if trn == mujoco.mjtTrn.mjTRN_JOINT and model.actuator_trnid[actuator, 0] == index:
-                return actuator
-    return mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, joint)
 
 
 def _joint(
