@@ -118,7 +118,7 @@ def check_runtime(
     warnings += _start_away_from_home(model, control, urdf_joints)
     odometry_failures, odometry_warnings = _odometry(model, control)
     failures += odometry_failures
-    unmatched, elsewhere = unmatched_transmissions(model, control)
+    unmatched, elsewhere = unmatched_transmissions(model, control, fixed_joints)
     failures += unmatched
     warnings += (
         _refusals(joints)

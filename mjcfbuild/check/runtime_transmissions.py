@@ -9,8 +9,12 @@ from mjcfbuild.check.runtime_actuators import actuator_of
 from mjcfbuild.inputs.ros2_control import RUNTIME_PLUGINS, Ros2Control
 
 
-def unmatched_transmissions(model, control: Ros2Control) -> tuple[list[str], list[str]]:
-    """What stops register_transmissions at start-up, for each ``<ros2_control>``
+def unmatched_transmissions(
+    model, control: Ros2Control, fixed_joints: frozenset[str] = frozenset()
+) -> tuple[list[str], list[str]]:
+    """What ros2_control's parser refuses in every block's transmissions
+    (:func:`parser_refusals`), and what stops register_transmissions at start-up, for each
+    ``<ros2_control>``
     transmission: no ``<actuator>`` ("has no joints or actuators defined"); an actuator name
     that is neither a joint nor an actuator of the model ("Transmission actuator ... not
     found"); one that is an MJCF actuator's name, not its joint's (the handles are looked up by
@@ -20,11 +24,11 @@ def unmatched_transmissions(model, control: Ros2Control) -> tuple[list[str], lis
     Failures in a block written for mujoco_ros2_control (or naming no plugin); one warning
     per other block (a real robot's driver: the runtime would stop only once the plugin is
     swapped for its own). The failures and the warnings."""
-    failures: list[str] = []
+    failures = parser_refusals(control, fixed_joints)
     elsewhere: dict[str, list[str]] = {}  # plugin -> what its transmissions get wrong
     for transmission in control.transmissions:
-        if not transmission.in_ros2_control:
-            continue
+        if not transmission.in_ros2_control or transmission.joint in fixed_joints:
+            continue  # a fixed joint's is refused before the runtime starts
         problems = _transmission_problems(model, transmission)
         if transmission.plugin and not transmission.plugin.startswith(RUNTIME_PLUGINS):
             elsewhere.setdefault(transmission.plugin, []).extend(
@@ -47,6 +51,43 @@ def unmatched_transmissions(model, control: Ros2Control) -> tuple[list[str], lis
                 "or misdrive them: " + "; ".join(problems)
             )
     return list(dict.fromkeys(failures)), warnings
+
+
+def parser_refusals(control: Ros2Control, fixed_joints: frozenset[str]) -> list[str]:
+    """What ros2_control's parser refuses in a block's transmission, in every block, before any
+    hardware starts: a <joint> or <actuator> without a role; a joint its block does not list
+    (auto_fill_transmission_interfaces); a fixed joint, which no block may list."""
+    listed = {(joint.block, joint.name) for joint in control.joints}
+    refused = "ros2_control refuses the description at start-up"
+    failures, said = [], set()
+    for transmission in control.transmissions:
+        if not transmission.in_ros2_control:
+            continue
+        head = f"{transmission.origin}: transmission {transmission.element}"
+        if transmission.roleless and transmission.element not in said:
+            said.add(transmission.element)
+            missing = transmission.roleless
+            failures.append(
+                f"{head}: its {', '.join(missing)} {'has' if len(missing) == 1 else 'have'} "
+                f'no role attribute: {refused} ("no attribute role in ... tag"); give each '
+                '<joint> and <actuator> of the transmission one (role="joint1", '
+                'role="actuator1")'
+            )
+        head += f" of joint '{transmission.joint}'"
+        if transmission.joint in fixed_joints:
+            failures.append(
+                f'{head} names a fixed joint, which nothing moves: {refused} ("... declared '
+                'joint ... is not available in component ..." where its block does not list '
+                'the joint, "Fixed joints do not make sense in ros2_control" where it does); '
+                "leave the transmission out"
+            )
+        elif (transmission.block, transmission.joint) not in listed:
+            failures.append(
+                f"{head} names a joint its <ros2_control> block does not list: {refused} "
+                '("Transmission ... declared joint ... is not available in component ..."); '
+                "list the joint in the block, or leave it out of the transmission"
+            )
+    return failures
 
 
 def _transmission_problems(model, transmission) -> list[str]:

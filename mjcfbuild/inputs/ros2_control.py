@@ -73,6 +73,15 @@ class Transmission:
     kind: str = ""  # its type (transmission_interface/SimpleTransmission, a vendor's plugin)
     in_ros2_control: bool = False  # inside a <ros2_control> block, where the runtime reads it
     plugin: str = ""  # that block's <hardware> <plugin>: the runtime it is written for
+    block: int = -1  # which <ros2_control> block holds it (-1: a ROS 1 one, outside any)
+    # What ros2_control's parser reads for a block's transmission, which its SimpleTransmission
+    # applies: the joint's own <mechanical_reduction> and <offset> (signed; 1 and 0 where none is
+    # given or it is no number), not the actuator's nor a <param>.
+    joint_reduction: float = 1.0
+    joint_offset: float = 0.0
+    # Its <joint> and <actuator> elements without the role attribute ros2_control's parser
+    # requires ("joint 'knee'", "actuator 'm1'").
+    roleless: list[str] = field(default_factory=list)
 
     def commands(self) -> bool:
         """Whether the transmission commands its joint: it names a hardware interface that
@@ -228,12 +237,17 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
             )
     # ros2_control's own <transmission> (transmission_interface plugins): no hardware
     # interface, but the joint's mechanical_reduction.
-    for block in root.findall("ros2_control"):
+    for number, block in enumerate(root.findall("ros2_control")):
         plugin = (block.findtext("hardware/plugin") or "").strip()
         for transmission in block.findall("transmission"):
             actuators = _actuators(transmission)
             element = elements[transmission]
             kind = (transmission.findtext("plugin") or "").strip()
+            roleless = [
+                f"{part.tag} '{part.get('name', '')}'"
+                for part in [*transmission.findall("joint"), *transmission.findall("actuator")]
+                if part.get("role") is None
+            ]
             for joint in transmission.findall("joint"):
                 result.transmissions.append(
                     Transmission(
@@ -246,9 +260,26 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                         kind,
                         in_ros2_control=True,
                         plugin=plugin,
+                        block=number,
+                        joint_reduction=_parsed_value(joint, "mechanical_reduction", 1.0),
+                        joint_offset=_parsed_value(joint, "offset", 0.0),
+                        roleless=roleless,
                     )
                 )
     return result
+
+
+def _parsed_value(joint: etree._Element, tag: str, default: float) -> float:
+    """A transmission joint's ``<tag>`` as ros2_control's parser reads it
+    (get_parameter_value_or): the first child element of that tag with text; ``default``
+    where there is none or its text is no number."""
+    for child in joint:
+        if child.tag == tag and child.text:
+            try:
+                return float(child.text.strip())
+            except ValueError:
+                return default
+    return default
 
 
 def transmission_joint_warnings(control: Ros2Control, joints: list[str]) -> list[str]:

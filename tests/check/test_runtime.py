@@ -597,3 +597,61 @@ def test_a_camera_without_resolution_and_a_lidar_short_of_its_max_angle_are_said
     said = "\n".join(result.warnings)
     assert "camera 'cam' has no resolution, so mujoco_ros2_control renders it at" in said
     assert "lidar sensor 'laser'" in said and "scans 24 rays and none at max_angle" in said
+
+
+FIXED = (
+    '<link name="tool"/><joint name="mount" type="fixed"><parent link="arm"/>'
+    '<child link="tool"/></joint>'
+)
+WRIST = (
+    '<link name="hand"><inertial><mass value="0.1"/><inertia ixx="0.001" iyy="0.001" '
+    'izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+    '<joint name="wrist" type="revolute"><parent link="arm"/><child link="hand"/>'
+    '<origin xyz="0 0 0.5"/><axis xyz="0 1 0"/>'
+    '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+)
+
+
+def test_a_transmission_of_a_fixed_or_unlisted_joint_is_refused_by_ros2_control(tmp_path):
+    """ros2_control's parser fills a transmission joint's interfaces from its block's <joint>
+    (auto_fill_transmission_interfaces): a joint the block does not list is refused ("... is
+    not available in component"), and so is a fixed one, which no block may list. A reduction
+    on a fixed joint through the arm's actuator got no finding."""
+    fixed = _transmission(
+        '<actuator name="hinge" role="actuator1"/><joint name="mount" role="joint1">'
+        "<mechanical_reduction>2</mechanical_reduction></joint>"
+    )
+    _fails_to_start(tmp_path / "fixed", FIXED + fixed)
+    failures = check_record(tmp_path / "fixed")["failures"]
+    (failure,) = [f for f in failures if "transmission" in f]
+    assert failure.startswith("robot.urdf:")
+    assert "transmission #1 of joint 'mount' names a fixed joint" in failure
+    assert "ros2_control refuses the description at start-up" in failure
+    # A moving joint, with an actuator of its own, that the block does not list.
+    unlisted = _transmission(
+        '<actuator name="wrist" role="actuator1"/><joint name="wrist" role="joint1"/>'
+    )
+    _fails_to_start(tmp_path / "unlisted", WRIST + unlisted)
+    failures = check_record(tmp_path / "unlisted")["failures"]
+    assert [f for f in failures if "transmission" in f] == [
+        "robot.urdf:15: transmission #1 of joint 'wrist' names a joint its <ros2_control> "
+        'block does not list: ros2_control refuses the description at start-up ("Transmission '
+        '... declared joint ... is not available in component ..."); list the joint in the '
+        "block, or leave it out of the transmission"
+    ], failures
+
+
+def test_a_transmission_element_without_a_role_is_refused_in_every_block(tmp_path):
+    """parse_transmission_from_xml reads role="..." of each <joint> and <actuator> and throws
+    without it ("no attribute role in actuator tag"), in a real robot's driver block too."""
+    roleless = _transmission('<actuator name="hinge"/><joint name="hinge" role="joint1"/>')
+    driver = roleless.replace(
+        "<hardware></hardware>", "<hardware><plugin>robot_control/RobotControl</plugin></hardware>"
+    )
+    _fails_to_start(tmp_path, driver)
+    failures = check_record(tmp_path)["failures"]
+    assert any(
+        "transmission #1: its actuator 'hinge' has no role attribute: ros2_control refuses the "
+        'description at start-up ("no attribute role in ... tag")' in f
+        for f in failures
+    ), failures

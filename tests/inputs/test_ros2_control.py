@@ -152,3 +152,32 @@ def test_a_plan_an_earlier_version_wrote_is_read_without_its_removed_fields():
         }
     )
     assert control.joints[0].name == "j" and control.joints[0].plugin == ""
+
+
+def test_a_blocks_transmission_keeps_what_ros2_controls_parser_reads():
+    """The block it is in, the joint's own signed reduction and offset (what SimpleTransmission
+    applies; the actuator's is not read), and the elements without a role."""
+    from lxml import etree
+
+    from mjcfbuild.inputs.ros2_control import read_ros2_control
+
+    urdf = b"""<robot name="r">
+  <ros2_control name="a" type="system"><joint name="knee"/></ros2_control>
+  <ros2_control name="b" type="system">
+    <transmission name="t"><plugin>transmission_interface/SimpleTransmission</plugin>
+      <actuator name="m" role="actuator1"><mechanical_reduction>7</mechanical_reduction></actuator>
+      <joint name="elbow"><offset>0.25</offset><mechanical_reduction>-2</mechanical_reduction>
+      </joint>
+      <joint name="wrist" role="joint2"><mechanical_reduction>two</mechanical_reduction></joint>
+    </transmission>
+  </ros2_control>
+</robot>"""
+    control = read_ros2_control(etree.fromstring(urdf), "robot.urdf")
+    found = [
+        (t.joint, t.block, t.joint_reduction, t.joint_offset, t.roleless)
+        for t in control.transmissions
+    ]
+    assert found == [
+        ("elbow", 1, -2.0, 0.25, ["joint 'elbow'"]),
+        ("wrist", 1, 1.0, 0.0, ["joint 'elbow'"]),
+    ]
