@@ -118,7 +118,9 @@ def check_runtime(
     warnings += _start_away_from_home(model, control, urdf_joints)
     odometry_failures, odometry_warnings = _odometry(model, control)
     failures += odometry_failures
-    unmatched, elsewhere = unmatched_transmissions(model, control, fixed_joints)
+    unmatched, transmission_warnings = unmatched_transmissions(
+        model, control, urdf_joints, fixed_joints
+    )
     failures += unmatched
     warnings += (
         _refusals(joints)
@@ -128,7 +130,7 @@ def check_runtime(
         + odometry_warnings
         + _unread_sensors(control)
         + _other_blocks(control)
-        + elsewhere
+        + transmission_warnings
     )
     return {"joints": joints, "sensors": sensors, "devices": devices}, failures, warnings
 

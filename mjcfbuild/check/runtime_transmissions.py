@@ -5,52 +5,58 @@ Read from the runtime's source (``mujoco_system_interface.cpp``, its 2026 releas
 
 from __future__ import annotations
 
-from mjcfbuild.check.runtime_actuators import actuator_of
-from mjcfbuild.inputs.ros2_control import RUNTIME_PLUGINS, Ros2Control
+import math
+from typing import NamedTuple
+
+from mjcfbuild.check.runtime_actuators import actuator_of, registered
+from mjcfbuild.inputs.ros2_control import RUNTIME_PLUGINS, Ros2Control, Transmission
+
+
+class Problem(NamedTuple):
+    """What the runtime does wrong with one joint of a transmission: ``stops`` where it stops
+    at start-up, else it starts and misdrives or misreports the joint."""
+
+    text: str  # after "transmission #N of joint 'x' "
+    stops: bool = True
 
 
 def unmatched_transmissions(
-    model, control: Ros2Control, fixed_joints: frozenset[str] = frozenset()
+    model,
+    control: Ros2Control,
+    urdf_joints: dict[str, str | None] | None = None,
+    fixed_joints: frozenset[str] = frozenset(),
 ) -> tuple[list[str], list[str]]:
     """What ros2_control's parser refuses in every block's transmissions
-    (:func:`parser_refusals`), and what stops register_transmissions at start-up, for each
-    ``<ros2_control>``
-    transmission: no ``<actuator>`` ("has no joints or actuators defined"); an actuator name
-    that is neither a joint nor an actuator of the model ("Transmission actuator ... not
-    found"); one that is an MJCF actuator's name, not its joint's (the handles are looked up by
-    the joint an actuator drives: "Actuator ... not found in the MuJoCo actuator data"); a joint
-    without an actuator ("... is passive and cannot be used"). And what it does wrong: a
-    reduction between a joint and its own actuator drives the joint to reduction x command.
-    Failures in a block written for mujoco_ros2_control (or naming no plugin); one warning
-    per other block (a real robot's driver: the runtime would stop only once the plugin is
-    swapped for its own). The failures and the warnings."""
+    (:func:`parser_refusals`), and what register_transmissions stops at or gets wrong in each
+    of the others (:func:`_transmission_problems`). In a block written for mujoco_ros2_control
+    (or naming no plugin) a stop is a failure and the rest a warning; one warning per other
+    block (a real robot's driver: the runtime would stop only once the plugin is swapped for
+    its own). ``urdf_joints`` maps each URDF joint to the joint it mimics (None for others).
+    The failures and the warnings."""
     failures = parser_refusals(control, fixed_joints)
+    warnings: list[str] = []
     elsewhere: dict[str, list[str]] = {}  # plugin -> what its transmissions get wrong
     for transmission in control.transmissions:
         if not transmission.in_ros2_control or transmission.joint in fixed_joints:
             continue  # a fixed joint's is refused before the runtime starts
-        problems = _transmission_problems(model, transmission)
+        problems = _transmission_problems(model, transmission, urdf_joints or {})
+        head = f"transmission {transmission.element} of joint '{transmission.joint}'"
         if transmission.plugin and not transmission.plugin.startswith(RUNTIME_PLUGINS):
             elsewhere.setdefault(transmission.plugin, []).extend(
-                f"transmission {transmission.element} of joint '{transmission.joint}' {problem}"
-                for problem in problems
+                f"{head} {problem.text}" for problem in problems
             )
             continue
-        failures += [
-            f"{transmission.origin}: transmission {transmission.element} of joint "
-            f"'{transmission.joint}' {problem}"
-            for problem in problems
-        ]
-    warnings = []
-    for plugin, problems in elsewhere.items():
-        if problems:
-            problems = list(dict.fromkeys(problems))
+        for problem in problems:
+            found = failures if problem.stops else warnings
+            found.append(f"{transmission.origin}: {head} {problem.text}")
+    for plugin, said in elsewhere.items():
+        if said:
             warnings.append(
                 f"<ros2_control> transmissions for the hardware plugin {plugin} are not run by "
                 "mujoco_ros2_control as written; with its plugin in their block, it would refuse "
-                "or misdrive them: " + "; ".join(problems)
+                "or misdrive them: " + "; ".join(dict.fromkeys(said))
             )
-    return list(dict.fromkeys(failures)), warnings
+    return list(dict.fromkeys(failures)), list(dict.fromkeys(warnings))
 
 
 def parser_refusals(control: Ros2Control, fixed_joints: frozenset[str]) -> list[str]:
@@ -90,47 +96,140 @@ def parser_refusals(control: Ros2Control, fixed_joints: frozenset[str]) -> list[
     return failures
 
 
-def _transmission_problems(model, transmission) -> list[str]:
-    """What register_transmissions refuses in one joint of a transmission, or gets wrong."""
+def _transmission_problems(
+    model, transmission: Transmission, urdf_joints: dict[str, str | None]
+) -> list[Problem]:
+    """What register_transmissions stops at in one joint of a transmission, or gets wrong: no
+    ``<actuator>`` ("has no joints or actuators defined"); an actuator name get_actuator_id
+    does not find, neither a driven joint's nor an actuator's ("Transmission actuator ... not
+    found in MuJoCo model"); one its actuator data has no entry for (an MJCF actuator's own
+    name: "Actuator ... not found in the MuJoCo actuator data") or only an undriven joint's ("...
+    is passive"). And the state it reports of a mimic follower, from another joint's actuator
+    through the transmission (:func:`_follower_state`)."""
     import mujoco
 
     if not transmission.actuators:
         return [
-            'has no <actuator>: mujoco_ros2_control stops at start-up ("... has no joints or '
-            "actuators defined\"); name the joint's actuator (the joint itself) in one"
+            Problem(
+                'has no <actuator>: mujoco_ros2_control stops at start-up ("... has no joints or '
+                "actuators defined\"); name the joint's actuator (the joint itself) in one"
+            )
         ]
     problems = []
+    not_found = '("Transmission actuator ... not found in MuJoCo model")'
     for name in transmission.actuators:
         joint = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
-        actuator = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, name)
-        if joint >= 0 and actuator_of(model, name) < 0:
-            problems.append(
-                f"names actuator '{name}', a joint without an actuator: mujoco_ros2_control "
-                'stops at start-up ("... is passive and cannot be used in a transmission"); '
-                "drive the joint (actuators.rules) or name a driven one"
+        actuator = actuator_of(model, name)
+        leader = urdf_joints.get(name)
+        if actuator < 0 and joint >= 0 and leader:
+            fix = (
+                f"leave the transmission out: the follower follows '{leader}'"
+                if name == transmission.joint
+                else f"name a driven joint ('{leader}' drives this one)"
             )
-        elif joint < 0 and actuator >= 0:
+            problems.append(
+                Problem(
+                    f"names actuator '{name}', a mimic follower of '{leader}' that MuJoCo moves "
+                    f"by an equality, not by an actuator: mujoco_ros2_control stops at start-up "
+                    f"{not_found}; {fix}"
+                )
+            )
+        elif actuator < 0 and joint >= 0:
+            problems.append(
+                Problem(
+                    f"names actuator '{name}', a joint without an actuator: mujoco_ros2_control "
+                    f"stops at start-up {not_found}; drive the joint (actuators.rules) or name "
+                    "a driven one"
+                )
+            )
+        elif actuator < 0:
+            problems.append(
+                Problem(
+                    f"names actuator '{name}', which is neither a joint nor an actuator of the "
+                    f"model: mujoco_ros2_control stops at start-up {not_found}; name the joint "
+                    "or its actuator"
+                )
+            )
+        elif (entry := registered(model, name)) != "actuator":
             driven = _driven_joint(model, actuator)
-            problems.append(
-                f"names actuator '{name}' by the MJCF actuator's name: mujoco_ros2_control finds "
-                "a transmission's actuators by the joint they drive (\"Actuator ... not found "
-                'in the MuJoCo actuator data") and stops at start-up; name '
-                + (f"joint '{driven}'" if driven else "the joint it drives")
+            why = (
+                '"Actuator ... not found in the MuJoCo actuator data"'
+                if entry is None
+                else f"a joint '{name}' without an actuator: \"Actuator ... is passive and "
+                'cannot be used in a transmission"'
             )
-        elif joint < 0:
             problems.append(
-                f"names actuator '{name}', which is neither a joint nor an actuator of the "
-                'model: mujoco_ros2_control stops at start-up ("Transmission actuator ... not '
-                'found"); name the joint or its actuator'
+                Problem(
+                    f"names actuator '{name}' by the MJCF actuator's name: mujoco_ros2_control "
+                    f"finds a transmission's actuators by the joint they drive ({why}) and stops "
+                    "at start-up; name "
+                    + (f"joint '{driven}'" if driven else "the joint it drives")
+                )
             )
+    if problems:
+        return problems
     if transmission.reduction and transmission.joint in transmission.actuators:
         problems.append(
-            f"has a reduction of {transmission.reduction:g} to its own actuator: "
-            "mujoco_ros2_control drives the joint to the command times the reduction and reports "
-            "the position divided by it, as if a motor turned ahead of the joint; in the block "
-            "the runtime runs, set the reduction to 1 (or leave the transmission out)"
+            Problem(
+                f"has a reduction of {transmission.reduction:g} to its own actuator: "
+                "mujoco_ros2_control drives the joint to the command times the reduction and "
+                "reports the position divided by it, as if a motor turned ahead of the joint; in "
+                "the block the runtime runs, set the reduction to 1 (or leave the transmission "
+                "out)"
+            )
         )
-    return problems
+    follower = _follower_state(model, transmission, urdf_joints)
+    return problems + ([Problem(follower, stops=False)] if follower else [])
+
+
+def _follower_state(
+    model, transmission: Transmission, urdf_joints: dict[str, str | None]
+) -> str | None:
+    """A mimic follower's transmission from another joint's actuator: the runtime registers it
+    and reports the follower's state through it (SimpleTransmission: the actuator's position
+    / reduction + offset), while MuJoCo moves the follower by the equality its <mimic> became;
+    the commands are the leader's own (its joint's command overwrites the transmission's). What
+    it reports wrong, where the two differ."""
+    follower, (name, *more) = transmission.joint, transmission.actuators
+    if not urdf_joints.get(follower) or more or name == follower:
+        return None
+    poly = _coupling(model, follower, name)
+    if poly is None:
+        return None  # no equality of the follower on that joint: what moves it is not shown
+    reduction, offset = transmission.joint_reduction, transmission.joint_offset
+    if not reduction or (
+        not any(poly[2:])
+        and math.isclose(poly[1], 1 / reduction, rel_tol=1e-9)
+        and math.isclose(poly[0], offset, abs_tol=1e-12)
+    ):
+        return None
+    reported = f"{name} / {reduction:g}" if reduction != 1 else name
+    reported += f" + {offset:g}" if offset else ""
+    moved = f"a polynomial of {name}" if any(poly[2:]) else f"{poly[1]:g} x {name}"
+    moved += f" + {poly[0]:g}" if poly[0] and not any(poly[2:]) else ""
+    return (
+        f"reads the mimic follower's state from actuator '{name}': mujoco_ros2_control reports "
+        f"the follower at {reported}, where MuJoCo moves it at {moved} by its <mimic>; in the "
+        "block the runtime runs, leave the follower out of the transmission (the runtime then "
+        "reports the follower's own joint)"
+    )
+
+
+def _coupling(model, follower: str, leader: str) -> tuple[float, ...] | None:
+    """The polynomial coefficients of an active joint equality moving ``follower`` by
+    ``leader`` (joint1 = c0 + c1 joint2 + ...), if the model has one."""
+    import mujoco
+
+    first = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, follower)
+    second = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, leader)
+    for index in range(model.neq):
+        if (
+            model.eq_type[index] == mujoco.mjtEq.mjEQ_JOINT
+            and model.eq_active0[index]
+            and (model.eq_obj1id[index], model.eq_obj2id[index]) == (first, second)
+        ):
+            return tuple(float(value) for value in model.eq_data[index, :5])
+    return None
 
 
 def _driven_joint(model, actuator: int) -> str | None:

@@ -572,7 +572,13 @@ def test_a_transmission_to_a_joint_without_an_actuator_stops_the_runtime(tmp_pat
     )
     _fails_to_start(tmp_path, passive, "actuators: {default: none}\n")
     failures = check_record(tmp_path)["failures"]
-    assert any("names actuator 'hinge', a joint without an actuator" in f for f in failures)
+    # get_actuator_id finds no actuator on the joint nor of its name, and register_transmissions
+    # stops there, before its actuator data could call the joint passive.
+    assert any(
+        "names actuator 'hinge', a joint without an actuator: mujoco_ros2_control stops at "
+        'start-up ("Transmission actuator ... not found in MuJoCo model")' in f
+        for f in failures
+    ), failures
 
 
 def test_a_camera_without_resolution_and_a_lidar_short_of_its_max_angle_are_said(tmp_path):
@@ -655,3 +661,42 @@ def test_a_transmission_element_without_a_role_is_refused_in_every_block(tmp_pat
         'description at start-up ("no attribute role in ... tag")' in f
         for f in failures
     ), failures
+
+
+def _follower_block(actuator: str, reduction: str) -> str:
+    """The arm's block with the mimic follower listed (no command interfaces: its leader
+    is listed) and a transmission of the follower from ``actuator``."""
+    return FOLLOWER + control_block(["position"]).replace(
+        "</ros2_control>",
+        '<joint name="follower"><state_interface name="position"/></joint>'
+        '<transmission name="t"><plugin>transmission_interface/SimpleTransmission</plugin>'
+        f'<actuator name="{actuator}" role="actuator1"/><joint name="follower" role="joint1">'
+        f"<mechanical_reduction>{reduction}</mechanical_reduction></joint></transmission>"
+        "</ros2_control>",
+    )
+
+
+def test_a_mimic_followers_transmission_stops_the_runtime_or_misreports_it(tmp_path):
+    """A mimic follower has no actuator (MuJoCo moves it by the equality its <mimic> became):
+    naming it as the transmission's actuator stops register_transmissions. Through the
+    leader's actuator the runtime starts, and reports the follower's position as the leader's
+    over the reduction; the equality moves it at 1 x the leader. Neither got a finding."""
+    _fails_to_start(tmp_path / "own", _follower_block("follower", "2"))
+    failures = check_record(tmp_path / "own")["failures"]
+    assert [f for f in failures if "transmission" in f] == [
+        "robot.urdf:15: transmission #1 of joint 'follower' names actuator 'follower', a mimic "
+        "follower of 'hinge' that MuJoCo moves by an equality, not by an actuator: "
+        'mujoco_ros2_control stops at start-up ("Transmission actuator ... not found in MuJoCo '
+        "model\"); leave the transmission out: the follower follows 'hinge'"
+    ], failures
+    result = build_two_link(tmp_path / "leader", urdf_extra=_follower_block("hinge", "2"))
+    assert check_record(tmp_path / "leader")["passes"]
+    assert (
+        "robot.urdf:15: transmission #1 of joint 'follower' reads the mimic follower's state "
+        "from actuator 'hinge': mujoco_ros2_control reports the follower at hinge / 2, where "
+        "MuJoCo moves it at 1 x hinge by its <mimic>; in the block the runtime runs, leave the "
+        "follower out of the transmission (the runtime then reports the follower's own joint)"
+    ) in result.warnings, result.warnings
+    # A reduction of 1 reports the follower where the equality puts it: nothing to say.
+    same = build_two_link(tmp_path / "same", urdf_extra=_follower_block("hinge", "1"))
+    assert not [w for w in same.warnings if "transmission" in w], same.warnings
