@@ -105,7 +105,8 @@ def _transmission_problems(
     found in MuJoCo model"); one its actuator data has no entry for (an MJCF actuator's own
     name: "Actuator ... not found in the MuJoCo actuator data") or only an undriven joint's ("...
     is passive"). And the state it reports of a mimic follower, from another joint's actuator
-    through the transmission (:func:`_follower_state`)."""
+    through the transmission (:func:`_follower_state`), and of a joint with a reduction to its own
+    actuator: its commands pass as they are, its state through the transmission."""
     import mujoco
 
     if not transmission.actuators:
@@ -166,16 +167,35 @@ def _transmission_problems(
                     + (f"joint '{driven}'" if driven else "the joint it drives")
                 )
             )
-    if problems:
-        return problems
-    if transmission.reduction and transmission.joint in transmission.actuators:
+    if problems or not transmission.kind.endswith("/SimpleTransmission"):
+        return problems  # what other kinds do with their reductions is theirs
+    reduction, offset = transmission.joint_reduction, transmission.joint_offset
+    if not reduction:
+        # SimpleTransmissionLoader catches the constructor's throw and returns no transmission,
+        # which register_transmissions goes on to configure.
+        return [
+            Problem(
+                'has a mechanical_reduction of 0, which SimpleTransmission refuses ("Transmission '
+                'reduction ratio cannot be zero"): its loader gives mujoco_ros2_control no '
+                "transmission, and the runtime fails at start-up configuring it; give the gear "
+                "ratio, or 1"
+            )
+        ]
+    if transmission.joint in transmission.actuators and (reduction != 1 or offset):
+        # joint_command_to_actuator_command copies a joint's command onto the actuator of its
+        # own name after the transmission wrote it; actuator_state_to_joint_state has no such
+        # step, so only the state goes through the transmission.
+        gear = [f"reduction of {reduction:g}"] if reduction != 1 else []
+        gear += [f"offset of {offset:g}"] if offset else []
+        undo = "set the reduction to 1" + (" and the offset to 0" if offset else "")
         problems.append(
             Problem(
-                f"has a reduction of {transmission.reduction:g} to its own actuator: "
-                "mujoco_ros2_control drives the joint to the command times the reduction and "
-                "reports the position divided by it, as if a motor turned ahead of the joint; in "
-                "the block the runtime runs, set the reduction to 1 (or leave the transmission "
-                "out)"
+                f"has {_article(gear[0])} {' and an '.join(gear)} to its own actuator: "
+                "mujoco_ros2_control passes the joint's commands to the actuator as they are "
+                "(the joint's own command overwrites the transmission's) but reports its state "
+                f"through the transmission, so a joint at 0.4 reads {0.4 / reduction + offset:g}; "
+                f"in the block the runtime runs, {undo} (or leave the transmission out)",
+                stops=False,
             )
         )
     follower = _follower_state(model, transmission, urdf_joints)
@@ -197,14 +217,13 @@ def _follower_state(
     if poly is None:
         return None  # no equality of the follower on that joint: what moves it is not shown
     reduction, offset = transmission.joint_reduction, transmission.joint_offset
-    if not reduction or (
+    if (
         not any(poly[2:])
         and math.isclose(poly[1], 1 / reduction, rel_tol=1e-9)
         and math.isclose(poly[0], offset, abs_tol=1e-12)
     ):
         return None
-    reported = f"{name} / {reduction:g}" if reduction != 1 else name
-    reported += f" + {offset:g}" if offset else ""
+    reported = _through(reduction, offset, name)
     moved = f"a polynomial of {name}" if any(poly[2:]) else f"{poly[1]:g} x {name}"
     moved += f" + {poly[0]:g}" if poly[0] and not any(poly[2:]) else ""
     return (
@@ -212,6 +231,17 @@ def _follower_state(
         f"the follower at {reported}, where MuJoCo moves it at {moved} by its <mimic>; in the "
         "block the runtime runs, leave the follower out of the transmission (the runtime then "
         "reports the follower's own joint)"
+    )
+
+
+def _article(word: str) -> str:
+    return "an" if word[:1] in "aeiou" else "a"
+
+
+def _through(reduction: float, offset: float, what: str) -> str:
+    """``what`` as SimpleTransmission turns an actuator's position into its joint's."""
+    return (f"{what} / {reduction:g}" if reduction != 1 else what) + (
+        f" + {offset:g}" if offset else ""
     )
 
 

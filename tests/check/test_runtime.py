@@ -483,15 +483,38 @@ def test_a_transmission_the_runtimes_register_transmissions_refuses_stops_it(tmp
     assert failure.endswith("name joint 'hinge'")
 
 
-def test_a_reduction_between_a_joint_and_its_own_actuator_fails(tmp_path):
-    """The runtime applies the transmission even where the actuator is the joint's own: a
-    position command of 0.2 drives the joint to 0.4, and the state it reports is halved."""
+def test_a_reduction_between_a_joint_and_its_own_actuator_misreports_its_state(tmp_path):
+    """joint_command_to_actuator_command copies the joint's command onto the actuator of its
+    name after the transmission wrote it, so a position command of 0.2 drives the joint to 0.2;
+    actuator_state_to_joint_state has no such step, so the state read back is halved. The
+    runtime starts: a warning (the check failed, saying the joint went to 0.4)."""
     geared = _transmission(
         '<actuator name="hinge" role="actuator1"/><joint name="hinge" role="joint1">'
         "<mechanical_reduction>2.0</mechanical_reduction></joint>"
     )
-    stderr = _fails_to_start(tmp_path, geared)
-    assert "has a reduction of 2 to its own actuator" in stderr
+    result = build_two_link(tmp_path / "geared", urdf_extra=geared)
+    assert check_record(tmp_path / "geared")["passes"]
+    assert (
+        "robot.urdf:15: transmission #1 of joint 'hinge' has a reduction of 2 to its own "
+        "actuator: mujoco_ros2_control passes the joint's commands to the actuator as they are "
+        "(the joint's own command overwrites the transmission's) but reports its state through "
+        "the transmission, so a joint at 0.4 reads 0.2; in the block the runtime runs, set the "
+        "reduction to 1 (or leave the transmission out)"
+    ) in result.warnings, result.warnings
+    # SimpleTransmission reads the joint's reduction only: one on the <actuator> is no gear.
+    actuator_side = _transmission(
+        '<actuator name="hinge" role="actuator1"><mechanical_reduction>2.0'
+        '</mechanical_reduction></actuator><joint name="hinge" role="joint1"/>'
+    )
+    plain = build_two_link(tmp_path / "actuator_side", urdf_extra=actuator_side)
+    assert not [w for w in plain.warnings if "own actuator" in w], plain.warnings
+    # A reduction of 0 leaves the runtime a transmission its loader could not make.
+    zero = geared.replace(">2.0<", ">0<")
+    _fails_to_start(tmp_path / "zero", zero)
+    failures = check_record(tmp_path / "zero")["failures"]
+    assert any(
+        "has a mechanical_reduction of 0, which SimpleTransmission refuses" in f for f in failures
+    ), failures
 
 
 def test_a_tendon_actuator_named_like_no_joint_stops_the_runtime(tmp_path):
