@@ -278,9 +278,14 @@ def _runtime_section(
         sensor.origin = _written_at(sensor.origin, origins)
     for transmission in control.transmissions:
         transmission.origin = _written_at(transmission.origin, origins)
+    control.hardware_origins = {
+        name: _written_at(origin, origins) for name, origin in control.hardware_origins.items()
+    }
     joints = {joint.name: joint.mimic.joint if joint.mimic else None for joint in robot.joints}
     fixed = frozenset(joint.name for joint in robot.joints if joint.kind == "fixed")
-    return add_runtime_check(results, mjcf, control, joints, {}, fixed_joints=fixed)
+    return add_runtime_check(
+        results, mjcf, control, joints, {}, fixed_joints=fixed, built=((mjcf, shown_path(mjcf)),)
+    )
 
 
 def _written_at(origin: str, origins: dict[int, tuple[str, int]]) -> str:

@@ -113,6 +113,7 @@ class Ros2Control:
     # or of every block where none is (a description whose driver an argument swaps).
     hardware: dict[str, str] = field(default_factory=dict)
     plugins: list[str] = field(default_factory=list)  # each block's <hardware> <plugin>
+    hardware_origins: dict[str, str] = field(default_factory=dict)  # param -> "file:line"
 
     def runs(self, plugin: str) -> bool:
         """Whether mujoco_ros2_control runs a block of ``plugin``: where some block is
@@ -135,6 +136,7 @@ class Ros2Control:
             [_known(Transmission, t) for t in data.get("transmissions", [])],
             dict(data.get("hardware", {})),
             list(data.get("plugins", [])),
+            dict(data.get("hardware_origins", {})),
         )
 
 
@@ -151,13 +153,13 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
     blocks = root.findall("ros2_control")
     result.plugins = [(block.findtext("hardware/plugin") or "").strip() for block in blocks]
     for number, (block, plugin) in enumerate(zip(blocks, result.plugins, strict=True)):
-        hardware = {
-            p.get("name", ""): (p.text or "").strip()
-            for element in block.findall("hardware")
-            for p in element.findall("param")
-        }
+        declared = [p for element in block.findall("hardware") for p in element.findall("param")]
+        hardware = {p.get("name", ""): (p.text or "").strip() for p in declared}
         if result.runs(plugin):
             result.hardware.update(hardware)
+            result.hardware_origins.update(
+                {p.get("name", ""): f"{label}:{p.sourceline}" for p in declared}
+            )
         for joint in block.findall("joint"):
             commands = [c.get("name", "") for c in joint.findall("command_interface")]
             initial = None

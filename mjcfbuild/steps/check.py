@@ -72,6 +72,7 @@ def check_built(request: CheckPayload) -> CheckResults:
         sources,
         request.depfile,
         frozenset(j["name"] for j in plan.robot["joints"] if j["kind"] == "fixed"),
+        _built(request),
     )
     gazebo = plan.gazebo()
     if gazebo:
@@ -103,24 +104,42 @@ def add_runtime_check(
     sources: dict[str, AssetSource],
     depfile: str = "",
     fixed_joints: frozenset[str] = frozenset(),
+    built: tuple[tuple[Path, str], ...] = (),
 ) -> CheckResults:
     """The mujoco_ros2_control section, where the description has a <ros2_control> block; the
     files it reads besides its inputs are recorded in ``depfile``. ``fixed_joints`` names the
-    URDF's fixed joints (ros2_control refuses one in a block)."""
+    URDF's fixed joints (ros2_control refuses one in a block); ``built`` the model and scene
+    (path and label, the scene last), which its mujoco_model param should name."""
     if depfile:
         _record_reads(control, Path(depfile))
     if not results.loads or not (control.joints or control.sensors):
         return results
     from mjcfbuild.check.runtime import check_runtime
+    from mjcfbuild.check.runtime_model import model_param
 
     model = compile_model(model_path, sources)
     gains, unloadable = _pid_gains(control)
     found, failures, warnings = check_runtime(model, control, urdf_joints, gains, fixed_joints)
     failures += unloadable
+    loaded_failures, loaded_warnings = model_param(control, built)
+    failures += loaded_failures
+    warnings += loaded_warnings
     runtime = Runtime(
         found["joints"], found["sensors"], found["devices"], warnings, failed=bool(failures)
     )
     return results.add(failures, mujoco_ros2_control=runtime)
+
+
+def _built(request: CheckPayload) -> tuple[tuple[Path, str], ...]:
+    """The model and the scene, each with the label messages give it (the scene's beside the
+    model's), the scene last."""
+    import os
+
+    model, scene = Path(request.model), Path(request.scene)
+    label = os.path.normpath(
+        Path(request.model_label).parent / os.path.relpath(scene, model.parent)
+    )
+    return (model, request.model_label), (scene, label)
 
 
 def _urdf_joints(robot: dict) -> dict[str, str | None]:

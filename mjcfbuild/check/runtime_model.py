@@ -1,0 +1,79 @@
+"""The MJCF mujoco_ros2_control loads, against the model the check judges.
+
+on_init reads the ``<hardware>`` param ``mujoco_model``: where there is one, the runtime loads
+that file (its value trimmed of white space) and stops at start-up where no file of that name
+is there; where there is none, it waits for an MJCF on the topic ``mujoco_model_topic``
+(``/mujoco_robot_description``), which says nothing of a file. A path is compared with the
+built model and scene where it can be related to them: the same file, or the same file of the
+same ROS package (an install space's ``share/<package>/`` holds a copy of the source package's
+files). A relative path, which the runtime resolves from the controller manager's working
+folder, an absolute one in no package, and one in an install space where the built files are in
+no package, are not said to be other files.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path, PurePath
+
+from mjcfbuild.inputs.ros2_control import Ros2Control
+from mjcfbuild.sources.packages import PACKAGE_PATTERN, find_enclosing_package
+
+PARAM = "mujoco_model"
+
+
+def model_param(
+    control: Ros2Control, built: tuple[tuple[Path, str], ...]
+) -> tuple[list[str], list[str]]:
+    """What the runtime makes of ``<param name="mujoco_model">``, given the ``built`` files
+    (path and how messages name it; the last is the one to load): a failure where it is empty
+    (the runtime stops at start-up), a warning where it names a file other than the built
+    ones. The failures and the warnings."""
+    if PARAM not in control.hardware or not built:
+        return [], []
+    value = control.hardware[PARAM]
+    origin = control.hardware_origins.get(PARAM)
+    where = f"{origin}: " if origin else ""
+    target, label = built[-1]
+    place = _in_package(target)
+    hint = f" ($(find {place[0]})/{place[1]})" if place else ""
+    if not value:
+        return [
+            f"{where}<hardware> param {PARAM} is empty: mujoco_ros2_control takes it for a file "
+            f"name and stops at start-up (\"MuJoCo model file '' does not exist!\"); name the "
+            f"built scene, {label}{hint}, or leave the param out to load the model from "
+            "mujoco_model_topic"
+        ], []
+    path = PurePath(value)
+    if not path.is_absolute() or any(_same(Path(value), file) for file, _ in built):
+        return [], []
+    named = _in_package(Path(value))
+    packaged = {_in_package(file) for file, _ in built} - {None}
+    if named is None or named in packaged:
+        return [], []
+    if not packaged and find_enclosing_package(Path(value)) is None:
+        return [], []  # an install space's file of a package the built files are in no part of
+    return [], [
+        f"{where}<hardware> param {PARAM} names {value}, which is neither the model checked "
+        "here nor its scene: mujoco_ros2_control loads that file, so this check does not "
+        f"judge what it runs; point the param at the built scene, {label}{hint} (or install "
+        "the built files there)"
+    ]
+
+
+def _same(first: Path, second: Path) -> bool:
+    return first.resolve() == second.resolve()
+
+
+def _in_package(path: Path) -> tuple[str, str] | None:
+    """The ROS package ``path`` is a file of, and its path there: found by the package.xml
+    above it, else by an install space's ``share/<package>/`` in the path itself."""
+    enclosing = find_enclosing_package(path)
+    if enclosing is not None:
+        name, folder = enclosing
+        return name, path.relative_to(folder).as_posix()
+    parts = path.parts
+    shares = [index for index, part in enumerate(parts[:-2]) if part == "share"]
+    if shares and PACKAGE_PATTERN.match(parts[shares[-1] + 1]):
+        index = shares[-1]
+        return parts[index + 1], PurePath(*parts[index + 2 :]).as_posix()
+    return None
