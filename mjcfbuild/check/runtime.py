@@ -29,7 +29,11 @@ import re
 from typing import TYPE_CHECKING
 
 from mjcfbuild.actuators import is_dcmotor
-from mjcfbuild.check.runtime_actuators import actuator_of
+from mjcfbuild.check.runtime_actuators import (
+    actuator_of,
+    unnamed_joints,
+    unsupported_transmissions,
+)
 from mjcfbuild.check.runtime_transmissions import unmatched_transmissions
 from mjcfbuild.inputs.frames import ray_count, rays_short_of_max
 from mjcfbuild.inputs.ros2_control import (
@@ -113,6 +117,7 @@ def check_runtime(
         for sensor in control.sensors
         if sensor.kind and control.runs(sensor.plugin)
     ]
+    failures += unnamed_joints(model) + unsupported_transmissions(model)
     failures += _unmatched_tendon_actuators(model)
     failures += _missing_keyframe(model, control.hardware.get("initial_keyframe"))
     warnings += _start_away_from_home(model, control, urdf_joints)

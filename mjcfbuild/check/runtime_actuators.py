@@ -11,6 +11,10 @@ from __future__ import annotations
 
 from typing import Literal
 
+# The actuator transmissions register_mujoco_actuators takes; any other stops it ("Unsupported
+# transmission type").
+_SUPPORTED = ("mjTRN_JOINT", "mjTRN_TENDON", "mjTRN_SITE")
+
 
 def actuator_of(model, joint: str) -> int:
     """The actuator the runtime finds for ``joint``: one on the joint, else one of its name
@@ -52,3 +56,49 @@ def registered(model, name: str) -> Literal["actuator", "passive"] | None:
     if index >= 0 and model.jnt_type[index] in moving and model.jnt_qposadr[index] not in driven:
         return "passive"
     return None
+
+
+def unsupported_transmissions(model) -> list[str]:
+    """One failure per actuator whose transmission the runtime does not take (slider-crank,
+    joint-in-parent, body): register_mujoco_actuators stops at start-up."""
+    import mujoco
+
+    supported = {int(getattr(mujoco.mjtTrn, name)) for name in _SUPPORTED}
+    failures = []
+    for index in range(model.nu):
+        trn = int(model.actuator_trntype[index])
+        if trn in supported:
+            continue
+        name = model.actuator(index).name or f"#{index}"
+        kind = mujoco.mjtTrn(trn).name.removeprefix("mjTRN_").lower()
+        failures.append(
+            f"actuator '{name}' has a {kind} transmission, which mujoco_ros2_control does not "
+            'take: it stops at start-up ("Unsupported transmission type"); drive a joint, a '
+            "tendon or a site instead"
+        )
+    return failures
+
+
+def unnamed_joints(model) -> list[str]:
+    """A failure where the model has joints without a name, other than free ones: the runtime
+    stops at start-up ("All non-free joints must have names")."""
+    import mujoco
+
+    unnamed = [
+        index
+        for index in range(model.njnt)
+        if not model.joint(index).name and model.jnt_type[index] != mujoco.mjtJoint.mjJNT_FREE
+    ]
+    if not unnamed:
+        return []
+    bodies = _first([model.body(int(model.jnt_bodyid[index])).name or "?" for index in unnamed])
+    return [
+        f"{len(unnamed)} joint{'s' if len(unnamed) > 1 else ''} of the model (in bod"
+        f"{'ies' if len(unnamed) > 1 else 'y'} {bodies}) {'have' if len(unnamed) > 1 else 'has'} "
+        'no name: mujoco_ros2_control stops at start-up ("All non-free joints must have '
+        'names"); name them'
+    ]
+
+
+def _first(names: list[str]) -> str:
+    return ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")

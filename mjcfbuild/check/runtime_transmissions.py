@@ -40,6 +40,7 @@ def unmatched_transmissions(
         if not transmission.in_ros2_control or transmission.joint in fixed_joints:
             continue  # a fixed joint's is refused before the runtime starts
         problems = _transmission_problems(model, transmission, urdf_joints or {})
+        problems += _unequal_interfaces(control, transmission)
         head = f"transmission {transmission.element} of joint '{transmission.joint}'"
         if transmission.plugin and not transmission.plugin.startswith(RUNTIME_PLUGINS):
             elsewhere.setdefault(transmission.plugin, []).extend(
@@ -200,6 +201,28 @@ def _transmission_problems(
         )
     follower = _follower_state(model, transmission, urdf_joints)
     return problems + ([Problem(follower, stops=False)] if follower else [])
+
+
+def _unequal_interfaces(control: Ros2Control, transmission: Transmission) -> list[Problem]:
+    """register_transmissions stops where the joints of one transmission (said at its first)
+    have different command interfaces in their block, in any order."""
+    rows = [row for row in control.transmissions if row.element == transmission.element]
+    if rows[0] is not transmission:
+        return []
+    commands = {(joint.block, joint.name): joint.commands for joint in control.joints}
+    first = commands.get((transmission.block, transmission.joint), [])
+    for row in rows[1:]:
+        other = commands.get((row.block, row.joint), [])
+        if len(other) != len(first) or any(name not in first for name in other):
+            return [
+                Problem(
+                    f"and joint '{row.joint}' have different command interfaces in their block "
+                    f"({', '.join(first) or 'none'}; {', '.join(other) or 'none'}): "
+                    'mujoco_ros2_control stops at start-up ("All joints of transmission ... '
+                    'must have the same command interfaces"); give them the same ones'
+                )
+            ]
+    return []
 
 
 def _follower_state(

@@ -723,3 +723,57 @@ def test_a_mimic_followers_transmission_stops_the_runtime_or_misreports_it(tmp_p
     # A reduction of 1 reports the follower where the equality puts it: nothing to say.
     same = build_two_link(tmp_path / "same", urdf_extra=_follower_block("hinge", "1"))
     assert not [w for w in same.warnings if "transmission" in w], same.warnings
+
+
+def test_actuators_and_joints_the_runtime_cannot_register_stop_it(tmp_path):
+    """register_mujoco_actuators takes joint, tendon and site actuators only ("Unsupported
+    transmission type": an <adhesion> acts on a body), and on_init stops where a non-free
+    joint has no name; neither got a finding."""
+    adhesion = (
+        'mujoco_inputs:\n  raw: \'<actuator><adhesion name="grip" body="arm" '
+        'ctrlrange="0 1" gain="1"/></actuator>\'\n'
+    )
+    _fails_to_start(tmp_path / "adhesion", control_block(["position"]), adhesion)
+    assert (
+        "actuator 'grip' has a body transmission, which mujoco_ros2_control does not take: it "
+        'stops at start-up ("Unsupported transmission type"); drive a joint, a tendon or a '
+        "site instead"
+    ) in check_record(tmp_path / "adhesion")["failures"]
+    # An MJCF with an unnamed hinge, checked against a URDF with a <ros2_control> block.
+    write(tmp_path / "p.urdf", _two_link_with(control_block(["position"])))
+    write(
+        tmp_path / "p.xml",
+        '<mujoco><worldbody><body name="arm"><joint axis="0 1 0"/><geom size="0.05"/></body>'
+        "</worldbody></mujoco>",
+    )
+    result = run_cli("check", "--urdf", "p.urdf", "--mjcf", "p.xml", cwd=tmp_path)
+    assert (
+        "1 joint of the model (in body arm) has no name: mujoco_ros2_control stops at start-up "
+        '("All non-free joints must have names"); name them'
+    ) in result.stderr, result.stderr
+
+
+def test_a_transmissions_joints_with_different_command_interfaces_stop_the_runtime(tmp_path):
+    """register_transmissions: "All joints of transmission ... must have the same command
+    interfaces", checked before the transmission is loaded."""
+    block = control_block(["position"]).replace(
+        "</ros2_control>",
+        '<joint name="wrist"><command_interface name="velocity"/>'
+        '<state_interface name="position"/></joint>'
+        '<transmission name="d"><plugin>transmission_interface/DifferentialTransmission</plugin>'
+        '<actuator name="hinge" role="actuator1"/><actuator name="wrist" role="actuator2"/>'
+        '<joint name="hinge" role="joint1"/><joint name="wrist" role="joint2"/></transmission>'
+        "</ros2_control>",
+    )
+    _fails_to_start(tmp_path / "different", WRIST + block)
+    assert [f for f in check_record(tmp_path / "different")["failures"] if "transmission" in f] == [
+        "robot.urdf:15: transmission #1 of joint 'hinge' and joint 'wrist' have different "
+        "command interfaces in their block (position; velocity): mujoco_ros2_control stops at "
+        'start-up ("All joints of transmission ... must have the same command interfaces"); '
+        "give them the same ones"
+    ]
+    same = block.replace(
+        '<command_interface name="velocity"/>', '<command_interface name="position"/>'
+    )
+    build_two_link(tmp_path / "same", urdf_extra=WRIST + same)
+    assert check_record(tmp_path / "same")["passes"], check_record(tmp_path / "same")["failures"]
