@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING
 from mjcfbuild.actuators import is_dcmotor
 from mjcfbuild.check.runtime_actuators import (
     actuator_of,
+    transmission_actuator,
     unnamed_joints,
     unsupported_transmissions,
 )
@@ -40,6 +41,7 @@ from mjcfbuild.inputs.ros2_control import (
     RUNTIME_PLUGINS,
     ControlJoint,
     Ros2Control,
+    Transmission,
     expected_sensors,
     model_actuator_kind,
     needs_pids,
@@ -106,7 +108,10 @@ def check_runtime(
     warnings += _mimic_commands(mimics, urdf_joints)
     judged = [joint for joint in served if joint not in mimics]
     pids_file = control.hardware.get("pids_config_file")
-    joints = [_joint(model, joint, gains, bool(pids_file), failures) for joint in judged]
+    transmissions = [t for t in control.transmissions if t.in_ros2_control]
+    joints = [
+        _joint(model, joint, gains, bool(pids_file), failures, transmissions) for joint in judged
+    ]
     sensors = [
         _sensor(model, sensor, failures)
         for sensor in control.sensors
@@ -519,15 +524,27 @@ def _family(interface: str) -> str:
 
 
 def _joint(
-    model, joint: ControlJoint, gains: PidGains | None, pids_file: bool, failures: list[str]
+    model,
+    joint: ControlJoint,
+    gains: PidGains | None,
+    pids_file: bool,
+    failures: list[str],
+    transmissions: list[Transmission],
 ) -> dict:
     """What the runtime makes of one commanded joint: its actuator, the actuator's kind and
     how each interface is taken ('direct', 'pid', 'pid?' where the pids_config_file could not
-    be read, 'no pid' where the gains are missing, None where refused with a logged error)."""
+    be read, 'no pid' where the gains are missing, None where refused with a logged error).
+    A joint with no actuator of its own is driven by its block's transmission's, whose PID
+    gains are read under the joint that actuator stands for."""
     import mujoco
 
     name, commands = joint.name, joint.commands
-    actuator = actuator_of(model, name)
+    actuator, gains_of = actuator_of(model, name), name
+    through = next(
+        (t.actuators for t in transmissions if t.block == joint.block and t.joint == name), []
+    )
+    if actuator < 0 and (found := transmission_actuator(model, through)):
+        actuator, gains_of = found
     if actuator < 0:
         failures.append(
             f"{joint.origin}: mujoco_ros2_control: joint '{name}' commands "
@@ -546,16 +563,16 @@ def _joint(
             how[interface] = "direct"
         elif needs_pids(kind, interface):
             if gains is not None:
-                how[interface] = "pid" if gains.has(family, name) else "no pid"
+                how[interface] = "pid" if gains.has(family, gains_of) else "no pid"
             else:
                 how[interface] = "pid?" if pids_file else "no pid"
         else:
             how[interface] = None
     missing = [interface for interface, way in how.items() if way == "no pid"]
     if missing:
-        why = [gains.faults.get((_family(i), name)) if gains else None for i in missing]
+        why = [gains.faults.get((_family(i), gains_of)) if gains else None for i in missing]
         detail = "; ".join(
-            f"pid_gains.{_family(i)}.{name}: {fault}"
+            f"pid_gains.{_family(i)}.{gains_of}: {fault}"
             for i, fault in zip(missing, why, strict=True)
             if fault
         )
@@ -566,7 +583,7 @@ def _joint(
             f"takes only through PID gains, and {given}"
             f'{f" ({detail})" if detail else ""}: it stops at start-up ("... not supported '
             f'with motor or custom actuator without defining the PIDs"); give '
-            f"pid_gains.{_family(missing[0])}.{name}.p, .i and .d as doubles in a "
+            f"pid_gains.{_family(missing[0])}.{gains_of}.p, .i and .d as doubles in a "
             f"pids_config_file, or {_FIX.get(_family(missing[0]), '').split(', or')[0]}"
         )
     elif not any(how.values()):

@@ -36,26 +36,49 @@ def registered(model, name: str) -> Literal["actuator", "passive"] | None:
     where no entry does."""
     import mujoco
 
-    driven: set[int] = set()
-    for actuator in range(model.nu):
-        trn = model.actuator_trntype[actuator]
-        target = int(model.actuator_trnid[actuator, 0])
-        own = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_ACTUATOR, actuator) or "unnamed"
-        if trn == mujoco.mjtTrn.mjTRN_JOINT:
-            joint = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, target)
-        elif trn == mujoco.mjtTrn.mjTRN_TENDON:
-            joint, target = own, mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, own)
-        else:
-            joint = own
-        if joint == name:
-            return "actuator"
-        if 0 <= target < model.njnt:
-            driven.add(int(model.jnt_qposadr[target]))
+    entries = _entries(model)
+    if any(joint == name for _, joint, _ in entries):
+        return "actuator"
+    driven = {int(model.jnt_qposadr[target]) for _, _, target in entries if target >= 0}
     index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
     moving = (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE)
     if index >= 0 and model.jnt_type[index] in moving and model.jnt_qposadr[index] not in driven:
         return "passive"
     return None
+
+
+def transmission_actuator(model, names: list[str]) -> tuple[int, str] | None:
+    """The actuator register_urdf_joints gives a joint driven only through a transmission of
+    actuators ``names``: the first entry of its actuator data whose MJCF actuator or joint has
+    one of the names; with the joint name the runtime reads its PID gains under."""
+    import mujoco
+
+    for name in names:
+        for actuator, joint, _ in _entries(model):
+            if name in (joint, mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_ACTUATOR, actuator)):
+                return actuator, joint
+    return None
+
+
+def _entries(model) -> list[tuple[int, str, int]]:
+    """The actuator data register_mujoco_actuators makes of the model's actuators: each
+    actuator, the joint name it stands for (a joint actuator's joint, a tendon or site
+    actuator's own name) and the joint whose qpos it reads (-1 where none)."""
+    import mujoco
+
+    entries = []
+    for actuator in range(model.nu):
+        trn = model.actuator_trntype[actuator]
+        target = int(model.actuator_trnid[actuator, 0])
+        own = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_ACTUATOR, actuator) or "unnamed"
+        if trn == mujoco.mjtTrn.mjTRN_JOINT:
+            joint = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, target) or ""
+        elif trn == mujoco.mjtTrn.mjTRN_TENDON:
+            joint, target = own, mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, own)
+        else:
+            joint = own  # a site's: the runtime reads the qpos of the joint of the site's index
+        entries.append((actuator, joint, target if 0 <= target < model.njnt else -1))
+    return entries
 
 
 def unsupported_transmissions(model) -> list[str]:

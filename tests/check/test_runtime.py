@@ -777,3 +777,29 @@ def test_a_transmissions_joints_with_different_command_interfaces_stop_the_runti
     )
     build_two_link(tmp_path / "same", urdf_extra=WRIST + same)
     assert check_record(tmp_path / "same")["passes"], check_record(tmp_path / "same")["failures"]
+
+
+def test_a_joint_driven_only_through_a_transmission_takes_its_actuators_interfaces(tmp_path):
+    """register_urdf_joints gives a joint without an actuator of its own the actuators of its
+    block's transmission (get_joint_actuator_names): 'hinge' commands position through the
+    servo on 'wrist'. The check said it had no actuator."""
+    block = control_block(["position"]).replace(
+        "</ros2_control>",
+        '<transmission name="t"><plugin>transmission_interface/SimpleTransmission</plugin>'
+        '<actuator name="wrist" role="actuator1"/><joint name="hinge" role="joint1"/>'
+        "</transmission></ros2_control>",
+    )
+    servo = (
+        "actuators: {rules: [{joints: [hinge, wrist], type: none}]}\n"
+        "mujoco_inputs:\n  raw: '<actuator><position "
+        'name="wrist_servo" joint="wrist" kp="5"/></actuator>\'\n'
+    )
+    build_two_link(tmp_path, servo, WRIST + block)
+    record = check_record(tmp_path)
+    assert record["passes"], record["failures"]
+    (joint,) = record["mujoco_ros2_control"]["joints"]
+    assert (joint["joint"], joint["actuator"], joint["kind"]) == (
+        "hinge",
+        "wrist_servo",
+        "position",
+    )
