@@ -124,7 +124,7 @@ def check_runtime(
     ]
     failures += unnamed_joints(model) + unsupported_transmissions(model)
     failures += _unmatched_tendon_actuators(model)
-    failures += _missing_keyframe(model, control.hardware.get("initial_keyframe"))
+    failures += _missing_keyframe(model, control)
     warnings += _start_away_from_home(model, control, urdf_joints)
     odometry_failures, odometry_warnings = _odometry(model, control)
     failures += odometry_failures
@@ -136,7 +136,7 @@ def check_runtime(
         _refusals(joints)
         + _effort_on_dcmotors(joints)
         + _effort_at_start(joints)
-        + _unknown_pids(joints, pids_file, gains)
+        + _unknown_pids(joints, control, gains)
         + odometry_warnings
         + _unread_sensors(control)
         + _other_blocks(control)
@@ -258,7 +258,8 @@ def _odometry(model, control: Ros2Control) -> tuple[list[str], list[str]]:
     ]
     if index >= 0 and model.jnt_type[index] != mujoco.mjtJoint.mjJNT_FREE:
         return [
-            f"<hardware> odom_free_joint_name names joint '{wanted}', which is not a free "
+            f"{control.at('odom_free_joint_name')}<hardware> odom_free_joint_name names joint "
+            f"'{wanted}', which is not a free "
             'joint: mujoco_ros2_control stops at start-up ("... since it is not a free '
             f'joint"); name the free joint{f" ({free[0]})" if free else ""}'
         ], []
@@ -269,7 +270,8 @@ def _odometry(model, control: Ros2Control) -> tuple[list[str], list[str]]:
             else (f"no odom_free_joint_name is given (it defaults to '{ODOM_FREE_JOINT}')")
         )
         return [], [
-            f"mujoco_ros2_control: {where}, which the model does not have, so the runtime "
+            f"{control.at('odom_free_joint_name')}mujoco_ros2_control: {where}, which the model "
+            "does not have, so the runtime "
             f"publishes no odometry of the floating base; add <param "
             f'name="odom_free_joint_name">{free[0]}</param> to the <hardware>'
         ]
@@ -336,9 +338,10 @@ def _unmatched_tendon_actuators(model) -> list[str]:
     return failures
 
 
-def _missing_keyframe(model, keyframe: str | None) -> list[str]:
+def _missing_keyframe(model, control: Ros2Control) -> list[str]:
     """``initial_keyframe`` names a keyframe the runtime starts from; none of that name stops
     it ("Failed to find keyframe")."""
+    keyframe = control.hardware.get("initial_keyframe")
     if not keyframe:
         return []
     names = [model.key(index).name for index in range(model.nkey)]
@@ -346,7 +349,8 @@ def _missing_keyframe(model, keyframe: str | None) -> list[str]:
         return []
     listing = ", ".join(f"'{name}'" for name in names if name) or "none"
     return [
-        f"<hardware> param initial_keyframe names keyframe '{keyframe}', which the model does "
+        f"{control.at('initial_keyframe')}<hardware> param initial_keyframe names keyframe "
+        f"'{keyframe}', which the model does "
         f"not have (its keyframes: {listing}): mujoco_ros2_control stops at start-up "
         '("Failed to find keyframe"); name one of them'
     ]
@@ -499,8 +503,9 @@ def _effort_at_start(joints: list[dict]) -> list[str]:
     ]
 
 
-def _unknown_pids(joints: list[dict], pids_file: str | None, gains: PidGains | None) -> list[str]:
+def _unknown_pids(joints: list[dict], control: Ros2Control, gains: PidGains | None) -> list[str]:
     """A pids_config_file the check could not read: which interfaces it then cannot judge."""
+    pids_file = control.hardware.get("pids_config_file")
     if not pids_file or gains is not None:
         return []
     names = [
@@ -513,7 +518,8 @@ def _unknown_pids(joints: list[dict], pids_file: str | None, gains: PidGains | N
         return []
     shown = _first_few(names)
     return [
-        f"mujoco_ros2_control: the pids_config_file {pids_file} could not be read here, so "
+        f"{control.at('pids_config_file')}mujoco_ros2_control: the pids_config_file {pids_file} "
+        "could not be read here, so "
         f"whether the runtime finds PID gains for {shown} is not checked (without them it "
         "stops at start-up); build where the file is, or give its package in robot.yaml"
     ]

@@ -30,9 +30,7 @@ def model_param(
     ones. The failures and the warnings."""
     if PARAM not in control.hardware or not built:
         return [], []
-    value = control.hardware[PARAM]
-    origin = control.hardware_origins.get(PARAM)
-    where = f"{origin}: " if origin else ""
+    value, where = control.hardware[PARAM], control.at(PARAM)
     target, label = built[-1]
     place = _in_package(target)
     hint = f" ($(find {place[0]})/{place[1]})" if place else ""

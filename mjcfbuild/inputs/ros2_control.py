@@ -123,6 +123,11 @@ class Ros2Control:
             return runtime_plugin(plugin)
         return True
 
+    def at(self, param: str) -> str:
+        """``file:line: `` of the runtime's <hardware> ``param``, where it is known."""
+        origin = self.hardware_origins.get(param)
+        return f"{origin}: " if origin else ""
+
     def to_dict(self) -> dict:
         """A JSON-friendly form."""
         return asdict(self)

@@ -173,7 +173,8 @@ def _pid_gains(control: Ros2Control) -> tuple[PidGains | None, list[str]]:
         return None, []
     except ValueError as exc:
         return PidGains(), [
-            f"mujoco_ros2_control: the pids_config_file {path} is no ROS parameter file "
+            f"{control.at('pids_config_file')}mujoco_ros2_control: the pids_config_file {path} "
+            "is no ROS parameter file "
             f"({exc}): the runtime cannot load it and stops at start-up; fix its YAML"
         ]
 

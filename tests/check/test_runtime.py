@@ -323,6 +323,12 @@ def test_a_floating_robot_is_told_which_free_joint_odometry_needs(tmp_path):
         and '<param name="odom_free_joint_name">base_freejoint</param>' in w
         for w in result.warnings
     ), result.warnings
+    named = control_block(["position"], '<param name="odom_free_joint_name">base</param>')
+    result = build_two_link(tmp_path / "named", "options: {free_joint: true}\n", named)
+    assert any(
+        w.startswith("robot.urdf:15: mujoco_ros2_control: odom_free_joint_name names 'base'")
+        for w in result.warnings
+    ), result.warnings
 
 
 def _two_link_with(extra: str) -> str:
@@ -414,9 +420,10 @@ def test_an_initial_keyframe_the_model_lacks_stops_the_runtime(tmp_path):
     the check passed a model with only 'home'."""
     hardware = '<param name="initial_keyframe">start_90</param>'
     stderr = _fails_to_start(tmp_path, control_block(["position"], hardware))
+    # At the param's line.
     assert (
-        "<hardware> param initial_keyframe names keyframe 'start_90', which the model does not "
-        "have (its keyframes: 'home')"
+        "robot.urdf:15: check: <hardware> param initial_keyframe names keyframe 'start_90', "
+        "which the model does not have (its keyframes: 'home')"
     ) in stderr
     fixed = '<param name="initial_keyframe">home</param>'
     build_two_link(tmp_path / "fixed", urdf_extra=control_block(["position"], fixed))
