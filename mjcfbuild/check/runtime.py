@@ -20,7 +20,9 @@ a joint without an actuator, or a mimic joint, gets no command interface. For ea
 with a ``mujoco_type`` it looks up MJCF sensors by name; cameras and lidars are matched by the
 sensor's name. What stops the runtime, or leaves an interface or sensor the block names
 unserved, is a failure here, naming the joint or sensor, the rule and the fix; what it logs
-and survives is a warning, one line per kind.
+and survives is a warning, one line per kind. The block's transmissions are judged in
+:mod:`~mjcfbuild.check.runtime_transmissions`, its ``mujoco_model`` in
+:mod:`~mjcfbuild.check.runtime_model`.
 """
 
 from __future__ import annotations
