@@ -36,11 +36,17 @@ def unmatched_transmissions(
     failures = parser_refusals(control, fixed_joints)
     warnings: list[str] = []
     elsewhere: dict[str, list[str]] = {}  # plugin -> what its transmissions get wrong
+    said: set[tuple[str, str]] = set()  # an element's actuators are said at its first joint
     for transmission in control.transmissions:
         if not transmission.in_ros2_control or transmission.joint in fixed_joints:
             continue  # a fixed joint's is refused before the runtime starts
-        problems = _transmission_problems(model, transmission, urdf_joints or {})
-        problems += _unequal_interfaces(control, transmission)
+        problems = [
+            problem
+            for problem in _transmission_problems(model, transmission, urdf_joints or {})
+            + _unequal_interfaces(control, transmission)
+            if (transmission.element, problem.text) not in said
+        ]
+        said.update((transmission.element, problem.text) for problem in problems)
         head = f"transmission {transmission.element} of joint '{transmission.joint}'"
         if transmission.plugin and not transmission.plugin.startswith(RUNTIME_PLUGINS):
             elsewhere.setdefault(transmission.plugin, []).extend(
@@ -50,12 +56,12 @@ def unmatched_transmissions(
         for problem in problems:
             found = failures if problem.stops else warnings
             found.append(f"{transmission.origin}: {head} {problem.text}")
-    for plugin, said in elsewhere.items():
-        if said:
+    for plugin, texts in elsewhere.items():
+        if texts:
             warnings.append(
                 f"<ros2_control> transmissions for the hardware plugin {plugin} are not run by "
                 "mujoco_ros2_control as written; with its plugin in their block, it would refuse "
-                "or misdrive them: " + "; ".join(dict.fromkeys(said))
+                "or misdrive them: " + "; ".join(dict.fromkeys(texts))
             )
     return list(dict.fromkeys(failures)), list(dict.fromkeys(warnings))
 

@@ -784,6 +784,13 @@ def test_a_transmissions_joints_with_different_command_interfaces_stop_the_runti
     )
     build_two_link(tmp_path / "same", urdf_extra=WRIST + same)
     assert check_record(tmp_path / "same")["passes"], check_record(tmp_path / "same")["failures"]
+    # An actuator the model lacks is said once for the transmission, not once per joint.
+    unknown = same.replace(
+        '<actuator name="wrist" role="actuator2"/>', '<actuator name="m2" role="actuator2"/>'
+    )
+    _fails_to_start(tmp_path / "unknown", WRIST + unknown)
+    failures = check_record(tmp_path / "unknown")["failures"]
+    assert len([f for f in failures if "names actuator 'm2'" in f]) == 1, failures
 
 
 def test_a_joint_driven_only_through_a_transmission_takes_its_actuators_interfaces(tmp_path):
