@@ -22,17 +22,18 @@ PARAM = "mujoco_model"
 
 
 def model_param(
-    control: Ros2Control, built: tuple[tuple[Path, str], ...]
+    control: Ros2Control, built: tuple[tuple[Path, str], ...], packages: dict[str, Path]
 ) -> tuple[list[str], list[str]]:
     """What the runtime makes of ``<param name="mujoco_model">``, given the ``built`` files
-    (path and how messages name it; the last is the one to load): a failure where it is empty
+    (path and how messages name it; the last is the one to load) and the folders of the
+    ``packages`` robot.yaml names (which $(find pkg) expanded to): a failure where it is empty
     (the runtime stops at start-up), a warning where it names a file other than the built
     ones. The failures and the warnings."""
     if PARAM not in control.hardware or not built:
         return [], []
     value, where = control.hardware[PARAM], control.at(PARAM)
     target, label = built[-1]
-    place = _in_package(target)
+    place = _in_package(target, packages)
     hint = f" ($(find {place[0]})/{place[1]})" if place else ""
     if not value:
         return [
@@ -44,11 +45,11 @@ def model_param(
     path = PurePath(value)
     if not path.is_absolute() or any(_same(Path(value), file) for file, _ in built):
         return [], []
-    named = _in_package(Path(value))
-    packaged = {_in_package(file) for file, _ in built} - {None}
+    named = _in_package(Path(value), packages)
+    packaged = {_in_package(file, packages) for file, _ in built} - {None}
     if named is None or named in packaged:
         return [], []
-    if not packaged and find_enclosing_package(Path(value)) is None:
+    if not packaged and _installed(Path(value), packages):
         return [], []  # an install space's file of a package the built files are in no part of
     return [], [
         f"{where}<hardware> param {PARAM} names {value}, which is neither the model checked "
@@ -62,9 +63,33 @@ def _same(first: Path, second: Path) -> bool:
     return first.resolve() == second.resolve()
 
 
-def _in_package(path: Path) -> tuple[str, str] | None:
-    """The ROS package ``path`` is a file of, and its path there: found by the package.xml
-    above it, else by an install space's ``share/<package>/`` in the path itself."""
+def _installed(path: Path, packages: dict[str, Path]) -> bool:
+    """Whether ``path`` is known to be in a package only by an install space's
+    ``share/<package>/`` in it."""
+    return _in_folders(path, packages) is None and find_enclosing_package(path) is None
+
+
+def _in_folders(path: Path, packages: dict[str, Path]) -> tuple[str, str] | None:
+    """The innermost of ``packages`` whose folder holds ``path``, and its path there."""
+    resolved = path.resolve()
+    holding = [
+        (name, folder.resolve())
+        for name, folder in packages.items()
+        if resolved.is_relative_to(folder.resolve())
+    ]
+    if not holding:
+        return None
+    name, folder = max(holding, key=lambda item: len(item[1].parts))
+    return name, resolved.relative_to(folder).as_posix()
+
+
+def _in_package(path: Path, packages: dict[str, Path]) -> tuple[str, str] | None:
+    """The ROS package ``path`` is a file of, and its path there: one of ``packages`` whose
+    folder holds it, else the package.xml above it, else an install space's
+    ``share/<package>/`` in the path itself."""
+    known = _in_folders(path, packages)
+    if known is not None:
+        return known
     enclosing = find_enclosing_package(path)
     if enclosing is not None:
         name, folder = enclosing

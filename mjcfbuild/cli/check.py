@@ -257,16 +257,24 @@ def _pair(args) -> int:
             error.message += f" [line {expanded} of its expansion]"
         raise
     results = check_model(robot, mjcf, mjcf, set(), _options(args), reference=read_kinematics(text))
-    results = _runtime_section(results, text, robot, mjcf, str(urdf), origins)
+    packages = {name: Path(folder) for name, folder in parse_packages(args.package).items()}
+    results = _runtime_section(results, text, robot, mjcf, str(urdf), origins, packages)
     return _print(results, f"{mjcf} against {urdf}", bool(getattr(args, "quiet", False)))
 
 
 def _runtime_section(
-    results, text: bytes, robot, mjcf: Path, label: str, origins: dict[int, tuple[str, int]]
+    results,
+    text: bytes,
+    robot,
+    mjcf: Path,
+    label: str,
+    origins: dict[int, tuple[str, int]],
+    packages: dict[str, Path],
 ):
     """The mujoco_ros2_control section a build's check adds, from the URDF's <ros2_control>
     blocks: the runtime's rules hold for a model made by any tool. A xacro source's lines are
-    named where its ``origins`` say each expanded line was written."""
+    named where its ``origins`` say each expanded line was written; ``packages`` are the
+    --package folders."""
     from mjcfbuild.inputs.ros2_control import read_ros2_control
     from mjcfbuild.steps.check import add_runtime_check
     from mjcfbuild.urdf.parse import parse_xml
@@ -284,7 +292,14 @@ def _runtime_section(
     joints = {joint.name: joint.mimic.joint if joint.mimic else None for joint in robot.joints}
     fixed = frozenset(joint.name for joint in robot.joints if joint.kind == "fixed")
     return add_runtime_check(
-        results, mjcf, control, joints, {}, fixed_joints=fixed, built=((mjcf, shown_path(mjcf)),)
+        results,
+        mjcf,
+        control,
+        joints,
+        {},
+        fixed_joints=fixed,
+        built=((mjcf, shown_path(mjcf)),),
+        packages=packages,
     )
 
 

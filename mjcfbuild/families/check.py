@@ -6,7 +6,13 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from mjcfbuild.graph.family import Family, discovered_inputs, file_task, read_record
+from mjcfbuild.graph.family import (
+    Family,
+    discovered_inputs,
+    file_task,
+    package_folders,
+    read_record,
+)
 from mjcfbuild.outputs import ASSEMBLY_REPORT, CHECK_DEPS, CHECK_RESULTS, PLAN, REFERENCE
 from mjcfbuild.steps.payloads import CheckPayload, MjcfPartFiles
 
@@ -40,6 +46,7 @@ def check_payload(
         output=str(ctx.state(CHECK_RESULTS)),
         mjcf_parts=parts,  # each compared with the part compiled alone
         depfile=str(ctx.state(CHECK_DEPS)),
+        packages=package_folders(ctx.resolver.explicit),
     )
 
 

@@ -73,6 +73,7 @@ def check_built(request: CheckPayload) -> CheckResults:
         request.depfile,
         frozenset(j["name"] for j in plan.robot["joints"] if j["kind"] == "fixed"),
         _built(request),
+        {name: Path(folder) for name, folder in request.packages.items()},
     )
     gazebo = plan.gazebo()
     if gazebo:
@@ -105,11 +106,13 @@ def add_runtime_check(
     depfile: str = "",
     fixed_joints: frozenset[str] = frozenset(),
     built: tuple[tuple[Path, str], ...] = (),
+    packages: dict[str, Path] | None = None,
 ) -> CheckResults:
     """The mujoco_ros2_control section, where the description has a <ros2_control> block; the
     files it reads besides its inputs are recorded in ``depfile``. ``fixed_joints`` names the
     URDF's fixed joints (ros2_control refuses one in a block); ``built`` the model and scene
-    (path and label, the scene last), which its mujoco_model param should name."""
+    (path and label, the scene last), which its mujoco_model param should name, and
+    ``packages`` the folders its $(find pkg) stands for."""
     if depfile:
         _record_reads(control, Path(depfile))
     if not results.loads or not (control.joints or control.sensors):
@@ -121,7 +124,7 @@ def add_runtime_check(
     gains, unloadable = _pid_gains(control)
     found, failures, warnings = check_runtime(model, control, urdf_joints, gains, fixed_joints)
     failures += unloadable
-    loaded_failures, loaded_warnings = model_param(control, built)
+    loaded_failures, loaded_warnings = model_param(control, built, packages or {})
     failures += loaded_failures
     warnings += loaded_warnings
     runtime = Runtime(

@@ -378,6 +378,8 @@ class CheckPayload(Payload):
     output: Output
     mjcf_parts: list[MjcfPartFiles]  # each compared with the part compiled alone
     depfile: Output = ""  # the files it read besides these (the pids_config_file), or looked for
+    # robot.yaml's packages (name -> folder): where $(find pkg) put a mujoco_model param's file
+    packages: dict[str, str] = dataclasses.field(default_factory=dict)
 
 
 @dataclass(frozen=True)

@@ -15,11 +15,13 @@ from tests.check.test_runtime import control_block
 from tests.conftest import run_cli, two_link_urdf, write
 
 
-def _build(folder, model: str, xacro: bool = False):
-    """The two-link robot in package r_pkg (``folder``), its block's mujoco_model ``model``."""
+def _build(folder, model: str, xacro: bool = False, package_xml: bool = True):
+    """The two-link robot in package r_pkg (``folder``, which robot.yaml's packages name), its
+    block's mujoco_model ``model``."""
     hardware = f'<param name="mujoco_model">{model}</param>'
     text = two_link_urdf(extra=control_block(["position"], hardware))
-    write(folder / "package.xml", '<package format="3"><name>r_pkg</name></package>')
+    if package_xml:
+        write(folder / "package.xml", '<package format="3"><name>r_pkg</name></package>')
     name = "robot.urdf.xacro" if xacro else "robot.urdf"
     write(
         folder / name,
@@ -53,6 +55,10 @@ def test_a_mujoco_model_naming_another_file_of_the_package_is_warned_at_its_line
     ), said
     for model in ("$(find r_pkg)/mjcf/scene.xml", "$(find r_pkg)/mjcf/r.xml"):
         assert not _said(_build(tmp_path / "same", model, xacro=True))
+    # A package robot.yaml names is one without a package.xml too.
+    bare = _build(tmp_path / "bare", "$(find r_pkg)/mujoco/robot.xml", True, package_xml=False)
+    (said,) = _said(bare)
+    assert "point the param at the built scene, mjcf/scene.xml ($(find r_pkg)/mjcf/" in said
 
 
 def test_a_mujoco_model_is_related_to_the_build_only_where_it_can_be(tmp_path):
