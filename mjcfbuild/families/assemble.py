@@ -198,8 +198,10 @@ FAMILY = Family(
     # world body; a velocity servo's kv at least 49 times the joint's damping; 23: a floating
     # robot stood on the floor by its own geometry, not the world body's; 24: lidar rays counted
     # as mujoco_ros2_control and the reference converter count them; 25: modify and Gazebo
-    # link lookups suggest a name, no reduction advice for a joint nothing drives
-    format=25,
+    # link lookups suggest a name, no reduction advice for a joint nothing drives; 26: COLLADA
+    # emission and vertex colours in materials, geoms of a DAE without a scene left out, a flat
+    # collision mesh under `primitive` a thin box
+    format=26,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,
     compiles_model=True,

@@ -79,8 +79,10 @@ FAMILY = Family(
     # blocks mujoco_ros2_control runs only; a floating joint below the root refused at its line;
     # 16: whether each ros2_control joint has a position state interface; 17: its block and
     # mimic attribute; 18: each geometry's own line; 19: a ROS 1 transmission naming a joint the
-    # URDF lacks warned of, joint types suggested
-    format=19,
+    # URDF lacks warned of, joint types suggested; 20: each mesh's looks_from (convert -a), each
+    # transmission's block, joint reduction, offset and roleless elements, <hardware> param
+    # lines; a closing tag after the root read with a warning
+    format=20,
     tools=("lxml",),
     tasks=_tasks,
     stage="planning",

@@ -34,12 +34,12 @@ from tests.families.toy_step import ToyPayload
 # that family's tasks in every folder built before.
 BEFORE_FORMATS = {
     "expand": 5,
-    "plan": 19,
-    "mesh": 12,
-    "decompose": 3,
-    "assemble": 25,
+    "plan": 20,
+    "mesh": 13,
+    "decompose": 4,
+    "assemble": 26,
     "scene": 3,
-    "check": 24,
+    "check": 25,
     "reference": 1,
     "previews": 5,
     "tuning": 1,
@@ -107,7 +107,7 @@ def test_the_derived_tables_are_the_ones_the_engine_kept_before():
         "mjcfbuild.steps.decompose:run": "decompose",
     }
     version = registry.step_versions("mesh")
-    assert version["mjcfbuild-step"] == "mesh-12" and version["mjcfbuild"] == mjcfbuild.__version__
+    assert version["mjcfbuild-step"] == "mesh-13" and version["mjcfbuild"] == mjcfbuild.__version__
     assert list(version)[:6] == list(BEFORE_TOOLS["mesh"])
 
 
