@@ -121,6 +121,7 @@ def load_parts(
                 hint="a damaged file, or a vertex written wrong: open it in a mesh tool",
             )
         parts.append(merge_vertices(part))
+    parts = _fold_small_parts(parts, path, warnings)
     if not any(_has_area(part) for part in parts):
         # MuJoCo would refuse the product later, naming mjcfbuild's copy of it.
         raise InputError(
@@ -129,6 +130,60 @@ def load_parts(
             hint="re-export it, or remove the geometry that names it",
         )
     return parts
+
+
+# MuJoCo refuses a mesh of fewer vertices ("invalid sizes in MSH file").
+MIN_PART_VERTICES = 4
+
+
+def _fold_small_parts(
+    parts: list[MeshPart], path: Path, warnings: list[str] | None
+) -> list[MeshPart]:
+    """``parts`` with each of fewer than :data:`MIN_PART_VERTICES` vertices (a colour or a
+    material on one triangle) drawn in the look of the part nearest in colour, with a
+    warning: MuJoCo refuses a mesh that small, and the model would not load."""
+    small = [i for i, part in enumerate(parts) if len(part.vertices) < MIN_PART_VERTICES]
+    if not small or len(parts) < 2:
+        return parts
+    large = [i for i in range(len(parts)) if i not in small] or [0]
+    folded: dict[int, list[MeshPart]] = {i: [parts[i]] for i in large}
+    moved = [i for i in small if i not in folded]
+    for i in moved:
+        target = min(large, key=lambda j: _colour_distance(parts[i], parts[j]))
+        look = parts[target]
+        piece = parts[i]
+        uv = piece.uv if piece.uv is not None else np.zeros((len(piece.vertices), 2))
+        folded[target].append(
+            MeshPart(piece.vertices, piece.faces, look.rgba, uv, look.texture, look.emission)
+        )
+    if warnings is not None:
+        warnings.append(
+            f"{path.name}: {len(moved)} of its looks (colours or materials) cover fewer than "
+            f"{MIN_PART_VERTICES} vertices, a mesh too small for MuJoCo: each is drawn in the "
+            "look nearest in colour"
+        )
+    merged = [merge_vertices(_concatenate(folded[i])) for i in large]
+    if not set(large) - set(small):  # all small: one part, in their mean colour (by faces)
+        coloured = [p for p in parts if p.rgba is not None]
+        if coloured and merged[0].texture is None:
+            mean = np.average(
+                np.asarray([p.rgba for p in coloured]),
+                axis=0,
+                weights=[len(p.faces) for p in coloured],
+            )
+            r, g, b, a = (float(round(v, 6)) for v in mean)
+            rgba = (r, g, b, a)
+            merged[0] = MeshPart(
+                merged[0].vertices, merged[0].faces, rgba, None, None, merged[0].emission
+            )
+    return merged
+
+
+def _colour_distance(a: MeshPart, b: MeshPart) -> float:
+    """How far apart the colours of two parts are (a part without one counts as grey)."""
+    grey = (0.5, 0.5, 0.5, 1.0)
+    first, second = np.asarray(a.rgba or grey), np.asarray(b.rgba or grey)
+    return float(np.sum((first - second) ** 2))
 
 
 def _has_area(part: MeshPart) -> bool:

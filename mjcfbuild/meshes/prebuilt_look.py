@@ -28,8 +28,9 @@ def with_look_of(
     said = (
         f"{source.name}, the pre-generated OBJ (-a) for {original.name}, has no colour of its own"
     )
+    notes: list[str] = []  # what the original's own reading loses (a glow, a blend)
     try:
-        looks = load_parts(original)
+        looks = load_parts(original, warnings=notes)
     except InputError as error:
         warnings.append(f"{said}, and {original.name} cannot be read for one ({error.message})")
         return parts
@@ -43,6 +44,7 @@ def with_look_of(
         )
         return parts
     look = looks[0]
+    warnings.extend(notes)  # the look is borrowed: what its reading lost is lost here too
     if look.texture is not None:
         warnings.append(
             f"{said}; it takes {original.name}'s colour, but not its texture, which it has no "

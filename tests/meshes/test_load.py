@@ -193,3 +193,52 @@ def test_a_short_text_file_named_stl_is_said_to_be_no_stl(tmp_path):
     empty_ascii.write_text("solid a\nendsolid a\n")  # an STL file, without triangles
     with pytest.raises(InputError, match="mesh has no triangles"):
         load_parts(empty_ascii)
+
+
+CUBE_OBJ = """mtllib cube.mtl
+v 0 0 0\nv 0 0 1\nv 0 1 0\nv 0 1 1\nv 1 0 0\nv 1 0 1\nv 1 1 0\nv 1 1 1
+v 2 0 0\nv 2 1 0\nv 2 0 1
+usemtl blue
+f 1 2 4\nf 1 4 3\nf 5 7 8\nf 5 8 6\nf 1 5 6\nf 1 6 2\nf 3 4 8\nf 3 8 7\nf 1 3 7\nf 1 7 5
+f 2 6 8\nf 2 8 4
+usemtl red
+f 9 10 11
+"""
+CUBE_MTL = "newmtl blue\nKd 0 0 1\nnewmtl red\nKd 1 0 0\nnewmtl orange\nKd 1 0.5 0\n"
+
+
+def compiles_in_mujoco(parts: list[MeshPart]) -> bool:
+    """Whether MuJoCo takes every part as a mesh of its own (it refuses one of < 4 vertices)."""
+    import mujoco
+
+    spec = mujoco.MjSpec()
+    for index, part in enumerate(parts):
+        mesh = spec.add_mesh(name=f"part{index}")
+        mesh.uservert = part.vertices.ravel().tolist()
+        mesh.userface = part.faces.ravel().tolist()
+        body = spec.worldbody.add_body()
+        body.add_geom(type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"part{index}")
+    spec.compile()
+    return True
+
+
+def test_a_look_on_fewer_than_four_vertices_takes_the_nearest_colour_with_a_warning(tmp_path):
+    """One red triangle beside a blue cube: a part of 3 vertices, which MuJoCo refuses, so
+    the model would not load (vertex-coloured DAE files made many such parts). The triangle
+    is drawn in the cube's blue, with a warning; a mesh of small looks only takes their mean."""
+    write(tmp_path / "cube.mtl", CUBE_MTL)
+    path = write(tmp_path / "cube.obj", CUBE_OBJ)
+    warnings: list[str] = []
+    (part,) = load_parts(path, warnings=warnings)
+    assert part.rgba == (0.0, 0.0, 1.0, 1.0) and len(part.faces) == 13
+    assert warnings == [
+        "cube.obj: 1 of its looks (colours or materials) cover fewer than 4 vertices, a mesh "
+        "too small for MuJoCo: each is drawn in the look nearest in colour"
+    ]
+    assert compiles_in_mujoco([part])
+    # Two single triangles, red and orange: nothing large to fold into; their mean colour.
+    two = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nusemtl red\nf 1 2 3\nusemtl orange\nf 1 2 4\n"
+    path = write(tmp_path / "two.obj", "mtllib cube.mtl\n" + two)
+    (part,) = load_parts(path, warnings=[])
+    assert part.rgba == pytest.approx((1.0, 0.25, 0.0, 1.0), abs=0.01) and len(part.vertices) == 4
+    assert compiles_in_mujoco([part])
