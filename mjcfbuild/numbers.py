@@ -33,3 +33,15 @@ def output(value: float) -> str:
 def output_list(values: Iterable[float]) -> str:
     """Space-separated :func:`output` numbers."""
     return " ".join(output(v) for v in values)
+
+
+def beside(value: float, bound: float) -> str:
+    """``value`` to 3 significant digits, or as many more as it takes to read on the same
+    side of ``bound`` as it is (49.99 beside "at least 50" was shown as 50; a speed of
+    3.1416 beside its limit 3.14159 as 3.14, below it)."""
+    for digits in range(3, 10):
+        text = f"{value:.{digits}g}"
+        shown = float(text)
+        if shown != bound and (shown > bound) == (value > bound):
+            return text
+    return f"{value:.10g}"

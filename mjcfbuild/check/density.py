@@ -18,6 +18,8 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from mjcfbuild.numbers import beside
+
 if TYPE_CHECKING:
     import mujoco
 
@@ -130,7 +132,7 @@ def density_problem(mass: float, volume: Volume) -> tuple[str, float] | None:
         density = mass / volume.high
         return (
             f"its mass {mass:.4g} kg in at most {volume.high:.3g} m^3 of geometry is "
-            f"{_beside(density, HIGH_DENSITY)} kg/m^3, denser than anything robots are made of "
+            f"{beside(density, HIGH_DENSITY)} kg/m^3, denser than anything robots are made of "
             f"(at most {HIGH_DENSITY:,.0f})",
             density,
         )
@@ -138,21 +140,11 @@ def density_problem(mass: float, volume: Volume) -> tuple[str, float] | None:
         density = mass / volume.low
         return (
             f"its mass {mass:.4g} kg in at least {volume.low:.3g} m^3 of geometry is "
-            f"{_beside(density, LOW_DENSITY)} kg/m^3, lighter than anything robots are made of "
+            f"{beside(density, LOW_DENSITY)} kg/m^3, lighter than anything robots are made of "
             f"(at least {LOW_DENSITY:,.0f})",
             density,
         )
     return None
-
-
-def _beside(value: float, bound: float) -> str:
-    """``value`` to 3 significant digits, or as many more as it takes not to read as
-    ``bound`` (49.99 beside "at least 50" was shown as 50)."""
-    for digits in range(3, 10):
-        text = f"{value:.{digits}g}"
-        if float(text) != bound:
-            return text
-    return f"{value:.10g}"
 
 
 def density_fails(density: float) -> bool:

@@ -137,9 +137,10 @@ def _massless_with_geometry(robot: Robot | None, links: list[str]) -> list[str]:
 
 
 def _marker_decides(robot: Robot | None, markers: list[str], volume: Volume) -> bool:
-    """Whether the geometry of the massless ``markers`` may be what makes the body look too
-    light: the largest volume one of their shapes holds reaches the body's lower bound (or a
-    mesh, whose volume the URDF does not tell, is among them)."""
+    """Whether the geometry of the massless ``markers`` is what makes the body look too light:
+    the largest volume one of their primitives holds reaches the body's lower bound. A mesh's
+    volume the URDF does not tell, so a marker drawn as one decides nothing: a massless camera
+    link's mesh must not turn a mass in tonnes into a warning."""
     import math
 
     if robot is None:
@@ -158,8 +159,6 @@ def _marker_decides(robot: Robot | None, markers: list[str], volume: Volume) -> 
             elif kind == "capsule" and len(size) == 2:
                 radius, length = size
                 largest = max(largest, math.pi * radius**2 * (length + 4.0 / 3.0 * radius))
-            else:
-                return True
     return largest >= volume.low * (1.0 - 1e-6)
 
 

@@ -26,6 +26,7 @@ from mjcfbuild.check.findings import BodyFinding
 from mjcfbuild.check.parts import PartResult
 from mjcfbuild.check.speeds import JointSpeed
 from mjcfbuild.markup import markdown_text as md
+from mjcfbuild.numbers import beside
 
 R = TypeVar("R")
 
@@ -583,11 +584,14 @@ class CheckResults:
         (check.speeds: that many times the limit)."""
         over = self.speeds.over_limit if self.speeds else []
         failing = [speed for speed in over if speed.fails]
-        line = f"fastest {fastest.joint} {fastest.speed:.3g} (limit {fastest.limit:g})"
+        line = (
+            f"fastest {fastest.joint} {beside(fastest.speed, fastest.limit)} "
+            f"(limit {fastest.limit:g})"
+        )
         if not over:
             return f"{line}, within the bound", False
         worst = max(failing or over, key=lambda speed: (speed.speed / speed.limit, speed.joint))
-        most = f"{worst.joint} at {worst.speed / worst.limit:.3g} times its limit"
+        most = f"{worst.joint} at {beside(worst.speed / worst.limit, 1.0)} times its limit"
         if failing:
             return f"{line}; {len(failing)} past the bound ({most})", True
         joints = (

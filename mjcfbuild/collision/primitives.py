@@ -4,9 +4,9 @@
 Cylinders and capsules are tried along the axes of the oriented bounding box and the principal
 axes of the points; their cross-section is the smallest circle around the projected points.
 Points that span no volume (a flat plate, a rod) are first given a thickness of
-:data:`FLAT_THICKNESS` of their largest extent across what they lack, so a plate gets a thin box
-(a disc a thin cylinder) rather than a zero-width shape that collides with nothing and holds no
-mass.
+:data:`FLAT_THICKNESS` of their span (twice their farthest point from their mean) across what
+they lack, so a plate gets a thin box (a disc a thin cylinder) rather than a zero-width shape
+that collides with nothing and holds no mass.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-# The thickness given to points that span no volume, as a fraction of their largest extent.
+# The thickness given to points that span no volume, as a fraction of their span.
 FLAT_THICKNESS = 0.01
 
 
@@ -69,6 +69,16 @@ def _frame_with_z(axis: np.ndarray) -> np.ndarray:
     return np.column_stack([x, np.cross(z, x), z])
 
 
+def spans_volume(points: np.ndarray) -> bool:
+    """Whether ``points`` span a volume (not a plane, a line or a point), as every fit and
+    MuJoCo's convex hull need; the one rule for a flat mesh."""
+    points = np.asarray(points, dtype=np.float64)
+    if len(points) < 4:
+        return False
+    spread = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
+    return _rank(spread) == 3
+
+
 def _rank(spread: np.ndarray) -> int:
     """How many dimensions points span, from their singular values (relative to the largest)."""
     if spread.size == 0 or spread[0] <= 0:
@@ -78,7 +88,7 @@ def _rank(spread: np.ndarray) -> int:
 
 def _thickened(points: np.ndarray) -> np.ndarray:
     """``points``, or where they span less than a volume (a plane, a line, one point) the points
-    moved both ways by half of :data:`FLAT_THICKNESS` of their extent along each direction they
+    moved both ways by half of :data:`FLAT_THICKNESS` of their span along each direction they
     lack, so every fit has a volume to enclose (qhull refuses flat input)."""
     mean = points.mean(axis=0)
     _, spread, principal = np.linalg.svd(points - mean, full_matrices=False)
@@ -88,8 +98,11 @@ def _thickened(points: np.ndarray) -> np.ndarray:
     if rank == 0:
         thickness, spanned = 2e-6, np.eye(3)[:0]
     else:
-        extent = np.ptp((points - mean) @ principal[:rank].T, axis=0).max()
-        thickness, spanned = max(float(extent) * FLAT_THICKNESS, 2e-6), principal[:rank]
+        # Their span as twice the farthest point from their mean: the same whichever way the
+        # in-plane axes fall (a square plate's are any two, and its extent along them was
+        # anything between its side and its diagonal).
+        extent = 2.0 * float(np.linalg.norm(points - mean, axis=1).max())
+        thickness, spanned = max(extent * FLAT_THICKNESS, 2e-6), principal[:rank]
     lacking = _complement(spanned)
     grown = points
     for direction in lacking:

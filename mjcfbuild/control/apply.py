@@ -189,10 +189,16 @@ def make_ready(
         if record.source != USER:
             etree.SubElement(section, record.type, actuator_attributes(record))
         if record.armature is not None and record.joint in joints:
-            # Added to what the joint has (its URDF's or a default class's), which the inertia
-            # the gains were sized for already holds.
-            own = _joint_armature(model, record.joint)
-            joints[record.joint].set("armature", output_list([own + record.armature]))
+            # Added to what each joint has (its URDF's or a default class's), which the inertia
+            # the gains were sized for already holds; shared along the coupled motion, so a
+            # mimic follower (a finger's light distal link) is not left without the rotor
+            # inertia its leader got, and chatters against its equality at tens of rad/s.
+            shares = _armature_shares(model, record.joint, robot, record.armature)
+            for name, share in shares.items():
+                if name in joints:
+                    own = _joint_armature(model, name)
+                    joints[name].set("armature", output_list([own + share]))
+            record.armature = shares[record.joint]
     _fill_user_records(readiness, root)
 
     if _has_key(root, HOME):
@@ -325,6 +331,16 @@ def _coupled_motion(model, joint: str, robot: Robot):
     import numpy as np
 
     motion = np.zeros(model.nv)
+    for name, factor in _coupled_factors(model, joint, robot).items():
+        motion[model.jnt_dofadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)]] = factor
+    return motion
+
+
+def _coupled_factors(model, joint: str, robot: Robot) -> dict[str, float]:
+    """How far each joint of the model moves when ``joint`` moves by one unit: 1 for itself,
+    its mimic followers' multipliers (followers of followers too); hinges and slides only."""
+    import mujoco
+
     factors = {joint: 1.0}
     changed = True
     while changed:
@@ -335,14 +351,25 @@ def _coupled_motion(model, joint: str, robot: Robot):
                 continue
             factors[follower.name] = factors[mimic.joint] * mimic.multiplier
             changed = True
+    kept = {}
     for name, factor in factors.items():
         index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
         if index >= 0 and mujoco.mjtJoint(model.jnt_type[index]) in (
             mujoco.mjtJoint.mjJNT_HINGE,
             mujoco.mjtJoint.mjJNT_SLIDE,
         ):
-            motion[model.jnt_dofadr[index]] = factor
-    return motion
+            kept[name] = factor
+    return kept
+
+
+def _armature_shares(model, joint: str, robot: Robot, added: float) -> dict[str, float]:
+    """The armature each joint of ``joint``'s coupled motion gets of ``added``: the same on
+    each, so that along the motion the servo was sized for they add up to ``added`` (a joint
+    moved f times as far counts f^2 times)."""
+    factors = _coupled_factors(model, joint, robot) or {joint: 1.0}
+    total = sum(factor * factor for factor in factors.values())
+    share = added / total if total > 0 else added
+    return {name: share for name in factors} | {joint: share}
 
 
 def _unresolved_inertia(robot: Robot, joint, moved: float) -> None:

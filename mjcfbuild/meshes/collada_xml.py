@@ -38,12 +38,15 @@ class Reader:
                 self.ids.setdefault(element_id, []).append(element)
 
     def tag(self, name: str) -> str:
+        """The qualified tag of the COLLADA element ``name`` in this file's namespace."""
         return f"{{{self.ns}}}{name}" if self.ns else name
 
     def find(self, element, path: str):
+        """The first element at ``path`` (local names) under ``element``, in any namespace."""
         return element.find(_any_namespace(path))
 
     def findall(self, element, path: str):
+        """Every element at ``path`` (local names) under ``element``, in any namespace."""
         return element.findall(_any_namespace(path))
 
     def by_url(self, url: str | None, kinds: tuple[str, ...], referrer=None, scope=None):
@@ -79,6 +82,7 @@ class Reader:
         return None
 
     def error(self, message: str, element=None) -> InputError:
+        """An input error of this file, at ``element``'s line where one is given."""
         return InputError(
             message,
             file=self.path,

@@ -466,13 +466,10 @@ class _MeshCollision:
 
 def _is_flat(path: str) -> bool:
     """Whether the vertices of the OBJ file ``path`` lie in a plane, on a line or at a point."""
+    from mjcfbuild.collision.primitives import spans_volume
     from mjcfbuild.meshes.objfile import read_obj_vertices
 
-    points = read_obj_vertices(path)
-    if len(points) < 4:
-        return True
-    spread = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
-    return bool(spread[0] <= 0 or spread[2] <= spread[0] * 1e-9)
+    return not spans_volume(read_obj_vertices(path))
 
 
 def _rule_name(placed: PlacedShape) -> str:

@@ -174,8 +174,11 @@ def did_you_mean(name: str, candidates: list[str] | set[str]) -> str:
 
 
 def within_edits(name: str, candidates: list[str] | set[str], edits: int) -> bool:
-    """Whether a candidate other than ``name`` is at most ``edits`` edits from it."""
-    return any(_edits(name, c) <= edits for c in set(candidates) - {name})
+    """Whether a candidate other than ``name`` is at most ``edits`` edits from it, and at
+    most half its length ('prat' for 'part'; but 'x' is one edit from any one-letter name, and
+    a name of two letters two from any other: typos of none)."""
+    most = min(edits, len(name) // 2) if len(name) > 2 else 0
+    return most > 0 and any(_edits(name, c) <= most for c in set(candidates) - {name})
 
 
 def _edits(a: str, b: str) -> int:

@@ -29,8 +29,13 @@ def resolve_uri(uri: str, base_dir: Path, packages: PackageResolver) -> Path:
         if not package:
             raise InputError(f"'{uri}' names no package")
         if not inner.strip("/"):
+            # package:///base.stl (onshape-to-robot's, for a file beside the URDF): the
+            # package part is empty, and the one name is a file's.
+            empty = text.split("://", 1)[1].startswith("/")
             raise InputError(
-                f"'{uri}' names package '{package}' but no file in it",
+                f"'{uri}' names no package, only a file"
+                if empty
+                else f"'{uri}' names package '{package}' but no file in it",
                 hint=_no_file_hint(package, base_dir),
             )
         return normalise(packages.find(package) / unquote(inner))

@@ -85,6 +85,15 @@ def run(payload: dict) -> dict:
     except SimulationStopped as stop:
         raise CheckError(stop.line, file=request.manifest_label) from None
     assembly.warnings += _placement_warnings(assembly, request.floor)
+    drawn = any(link.visuals for link in robot.links)
+    shapeless = drawn and not any(link.collisions for link in robot.links)
+    if shapeless and not choices and not options.floating:
+        # A floating robot's stand says it has nothing to stand on; a fixed one said nothing.
+        assembly.warnings.append(
+            "the model has no collision geometry (the URDF has no <collision>, and no "
+            "collision rule makes any): nothing of it touches the floor, an object or itself; "
+            "set collision.default: visual in robot.yaml to collide with its visual shapes"
+        )
 
     # A model the build may not write (edited by hand) stops the step before any asset
     # changes: the hand-tuned model must not be left pointing at new geometry.

@@ -190,6 +190,18 @@ def test_the_fastest_joint_is_on_the_console():
         "(finger at 1.2 times its limit)",
     )
     assert line in results.console_lines() and results.passes
+    # A hair past its limit: shown with the digits that say so ("3.14 (limit 3.14159)" and
+    # "at 1 times its limit" read as not faster at all).
+    wrist = JointSpeed("wrist", 3.14161, 3.14159, "urdf", 50.0)
+    results = CheckResults(
+        loads=True, speeds=Speeds(FastestJoint("wrist", 3.14161, 3.14159), over_limit=[wrist])
+    )
+    line = (
+        "joint speeds",
+        "fastest wrist 3.142 (limit 3.14159); 1 joint faster than its limit, within the "
+        "bound (wrist at 1.00001 times its limit)",
+    )
+    assert line in results.console_lines()
 
 
 def test_the_reports_table_has_every_check_the_console_shows():

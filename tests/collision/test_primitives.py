@@ -63,8 +63,10 @@ def test_points_without_volume_get_a_thin_primitive_around_them(points, kind):
     assert fit.kind == kind
     local = (np.c_[points, np.ones(len(points))] @ np.linalg.inv(fit.transform).T)[:, :3]
     assert np.all(np.abs(local) <= np.array(fit.size) + 1e-9)
-    extent = np.ptp(points, axis=0).max()
-    assert min(fit.size) * 2 == pytest.approx(max(extent * 0.01, 2e-6), rel=0.2)
+    # The thickness is 1 % of the span (twice the farthest point from the mean), whichever
+    # way the plate's in-plane axes fall: exactly, not between its side and its diagonal.
+    span = 2 * np.linalg.norm(points - points.mean(axis=0), axis=1).max()
+    assert min(fit.size) * 2 == pytest.approx(max(span * 0.01, 2e-6), rel=1e-6)
     for kinds in (("sphere",), ("capsule",), ("cylinder",)):
         assert fit_primitive(points, kinds).kind == kinds[0]
 

@@ -290,6 +290,28 @@ def test_a_gripper_leader_is_sized_for_its_mimic_followers(tmp_path):
     assert record["kp"] > 10 * single["kp"]
 
 
+def test_the_speed_line_s_rotor_inertia_is_shared_with_the_mimic_followers(tmp_path):
+    """The URDF speed line's armature went on the leader alone: a light mimic follower held by
+    an equality to a leader of thousands of times its inertia chattered at tens of rad/s (an
+    Inspire hand's fingers on a G1, 80 times their velocity limit). Each joint of the coupled
+    motion now gets the same share, which adds up along it to what the servo was sized for."""
+    result = _build(tmp_path, robots.gripper(followers=2, finger_mass=0.002), free_joint=False)
+    model = mujoco.MjModel.from_xml_path(str(result.robot))
+    names = ["lead", "finger0_joint", "finger1_joint"]
+    shares = [
+        float(
+            model.dof_armature[
+                model.jnt_dofadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)]
+            ]
+        )
+        for name in names
+    ]
+    line = 40 / 0.2 * model.opt.timestep  # effort / velocity x time step (issue 33)
+    assert shares == pytest.approx([line / 3] * 3, rel=1e-9)
+    (record,) = readiness(tmp_path)["actuators"]
+    assert record["armature"] == pytest.approx(line / 3, rel=1e-9)  # what the leader has
+
+
 def test_a_forcerange_rule_sets_the_joint_limit_too(tmp_path):
     result = _build(
         tmp_path,

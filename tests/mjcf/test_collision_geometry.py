@@ -182,3 +182,24 @@ def test_the_primitive_policy_gives_a_flat_mesh_a_thin_box(cli, tmp_path):
     model = mujoco.MjModel.from_xml_path(str(tmp_path / "mjcf" / "r.xml"))
     assert collision_geoms(model, "a") == [("box", None)]
     assert 2e-4 < min(model.geom_size[model.geom_group == 3][0]) < 1e-3
+
+
+def test_a_fixed_robot_without_any_collision_geometry_is_warned_about(tmp_path):
+    """A hand whose URDF has no <collision> built and passed without a word: nothing of it
+    touches anything (a floating robot's stand already says so)."""
+    import re
+
+    from tests.conftest import run_cli, simple_manifest, two_link_urdf
+
+    drawn_only = re.sub(r"<collision>.*?</collision>", "", two_link_urdf(), flags=re.S)
+    write(tmp_path / "robot.urdf", drawn_only)
+    simple_manifest(tmp_path)
+    built = run_cli("build", "--no-check", cwd=tmp_path)
+    assert built.code == 0, built.stderr
+    assert "the model has no collision geometry (the URDF has no <collision>" in built.stderr
+    assert "set collision.default: visual" in built.stderr
+    simple_manifest(tmp_path, extra="collision: {default: visual}\n")
+    again = run_cli("build", "--no-check", cwd=tmp_path)
+    assert again.code == 0 and "no collision geometry" not in again.stderr
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "mjcf" / "robot.xml"))
+    assert any(model.geom_contype[g] for g in range(model.ngeom))

@@ -170,3 +170,14 @@ def test_a_package_xml_without_a_readable_name_falls_back_to_its_folder(tmp_path
     write(folder / "package.xml", text)
     resolver = PackageResolver({}, {"ROS_PACKAGE_PATH": str(tmp_path / "src")})
     assert resolver.find("arm") == folder
+
+
+def test_a_typo_is_a_few_edits_and_at_most_half_the_name():
+    from mjcfbuild.sources.packages import within_edits
+
+    assert within_edits("prat", {"part"}, 2)  # a transposition
+    assert within_edits("use_gazeb", {"use_gazebo"}, 2)
+    assert not within_edits("use_gazebo_gui", {"use_gazebo"}, 2)  # four edits
+    # Every short name is an edit or two from every other: no typo of any of them.
+    assert not within_edits("x", {"y"}, 2) and not within_edits("ab", {"cd"}, 2)
+    assert not within_edits("part", {"part"}, 2)  # itself is no typo

@@ -52,6 +52,11 @@ def test_a_package_uri_naming_no_file_in_its_package(tmp_path, resolver):
         resolve_uri("package://pkg/", tmp_path, resolver)
     assert info.value.message == "'package://pkg/' names package 'pkg' but no file in it"
     assert info.value.hint == "write package://pkg/<the file's path inside it>"
+    # onshape-to-robot's package:///wheel.obj: the package part is empty, not 'wheel.obj'.
+    with pytest.raises(InputError) as info:
+        resolve_uri("package:///wheel.obj", tmp_path, resolver)
+    assert info.value.message == "'package:///wheel.obj' names no package, only a file"
+    assert info.value.hint == "'wheel.obj' is a file beside the URDF: write filename=\"wheel.obj\""
 
 
 def test_package_uri_with_an_extra_slash(tmp_path, resolver):
