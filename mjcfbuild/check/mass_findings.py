@@ -82,11 +82,23 @@ def mass_findings(
         fails = not welded and density_fails(density)
         cause = density_cause(density)
         markers = _massless_with_geometry(robot, links) if density < HIGH_DENSITY else []
-        if markers and _marker_decides(robot, markers, volume):
+        marker = robot.link(markers[0]) if robot is not None and markers else None
+        at = f" (line {marker.line})" if marker is not None and marker.line else ""
+        decides = _marker_decides(robot, markers, volume) if markers else False
+        if decides is None:
+            # A part drawn with a mesh and given no <inertial>: the body weighs only what its
+            # other links give it (a tool's gram on a wrist), which no unit explains.
+            several = len(markers) > 1
+            named = ", ".join(f"'{link}'" for link in markers[:3]) + ("" if several else at)
+            cause = (
+                f"{'links' if several else 'link'} {named} "
+                f"{'have' if several else 'has'} geometry but no mass in the URDF (no "
+                "<inertial>): the body weighs only what its other links give it; give "
+                f"{'them their' if several else 'it its'} <inertial>"
+            )
+        elif decides:
             # A massless link fused into the body (a gunsight, a sensor's field of view)
             # adds volume that holds none of the mass: too light is then no proof of a unit.
-            marker = robot.link(markers[0]) if robot is not None else None
-            at = f" (line {marker.line})" if marker is not None and marker.line else ""
             cause = (
                 f"link '{markers[0]}'{at} adds geometry with no mass (a marker, a sensor's "
                 "field of view), whose volume is not the part's: give it a mass, or leave the "
@@ -136,15 +148,17 @@ def _massless_with_geometry(robot: Robot | None, links: list[str]) -> list[str]:
     return found
 
 
-def _marker_decides(robot: Robot | None, markers: list[str], volume: Volume) -> bool:
+def _marker_decides(robot: Robot | None, markers: list[str], volume: Volume) -> bool | None:
     """Whether the geometry of the massless ``markers`` is what makes the body look too light:
-    the largest volume one of their primitives holds reaches the body's lower bound. A mesh's
-    volume the URDF does not tell, so a marker drawn as one decides nothing: a massless camera
-    link's mesh must not turn a mass in tonnes into a warning."""
+    the largest volume one of their primitives holds reaches the body's lower bound. None where
+    one is drawn with a mesh, whose volume the URDF does not tell: it never turns a failure
+    into a warning (a massless camera mesh must not hide a mass in tonnes), but the cause is
+    then as likely the link without a mass as a unit."""
     import math
 
     if robot is None:
         return False
+    meshes = False
     largest = 0.0
     for name in markers:
         for shape in robot.link(name).shapes:
@@ -159,7 +173,11 @@ def _marker_decides(robot: Robot | None, markers: list[str], volume: Volume) -> 
             elif kind == "capsule" and len(size) == 2:
                 radius, length = size
                 largest = max(largest, math.pi * radius**2 * (length + 4.0 / 3.0 * radius))
-    return largest >= volume.low * (1.0 - 1e-6)
+            else:
+                meshes = True
+    if largest >= volume.low * (1.0 - 1e-6):
+        return True
+    return None if meshes else False
 
 
 def _urdf_mass(robot: Robot, links: list[str]) -> float:

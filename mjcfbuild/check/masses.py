@@ -72,6 +72,25 @@ def compare_masses(
     return problems, urdf_total, model_total
 
 
+def placeholder_bodies(robot: Robot, model) -> list[str]:
+    """The moving bodies with geometry none of whose URDF links has a mass (no ``<inertial>``,
+    or mass 0): the build gave them a placeholder (``inertia.min_mass``), not the robot's."""
+    import mujoco
+
+    links_of: dict[int, list[str]] = {}
+    for link, body in owner_bodies(robot, model).items():
+        links_of.setdefault(body, []).append(link)
+    drawn = {int(body) for body in model.geom_bodyid}
+    found = []
+    for body, links in sorted(links_of.items()):
+        if body == 0 or int(model.body_weldid[body]) == 0 or body not in drawn:
+            continue
+        inertials = [robot.link(link).inertial for link in links]
+        if all(inertial is None or inertial.mass <= 0 for inertial in inertials):
+            found.append(mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, body) or f"#{body}")
+    return found
+
+
 def owner_bodies(robot: Robot, model) -> dict[str, int]:
     """The model body each URDF link belongs to: its own body, its site's, or its parent's."""
     import mujoco

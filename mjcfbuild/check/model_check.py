@@ -19,7 +19,7 @@ from mjcfbuild.check.findings import Problem, structural_first
 from mjcfbuild.check.joints import compare_joints
 from mjcfbuild.check.kinematics import compare_kinematics
 from mjcfbuild.check.loading import AssetSource, compile_model
-from mjcfbuild.check.masses import compare_masses
+from mjcfbuild.check.masses import compare_masses, placeholder_bodies
 from mjcfbuild.check.meshstats import mesh_statistics
 from mjcfbuild.check.precision import relative_tolerance
 from mjcfbuild.check.reference import reference_from_record
@@ -153,6 +153,7 @@ def check_model(
             model_total=model_mass,
             problems=[p.text for p in mass_problems],
             repaired_bodies=sorted(repaired or ()),
+            placeholder_bodies=placeholder_bodies(robot, model),
         )
     )
     problems += mass_problems

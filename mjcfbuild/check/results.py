@@ -33,9 +33,9 @@ R = TypeVar("R")
 CANNOT_STAND = "the robot cannot stand without a controller"
 
 
-def plural(count: int, noun: str) -> str:
-    """``count`` and ``noun``, with an s where it is not one."""
-    return f"{count} {noun}{'' if count == 1 else 's'}"
+def plural(count: int, noun: str, nouns: str | None = None) -> str:
+    """``count`` and ``noun``, with an s where it is not one (or ``nouns``, where given)."""
+    return f"{count} {noun if count == 1 else (nouns or noun + 's')}"
 
 
 def to_plain(value: Any) -> Any:
@@ -124,6 +124,9 @@ class Masses:
     model_total: float = 0.0
     problems: list[str] = field(default_factory=list)
     repaired_bodies: list[str] = field(default_factory=list)
+    # Moving bodies with geometry whose every link lacks a mass in the URDF (no <inertial>, or
+    # mass 0): the model moves them with the build's placeholder, not the robot's mass.
+    placeholder_bodies: list[str] = field(default_factory=list)
 
 
 @dataclass(frozen=True)
@@ -496,10 +499,16 @@ class CheckResults:
             add("joints", plural(len(self.joints.problems), "problem"), bool(self.joints.problems))
         if self.masses:
             masses = self.masses
+            placeholders = (
+                f", {plural(len(masses.placeholder_bodies), 'moving body', 'moving bodies')} "
+                "without a mass in the URDF"
+                if masses.placeholder_bodies
+                else ""
+            )
             add(
                 "masses",
                 f"{masses.model_total:.6g} kg (URDF {masses.urdf_total:.6g} kg), "
-                f"{plural(len(masses.problems), 'problem')}",
+                f"{plural(len(masses.problems), 'problem')}{placeholders}",
                 bool(masses.problems),
             )
         if self.resting_contacts:
@@ -642,6 +651,18 @@ class CheckResults:
         standing = self.standing_note(escape)
         if standing:
             found.append(standing)
+        placeholders = self.masses.placeholder_bodies if self.masses is not None else []
+        if placeholders:
+            count = len(placeholders)
+            shown = ", ".join(f"'{escape(body)}'" for body in placeholders[:3])
+            if count > 3:
+                shown += f", {count - 3} more"
+            found.append(
+                f"{plural(count, 'moving body', 'moving bodies')} ({shown}) "
+                f"{'have' if count > 1 else 'has'} no mass in the URDF (no <inertial>): the "
+                f"model moves {'them' if count > 1 else 'it'} with a placeholder mass, so its "
+                "dynamics are not the robot's"
+            )
         return found
 
     def table_rows(self) -> list[str]:

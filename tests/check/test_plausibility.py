@@ -349,3 +349,48 @@ def test_a_heavy_body_welded_to_the_world_is_a_warning():
     (finding,) = found.findings
     assert finding.body == "support" and not finding.fails and finding.cause == "mass units"
     assert "welded to the world" in finding.problems[0] and found.failures == []
+
+
+def test_a_moving_link_without_a_mass_is_said_in_the_verdict(tmp_path):
+    """A kinematics-grade arm (hpp's Staubli: 5 of 6 links without <inertial>) passed every
+    check as a 1.5 g robot, its 0.1 g placeholders said only among the build's warnings."""
+    import re
+
+    urdf = arm_urdf(1.5, 0.0115)
+    arm = urdf.index(ARM_LINK)
+    urdf = urdf[:arm] + re.sub(r"<inertial>.*?</inertial>", "", urdf[arm:], count=1, flags=re.S)
+    write(tmp_path / "robot.urdf", urdf)
+    simple_manifest(tmp_path)
+    built = run_cli("build", cwd=tmp_path)
+    assert built.code == 0, built.stderr
+    checked = run_cli("check", cwd=tmp_path)
+    assert "1 moving body without a mass in the URDF" in checked.stdout
+    assert (
+        "checks pass, but 1 moving body ('arm') has no mass in the URDF (no <inertial>): the "
+        "model moves it with a placeholder mass, so its dynamics are not the robot's"
+    ) in checked.stdout
+    check = json.loads((tmp_path / "mjcf" / ".mjcfbuild" / "check.json").read_text())
+    assert check["masses"]["placeholder_bodies"] == ["arm"]
+
+
+def test_a_massless_link_drawn_with_a_mesh_is_named_as_the_cause_and_still_fails(tmp_path):
+    """A wrist whose mesh link has no <inertial> and whose tool gives it 1.5 g: failed as "a
+    mass in tonnes", when the link without a mass is as likely; named now, still failing (a
+    mesh's volume the URDF does not tell, so it cannot excuse the body)."""
+    import shutil
+
+    from tests.conftest import EXAMPLES
+
+    cover = (
+        '  <link name="cover"><visual><geometry><mesh filename="cover.stl"/></geometry>'
+        "</visual></link>\n"
+        '  <joint name="cover_joint" type="fixed"><parent link="arm"/><child link="cover"/>'
+        "</joint>\n"
+    )
+    urdf = arm_urdf(0.0015, 1.15e-5).replace("</robot>", cover + "</robot>")
+    shutil.copy(EXAMPLES / "arm" / "meshes" / "base.stl", tmp_path / "cover.stl")
+    done, check = build_arm(tmp_path, urdf)
+    assert done.code == EXIT_CHECK, done.stderr
+    (finding,) = check["plausibility"]["findings"]
+    assert finding["fails"]
+    assert "link 'cover' (line" in finding["detail"] and "no mass in the URDF" in finding["detail"]
