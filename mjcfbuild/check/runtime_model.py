@@ -51,8 +51,13 @@ def model_param(
         return [], []
     if not packaged and _installed(Path(value), packages):
         return [], []  # an install space's file of a package the built files are in no part of
+    # A file of a package on this machine named as $(find) wrote it: the same words in every
+    # checkout (its absolute path made the reports of two folders differ); an install space's
+    # path as the description wrote it.
+    installed = _installed(Path(value), packages)
+    shown = value if installed else f"$(find {named[0]})/{named[1]}"
     return [], [
-        f"{where}<hardware> param {PARAM} names {value}, which is neither the model checked "
+        f"{where}<hardware> param {PARAM} names {shown}, which is neither the model checked "
         "here nor its scene: mujoco_ros2_control loads that file, so this check does not "
         f"judge what it runs; point the param at the built scene, {label}{hint} (or install "
         "the built files there)"

@@ -43,11 +43,11 @@ def test_a_mujoco_model_naming_another_file_of_the_package_is_warned_at_its_line
     """xacro's $(find r_pkg) is the package's folder: its mujoco/robot.xml is not the scene
     the build writes (mjcf/scene.xml), which the runtime would then not load."""
     other = _build(tmp_path / "other", "$(find r_pkg)/mujoco/robot.xml", xacro=True)
-    folder = tmp_path / "other"
     (said,) = _said(other)
-    # At the xacro file's line, with the expanded one the build read.
+    # At the xacro file's line, with the expanded one the build read; the file as $(find)
+    # names it, the same in every checkout (not the absolute path it expanded to).
     assert said.startswith(
-        f"robot.urdf.xacro:15: <hardware> param mujoco_model names {folder}/mujoco/robot.xml, "
+        "robot.urdf.xacro:15: <hardware> param mujoco_model names $(find r_pkg)/mujoco/robot.xml, "
         "which is neither the model checked here nor its scene: mujoco_ros2_control loads that "
         "file, so this check does not judge what it runs; point the param at the built scene, "
         "mjcf/scene.xml ($(find r_pkg)/mjcf/scene.xml) (or install the built files there) "
