@@ -49,12 +49,12 @@ def model_param(
     packaged = {_in_package(file, packages) for file, _ in built} - {None}
     if named is None or named in packaged:
         return [], []
-    if not packaged and _installed(Path(value), packages):
+    installed = _installed(Path(value), packages)
+    if not packaged and installed:
         return [], []  # an install space's file of a package the built files are in no part of
     # A file of a package on this machine named as $(find) wrote it: the same words in every
     # checkout (its absolute path made the reports of two folders differ); an install space's
     # path as the description wrote it.
-    installed = _installed(Path(value), packages)
     shown = value if installed else f"$(find {named[0]})/{named[1]}"
     return [], [
         f"{where}<hardware> param {PARAM} names {shown}, which is neither the model checked "
