@@ -514,14 +514,7 @@ def _add_geometry(
         corners = indices.reshape(-1, stride)
         positions = _source_array(reader, vertex_input, mesh, cache)[:, :3]
         vertex_index = corners[:, int(vertex_input.get("offset", "0"))]
-        if vertex_index.size and (vertex_index.max() >= len(positions) or vertex_index.min() < 0):
-            outside = vertex_index.min() if vertex_index.min() < 0 else vertex_index.max()
-            raise reader.error(
-                f"a <{kind}> of geometry '{geometry.get('id')}' uses vertex "
-                f"{int(outside)}, but its source has {len(positions)} vertices "
-                "(vertex index out of range)",
-                primitive,
-            )
+        _refuse_outside(reader, geometry, primitive, vertex_index, len(positions), "vertex")
         points = positions[vertex_index]
         _refuse_collapsed(reader, geometry, primitive, points, int(counts.size))
         uv = None
@@ -587,15 +580,26 @@ def _corner_colours(
     chosen, per_vertex = next((f for f in found if _set(f[0]) in ("0", "")), found[0])
     colours = _source_array(reader, chosen, mesh, cache)
     index = vertex_index if per_vertex else corners[:, int(chosen.get("offset", "0"))]
-    if index.size and (index.max() >= len(colours) or index.min() < 0):
+    _refuse_outside(reader, geometry, primitive, index, len(colours), "colour")
+    return colours[index][:, :3]
+
+
+_PLURALS = {"vertex": "vertices", "colour": "colours"}
+
+
+def _refuse_outside(
+    reader: Reader, geometry, primitive, index: np.ndarray, size: int, noun: str
+) -> None:
+    """An error at ``primitive``'s line where ``index`` points outside a source of ``size``
+    entries (a ``noun`` each), as pycollada refuses it."""
+    if index.size and (index.max() >= size or index.min() < 0):
         outside = index.min() if index.min() < 0 else index.max()
         raise reader.error(
             f"a <{etree.QName(primitive).localname}> of geometry '{geometry.get('id')}' uses "
-            f"colour {int(outside)}, but its source has {len(colours)} colours (colour index "
+            f"{noun} {int(outside)}, but its source has {size} {_PLURALS[noun]} ({noun} index "
             "out of range)",
             primitive,
         )
-    return colours[index][:, :3]
 
 
 def _inputs_of(reader: Reader, mesh, primitive, vertex_input, semantic: str) -> list[tuple]:
