@@ -371,7 +371,7 @@ def record_build(
 ) -> None:
     """Write the stamp of the successful build of ``ctx`` that ran ``tasks``; ``warnings``
     are those of the tasks that made its outputs, for the fast path to print."""
-    from mjcfbuild.outputs import ASSEMBLY_REPORT, PARTS_DIR
+    from mjcfbuild.outputs import ASSEMBLY_REPORT
     from mjcfbuild.steps.depfile import Depfile
 
     manifest = ctx.stamp_key
@@ -386,15 +386,11 @@ def record_build(
     for task in tasks:
         inputs += task["file_dep"]
         outputs += task["targets"]
-    # Every depfile a task keeps: the source's, the SRDF's, the check's (in the state folder),
-    # the attach: parts' and the meshes'. A task's file_dep above is what it declared before it
-    # ran, without what it discovered then.
-    depfiles = [
-        *sorted(ctx.state_dir.glob("*.deps.json")),
-        *sorted((ctx.state_dir / PARTS_DIR).glob("*.deps.json")),
-        *sorted(ctx.products_dir.glob("*.deps.json")),
-    ]
-    for depfile in filter(None, (Depfile.read(path) for path in depfiles)):
+    # Every depfile a task of this plan keeps: the source's, the SRDF's, the check's, the
+    # attach: parts' and the meshes'. A task's file_dep above is what it declared before it
+    # ran, without what it discovered then. One a task no longer in the plan left (robot.yaml
+    # no longer names the SRDF) is not read: its files are no longer inputs.
+    for depfile in filter(None, (Depfile.read(path) for path in task_depfiles(tasks))):
         inputs += depfile.files
         absent += depfile.missing
         variables += list(depfile.environment)
@@ -435,6 +431,14 @@ def record_build(
         ctx.started_ns,
         globs=globs,
     )
+
+
+def task_depfiles(tasks: list[dict]) -> list[Path]:
+    """The depfiles the steps of ``tasks`` write (the ``depfile`` of each one's payload)."""
+    from mjcfbuild.graph.family import task_payload
+
+    payloads = filter(None, (task_payload(task) for task in tasks))
+    return sorted({Path(payload["depfile"]) for payload in payloads if payload.get("depfile")})
 
 
 def _needs_allow_outside(ctx: BuildContext) -> bool:

@@ -115,6 +115,14 @@ def file_task(
     }
 
 
+def task_payload(task: dict) -> dict | None:
+    """The payload (as a dict) of a task :func:`file_task` made; None for any other task."""
+    for action in task.get("actions", []):
+        if isinstance(action, tuple) and action[0] is run_step:
+            return action[1][3]
+    return None
+
+
 def run_step(
     ctx: GraphContext,
     name: str,

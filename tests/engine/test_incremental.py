@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import os
+import shutil
+import subprocess
+import sys
 import time
 
 import mujoco
@@ -325,3 +328,36 @@ def test_the_files_an_srdf_xacro_includes_are_its_inputs(tmp_path):
     assert full.code == 0 and " 0 run, " in full.stdout + full.stderr  # doit's own test agrees
     current = run_cli("check", "--up-to-date", cwd=tmp_path)
     assert current.code == 0, current.stderr
+
+
+def test_a_depfile_of_a_task_no_longer_planned_is_not_an_input(tmp_path):
+    # robot.yaml stops naming the SRDF: its task's depfile stays in the state folder, but the
+    # files it lists are no longer inputs, so removing them leaves the folder up to date (the
+    # stamp read every *.deps.json and sent each later no-op to the full build).
+    write(tmp_path / "robot.urdf", two_link_urdf())
+    write(tmp_path / "pkg" / "pairs.xacro", SRDF_PAIRS.format(state=""))
+    write(
+        tmp_path / "pkg" / "robot.srdf.xacro",
+        '<?xml version="1.0"?>\n<robot name="two_link" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="pairs.xacro"/>\n  <xacro:pairs/>\n</robot>\n',
+    )
+    write(
+        tmp_path / "robot.yaml",
+        "name: r\nsource:\n  urdf: robot.urdf\nself_collision: {srdf: pkg/robot.srdf.xacro}\n",
+    )
+    assert run_cli("build", "--no-check", "-j", "1", cwd=tmp_path).code == 0
+    write(tmp_path / "robot.yaml", "name: r\nsource:\n  urdf: robot.urdf\n")
+    assert run_cli("build", "--no-check", "-j", "1", cwd=tmp_path).code == 0
+    shutil.rmtree(tmp_path / "pkg")
+    probe = (
+        "from mjcfbuild.engine.stamp import nothing_to_do; "
+        "print(nothing_to_do('robot.yaml', run_check=False) is not None)"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", probe], cwd=tmp_path, capture_output=True, text=True, check=True
+    )
+    assert done.stdout.strip() == "True"
+    full = run_cli(
+        "build", "--no-check", "-j", "1", cwd=tmp_path, env={"MJCFBUILD_FULL_BUILD": "1"}
+    )
+    assert full.code == 0 and " 0 run, " in full.stdout + full.stderr
