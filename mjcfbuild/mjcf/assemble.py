@@ -29,7 +29,7 @@ from mjcfbuild.inputs.ros2_control import Ros2Control
 from mjcfbuild.manifest.simulation import ActuatorSettings
 from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies, ground_notes, link_places
-from mjcfbuild.mjcf.compile_errors import compile_error, spec_meshes, too_thin_mesh
+from mjcfbuild.mjcf.compile_errors import body_error, compile_error, spec_meshes, too_thin_mesh
 from mjcfbuild.mjcf.depth import refuse_deep_bodies
 from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
 from mjcfbuild.mjcf.precise import precise_xml
@@ -234,6 +234,9 @@ def _apply_additions(
         except Exception as exc:
             message = _first_line(exc).replace("Error: ", "")
             file, line = _raw_input_named(str(exc), inputs)
+            from_urdf = body_error(message, str(exc), robot, bodies) if file is None else None
+            if from_urdf is not None:
+                raise from_urdf from None
             raise ModelError(
                 f"MuJoCo rejected the model with its inputs: {message}",
                 hint="check the mujoco_inputs and raw MJCF",

@@ -3,8 +3,15 @@ file, line and mesh (MuJoCo names its own asset names and the prepared file)."""
 
 from __future__ import annotations
 
+import re
+from typing import TYPE_CHECKING
+
 from mjcfbuild.errors import ModelError
 from mjcfbuild.mjcf.prepared import MeshAsset, Prepared
+
+if TYPE_CHECKING:
+    from mjcfbuild.mjcf.bodies import Body
+    from mjcfbuild.urdf.model import Robot
 
 # What to do about the MuJoCo compile errors a URDF can cause, by a phrase of their message.
 _COMPILE_HINTS = {
@@ -78,3 +85,34 @@ def too_thin_mesh(text: str) -> str | None:
     if marker not in text:
         return None
     return text.split(marker, 1)[1].split(" ", 1)[0].split("\n", 1)[0].strip(" .")
+
+
+def body_error(message: str, error: str, robot: Robot, bodies: list[Body]) -> ModelError | None:
+    """MuJoCo's ``error`` about a body the URDF's links make (``Element name 'base', id 1``)
+    as one line at the link's URDF line (its ``<inertial>`` for an inertia error), naming the
+    links fused into that body; None when MuJoCo names no such body."""
+    named = re.search(r"Element name '([^']*)', id \d+", error)
+    body = next((b for b in bodies if named and b.name == named.group(1)), None)
+    if body is None:
+        return None
+    by_name = {link.name: link for link in robot.links}
+    links = [by_name[frame.link] for frame in body.links if frame.link in by_name]
+    if not links:
+        return None
+    inertia = "inertia" in message
+    with_mass = [link for link in links if link.inertial is not None]
+    first = (with_mass or links)[0] if inertia else links[0]
+    line = first.inertial.line if inertia and first.inertial else first.line
+    fused = [link.name for link in links if link is not links[0]]
+    together = f" (links {', '.join([links[0].name, *fused])} fused into it)" if fused else ""
+    hint = (
+        "check the <inertial> of these links: their mass, inertia and origin"
+        if inertia
+        else "check this link and the joints that lead to it"
+    )
+    return ModelError(
+        f"MuJoCo rejected body '{body.name}'{together}: {message}",
+        file=robot.source,
+        line=line,
+        hint=hint,
+    )

@@ -186,6 +186,27 @@ def test_compile_errors_point_at_the_urdf_line(tmp_path):
     assert info.value.location.line == 2
 
 
+def test_mujoco_refusing_a_body_s_inertia_names_its_links_and_urdf_line(tmp_path):
+    # Found by the long fuzz run: an inertial 2e12 m from its link, fused with a fixed child,
+    # sums to principal moments MuJoCo refuses (A + B >= C broken in the last digits). The
+    # error named no file, and told a URDF user to check mujoco_inputs they did not write.
+    urdf = (
+        '<robot name="fuzz">\n<link name="base"><inertial><origin xyz="0 0 2071817224192.0"/>'
+        '<mass value="0.5"/><inertia ixx="0.5" iyy="0.5" izz="0.5" ixy="0" ixz="0" iyz="0"/>'
+        '</inertial></link>\n<link name="l1"/>\n<link name="l2"><inertial><mass value="0.5"/>'
+        '<inertia ixx="0.5" iyy="0.5" izz="0.5" ixy="0" ixz="0" iyz="0"/></inertial></link>\n'
+        '<joint name="j0" type="revolute"><parent link="base"/><child link="l1"/>'
+        '<limit lower="0" upper="0" effort="1" velocity="1"/></joint>\n'
+        '<joint name="j1" type="fixed"><parent link="base"/><child link="l2"/></joint>\n</robot>'
+    )
+    with pytest.raises(ModelError) as info:
+        build(urdf, tmp_path, fuse_static=True)
+    error = info.value
+    assert (error.location.file, error.location.line) == ("robot.urdf", 2)
+    assert "body 'base' (links base, l2 fused into it)" in error.one_line()
+    assert "A + B >= C" in error.one_line() and "mujoco_inputs" not in error.one_line()
+
+
 def test_free_joint_with_and_without_fusing(tmp_path):
     urdf = two_link_urdf(
         extra='<link name="tool"/><joint name="t" type="fixed"><parent link="arm"/><child link="tool"/>'
