@@ -2,9 +2,13 @@
 
 Build steps write warnings as plain sentences, one per joint, link or mesh they are about. Two
 warnings are of one kind when they differ only in their variable parts: the ``file:line:`` they
-start with, quoted names and values, and numbers. A kind seen once prints as it is; a kind seen
-N times prints as one line, ``N × <the sentence, '…' where it varies>: a, b, c, ...``, keeping
-the first warning's location so an editor can still jump to it. The report lists every warning.
+start with, quoted names and values, and numbers. A kind seen once prints as it is. A kind seen
+N times whose warnings differ in one part only (the subject: a link, a joint, a file) prints as
+``N × <the sentence, '…' for the subject>: a, b, c, ...``; one whose warnings differ in more
+than that (a name and its figures, a URI and its path) would read as a bare template there
+(``'…' ('…')``, ``principal moments … … … -> … … …``), so it prints its first warning whole and
+``(and N-1 more like it: b, c, d, ...)``. Either keeps the first warning's location so an editor
+can still jump to it. The report lists every warning.
 """
 
 from __future__ import annotations
@@ -16,6 +20,7 @@ SHOWN_SUBJECTS = 3
 
 # A location first: "file:line:" or "file:line:column:", or a file name with a suffix.
 _LOCATION = re.compile(r"^(?P<where>[^\s:'\"]+:\d+(?::\d+)?|[^\s:'\"]+\.\w+): ")
+_LINE = re.compile(r":\d+(?::\d+)?$")
 # The parts of a sentence that name what it is about: quoted text and free-standing numbers.
 _SLOT = re.compile(
     r"(?<!\w)'(?P<single>[^']*)'(?!\w)|\"(?P<double>[^\"]*)\"|"
@@ -87,33 +92,56 @@ def _line(kind: _Kind, more: str) -> str:
         return kind.texts[0]
     columns = list(zip(*kind.slots, strict=True))
     varying = [len(set(column)) > 1 for column in columns]
+    subjects = _subjects(kind, columns, varying)
+    if sum(varying) + _files_vary(kind) > 1:
+        return _first_and_more(kind, subjects, more)
     text = kind.pieces[0]
     for index, column in enumerate(columns):
         value = "…" if varying[index] else column[0]
         quote = kind.quoted[index]
         text += f"{quote}{value}{quote}{kind.pieces[index + 1]}"
-    subjects = _subjects(kind, columns, varying)
     line = f"{len(kind.texts)} × {text.rstrip('.')}"
-    if subjects:
-        shown = ", ".join(subjects[:SHOWN_SUBJECTS])
-        rest = len(subjects) - SHOWN_SUBJECTS
-        line += f": {shown}" + (f", ... {rest} more" if rest > 0 else "")
+    shown = [subject for subject in dict.fromkeys(subjects) if subject]
+    if len(shown) > 1:
+        rest = len(shown) - SHOWN_SUBJECTS
+        line += f": {', '.join(shown[:SHOWN_SUBJECTS])}" + (
+            f", ... {rest} more" if rest > 0 else ""
+        )
         if rest > 0 and more:
             line += f" ({more})"
     first = kind.locations[0]
     return f"{first}: {line}" if first is not None else line
 
 
+def _first_and_more(kind: _Kind, subjects: list[str], more: str) -> str:
+    """The first warning whole, then how many more of its kind there are and what they are
+    about: ``<first> (and 4 more like it: b, c, d, ...; all in report.md)``."""
+    others = list(dict.fromkeys(subjects[1:]))
+    listed = ", ".join(others[:SHOWN_SUBJECTS])
+    if len(others) > SHOWN_SUBJECTS:
+        listed += ", ..." + (f"; {more}" if more else "")
+    return f"{kind.texts[0].rstrip('.')} (and {len(kind.texts) - 1} more like it: {listed})"
+
+
+def _files_vary(kind: _Kind) -> bool:
+    """Whether each warning is about a file of its own: they start with different files and
+    no line (a mesh's warnings), so the file is what they are about."""
+    places = kind.locations
+    return all(p is not None and not _LINE.search(p) for p in places) and len(set(places)) > 1
+
+
 def _subjects(kind: _Kind, columns: list[tuple[str, ...]], varying: list[bool]) -> list[str]:
-    """What each warning of a kind is about: its first varying quoted name, else its first
-    varying value, else its location."""
+    """What each warning of a kind is about: its file (where each names a file of its own),
+    else its first varying quoted name, else its first varying value, else its location."""
+    places = [location or "" for location in kind.locations]
+    if _files_vary(kind):
+        return places
     quoted_first = sorted(range(len(columns)), key=lambda i: (kind.quoted[i] == "", i))
     for index in quoted_first:
         if varying[index]:
             quote = kind.quoted[index] or "'"
             return [
                 f"{quote}{value}{quote}" if re.search(r"[\s,]", value) else value
-                for value in dict.fromkeys(columns[index])
+                for value in columns[index]
             ]
-    places = [location for location in kind.locations if location is not None]
-    return list(dict.fromkeys(places)) if len(set(places)) > 1 else []
+    return places

@@ -17,13 +17,81 @@ def test_warnings_that_differ_only_in_their_subject_are_one_line():
     ]
 
 
-def test_values_that_vary_are_elided_and_those_that_agree_are_kept():
+def test_values_that_agree_are_kept_in_the_line():
+    notes = [
+        f"joint '{name}' has velocity=\"0\" in the URDF: not a limit" for name in ("a", "b", "c")
+    ]
+    assert group_warnings(notes) == [
+        "3 × joint '…' has velocity=\"0\" in the URDF: not a limit: a, b, c"
+    ]
+
+
+def test_warnings_that_differ_in_more_than_their_subject_show_the_first_whole():
+    # A subject and its line would read "joint '…' ... (line …)": the first one is shown.
     notes = [
         f"joint '{name}' has velocity=\"0\" in the URDF (line {line}): not a limit"
         for name, line in (("a", 3), ("b", 9), ("c", 20))
     ]
     assert group_warnings(notes) == [
-        "3 × joint '…' has velocity=\"0\" in the URDF (line …): not a limit: a, b, c"
+        "joint 'a' has velocity=\"0\" in the URDF (line 3): not a limit (and 2 more like it: b, c)"
+    ]
+
+
+def test_inertia_repairs_read_with_their_figures():
+    """Each repair's figures are its own: elided, the line read "principal moments … … … ->
+    … … …" (a generated five-link arm's report)."""
+    repairs = [
+        "urdf/robot.urdf:4: body 'l1': principal inertia too small for a moving body; "
+        "principal moments 0 0 0 -> 1e-08 1e-08 1e-08",
+        "urdf/robot.urdf:7: body 'l2': principal inertia too small for a moving body; "
+        "principal moments 0 1e-09 2e-09 -> 1e-08 1e-08 1e-08",
+        "urdf/robot.urdf:10: body 'l3': principal inertia breaks A + B >= C; "
+        "principal moments 0.01 0.01 0.05 -> 0.025000000025 0.025000000025 0.05",
+        "urdf/robot.urdf:13: body 'l4': principal inertia breaks A + B >= C; "
+        "principal moments 0.01 0.02 0.09 -> 0.040000000045 0.050000000045 0.09",
+        "urdf/robot.urdf:16: body 'l5': principal inertia breaks A + B >= C; "
+        "principal moments 0.0001 0.001 0.002 -> 0.000550000001 0.001450000001 0.002",
+    ]
+    assert group_warnings(repairs, "all in mjcf/report/report.md") == [
+        f"{repairs[0]} (and 1 more like it: l2)",
+        f"{repairs[2]} (and 2 more like it: l4, l5)",
+    ]
+    assert not any("…" in line for line in group_warnings(repairs))
+
+
+def test_files_outside_every_package_name_the_first_uri_and_its_path():
+    """genesis-world's go2: each warning quotes a URI and the path it reads, which elided read
+    "'…' ('…') is outside every package folder"."""
+    outside = [
+        f"urdf/robot.urdf:{line}: '../meshes/{name}.dae' ('/src/go2/meshes/{name}.dae') is "
+        "outside every package folder and robot.yaml's folder, and the model publishes it; move "
+        "the file into the description, or set source.read_outside: true if it is meant"
+        for line, name in ((4, "base"), (9, "hip"), (14, "thigh"), (19, "calf"), (24, "foot"))
+    ]
+    assert group_warnings(outside, "all in mjcf/report/report.md") == [
+        f"{outside[0]} (and 4 more like it: ../meshes/hip.dae, ../meshes/thigh.dae, "
+        "../meshes/calf.dae, ...; all in mjcf/report/report.md)"
+    ]
+
+
+def test_a_warning_per_mesh_file_names_the_files():
+    """Each mesh's own material library is missing: the meshes are the subjects, not their
+    libraries, and the line does not say 'm0.obj: 5 ×' of five files."""
+    missing = [
+        f"meshes/m{i}.obj: refers to 'colours.mtl' (material library), 'm{i}.mtl' (material "
+        "library), not found beside it; the model shows the mesh without them (add the files, "
+        "or remove the reference from the mesh)"
+        for i in range(5)
+    ]
+    assert group_warnings(missing, "all in report.md") == [
+        f"{missing[0]} (and 4 more like it: meshes/m1.obj, meshes/m2.obj, meshes/m3.obj, ...; "
+        "all in report.md)"
+    ]
+    # The same sentence about several files lists the files.
+    shared = [f"meshes/m{i}.obj: refers to 'colours.mtl', not found beside it" for i in (1, 2)]
+    assert group_warnings(shared) == [
+        "meshes/m1.obj: 2 × refers to 'colours.mtl', not found beside it: meshes/m1.obj, "
+        "meshes/m2.obj"
     ]
 
 

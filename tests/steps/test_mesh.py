@@ -61,7 +61,7 @@ def test_a_collision_only_mesh_is_not_warned_about_its_materials_and_the_rest_gr
         warnings += _missing_warning(obj, f"{name}.obj", ["collision", "visual"])
     assert len(warnings) == 2
     grouped = group_warnings(warnings)
-    assert len(grouped) == 1 and grouped[0].startswith("link1.obj: 2 × refers to"), grouped
+    assert grouped == [f"{warnings[0]} (and 1 more like it: link2.obj)"]
 
 
 def test_a_file_outside_the_current_folder_is_named_without_climbs(tmp_path, monkeypatch):
