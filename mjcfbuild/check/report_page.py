@@ -7,6 +7,7 @@ through :mod:`mjcfbuild.markup`: a link named like a picture or a table stays te
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 from mjcfbuild.check.findings import BodyFinding
@@ -16,8 +17,9 @@ from mjcfbuild.markup import markdown_block, markdown_code, markdown_target
 from mjcfbuild.markup import markdown_text as md
 
 
-def markdown(report: dict) -> str:
-    """The human report."""
+def markdown(report: dict, place: Callable[[str], str] = str) -> str:
+    """The human report; ``place`` names a ``file:line`` of an expanded URDF where its
+    element was written, as the warnings (placed by the build) do."""
     lines = [f"# {md(report['robot'])}: build report", ""]
     lines.append(
         f"Model {markdown_code(report['model'])} ({report.get('bodies') or '?'} bodies, "
@@ -31,7 +33,7 @@ def markdown(report: dict) -> str:
     lines += _control(report.get("readiness") or {})
     lines += tuning_lines(report.get("tuning") or {})  # issue 33
     lines += _self_collision(report.get("self_collision"))
-    lines += _plausibility(report, results)
+    lines += _plausibility(report, results, place)
     lines += _training(report.get("training"))
     if report["repairs"]:
         lines += [
@@ -338,7 +340,9 @@ def _range(values) -> str:
     return f"[{values[0]:.4g}, {values[1]:.4g}]" if values else ""
 
 
-def _plausibility(report: dict, results: CheckResults | None) -> list[str]:
+def _plausibility(
+    report: dict, results: CheckResults | None, place: Callable[[str], str] = str
+) -> list[str]:
     """Where the meshes are: the plausibility test, COLLADA up axes, MJCF parts' own contacts."""
     found = results.plausibility if results else None
     decisions = report.get("up_axis") or []
@@ -358,7 +362,7 @@ def _plausibility(report: dict, results: CheckResults | None) -> list[str]:
         if findings:
             lines += ["| body | result | problems | likely cause |", "|---|---|---|---|"]
             lines += [
-                f"| {_named(f)} | {'fails' if f.fails else 'warning'} | "
+                f"| {_named(f, place)} | {'fails' if f.fails else 'warning'} | "
                 f"{md('; '.join(f.problems))} | {md(f.detail)} |"
                 for f in findings
             ]
@@ -393,12 +397,12 @@ def _plausibility(report: dict, results: CheckResults | None) -> list[str]:
     return lines
 
 
-def _named(finding: BodyFinding) -> str:
+def _named(finding: BodyFinding, place: Callable[[str], str] = str) -> str:
     """A plausibility finding's body, or what else it names (a link, the robot), with the
-    URDF line to fix where there is one."""
+    URDF line to fix where there is one (as ``place`` names it)."""
     subject = finding.subject
     name = finding.body if subject == "body" else f"{subject} {finding.body}"
-    return md(f"{name} ({finding.where})" if finding.where else name)
+    return md(f"{name} ({place(finding.where)})" if finding.where else name)
 
 
 def _armature(actuator: dict) -> str:

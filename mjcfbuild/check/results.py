@@ -610,9 +610,10 @@ class CheckResults:
         )
         return f"{line}; {joints}, within the bound ({most})", False
 
-    def console_verdict(self) -> str:
+    def console_verdict(self, place: Callable[[str], str] = str) -> str:
         """The verdict the console gives: how many checks failed, or that they pass and what
-        they did not prove, or "check passed"."""
+        they did not prove, or "check passed"; ``place`` names the warning it quotes where
+        the build's warnings are named (a xacro source's line)."""
         if not self.passes:
             return f"{len(self.failures)} check(s) failed"
         caveats = self.caveats()
@@ -621,7 +622,7 @@ class CheckResults:
         warnings = self.warnings()  # the caveats hold the standing note: these are others
         if warnings:
             count = f"{len(warnings)} warning{'s' if len(warnings) > 1 else ''}"
-            return f"checks pass with {count}: {warnings[0]}"
+            return f"checks pass with {count}: {place(warnings[0])}"
         return "check passed"
 
     def caveats(self, escape: Callable[[str], str] = str) -> list[str]:

@@ -20,6 +20,8 @@ from mjcfbuild.console import report_error, report_warnings, shown_path
 from mjcfbuild.errors import EXIT_CHECK, EXIT_OK, CheckError, MjcfbuildError, UsageError
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from mjcfbuild.check.results import CheckResults
 
 
@@ -159,12 +161,18 @@ def _options(args, settings=None):
 
 
 def _print(
-    results: CheckResults, label: str, quiet: bool = False, stale: str = "", listed_in: str = ""
+    results: CheckResults,
+    label: str,
+    quiet: bool = False,
+    stale: str = "",
+    listed_in: str = "",
+    place: Callable[[str], str] = str,
 ) -> int:
     """One line per check with its result, then the verdict (with what the checks did not
-    prove, when they pass, and ``stale``: how the model is older than its inputs); the exit
-    code. ``quiet``: the failures alone. Failures of one kind (a joint too fast, each joint)
-    are one line, as warnings are, with where they are all listed (``listed_in``)."""
+    prove, when they pass, and ``stale``: how the model is older than its inputs; the
+    warning it quotes as ``place`` names it); the exit code. ``quiet``: the failures alone.
+    Failures of one kind (a joint too fast, each joint) are one line, as warnings are, with
+    where they are all listed (``listed_in``)."""
     from mjcfbuild.warning_groups import SHOWN_SUBJECTS, group_warnings
 
     # Their figures matter while they are few: only kinds with more than a line shows group.
@@ -182,7 +190,7 @@ def _print(
         print(contacts.exclude)
     for failure in failures:
         print(f"mjcfbuild: check failed: {failure}", file=sys.stderr)
-    verdict = results.console_verdict()
+    verdict = results.console_verdict(place)
     if stale:
         verdict += f", {stale}"
     print(f"mjcfbuild: {verdict}")
@@ -350,11 +358,13 @@ def _manifest(ctx, args) -> int:
     import dataclasses
     import json
     import tempfile
+    from functools import partial
     from pathlib import Path
 
     from mjcfbuild.check.reference import read_kinematics
     from mjcfbuild.engine import written
     from mjcfbuild.engine.guard import check_output_folder
+    from mjcfbuild.engine.placing import placed_warning
     from mjcfbuild.engine.progress import Progress
     from mjcfbuild.engine.report import write_report
     from mjcfbuild.engine.runner import build_lock
@@ -387,11 +397,14 @@ def _manifest(ctx, args) -> int:
         write_results(results, ctx.state(CHECK_RESULTS), {})
         folder = write_report(ctx)
         written.record(ctx, ctx.session.written)
+    place = partial(placed_warning, ctx)  # where the build names them: the xacro's lines
     if not getattr(args, "quiet", False):  # as the build prints them: one line per kind
-        report_warnings(results.warnings(), shown_path(folder / "report.md"), base_dir=ctx.base_dir)
+        warnings = [place(warning) for warning in results.warnings()]
+        report_warnings(warnings, shown_path(folder / "report.md"), base_dir=ctx.base_dir)
     quiet = bool(getattr(args, "quiet", False))
     report = shown_path(folder / "report.md")
-    code = _print(results, shown_path(ctx.robot_path), quiet, _stale_since_built(ctx), report)
+    stale = _stale_since_built(ctx)
+    code = _print(results, shown_path(ctx.robot_path), quiet, stale, report, place)
     if not quiet:
         print(f"  report: {shown_path(folder / 'report.md')}")
         if (folder / "index.html").is_file():  # output.page: its tables are the report's

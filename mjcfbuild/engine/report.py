@@ -15,11 +15,13 @@ products came from (the cache counters), how long each decomposition took - goes
 from __future__ import annotations
 
 import json
+from functools import partial
 from pathlib import Path
 from typing import Any
 
 from mjcfbuild.check.report_page import markdown
 from mjcfbuild.engine.context import BuildContext
+from mjcfbuild.engine.placing import placed_location, placed_warnings
 from mjcfbuild.families import registry
 from mjcfbuild.families.decompose import decomposition_summaries
 from mjcfbuild.fsutil import write_if_changed
@@ -74,9 +76,11 @@ def record_warnings(ctx: BuildContext, tasks: list[str]) -> None:
 
 
 def recorded_warnings(ctx: BuildContext) -> list[str]:
-    """The warnings of the tasks that made the outputs, in task order, each once."""
+    """The warnings of the tasks that made the outputs, in task order, each once, placed
+    where the console places them (a xacro source's file and line): what the report lists
+    and a no-op prints."""
     recorded = read_record(ctx.state(WARNINGS))
-    return list(dict.fromkeys(w for warnings in recorded.values() for w in warnings))
+    return placed_warnings(ctx, [w for warnings in recorded.values() for w in warnings])
 
 
 def write_report(ctx: BuildContext) -> Path:
@@ -104,7 +108,8 @@ def write_report(ctx: BuildContext) -> Path:
                     value = {**given, **value}  # products: a count from each family
                 report[key] = value
     _write(folder / "report.json", (json.dumps(report, indent=1, sort_keys=True) + "\n").encode())
-    _write(folder / "report.md", markdown(report).encode())
+    # A check's finding names the link to fix where the warnings name it.
+    _write(folder / "report.md", markdown(report, partial(placed_location, ctx)).encode())
     _page_tables(ctx, folder, report)
     ctx.session.written.update(str(folder / n) for n in (".gitignore", "report.json", "report.md"))
     return folder
@@ -129,7 +134,7 @@ def _page_tables(ctx: BuildContext, folder: Path, report: dict) -> None:
         from mjcfbuild.page.tables import tables_script
 
         (folder / "page").mkdir(exist_ok=True)
-        _write(folder / "page" / "tables.js", tables_script(report))
+        _write(folder / "page" / "tables.js", tables_script(report, partial(placed_location, ctx)))
         ctx.session.written.add(str(folder / "page" / "tables.js"))
         return
     # Only what builds wrote goes (engine.written): a file of the user's stays.

@@ -22,6 +22,7 @@ from mjcfbuild.engine.guard import (
     claim_output_folder,
 )
 from mjcfbuild.engine.loader import DATABASE, run_doit
+from mjcfbuild.engine.placing import expanded_urdfs, placed_warnings
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.tasks import build_tasks, planning_tasks
 from mjcfbuild.engine.training_files import remove_renamed_model, remove_stale_variant
@@ -29,8 +30,8 @@ from mjcfbuild.errors import CheckError, InputError, MjcfbuildError, OutputError
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import TEMP_SUFFIX, remove_stale_temp_files, write_if_changed
 from mjcfbuild.manifest.pinpoint import pinpoint
-from mjcfbuild.outputs import SOURCE_URDF, planned_urdf
-from mjcfbuild.sources.origins import point_at_source, point_warning_at_source
+from mjcfbuild.outputs import SOURCE_URDF
+from mjcfbuild.sources.origins import point_at_source
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.folderlock import Holder
@@ -430,7 +431,7 @@ def _shown_warnings(ctx: BuildContext, progress: Progress, tasks: list[dict]) ->
         given = task_warnings(ctx, [task["name"] for task in tasks if task["name"] in done])
     else:
         given = dict(ctx.session.task_warnings)
-    return _placed(
+    return placed_warnings(
         ctx, [*(w for warnings in given.values() for w in warnings), *build_warnings(ctx)]
     )
 
@@ -440,15 +441,7 @@ def _model_warnings(ctx: BuildContext) -> list[str]:
     shows them (placed in the xacro source): what a no-op prints for the model."""
     from mjcfbuild.engine.report import recorded_warnings
 
-    return _placed(ctx, recorded_warnings(ctx))
-
-
-def _placed(ctx: BuildContext, warnings: list[str]) -> list[str]:
-    """``warnings`` placed in the xacro source they came from, each once."""
-    for urdf in _expanded_urdfs(ctx):
-        label = ctx.label(urdf)
-        warnings = [point_warning_at_source(w, urdf, label, ctx.base_dir) for w in warnings]
-    return list(dict.fromkeys(warnings))
+    return recorded_warnings(ctx)
 
 
 def _run_stage(
@@ -467,7 +460,7 @@ def _run_stage(
         if ctx.manifest_file is not None:
             error = pinpoint(error, ctx.manifest_label, ctx.manifest_file)
         xacro = ctx.source_path if ctx.source_kind == "xacro" else None
-        for urdf in _expanded_urdfs(ctx):  # where their elements were written (xacro)
+        for urdf in expanded_urdfs(ctx):  # where their elements were written (xacro)
             top = xacro if urdf == ctx.state(SOURCE_URDF) else None
             point_at_source(error, urdf, ctx.label(urdf), ctx.base_dir, top)
         if error not in result.errors:
@@ -498,15 +491,6 @@ def _database_failure(ctx: BuildContext) -> MjcfbuildError | None:
         with contextlib.suppress(OSError):
             probe.unlink(missing_ok=True)
     return None
-
-
-def _expanded_urdfs(ctx: BuildContext) -> list[Path]:
-    """The URDFs a build makes that errors may point at: the expanded source, the parts'
-    and the composed one."""
-    from mjcfbuild.outputs import part_urdf
-
-    parts = [part_urdf(ctx, index) for index in range(len(ctx.manifest.attach))]
-    return [ctx.state(SOURCE_URDF), planned_urdf(ctx), *parts]
 
 
 def _first_line(text: str) -> str:

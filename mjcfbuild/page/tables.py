@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Callable
 from dataclasses import asdict
 
 from mjcfbuild.markup import html_text
@@ -173,13 +174,14 @@ def _plain(text: str) -> str:
     return re.sub(r"\\([!-/:-@\[-`{-~])", r"\1", text)
 
 
-def tables_script(report: dict) -> bytes:
+def tables_script(report: dict, place: Callable[[str], str] = str) -> bytes:
     """The report's tables as ``window.MJCFBUILD_TABLES`` (HTML), for the page: the same
-    bytes for the same report (build times and cache counters are not in it)."""
+    bytes for the same report (build times and cache counters are not in it); ``place``
+    names a URDF line as report.md does (:func:`mjcfbuild.check.report_page.markdown`)."""
     from mjcfbuild.check.report_page import markdown
     from mjcfbuild.check.results import CheckResults
 
-    text = markdown(report)
+    text = markdown(report, place)
     checked = report.get("check")
     results = CheckResults.from_dict(checked) if checked else CheckResults()
     # What the build's check measured, which the page shows beside what the browser measures.

@@ -95,8 +95,7 @@ def point_at_source(
     location = error.location
     if location is None or location.file != label:
         return
-    expanded = os.path.relpath(urdf, expanded_from)
-    expanded = str(urdf) if expanded.startswith("..") else expanded
+    expanded = _expanded_name(urdf, expanded_from)
     if location.line is None:
         if xacro is not None:
             error.message += f" [expanded: {expanded}]"
@@ -112,20 +111,41 @@ def point_at_source(
 
 def point_warning_at_source(text: str, urdf: Path, label: str, base_dir: Path) -> str:
     """A warning that starts ``label:line:`` (a line of the expanded URDF ``urdf``), started
-    instead with where that element was written; others unchanged."""
+    instead with where that element was written (:func:`source_location`), the expanded line
+    named after it; others unchanged."""
     head = f"{label}:"
     if not text.startswith(head):
         return text
     number, sep, rest = text[len(head) :].partition(":")
     if not sep or not number.isdigit():
         return text
-    error = MjcfbuildError(rest.strip(), file=label, line=int(number))
-    # Named from base_dir, as the warning's file is: the report and the no-op fast path keep
-    # warnings, which the console names from wherever it runs (console.report_warnings).
-    point_at_source(error, urdf, label, base_dir, expanded_from=base_dir)
-    if error.location is None or error.location.file == label:
+    expanded = f"{label}:{number}"
+    where = source_location(expanded, urdf, label, base_dir)
+    if where == expanded:
         return text
-    return f"{error.location}: {error.message}"
+    return f"{where}: {rest.strip()} [expanded: {_expanded_name(urdf, base_dir)}:{number}]"
+
+
+def source_location(where: str, urdf: Path, label: str, base_dir: Path) -> str:
+    """``where``, a ``label:line`` of the expanded URDF ``urdf``, as the ``file:line`` where
+    that line's element was written; any other ``where`` (another file, no line, a URDF read
+    as written) as it is. The file is named from ``base_dir`` even outside it (``../x.xacro``):
+    the report keeps it, whichever folder the build ran in, and the console names it from
+    the current folder (console.report_warnings)."""
+    number = where.removeprefix(f"{label}:")
+    if number == where or not number.isdigit():
+        return where
+    found = written_in(read_origins(urdf), int(number))
+    if found is None:
+        return where
+    return f"{Path(os.path.relpath(found[0], base_dir)).as_posix()}:{found[1]}"
+
+
+def _expanded_name(urdf: Path, expanded_from: Path | None) -> str:
+    """The expanded URDF as an error names it: from ``expanded_from`` (else the current
+    folder), or absolute where that would climb out of it."""
+    expanded = os.path.relpath(urdf, expanded_from)
+    return str(urdf) if expanded.startswith("..") else expanded
 
 
 def _shown(file: str, base_dir: Path) -> str:

@@ -9,6 +9,7 @@ from mjcfbuild.sources.origins import (
     origins_json,
     point_at_source,
     point_warning_at_source,
+    source_location,
     written_at,
 )
 
@@ -88,3 +89,20 @@ def test_the_first_line_of_a_name_given_twice_is_mapped_with_the_error(tmp_path)
     assert other.message == "x is defined twice (first at macros.xacro:4)"
     sent = InputError.from_dict(InputError("m", file="f", line=2, first_line=1).to_dict())
     assert sent.first_line == 1
+
+
+def test_a_warnings_source_outside_the_manifest_folder_is_named_from_it(tmp_path):
+    """The report keeps placed warnings: a xacro in a sibling folder is named from robot.yaml's
+    folder (the same text wherever both are copied), not by its absolute path."""
+    base = tmp_path / "robot"
+    urdf = base / "mjcf" / ".mjcfbuild" / "source.urdf"
+    urdf.parent.mkdir(parents=True)
+    xacro = tmp_path / "description" / "arm.urdf.xacro"
+    origins_file(urdf).write_bytes(origins_json({5: (str(xacro), 12)}))
+    label = "mjcf/.mjcfbuild/source.urdf"
+    assert source_location(f"{label}:7", urdf, label, base) == "../description/arm.urdf.xacro:12"
+    assert source_location(f"{label}:4", urdf, label, base) == f"{label}:4"  # before any
+    assert source_location("robot.urdf:7", urdf, label, base) == "robot.urdf:7"
+    assert point_warning_at_source(f"{label}:7: a warning", urdf, label, base) == (
+        "../description/arm.urdf.xacro:12: a warning [expanded: mjcf/.mjcfbuild/source.urdf:7]"
+    )
