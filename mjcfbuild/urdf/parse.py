@@ -37,7 +37,7 @@ from mjcfbuild.urdf.model import (
     Vec3,
 )
 from mjcfbuild.urdf.transforms import vec3
-from mjcfbuild.xmlguard import refuse_entities
+from mjcfbuild.xmlguard import blank_inert, refuse_entities
 
 _SEPARATORS = re.compile(r"[\s,]+")
 # A number as C's strtod reads it in the C locale, which urdfdom (ROS's URDF parser) requires:
@@ -66,6 +66,7 @@ def parse_xml(data: bytes, display_file: str, warnings: list[str]) -> etree._Ele
     refuse_entities(data, display_file)
     data = _repair_declaration(data, display_file, warnings)
     data = _drop_trailing_nuls(data, display_file, warnings)
+    _warn_late_instruction(data, display_file, warnings)
     try:
         return etree.fromstring(data, secure_parser())
     except etree.XMLSyntaxError as exc:
@@ -78,6 +79,17 @@ def parse_xml(data: bytes, display_file: str, warnings: list[str]) -> etree._Ele
                 "stop reading there (remove it)"
             )
             return parse_xml(data[:offset], display_file, warnings)
+        second = _second_root(data, exc)
+        if second is not None:
+            tag, offset = second
+            warnings.append(
+                f"{display_file}:{exc.lineno}: a second root element <{tag}> after the first "
+                "one's end; ignored with what follows it, as MuJoCo's and urdfdom's parser "
+                "(tinyxml2) read the first one only (remove it)"
+            )
+            return parse_xml(data[:offset], display_file, warnings)
+        if exc.code == _INVALID_ENCODING and not _is_utf8(data) and _says_utf8(data):
+            return parse_xml(_latin1_bytes(data, display_file, warnings), display_file, warnings)
         if exc.code != 201:  # 201: namespace prefix not defined
             raise InputError(
                 f"malformed XML: {_clean_xml_message(exc.msg)}",
@@ -151,6 +163,32 @@ def _repair_declaration(data: bytes, display_file: str, warnings: list[str]) -> 
     return declaration + space + data[found.end() :]
 
 
+_LEADING_INSTRUCTIONS = re.compile(rb"(?:\s*<\?.*?\?>)*", re.DOTALL)
+
+
+def _warn_late_instruction(data: bytes, display_file: str, warnings: list[str]) -> None:
+    """A warning at the first ``<?...?>`` after the file's first node that is not one: libxml2
+    reads the file without it, tinyxml2 (MuJoCo's and urdfdom's parser) refuses the file
+    ("XML_ERROR_PARSING_DECLARATION"), since it takes every ``<?`` for a declaration, which
+    only the start of a file may hold."""
+    body = data.removeprefix(b"\xef\xbb\xbf")
+    start = _LEADING_INSTRUCTIONS.match(body)
+    begin = start.end() if start is not None else 0
+    blanked = blank_inert(body[begin:])
+    found = blanked.find(b"<?")
+    if found < 0:
+        return
+    offset = len(data) - len(body) + begin + found
+    name = re.match(rb"<\?([^\s?>]*)", data[offset:])
+    tag = name.group(1).decode("utf-8", "replace") if name else ""
+    line = data.count(b"\n", 0, offset) + 1
+    warnings.append(
+        f"{display_file}:{line}: <?{tag} ...?> after the start of "
+        "the file is read without it here, but MuJoCo's and urdfdom's parser (tinyxml2) refuse "
+        "the file there (remove it, or move it before everything else)"
+    )
+
+
 def _is_utf8(data: bytes) -> bool:
     try:
         data.decode("utf-8")
@@ -183,18 +221,73 @@ def _stray_closing_tag(data: bytes, exc: etree.XMLSyntaxError) -> tuple[str, int
     root (text, an unclosed element) it refuses as lxml does, so only this is taken."""
     if exc.code != 5 or not exc.position or exc.lineno is None:  # 5: extra content at end
         return None
-    line, column = exc.position
+    offset = _offset(data, *exc.position)
+    found = _CLOSING_TAG.match(data, offset) if offset is not None else None
+    if offset is None or found is None or not data[:offset].strip():
+        return None
+    return found.group().decode("utf-8", "replace"), offset
+
+
+# A start tag as tinyxml2 reads one: "<" and a name.
+_OPENING_TAG = re.compile(rb"<([A-Za-z_:][^\s>/]*)")
+
+
+def _second_root(data: bytes, exc: etree.XMLSyntaxError) -> tuple[str, int] | None:
+    """(the tag, its offset in ``data``) where ``exc`` is about a second root element after
+    the first one's end. tinyxml2 reads every top-level element of a well-formed sequence and
+    MuJoCo's and urdfdom's importers take the first; what follows the first root refused
+    there (text, an unclosed element) stays an error here."""
+    if exc.code != 5 or not exc.position or exc.lineno is None:  # 5: extra content at end
+        return None
+    offset = _offset(data, *exc.position)
+    found = _OPENING_TAG.match(data, offset) if offset is not None else None
+    if offset is None or found is None or not data[:offset].strip():
+        return None
+    try:  # the rest as tinyxml2 reads it: elements, comments and white space, well formed
+        rest = etree.fromstring(b"<rest>" + data[offset:] + b"</rest>", secure_parser())
+    except etree.XMLSyntaxError:
+        return None
+    if (rest.text or "").strip() or any((child.tail or "").strip() for child in rest):
+        return None
+    return found.group(1).decode("utf-8", "replace"), offset
+
+
+def _offset(data: bytes, line: int, column: int) -> int | None:
+    """The byte offset of libxml2's ``line`` and ``column`` (counted in characters; the file
+    is UTF-8, or ASCII, where it matters)."""
     lines = data.split(b"\n")
     if not 0 < line <= len(lines) or column < 1:
         return None
     start = sum(len(text) + 1 for text in lines[: line - 1])
-    # libxml2 counts columns in characters; the file is UTF-8 (or ASCII) where it matters
-    before = lines[line - 1].decode("utf-8", "replace")[: column - 1].encode("utf-8")
-    offset = start + len(before)
-    found = _CLOSING_TAG.match(data, offset)
-    if found is None or not data[:offset].strip():
-        return None
-    return found.group().decode("utf-8", "replace"), offset
+    return start + len(lines[line - 1].decode("utf-8", "replace")[: column - 1].encode("utf-8"))
+
+
+_INVALID_ENCODING = 81  # libxml2: "Invalid bytes in character encoding"
+
+
+def _says_utf8(data: bytes) -> bool:
+    """Whether ``data``'s XML declaration names UTF-8 or no encoding (XML's default)."""
+    found = _DECLARATION.match(data.removeprefix(b"\xef\xbb\xbf"))
+    encoding = _ENCODING.search(found.group(2)) if found is not None else None
+    return encoding is None or encoding.group(3).replace(b"-", b"").lower() == b"utf8"
+
+
+def _latin1_bytes(data: bytes, display_file: str, warnings: list[str]) -> bytes:
+    """``data`` with each byte that is not UTF-8 read as Latin-1 (0xE9: 'é'), with a warning
+    at the first: tinyxml2, MuJoCo's and urdfdom's parser, takes bytes as they are and reads
+    the file, where libxml2 refuses it."""
+    text = data.decode("utf-8", "surrogateescape")
+    first = next(i for i, c in enumerate(text) if "\udc80" <= c <= "\udcff")
+    count = sum("\udc80" <= c <= "\udcff" for c in text)
+    byte = ord(text[first]) - 0xDC00
+    more = f" (and {count - 1} more)" if count > 1 else ""
+    warnings.append(
+        f"{display_file}:{text.count(chr(10), 0, first) + 1}: byte 0x{byte:02x} is not UTF-8"
+        f"{more}; read as Latin-1 ('{chr(byte)}'), as MuJoCo's and urdfdom's parser (tinyxml2) "
+        "read the file without a word (save it as UTF-8)"
+    )
+    fixed = "".join(chr(ord(c) - 0xDC00) if "\udc80" <= c <= "\udcff" else c for c in text)
+    return fixed.encode("utf-8")
 
 
 def _clean_xml_message(message: str) -> str:

@@ -470,3 +470,113 @@ def test_a_missing_link_is_not_matched_to_one_that_merely_shares_letters():
     with pytest.raises(InputError) as info:
         parse_urdf(urdf.encode(), "r.urdf")
     assert "head" in info.value.message and "did you mean" not in (info.value.hint or "")
+
+
+def _mujoco_reads(data: bytes, tmp_path) -> bool:
+    """Whether MuJoCo's URDF import reads ``data`` from a file (tinyxml2 takes its bytes)."""
+    import mujoco
+
+    path = tmp_path / "robot.urdf"
+    path.write_bytes(data)
+    try:
+        mujoco.MjModel.from_xml_path(str(path))
+    except ValueError:
+        return False
+    return True
+
+
+ROBOT = b'<robot name="a">\n<link name="l"/>\n</robot>\n'
+
+
+@pytest.mark.parametrize(
+    ("after", "read"),
+    [
+        (b'<robot name="b"><link name="m"/></robot>\n', True),
+        (b"<!-- a comment -->\n<other/>\n<!-- and another -->\n", True),
+        (b'<robot name="b"><link name="m">\n', False),  # unclosed: tinyxml2 refuses it too
+        (b"<other/>\ntext\n", False),
+    ],
+)
+def test_a_second_root_element_is_ignored_where_mujoco_reads_the_first(after, read, tmp_path):
+    data = ROBOT + after
+    assert _mujoco_reads(data, tmp_path) == read
+    if not read:
+        with pytest.raises(InputError, match="Extra content"):
+            parse_urdf(data, "r.urdf")
+        return
+    robot = parse_urdf(data, "r.urdf")
+    assert [link.name for link in robot.links] == ["l"]
+    tag = "other" if b"<other" in after else "robot"
+    line = 5 if after.startswith(b"<!--") else 4
+    assert robot.warnings == [
+        f"r.urdf:{line}: a second root element <{tag}> after the first one's end; ignored with "
+        "what follows it, as MuJoCo's and urdfdom's parser (tinyxml2) read the first one only "
+        "(remove it)"
+    ]
+
+
+def test_an_element_before_the_robot_is_refused_as_mujoco_refuses_it(tmp_path):
+    data = b"<other/>\n" + ROBOT
+    assert not _mujoco_reads(data, tmp_path)
+    with pytest.raises(InputError, match="the root element is <other>"):
+        parse_urdf(data, "r.urdf")
+
+
+@pytest.mark.parametrize(
+    "data",
+    [
+        ROBOT + b"<!-- a comment after the root -->\n",
+        b"\xef\xbb\xbf" + ROBOT,  # a UTF-8 byte order mark
+        b'\xef\xbb\xbf<?xml version="1.0" encoding="utf-8"?>\n' + ROBOT,
+    ],
+)
+def test_a_comment_after_the_root_and_a_byte_order_mark_are_read_as_mujoco_reads_them(
+    data, tmp_path
+):
+    assert _mujoco_reads(data, tmp_path)
+    robot = parse_urdf(data, "r.urdf")
+    assert [link.name for link in robot.links] == ["l"] and robot.warnings == []
+
+
+@pytest.mark.parametrize(
+    ("data", "line", "more"),
+    [
+        (ROBOT.replace(b"</robot>", b'<note text="caf\xe9"/>\n</robot>'), 3, ""),
+        (ROBOT.replace(b"</robot>", b"<!-- caf\xe9 na\xefve -->\n</robot>"), 3, " (and 1 more)"),
+        (b'<?xml version="1.0" encoding="UTF-8"?>\n' + ROBOT.replace(b'"l"', b'"l\xe9"'), 3, ""),
+    ],
+)
+def test_a_latin_1_byte_is_read_as_latin_1_where_mujoco_reads_the_file(data, line, more, tmp_path):
+    """tinyxml2 takes bytes as they are; libxml2 refused the file ("Invalid bytes in character
+    encoding")."""
+    assert _mujoco_reads(data, tmp_path)
+    robot = parse_urdf(data, "r.urdf")
+    assert [link.name for link in robot.links] in (["l"], ["l\u00e9"])
+    assert robot.warnings == [
+        f"r.urdf:{line}: byte 0xe9 is not UTF-8{more}; read as Latin-1 ('\u00e9'), as MuJoCo's "
+        "and urdfdom's parser (tinyxml2) read the file without a word (save it as UTF-8)"
+    ]
+
+
+def test_an_instruction_after_the_start_is_read_with_a_warning_that_mujoco_refuses_it(tmp_path):
+    """tinyxml2 takes every <?...?> for a declaration, which only the start may hold: MuJoCo
+    refuses the file, where libxml2 reads it without the instruction."""
+    leading = b'<?xml version="1.0"?>\n<?xml-model href="urdf.xsd"?>\n' + ROBOT
+    assert _mujoco_reads(leading, tmp_path)
+    assert parse_urdf(leading, "r.urdf").warnings == []
+    for data, line in (
+        (ROBOT + b'<?xml-stylesheet href="s.css"?>\n', 4),
+        (ROBOT.replace(b"<link", b"<?xml-stylesheet?>\n<link"), 2),
+        (b"<!-- header -->\n<?xml-model?>\n" + ROBOT, 2),
+    ):
+        assert not _mujoco_reads(data, tmp_path)
+        robot = parse_urdf(data, "r.urdf")
+        assert [link.name for link in robot.links] == ["l"]
+        tag = data.split(b"<?")[1].split(b" ")[0].split(b"?")[0].decode()
+        assert robot.warnings == [
+            f"r.urdf:{line}: <?{tag} ...?> after the start of the file is read without it here, "
+            "but MuJoCo's and urdfdom's parser (tinyxml2) refuse the file there (remove it, or "
+            "move it before everything else)"
+        ]
+    # One in a comment is text.
+    assert parse_urdf(ROBOT + b"<!-- <?pi?> -->\n", "r.urdf").warnings == []
