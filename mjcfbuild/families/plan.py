@@ -81,8 +81,9 @@ FAMILY = Family(
     # mimic attribute; 18: each geometry's own line; 19: a ROS 1 transmission naming a joint the
     # URDF lacks warned of, joint types suggested; 20: each mesh's looks_from (convert -a), each
     # transmission's block, joint reduction, offset and roleless elements, <hardware> param
-    # lines; a closing tag after the root read with a warning
-    format=20,
+    # lines; a closing tag after the root read with a warning; 21: a second root element and
+    # Latin-1 bytes read as MuJoCo reads them, a late <?...?> warned of
+    format=21,
     tools=("lxml",),
     tasks=_tasks,
     stage="planning",

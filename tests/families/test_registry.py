@@ -34,7 +34,7 @@ from tests.families.toy_step import ToyPayload
 # that family's tasks in every folder built before.
 BEFORE_FORMATS = {
     "expand": 5,
-    "plan": 20,
+    "plan": 21,
     "mesh": 13,
     "decompose": 4,
     "assemble": 26,
