@@ -32,12 +32,14 @@ def run(args: argparse.Namespace) -> int:
     from mjcfbuild.cli.convert import parse_packages
     from mjcfbuild.manifest.starter import write_starter_manifest
 
-    path, warnings = write_starter_manifest(
+    path, warnings, notes = write_starter_manifest(
         args.source, parse_packages(args.package), args.output, force=args.force
     )
     if getattr(args, "quiet", False):  # errors only
         return 0
     for warning in warnings:
         print(f"mjcfbuild: warning: {warning}", file=sys.stderr)
+    for note in notes:
+        print(f"mjcfbuild: {note}")
     print(f"mjcfbuild: wrote {path}; build it with: mjcfbuild build {path}")
     return 0

@@ -32,10 +32,11 @@ _CAD_NAME = re.compile(r"\.(SLDASM|SLDPRT|STEP|STP|IAM|IPT)$", re.IGNORECASE)
 
 def write_starter_manifest(
     source: str, packages: dict[str, str], output: str, force: bool = False
-) -> tuple[Path, list[str]]:
-    """Write a manifest for ``source`` to ``output``; return its path and what the build will
-    stop at unless the user acts, one line each: packages the description names that were not
-    found, and the error that kept the description from being read."""
+) -> tuple[Path, list[str], list[str]]:
+    """Write a manifest for ``source`` to ``output``; return its path, what the build will
+    stop at unless the user acts (packages the description names that were not found, the
+    error that kept the description from being read) and what the manifest chose for the
+    user to know (files read from outside the description), one line each."""
     source_path = Path(source).resolve()
     if not source_path.is_file():
         raise InputError(f"source file {unreadable_file(source) or 'not found'}", file=source)
@@ -49,15 +50,22 @@ def write_starter_manifest(
     if manifest_path.exists() and not force:
         raise UsageError(f"{output} already exists", hint="pass --force to overwrite it")
     warnings: list[str] = []
+    notes: list[str] = []
     text = starter_manifest_text(
-        source_path, packages, manifest_path.parent, Path(output).name, warnings, label=source
+        source_path,
+        packages,
+        manifest_path.parent,
+        Path(output).name,
+        warnings,
+        label=source,
+        notes=notes,
     )
     try:
         manifest_path.parent.mkdir(parents=True, exist_ok=True)
         manifest_path.write_text(text)
     except OSError as exc:
         raise OutputError(f"cannot write the manifest: {exc.strerror}", file=output) from None
-    return Path(output), warnings
+    return Path(output), warnings, notes
 
 
 def starter_manifest_text(
@@ -67,12 +75,16 @@ def starter_manifest_text(
     manifest_name: str = "robot.yaml",
     warnings: list[str] | None = None,
     label: str | None = None,
+    notes: list[str] | None = None,
 ) -> str:
     """The manifest text: source, packages it needs, xacro args with their defaults.
     ``warnings`` receives what the first build would stop at: packages the description names
     that were not found, and the error that kept the description from being read, naming the
-    source as ``label`` (as the user gave it; by default its path)."""
+    source as ``label`` (as the user gave it; by default its path). ``notes`` receives what
+    the manifest chose that the user should know: that it reads files from outside every
+    package folder (``source.read_outside``)."""
     warnings = [] if warnings is None else warnings
+    notes = [] if notes is None else notes
     label = label or str(source)
     data = source.read_bytes()
     # What a comment mentions is no reference (its line breaks kept, for the lines below).
@@ -90,7 +102,7 @@ def starter_manifest_text(
 
     needed = sorted({m.decode() for m in _PACKAGE_URI.findall(live) + _FIND.findall(live)})
     known = dict(packages)
-    notes: dict[str, str] = {}
+    package_notes: dict[str, str] = {}
     references = package_references(data)
     for package in needed:
         if package in known:
@@ -104,7 +116,7 @@ def starter_manifest_text(
             found = infer_package(package, named, source)
             if found is not None:
                 known[package] = str(found.folder)
-                notes[package] = (
+                package_notes[package] = (
                     f"  # {package}: the package.xml naming it "
                     f"({_relative(claimed[0], manifest_dir)}) holds none of the files the "
                     "description names in it; they are in this folder"
@@ -113,7 +125,7 @@ def starter_manifest_text(
         if claimed:
             known[package] = str(claimed[0])
             if len(claimed) > 1:
-                notes[package] = _twice_note(package, claimed, manifest_dir)
+                package_notes[package] = _twice_note(package, claimed, manifest_dir)
                 warnings.append(
                     f"{shown_path(claimed[1] / 'package.xml')}: package '{package}' is named by "
                     f"{len(claimed)} package.xml files; the manifest takes the nearest, "
@@ -124,7 +136,7 @@ def starter_manifest_text(
         found = infer_package(package, references.get(package, []), source)
         if found is not None:
             known[package] = str(found.folder)
-            notes[package] = _inferred_note(package, found, needed)
+            package_notes[package] = _inferred_note(package, found, needed)
     enclosing = find_enclosing_package(source)
     # One name per folder: the description's own package only under a name it uses, or under
     # its package.xml's name when no other name already points there.
@@ -144,6 +156,12 @@ def starter_manifest_text(
         f"  {'xacro' if is_xacro else 'urdf'}: {relative}",
     ]
     early = _read_before_declared(live, data) if is_xacro else {}
+    # The folders the build reads from without a warning (families/plan.py's roots).
+    roots = [manifest_dir, source.parent, *(Path(folder) for folder in known.values())]
+    outside: list[tuple[str, str]] = []
+    free_joint, unread, expanded = _free_joint_lines(
+        source, is_xacro, known, data, label, early, roots, outside
+    )
     if is_xacro:
         arguments = _declared_args(data)
         if arguments:
@@ -157,12 +175,21 @@ def starter_manifest_text(
             lines += [f"    {arg}: {_yaml_scalar(value)}" for arg, value in early.items()]
         else:
             lines.append("  args: {}")
+    if outside:
+        lines += _read_outside_lines(outside)
+        where, uri = outside[0]
+        more, them = (f" and {len(outside) - 1} more files", "them") if outside[1:] else ("", "it")
+        notes.append(
+            f"{where}: reads '{uri}'{more} from outside every package folder and "
+            f"{manifest_name}'s folder; {manifest_name} sets source.read_outside: true, so the "
+            f"build reads {them} without a warning (to publish a self-contained model, move "
+            f"{them} into the description and drop that line)"
+        )
     lines += [
         "",
         "# ROS packages named by package:// URIs and $(find ...), as name: folder.",
         "# Packages not listed are looked up in ROS_PACKAGE_PATH and AMENT_PREFIX_PATH.",
     ]
-    free_joint, unread, expanded = _free_joint_lines(source, is_xacro, known, data, label, early)
     unresolved = [package for package in needed if package not in known]
     # Read with its default arguments, the description did without these: found nowhere, so
     # xacro skipped what names them (a $(find) under a false <xacro:if>), and its URDF names
@@ -183,8 +210,8 @@ def starter_manifest_text(
     ]
     lines.append("packages:" if known else "packages: {}")
     for package in sorted(known):
-        if package in notes:
-            lines.append(notes[package])
+        if package in package_notes:
+            lines.append(package_notes[package])
         lines.append(f"  {package}: {_relative(Path(known[package]), manifest_dir)}")
     missing = _not_in_the_environment(unresolved)
     if missing:
@@ -237,6 +264,18 @@ def starter_manifest_text(
         "",
     ]
     return "\n".join(lines)
+
+
+def _read_outside_lines(outside: list[tuple[str, str]]) -> list[str]:
+    """The manifest's ``read_outside`` line and the comment saying which files made it."""
+    first = outside[0][1]
+    more = f" and {len(outside) - 1} more" if outside[1:] else ""
+    return [
+        f"  # The description reads '{first}'{more} from outside every package folder and",
+        "  # this folder; the build warns of each such file unless this is set. To publish a",
+        "  # self-contained model, move them into the description and drop this line.",
+        "  read_outside: true",
+    ]
 
 
 def _twice_note(package: str, folders: list[Path], manifest_dir: Path) -> str:
@@ -295,11 +334,14 @@ def _free_joint_lines(
     packages: dict[str, str],
     data: bytes,
     label: str,
-    args: dict[str, str] | None = None,
+    args: dict[str, str],
+    roots: list[Path],
+    outside: list[tuple[str, str]],
 ) -> tuple[list[str], str | None, bytes | None]:
     """The manifest's free_joint line, decided from the robot's kinematics and geometry
     (urdf.base); from its names only where the description cannot be read here, with the
-    error (one line) that kept it from being read; and the URDF it read (None where none)."""
+    error (one line) that kept it from being read; and the URDF it read (None where none).
+    ``outside`` receives the files it reads from outside ``roots`` (``_first_stop``)."""
     from mjcfbuild.sources.origins import map_lines
     from mjcfbuild.urdf.base import classify_base
 
@@ -308,7 +350,7 @@ def _free_joint_lines(
         from mjcfbuild.sources.expand import expand_source
         from mjcfbuild.urdf.parse import parse_urdf
 
-        expansion = expand_source(source, is_xacro, args or {}, packages, dict(os.environ))
+        expansion = expand_source(source, is_xacro, args, packages, dict(os.environ))
         robot = parse_urdf(expansion.urdf, label)
         kind = classify_base(robot)
     except Exception as exc:  # an unreadable description: init still writes a starting manifest
@@ -335,7 +377,7 @@ def _free_joint_lines(
             unread,
             None,
         )
-    stop = _first_stop(robot, source, packages, expansion.origins)
+    stop = _first_stop(robot, source, packages, expansion.origins, roots, outside)
     if kind.floating:
         return (
             [
@@ -349,22 +391,36 @@ def _free_joint_lines(
 
 
 def _first_stop(
-    robot: Robot, source: Path, packages: dict[str, str], origins: dict[int, tuple[str, int]]
+    robot: Robot,
+    source: Path,
+    packages: dict[str, str],
+    origins: dict[int, tuple[str, int]],
+    roots: list[Path],
+    outside: list[tuple[str, str]],
 ) -> str | None:
     """What the first build would stop at in a description that reads (a mesh that is not
     there, an absolute path from another machine, no mass anywhere), as one line: init says
     it now, not one build later. A xacro source's line is the one ``origins`` says wrote the
-    expanded line, as the build names it."""
-    from mjcfbuild.sources.origins import map_lines
-    from mjcfbuild.urdf.resolve import resolve_files
+    expanded line, as the build names it. ``outside`` receives (where, URI) of each file the
+    build would warn is read from outside ``roots`` and every package folder."""
+    from mjcfbuild.sources.origins import map_lines, written_in
+    from mjcfbuild.urdf.resolve import OutsideRead, resolve_files
 
+    found: list[OutsideRead] = []
     try:
         folders = {name: Path(folder) for name, folder in packages.items()}
-        resolve_files(robot, source.parent, PackageResolver(folders, dict(os.environ)))
+        resolver = PackageResolver(folders, dict(os.environ))
+        resolve_files(robot, source.parent, resolver, roots=roots, outside=found)
     except MjcfbuildError as exc:
         map_lines(exc, origins)
         here = Path.cwd()
         return exc.relocate(here, here).one_line()
+    for read in found:
+        where = robot.source if read.line is None else f"{robot.source}:{read.line}"
+        written = written_in(origins, read.line) if read.line is not None else None
+        if written is not None:  # a xacro source: the line that wrote the element
+            where = f"{shown_path(written[0])}:{written[1]}"
+        outside.append((where, read.uri))
     moving = [joint for joint in robot.joints if joint.moves]
     if moving and not any(link.inertial and link.inertial.mass > 0 for link in robot.links):
         return (

@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 from collections.abc import Sequence
 from pathlib import Path
+from typing import NamedTuple
 
 from mjcfbuild.errors import InputError
 from mjcfbuild.fsutil import case_match, case_suggestion, normalise, unreadable_file
@@ -22,6 +23,7 @@ def resolve_files(
     packages: PackageResolver,
     prebuilt: Path | None = None,
     roots: Sequence[Path] | None = None,
+    outside: list[OutsideRead] | None = None,
 ) -> dict[str, str]:
     """Fill in the real path of every mesh and texture, and give each mesh file an id.
 
@@ -31,8 +33,9 @@ def resolve_files(
     folder of meshes converted before, a mesh with a pre-generated OBJ there is read from it.
     With ``roots`` (the folders the description may read: robot.yaml's, its packages'), a
     file outside them and outside every package a URI names gets a warning in
-    ``robot.warnings``, once per URI. Returns the mesh file each pre-generated OBJ stands for
-    (a visual's where several do), whose look it takes where it has none of its own.
+    ``robot.warnings``, once per URI, and is added to ``outside`` where given. Returns the
+    mesh file each pre-generated OBJ stands for (a visual's where several do), whose look it
+    takes where it has none of its own.
     """
     reads: list[tuple[str, Path, int | None]] = []
     mesh_paths: list[str] = []
@@ -73,7 +76,10 @@ def resolve_files(
                 )
                 reads.append((uri, Path(shape.material.texture), shape.line))
     if roots is not None:
-        _warn_outside(robot, reads, packages, roots)
+        far = reads_outside(reads, packages, roots)
+        _warn_outside(robot, far)
+        if outside is not None:
+            outside.extend(far)
     ids = assign_mesh_ids(mesh_paths)
     for link in robot.links:
         for shape in link.shapes:
@@ -83,29 +89,42 @@ def resolve_files(
     return originals
 
 
-def _warn_outside(
-    robot: Robot,
-    reads: list[tuple[str, Path, int | None]],
+class OutsideRead(NamedTuple):
+    """A file the description reads from outside every folder it may read from."""
+
+    uri: str  # as the description writes it
+    path: Path  # the file it names
+    line: int | None  # the URDF line that names it
+
+
+def reads_outside(
+    reads: Sequence[tuple[str, Path, int | None]],
     packages: PackageResolver,
     roots: Sequence[Path],
-) -> None:
-    """Warn once per URI about a file outside ``roots`` and every package folder (those the
-    URIs name, and any folder with a package.xml).
+) -> list[OutsideRead]:
+    """The files of ``reads`` (URI, path, line) outside ``roots`` and every package folder
+    (those the URIs name, and any folder with a package.xml), the first read of each URI.
 
     Paths are compared as written (``..`` removed, links kept): a package installed with
     links into its sources (colcon --symlink-install) is still inside its folder.
     """
     inside = [normalise(root) for root in roots]
     inside += filter(None, (uri_package_folder(uri, packages) for uri, _, _ in reads))
-    warned: set[str] = set()
+    found: dict[str, OutsideRead] = {}
     for uri, path, line in reads:
-        if uri in warned or any(path == root or root in path.parents for root in inside):
+        if uri in found or any(path == root or root in path.parents for root in inside):
             continue
         enclosing = find_enclosing_package(path)  # a ROS package found by no URI
         if enclosing is not None:
             inside.append(enclosing[1])
             continue
-        warned.add(uri)
+        found[uri] = OutsideRead(uri, path, line)
+    return list(found.values())
+
+
+def _warn_outside(robot: Robot, outside: Sequence[OutsideRead]) -> None:
+    """Warn once per URI about a file read from outside (``reads_outside``)."""
+    for uri, path, line in outside:
         where = f"{robot.source}:{line}" if line is not None else robot.source
         # The path quoted: warnings that differ only in quoted parts print as one line.
         read = "" if uri.strip() == str(path) else f" ('{path}')"

@@ -319,6 +319,44 @@ def test_a_sibling_package_is_found_by_its_package_xml(cli, tmp_path):
     assert cli("build", "-q", "--no-check", cwd=tmp_path).code == EXIT_OK
 
 
+def test_meshes_outside_every_package_set_read_outside_and_init_says_so(cli, tmp_path):
+    """A URDF in its package reading '../../elsewhere/base.stl' beside the package: init wrote
+    a manifest whose first build warned of the mesh; now it sets source.read_outside."""
+    from tests.conftest import two_link_urdf, write
+    from tests.meshes.samples import ascii_stl
+
+    package = tmp_path / "ws" / "arm_pkg"
+    write(package / "package.xml", "<package format='3'><name>arm_pkg</name></package>\n")
+    (tmp_path / "ws" / "elsewhere").mkdir()
+    ascii_stl(tmp_path / "ws" / "elsewhere" / "base.stl")
+    urdf = two_link_urdf().replace(
+        '<box size="0.2 0.2 0.1"/>', '<mesh filename="../../elsewhere/base.stl"/>'
+    )
+    write(package / "urdf" / "arm.urdf", urdf)
+    line = next(n for n, text in enumerate(urdf.splitlines(), 1) if "elsewhere" in text)
+    result = cli("init", "ws/arm_pkg/urdf/arm.urdf", "-o", "ws/arm_pkg/robot.yaml", cwd=tmp_path)
+    assert result.code == EXIT_OK and result.stderr == ""
+    assert result.stdout.splitlines()[0] == (
+        f"mjcfbuild: ws/arm_pkg/urdf/arm.urdf:{line}: reads '../../elsewhere/base.stl' from "
+        "outside every package folder and robot.yaml's folder; robot.yaml sets "
+        "source.read_outside: true, so the build reads it without a warning (to publish a "
+        "self-contained model, move it into the description and drop that line)"
+    )
+    text = (package / "robot.yaml").read_text()
+    assert "\n  read_outside: true\n" in text
+    built = cli("build", "--no-check", "ws/arm_pkg/robot.yaml", cwd=tmp_path)
+    assert built.code == EXIT_OK and "warning" not in built.stderr, built.stderr
+    # Inside its package, the same mesh sets nothing.
+    (package / "meshes").mkdir()
+    ascii_stl(package / "meshes" / "base.stl")
+    write(package / "urdf" / "arm.urdf", urdf.replace("../../elsewhere/", "../meshes/"))
+    again = cli(
+        "init", "--force", "ws/arm_pkg/urdf/arm.urdf", "-o", "ws/arm_pkg/robot.yaml", cwd=tmp_path
+    )
+    assert again.code == EXIT_OK and "read_outside" not in (package / "robot.yaml").read_text()
+    assert again.stdout.count("\n") == 1
+
+
 def test_a_package_two_package_xml_files_name_takes_the_nearest_and_says_so(cli, tmp_path):
     """Two folders of one workspace claim robot_meshes (catkin and colcon refuse to build
     such a workspace): the manifest takes the nearest, and both init and the manifest say
