@@ -34,7 +34,7 @@ from mjcfbuild.actuators import (
 )
 from mjcfbuild.control.choose import limit_notes, placeholder_range, positive_velocity
 from mjcfbuild.control.efforts import EffortCap, describe, placeholder_efforts
-from mjcfbuild.control.floor import lowest_collision_point
+from mjcfbuild.control.floor import lowest_collision_point, lowest_visual_point
 from mjcfbuild.control.home import HomeValue
 from mjcfbuild.control.motors import urdf_drive
 from mjcfbuild.control.standing import MARGIN
@@ -54,7 +54,9 @@ class Readiness:
     home: list[dict] = field(default_factory=list)
     home_written: bool = False
     base_height: float | None = None  # how far a floating base was raised to stand
-    lowest_point: dict | None = None  # the lowest collision point at home (fixed base)
+    # the lowest collision point at home (fixed base); the lowest visual one, marked
+    # "visual", where nothing collides
+    lowest_point: dict | None = None
     stance: dict | None = None  # how a floating robot meets the floor at home
     home_from: str | None = None  # the SRDF group_state home's "srdf" values come from
     notes: list[str] = field(default_factory=list)
@@ -153,6 +155,14 @@ def make_ready(
         lowest = lowest_collision_point(model, data)
         if lowest is not None:
             readiness.lowest_point = {"height": lowest.height, "body": lowest.body}
+        else:  # nothing collides: the floor goes under what is drawn, not through it
+            drawn = lowest_visual_point(model, data)
+            if drawn is not None:
+                readiness.lowest_point = {
+                    "height": drawn.height,
+                    "body": drawn.body,
+                    "visual": True,
+                }
     choices = _drive_wheels(model, data, choices)
     inertia = np.zeros((model.nv, model.nv))
     mujoco.mj_fullM(model, data, inertia)

@@ -31,17 +31,32 @@ def lowest_collision_point(model, data) -> LowestPoint | None:
     return LowestPoint(float(points[geom][2]), body or "world")
 
 
-def geom_lowest_points(model, data) -> dict:
-    """For every colliding geom of the robot: a point at its lowest height (x and y are its
-    centre's for primitives, the lowest vertex's for meshes). In a floating model, geometry
-    welded to the world (a root link that holds the robot by a floating joint) is the
-    ground, not the robot, and is left out."""
+def lowest_visual_point(model, data) -> LowestPoint | None:
+    """The lowest point of every geom that does not collide (the visual geometry) at
+    ``data``'s pose (after kinematics), as :func:`lowest_collision_point` finds it; for a
+    model with no collision geometry, which has nothing else to place the floor under."""
+    import mujoco
+
+    points = geom_lowest_points(model, data, colliding=False)
+    if not points:
+        return None
+    geom = min(points, key=lambda g: (points[g][2], g))
+    body = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, model.geom_bodyid[geom])
+    return LowestPoint(float(points[geom][2]), body or "world")
+
+
+def geom_lowest_points(model, data, colliding: bool = True) -> dict:
+    """For every colliding geom of the robot (every other geom, without ``colliding``): a
+    point at its lowest height (x and y are its centre's for primitives, the lowest vertex's
+    for meshes). In a floating model, geometry welded to the world (a root link that holds
+    the robot by a floating joint) is the ground, not the robot, and is left out."""
     import mujoco
 
     floats = mujoco.mjtJoint.mjJNT_FREE in model.jnt_type
     result = {}
     for geom in range(model.ngeom):
-        if model.geom_contype[geom] == 0 and model.geom_conaffinity[geom] == 0:
+        collides = bool(model.geom_contype[geom] or model.geom_conaffinity[geom])
+        if collides != colliding:
             continue
         if floats and model.body_weldid[model.geom_bodyid[geom]] == 0:
             continue

@@ -148,7 +148,8 @@ class Placement(_Strict):
         "auto",
         description=(
             "Height of the scene's floor (m), or 'auto': at z = 0, lowered under the robot's "
-            "lowest collision geometry at home where that reaches below. The model keeps the "
-            "URDF's coordinates; only the scene's floor moves."
+            "lowest collision geometry at home where that reaches below (its visual geometry "
+            "where nothing collides). The model keeps the URDF's coordinates; only the scene's "
+            "floor moves."
         ),
     )

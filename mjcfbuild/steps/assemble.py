@@ -168,10 +168,12 @@ def _placement_warnings(assembly: Assembly, floor: float | str) -> list[str]:
     lowest = assembly.readiness.lowest_point if assembly.readiness else None
     if lowest is None or floor == "auto" or lowest["height"] >= float(floor) - 1e-3:
         return []
+    # A model with nothing to collide is placed by what is drawn (control.apply).
+    drawn = " (its visual geometry: nothing of the model collides)" if lowest.get("visual") else ""
     return [
         f"at home, body '{lowest['body']}' reaches {float(floor) - lowest['height']:.3g} m below "
-        f"the scene's floor; set placement: {{floor: auto}} to put the floor under the robot, or "
-        "options.free_joint: true for a robot that stands on its own"
+        f"the scene's floor{drawn}; set placement: {{floor: auto}} to put the floor under the "
+        "robot, or options.free_joint: true for a robot that stands on its own"
     ]
 
 
