@@ -36,7 +36,9 @@ from mjcfbuild.control.choose import limit_notes, placeholder_range, positive_ve
 from mjcfbuild.control.efforts import EffortCap, describe, placeholder_efforts
 from mjcfbuild.control.floor import lowest_collision_point, lowest_visual_point
 from mjcfbuild.control.home import HomeValue
-from mjcfbuild.control.motors import urdf_drive
+from mjcfbuild.control.motors import URDF_LIMITS, urdf_drive
+from mjcfbuild.control.rotors import describe as describe_rotor
+from mjcfbuild.control.rotors import heavy_rotor
 from mjcfbuild.control.standing import MARGIN
 from mjcfbuild.numbers import output_list
 from mjcfbuild.urdf.limits import joint_range
@@ -194,6 +196,7 @@ def make_ready(
         record = _actuator(choice, urdf_joints[choice.joint], servo, taken, caps.get(choice.joint))
         taken.add(record.name)
         readiness.actuators.append(record)
+        readiness.notes += _heavy_rotor(model, data, record, choice, servo, robot)
     _match_mirrored(model, data, readiness.actuators)
     for record in readiness.actuators:
         if record.source != USER:
@@ -380,6 +383,37 @@ def _armature_shares(model, joint: str, robot: Robot, added: float) -> dict[str,
     total = sum(factor * factor for factor in factors.values())
     share = added / total if total > 0 else added
     return {name: share for name in factors} | {joint: share}
+
+
+def _heavy_rotor(
+    model, data, record: ActuatorRecord, choice: ActuatorChoice, servo: Servo, robot: Robot
+) -> list[str]:
+    """The warning about a joint whose URDF speed line gave it a rotor no real drive of it
+    could have (``control.rotors``); none for a named motor's or a rule's armature."""
+    motor = record.motor or {}
+    if motor.get("motor") != URDF_LIMITS or choice.armature is not None:
+        return []
+    joint = next(joint for joint in robot.joints if joint.name == choice.joint)
+    if not _all_weighed(robot, joint.child):
+        return []  # placeholder masses say nothing of the rotor; the check names those links
+    found = heavy_rotor(model, data, choice.joint, motor["armature"], servo.inertia)
+    if found is None:
+        return []
+    where = f"{robot.source}:{joint.line}" if joint.line else robot.source
+    return [describe_rotor(found, where, motor["stall_torque"], motor["no_load_speed"])]
+
+
+def _all_weighed(robot: Robot, link: str) -> bool:
+    """Whether ``link`` and every link below it have a mass in the URDF."""
+    below = robot.child_joints()
+    pending = [link]
+    while pending:
+        name = pending.pop()
+        inertial = robot.link(name).inertial
+        if inertial is None or not inertial.mass > 0:
+            return False
+        pending += [joint.child for joint in below[name]]
+    return True
 
 
 def _unresolved_inertia(robot: Robot, joint, moved: float) -> None:
