@@ -40,6 +40,7 @@ from mjcfbuild.check.runtime_actuators import (
 from mjcfbuild.check.runtime_transmissions import unmatched_transmissions
 from mjcfbuild.inputs.frames import ray_count, rays_short_of_max
 from mjcfbuild.inputs.ros2_control import (
+    BLOCK_CHILDREN,
     RUNTIME_PLUGINS,
     ControlJoint,
     Ros2Control,
@@ -96,6 +97,7 @@ def check_runtime(
     warnings: list[str] = []
     ghosts, part_joints = _not_in_urdf(model, control, urdf_joints)
     failures += ghosts + _parser_refusals(control, urdf_joints, fixed_joints)
+    failures += _unknown_children(control)
     warnings += part_joints
     served = [
         joint
@@ -225,6 +227,20 @@ def _parser_refusals(
                     'found in <ros2_control> tag"); add the leader to the block'
                 )
     return failures
+
+
+def _unknown_children(control: Ros2Control) -> list[str]:
+    """A child of a block ros2_control's parser does not know (parse_resource_from_xml: "invalid
+    tag name ..."), in every block: it refuses the description before any hardware starts."""
+    from mjcfbuild.sources.packages import did_you_mean
+
+    return [
+        f"{child.origin}: <ros2_control> holds a <{child.tag}> element, which ros2_control's "
+        'parser does not know: it refuses the description at start-up ("invalid tag name '
+        f'{child.tag}"); keep only {", ".join(f"<{tag}>" for tag in BLOCK_CHILDREN)} in the '
+        f"block, and move the rest out of it{did_you_mean(child.tag, set(BLOCK_CHILDREN))}"
+        for child in control.unknown_children
+    ]
 
 
 def _mimic_commands(mimics: list[ControlJoint], urdf_joints: dict[str, str | None]) -> list[str]:

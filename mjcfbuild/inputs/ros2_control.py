@@ -91,6 +91,22 @@ class Transmission:
         )
 
 
+@dataclass
+class BlockElement:
+    """A child element of a ``<ros2_control>`` block that a rule judges on its own: one whose
+    tag ros2_control's parser does not know."""
+
+    tag: str  # as ros2_control's parser (tinyxml2) names it: "actuator", "xacro:property"
+    origin: str
+    block: int  # which <ros2_control> block holds it (0 the first)
+    plugin: str = ""  # that block's <hardware> <plugin>
+
+
+# The children ros2_control's parser reads in a <ros2_control> block (parse_resource_from_xml);
+# any other element makes it refuse the description.
+BLOCK_CHILDREN = ("hardware", "joint", "sensor", "gpio", "transmission")
+
+
 # The hardware plugins of mujoco_ros2_control (MujocoSystemInterface, and older names) share
 # its package's prefix: a <ros2_control> block naming another (a real robot's driver) is not
 # run by it as written.
@@ -114,6 +130,7 @@ class Ros2Control:
     hardware: dict[str, str] = field(default_factory=dict)
     plugins: list[str] = field(default_factory=list)  # each block's <hardware> <plugin>
     hardware_origins: dict[str, str] = field(default_factory=dict)  # param -> "file:line"
+    unknown_children: list[BlockElement] = field(default_factory=list)  # the parser refuses
 
     def runs(self, plugin: str) -> bool:
         """Whether mujoco_ros2_control runs a block of ``plugin``: where some block is
@@ -142,6 +159,7 @@ class Ros2Control:
             dict(data.get("hardware", {})),
             list(data.get("plugins", [])),
             dict(data.get("hardware_origins", {})),
+            [_known(BlockElement, e) for e in data.get("unknown_children", [])],
         )
 
 
@@ -158,6 +176,11 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
     blocks = root.findall("ros2_control")
     result.plugins = [(block.findtext("hardware/plugin") or "").strip() for block in blocks]
     for number, (block, plugin) in enumerate(zip(blocks, result.plugins, strict=True)):
+        result.unknown_children += [
+            BlockElement(_tag_name(child), f"{label}:{child.sourceline}", number, plugin)
+            for child in block
+            if isinstance(child.tag, str) and child.tag not in BLOCK_CHILDREN
+        ]
         declared = [p for element in block.findall("hardware") for p in element.findall("param")]
         hardware = {p.get("name", ""): (p.text or "").strip() for p in declared}
         if result.runs(plugin):
@@ -274,6 +297,12 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                     )
                 )
     return result
+
+
+def _tag_name(element: etree._Element) -> str:
+    """An element's name as the XML writes it (``xacro:property``), not lxml's ``{uri}name``."""
+    name = etree.QName(element).localname
+    return f"{element.prefix}:{name}" if element.prefix else name
 
 
 def _parsed_value(joint: etree._Element, tag: str, default: float) -> float:

@@ -817,3 +817,31 @@ def test_a_joint_driven_only_through_a_transmission_takes_its_actuators_interfac
         "wrist_servo",
         "position",
     )
+
+
+def _driver(block: str) -> str:
+    """``block`` written for a real robot's driver (TIAGo Pro's), not for the runtime."""
+    return block.replace(
+        "<hardware></hardware>", "<hardware><plugin>robot_control/RobotControl</plugin></hardware>"
+    )
+
+
+def test_a_block_child_the_parser_does_not_know_is_refused_in_every_block(tmp_path):
+    """parse_resource_from_xml reads <hardware>, <joint>, <sensor>, <gpio> and <transmission>
+    and throws on any other element ("invalid tag name actuator"), whatever the block's plugin;
+    a comment is no element. The check passed such a block."""
+    stray = control_block(["position"]).replace(
+        "</ros2_control>", '<!-- a note --><actuator name="m1"/></ros2_control>'
+    )
+    _fails_to_start(tmp_path / "stray", stray)
+    assert check_record(tmp_path / "stray")["failures"] == [
+        "robot.urdf:15: <ros2_control> holds a <actuator> element, which ros2_control's parser "
+        'does not know: it refuses the description at start-up ("invalid tag name actuator"); '
+        "keep only <hardware>, <joint>, <sensor>, <gpio>, <transmission> in the block, and move "
+        "the rest out of it"
+    ]
+    # The parser reads every block, a driver's too; a near miss gets the tag it meant.
+    _fails_to_start(tmp_path / "driver", _driver(stray.replace("<actuator", "<sensors")))
+    (failure,) = check_record(tmp_path / "driver")["failures"]
+    assert "holds a <sensors> element" in failure
+    assert failure.endswith("; did you mean 'sensor'?"), failure
