@@ -56,6 +56,17 @@ def unmatched_transmissions(
         for problem in problems:
             found = failures if problem.stops else warnings
             found.append(f"{transmission.origin}: {head} {problem.text}")
+    for element in control.jointless:
+        # register_transmissions: a transmission whose joints are empty stops it.
+        text = (
+            f"transmission {element.element} has no <joint>: mujoco_ros2_control stops at "
+            'start-up ("Transmission ... has no joints or actuators defined"); name the joint '
+            'it drives in a <joint name="..." role="joint1">, or leave the transmission out'
+        )
+        if element.plugin and not element.plugin.startswith(RUNTIME_PLUGINS):
+            elsewhere.setdefault(element.plugin, []).append(text)
+        else:
+            failures.append(f"{element.origin}: {text}")
     for plugin, texts in elsewhere.items():
         if texts:
             warnings.append(

@@ -294,7 +294,7 @@ def _runtime_section(
         sensor.origin = _written_at(sensor.origin, origins)
     for transmission in control.transmissions:
         transmission.origin = _written_at(transmission.origin, origins)
-    for element in control.unknown_children:
+    for element in [*control.unknown_children, *control.jointless]:
         element.origin = _written_at(element.origin, origins)
     control.hardware_origins = {
         name: _written_at(origin, origins) for name, origin in control.hardware_origins.items()

@@ -94,12 +94,13 @@ class Transmission:
 @dataclass
 class BlockElement:
     """A child element of a ``<ros2_control>`` block that a rule judges on its own: one whose
-    tag ros2_control's parser does not know."""
+    tag ros2_control's parser does not know, or a ``<transmission>`` without a ``<joint>``."""
 
     tag: str  # as ros2_control's parser (tinyxml2) names it: "actuator", "xacro:property"
     origin: str
     block: int  # which <ros2_control> block holds it (0 the first)
     plugin: str = ""  # that block's <hardware> <plugin>
+    element: str = ""  # a transmission's place in the document ("#3")
 
 
 # The children ros2_control's parser reads in a <ros2_control> block (parse_resource_from_xml);
@@ -131,6 +132,7 @@ class Ros2Control:
     plugins: list[str] = field(default_factory=list)  # each block's <hardware> <plugin>
     hardware_origins: dict[str, str] = field(default_factory=dict)  # param -> "file:line"
     unknown_children: list[BlockElement] = field(default_factory=list)  # the parser refuses
+    jointless: list[BlockElement] = field(default_factory=list)  # block transmissions, no <joint>
 
     def runs(self, plugin: str) -> bool:
         """Whether mujoco_ros2_control runs a block of ``plugin``: where some block is
@@ -160,6 +162,7 @@ class Ros2Control:
             list(data.get("plugins", [])),
             dict(data.get("hardware_origins", {})),
             [_known(BlockElement, e) for e in data.get("unknown_children", [])],
+            [_known(BlockElement, e) for e in data.get("jointless", [])],
         )
 
 
@@ -273,6 +276,11 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
             actuators = _actuators(transmission)
             element = elements[transmission]
             kind = (transmission.findtext("plugin") or "").strip()
+            if transmission.find("joint") is None:
+                where = f"{label}:{transmission.sourceline}"
+                result.jointless.append(
+                    BlockElement("transmission", where, number, plugin, element)
+                )
             roleless = [
                 f"{part.tag} '{part.get('name', '')}'"
                 for part in [*transmission.findall("joint"), *transmission.findall("actuator")]

@@ -115,7 +115,9 @@ def add_runtime_check(
     ``packages`` the folders its $(find pkg) stands for."""
     if depfile:
         _record_reads(control, Path(depfile))
-    if not results.loads or not (control.joints or control.sensors or control.unknown_children):
+    if not results.loads or not (
+        control.joints or control.sensors or control.unknown_children or control.jointless
+    ):
         return results
     from mjcfbuild.check.runtime import check_runtime
     from mjcfbuild.check.runtime_model import model_param

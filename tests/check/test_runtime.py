@@ -845,3 +845,23 @@ def test_a_block_child_the_parser_does_not_know_is_refused_in_every_block(tmp_pa
     (failure,) = check_record(tmp_path / "driver")["failures"]
     assert "holds a <sensors> element" in failure
     assert failure.endswith("; did you mean 'sensor'?"), failure
+
+
+def test_a_block_transmission_without_a_joint_stops_the_runtime(tmp_path):
+    """register_transmissions: "Transmission 't' has no joints or actuators defined"; the
+    check made one record per <joint> and so judged nothing of a transmission without one."""
+    jointless = _transmission('<actuator name="hinge" role="actuator1"/>')
+    _fails_to_start(tmp_path / "jointless", jointless)
+    assert check_record(tmp_path / "jointless")["failures"] == [
+        "robot.urdf:15: transmission #1 has no <joint>: mujoco_ros2_control stops at start-up "
+        '("Transmission ... has no joints or actuators defined"); name the joint it drives in a '
+        '<joint name="..." role="joint1">, or leave the transmission out'
+    ]
+    # In a driver's block: what the runtime would do once swapped in, as a warning.
+    result = build_two_link(tmp_path / "driver", urdf_extra=_driver(jointless))
+    assert check_record(tmp_path / "driver")["passes"]
+    assert any(
+        "transmissions for the hardware plugin robot_control/RobotControl" in warning
+        and "transmission #1 has no <joint>" in warning
+        for warning in result.warnings
+    ), result.warnings
