@@ -98,7 +98,7 @@ def check_runtime(
     ghosts, part_joints = _not_in_urdf(model, control, urdf_joints)
     failures += ghosts + _parser_refusals(control, urdf_joints, fixed_joints)
     failures += _unknown_children(control)
-    warnings += part_joints
+    warnings += part_joints + _interfaceless_joints(control)
     served = [
         joint
         for joint in control.joints
@@ -240,6 +240,33 @@ def _unknown_children(control: Ros2Control) -> list[str]:
         f'{child.tag}"); keep only {", ".join(f"<{tag}>" for tag in BLOCK_CHILDREN)} in the '
         f"block, and move the rest out of it{did_you_mean(child.tag, set(BLOCK_CHILDREN))}"
         for child in control.unknown_children
+    ]
+
+
+def _interfaceless_joints(control: Ros2Control) -> list[str]:
+    """Joints of the blocks the runtime runs with no command interface and no position,
+    velocity or effort state interface: export_state_interfaces and export_command_interfaces
+    export nothing else for a joint, so no controller or broadcaster finds it. (A joint whose
+    command interfaces are all unknown is judged with its actuator.)"""
+    names = [
+        joint.name
+        for joint in control.joints
+        if control.runs(joint.plugin)
+        and not joint.commands
+        and joint.states is not None
+        and not any(_family(state) in _KNOWN_INTERFACES for state in joint.states)
+    ]
+    if not names:
+        return []
+    first = next(joint for joint in control.joints if joint.name == names[0])
+    them = "it" if len(names) == 1 else "them"
+    return [
+        f"{first.origin}: mujoco_ros2_control: {len(names)} <ros2_control> joint"
+        f"{'s' if len(names) > 1 else ''} ({_first_few(names)}) "
+        f"{_verb(names, 'has', 'have')} no position, velocity or effort interface, so the "
+        f"runtime exports none for {them}: joint_state_broadcaster publishes no state of {them} "
+        f'and no controller can claim {them}; add <state_interface name="position"/> (or leave '
+        "the joint out of the block)"
     ]
 
 

@@ -33,6 +33,9 @@ class ControlJoint:
     # Its mimic="..." attribute ("true", "false" or ""): ros2_control's parser takes a joint with
     # a URDF <mimic> for an activated mimic joint unless it is "false".
     mimic_attribute: str = ""
+    # Its state interfaces' names; None in a plan an earlier version wrote, which kept only
+    # whether one is position.
+    states: list[str] | None = None
 
 
 @dataclass
@@ -194,7 +197,7 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
         for joint in block.findall("joint"):
             commands = [c.get("name", "") for c in joint.findall("command_interface")]
             initial = None
-            states = [state.get("name") for state in joint.findall("state_interface")]
+            states = [state.get("name", "") for state in joint.findall("state_interface")]
             for state in joint.findall("state_interface"):
                 if state.get("name") == "position":
                     for param in state.findall("param"):
@@ -222,6 +225,7 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                     "position" in states,
                     number,
                     (joint.get("mimic") or "").strip().lower(),
+                    [name for name in states if name],
                 )
             )
         for sensor in block.findall("sensor"):

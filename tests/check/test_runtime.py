@@ -865,3 +865,24 @@ def test_a_block_transmission_without_a_joint_stops_the_runtime(tmp_path):
         and "transmission #1 has no <joint>" in warning
         for warning in result.warnings
     ), result.warnings
+
+
+def test_a_joint_without_position_velocity_or_effort_interfaces_is_said(tmp_path):
+    """export_state_interfaces and export_command_interfaces export a joint's position,
+    velocity and effort (torque, force) interfaces only: a joint with none of them, commanded
+    by nothing, is one the runtime serves nothing of."""
+    block = control_block(["position"]).replace(
+        "</ros2_control>",
+        '<joint name="wrist"><state_interface name="temperature"/></joint></ros2_control>',
+    )
+    result = build_two_link(tmp_path / "bare", urdf_extra=WRIST + block)
+    assert check_record(tmp_path / "bare")["passes"]
+    assert (
+        "robot.urdf:15: mujoco_ros2_control: 1 <ros2_control> joint (wrist) has no position, "
+        "velocity or effort interface, so the runtime exports none for it: "
+        "joint_state_broadcaster publishes no state of it and no controller can claim it; add "
+        '<state_interface name="position"/> (or leave the joint out of the block)'
+    ) in result.warnings, result.warnings
+    served = block.replace('"temperature"', '"position"')
+    plain = build_two_link(tmp_path / "served", urdf_extra=WRIST + served)
+    assert not [w for w in plain.warnings if "exports none" in w], plain.warnings
