@@ -11,6 +11,15 @@ from typing import NamedTuple
 from mjcfbuild.check.runtime_actuators import actuator_of, registered
 from mjcfbuild.inputs.ros2_control import RUNTIME_PLUGINS, Ros2Control, Transmission
 
+# The transmission types ros2_control's transmission_interface exports (its
+# ros2_control_plugins.xml): register_transmissions finds no other of that package.
+TRANSMISSION_TYPES = (
+    "transmission_interface/SimpleTransmission",
+    "transmission_interface/DifferentialTransmission",
+    "transmission_interface/FourBarLinkageTransmission",
+)
+_PACKAGE = "transmission_interface"
+
 
 class Problem(NamedTuple):
     """What the runtime does wrong with one joint of a transmission: ``stops`` where it stops
@@ -127,6 +136,7 @@ def _transmission_problems(
     actuator: its commands pass as they are, its state through the transmission."""
     import mujoco
 
+    kind = _type_problem(transmission.kind)
     if not transmission.actuators:
         return [
             Problem(
@@ -134,7 +144,7 @@ def _transmission_problems(
                 "actuators defined\"); name the joint's actuator (the joint itself) in one"
             )
         ]
-    problems = []
+    problems = [kind] if kind else []
     not_found = '("Transmission actuator ... not found in MuJoCo model")'
     for name in transmission.actuators:
         joint = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
@@ -185,7 +195,7 @@ def _transmission_problems(
                     + (f"joint '{driven}'" if driven else "the joint it drives")
                 )
             )
-    if problems or not transmission.kind.endswith("/SimpleTransmission"):
+    if any(problem.stops for problem in problems) or transmission.kind != TRANSMISSION_TYPES[0]:
         return problems  # what other kinds do with their reductions is theirs
     reduction, offset = transmission.joint_reduction, transmission.joint_offset
     if not reduction:
@@ -218,6 +228,41 @@ def _transmission_problems(
         )
     follower = _follower_state(model, transmission, urdf_joints)
     return problems + ([Problem(follower, stops=False)] if follower else [])
+
+
+def _type_problem(kind: str) -> Problem | None:
+    """register_transmissions stops where the transmission loader has no class of the type
+    ("Transmission ... of type ... not available"): one of transmission_interface's package
+    that it does not export, or none. A type of another package is loaded only where one
+    installed beside the runtime exports it, which the check cannot know: a warning."""
+    if kind in TRANSMISSION_TYPES:
+        return None
+    refused = f"mujoco_ros2_control stops at start-up (\"... of type '{kind}' not available\")"
+    if not kind:
+        return Problem(
+            "names no type (no <plugin>, which ros2_control's parser reads it from): "
+            f"{refused}; give it <plugin>{TRANSMISSION_TYPES[0]}</plugin>"
+        )
+    if kind.startswith(_PACKAGE):
+        from mjcfbuild.sources.packages import did_you_mean
+
+        plugin_name = kind.replace("::", "/")  # the C++ class name for the plugin's
+        hint = (
+            f"; did you mean '{plugin_name}'?"
+            if plugin_name in TRANSMISSION_TYPES
+            else did_you_mean(kind, set(TRANSMISSION_TYPES))
+        )
+        return Problem(
+            f"is of type '{kind}', which transmission_interface does not export: {refused}; "
+            f"use one of {', '.join(TRANSMISSION_TYPES)}{hint}"
+        )
+    return Problem(
+        f"is of type '{kind}', a plugin of another package than transmission_interface: "
+        f"{refused.replace('stops', 'would stop')} where no package installed beside it exports "
+        "that plugin, and what the plugin does with the joint's commands and state is not "
+        f"judged here; install its package, or use {TRANSMISSION_TYPES[0]}",
+        stops=False,
+    )
 
 
 def _unequal_interfaces(control: Ros2Control, transmission: Transmission) -> list[Problem]:

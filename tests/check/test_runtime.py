@@ -886,3 +886,40 @@ def test_a_joint_without_position_velocity_or_effort_interfaces_is_said(tmp_path
     served = block.replace('"temperature"', '"position"')
     plain = build_two_link(tmp_path / "served", urdf_extra=WRIST + served)
     assert not [w for w in plain.warnings if "exports none" in w], plain.warnings
+
+
+def test_a_transmission_type_no_loader_has_stops_the_runtime(tmp_path):
+    """register_transmissions asks the transmission loader for the <plugin> class ("Transmission
+    't' of type '...' not available"): transmission_interface exports three, by pluginlib's
+    lookup name, not the C++ class name; another package's plugin loads only where that package
+    is installed, which the check cannot see (a warning)."""
+    body = '<actuator name="hinge" role="actuator1"/><joint name="hinge" role="joint1"/>'
+    cpp = _transmission(body).replace(
+        "transmission_interface/SimpleTransmission", "transmission_interface::SimpleTransmission"
+    )
+    _fails_to_start(tmp_path / "cpp", cpp)
+    assert check_record(tmp_path / "cpp")["failures"] == [
+        "robot.urdf:15: transmission #1 of joint 'hinge' is of type "
+        "'transmission_interface::SimpleTransmission', which transmission_interface does not "
+        'export: mujoco_ros2_control stops at start-up ("... of type '
+        "'transmission_interface::SimpleTransmission' not available\"); use one of "
+        "transmission_interface/SimpleTransmission, transmission_interface/DifferentialTransmission, "
+        "transmission_interface/FourBarLinkageTransmission; did you mean "
+        "'transmission_interface/SimpleTransmission'?"
+    ]
+    typeless = _transmission(body).replace(
+        "<plugin>transmission_interface/SimpleTransmission</plugin>", ""
+    )
+    _fails_to_start(tmp_path / "typeless", typeless)
+    (failure,) = check_record(tmp_path / "typeless")["failures"]
+    assert "transmission #1 of joint 'hinge' names no type (no <plugin>" in failure
+    vendor = cpp.replace("transmission_interface::SimpleTransmission", "acme/HarmonicDrive")
+    result = build_two_link(tmp_path / "vendor", urdf_extra=vendor)
+    assert check_record(tmp_path / "vendor")["passes"]
+    assert any(
+        w.startswith(
+            "robot.urdf:15: transmission #1 of joint 'hinge' is of type "
+            "'acme/HarmonicDrive', a plugin of another package"
+        )
+        for w in result.warnings
+    ), result.warnings
