@@ -60,6 +60,24 @@ def transmission_actuator(model, names: list[str]) -> tuple[int, str] | None:
     return None
 
 
+def site_entry(model, name: str) -> tuple[str, int] | None:
+    """Where the first entry of the runtime's actuator data under ``name`` (the one
+    register_transmissions takes for a transmission actuator of that name) is a site actuator's:
+    the site's name and the index of the joint whose state the runtime reads for it, which
+    register_mujoco_actuators takes from the site's index (``jnt_qposadr[site]``; at or past
+    ``njnt`` a read past the model's joints)."""
+    import mujoco
+
+    for actuator, joint, _ in _entries(model):
+        if joint != name:
+            continue
+        if model.actuator_trntype[actuator] != mujoco.mjtTrn.mjTRN_SITE:
+            return None
+        site = int(model.actuator_trnid[actuator, 0])
+        return mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_SITE, site) or f"#{site}", site
+    return None
+
+
 def _entries(model) -> list[tuple[int, str, int]]:
     """The actuator data register_mujoco_actuators makes of the model's actuators: each
     actuator, the joint name it stands for (a joint actuator's joint, a tendon or site

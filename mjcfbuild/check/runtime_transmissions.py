@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from mjcfbuild.check.runtime_actuators import actuator_of, registered
+from mjcfbuild.check.runtime_actuators import actuator_of, registered, site_entry
 from mjcfbuild.inputs.ros2_control import RUNTIME_PLUGINS, Ros2Control, Transmission
 
 # The transmission types ros2_control's transmission_interface exports (its
@@ -195,6 +195,8 @@ def _transmission_problems(
                     + (f"joint '{driven}'" if driven else "the joint it drives")
                 )
             )
+        elif site := site_entry(model, name):
+            problems.append(Problem(_site_state(model, transmission.joint, name, *site), False))
     if any(problem.stops for problem in problems) or transmission.kind != TRANSMISSION_TYPES[0]:
         return problems  # what other kinds do with their reductions is theirs
     reduction, offset = transmission.joint_reduction, transmission.joint_offset
@@ -262,6 +264,24 @@ def _type_problem(kind: str) -> Problem | None:
         "that plugin, and what the plugin does with the joint's commands and state is not "
         f"judged here; install its package, or use {TRANSMISSION_TYPES[0]}",
         stops=False,
+    )
+
+
+def _site_state(model, joint: str, name: str, site: str, index: int) -> str:
+    """What the runtime reports of a transmission's joint from a site actuator: the state of
+    the joint whose index is the site's (register_mujoco_actuators reads ``jnt_qposadr[site]``)."""
+    import mujoco
+
+    read = (
+        f"joint '{mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, index) or f'#{index}'}'"
+        if index < model.njnt
+        else "past the model's joints (an undefined read)"
+    )
+    return (
+        f"names actuator '{name}', which acts at site '{site}': mujoco_ros2_control registers a "
+        "site actuator with the state of the joint whose index is the site's, so it reports "
+        f"joint '{joint}' from {read} (site #{index} read as joint #{index}); name a joint "
+        "actuator (the joint it drives) in the transmission"
     )
 
 

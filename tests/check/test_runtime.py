@@ -923,3 +923,37 @@ def test_a_transmission_type_no_loader_has_stops_the_runtime(tmp_path):
         )
         for w in result.warnings
     ), result.warnings
+
+
+def test_a_transmission_through_a_site_actuator_misreports_its_joint(tmp_path):
+    """register_mujoco_actuators registers a site actuator under its own name with the qpos of
+    the joint whose index is the site's, and register_transmissions takes that entry: the
+    transmission reports 'hinge' from another joint. The check passed it. An actuator of a kind
+    the runtime does not register (an <adhesion>, on a body) stops it."""
+    site = (
+        'mujoco_inputs:\n  raw: \'<actuator><motor name="thrust" site="arm" '
+        'gear="0 0 1 0 0 0"/></actuator>\'\n'
+    )
+    body = '<actuator name="thrust" role="actuator1"/><joint name="hinge" role="joint1"/>'
+    result = build_two_link(tmp_path / "site", site, WRIST + _transmission(body))
+    assert check_record(tmp_path / "site")["passes"]
+    model = load(result)
+    index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, "arm")
+    read = model.joint(index).name if index < model.njnt else None
+    assert read == "wrist", read  # what the test's words below rely on
+    assert (
+        "robot.urdf:15: transmission #1 of joint 'hinge' names actuator 'thrust', which acts at "
+        "site 'arm': mujoco_ros2_control registers a site actuator with the state of the joint "
+        "whose index is the site's, so it reports joint 'hinge' from joint 'wrist' (site #1 "
+        "read as joint #1); name a joint actuator (the joint it drives) in the transmission"
+    ) in result.warnings, result.warnings
+    adhesion = site.replace(
+        'motor name="thrust" site="arm" gear="0 0 1 0 0 0"',
+        'adhesion name="thrust" body="arm" ctrlrange="0 1" gain="1"',
+    )
+    assert adhesion != site
+    _fails_to_start(tmp_path / "body", _transmission(body), adhesion)
+    assert any(
+        f.startswith("actuator 'thrust' has a body transmission")
+        for f in check_record(tmp_path / "body")["failures"]
+    )
