@@ -128,8 +128,9 @@ def check_runtime(
     ]
     failures += unnamed_joints(model) + unsupported_transmissions(model)
     failures += _unmatched_tendon_actuators(model)
-    failures += _missing_keyframe(model, control)
-    warnings += _start_away_from_home(model, control, urdf_joints)
+    missing_failures, missing_warnings = _missing_keyframe(model, control)
+    failures += missing_failures
+    warnings += missing_warnings + _start_away_from_home(model, control, urdf_joints)
     odometry_failures, odometry_warnings = _odometry(model, control)
     failures += odometry_failures
     unmatched, transmission_warnings = unmatched_transmissions(
@@ -383,22 +384,29 @@ def _unmatched_tendon_actuators(model) -> list[str]:
     return failures
 
 
-def _missing_keyframe(model, control: Ros2Control) -> list[str]:
+def _missing_keyframe(model, control: Ros2Control) -> tuple[list[str], list[str]]:
     """``initial_keyframe`` names a keyframe the runtime starts from; none of that name stops
-    it ("Failed to find keyframe")."""
+    it ("Failed to apply initial keyframe"). register_mujoco_actuators tries an
+    override_start_position_file first and reads the keyframe only where that file fails to
+    load: a warning then. The failures and the warnings."""
     keyframe = control.hardware.get("initial_keyframe")
     if not keyframe:
-        return []
+        return [], []
     names = [model.key(index).name for index in range(model.nkey)]
     if keyframe in names:
-        return []
+        return [], []
     listing = ", ".join(f"'{name}'" for name in names if name) or "none"
-    return [
+    said = (
         f"{control.at('initial_keyframe')}<hardware> param initial_keyframe names keyframe "
-        f"'{keyframe}', which the model does "
-        f"not have (its keyframes: {listing}): mujoco_ros2_control stops at start-up "
-        '("Failed to find keyframe"); name one of them'
-    ]
+        f"'{keyframe}', which the model does not have (its keyframes: {listing}): "
+        "mujoco_ros2_control stops at start-up "
+    )
+    if control.hardware.get("override_start_position_file"):
+        return [], [
+            said + '("Failed to find keyframe") where the override_start_position_file, which '
+            "it reads first, fails to load; name one of them, or leave the param out"
+        ]
+    return [said + '("Failed to find keyframe"); name one of them'], []
 
 
 def _start_away_from_home(
@@ -410,7 +418,10 @@ def _start_away_from_home(
     (qpos0). The check judges standing and holding from home, so a start elsewhere is said."""
     import mujoco
 
-    if control.hardware.get("initial_keyframe"):
+    # register_mujoco_actuators: an override_start_position_file, else the keyframe, is the start.
+    if control.hardware.get("initial_keyframe") or control.hardware.get(
+        "override_start_position_file"
+    ):
         return []
     home = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, "home")
     if home < 0:

@@ -46,12 +46,20 @@ def unmatched_transmissions(
     warnings: list[str] = []
     elsewhere: dict[str, list[str]] = {}  # plugin -> what its transmissions get wrong
     said: set[tuple[str, str]] = set()  # an element's actuators are said at its first joint
+    start = _start(model, control)
+    # Only a joint started in position control holds its start by its command.
+    positioned = {(j.block, j.name) for j in control.joints if "position" in j.commands}
     for transmission in control.transmissions:
         if not transmission.in_ros2_control or transmission.joint in fixed_joints:
             continue  # a fixed joint's is refused before the runtime starts
         problems = [
             problem
-            for problem in _transmission_problems(model, transmission, urdf_joints or {})
+            for problem in _transmission_problems(
+                model,
+                transmission,
+                urdf_joints or {},
+                start if (transmission.block, transmission.joint) in positioned else None,
+            )
             + _unequal_interfaces(control, transmission)
             if (transmission.element, problem.text) not in said
         ]
@@ -123,8 +131,25 @@ def parser_refusals(control: Ros2Control, fixed_joints: frozenset[str]) -> list[
     return failures
 
 
+def _start(model, control: Ros2Control) -> tuple[str, int] | None:
+    """What register_mujoco_actuators starts the joints from where it takes their state from
+    the simulation (override_mujoco_actuator_positions_), and that keyframe's index (-1 for a
+    file): the override_start_position_file where that param is given (tried first), else
+    the keyframe initial_keyframe names; None where it starts them at their initial_value."""
+    import mujoco
+
+    if control.hardware.get("override_start_position_file"):
+        return "the override_start_position_file", -1
+    name = control.hardware.get("initial_keyframe")
+    key = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_KEY, name) if name else -1
+    return (f"keyframe '{name}'", key) if key >= 0 else None
+
+
 def _transmission_problems(
-    model, transmission: Transmission, urdf_joints: dict[str, str | None]
+    model,
+    transmission: Transmission,
+    urdf_joints: dict[str, str | None],
+    start: tuple[str, int] | None,
 ) -> list[Problem]:
     """What register_transmissions stops at in one joint of a transmission, or gets wrong: no
     ``<actuator>`` ("has no joints or actuators defined"); an actuator name get_actuator_id
@@ -223,7 +248,8 @@ def _transmission_problems(
                 f"has {_article(gear[0])} {' and an '.join(gear)} to its own actuator: "
                 "mujoco_ros2_control passes the joint's commands to the actuator as they are "
                 "(the joint's own command overwrites the transmission's) but reports its state "
-                f"through the transmission, so a joint at 0.4 reads {0.4 / reduction + offset:g}; "
+                f"through the transmission, so a joint at 0.4 reads {0.4 / reduction + offset:g}"
+                f"{_started(model, transmission.joint, start, reduction, offset)}; "
                 f"in the block the runtime runs, {undo} (or leave the transmission out)",
                 stops=False,
             )
@@ -282,6 +308,31 @@ def _site_state(model, joint: str, name: str, site: str, index: int) -> str:
         "site actuator with the state of the joint whose index is the site's, so it reports "
         f"joint '{joint}' from {read} (site #{index} read as joint #{index}); name a joint "
         "actuator (the joint it drives) in the transmission"
+    )
+
+
+def _started(
+    model, joint: str, start: tuple[str, int] | None, reduction: float, offset: float
+) -> str:
+    """What a position-commanded joint with a reduction to its own actuator does at start-up
+    where the runtime starts from the simulation's state (``start``: how it is named, the
+    keyframe's index or -1): initialize_initial_positions copies the joint's state, read
+    through the transmission, into its command, which the first write passes to the actuator
+    as it is, so the joint leaves where it was put before any controller acts. (Started at its
+    initial_value instead, the joint's command is that value: it stays.)"""
+    import mujoco
+
+    if start is None:
+        return ""
+    named, key = start
+    index = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint)
+    at = ""
+    if index >= 0 and key >= 0:
+        value = float(model.key_qpos[key, model.jnt_qposadr[index]])
+        at = f" (from {value:g} to {value / reduction + offset:g})"
+    return (
+        f"; and started from {named}, it takes that reading for the joint's position command, "
+        f"so the joint leaves its start at once{at}, before any controller acts"
     )
 
 

@@ -957,3 +957,49 @@ def test_a_transmission_through_a_site_actuator_misreports_its_joint(tmp_path):
         f.startswith("actuator 'thrust' has a body transmission")
         for f in check_record(tmp_path / "body")["failures"]
     )
+
+
+def test_a_reduction_to_its_own_actuator_started_from_a_keyframe_moves_the_joint(tmp_path):
+    """Started from initial_keyframe, initialize_initial_positions copies the joint's state,
+    read through the transmission (0.4 / 2), into its command, and the first write passes it to
+    the joint's own actuator as it is: the joint leaves home for 0.2 before any controller acts
+    (started at its initial_value, its command is that value and it stays). The warning said
+    only what the state reads."""
+    geared = _transmission(
+        '<actuator name="hinge" role="actuator1"/><joint name="hinge" role="joint1">'
+        "<mechanical_reduction>2.0</mechanical_reduction></joint>"
+    ).replace(
+        "<hardware></hardware>", '<hardware><param name="initial_keyframe">home</param></hardware>'
+    )
+    result = build_two_link(tmp_path / "keyed", "home: {hinge: 0.4}\n", geared)
+    (said,) = [w for w in result.warnings if "to its own actuator" in w]
+    assert (
+        "so a joint at 0.4 reads 0.2; and started from keyframe 'home', it takes that reading for "
+        "the joint's position command, so the joint leaves its start at once (from 0.4 to 0.2), "
+        "before any controller acts; in the block"
+    ) in said, said
+
+
+def test_an_override_start_position_file_comes_before_the_initial_keyframe(tmp_path):
+    """register_mujoco_actuators loads override_start_position_file first and reads
+    initial_keyframe only where the file fails to load: a keyframe the model lacks is then a
+    warning, and the start is the file's, not the initial_values the check said."""
+    hardware = (
+        '<param name="override_start_position_file">/opt/start.xml</param>'
+        '<param name="initial_keyframe">start_90</param>'
+    )
+    result = build_two_link(tmp_path, urdf_extra=control_block(["position"], hardware))
+    record = check_record(tmp_path)
+    assert record["passes"], record["failures"]
+    (said,) = [w for w in result.warnings if "initial_keyframe" in w]
+    assert said.startswith(
+        "robot.urdf:15: <hardware> param initial_keyframe names keyframe 'start_90', which the "
+        "model does not have (its keyframes: 'home'): mujoco_ros2_control stops at start-up "
+        '("Failed to find keyframe") where the override_start_position_file, which it reads '
+        "first, fails to load"
+    ), said
+    # Without an initial_keyframe the start is still the file's, not each joint's initial_value.
+    only_file = '<param name="override_start_position_file">/opt/start.xml</param>'
+    block = control_block(["position"], only_file)
+    away = build_two_link(tmp_path / "file", "home: {hinge: 0.4}\n", block)
+    assert not [w for w in away.warnings if "names no initial_keyframe" in w], away.warnings
