@@ -200,8 +200,9 @@ FAMILY = Family(
     # as mujoco_ros2_control and the reference converter count them; 25: modify and Gazebo
     # link lookups suggest a name, no reduction advice for a joint nothing drives; 26: COLLADA
     # emission and vertex colours in materials, geoms of a DAE without a scene left out, a flat
-    # collision mesh under `primitive` a thin box
-    format=26,
+    # collision mesh under `primitive` a thin box; 27: the floor under the visual geometry of
+    # a fixed robot with nothing colliding, placeholder-sized rotor inertias warned of
+    format=27,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,
     compiles_model=True,

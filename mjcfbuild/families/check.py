@@ -96,7 +96,7 @@ FAMILY = Family(
     name="check",
     step="mjcfbuild.steps.check:run",
     payload=CheckPayload,
-    format=25,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
+    format=26,  # 9: the Gazebo sensors table; torque-motor and wheel stand verdicts; 10: speeds
     # measured again from inside the joint ranges, velocity limits of 1e6 and above taken for
     # none, unstable-state warnings naming their joint; 11: a hold failure of a servo whose
     # keyframe ctrl is not its position says so; 12: check.json holds the console's verdict and
@@ -118,7 +118,9 @@ FAMILY = Family(
     # report's table has every check the console shows; 23: weak servos beside a passive joint
     # fail the stand; other plugins' transmissions named one by one; 24: a massless marker
     # link's geometry making a body look too light is warned about, not failed; 25: the
-    # runtime's transmission, mujoco_model, unsupported-actuator and unnamed-joint rules
+    # runtime's transmission, mujoco_model, unsupported-actuator and unnamed-joint rules; 26:
+    # the parser's unknown block children, joint-less and unknown-type transmissions, site
+    # actuators in transmissions, interface-less joints, a keyframe start through a reduction
     tools=("mujoco", "numpy"),
     tasks=_tasks,
     compiles_model=True,

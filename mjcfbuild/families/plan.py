@@ -82,7 +82,8 @@ FAMILY = Family(
     # URDF lacks warned of, joint types suggested; 20: each mesh's looks_from (convert -a), each
     # transmission's block, joint reduction, offset and roleless elements, <hardware> param
     # lines; a closing tag after the root read with a warning; 21: a second root element and
-    # Latin-1 bytes read as MuJoCo reads them, a late <?...?> warned of
+    # Latin-1 bytes read as MuJoCo reads them, a late <?...?> warned of; each ros2_control
+    # block's unknown children and joint-less transmissions, each joint's state interfaces
     format=21,
     tools=("lxml",),
     tasks=_tasks,
