@@ -393,8 +393,8 @@ def _heavy_rotor(
     motor = record.motor or {}
     if motor.get("motor") != URDF_LIMITS or choice.armature is not None:
         return []
-    joint = next(joint for joint in robot.joints if joint.name == choice.joint)
-    if not _all_weighed(robot, joint.child):
+    joint = next((joint for joint in robot.joints if joint.name == choice.joint), None)
+    if joint is None or not _all_weighed(robot, joint.child):
         return []  # placeholder masses say nothing of the rotor; the check names those links
     found = heavy_rotor(model, data, choice.joint, motor["armature"], servo.inertia)
     if found is None:
@@ -405,14 +405,18 @@ def _heavy_rotor(
 
 def _all_weighed(robot: Robot, link: str) -> bool:
     """Whether ``link`` and every link below it have a mass in the URDF."""
-    below = robot.child_joints()
+    links = {each.name: each for each in robot.links}
+    below: dict[str, list[str]] = {}
+    for joint in robot.joints:
+        below.setdefault(joint.parent, []).append(joint.child)
     pending = [link]
     while pending:
         name = pending.pop()
-        inertial = robot.link(name).inertial
+        # A link of an attached MJCF part is in no URDF: its masses are the part's own.
+        inertial = links[name].inertial if name in links else None
         if inertial is None or not inertial.mass > 0:
             return False
-        pending += [joint.child for joint in below[name]]
+        pending += below.get(name, [])
     return True
 
 
