@@ -19,10 +19,18 @@ geometry, in the body's frame:
 
 A body that fails is named with the likely cause, tried in order: *units in mm* (the last
 test); *up axis*, when the meshes that came from DAE files tagged Y-up or X-up, turned a quarter
-turn about x or y, pass every test; *a wrong inertial origin*, when visual and collision
-geometry agree and the centre of mass is outside both; else *a wrong origin*. Meshes in
-millimetres fail the check (the model is certainly wrong); the other causes are warnings, since
-a hand-made model can have a light shell around a heavy counterweight.
+turn about x or y, pass every test and, where the body has collision geometry of its own (not
+those meshes), overlap it better turned than as read (a centre of mass that fits a turned mesh
+is no evidence when the mesh as read already agrees with its collision primitives); *a wrong
+inertial origin*, when visual and collision geometry agree and the centre of mass is outside
+both; else *a wrong origin*. Meshes in millimetres fail the check (the model is certainly
+wrong); the other causes are warnings, since a hand-made model can have a light shell around a
+heavy counterweight.
+
+A body that passes is still named when a DAE mesh the build turned to Z-up (as its tag says,
+by ``auto`` or robot.yaml's ``apply``) overlaps its body's own collision geometry clearly better
+as the file is written: the turn took it away from the collision primitives it was drawn with,
+and the box tests alone let an L-shaped pair of boxes pass.
 """
 
 from __future__ import annotations
@@ -39,6 +47,7 @@ if TYPE_CHECKING:
     import numpy as np
 
     from mjcfbuild.check.loading import AssetSource
+    from mjcfbuild.meshes.upaxis import UpAxisDecision
 
 # A centre of mass this far outside its body's box (a fraction of the box's diagonal, plus an
 # absolute slack for small links) is not inside it.
@@ -53,6 +62,13 @@ MM_SIZE = 2.0
 MIN_SHARED = 0.02
 # Bodies lighter than this (dummy frames, sensors' placeholders) say nothing.
 MIN_MASS = 1e-3
+# A mesh turned as its up axis says is turned away from its collision geometry when, as the file
+# is written, its box's intersection over union with that geometry's is at least AWAY_FIT and
+# the turned one's at most AWAY_RATIO of it. A quarter turn suggested by the check must raise
+# that overlap by more than CLEARER to count as evidence.
+AWAY_FIT = 0.25
+AWAY_RATIO = 0.5
+CLEARER = 0.05
 
 
 @dataclass
@@ -90,7 +106,8 @@ class _Geom:
     points: np.ndarray  # in the body frame
     file_origin: np.ndarray | None = None  # a mesh's file frame in the body frame
     file_axes: np.ndarray | None = None
-    file_points: np.ndarray | None = None  # the vertices in the mesh file's frame
+    file_points: np.ndarray | None = None  # the vertices in the mesh file's frame (scaled)
+    file_scale: np.ndarray | None = None  # the URDF's scale of the mesh
 
 
 def check_plausibility(
@@ -117,7 +134,8 @@ def check_plausibility(
             continue
         geoms_of.setdefault(int(model.geom_bodyid[index]), []).append(_geom(model, index))
     robot_size = _robot_size(model)
-    tagged = _tagged_meshes(model, sources)
+    decisions = _up_axis_decisions(model, sources)
+    tagged = None if decisions is None else set(decisions)
     for body, geoms in sorted(geoms_of.items()):
         name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, body) or f"body {body}"
         if body == 0 or model.body_mass[body] < MIN_MASS or name in (skip or set()):
@@ -126,6 +144,9 @@ def check_plausibility(
         com = model.body_ipos[body].copy()
         problems = _oversized(geoms, robot_size) + _problems(geoms, com)
         if not problems:
+            away = _turned_away(name, geoms, decisions or {})
+            if away is not None:
+                result.findings.append(away)
             continue
         turnable = [g for g in geoms if g.is_mesh and (tagged is None or g.name in tagged)]
         result.findings.append(_diagnose(name, geoms, com, problems, robot_size, turnable))
@@ -138,17 +159,20 @@ def check_plausibility(
     return result
 
 
-def _tagged_meshes(
+def _up_axis_decisions(
     model: mujoco.MjModel, sources: dict[str, AssetSource] | None
-) -> set[str] | None:
-    """The meshes of ``model`` converted from a DAE file tagged Y_UP or X_UP (their product
-    summary records the tag), or None when the model's meshes are not mjcfbuild products."""
+) -> dict[str, UpAxisDecision] | None:
+    """The meshes of ``model`` converted from a DAE file tagged Y_UP or X_UP, by mesh name,
+    with what the build did with the tag (their product summary records it), or None when the
+    model's meshes are not mjcfbuild products."""
     import json
+
+    from mjcfbuild.meshes.upaxis import UpAxisDecision
 
     if not sources:
         return None
-    tags: dict[Path, bool] = {}
-    found = set()
+    tags: dict[Path, UpAxisDecision | None] = {}
+    found: dict[str, UpAxisDecision] = {}
     raw = bytes(model.paths)
     for mesh in range(model.nmesh):
         start = int(model.mesh_pathadr[mesh])
@@ -165,9 +189,10 @@ def _tagged_meshes(
                     decision = json.loads(summary.read_text()).get("up_axis") or {}
                 except (OSError, ValueError, AttributeError):
                     decision = {}
-                tags[summary] = decision.get("tag") in ("Y_UP", "X_UP")
-            if tags[summary]:
-                found.add(model.mesh(mesh).name)
+                tagged = decision.get("tag") in ("Y_UP", "X_UP")
+                tags[summary] = UpAxisDecision.from_dict(decision) if tagged else None
+            if (found_decision := tags[summary]) is not None:
+                found[model.mesh(mesh).name] = found_decision
     return found
 
 
@@ -193,7 +218,9 @@ def _geom(model: mujoco.MjModel, index: int) -> _Geom:
         origin = position - axes @ model.mesh_pos[mesh]
         in_file = local @ mesh_rotation.T + model.mesh_pos[mesh]
         mesh_name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_MESH, mesh) or name
-        return _Geom(mesh_name, visual, True, local @ rotation.T + position, origin, axes, in_file)
+        scale = np.asarray(model.mesh_scale[mesh], float)
+        points = local @ rotation.T + position
+        return _Geom(mesh_name, visual, True, points, origin, axes, in_file, scale)
     center, half = model.geom_aabb[index][:3], model.geom_aabb[index][3:]
     signs = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
     corners = center + signs * half
@@ -283,9 +310,8 @@ def _problems(geoms: list[_Geom], com: np.ndarray | None) -> list[str]:
     return problems
 
 
-def _shared_fraction(a: np.ndarray, b: np.ndarray) -> float:
-    """How much of the smaller of the two point sets' boxes the other's box covers (boxes
-    padded a little, so a flat plate still has a volume)."""
+def _padded_boxes(a: np.ndarray, b: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The boxes of two point sets, padded a little, so a flat plate still has a volume."""
     import numpy as np
 
     boxes = []
@@ -293,7 +319,25 @@ def _shared_fraction(a: np.ndarray, b: np.ndarray) -> float:
         low, high = points.min(axis=0), points.max(axis=0)
         pad = 0.05 * float(np.max(high - low)) + 1e-4
         boxes.append((low - pad, high + pad))
-    (low_a, high_a), (low_b, high_b) = boxes
+    return boxes
+
+
+def _iou(a: np.ndarray, b: np.ndarray) -> float:
+    """The intersection over union of the two point sets' (padded) boxes."""
+    import numpy as np
+
+    (low_a, high_a), (low_b, high_b) = _padded_boxes(a, b)
+    common = float(np.prod(np.clip(np.minimum(high_a, high_b) - np.maximum(low_a, low_b), 0, None)))
+    union = float(np.prod(high_a - low_a) + np.prod(high_b - low_b)) - common
+    return common / union if union > 0 else 0.0
+
+
+def _shared_fraction(a: np.ndarray, b: np.ndarray) -> float:
+    """How much of the smaller of the two point sets' boxes the other's box covers (boxes
+    padded a little, so a flat plate still has a volume)."""
+    import numpy as np
+
+    (low_a, high_a), (low_b, high_b) = _padded_boxes(a, b)
     common = np.clip(np.minimum(high_a, high_b) - np.maximum(low_a, low_b), 0, None)
     smaller = min(float(np.prod(high_a - low_a)), float(np.prod(high_b - low_b)))
     return float(np.prod(common)) / smaller if smaller > 0 else 1.0
@@ -320,9 +364,14 @@ def _diagnose(
         )
     visual = [g.points for g in geoms if g.visual]
     collision = [g.points for g in geoms if not g.visual]
+    as_read = _collision_fit(turnable, geoms)
     for label, turn in _QUARTER_TURNS:
         trial = [_turned(g, turn) if g in turnable else g for g in geoms]
-        if turnable and not _problems(trial, com):
+        if not turnable or _problems(trial, com):
+            continue
+        # The centre of mass fits the turned mesh; its collision geometry must agree.
+        turned_fit = _collision_fit([g for g in trial if g.is_mesh and g not in geoms], geoms)
+        if as_read is None or (turned_fit is not None and turned_fit > as_read + CLEARER):
             names = ", ".join(sorted({f"'{m.name}'" for m in turnable}))
             return BodyFinding(
                 body,
@@ -355,13 +404,63 @@ def _diagnose(
     )
 
 
-def _turned(geom: _Geom, turn: list[list[int]]) -> _Geom:
-    """``geom``'s mesh turned about its file's own origin."""
+def _collision_fit(meshes: list[_Geom], geoms: list[_Geom]) -> float | None:
+    """How well ``meshes`` overlap the body's collision geometry that is not among them (the
+    intersection over union of the two boxes), or None when there is none to compare with."""
+    import numpy as np
+
+    own = {g.name for g in meshes}
+    others = [g.points for g in geoms if not g.visual and g.name not in own]
+    if not meshes or not others:
+        return None
+    return _iou(np.concatenate([g.points for g in meshes]), np.concatenate(others))
+
+
+def _turned_away(
+    body: str, geoms: list[_Geom], decisions: dict[str, UpAxisDecision]
+) -> BodyFinding | None:
+    """A finding for a body whose meshes the build turned to Z-up (as their DAE files' tag
+    says) while, as written, they fit the body's own collision geometry far better."""
+    from mjcfbuild.meshes.upaxis import up_rotation
+
+    turned = [g for g in geoms if g.is_mesh and (d := decisions.get(g.name)) and d.turned]
+    tags = {decisions[g.name].tag for g in turned}
+    if len(tags) != 1:
+        return None
+    (tag,) = tags
+    back = [list(row) for row in zip(*up_rotation(tag), strict=True)]  # its inverse
+    as_built = _collision_fit(turned, geoms)
+    as_written = _collision_fit([_turned(g, back) for g in turned], geoms)
+    if as_built is None or as_written is None:
+        return None
+    if as_written < AWAY_FIT or as_built > AWAY_RATIO * as_written:
+        return None
+    names = ", ".join(sorted({f"'{g.name}'" for g in turned}))
+    return BodyFinding(
+        body,
+        [
+            f"mesh {names}, turned to Z-up as its DAE file's {tag} tag says, overlaps the "
+            f"body's collision geometry {as_built:.2f} (intersection over union), "
+            f"{as_written:.2f} as written"
+        ],
+        "up axis",
+        f"up axis: the data of mesh {names} is Z-up already; set "
+        "meshes.collada_up_axis_files for its DAE file to ignore in robot.yaml",
+        False,
+    )
+
+
+def _turned(geom: _Geom, turn: list[list[int]] | list[list[float]]) -> _Geom:
+    """``geom``'s mesh turned about its file's own origin (``turn`` is a turn of the file's
+    unscaled data, so a scaled mesh is unscaled first)."""
     import numpy as np
 
     assert geom.file_points is not None and geom.file_axes is not None
     assert geom.file_origin is not None
-    moved = (geom.file_points @ np.asarray(turn, float).T) @ geom.file_axes.T + geom.file_origin
+    rotation = np.asarray(turn, float)
+    if geom.file_scale is not None and np.all(geom.file_scale != 0):
+        rotation = (rotation * geom.file_scale[:, None]) / geom.file_scale[None, :]
+    moved = (geom.file_points @ rotation.T) @ geom.file_axes.T + geom.file_origin
     return _Geom(geom.name, geom.visual, True, moved)
 
 

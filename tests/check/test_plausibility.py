@@ -12,6 +12,7 @@ import trimesh
 from mjcfbuild.check.plausibility import check_plausibility
 from mjcfbuild.errors import EXIT_CHECK
 from tests.conftest import run_cli, simple_manifest, write
+from tests.meshes.test_upaxis import box_triangles, dae_text
 
 # A hand-tuned model as MuJoCo Menagerie writes them: visual and collision classes, meshes and
 # primitives, explicit inertials.
@@ -76,6 +77,58 @@ def test_a_mesh_turned_a_quarter_is_an_up_axis():
     (finding,) = result.findings
     assert finding.body == "thigh" and finding.cause == "up axis" and not finding.fails
     assert "'shell'" in finding.detail and "quarter turn about x" in finding.detail
+
+
+def forearm_urdf() -> str:
+    """A forearm drawn by ``forearm.dae`` and colliding with a box, both reaching 20 cm along
+    -y, whose centre of mass is written on the wrong side (+y): gym-jiminy-zoo's atlas."""
+    inertia = '<inertia ixx="0.01" iyy="0.005" izz="0.01" ixy="0" ixz="0" iyz="0"/>'
+    return f"""<?xml version="1.0"?>
+<robot name="forearm">
+  <link name="base"><inertial><mass value="5"/>{inertia}</inertial>
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision></link>
+  <link name="forearm">
+    <inertial><origin xyz="0 0.083 0"/><mass value="2.5"/>{inertia}</inertial>
+    <visual><geometry><mesh filename="forearm.dae"/></geometry></visual>
+    <collision><origin xyz="0 -0.1 0"/><geometry><box size="0.1 0.2 0.06"/></geometry>
+    </collision></link>
+  <joint name="elbow" type="revolute"><parent link="base"/><child link="forearm"/>
+    <origin xyz="0 0 0.3"/><axis xyz="1 0 0"/>
+    <limit lower="-1" upper="1" effort="50" velocity="2"/></joint>
+</robot>
+"""
+
+
+def build_forearm(tmp_path, extra: str = "") -> dict:
+    """Build the forearm, its DAE tagged Y-up holding Z-up data (read as pycollada reads it,
+    it lies along its collision box); the plausibility findings by body."""
+    corners, faces = box_triangles(np.array([-0.05, -0.2, -0.03]), np.array([0.05, 0.0, 0.03]))
+    write(tmp_path / "forearm.dae", dae_text(corners, faces, "Y_UP"))
+    write(tmp_path / "robot.urdf", forearm_urdf())
+    simple_manifest(tmp_path, extra=extra)
+    done = run_cli("build", cwd=tmp_path)
+    assert done.code == 0, done.stderr
+    check = json.loads((tmp_path / "mjcf" / ".mjcfbuild" / "check.json").read_text())
+    return {f["body"]: f for f in check["plausibility"]["findings"]}
+
+
+def test_a_mesh_that_agrees_with_its_collision_box_blames_the_inertial_not_the_up_axis(tmp_path):
+    """The centre of mass fits the mesh turned a quarter, but the mesh as read already lies
+    along its link's collision box: the turn is no evidence, the inertial <origin> is."""
+    findings = build_forearm(tmp_path)
+    assert set(findings) == {"forearm"}
+    assert findings["forearm"]["cause"] == "wrong origin", findings
+    assert "a wrong inertial <origin>" in findings["forearm"]["detail"]
+
+
+def test_a_dae_turned_away_from_its_collision_box_by_robot_yaml_is_named(tmp_path):
+    """Following the up-axis advice turned the mesh across its collision box, and the centre
+    of mass then fit the larger box of both: the check passed silently."""
+    findings = build_forearm(tmp_path, "meshes:\n  collada_up_axis_files: {forearm.dae: apply}\n")
+    (problem,) = findings["forearm"]["problems"]
+    assert findings["forearm"]["cause"] == "up axis" and not findings["forearm"]["fails"]
+    assert problem.startswith("mesh 'forearm', turned to Z-up as its DAE file's Y_UP tag says")
+    assert "collada_up_axis_files for its DAE file to ignore" in findings["forearm"]["detail"]
 
 
 def mm_urdf() -> str:
