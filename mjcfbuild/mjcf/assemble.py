@@ -36,6 +36,7 @@ from mjcfbuild.mjcf.precise import precise_xml
 from mjcfbuild.mjcf.prepared import Decomposition, GeomRecord, Prepared, prepare
 from mjcfbuild.mjsensors import without_sensors
 from mjcfbuild.mjwarnings import capture_mujoco_warnings, take_mujoco_warnings
+from mjcfbuild.sources.expand import COMMAND_LINE
 from mjcfbuild.urdf.model import Robot
 
 VISUAL_CLASS = "visual"
@@ -92,6 +93,14 @@ class Assembly:
     reads: dict[str, tuple[str, str]] = field(default_factory=dict)
 
 
+def _free_joint(options: AssemblyOptions) -> tuple[str, str]:
+    """Where the free joint was asked for (robot.yaml's setting, or convert's ``-f``) and how
+    not to ask for it."""
+    if options.manifest_label == COMMAND_LINE:
+        return "the command line's -f", "leave out -f"
+    return f"{options.manifest_label} options.free_joint", "set free_joint: false"
+
+
 def assemble(
     robot: Robot,
     products: dict[str, MeshProduct],
@@ -110,7 +119,7 @@ def assemble(
     lines = {
         link.name: (link.inertial.line if link.inertial else link.line) for link in robot.links
     }
-    repairs = validate_masses(bodies, options.inertia, robot.source, lines)
+    repairs = validate_masses(bodies, options.inertia, robot.source, lines, _free_joint(options))
     choices = options.choices
     if choices is None:
         choices = choose_collisions(robot, "authored", [], {})

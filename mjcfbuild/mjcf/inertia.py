@@ -52,13 +52,32 @@ class Repair:
 
 
 def validate_masses(
-    bodies: list[Body], policy: InertiaPolicy, source: str, lines: dict[str, int | None]
+    bodies: list[Body],
+    policy: InertiaPolicy,
+    source: str,
+    lines: dict[str, int | None],
+    free_joint: tuple[str, str] = ("robot.yaml options.free_joint", "set free_joint: false"),
 ) -> list[Repair]:
-    """Check (and under ``repair``, fix in place) every body's mass properties."""
+    """Check (and under ``repair``, fix in place) every body's mass properties.
+    ``free_joint`` names where the free joint was asked for (robot.yaml's, as ``LABEL
+    KEY.PATH``, which the engine points at its line) and how not to ask: the cause when the
+    floating base is the only body that moves."""
     repairs: list[Repair] = []
     total = sum(b.mass.mass for b in bodies if b.mass is not None and math.isfinite(b.mass.mass))
     moving = [body for body in bodies if body.moves]
-    if moving and all(b.mass is None or b.mass.mass == 0 for b in bodies):
+    massless = all(b.mass is None or b.mass.mass == 0 for b in bodies)
+    if massless and moving and all(body.floating for body in moving):
+        # Nothing of the description moves: the free joint robot.yaml asked for made its
+        # root a moving body (a static prop, a fixture), and that is what to change.
+        where, turn_off = free_joint
+        raise InputError(
+            f"a free joint floats the robot, but no link of {source} has a mass (<inertial>), "
+            f"so its floating base '{moving[0].name}' cannot be simulated",
+            file=where,
+            hint=f"{turn_off} for a robot that stays where it is, or add each link's "
+            f"<inertial> (mass, centre of mass, inertia) to {source}",
+        )
+    if moving and massless:
         # Every body would get the smallest placeholder mass: servos sized for 0.1 g links go
         # unstable and nothing about the model's dynamics is the robot's.
         raise InputError(

@@ -104,3 +104,39 @@ def test_no_mass_anywhere_is_refused_in_one_line():
     )
     with pytest.raises(InputError, match="no link of the robot has a mass"):
         validate_masses(bodies, InertiaPolicy(), "r.urdf", {})
+
+
+PROP = """<?xml version="1.0"?>
+<robot name="prop">
+  <link name="table">
+    <visual><geometry><box size="1 0.6 0.05"/></geometry></visual>
+    <collision><geometry><box size="1 0.6 0.05"/></geometry></collision>
+  </link>
+</robot>
+"""
+
+
+def test_a_free_joint_on_a_robot_without_mass_names_robot_yaml_free_joint(tmp_path):
+    """A static prop with no <inertial>: nothing of the description moves, the free joint
+    robot.yaml asked for made its only body a moving one; that setting is the cause."""
+    from mjcfbuild.errors import EXIT_INPUT
+    from tests.conftest import run_cli, simple_manifest, write
+
+    write(tmp_path / "prop.urdf", PROP)
+    manifest = simple_manifest(tmp_path, "urdf: prop.urdf", "options:\n  free_joint: true\n")
+    done = run_cli("build", cwd=tmp_path)
+    assert done.code == EXIT_INPUT, done.stderr
+    assert (
+        "mjcfbuild: error: robot.yaml:5:3: options.free_joint: a free joint floats the robot, "
+        "but no link of prop.urdf has a mass (<inertial>), so its floating base 'table' cannot "
+        "be simulated (set free_joint: false for a robot that stays where it is, or add each "
+        "link's <inertial> (mass, centre of mass, inertia) to prop.urdf)"
+    ) in done.stderr
+    # As the hint says: fixed to the world, the prop builds (MuJoCo's import takes it so).
+    manifest.write_text(manifest.read_text().replace("free_joint: true", "free_joint: false"))
+    assert run_cli("build", cwd=tmp_path).code == 0
+    # convert's -f is named as the command line gave it.
+    done = run_cli("convert", "-u", "prop.urdf", "-f", "-s", "-o", "out/prop.xml", cwd=tmp_path)
+    assert done.code == EXIT_INPUT, done.stderr
+    assert "error: the command line's -f: a free joint floats the robot" in done.stderr
+    assert "(leave out -f for a robot that stays where it is" in done.stderr
