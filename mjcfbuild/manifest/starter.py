@@ -160,7 +160,7 @@ def starter_manifest_text(
     roots = [manifest_dir, source.parent, *(Path(folder) for folder in known.values())]
     outside: list[tuple[str, str]] = []
     free_joint, unread, expanded = _free_joint_lines(
-        source, is_xacro, known, data, label, early, roots, outside
+        source, is_xacro, known, data, label, early, roots, outside, notes=warnings
     )
     if is_xacro:
         arguments = _declared_args(data)
@@ -337,11 +337,13 @@ def _free_joint_lines(
     args: dict[str, str],
     roots: list[Path],
     outside: list[tuple[str, str]],
+    notes: list[str] | None = None,
 ) -> tuple[list[str], str | None, bytes | None]:
     """The manifest's free_joint line, decided from the robot's kinematics and geometry
     (urdf.base); from its names only where the description cannot be read here, with the
     error (one line) that kept it from being read; and the URDF it read (None where none).
-    ``outside`` receives the files it reads from outside ``roots`` (``_first_stop``)."""
+    ``outside`` receives the files it reads from outside ``roots`` (``_first_stop``).
+    ``notes`` receives why a robot that would float does not (it has no mass)."""
     from mjcfbuild.sources.origins import map_lines
     from mjcfbuild.urdf.base import classify_base
 
@@ -378,6 +380,24 @@ def _free_joint_lines(
             None,
         )
     stop = _first_stop(robot, source, packages, expansion.origins, roots, outside)
+    if kind.floating and not _has_mass(robot):
+        # A free joint makes the root a moving body, and MuJoCo cannot simulate a moving body
+        # of no mass: the build would refuse what the description leaves a static prop.
+        if notes is not None:
+            notes.append(
+                f"{label}: no link has a mass (<inertial>), so the manifest fixes the robot to "
+                "the world (free_joint: false): MuJoCo cannot simulate a floating base without "
+                "one (add the links' <inertial> elements, then set free_joint: true to float it)"
+            )
+        return (
+            [
+                "  # No link has a mass (<inertial>), and MuJoCo cannot simulate a floating",
+                "  # base without one: fixed to the world. true once the links have <inertial>.",
+                "  free_joint: false",
+            ],
+            stop,
+            expansion.urdf,
+        )
     if kind.floating:
         return (
             [
@@ -422,12 +442,17 @@ def _first_stop(
             where = f"{shown_path(written[0])}:{written[1]}"
         outside.append((where, read.uri))
     moving = [joint for joint in robot.joints if joint.moves]
-    if moving and not any(link.inertial and link.inertial.mass > 0 for link in robot.links):
+    if moving and not _has_mass(robot):
         return (
             f"{robot.source}: no link of the robot has a mass (<inertial>), so it cannot be "
             "simulated (add each link's <inertial>: mass, centre of mass, inertia)"
         )
     return None
+
+
+def _has_mass(robot: Robot) -> bool:
+    """Whether some link of ``robot`` has a mass (an ``<inertial>`` with a positive one)."""
+    return any(link.inertial and link.inertial.mass > 0 for link in robot.links)
 
 
 _LEG_WORDS = ("hip", "thigh", "knee", "calf", "shank", "ankle", "foot", "HFE", "KFE", "HAA")

@@ -48,3 +48,37 @@ def test_starter_shows_motors_as_a_commented_example(tmp_path):
     settings = yaml.safe_load("\n".join(block))
     manifest = parse_manifest(text + "\n" + yaml.safe_dump(settings))
     assert "my_knee" in manifest.motors.define
+
+
+def test_a_robot_without_mass_is_not_floated_and_init_says_why(tmp_path):
+    """A prop of one link and no <inertial> (a table): its base would float (nothing in it
+    moves), but a floating base without mass cannot be simulated; the build then refused a
+    description that has no moving body at all."""
+    import mjcfbuild
+
+    urdf = write(
+        tmp_path / "prop.urdf",
+        '<robot name="prop"><link name="table"><collision><geometry>'
+        '<box size="1 0.6 0.05"/></geometry></collision></link></robot>',
+    )
+    warnings: list[str] = []
+    text = starter_manifest_text(urdf, {}, tmp_path, warnings=warnings, label="prop.urdf")
+    assert parse_manifest(text).options.free_joint is False
+    assert "# No link has a mass (<inertial>), and MuJoCo cannot simulate a floating" in text
+    assert warnings == [
+        "prop.urdf: no link has a mass (<inertial>), so the manifest fixes the robot to the "
+        "world (free_joint: false): MuJoCo cannot simulate a floating base without one (add "
+        "the links' <inertial> elements, then set free_joint: true to float it)"
+    ]
+    write(tmp_path / "robot.yaml", text)
+    assert mjcfbuild.build(tmp_path / "robot.yaml", jobs=1).ok
+    # With a mass, the same prop floats as before.
+    heavy = urdf.read_text().replace(
+        "<collision>",
+        '<inertial><mass value="10"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" '
+        'iyz="0"/></inertial><collision>',
+    )
+    write(urdf, heavy)
+    warnings = []
+    text = starter_manifest_text(urdf, {}, tmp_path, warnings=warnings, label="prop.urdf")
+    assert parse_manifest(text).options.free_joint is True and warnings == []
