@@ -470,8 +470,14 @@ def _leg_words(data: bytes) -> list[str]:
 
 
 def _relative(path: Path, start: Path) -> str:
+    """``path`` as robot.yaml (in ``start``) names it: relative, unless it is three folders
+    or more up and over (another tree, which may stay where it is when the repo moves). A folder
+    holding robot.yaml, however far up (the description's own package: xacro's sdist keeps
+    its robot in test/robots/pr2), moves with it, so it stays relative."""
     relative = os.path.relpath(path, start)
-    return relative if not relative.startswith("../../..") else str(path)
+    if not relative.startswith("../../..") or all(part == ".." for part in Path(relative).parts):
+        return relative
+    return str(path)
 
 
 def _valid_name(text: str) -> str:

@@ -82,3 +82,32 @@ def test_a_robot_without_mass_is_not_floated_and_init_says_why(tmp_path):
     warnings = []
     text = starter_manifest_text(urdf, {}, tmp_path, warnings=warnings, label="prop.urdf")
     assert parse_manifest(text).options.free_joint is True and warnings == []
+
+
+def test_a_package_holding_robot_yaml_deep_inside_is_named_relative(tmp_path):
+    """xacro's sdist keeps its PR2 in test/robots/pr2 and names files by $(find xacro): init
+    run there wrote the package as an absolute path (three folders up), which breaks when the
+    folder moves. A package holding robot.yaml moves with it."""
+    import mjcfbuild
+    from tests.conftest import two_link_urdf
+
+    package = tmp_path / "moved" / "demo_pkg-1.0"
+    write(package / "package.xml", "<package format='2'><name>demo_pkg</name></package>\n")
+    robot = package / "test" / "robots" / "bot"
+    urdf = two_link_urdf().split("<robot", 1)[1].split(">", 1)[1].rsplit("</robot>", 1)[0]
+    write(robot / "links.xacro", f'<robot xmlns:xacro="http://wiki.ros.org/xacro">{urdf}</robot>')
+    source = write(
+        robot / "bot.urdf.xacro",
+        '<robot name="bot" xmlns:xacro="http://wiki.ros.org/xacro">\n'
+        '  <xacro:include filename="$(find demo_pkg)/test/robots/bot/links.xacro"/>\n</robot>\n',
+    )
+    text = starter_manifest_text(source, {}, robot)
+    assert parse_manifest(text).packages == {"demo_pkg": "../../.."}
+    assert "inferred" not in text  # found from its package.xml
+    write(robot / "robot.yaml", text)
+    (tmp_path / "moved").rename(tmp_path / "elsewhere")
+    assert mjcfbuild.build(
+        tmp_path / "elsewhere" / "demo_pkg-1.0" / robot.relative_to(package) / "robot.yaml",
+        jobs=1,
+        check=False,
+    ).ok
