@@ -8,13 +8,14 @@ from typing import TYPE_CHECKING
 from mjcfbuild.families.parts import part_folders
 from mjcfbuild.graph.family import (
     Family,
+    discovered_inputs,
     file_task,
     package_folders,
     require_file,
     ros_environment,
 )
 from mjcfbuild.graph.uptodate import planned_meshes_exist
-from mjcfbuild.outputs import PLAN, SOURCE_URDF, planned_urdf
+from mjcfbuild.outputs import PLAN, PLAN_DEPS, SOURCE_URDF, planned_urdf
 from mjcfbuild.steps.payloads import PlanPayload
 
 if TYPE_CHECKING:
@@ -43,7 +44,11 @@ def _tasks(graph: Graph) -> list[dict]:
         output=str(ctx.state(PLAN)),
         prebuilt_meshes=str(prebuilt) if prebuilt is not None else None,
         roots=None if ctx.manifest.source.read_outside else _description_roots(ctx),
+        depfile=str(ctx.state(PLAN_DEPS)),
     )
+    # A rerun where a texture it did not find appeared, or one it found was removed; what a
+    # found texture holds does not matter to the plan (so it is no file dependency).
+    _, stale = discovered_inputs(ctx, ctx.state(PLAN_DEPS))
     task = file_task(
         ctx,
         FAMILY,
@@ -53,7 +58,7 @@ def _tasks(graph: Graph) -> list[dict]:
         in_worker=False,
         file_dep=[urdf, *([inputs_file] if inputs_file else [])],
         targets=[ctx.state(PLAN)],
-        extra_uptodate=[planned_meshes_exist(ctx.state(PLAN))],
+        extra_uptodate=[planned_meshes_exist(ctx.state(PLAN)), *stale],
     )
     return [task]
 

@@ -175,6 +175,7 @@ class PlanPayload(Payload):
     prebuilt_meshes: str | None = None  # convert -a: a folder of meshes converted before
     # The folders files may be read from without a warning; None: no warning (read_outside)
     roots: list[str] | None = None
+    depfile: Output = ""  # the material textures it found and looked for in vain
 
 
 @dataclass(frozen=True)

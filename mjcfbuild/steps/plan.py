@@ -12,6 +12,7 @@ from mjcfbuild.inputs.xml_inputs import inputs_in_urdf, read_inputs_file
 from mjcfbuild.mjcf.bodies import refuse_nested_floating
 from mjcfbuild.mjcf.depth import refuse_deep_chains
 from mjcfbuild.sources.packages import PackageResolver
+from mjcfbuild.steps.depfile import Depfile
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import PlanPayload
 from mjcfbuild.steps.plan_record import Plan, PlannedInputs, PlannedMesh
@@ -33,7 +34,7 @@ def run(payload: dict) -> dict:
         refuse_deep_chains(robot)  # before any work: MuJoCo could not read the model back
         refuse_nested_floating(robot)  # nor compile it
         prebuilt = request.prebuilt_meshes
-        originals = resolve_files(
+        resolved = resolve_files(
             robot,
             Path(request.base_dir),
             packages,
@@ -65,7 +66,7 @@ def run(payload: dict) -> dict:
     plan = Plan(
         robot=robot.to_dict(),
         meshes=[
-            PlannedMesh(mesh_id, path, originals.get(path))
+            PlannedMesh(mesh_id, path, resolved.originals.get(path))
             for mesh_id, path in sorted(meshes.items())
         ],
         inputs=PlannedInputs(
@@ -77,5 +78,8 @@ def run(payload: dict) -> dict:
     )
     outputs: dict[str, str] = {}
     write_output(Path(request.output), plan.text(), outputs)
+    if request.depfile:
+        # A texture that appears (or goes) changes the plan: the next build notices.
+        Depfile(resolved.textures, resolved.missing, {}).write(Path(request.depfile))
     warnings = [*robot.warnings, *sensor_warnings, *transmission_warnings]
     return {"outputs": outputs, "warnings": warnings}

@@ -51,6 +51,7 @@ class Material:
     name: str | None = None
     rgba: RGBA | None = None
     texture: str | None = None
+    texture_line: int | None = None  # of its <texture>: where a texture not found is named
 
 
 @dataclass
@@ -189,6 +190,7 @@ def robot_from_dict(data: dict) -> Robot:
                 material.get("name"),
                 tuple(material["rgba"]) if material.get("rgba") is not None else None,
                 material.get("texture"),
+                material.get("texture_line"),
             )
         return Shape(
             role=d["role"],

@@ -434,7 +434,8 @@ def _material(element: etree._Element, reader: _Reader, known: dict[str, Materia
     texture_file = texture.get("filename") if texture is not None else None
     if rgba is None and texture_file is None and name in known:
         return known[name]
-    return Material(name=name, rgba=rgba, texture=texture_file)
+    line = texture.sourceline if texture is not None and texture_file is not None else None
+    return Material(name=name, rgba=rgba, texture=texture_file, texture_line=line)
 
 
 def _parse_link(element: etree._Element, reader: _Reader, materials: dict[str, Material]) -> Link:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import NamedTuple
 
@@ -12,9 +13,20 @@ from mjcfbuild.fsutil import case_match, case_suggestion, normalise, unreadable_
 from mjcfbuild.meshes.formats import MESH_FORMATS, mesh_format
 from mjcfbuild.meshes.naming import assign_mesh_ids
 from mjcfbuild.meshes.prebuilt import prebuilt_mesh
+from mjcfbuild.numbers import exact_list
 from mjcfbuild.sources.packages import PackageResolver, find_enclosing_package
 from mjcfbuild.sources.uris import resolve_uri, uri_package_folder
 from mjcfbuild.urdf.model import Robot, Shape
+
+
+@dataclass
+class ResolvedFiles:
+    """What resolving a URDF's files found besides the paths it filled in."""
+
+    # the mesh file each pre-generated OBJ stands for (convert -a), whose look it takes
+    originals: dict[str, str] = field(default_factory=dict)
+    textures: list[str] = field(default_factory=list)  # the material textures found
+    missing: list[str] = field(default_factory=list)  # the textures looked for and not found
 
 
 def resolve_files(
@@ -24,7 +36,7 @@ def resolve_files(
     prebuilt: Path | None = None,
     roots: Sequence[Path] | None = None,
     outside: list[OutsideRead] | None = None,
-) -> dict[str, str]:
+) -> ResolvedFiles:
     """Fill in the real path of every mesh and texture, and give each mesh file an id.
 
     Relative references are relative to ``base_dir``, the folder of the URDF or xacro file.
@@ -33,11 +45,15 @@ def resolve_files(
     folder of meshes converted before, a mesh with a pre-generated OBJ there is read from it.
     With ``roots`` (the folders the description may read: robot.yaml's, its packages'), a
     file outside them and outside every package a URI names gets a warning in
-    ``robot.warnings``, once per URI, and is added to ``outside`` where given. Returns the
-    mesh file each pre-generated OBJ stands for (a visual's where several do), whose look it
-    takes where it has none of its own.
+    ``robot.warnings``, once per URI, and is added to ``outside`` where given. A material
+    texture that is not there is a warning in ``robot.warnings`` at its ``<texture>``, and the
+    material keeps only its colour. Returns the mesh file each pre-generated OBJ stands for (a
+    visual's where several do), whose look it takes where it has none of its own, and the
+    textures found and looked for in vain.
     """
     reads: list[tuple[str, Path, int | None]] = []
+    textures: list[str] = []
+    missing: list[str] = []
     mesh_paths: list[str] = []
     originals: dict[str, str] = {}  # pre-generated OBJ -> the mesh file it stands for
     seen_visual: set[str] = set()
@@ -69,12 +85,10 @@ def resolve_files(
                     )
                 mesh_paths.append(geometry.path)
             if shape.material is not None and shape.material.texture:
-                uri = shape.material.texture
-                # at the shape's line: a texture is named in its <material>, not its geometry
-                shape.material.texture = _resolve_existing(
-                    robot, shape.line, uri, base_dir, packages
-                )
-                reads.append((uri, Path(shape.material.texture), shape.line))
+                read = _resolve_texture(robot, shape, base_dir, packages, missing)
+                if read is not None:
+                    reads.append(read)
+                    textures.append(str(read[1]))
     if roots is not None:
         far = reads_outside(reads, packages, roots)
         _warn_outside(robot, far)
@@ -86,7 +100,50 @@ def resolve_files(
             if shape.geometry.kind == "mesh":
                 assert shape.geometry.path is not None, "every mesh was resolved above"
                 shape.geometry.mesh_id = ids[shape.geometry.path]
-    return originals
+    return ResolvedFiles(originals, sorted(set(textures)), sorted(set(missing)))
+
+
+def _resolve_texture(
+    robot: Robot,
+    shape: Shape,
+    base_dir: Path,
+    packages: PackageResolver,
+    missing: list[str],
+) -> tuple[str, Path, int | None] | None:
+    """Resolve the texture of ``shape``'s material in place: (its URI, path, line) where
+    the file is there; else None, the texture dropped, one warning per ``<texture>`` (a
+    material shared by name is resolved once) and the path it looked at in ``missing``.
+
+    A missing texture is no error: urdfdom and MuJoCo's URDF import take the description,
+    and the model draws the material's colour.
+    """
+    material = shape.material
+    assert material is not None and material.texture, "a shape with a texture"
+    uri = material.texture
+    # At the shape's line where the <texture>'s own is unknown (a URDF parsed before it was
+    # recorded): a texture is named in its <material>, not its geometry.
+    line = material.texture_line or shape.line
+    path, problem = _look_up(uri, base_dir, packages)
+    if problem is None:
+        assert path is not None, "a path or a problem"
+        material.texture = str(path)
+        return uri, path, line
+    material.texture = None
+    message, hint = problem
+    if path is not None:
+        missing.append(str(path))
+    else:  # the URI names no path (an unknown package), and the message not the URI
+        message = f"'{uri}': {message}"
+    where = f"{robot.source}:{line}" if line is not None else robot.source
+    named = f"material '{material.name}': " if material.name else ""
+    colour = (
+        f"the material's colour, rgba {exact_list(material.rgba)}"
+        if material.rgba is not None
+        else "MuJoCo's default grey"
+    )
+    fix = f"{hint}, or remove the <texture>" if hint else "remove the <texture>"
+    robot.warnings.append(f"{where}: {named}texture {message}; the model draws {colour} ({fix})")
+    return None
 
 
 class OutsideRead(NamedTuple):
@@ -140,35 +197,42 @@ def _resolve_existing(
 ) -> str:
     """The path ``uri`` names (at ``line`` of the URDF), or an error saying why there is
     none."""
+    path, problem = _look_up(uri, base_dir, packages)
+    if problem is not None:
+        message, hint = problem
+        raise InputError(message, file=robot.source, line=line, hint=hint)
+    assert path is not None, "a path or a problem"
+    return str(path)
+
+
+def _look_up(
+    uri: str, base_dir: Path, packages: PackageResolver
+) -> tuple[Path | None, tuple[str, str | None] | None]:
+    """The path ``uri`` names and, where it names no readable file, why (a message and a
+    hint); the path is None where the URI names none (an unknown package)."""
     try:
         path = resolve_uri(uri, base_dir, packages)
     except InputError as exc:
-        raise InputError(exc.message, file=robot.source, line=line, hint=exc.hint) from None
+        return None, (exc.message, exc.hint)
     problem = unreadable_file(path)
-    match = case_match(path) if problem and problem.startswith("not found") else None
+    if not problem:
+        return path, None
+    match = case_match(path) if problem.startswith("not found") else None
     looked = _looked_at(uri, path)
     if match is not None:
-        raise InputError(
+        return path, (
             f"file '{uri}' not found; did you mean '{_respelt(uri, path, match)}'?{looked}",
-            file=robot.source,
-            line=line,
-            hint="write the name as the file is spelt: letter case matters here",
+            "write the name as the file is spelt: letter case matters here",
         )
-    if problem and problem.startswith("not found") and _from_elsewhere(uri):
-        raise InputError(
+    if problem.startswith("not found") and _from_elsewhere(uri):
+        return path, (
             f"file '{uri}' not found: an absolute path, likely written on another machine",
-            file=robot.source,
-            line=line,
-            hint="make it relative to the URDF's folder, or a package:// URI",
+            "make it relative to the URDF's folder, or a package:// URI",
         )
-    if problem:
-        raise InputError(
-            f"file '{uri}' {problem}{looked}",
-            file=robot.source,
-            line=line,
-            hint="check the path and the 'packages' in robot.yaml",
-        )
-    return str(path)
+    return path, (
+        f"file '{uri}' {problem}{looked}",
+        "check the path and the 'packages' in robot.yaml",
+    )
 
 
 def _line(shape: Shape) -> int | None:

@@ -53,16 +53,56 @@ def test_a_missing_mesh_is_named_at_its_mesh_element_not_its_visual(tmp_path):
     assert info.value.location.line == 5
 
 
-def test_a_missing_texture_is_named_at_its_shape_not_its_geometry(tmp_path):
+TEXTURED = (
+    b'<robot name="r">\n<material name="painted">\n<color rgba="0.8 0.8 0.8 1"/>\n'
+    b'<texture filename="textures/paint.png"/>\n</material>\n<link name="a">\n'
+    b'<visual><geometry><box size="1 1 1"/></geometry><material name="painted"/></visual>\n'
+    b'<visual><geometry><box size="1 1 1"/></geometry><material name="painted"/></visual>\n'
+    b"</link></robot>"
+)
+
+
+def test_a_missing_texture_is_one_warning_at_its_texture_line_and_the_colour_stays(tmp_path):
+    # urdf-usd-converter's material_texture_name_duplication.urdf: urdfdom and MuJoCo's URDF
+    # import take it (MuJoCo draws no URDF texture); the build stopped at the visual's line.
+    robot = parse_urdf(TEXTURED, "r.urdf")
+    resolved = resolve_files(robot, tmp_path, PackageResolver({}, {}))
+    assert robot.warnings == [
+        "r.urdf:4: material 'painted': texture file 'textures/paint.png' not found; the model "
+        "draws the material's colour, rgba 0.8 0.8 0.8 1 (check the path and the 'packages' "
+        "in robot.yaml, or remove the <texture>)"
+    ]  # once, though two visuals use the material
+    material = robot.link("a").visuals[0].material
+    assert material is not None and material.texture is None
+    assert material.rgba == (0.8, 0.8, 0.8, 1.0)
+    assert resolved.missing == [str(tmp_path / "textures" / "paint.png")]
+    assert resolved.textures == []
+
+
+def test_a_missing_texture_without_a_colour_says_the_default_is_drawn(tmp_path):
     robot = parse_urdf(
         b'<robot name="r"><link name="a">\n<visual>\n<geometry>\n<box size="1 1 1"/>\n'
-        b'</geometry>\n<material name="m"><texture filename="gone.png"/></material>\n'
-        b"</visual></link></robot>",
+        b'</geometry>\n<material name="m">\n<texture filename="package://nope/gone.png"/>'
+        b"</material>\n</visual></link></robot>",
         "r.urdf",
     )
-    with pytest.raises(InputError) as info:
-        resolve_files(robot, tmp_path, PackageResolver({}, {}))
-    assert info.value.location.line == 2  # the <visual>; its <box> on line 4 names no file
+    resolved = resolve_files(robot, tmp_path, PackageResolver({}, {}))
+    [warning] = robot.warnings
+    assert warning.startswith(
+        "r.urdf:7: material 'm': texture 'package://nope/gone.png': unknown package 'nope'"
+    )
+    assert "the model draws MuJoCo's default grey" in warning
+    assert resolved.missing == []  # no path to look at: robot.yaml's packages count instead
+
+
+def test_a_texture_that_is_there_is_resolved_and_listed(tmp_path):
+    texture = write(tmp_path / "textures" / "paint.png", "png")
+    robot = parse_urdf(TEXTURED, "r.urdf")
+    resolved = resolve_files(robot, tmp_path, PackageResolver({}, {}))
+    assert robot.warnings == []
+    material = robot.link("a").visuals[1].material
+    assert material is not None and material.texture == str(texture)
+    assert (resolved.textures, resolved.missing) == ([str(texture)], [])
 
 
 def test_unsupported_format(tmp_path):
