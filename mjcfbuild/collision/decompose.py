@@ -19,6 +19,7 @@ from typing import cast
 import numpy as np
 
 from mjcfbuild.errors import InputError
+from mjcfbuild.meshes.load import at_least_min_vertices
 from mjcfbuild.meshes.objfile import obj_bytes
 
 DECOMPOSITION_FORMAT = 2
@@ -38,13 +39,16 @@ def decompose(mesh_file: Path, params: dict, output_dir: Path) -> dict:
     import trimesh
 
     from mjcfbuild.collision.concavity import hull_concavity, parts_concavity
+    from mjcfbuild.collision.primitives import spans_volume
 
     started = time.perf_counter()
     # trimesh.load is typed to return any Geometry; force="mesh" makes it a Trimesh
     mesh = cast(trimesh.Trimesh, trimesh.load(str(mesh_file), process=False, force="mesh"))
     if len(mesh.faces) == 0:
         raise InputError("cannot decompose a mesh without triangles", file=mesh_file)
-    vertices = np.asarray(mesh.vertices, dtype=np.float64)
+    # One triangle (its product's extra corner is no vertex to trimesh): 4 points, which
+    # qhull's first simplex needs.
+    vertices, _ = at_least_min_vertices(np.asarray(mesh.vertices, dtype=np.float64), None)
     faces = np.asarray(mesh.faces, dtype=np.int64)
     hull_error = hull_concavity(vertices, faces)
     tolerance = hull_tolerance(params)
@@ -58,6 +62,11 @@ def decompose(mesh_file: Path, params: dict, output_dir: Path) -> dict:
         coacd_parts = _run_coacd(vertices, faces, arguments)
         hulls = [_canonical(np.asarray(v, dtype=np.float64)) for v, _ in coacd_parts]
     parts = [h for h in hulls if h is not None]
+    if not parts and not spans_volume(vertices):
+        # A flat mesh (one triangle) of which CoACD made nothing is its own hull: the
+        # assembly then says in one line that it is flat, and which rule fits it.
+        method = "hull"
+        parts = [_canonical(vertices, keep_flat=True)]
     if not parts:
         raise InputError(
             "CoACD produced no convex parts", file=mesh_file, hint="lower the threshold"
@@ -147,10 +156,11 @@ def _run_coacd(vertices: np.ndarray, faces: np.ndarray, arguments: dict) -> list
     return coacd.run_coacd(coacd.Mesh(vertices, faces), **arguments)
 
 
-def _canonical(vertices: np.ndarray, max_vertices: int | None = None):
+def _canonical(vertices: np.ndarray, max_vertices: int | None = None, keep_flat: bool = False):
     """The convex hull of points with vertices and faces in a canonical order (or None).
 
     ``max_vertices`` keeps at most that many hull vertices, spread as far apart as possible.
+    A flat hull (a triangle's two sides) is None unless ``keep_flat``.
     """
     import trimesh
 
@@ -165,7 +175,7 @@ def _canonical(vertices: np.ndarray, max_vertices: int | None = None):
             hull = trimesh.Trimesh(vertices=kept, process=False).convex_hull
     except Exception:  # degenerate (flat) part
         return None
-    if len(hull.faces) < 4:
+    if len(hull.faces) < 4 and not keep_flat:
         return None
     order = np.lexsort(np.round(hull.vertices, 12).T[::-1])
     rank = np.empty_like(order)

@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from mjcfbuild.fsutil import write_if_changed
-from mjcfbuild.meshes.load import MeshPart, load_parts
+from mjcfbuild.meshes.load import MeshPart, at_least_min_vertices, load_parts
 from mjcfbuild.meshes.mshfile import copy_name, msh_bytes, text_values
 from mjcfbuild.meshes.objfile import obj_bytes
 from mjcfbuild.meshes.product import PRODUCT_FORMAT, WHOLE_MESH, MeshProduct, ProductPart
@@ -69,6 +69,7 @@ def convert_mesh(
         return name
 
     def store_mesh(name: str, vertices: np.ndarray, faces: np.ndarray, uv=None) -> str:
+        vertices, uv = at_least_min_vertices(vertices, uv)
         # Numbers that read back as the float32 values the binary copy holds: both compile
         # to the same model.
         store(name, obj_bytes(text_values(vertices), faces, uv))
@@ -178,7 +179,11 @@ def _hull(vertices: np.ndarray, max_vertices: int | None = None) -> tuple[np.nda
     """The convex hull of ``vertices`` (at most ``max_vertices``), in a reproducible order."""
     import trimesh
 
-    hull = trimesh.Trimesh(vertices=vertices, process=False).convex_hull
+    # qhull starts from a simplex of 4 points: a mesh of one triangle gets a copy of a corner
+    # (joggled, its hull is the triangle, which the assembly then says is flat).
+    vertices, _ = at_least_min_vertices(vertices, None)
+    with np.errstate(invalid="ignore", divide="ignore"):  # a flat hull's centre of mass
+        hull = trimesh.Trimesh(vertices=vertices, process=False).convex_hull
     if max_vertices is not None and len(hull.vertices) > max_vertices:
         kept = farthest_points(np.asarray(hull.vertices), max_vertices)
         hull = trimesh.Trimesh(vertices=kept, process=False).convex_hull

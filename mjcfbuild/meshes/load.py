@@ -136,6 +136,22 @@ def load_parts(
 MIN_PART_VERTICES = 4
 
 
+def at_least_min_vertices(
+    vertices: np.ndarray, uv: np.ndarray | None
+) -> tuple[np.ndarray, np.ndarray | None]:
+    """``vertices`` (and their ``uv``) with copies of the first vertex that no triangle uses
+    added up to :data:`MIN_PART_VERTICES`: MuJoCo refuses a mesh file of fewer ("invalid
+    sizes in MSH file", "at least 4 vertices required"), and a mesh of one triangle is then
+    drawn as viewers draw it. Meshes of more vertices are returned as they are."""
+    short = MIN_PART_VERTICES - len(vertices)
+    if short <= 0 or not len(vertices):
+        return vertices, uv
+    vertices = np.concatenate([vertices, np.repeat(vertices[:1], short, axis=0)])
+    if uv is not None:
+        uv = np.concatenate([uv, np.repeat(uv[:1], short, axis=0)])
+    return vertices, uv
+
+
 def _fold_small_parts(
     parts: list[MeshPart], path: Path, warnings: list[str] | None
 ) -> list[MeshPart]:

@@ -20,6 +20,10 @@ _COMPILE_HINTS = {
         "fixed to it with options.fuse_static on; else make it fixed or another kind"
     ),
     "repeated in equality constraint": "a joint cannot <mimic> itself",
+    "mesh surface area is too small": (
+        "MuJoCo ignores each triangle under about 5e-16 m^2 and needs more area than 1e-15: "
+        "check the mesh's unit and its <mesh scale>, or remove the geometry that names it"
+    ),
     "coplanar vertices": (
         "a robot.yaml collision rule {meshes: [<its file name>], policy: primitive} gives it a "
         "thin box, policy: none no contact"
@@ -37,7 +41,9 @@ def compile_error(exc: Exception, source: str, meshes: list[MeshAsset] | None = 
     hint = next((h for phrase, h in _COMPILE_HINTS.items() if phrase in message), None)
     asset = _named_mesh(message, meshes or [])
     if asset is not None:
-        message = message.replace(f"mesh '{asset.name}'", f"mesh '{asset.uri or asset.file}'")
+        named = f"mesh '{asset.uri or asset.file}'"
+        message = message.replace(f"mesh '{asset.name}'", named)
+        message = _TOO_SMALL.sub(lambda m: f"{m.group(1)}: {named}", message)
         if asset.line is not None:
             return ModelError(f"MuJoCo: {message}", file=source, line=asset.line, hint=hint)
     for line in lines[1:]:
@@ -71,10 +77,16 @@ def spec_meshes(spec, prepared: Prepared) -> list[MeshAsset]:
     return named
 
 
+# MuJoCo names a mesh after "too small" without quotes: "mesh surface area is too small: mesh4"
+_TOO_SMALL = re.compile(r"(mesh (?:surface area|volume) is too small): (\S+)")
+
+
 def _named_mesh(message: str, meshes: list[MeshAsset]) -> MeshAsset | None:
-    """The mesh asset a MuJoCo message names (``mesh 'mesh4' ...``), if one."""
+    """The mesh asset a MuJoCo message names (``mesh 'mesh4' ...``, ``... is too small:
+    mesh4``), if one."""
+    small = _TOO_SMALL.search(message)
     for asset in meshes:
-        if f"mesh '{asset.name}'" in message:
+        if f"mesh '{asset.name}'" in message or (small and small.group(2) == asset.name):
             return asset
     return None
 

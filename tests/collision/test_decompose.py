@@ -73,3 +73,14 @@ def test_coacd_parameters_are_scaled_to_the_threshold_and_bounded_by_the_manifes
     # Off: the manifest's parameters as they are.
     plain = coacd_arguments(params(scale_to_mesh=False), box.vertices, box.faces)
     assert plain["preprocess_resolution"] == 50 and plain["mcts_iterations"] == 150
+
+
+def test_a_triangle_is_its_own_flat_hull_not_an_error_naming_the_product(tmp_path):
+    # CoACD made no part of one triangle, and the error named mjcfbuild's product file; the
+    # triangle as its own part lets the assembly say in one line that the mesh is flat.
+    triangle = tmp_path / "tri.obj"
+    triangle.write_text("v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0\nf 1 2 3\n")  # as a product
+    summary = decompose(triangle, params(), tmp_path / "out")
+    assert summary["method"] == "hull" and summary["parts"] == ["part000.obj"]
+    part = trimesh.load(tmp_path / "out" / "part000.obj", process=False)
+    assert sorted(map(tuple, np.round(part.vertices, 9))) == [(0, 0, 0), (0, 0.1, 0), (0.1, 0, 0)]

@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import mujoco
+import pytest
+
 from mjcfbuild.meshes.convert import convert_mesh
+from mjcfbuild.meshes.objfile import read_obj_vertices
 from tests.conftest import EXAMPLES
 
 
@@ -83,3 +87,44 @@ def test_the_hull_keeps_at_most_the_vertex_limit_and_stays_inside(tmp_path):
     assert np.linalg.norm(hull.vertices, axis=1).max() <= 0.1 + 1e-6  # original (float32) points
     again = convert_mesh(source, tmp_path / "again", ["hull"], max_hull_vertices=32)
     assert again.files == summary.files  # deterministic
+
+
+TRIANGLE_OBJ = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nf 1 2 3\n"
+# urdf-usd-converter's dae_no_normal.dae: one triangle, its normal not indexed
+TRIANGLE_DAE = """<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <library_geometries><geometry id="g"><mesh>
+    <source id="p"><float_array id="pa" count="9">0 0 0 0.1 0 0 0 0.1 0</float_array>
+      <technique_common><accessor source="#pa" count="3" stride="3">
+        <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+      </accessor></technique_common></source>
+    <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+    <triangles count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>0 1 2</p></triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="s"><node id="n">
+    <instance_geometry url="#g"/></node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>
+"""
+
+
+@pytest.mark.parametrize("name, text", [("tri.obj", TRIANGLE_OBJ), ("tri.dae", TRIANGLE_DAE)])
+def test_a_mesh_of_one_triangle_has_the_four_vertices_mujoco_needs(tmp_path, name, text):
+    # MuJoCo refused the product ("invalid sizes in MSH file", naming mjcfbuild's own file);
+    # a copy of a corner that no triangle uses makes it a mesh MuJoCo reads, drawn as viewers
+    # draw the triangle. Its hull (a policy's) no longer stops qhull, which needs 4 points.
+    source = tmp_path / name
+    source.write_text(text)
+    out = tmp_path / "product"
+    summary = convert_mesh(source, out, ["visual", "hull"])
+    vertices = read_obj_vertices(out / "mesh.obj")
+    assert len(vertices) == 4 and (vertices[3] == vertices[0]).all()
+    assert (out / "mesh.obj").read_text().count("\nf ") == 1
+    assert summary.hull is not None
+    for file in ("mesh.obj", "mesh.msh"):
+        model = mujoco.MjModel.from_xml_string(
+            f'<mujoco><asset><mesh name="m" file="{out / file}" inertia="shell"/></asset>'
+            '<worldbody><body><geom type="mesh" mesh="m" contype="0" conaffinity="0" '
+            'density="0"/></body></worldbody></mujoco>'
+        )
+        assert (model.mesh_vertnum[0], model.mesh_facenum[0]) == (4, 1)

@@ -325,3 +325,31 @@ def test_a_dae_without_a_scene_is_left_out_of_the_model_seen_and_colliding(tmp_p
     )
     _, model = build(urdf, tmp_path)
     assert model.ngeom == 2 and model.nmesh == 0  # the boxes
+
+
+def test_a_visual_mesh_of_one_triangle_is_drawn(tmp_path):
+    # urdf-usd-converter's dae_no_normal.urdf: exit 5, MuJoCo naming mjcfbuild's mesh.msh.
+    (tmp_path / "tri.obj").write_text("v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nf 1 2 3\n")
+    urdf = two_link_urdf(
+        extra='<link name="flag"><visual><geometry><mesh filename="tri.obj"/></geometry>'
+        '</visual></link><joint name="f" type="fixed"><parent link="arm"/><child link="flag"/>'
+        "</joint>"
+    )
+    _, model = build(urdf, tmp_path)
+    assert model.nmesh == 1 and (model.mesh_vertnum[0], model.mesh_facenum[0]) == (4, 1)
+
+
+def test_a_mesh_too_small_for_mujoco_is_named_by_its_file_and_line(tmp_path):
+    # MuJoCo names such a mesh after "too small:" without quotes; the error named its asset.
+    tiny = tmp_path / "tiny.obj"
+    corners = "v 0 0 0\nv 1e-9 0 0\nv 0 1e-9 0\nv 0 0 1e-9\n"
+    tiny.write_text(corners + "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    urdf = (
+        f'<robot name="r"><link name="a">{INERTIA}\n'
+        '<collision><geometry><mesh filename="tiny.obj"/></geometry></collision></link></robot>'
+    )
+    with pytest.raises(ModelError) as info:
+        build(urdf, tmp_path)
+    assert (info.value.location.file, info.value.location.line) == ("robot.urdf", 2)
+    assert "mesh surface area is too small: mesh 'tiny.obj'" in info.value.message
+    assert "<mesh scale>" in (info.value.hint or "")
