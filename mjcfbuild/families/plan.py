@@ -88,7 +88,8 @@ FAMILY = Family(
     # transmission's block, joint reduction, offset and roleless elements, <hardware> param
     # lines; a closing tag after the root read with a warning; 21: a second root element and
     # Latin-1 bytes read as MuJoCo reads them, a late <?...?> warned of; each ros2_control
-    # block's unknown children and joint-less transmissions, each joint's state interfaces
+    # block's unknown children and joint-less transmissions, each joint's state interfaces;
+    # each material's texture line, a missing texture warned of (None), not refused
     format=21,
     tools=("lxml",),
     tasks=_tasks,

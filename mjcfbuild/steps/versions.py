@@ -83,12 +83,14 @@ class StepFormat:
 # 11: a textured material keeps its texture where a primitive has no texture coordinates; 12:
 # the COLLADA spec's opacity, a texture that is no image left out with a warning; 13: COLLADA
 # texture coordinate sets as bound, vertex colours, emission, skins, files without a scene;
-# the look of an -a OBJ's original; mesh material warnings quoted, none for collision-only
+# the look of an -a OBJ's original; mesh material warnings quoted, none for collision-only; 14:
+# a mesh of fewer than 4 vertices gets a spare corner (MuJoCo reads none smaller)
 MESH = StepFormat(
-    "mesh", 13, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy")
+    "mesh", 14, ("trimesh", "numpy", "lxml", "pillow", "fast-simplification", "scipy")
 )
-# decompose 4: a mesh without a COLLADA scene decomposes to nothing ("method": "none")
-DECOMPOSE = StepFormat("decompose", 4, ("coacd", "trimesh", "numpy", "scipy"))
+# decompose 4: a mesh without a COLLADA scene decomposes to nothing ("method": "none"); 5: a
+# flat mesh CoACD makes nothing of is its own flat part
+DECOMPOSE = StepFormat("decompose", 5, ("coacd", "trimesh", "numpy", "scipy"))
 # selfcollision 4: a URDF floating joint from `world` floats the robot (its standing home);
 # 5: free_joint on a URDF rooted at `world` floats what the world holds as one whole; a root
 # holding the robot by a floating joint is the world body

@@ -35,8 +35,8 @@ from tests.families.toy_step import ToyPayload
 BEFORE_FORMATS = {
     "expand": 5,
     "plan": 21,
-    "mesh": 13,
-    "decompose": 4,
+    "mesh": 14,
+    "decompose": 5,
     "assemble": 27,
     "scene": 3,
     "check": 26,
@@ -107,7 +107,7 @@ def test_the_derived_tables_are_the_ones_the_engine_kept_before():
         "mjcfbuild.steps.decompose:run": "decompose",
     }
     version = registry.step_versions("mesh")
-    assert version["mjcfbuild-step"] == "mesh-13" and version["mjcfbuild"] == mjcfbuild.__version__
+    assert version["mjcfbuild-step"] == "mesh-14" and version["mjcfbuild"] == mjcfbuild.__version__
     assert list(version)[:6] == list(BEFORE_TOOLS["mesh"])
 
 
