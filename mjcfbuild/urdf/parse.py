@@ -46,50 +46,56 @@ _NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
 _NUMBER_HINT = "write it with the digits 0-9, as ROS's URDF parser (urdfdom) requires"
 
 
-def secure_parser(recover: bool = False) -> etree.XMLParser:
-    """An lxml parser that expands no entities, loads no DTD and touches no network."""
+def secure_parser(recover: bool = False, keep_comments: bool = False) -> etree.XMLParser:
+    """An lxml parser that expands no entities, loads no DTD and touches no network; it drops
+    comments and processing instructions unless ``keep_comments``."""
     return etree.XMLParser(
         resolve_entities=False,
         no_network=True,
         load_dtd=False,
         huge_tree=False,
-        remove_comments=True,
-        remove_pis=True,
+        remove_comments=not keep_comments,
+        remove_pis=not keep_comments,
         recover=recover,
     )
 
 
-def parse_xml(data: bytes, display_file: str, warnings: list[str]) -> etree._Element:
-    """Parse XML bytes safely; undeclared namespace prefixes are a warning, the rest errors."""
+def parse_xml(
+    data: bytes, display_file: str, warnings: list[str], keep_comments: bool = False
+) -> etree._Element:
+    """Parse XML bytes safely, as MuJoCo's and urdfdom's parser (tinyxml2) reads them where
+    libxml2 would refuse them, each such reading a warning; undeclared namespace prefixes are a
+    warning, the rest errors. Comments and processing instructions are dropped unless
+    ``keep_comments``."""
     if not data.strip():
         raise InputError("the file is empty", file=display_file)
     refuse_entities(data, display_file)
     data = _repair_declaration(data, display_file, warnings)
     data = _drop_trailing_nuls(data, display_file, warnings)
     _warn_late_instruction(data, display_file, warnings)
+    return _parse_as_tinyxml2_reads(data, display_file, warnings, keep_comments)
+
+
+def _parse_as_tinyxml2_reads(
+    data: bytes, display_file: str, warnings: list[str], keep_comments: bool
+) -> etree._Element:
+    """Parse ``data``; where libxml2 stops at what tinyxml2 reads past (content after the
+    root's end, bytes that are not UTF-8), read it as tinyxml2 does, with a warning."""
     try:
-        return etree.fromstring(data, secure_parser())
+        return etree.fromstring(data, secure_parser(keep_comments=keep_comments))
     except etree.XMLSyntaxError as exc:
-        stray = _stray_closing_tag(data, exc)
-        if stray is not None:
-            tag, offset = stray
+        after_root = _stray_closing_tag(data, exc) or _second_root(data, exc)
+        if after_root is not None:
+            what, offset = after_root
             warnings.append(
-                f"{display_file}:{exc.lineno}: a closing tag {tag} after the root element's "
-                "end; ignored with what follows it, as MuJoCo's and urdfdom's parser (tinyxml2) "
-                "stop reading there (remove it)"
+                f"{display_file}:{exc.lineno}: {what} after the root element's end; ignored "
+                "with what follows it, as MuJoCo's and urdfdom's parser (tinyxml2) read the "
+                "first root element only (remove it)"
             )
-            return parse_xml(data[:offset], display_file, warnings)
-        second = _second_root(data, exc)
-        if second is not None:
-            tag, offset = second
-            warnings.append(
-                f"{display_file}:{exc.lineno}: a second root element <{tag}> after the first "
-                "one's end; ignored with what follows it, as MuJoCo's and urdfdom's parser "
-                "(tinyxml2) read the first one only (remove it)"
-            )
-            return parse_xml(data[:offset], display_file, warnings)
+            return _parse_as_tinyxml2_reads(data[:offset], display_file, warnings, keep_comments)
         if exc.code == _INVALID_ENCODING and not _is_utf8(data) and _says_utf8(data):
-            return parse_xml(_latin1_bytes(data, display_file, warnings), display_file, warnings)
+            latin1 = _latin1_bytes(data, display_file, warnings)
+            return _parse_as_tinyxml2_reads(latin1, display_file, warnings, keep_comments)
         if exc.code != 201:  # 201: namespace prefix not defined
             raise InputError(
                 f"malformed XML: {_clean_xml_message(exc.msg)}",
@@ -97,7 +103,7 @@ def parse_xml(data: bytes, display_file: str, warnings: list[str]) -> etree._Ele
                 line=exc.lineno,
                 column=exc.position[1] if exc.position else None,
             ) from None
-    parser = secure_parser(recover=True)
+    parser = secure_parser(recover=True, keep_comments=keep_comments)
     root = etree.fromstring(data, parser)
     real_errors = [e for e in parser.error_log if e.domain_name != "NAMESPACE"]
     if root is None or real_errors:
@@ -155,12 +161,31 @@ def _repair_declaration(data: bytes, display_file: str, warnings: list[str]) -> 
             "is UTF-8; read as UTF-8, as ROS's and MuJoCo's URDF parsers read it (write "
             'encoding="UTF-8")'
         )
+    problem = _declaration_problem(declaration)
+    if problem is not None:
+        # tinyxml2 (MuJoCo's and urdfdom's parser) skips a declaration without reading it.
+        warnings.append(
+            f"{display_file}:{line}: the XML declaration is malformed ({problem}); read "
+            "without it, as MuJoCo's and ROS's URDF parsers read the file (write "
+            '<?xml version="1.0"?>)'
+        )
+        declaration = b'<?xml version="1.0"?>'
     if space:
         warnings.append(
             f"{display_file}:{line}: the XML declaration follows blank "
             "lines; read as if it came first (remove what precedes it)"
         )
     return declaration + space + data[found.end() :]
+
+
+def _declaration_problem(declaration: bytes) -> str | None:
+    """What libxml2 finds wrong with an XML ``declaration`` (``verison="1.0"``); None where
+    it reads it."""
+    try:
+        etree.fromstring(declaration + b"<r/>", secure_parser())
+    except etree.XMLSyntaxError as exc:
+        return _clean_xml_message(exc.msg)
+    return None
 
 
 _LEADING_INSTRUCTIONS = re.compile(rb"(?:\s*<\?.*?\?>)*", re.DOTALL)
@@ -181,6 +206,8 @@ def _warn_late_instruction(data: bytes, display_file: str, warnings: list[str]) 
     offset = len(data) - len(body) + begin + found
     name = re.match(rb"<\?([^\s?>]*)", data[offset:])
     tag = name.group(1).decode("utf-8", "replace") if name else ""
+    if tag.lower() == "xml":
+        return  # a late XML declaration: libxml2 refuses it too, in one error
     line = data.count(b"\n", 0, offset) + 1
     warnings.append(
         f"{display_file}:{line}: <?{tag} ...?> after the start of "
@@ -215,7 +242,7 @@ _CLOSING_TAG = re.compile(rb"</[A-Za-z_:][^\s>/]*(?:\s[^>]*)?>")
 
 
 def _stray_closing_tag(data: bytes, exc: etree.XMLSyntaxError) -> tuple[str, int] | None:
-    """(the tag, its offset in ``data``) where ``exc`` is about a closing tag after the root
+    """(what it is, its offset in ``data``) where ``exc`` is about a closing tag after the root
     element's end (PyFlyt's rocket.urdf ends ``</robot>`` twice). tinyxml2, MuJoCo's and
     urdfdom's parser, ends the document there and reads the model; other content after the
     root (text, an unclosed element) it refuses as lxml does, so only this is taken."""
@@ -225,7 +252,7 @@ def _stray_closing_tag(data: bytes, exc: etree.XMLSyntaxError) -> tuple[str, int
     found = _CLOSING_TAG.match(data, offset) if offset is not None else None
     if offset is None or found is None or not data[:offset].strip():
         return None
-    return found.group().decode("utf-8", "replace"), offset
+    return f"a closing tag {found.group().decode('utf-8', 'replace')}", offset
 
 
 # A start tag as tinyxml2 reads one: "<" and a name.
@@ -233,7 +260,7 @@ _OPENING_TAG = re.compile(rb"<([A-Za-z_:][^\s>/]*)")
 
 
 def _second_root(data: bytes, exc: etree.XMLSyntaxError) -> tuple[str, int] | None:
-    """(the tag, its offset in ``data``) where ``exc`` is about a second root element after
+    """(what it is, its offset in ``data``) where ``exc`` is about a second root element after
     the first one's end. tinyxml2 reads every top-level element of a well-formed sequence and
     MuJoCo's and urdfdom's importers take the first; what follows the first root refused
     there (text, an unclosed element) stays an error here."""
@@ -249,7 +276,7 @@ def _second_root(data: bytes, exc: etree.XMLSyntaxError) -> tuple[str, int] | No
         return None
     if (rest.text or "").strip() or any((child.tail or "").strip() for child in rest):
         return None
-    return found.group(1).decode("utf-8", "replace"), offset
+    return f"a second root element <{found.group(1).decode('utf-8', 'replace')}>", offset
 
 
 def _offset(data: bytes, line: int, column: int) -> int | None:

@@ -92,7 +92,7 @@ def test_a_closing_tag_after_the_root_is_read_where_mujoco_reads_it(after, read)
     assert robot.warnings == [
         f"r.urdf:{line}: a closing tag {after.strip().split('>')[0]}> after the root "
         "element's end; ignored with what follows it, as MuJoCo's and urdfdom's parser "
-        "(tinyxml2) stop reading there (remove it)"
+        "(tinyxml2) read the first root element only (remove it)"
     ]
 
 
@@ -509,9 +509,9 @@ def test_a_second_root_element_is_ignored_where_mujoco_reads_the_first(after, re
     tag = "other" if b"<other" in after else "robot"
     line = 5 if after.startswith(b"<!--") else 4
     assert robot.warnings == [
-        f"r.urdf:{line}: a second root element <{tag}> after the first one's end; ignored with "
-        "what follows it, as MuJoCo's and urdfdom's parser (tinyxml2) read the first one only "
-        "(remove it)"
+        f"r.urdf:{line}: a second root element <{tag}> after the root element's end; ignored "
+        "with what follows it, as MuJoCo's and urdfdom's parser (tinyxml2) read the first root "
+        "element only (remove it)"
     ]
 
 
@@ -580,3 +580,35 @@ def test_an_instruction_after_the_start_is_read_with_a_warning_that_mujoco_refus
         ]
     # One in a comment is text.
     assert parse_urdf(ROBOT + b"<!-- <?pi?> -->\n", "r.urdf").warnings == []
+
+
+def test_a_malformed_xml_declaration_is_read_without_it_as_mujoco_reads_the_file(tmp_path):
+    # urdf-usd-converter's simple_box_no_material.urdf: `<?xml verison="1.0"?>`. tinyxml2 skips
+    # a declaration unread; libxml2 refused the whole file ("expecting version").
+    data = b'<?xml verison="1.0"?>\n' + ROBOT
+    assert _mujoco_reads(data, tmp_path)
+    robot = parse_urdf(data, "r.urdf")
+    assert [link.name for link in robot.links] == ["l"]
+    assert robot.warnings == [
+        "r.urdf:1: the XML declaration is malformed (Malformed declaration expecting version); "
+        "read without it, as MuJoCo's and ROS's URDF parsers read the file (write "
+        '<?xml version="1.0"?>)'
+    ]
+
+
+def test_a_late_instruction_is_warned_of_once_however_often_the_file_is_read_again(tmp_path):
+    # A Latin-1 byte makes the reader read the file a second time; the warning stays one.
+    data = ROBOT.replace(b'name="l"', b'name="l" x="\xe9"') + b"<?pi?>\n"
+    robot = parse_urdf(data, "r.urdf")
+    assert sum("<?pi ...?>" in warning for warning in robot.warnings) == 1
+
+
+def test_a_late_xml_declaration_is_refused_without_a_warning_that_it_is_read():
+    # libxml2 refuses it ("XML declaration allowed only at the start"), so the warning that
+    # the file is read without it would contradict the error that follows.
+    from mjcfbuild.urdf.parse import parse_xml
+
+    warnings: list[str] = []
+    with pytest.raises(InputError, match="XML declaration allowed only at the start"):
+        parse_xml(b'<!-- c -->\n<?xml version="1.0"?>\n' + ROBOT, "r.urdf", warnings)
+    assert warnings == []
