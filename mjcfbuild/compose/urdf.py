@@ -62,9 +62,9 @@ def compose(
     given, receives for each line of the result whose element came from an input the input
     (0 the main URDF, n the n-th part) and its line there.
     """
-    root = _parse(main, main_label)
-    _mark(root, 0)
     warnings: list[str] = []
+    root = _parse(main, main_label, warnings)
+    _mark(root, 0)
     pending = list(parts)
     while pending:
         links = _names(root, "link")
@@ -95,12 +95,12 @@ def _mark(tree: etree._Element, source: int) -> None:
             element.set(_ORIGIN, f"{source}:{element.sourceline}")
 
 
-def _parse(data: bytes, label: str) -> etree._Element:
-    parser = etree.XMLParser(remove_blank_text=False, resolve_entities=False, no_network=True)
-    try:
-        root = etree.fromstring(data, parser)
-    except etree.XMLSyntaxError as exc:
-        raise InputError(f"not valid XML: {exc.msg}", file=label, line=exc.lineno) from None
+def _parse(data: bytes, label: str, warnings: list[str] | None = None) -> etree._Element:
+    """The root of a URDF read as the plan reads one (as MuJoCo's parser reads what libxml2
+    alone would refuse, with a warning in ``warnings``), its comments kept."""
+    from mjcfbuild.urdf.parse import parse_xml
+
+    root = parse_xml(data, label, [] if warnings is None else warnings, keep_comments=True)
     if root.tag != "robot":
         raise InputError(f"the root element is <{root.tag}>, not <robot>", file=label)
     return root
@@ -139,9 +139,9 @@ def _unplaceable(pending: list[Part], links: list[str]) -> ManifestError:
 def _join(root: etree._Element, part: Part, base_dir: Path, source: int) -> list[str]:
     """Append ``part`` (input number ``source``) to ``root``, prefixed, with a fixed joint to
     its ``to`` link."""
-    tree = _parse(part.xml, part.label)
+    warnings: list[str] = []
+    tree = _parse(part.xml, part.label, warnings)
     _mark(tree, source)
-    warnings = []
     part_links = _names(tree, "link")
     children = {
         child.get("link") for joint in tree.findall("joint") for child in joint.findall("child")

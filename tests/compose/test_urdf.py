@@ -132,3 +132,18 @@ def test_a_part_with_two_roots_names_its_file(tmp_path):
     with pytest.raises(InputError, match="2 root links") as caught:
         compose(MAIN, "arm.urdf", [part(tmp_path, xml=xml)], tmp_path)
     assert caught.value.location.file == "hand.urdf"
+
+
+@pytest.mark.parametrize(
+    ("main", "warned"),
+    [
+        (MAIN.replace(b"<link", b"<!-- caf\xe9 -->\n<link", 1), "byte 0xe9 is not UTF-8"),
+        (MAIN + b'\n<robot name="spare"/>', "a second root element <robot>"),
+    ],
+)
+def test_a_main_urdf_is_read_as_the_plan_reads_it_with_its_warnings(main, warned, tmp_path):
+    # The plan reads what MuJoCo's parser reads past (a Latin-1 byte, a second root) with a
+    # warning; composing parts onto such a URDF refused it ("not valid XML").
+    text, warnings = compose(main, "arm.urdf", [part(tmp_path)], tmp_path / "main")
+    assert next(w for w in warnings if warned in w).startswith("arm.urdf:")
+    assert "hand_palm" in [link.get("name") for link in etree.fromstring(text).iter("link")]
