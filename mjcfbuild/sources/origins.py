@@ -123,7 +123,10 @@ def point_warning_at_source(text: str, urdf: Path, label: str, base_dir: Path) -
     where = source_location(expanded, urdf, label, base_dir)
     if where == expanded:
         return text
-    return f"{where}: {rest.strip()} [expanded: {_expanded_name(urdf, base_dir)}:{number}]"
+    # Named from base_dir even outside it, as the source is: the report stays the same bytes
+    # wherever the output folder is (the console names it from the current folder).
+    expanded_name = Path(os.path.relpath(urdf, base_dir)).as_posix()
+    return f"{where}: {rest.strip()} [expanded: {expanded_name}:{number}]"
 
 
 def source_location(where: str, urdf: Path, label: str, base_dir: Path) -> str:

@@ -71,3 +71,16 @@ def test_the_report_names_a_check_warnings_xacro_line_as_the_console_does(tmp_pa
 def _plain(markdown: str) -> str:
     """A line of report.md without Markdown's backslash escapes."""
     return re.sub(r"\\([!-/:-@\[-`{-~])", r"\1", markdown)
+
+
+def test_a_report_written_outside_robot_yaml_s_folder_names_no_absolute_path(tmp_path):
+    # The expanded URDF lies in the output folder; outside robot.yaml's folder it was named by
+    # its absolute path, so the report differed from one checkout to the next.
+    folder = _plated(tmp_path / "robot")
+    with (folder / "robot.yaml").open("a") as manifest:
+        manifest.write("output:\n  folder: ../out\n  allow_outside: true\n")
+    built = run_cli("build", cwd=folder)
+    assert built.code == 0, built.stderr
+    report = (tmp_path / "out" / "report" / "report.md").read_text()
+    assert "[expanded: ../out/.mjcfbuild/source.urdf:9]" in report
+    assert str(tmp_path) not in report
