@@ -100,9 +100,13 @@ def too_thin_mesh(text: str) -> str | None:
 
 
 def body_error(message: str, error: str, robot: Robot, bodies: list[Body]) -> ModelError | None:
-    """MuJoCo's ``error`` about a body the URDF's links make (``Element name 'base', id 1``)
-    as one line at the link's URDF line (its ``<inertial>`` for an inertia error), naming the
-    links fused into that body; None when MuJoCo names no such body."""
+    """MuJoCo's ``error`` about the mass or inertia of a body the URDF's links make (``Element
+    name 'base', id 1``) as one line at the URDF line of the first of its links' ``<inertial>``,
+    naming the links fused into that body; None for any other error."""
+    # MuJoCo names the failing element (a body, joint, actuator, ...) by its name alone, and a
+    # URDF joint may share a link's name: only a mass or inertia error is surely a body's.
+    if "mass" not in message and "inertia" not in message:
+        return None
     named = re.search(r"Element name '([^']*)', id \d+", error)
     body = next((b for b in bodies if named and b.name == named.group(1)), None)
     if body is None:
@@ -111,20 +115,14 @@ def body_error(message: str, error: str, robot: Robot, bodies: list[Body]) -> Mo
     links = [by_name[frame.link] for frame in body.links if frame.link in by_name]
     if not links:
         return None
-    inertia = "inertia" in message
     with_mass = [link for link in links if link.inertial is not None]
-    first = (with_mass or links)[0] if inertia else links[0]
-    line = first.inertial.line if inertia and first.inertial else first.line
+    first = (with_mass or links)[0]
+    line = first.inertial.line if first.inertial else first.line
     fused = [link.name for link in links if link is not links[0]]
     together = f" (links {', '.join([links[0].name, *fused])} fused into it)" if fused else ""
-    hint = (
-        "check the <inertial> of these links: their mass, inertia and origin"
-        if inertia
-        else "check this link and the joints that lead to it"
-    )
     return ModelError(
         f"MuJoCo rejected body '{body.name}'{together}: {message}",
         file=robot.source,
         line=line,
-        hint=hint,
+        hint="check the <inertial> of these links: their mass, inertia and origin",
     )

@@ -26,3 +26,26 @@ def test_a_mesh_too_small_is_named_by_its_file_where_mujoco_names_its_import_nam
     assert error.one_line().startswith(
         "r.urdf:11: MuJoCo: mesh surface area is too small: mesh 'tiny.obj' (MuJoCo "
     )
+
+
+def test_an_error_about_a_joint_named_like_a_link_is_not_blamed_on_the_link():
+    # MuJoCo names the failing element by its name only; a URDF joint may share a link's name,
+    # so only a mass or inertia error is taken for a body's.
+    from mjcfbuild.mjcf.bodies import build_bodies
+    from mjcfbuild.mjcf.compile_errors import body_error
+    from mjcfbuild.urdf.parse import parse_urdf
+    from tests.conftest import two_link_urdf
+
+    robot = parse_urdf(two_link_urdf().encode(), "r.urdf")
+    bodies = build_bodies(robot, fuse_static=True)
+    with pytest.raises(ValueError) as refused:
+        mujoco.MjModel.from_xml_string(
+            '<mujoco><worldbody><body name="arm"><joint name="arm" limited="true" range="1 0"/>'
+            '<geom size="0.1"/></body></worldbody></mujoco>'
+        )
+    message = str(refused.value).splitlines()[0].removeprefix("Error: ")
+    assert "Element name 'arm'" in str(refused.value)
+    assert body_error(message, str(refused.value), robot, bodies) is None
+    inertia = "inertia must satisfy A + B >= C\nElement name 'arm', id 2"
+    blamed = body_error("inertia must satisfy A + B >= C", inertia, robot, bodies)
+    assert blamed is not None and blamed.location.file == "r.urdf"
