@@ -82,7 +82,7 @@ def starter_manifest_text(
     that were not found, and the error that kept the description from being read, naming the
     source as ``label`` (as the user gave it; by default its path). ``notes`` receives what
     the manifest chose that the user should know: that it reads files from outside every
-    package folder (``source.read_outside``)."""
+    package folder (``source.read_outside``), that a robot without mass stays fixed."""
     warnings = [] if warnings is None else warnings
     notes = [] if notes is None else notes
     label = label or str(source)
@@ -160,7 +160,7 @@ def starter_manifest_text(
     roots = [manifest_dir, source.parent, *(Path(folder) for folder in known.values())]
     outside: list[tuple[str, str]] = []
     free_joint, unread, expanded = _free_joint_lines(
-        source, is_xacro, known, data, label, early, roots, outside, notes=warnings
+        source, is_xacro, known, data, label, early, roots, outside, notes=notes
     )
     if is_xacro:
         arguments = _declared_args(data)
