@@ -21,23 +21,20 @@ def lowest_collision_point(model, data) -> LowestPoint | None:
     Exact for MuJoCo's primitives and for meshes (their vertices); planes, height fields and
     SDFs are ignored. None when the model has no colliding geom.
     """
-    import mujoco
-
-    points = geom_lowest_points(model, data)
-    if not points:
-        return None
-    geom = min(points, key=lambda g: (points[g][2], g))
-    body = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, model.geom_bodyid[geom])
-    return LowestPoint(float(points[geom][2]), body or "world")
+    return _lowest_point(model, data, colliding=True)
 
 
 def lowest_visual_point(model, data) -> LowestPoint | None:
     """The lowest point of every geom that does not collide (the visual geometry) at
     ``data``'s pose (after kinematics), as :func:`lowest_collision_point` finds it; for a
     model with no collision geometry, which has nothing else to place the floor under."""
+    return _lowest_point(model, data, colliding=False)
+
+
+def _lowest_point(model, data, colliding: bool) -> LowestPoint | None:
     import mujoco
 
-    points = geom_lowest_points(model, data, colliding=False)
+    points = geom_lowest_points(model, data, colliding=colliding)
     if not points:
         return None
     geom = min(points, key=lambda g: (points[g][2], g))
