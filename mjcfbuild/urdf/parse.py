@@ -308,9 +308,11 @@ def _latin1_bytes(data: bytes, display_file: str, warnings: list[str]) -> bytes:
     count = sum("\udc80" <= c <= "\udcff" for c in text)
     byte = ord(text[first]) - 0xDC00
     more = f" (and {count - 1} more)" if count > 1 else ""
+    # 0x80-0x9f are control characters in Latin-1 (Windows-1252's quotes): named, not printed.
+    shown = f"'{chr(byte)}'" if chr(byte).isprintable() else f"U+{byte:04X}"
     warnings.append(
         f"{display_file}:{text.count(chr(10), 0, first) + 1}: byte 0x{byte:02x} is not UTF-8"
-        f"{more}; read as Latin-1 ('{chr(byte)}'), as MuJoCo's and urdfdom's parser (tinyxml2) "
+        f"{more}; read as Latin-1 ({shown}), as MuJoCo's and urdfdom's parser (tinyxml2) "
         "read the file without a word (save it as UTF-8)"
     )
     fixed = "".join(chr(ord(c) - 0xDC00) if "\udc80" <= c <= "\udcff" else c for c in text)

@@ -612,3 +612,10 @@ def test_a_late_xml_declaration_is_refused_without_a_warning_that_it_is_read():
     with pytest.raises(InputError, match="XML declaration allowed only at the start"):
         parse_xml(b'<!-- c -->\n<?xml version="1.0"?>\n' + ROBOT, "r.urdf", warnings)
     assert warnings == []
+
+
+def test_a_latin_1_control_byte_is_named_not_printed():
+    # Windows-1252's curly quote 0x92 is a control character in Latin-1: printed as it is, the
+    # warning carried an invisible character.
+    robot = parse_urdf(ROBOT.replace(b"</robot>", b"<!-- it\x92s -->\n</robot>"), "r.urdf")
+    assert "byte 0x92 is not UTF-8; read as Latin-1 (U+0092)," in robot.warnings[0]
