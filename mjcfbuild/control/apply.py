@@ -10,7 +10,7 @@ model, and the caller compiles the finished tree again.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from copy import deepcopy
 from dataclasses import asdict, dataclass, field, replace
 from typing import Any
@@ -111,11 +111,14 @@ def make_ready(
     compile_tree: Callable[[etree._Element], Any],
     preset_qpos: dict[str, list[float]] | None = None,
     preset_ctrl: dict[str, float] | None = None,
+    forcerange_at: Sequence[str] = (),
 ) -> Readiness:
     """Add actuators, joint dynamics and the home keyframe to ``root``; stand a floating base on
     the floor. ``compile_tree`` turns the tree into an ``MjModel``. ``preset_qpos`` and
     ``preset_ctrl`` are MJCF parts' own home: the qpos of joints ``home`` does not set (ball
-    joints) and the ctrl of actuators not driving a joint directly (see _preset_ctrl)."""
+    joints) and the ctrl of actuators not driving a joint directly (see _preset_ctrl).
+    ``forcerange_at`` is where robot.yaml writes each actuators rule's forcerange
+    (``robot.yaml:5: actuators.rules[0].forcerange``), for the warnings that name it."""
     import mujoco
     import numpy as np
 
@@ -196,7 +199,15 @@ def make_ready(
         record = _actuator(choice, urdf_joints[choice.joint], servo, taken, caps.get(choice.joint))
         taken.add(record.name)
         readiness.actuators.append(record)
-        readiness.notes += _heavy_rotor(model, data, record, choice, servo, robot)
+        readiness.notes += _heavy_rotor(
+            model,
+            data,
+            record,
+            choice,
+            servo,
+            robot,
+            _forcerange_of(choice, choices, forcerange_at),
+        )
     _match_mirrored(model, data, readiness.actuators)
     for record in readiness.actuators:
         if record.source != USER:
@@ -385,11 +396,33 @@ def _armature_shares(model, joint: str, robot: Robot, added: float) -> dict[str,
     return {name: share for name in factors} | {joint: share}
 
 
+def _forcerange_of(
+    choice: ActuatorChoice, choices: list[ActuatorChoice], forcerange_at: Sequence[str]
+) -> tuple[str, bool] | None:
+    """Where robot.yaml gives ``choice``'s forcerange (its rule's key path, with its line where
+    known) and whether that rule drives other joints of ``choices`` too; None where the
+    forcerange is the URDF's effort."""
+    if not choice.rule_forcerange or choice.rule is None:
+        return None
+    index = choice.rule
+    at = forcerange_at[index] if index < len(forcerange_at) else ""
+    shared = any(other.rule == index and other.joint != choice.joint for other in choices)
+    return at or f"actuators.rules[{index}].forcerange", shared
+
+
 def _heavy_rotor(
-    model, data, record: ActuatorRecord, choice: ActuatorChoice, servo: Servo, robot: Robot
+    model,
+    data,
+    record: ActuatorRecord,
+    choice: ActuatorChoice,
+    servo: Servo,
+    robot: Robot,
+    rule: tuple[str, bool] | None = None,
 ) -> list[str]:
-    """The warning about a joint whose URDF speed line gave it a rotor no real drive of it
-    could have (``control.rotors``); none for a named motor's or a rule's armature."""
+    """The warning about a joint whose speed line (from its URDF velocity, and its URDF effort
+    or ``rule``'s forcerange: where robot.yaml gives it, and whether the rule drives other
+    joints too) gave it a rotor no real drive of it could have (``control.rotors``); none for
+    a named motor's or a rule's armature."""
     motor = record.motor or {}
     if motor.get("motor") != URDF_LIMITS or choice.armature is not None:
         return []
@@ -400,7 +433,10 @@ def _heavy_rotor(
     if found is None:
         return []
     where = f"{robot.source}:{joint.line}" if joint.line else robot.source
-    return [describe_rotor(found, where, motor["stall_torque"], motor["no_load_speed"])]
+    effort, velocity = motor["stall_torque"], motor["no_load_speed"]
+    if rule is None:
+        return [describe_rotor(found, where, effort, velocity)]
+    return [describe_rotor(found, where, effort, velocity, rule=rule[0], shared=rule[1])]
 
 
 def _all_weighed(robot: Robot, link: str) -> bool:

@@ -67,18 +67,43 @@ def heavy_rotor(model, data, joint: str, armature: float, moved: float) -> Heavy
     return HeavyRotor(joint, armature, bound, mass, reach, bool(slide))
 
 
-def describe(found: HeavyRotor, where: str, effort: float, velocity: float) -> str:
+def describe(
+    found: HeavyRotor,
+    where: str,
+    effort: float,
+    velocity: float,
+    rule: str | None = None,
+    shared: bool = False,
+) -> str:
     """The build's warning about ``found``, at ``where`` (the joint's URDF file and line), whose
-    line runs from ``effort`` to ``velocity``."""
+    line runs from ``effort`` to ``velocity``. ``rule`` is where robot.yaml gives the effort
+    (``robot.yaml:5: actuators.rules[0].forcerange``) when an actuators rule's forcerange, not
+    the URDF, gave it; ``shared`` that this rule drives other joints too."""
     unit, force, speed = ("kg", "N", "m/s") if found.slide else ("kg m^2", "N m", "rad/s")
     links = f"its {found.mass:.3g} kg of links"
     most = links if found.slide else f"{links} at up to {found.reach:.3g} m from the axis"
+    own_rule = f'{{joints: ["{found.joint}"], forcerange: [-E, E]}}'
+    if rule is None:
+        limits = f"its URDF limits (effort {effort:g} {force}, velocity {velocity:g} {speed})"
+        fix = (
+            "give the joint its real effort and velocity in the URDF, or its real effort E in "
+            f"robot.yaml: actuators: {{rules: [{own_rule}]}}"
+        )
+    else:
+        limits = (
+            f"its effort {effort:g} {force} (from {rule}) and URDF velocity {velocity:g} {speed}"
+        )
+        fix = (
+            (
+                f"give the joint its real effort E in a rule of its own before that one "
+                f"({own_rule}: the first rule matching a joint applies)"
+            )
+            if shared
+            else "give the joint its real effort E in that rule (forcerange: [-E, E])"
+        ) + ", and its real velocity in the URDF"
     return (
-        f"{where}: joint '{found.joint}': its URDF limits (effort {effort:g} {force}, velocity "
-        f"{velocity:g} {speed}) give it a rotor inertia (armature) of {found.armature:.3g} "
-        f"{unit}, {found.armature / found.bound:.2g} times the most {most} could have "
-        f"({found.bound:.3g} {unit}): no real drive is that heavy, so the limits (or the "
-        "links' masses) look like placeholders; give the joint its real effort and velocity "
-        "in the URDF, or its real effort E in robot.yaml: actuators: {rules: [{joints: "
-        f'["{found.joint}"], forcerange: [-E, E]}}]}}'
+        f"{where}: joint '{found.joint}': {limits} give it a rotor inertia (armature) of "
+        f"{found.armature:.3g} {unit}, {found.armature / found.bound:.2g} times the most "
+        f"{most} could have ({found.bound:.3g} {unit}): no real drive is that heavy, so the "
+        f"limits (or the links' masses) look like placeholders; {fix}"
     )

@@ -73,6 +73,7 @@ def _tasks(graph: Graph) -> list[dict]:
         floor_record=str(ctx.state(FLOOR_RECORD)),
         output=str(ctx.robot_path),
         mjcf_parts=parts,
+        forcerange_at=_forcerange_at(ctx),
     )
     task = file_task(
         ctx,
@@ -94,6 +95,24 @@ def _tasks(graph: Graph) -> list[dict]:
         targets=[ctx.robot_path, ctx.state(ASSEMBLY_REPORT), ctx.state(FLOOR_RECORD)],
     )
     return [task]
+
+
+def _forcerange_at(ctx: GraphContext) -> list[str]:
+    """Where robot.yaml writes each actuators rule's forcerange, as a warning names it
+    (``robot.yaml:5: actuators.rules[0].forcerange``); "" for a rule without one, so that only
+    the lines of forceranges count in the task's parameters."""
+    from mjcfbuild.manifest.pinpoint import key_line
+
+    found = []
+    for index, rule in enumerate(ctx.manifest.actuators.rules):
+        if rule.forcerange is None:
+            found.append("")
+            continue
+        setting = f"actuators.rules[{index}].forcerange"
+        line = key_line(ctx.manifest_file, setting)
+        label = ctx.manifest_output_label
+        found.append(f"{label}:{line}: {setting}" if line else f"{label} {setting}")
+    return found
 
 
 def _verify(graph: Graph) -> None:

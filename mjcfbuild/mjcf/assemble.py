@@ -75,6 +75,9 @@ class AssemblyOptions:
     home_from: str | None = None  # which SRDF group_state that is, for the report
     excludes: list[tuple[str, str]] = field(default_factory=list)
     manifest_label: str = "robot.yaml"
+    # where robot.yaml writes each actuators rule's forcerange ("robot.yaml:5:
+    # actuators.rules[0].forcerange"; "" for a rule without one), for the warnings naming it
+    forcerange_at: list[str] = field(default_factory=list)
     parts: list[AttachedPart] = field(default_factory=list)  # MJCF parts, in attach order
 
 
@@ -283,6 +286,7 @@ def _apply_additions(
             compile_tree,
             preset_qpos=parts.preset_qpos,
             preset_ctrl=parts.preset_ctrl,
+            forcerange_at=options.forcerange_at,
         )
 
     # No compile of its own checks the inputs first: this one's failure, with the joints'

@@ -68,6 +68,7 @@ def run(payload: dict) -> dict:
         home_from=home_from,
         excludes=[tuple(pair) for pair in (matrix or {}).get("excludes", [])],
         manifest_label=request.manifest_label,
+        forcerange_at=request.forcerange_at,
         fuse_static=request.fuse_static,
         free_joint=request.free_joint,
         floating=floating_base(robot, request.free_joint),

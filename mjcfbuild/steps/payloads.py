@@ -341,6 +341,10 @@ class AssemblePayload(Payload):
     floor_record: Output
     output: Output
     mjcf_parts: list[MjcfPartFiles]  # attached after the URDF model is assembled
+    # Where robot.yaml writes each actuators rule's forcerange ("robot.yaml:5:
+    # actuators.rules[0].forcerange"; "" for a rule without one), for the warnings that name
+    # it; counted, so the line stays right.
+    forcerange_at: list[str] = dataclasses.field(default_factory=list)
 
 
 @dataclass(frozen=True)

@@ -87,6 +87,35 @@ def test_the_forcerange_the_warning_names_ends_it(tmp_path):
     assert list(model.dof_armature) == pytest.approx([2e-5] * 4)
 
 
+def test_an_effort_from_a_rule_is_blamed_on_the_rule_at_its_line(tmp_path):
+    # The URDF's effort is 1 N m; a rule's forcerange gave the line its 500 N m, and the
+    # warning said "its URDF limits (effort 500 N m, ...)" and sent the user to the URDF.
+    shared = 'actuators: {rules: [{joints: ["*"], forcerange: [-500, 500]}]}\n'
+    found = _rotor_warnings(_build(tmp_path / "shared", _hand_urdf(effort=1), shared))
+    assert len(found) == 4, found
+    warning = next(w for w in found if "'index_1_joint'" in w)
+    assert "URDF limits" not in warning
+    assert "its effort 500 N m (from robot.yaml:3: actuators.rules[0].forcerange) and URDF " in (
+        warning
+    )
+    # The rule drives every joint: the fix is a rule of the joint's own, put before it.
+    assert warning.endswith(
+        "look like placeholders; give the joint its real effort E in a rule of its own before "
+        'that one ({joints: ["index_1_joint"], forcerange: [-E, E]}: the first rule matching a '
+        "joint applies), and its real velocity in the URDF"
+    )
+    own = "actuators:\n  rules:\n    - joints: [index_1_joint]\n      forcerange: [-500, 500]\n"
+    found = _rotor_warnings(_build(tmp_path / "own", _hand_urdf(effort=1), own))
+    # (1 N m at 1 rad/s still weighs down the other joints' phalanges: their own warnings)
+    ruled = [w for w in found if "actuators.rules" in w]
+    assert len(ruled) == 1 and "'index_1_joint'" in ruled[0], found
+    assert "(from robot.yaml:6: actuators.rules[0].forcerange)" in ruled[0]
+    assert ruled[0].endswith(
+        "give the joint its real effort E in that rule (forcerange: [-E, E]), and its real "
+        "velocity in the URDF"
+    )
+
+
 def test_plausible_limits_and_a_rules_armature_are_not_warned_about(tmp_path):
     # A micro servo's 0.1 N m at 5 rad/s: a rotor of 4e-5 kg m^2, 30 to 240 times what the
     # phalanges could have, as geared drives in fingers really are.
