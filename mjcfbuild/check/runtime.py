@@ -386,9 +386,11 @@ def _unmatched_tendon_actuators(model) -> list[str]:
 
 def _missing_keyframe(model, control: Ros2Control) -> tuple[list[str], list[str]]:
     """``initial_keyframe`` names a keyframe the runtime starts from; none of that name stops
-    it ("Failed to apply initial keyframe"). register_mujoco_actuators tries an
-    override_start_position_file first and reads the keyframe only where that file fails to
-    load: a warning then. The failures and the warnings."""
+    it: register_mujoco_actuators logs "Failed to apply initial keyframe: 'NAME'" and returns
+    false, and on_init "Failed to register MuJoCo actuators, exiting..." (mujoco_ros2_control's
+    mujoco_system_interface.cpp). It tries an override_start_position_file first and reads the
+    keyframe only where that file fails to load: a warning then. The failures and the
+    warnings."""
     keyframe = control.hardware.get("initial_keyframe")
     if not keyframe:
         return [], []
@@ -396,17 +398,21 @@ def _missing_keyframe(model, control: Ros2Control) -> tuple[list[str], list[str]
     if keyframe in names:
         return [], []
     listing = ", ".join(f"'{name}'" for name in names if name) or "none"
+    logged = (
+        f'("Failed to apply initial keyframe: \'{keyframe}\'", then "Failed to register MuJoCo '
+        'actuators, exiting...")'
+    )
     said = (
         f"{control.at('initial_keyframe')}<hardware> param initial_keyframe names keyframe "
         f"'{keyframe}', which the model does not have (its keyframes: {listing}): "
-        "mujoco_ros2_control stops at start-up "
+        f"mujoco_ros2_control stops at start-up {logged}"
     )
     if control.hardware.get("override_start_position_file"):
         return [], [
-            said + '("Failed to find keyframe") where the override_start_position_file, which '
-            "it reads first, fails to load; name one of them, or leave the param out"
+            said + " where the override_start_position_file, which it reads first, fails to "
+            "load; name one of them, or leave the param out"
         ]
-    return [said + '("Failed to find keyframe"); name one of them'], []
+    return [said + "; name one of them"], []
 
 
 def _start_away_from_home(

@@ -416,14 +416,19 @@ def _fails_to_start(tmp_path, urdf_extra: str, manifest_extra: str = "") -> str:
 
 
 def test_an_initial_keyframe_the_model_lacks_stops_the_runtime(tmp_path):
-    """mujoco_ros2_control's apply_keyframe: "Failed to find keyframe", and it does not start;
-    the check passed a model with only 'home'."""
+    """mujoco_ros2_control's register_mujoco_actuators: "Failed to apply initial keyframe:
+    'start_90'", and it does not start; the check passed a model with only 'home'."""
     hardware = '<param name="initial_keyframe">start_90</param>'
     stderr = _fails_to_start(tmp_path, control_block(["position"], hardware))
     # At the param's line.
     assert (
         "robot.urdf:15: check: <hardware> param initial_keyframe names keyframe 'start_90', "
         "which the model does not have (its keyframes: 'home')"
+    ) in stderr
+    # What mujoco_system_interface.cpp logs, word for word (it said "Failed to find keyframe").
+    assert (
+        "mujoco_ros2_control stops at start-up (\"Failed to apply initial keyframe: 'start_90'\", "
+        'then "Failed to register MuJoCo actuators, exiting..."); name one of them'
     ) in stderr
     fixed = '<param name="initial_keyframe">home</param>'
     build_two_link(tmp_path / "fixed", urdf_extra=control_block(["position"], fixed))
@@ -995,8 +1000,9 @@ def test_an_override_start_position_file_comes_before_the_initial_keyframe(tmp_p
     assert said.startswith(
         "robot.urdf:15: <hardware> param initial_keyframe names keyframe 'start_90', which the "
         "model does not have (its keyframes: 'home'): mujoco_ros2_control stops at start-up "
-        '("Failed to find keyframe") where the override_start_position_file, which it reads '
-        "first, fails to load"
+        "(\"Failed to apply initial keyframe: 'start_90'\", then \"Failed to register MuJoCo "
+        'actuators, exiting...") where the override_start_position_file, which it reads first, '
+        "fails to load"
     ), said
     # Without an initial_keyframe the start is still the file's, not each joint's initial_value.
     only_file = '<param name="override_start_position_file">/opt/start.xml</param>'
