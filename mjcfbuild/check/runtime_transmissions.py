@@ -96,15 +96,26 @@ def unmatched_transmissions(
 
 def parser_refusals(control: Ros2Control, fixed_joints: frozenset[str]) -> list[str]:
     """What ros2_control's parser refuses in a block's transmission, in every block, before any
-    hardware starts: a <joint> or <actuator> without a role; a joint its block does not list
-    (auto_fill_transmission_interfaces); a fixed joint, which no block may list."""
+    hardware starts: no <plugin> element, which parse_transmission_from_xml reads the type from
+    unchecked (a crash); a <joint> or <actuator> without a role; a joint its block does not
+    list (auto_fill_transmission_interfaces); a fixed joint, which no block may list."""
     listed = {(joint.block, joint.name) for joint in control.joints}
     refused = "ros2_control refuses the description at start-up"
-    failures, said = [], set()
+    failures, said, typeless = [], set(), set()
     for transmission in control.transmissions:
         if not transmission.in_ros2_control:
             continue
         head = f"{transmission.origin}: transmission {transmission.element}"
+        if transmission.plugin_missing and transmission.element not in typeless:
+            typeless.add(transmission.element)
+            failures.append(
+                f"{head} has no <plugin>: ros2_control's parser (parse_transmission_from_xml) "
+                "reads the transmission's type from that element without checking it is there, "
+                "calling GetText() on a null pointer, so the controller manager crashes while "
+                "parsing the robot description at start-up (undefined behaviour: a segmentation "
+                f"fault in practice), before any hardware starts; give it <plugin>"
+                f"{TRANSMISSION_TYPES[0]}</plugin>"
+            )
         if transmission.roleless and transmission.element not in said:
             said.add(transmission.element)
             missing = transmission.roleless
@@ -161,7 +172,7 @@ def _transmission_problems(
     actuator: its commands pass as they are, its state through the transmission."""
     import mujoco
 
-    kind = _type_problem(transmission.kind)
+    kind = None if transmission.plugin_missing else _type_problem(transmission.kind)
     if not transmission.actuators:
         return [
             Problem(
@@ -261,17 +272,24 @@ def _transmission_problems(
 def _type_problem(kind: str) -> Problem | None:
     """register_transmissions stops where the transmission loader has no class of the type
     ("Transmission ... of type ... not available"): one of transmission_interface's package
-    that it does not export, or none. A type of another package is loaded only where one
-    installed beside the runtime exports it, which the check cannot know: a warning."""
+    that it does not export, or an empty <plugin> (ros2_control's parser logs "text not
+    specified in the plugin tag" and reads the type as ''). A type of another package is
+    loaded only where one installed beside the runtime exports it, which the check cannot
+    know: a warning. (A transmission without a <plugin> element never gets here: the parser
+    crashes on it, :func:`parser_refusals`.)"""
     if kind in TRANSMISSION_TYPES:
         return None
     refused = f"mujoco_ros2_control stops at start-up (\"... of type '{kind}' not available\")"
     if not kind:
         return Problem(
-            "names no type (no <plugin>, which ros2_control's parser reads it from): "
-            f"{refused}; give it <plugin>{TRANSMISSION_TYPES[0]}</plugin>"
+            "has an empty <plugin> (ros2_control's parser logs \"text not specified in the "
+            f"plugin tag\" and reads the type as ''): {refused}; give it <plugin>"
+            f"{TRANSMISSION_TYPES[0]}</plugin>"
         )
-    if kind.startswith(_PACKAGE):
+    # The package's own plugins are "transmission_interface/Name"; a C++ class name
+    # "transmission_interface::Name" is a common mistake. Another package whose name begins
+    # the same ("transmission_interface_extras/X") is another package.
+    if kind == _PACKAGE or kind.startswith((f"{_PACKAGE}/", f"{_PACKAGE}::")):
         from mjcfbuild.sources.packages import did_you_mean
 
         plugin_name = kind.replace("::", "/")  # the C++ class name for the plugin's

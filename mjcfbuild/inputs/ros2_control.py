@@ -85,6 +85,9 @@ class Transmission:
     # Its <joint> and <actuator> elements without the role attribute ros2_control's parser
     # requires ("joint 'knee'", "actuator 'm1'").
     roleless: list[str] = field(default_factory=list)
+    # A block's transmission without a <plugin> element at all (not an empty one), where
+    # ros2_control's parser reads the type from the element it did not find.
+    plugin_missing: bool = False
 
     def commands(self) -> bool:
         """Whether the transmission commands its joint: it names a hardware interface that
@@ -306,6 +309,7 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
                         joint_reduction=_parsed_value(joint, "mechanical_reduction", 1.0),
                         joint_offset=_parsed_value(joint, "offset", 0.0),
                         roleless=roleless,
+                        plugin_missing=transmission.find("plugin") is None,
                     )
                 )
     return result

@@ -912,22 +912,50 @@ def test_a_transmission_type_no_loader_has_stops_the_runtime(tmp_path):
         "transmission_interface/FourBarLinkageTransmission; did you mean "
         "'transmission_interface/SimpleTransmission'?"
     ]
+    # No <plugin> at all: ros2_control's parse_transmission_from_xml calls GetText() on the
+    # element it did not find, and the parse crashes; the check said the runtime logs "... of
+    # type '' not available", which only an empty <plugin> leads to.
     typeless = _transmission(body).replace(
         "<plugin>transmission_interface/SimpleTransmission</plugin>", ""
     )
     _fails_to_start(tmp_path / "typeless", typeless)
-    (failure,) = check_record(tmp_path / "typeless")["failures"]
-    assert "transmission #1 of joint 'hinge' names no type (no <plugin>" in failure
+    assert check_record(tmp_path / "typeless")["failures"] == [
+        "robot.urdf:15: transmission #1 has no <plugin>: ros2_control's parser "
+        "(parse_transmission_from_xml) reads the transmission's type from that element without "
+        "checking it is there, calling GetText() on a null pointer, so the controller manager "
+        "crashes while parsing the robot description at start-up (undefined behaviour: a "
+        "segmentation fault in practice), before any hardware starts; give it "
+        "<plugin>transmission_interface/SimpleTransmission</plugin>"
+    ]
+    empty = _transmission(body).replace(
+        "<plugin>transmission_interface/SimpleTransmission</plugin>", "<plugin/>"
+    )
+    _fails_to_start(tmp_path / "empty", empty)
+    assert check_record(tmp_path / "empty")["failures"] == [
+        "robot.urdf:15: transmission #1 of joint 'hinge' has an empty <plugin> (ros2_control's "
+        "parser logs \"text not specified in the plugin tag\" and reads the type as ''): "
+        "mujoco_ros2_control stops at start-up (\"... of type '' not available\"); give it "
+        "<plugin>transmission_interface/SimpleTransmission</plugin>"
+    ]
     vendor = cpp.replace("transmission_interface::SimpleTransmission", "acme/HarmonicDrive")
-    result = build_two_link(tmp_path / "vendor", urdf_extra=vendor)
-    assert check_record(tmp_path / "vendor")["passes"]
-    assert any(
-        w.startswith(
-            "robot.urdf:15: transmission #1 of joint 'hinge' is of type "
-            "'acme/HarmonicDrive', a plugin of another package"
-        )
-        for w in result.warnings
-    ), result.warnings
+    # A package whose name only begins like transmission_interface's is another package: a
+    # warning, not "which transmission_interface does not export".
+    lookalike = cpp.replace(
+        "transmission_interface::SimpleTransmission", "transmission_interface_extras/Harmonic"
+    )
+    for name, urdf, kind in (
+        ("vendor", vendor, "acme/HarmonicDrive"),
+        ("lookalike", lookalike, "transmission_interface_extras/Harmonic"),
+    ):
+        result = build_two_link(tmp_path / name, urdf_extra=urdf)
+        assert check_record(tmp_path / name)["passes"], check_record(tmp_path / name)
+        assert any(
+            w.startswith(
+                f"robot.urdf:15: transmission #1 of joint 'hinge' is of type '{kind}', a plugin "
+                "of another package than transmission_interface"
+            )
+            for w in result.warnings
+        ), result.warnings
 
 
 def test_a_transmission_through_a_site_actuator_misreports_its_joint(tmp_path):
@@ -1000,7 +1028,7 @@ def test_an_override_start_position_file_comes_before_the_initial_keyframe(tmp_p
     assert said.startswith(
         "robot.urdf:15: <hardware> param initial_keyframe names keyframe 'start_90', which the "
         "model does not have (its keyframes: 'home'): mujoco_ros2_control stops at start-up "
-        "(\"Failed to apply initial keyframe: 'start_90'\", then \"Failed to register MuJoCo "
+        '("Failed to apply initial keyframe: \'start_90\'", then "Failed to register MuJoCo '
         'actuators, exiting...") where the override_start_position_file, which it reads first, '
         "fails to load"
     ), said
