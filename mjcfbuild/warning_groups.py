@@ -7,7 +7,9 @@ N times whose warnings differ in one part only (the subject: a link, a joint, a 
 ``N × <the sentence, '…' for the subject>: a, b, c, ...``; one whose warnings differ in more
 than that (a name and its figures, a URI and its path) would read as a bare template there
 (``'…' ('…')``, ``principal moments … … … -> … … …``), so it prints its first warning whole and
-``(and N-1 more like it: b, c, d, ...)``. Either keeps the first warning's location so an editor
+``(and N-1 more like it: b, c, d, ...)`` (each subject once, not the first's own; each one's
+``file:line`` where only numbers vary; just ``(and N-1 more like it)`` where none is left to
+list). Either keeps the first warning's location so an editor
 can still jump to it. The report lists every warning.
 """
 
@@ -94,7 +96,7 @@ def _line(kind: _Kind, more: str) -> str:
     varying = [len(set(column)) > 1 for column in columns]
     subjects = _subjects(kind, columns, varying)
     if sum(varying) + _files_vary(kind) > 1:
-        return _first_and_more(kind, subjects, more)
+        return _first_and_more(kind, _subjects(kind, columns, varying, numbers=False), more)
     text = kind.pieces[0]
     for index, column in enumerate(columns):
         value = "…" if varying[index] else column[0]
@@ -115,12 +117,17 @@ def _line(kind: _Kind, more: str) -> str:
 
 def _first_and_more(kind: _Kind, subjects: list[str], more: str) -> str:
     """The first warning whole, then how many more of its kind there are and what they are
-    about: ``<first> (and 4 more like it: b, c, d, ...; all in report.md)``."""
-    others = list(dict.fromkeys(subjects[1:]))
+    about: ``<first> (and 4 more like it: b, c, d, ...; all in report.md)``. Each subject is
+    listed once, never the first warning's own; where none is left to list (every subject
+    empty, or the first's), ``<first> (and 4 more like it; all in report.md)``."""
+    others = [s for s in dict.fromkeys(subjects[1:]) if s and s != subjects[0]]
+    line = f"{kind.texts[0].rstrip('.')} (and {len(kind.texts) - 1} more like it"
+    if not others:
+        return line + (f"; {more}" if more else "") + ")"
     listed = ", ".join(others[:SHOWN_SUBJECTS])
     if len(others) > SHOWN_SUBJECTS:
         listed += ", ..." + (f"; {more}" if more else "")
-    return f"{kind.texts[0].rstrip('.')} (and {len(kind.texts) - 1} more like it: {listed})"
+    return f"{line}: {listed})"
 
 
 def _files_vary(kind: _Kind) -> bool:
@@ -130,15 +137,20 @@ def _files_vary(kind: _Kind) -> bool:
     return all(p is not None and not _LINE.search(p) for p in places) and len(set(places)) > 1
 
 
-def _subjects(kind: _Kind, columns: list[tuple[str, ...]], varying: list[bool]) -> list[str]:
+def _subjects(
+    kind: _Kind, columns: list[tuple[str, ...]], varying: list[bool], numbers: bool = True
+) -> list[str]:
     """What each warning of a kind is about: its file (where each names a file of its own),
-    else its first varying quoted name, else its first varying value, else its location."""
+    else its first varying quoted name, else its first varying value, else its location.
+    Without ``numbers``, a varying number is not taken for the subject: listed apart from the
+    sentence it varies in ("and 2 more like it: 3, 5"), a bare figure names nothing a user can
+    find, so the location names each instead."""
     places = [location or "" for location in kind.locations]
     if _files_vary(kind):
         return places
     quoted_first = sorted(range(len(columns)), key=lambda i: (kind.quoted[i] == "", i))
     for index in quoted_first:
-        if varying[index]:
+        if varying[index] and (numbers or kind.quoted[index]):
             quote = kind.quoted[index] or "'"
             return [
                 f"{quote}{value}{quote}" if re.search(r"[\s,]", value) else value

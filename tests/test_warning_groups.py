@@ -37,6 +37,56 @@ def test_warnings_that_differ_in_more_than_their_subject_show_the_first_whole():
     ]
 
 
+def _dropped_boxes(shapes: list[tuple[int | None, str, int, str]]) -> list[str]:
+    """prepared.py's warning for each zero-sized visual box: (URDF line or None, link, visual
+    index, size)."""
+    return [
+        ("" if line is None else f"robot.urdf:{line}: ")
+        + f"link '{link}' visual {index} has box size {size}; dropped it"
+        for line, link, index, size in shapes
+    ]
+
+
+def test_warnings_that_differ_in_their_figures_alone_list_where_they_are():
+    # Only numbers vary: the line listed the visuals' indices, "(and 2 more like it: 2, 3)",
+    # which name nothing a user can find; each one's URDF line does.
+    boxes = _dropped_boxes(
+        [(31, "base", 1, "0 0.1 0"), (35, "base", 2, "0.2 0 0"), (39, "base", 3, "0 0 0.3")]
+    )
+    assert group_warnings(boxes, "all in report.md") == [
+        f"{boxes[0]} (and 2 more like it: robot.urdf:35, robot.urdf:39)"
+    ]
+
+
+def test_the_first_warnings_subject_is_not_listed_again_and_each_subject_once():
+    # Link 'a' has two dropped boxes: the line read "... link 'a' ... (and 3 more like it: b,
+    # a, b)".
+    boxes = _dropped_boxes(
+        [
+            (31, "a", 0, "0 0.1 0"),
+            (35, "b", 1, "0.2 0 0"),
+            (39, "a", 2, "0 0 0.3"),
+            (43, "b", 3, "0 0.4 0"),
+        ]
+    )
+    assert group_warnings(boxes, "all in report.md") == [f"{boxes[0]} (and 3 more like it: b)"]
+
+
+def test_warnings_with_nothing_to_tell_them_apart_by_list_no_subjects():
+    # No location and the same link: the line ended "(and 2 more like it: 2, 3)" (the visuals'
+    # indices); without figures it would end "like it: )". The report lists them all.
+    boxes = _dropped_boxes(
+        [(None, "base", 1, "0 0.1 0"), (None, "base", 2, "0.2 0 0"), (None, "base", 3, "0 0 0.3")]
+    )
+    assert group_warnings(boxes, "all in report.md") == [
+        f"{boxes[0]} (and 2 more like it; all in report.md)"
+    ]
+    assert group_warnings(boxes) == [f"{boxes[0]} (and 2 more like it)"]
+    # The same warnings at one line: only the first's own location, which is not listed again.
+    same = _dropped_boxes([(31, "base", 1, "0 0.1 0"), (31, "base", 2, "0.2 0 0")])
+    assert group_warnings(same) == [f"{same[0]} (and 1 more like it)"]
+
+
 def test_inertia_repairs_read_with_their_figures():
     """Each repair's figures are its own: elided, the line read "principal moments … … … ->
     … … …" (a generated five-link arm's report)."""
