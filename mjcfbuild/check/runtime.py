@@ -97,7 +97,7 @@ def check_runtime(
     warnings: list[str] = []
     ghosts, part_joints = _not_in_urdf(model, control, urdf_joints)
     failures += ghosts + _parser_refusals(control, urdf_joints, fixed_joints)
-    failures += _unknown_children(control)
+    failures += _unknown_children(control) + _refused_elements(control)
     warnings += part_joints + _interfaceless_joints(control)
     served = [
         joint
@@ -162,8 +162,10 @@ def _not_in_urdf(
     from mjcfbuild.sources.packages import did_you_mean
 
     failures, warnings = [], []
+    # A joint without a name attribute is refused for that (_refused_elements), not looked up.
+    nameless = {r.origin for r in control.refusals if r.nameless == "joint"}
     for joint in control.joints:
-        if joint.name in urdf_joints:
+        if joint.name in urdf_joints or joint.origin in nameless:
             continue
         if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, joint.name) >= 0:
             warnings.append(
@@ -241,6 +243,19 @@ def _unknown_children(control: Ros2Control) -> list[str]:
         f'{child.tag}"); keep only {", ".join(f"<{tag}>" for tag in BLOCK_CHILDREN)} in the '
         f"block, and move the rest out of it{did_you_mean(child.tag, set(BLOCK_CHILDREN))}"
         for child in control.unknown_children
+    ]
+
+
+def _refused_elements(control: Ros2Control) -> list[str]:
+    """Elements of any block that lack what ros2_control's parser reads of them (a name, a
+    type, a <plugin>, an enable: inputs.ros2_control_parser): it stops the controller manager
+    before any hardware starts."""
+    return [
+        f"{refusal.origin}: {refusal.what}: ros2_control's parser stops the runtime at "
+        f'start-up ("{refusal.said}"); {refusal.fix}'
+        if not refusal.said.startswith("the parser")
+        else f"{refusal.origin}: {refusal.what}: {refusal.said} at start-up; {refusal.fix}"
+        for refusal in control.refusals
     ]
 
 

@@ -12,6 +12,8 @@ from dataclasses import asdict, dataclass, field, fields
 
 from lxml import etree
 
+from mjcfbuild.inputs.ros2_control_parser import ParserRefusal, block_refusals
+
 CAMERA_PARAMS = {"image_topic", "info_topic", "depth_topic", "camera_info_topic"}
 LIDAR_PARAMS = {"laserscan_topic", "angle_increment", "min_angle", "max_angle", "range_max"}
 
@@ -139,6 +141,8 @@ class Ros2Control:
     hardware_origins: dict[str, str] = field(default_factory=dict)  # param -> "file:line"
     unknown_children: list[BlockElement] = field(default_factory=list)  # the parser refuses
     jointless: list[BlockElement] = field(default_factory=list)  # block transmissions, no <joint>
+    # Elements lacking an attribute or child ros2_control's parser reads (ros2_control_parser)
+    refusals: list[ParserRefusal] = field(default_factory=list)
 
     def runs(self, plugin: str) -> bool:
         """Whether mujoco_ros2_control runs a block of ``plugin``: where some block is
@@ -169,6 +173,7 @@ class Ros2Control:
             dict(data.get("hardware_origins", {})),
             [_known(BlockElement, e) for e in data.get("unknown_children", [])],
             [_known(BlockElement, e) for e in data.get("jointless", [])],
+            [_known(ParserRefusal, r) for r in data.get("refusals", [])],
         )
 
 
@@ -185,6 +190,7 @@ def read_ros2_control(root: etree._Element, label: str) -> Ros2Control:
     blocks = root.findall("ros2_control")
     result.plugins = [(block.findtext("hardware/plugin") or "").strip() for block in blocks]
     for number, (block, plugin) in enumerate(zip(blocks, result.plugins, strict=True)):
+        result.refusals += block_refusals(block, label)
         result.unknown_children += [
             BlockElement(_tag_name(child), f"{label}:{child.sourceline}", number, plugin)
             for child in block

@@ -51,7 +51,7 @@ TAKES = {
 def control_block(interfaces: list[str], hardware: str = "") -> str:
     commands = "".join(f'<command_interface name="{i}"/>' for i in interfaces)
     return (
-        f'<ros2_control name="s" type="system"><hardware>{hardware}</hardware>'
+        f'<ros2_control name="s" type="system"><hardware><plugin>mujoco_ros2_control/MujocoSystemInterface</plugin>{hardware}</hardware>'
         f'<joint name="hinge">{commands}<state_interface name="position"/></joint></ros2_control>'
     )
 
@@ -221,7 +221,7 @@ def test_a_urdf_mimic_joint_with_command_interfaces_is_refused_by_ros2_control(t
         for f in failures
     ), failures
     alone = (
-        '<ros2_control name="s" type="system"><hardware></hardware><joint name="follower">'
+        '<ros2_control name="s" type="system"><hardware><plugin>mujoco_ros2_control/MujocoSystemInterface</plugin></hardware><joint name="follower">'
         '<state_interface name="position"/></joint></ros2_control>'
     )
     _fails_to_start(tmp_path / "alone", FOLLOWER + alone)
@@ -273,7 +273,7 @@ def test_a_block_for_other_hardware_beside_the_runtimes_is_not_judged_as_the_run
     """A gripper driver's block beside mujoco_ros2_control's: its initial_keyframe is not the
     runtime's (the build failed on it), and its joints are said to be unserved."""
     runtime = control_block(["position"]).replace(
-        "<hardware></hardware>",
+        "<hardware><plugin>mujoco_ros2_control/MujocoSystemInterface</plugin></hardware>",
         "<hardware><plugin>mujoco_ros2_control/MujocoSystemInterface</plugin>"
         '<param name="initial_keyframe">home</param></hardware>',
     )
@@ -455,7 +455,8 @@ def test_a_transmission_naming_no_joint_or_actuator_stops_the_runtime(tmp_path):
     # A block written for a real robot's driver (TIAGo Pro's robot_control/RobotControl) is
     # not run by mujoco_ros2_control as written: said, not failed.
     driver = block("actuator1").replace(
-        "<hardware></hardware>", "<hardware><plugin>robot_control/RobotControl</plugin></hardware>"
+        "<hardware><plugin>mujoco_ros2_control/MujocoSystemInterface</plugin></hardware>",
+        "<hardware><plugin>robot_control/RobotControl</plugin></hardware>",
     )
     result = build_two_link(tmp_path / "driver", urdf_extra=driver)
     assert check_record(tmp_path / "driver")["passes"]
@@ -687,7 +688,8 @@ def test_a_transmission_element_without_a_role_is_refused_in_every_block(tmp_pat
     without it ("no attribute role in actuator tag"), in a real robot's driver block too."""
     roleless = _transmission('<actuator name="hinge"/><joint name="hinge" role="joint1"/>')
     driver = roleless.replace(
-        "<hardware></hardware>", "<hardware><plugin>robot_control/RobotControl</plugin></hardware>"
+        "<hardware><plugin>mujoco_ros2_control/MujocoSystemInterface</plugin></hardware>",
+        "<hardware><plugin>robot_control/RobotControl</plugin></hardware>",
     )
     _fails_to_start(tmp_path, driver)
     failures = check_record(tmp_path)["failures"]
@@ -827,7 +829,8 @@ def test_a_joint_driven_only_through_a_transmission_takes_its_actuators_interfac
 def _driver(block: str) -> str:
     """``block`` written for a real robot's driver (TIAGo Pro's), not for the runtime."""
     return block.replace(
-        "<hardware></hardware>", "<hardware><plugin>robot_control/RobotControl</plugin></hardware>"
+        "<hardware><plugin>mujoco_ros2_control/MujocoSystemInterface</plugin></hardware>",
+        "<hardware><plugin>robot_control/RobotControl</plugin></hardware>",
     )
 
 
@@ -1002,7 +1005,9 @@ def test_a_reduction_to_its_own_actuator_started_from_a_keyframe_moves_the_joint
         '<actuator name="hinge" role="actuator1"/><joint name="hinge" role="joint1">'
         "<mechanical_reduction>2.0</mechanical_reduction></joint>"
     ).replace(
-        "<hardware></hardware>", '<hardware><param name="initial_keyframe">home</param></hardware>'
+        "<hardware><plugin>mujoco_ros2_control/MujocoSystemInterface</plugin></hardware>",
+        "<hardware><plugin>mujoco_ros2_control/MujocoSystemInterface</plugin>"
+        '<param name="initial_keyframe">home</param></hardware>',
     )
     result = build_two_link(tmp_path / "keyed", "home: {hinge: 0.4}\n", geared)
     (said,) = [w for w in result.warnings if "to its own actuator" in w]
@@ -1037,3 +1042,78 @@ def test_an_override_start_position_file_comes_before_the_initial_keyframe(tmp_p
     block = control_block(["position"], only_file)
     away = build_two_link(tmp_path / "file", "home: {hinge: 0.4}\n", block)
     assert not [w for w in away.warnings if "names no initial_keyframe" in w], away.warnings
+
+
+@pytest.mark.parametrize(
+    ("change", "line", "failure"),
+    [
+        (
+            ('name="s" type="system"', 'name="s"'),
+            15,
+            "<ros2_control> has no type attribute: ros2_control's parser stops the runtime at "
+            'start-up ("no attribute type in ros2_control tag"); write type="system" on it',
+        ),
+        (
+            ('<command_interface name="position"/>', "<command_interface/>"),
+            15,
+            "<command_interface> has no name attribute: ros2_control's parser stops the runtime "
+            'at start-up ("no attribute name in command_interface tag"); write name="..." on it',
+        ),
+        (
+            ('<joint name="hinge">', "<joint>"),
+            15,
+            "<joint> has no name attribute: ros2_control's parser stops the runtime at start-up "
+            '("no attribute name in joint tag"); write name="..." on it',
+        ),
+        (
+            ("Interface</plugin>", "Interface</plugin><param>x</param>"),
+            15,
+            "<param> has no name attribute: ros2_control's parser stops the runtime at start-up "
+            '("no parameter name attribute set in param tag"); write name="..." on it',
+        ),
+        (
+            ('<state_interface name="position"/>', '<state_interface name="position"/><limits/>'),
+            15,
+            "<limits> has no enable attribute: ros2_control's parser stops the runtime at "
+            'start-up ("no attribute enable in limits tag"); write enable="true" or '
+            'enable="false" on it, or remove it',
+        ),
+        (
+            ("<plugin>mujoco_ros2_control/MujocoSystemInterface</plugin>", ""),
+            15,
+            "<hardware> has no <plugin>: the parser reads the text of the <plugin> it did not "
+            "find: the controller manager crashes at start-up; add "
+            "<plugin>mujoco_ros2_control/MujocoSystemInterface</plugin>",
+        ),
+    ],
+)
+def test_an_element_without_what_ros2_control_s_parser_reads_stops_the_runtime(
+    tmp_path, change, line, failure
+):
+    """parse_resource_from_xml and the functions it calls read a block's name and type, each
+    component's and interface's name, each <param>'s name, each <limits>' enable and the
+    <hardware>'s <plugin> without a fallback: a description lacking one stops the controller
+    manager. The check passed each of these (a nameless joint was called one the URDF lacks)."""
+    block = control_block(["position"])
+    old, new = change
+    assert old in block, (old, block)
+    _fails_to_start(tmp_path, block.replace(old, new, 1))
+    assert check_record(tmp_path)["failures"] == [f"robot.urdf:{line}: {failure}"]
+
+
+def test_an_actuator_block_s_transmission_of_two_joints_stops_the_runtime(tmp_path):
+    """auto_fill_transmission_interfaces: a block of type "actuator" has exactly one joint in
+    each transmission ("There should be exactly one joint defined in this component")."""
+    block = control_block(["position"]).replace('type="system"', 'type="actuator"')
+    block = block.replace(
+        "</ros2_control>",
+        '<transmission name="t"><plugin>transmission_interface/SimpleTransmission</plugin>'
+        '<joint name="hinge" role="joint1"/><joint name="hinge" role="joint2"/>'
+        '<actuator name="hinge" role="actuator1"/></transmission></ros2_control>',
+    )
+    _fails_to_start(tmp_path, block)
+    assert (
+        "robot.urdf:15: the transmission of an actuator block has 2 <joint>s: ros2_control's "
+        'parser stops the runtime at start-up ("There should be exactly one joint defined in '
+        'this component but found 2"); name one joint in it, or make the block type="system"'
+    ) in check_record(tmp_path)["failures"]

@@ -194,7 +194,7 @@ def test_a_velocity_servo_reaches_its_command_against_the_joints_damping(tmp_pat
     from tests.conftest import two_link_urdf, write
 
     urdf = two_link_urdf(
-        extra='<ros2_control name="s" type="system"><hardware/><joint name="hinge">'
+        extra='<ros2_control name="s" type="system"><hardware><plugin>mujoco_ros2_control/MujocoSystemInterface</plugin></hardware><joint name="hinge">'
         '<command_interface name="velocity"/></joint></ros2_control>',
         joint_type="continuous",
     ).replace('<axis xyz="0 1 0"/>', '<axis xyz="0 1 0"/><dynamics damping="0.2"/>')

@@ -33,7 +33,7 @@ SENSORS = """
       <param name="mujoco_sensor_name">compass</param><param name="frame_name">imu_link</param></sensor>
   </ros2_control>
   <ros2_control name="custom" type="system">
-    <hardware>
+    <hardware><plugin>mujoco_ros2_control/MujocoSystemInterface</plugin>
       <param name="force_mjcf_suffix">_f</param><param name="torque_mjcf_suffix">_t</param>
       <param name="orientation_mjcf_suffix">_orientation</param>
     </hardware>
