@@ -103,7 +103,7 @@ def describe(
         ) + ", and its real velocity in the URDF"
     return (
         f"{where}: joint '{found.joint}': {limits} give it a rotor inertia (armature) of "
-        f"{found.armature:.3g} {unit}, {found.armature / found.bound:.2g} times the most "
+        f"{found.armature:.3g} {unit}, {found.armature / found.bound:,.0f} times the most "
         f"{most} could have ({found.bound:.3g} {unit}): no real drive is that heavy, so the "
         f"limits (or the links' masses) look like placeholders; {fix}"
     )
