@@ -67,9 +67,13 @@ def compare_masses(
                     f"{_matrix(model_tensor)} in the model (about the centre of mass, body frame)"
                 )
             )
-    urdf_total = sum(link.inertial.mass for link in robot.links if link.inertial is not None)
     model_total = float(np.sum(model.body_mass))
-    return problems, urdf_total, model_total
+    return problems, urdf_mass(robot), model_total
+
+
+def urdf_mass(robot: Robot) -> float:
+    """The robot's total mass, as its links' ``<inertial>`` elements give it."""
+    return sum(link.inertial.mass for link in robot.links if link.inertial is not None)
 
 
 def placeholder_bodies(robot: Robot, model) -> list[str]:

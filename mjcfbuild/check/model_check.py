@@ -19,7 +19,7 @@ from mjcfbuild.check.findings import Problem, structural_first
 from mjcfbuild.check.joints import compare_joints
 from mjcfbuild.check.kinematics import compare_kinematics
 from mjcfbuild.check.loading import AssetSource, compile_model
-from mjcfbuild.check.masses import compare_masses, placeholder_bodies
+from mjcfbuild.check.masses import compare_masses, placeholder_bodies, urdf_mass
 from mjcfbuild.check.meshstats import mesh_statistics
 from mjcfbuild.check.precision import relative_tolerance
 from mjcfbuild.check.reference import reference_from_record
@@ -35,6 +35,7 @@ from mjcfbuild.check.results import (
     Simulation,
 )
 from mjcfbuild.check.simulation import simulate
+from mjcfbuild.mjcf.geometry_mass import GeometryMass, with_given
 from mjcfbuild.mjerrors import load_error
 from mjcfbuild.mjsensors import without_sensors
 from mjcfbuild.mjstopped import SimulationStopped, simulating
@@ -65,6 +66,7 @@ def check_model(
     reference: dict | None = None,
     sources: dict[str, AssetSource] | None = None,
     part_bodies: dict[str, set[str]] | None = None,
+    geometry_masses: list[GeometryMass] | None = None,
 ) -> CheckResults:
     """Check the model at ``model_path`` against ``robot``; simulate ``simulate_path`` (the
     scene, with its floor) or the model itself. ``readiness`` is what the build recorded about
@@ -74,7 +76,9 @@ def check_model(
     ``robot`` names links and lines in messages. ``sources``, the
     products a build published the assets from, make loading faster (see check.loading).
     ``part_bodies``: each MJCF part's bodies, by the part's name; contacts at rest inside one
-    part are reported, not failures."""
+    part are reported, not failures. ``geometry_masses``: the masses the build gave links
+    without one from their geometry (robot.yaml's ``inertia.missing: geometry``), which the
+    model's masses are compared with as if the URDF gave them, and which the results name."""
 
     from mjcfbuild.mjwarnings import capture_mujoco_warnings
 
@@ -146,14 +150,19 @@ def check_model(
     results = results.add(joints=Joints([p.text for p in joint_problems], relative))
     problems += joint_problems
 
-    mass_problems, urdf_mass, model_mass = compare_masses(robot, model, repaired or set(), relative)
+    given = geometry_masses or []
+    weighed = with_given(robot, given)  # the masses the model should have
+    mass_problems, _, model_mass = compare_masses(weighed, model, repaired or set(), relative)
     results = results.add(
         masses=Masses(
-            urdf_total=urdf_mass,
+            urdf_total=urdf_mass(robot),
             model_total=model_mass,
             problems=[p.text for p in mass_problems],
             repaired_bodies=sorted(repaired or ()),
-            placeholder_bodies=placeholder_bodies(robot, model),
+            placeholder_bodies=placeholder_bodies(weighed, model),
+            from_geometry=[record.link for record in given],
+            geometry_total=sum(record.mass for record in given),
+            geometry_density=given[0].density if given else 0.0,
         )
     )
     problems += mass_problems
@@ -199,7 +208,7 @@ def check_model(
     results = results.add(meshes=[MeshStatistics(**row) for row in mesh_statistics(model)])
     try:
         with simulating("the plausibility checks"):
-            results = _check_plausibility(model, results, sources, robot, repaired or set())
+            results = _check_plausibility(model, results, sources, weighed, repaired or set())
     except SimulationStopped as stop:
         results = results.add([stop.line])
     return results

@@ -47,6 +47,7 @@ def markdown(report: dict, place: Callable[[str], str] = str) -> str:
             for r in report["repairs"]
         ]
         lines.append("")
+    lines += _geometry_masses(report.get("geometry_masses") or [])
     if report["warnings"]:
         lines += ["## Warnings", ""] + [f"- {md(w)}" for w in report["warnings"]] + [""]
     meshes = (results.meshes if results else None) or []
@@ -178,6 +179,30 @@ def _replaced(actuator: dict) -> str:
     """The placeholder effort an actuator's force range replaced, if any."""
     effort = actuator.get("placeholder_effort")
     return f" (URDF effort {effort:g}, a placeholder)" if effort else ""
+
+
+def _geometry_masses(records: list[dict]) -> list[str]:
+    """The links given the mass of their geometry (robot.yaml's inertia.missing: geometry)."""
+    if not records:
+        return []
+    lines = [
+        "## Masses from geometry",
+        "",
+        f"{len(records)} link{'s' if len(records) > 1 else ''} without a mass in the URDF "
+        f"(no <inertial>, or mass 0) weighed as MuJoCo weighs geometry, at "
+        f"{records[0]['density']:g} kg/m^3 (robot.yaml's inertia.missing: geometry): the "
+        "model has these masses, the URDF does not.",
+        "",
+        "| link | from its | mass (kg) | centre of mass (link frame, m) |",
+        "|---|---|---:|---|",
+    ]
+    for record in records:
+        com = ", ".join(f"{v:.4g}" for v in record["com"])
+        lines.append(
+            f"| {md(record['link'])} | {record['geometry']} geometry | {record['mass']:.6g} "
+            f"| ({com}) |"
+        )
+    return [*lines, ""]
 
 
 def _control(readiness: dict) -> list[str]:

@@ -127,6 +127,30 @@ class Masses:
     # Moving bodies with geometry whose every link lacks a mass in the URDF (no <inertial>, or
     # mass 0): the model moves them with the build's placeholder, not the robot's mass.
     placeholder_bodies: list[str] = field(default_factory=list)
+    # Links without a mass in the URDF given the mass of their geometry (robot.yaml's
+    # inertia.missing: geometry), their total and the density: in the model, not the URDF.
+    from_geometry: list[str] = field(default_factory=list)
+    geometry_total: float = 0.0
+    geometry_density: float = 0.0
+
+    def to_dict(self) -> dict[str, Any]:
+        """As check.json holds it (the masses from geometry only where there are some)."""
+        data = {f.name: to_plain(getattr(self, f.name)) for f in fields(self)}
+        if not self.from_geometry:
+            for name in ("from_geometry", "geometry_total", "geometry_density"):
+                del data[name]
+        return data
+
+    def geometry_note(self) -> str:
+        """What of the model's mass the build gave links from their geometry, '' for none."""
+        if not self.from_geometry:
+            return ""
+        count = len(self.from_geometry)
+        return (
+            f"{self.geometry_total:.6g} kg of it from the geometry of {plural(count, 'link')} "
+            f"without a mass in the URDF, at {self.geometry_density:g} kg/m^3: "
+            "inertia.missing: geometry"
+        )
 
 
 @dataclass(frozen=True)
@@ -505,9 +529,11 @@ class CheckResults:
                 if masses.placeholder_bodies
                 else ""
             )
+            note = masses.geometry_note()
             add(
                 "masses",
-                f"{masses.model_total:.6g} kg (URDF {masses.urdf_total:.6g} kg), "
+                f"{masses.model_total:.6g} kg (URDF {masses.urdf_total:.6g} kg"
+                f"{'; ' + note if note else ''}), "
                 f"{plural(len(masses.problems), 'problem')}{placeholders}",
                 bool(masses.problems),
             )
@@ -731,9 +757,11 @@ class CheckResults:
         rows.append(f"| joint types, axes, ranges | {joint_problems} problems |")
         if self.masses:
             masses = self.masses
+            note = masses.geometry_note()
             rows.append(
                 f"| masses and inertias | total {masses.urdf_total:.6g} kg in the URDF, "
-                f"{masses.model_total:.6g} kg in the model; {len(masses.problems)} problems |"
+                f"{masses.model_total:.6g} kg in the model"
+                f"{' (' + md(note) + ')' if note else ''}; {len(masses.problems)} problems |"
             )
         # The console's other checks, in its words: the report leaves out none it shows.
         console = dict(self.console_lines())

@@ -26,7 +26,21 @@ from mjcfbuild.steps.payloads import AssemblePayload
 if TYPE_CHECKING:
     from mjcfbuild.graph.context import GraphContext
     from mjcfbuild.graph.graph import Graph
+    from mjcfbuild.manifest.models import InertiaSettings
     from mjcfbuild.urdf.model import Robot
+
+
+def _inertia(inertia: InertiaSettings) -> dict:
+    """robot.yaml's ``inertia:`` as the step's ``InertiaPolicy``; ``missing`` and ``density``
+    only where masses come from geometry, so a robot built without them is up to date."""
+    policy: dict = {
+        "mode": inertia.policy,
+        "min_mass": inertia.min_mass,
+        "min_inertia": inertia.min_inertia,
+    }
+    if inertia.missing != "placeholder":
+        policy.update(missing=inertia.missing, density=inertia.density)
+    return policy
 
 
 def _tasks(graph: Graph) -> list[dict]:
@@ -56,11 +70,7 @@ def _tasks(graph: Graph) -> list[dict]:
         free_joint=options.free_joint,
         link_sites=options.link_sites,
         max_hull_vertices=ctx.manifest.meshes.max_hull_vertices,
-        inertia={
-            "mode": inertia.policy,
-            "min_mass": inertia.min_mass,
-            "min_inertia": inertia.min_inertia,
-        },
+        inertia=_inertia(inertia),
         header=f"{MODEL_HEADER} {source_label}; edit the sources, not this file.",
         assets_dir=str(ctx.assets_dir),
         self_collision=str(matrix) if matrix else None,
@@ -187,7 +197,7 @@ def _refuse_unknown_link(robot: Robot, link: str, key: str, ctx: GraphContext) -
 def _report(ctx: GraphContext) -> dict:
     """The model's size, files, repairs, readiness to control and collision matrix."""
     assembly = read_record(ctx.state(ASSEMBLY_REPORT))
-    return {
+    report = {
         "repairs": assembly.get("repairs", []),
         "bodies": assembly.get("bodies"),
         "geoms": assembly.get("geoms"),
@@ -195,6 +205,9 @@ def _report(ctx: GraphContext) -> dict:
         "readiness": assembly.get("readiness") or {},
         "self_collision": assembly.get("self_collision"),
     }
+    if assembly.get("geometry_masses"):  # robot.yaml's inertia.missing: geometry
+        report["geometry_masses"] = assembly["geometry_masses"]
+    return report
 
 
 FAMILY = Family(

@@ -64,7 +64,15 @@ class Graph:
         """Mesh id -> what its product is used for (visual, collision, hull)."""
         from mjcfbuild.collision.policy import mesh_roles
 
-        return mesh_roles(self.robot, self.choices)
+        roles = mesh_roles(self.robot, self.choices)
+        if self.ctx.manifest.inertia.missing == "geometry":
+            from mjcfbuild.mjcf.geometry_mass import weighed_meshes
+
+            # A link without a mass is weighed from its meshes' collision files.
+            for mesh_id in weighed_meshes(self.robot):
+                roles[mesh_id] = sorted({*roles.get(mesh_id, []), "collision"})
+            roles = dict(sorted(roles.items()))
+        return roles
 
     @cached_property
     def paths(self) -> dict[str, str]:

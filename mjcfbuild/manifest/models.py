@@ -334,6 +334,28 @@ class InertiaSettings(StrictModel):
     min_inertia: float = Field(
         1e-8, gt=0, description="Smallest principal inertia of a moving body (kg m^2)."
     )
+    missing: Literal["placeholder", "geometry"] = Field(
+        "placeholder",
+        description="A link with geometry but no <inertial> (or mass 0): 'placeholder' gives a "
+        "moving one min_mass and says so (a robot with no mass at all is refused); 'geometry' "
+        "gives it the mass, centre of mass and inertia of its collision geometry (its visual "
+        "geometry where it has none) at `density`, as MuJoCo's own URDF import does.",
+    )
+    density: float = Field(
+        1000.0,
+        gt=0,
+        description="Density (kg/m^3) of the geometry that gives links their mass with "
+        "missing: geometry. Default: 1000, MuJoCo's.",
+    )
+
+    @model_validator(mode="after")
+    def _density_needs_geometry(self) -> InertiaSettings:
+        if "density" in self.model_fields_set and self.missing != "geometry":
+            raise ValueError(
+                "density is the density of the geometry that gives links without <inertial> "
+                "their mass; it needs missing: geometry"
+            )
+        return self
 
 
 class CacheSettings(StrictModel):

@@ -31,6 +31,7 @@ from mjcfbuild.meshes.product import MeshProduct
 from mjcfbuild.mjcf.bodies import WORLD, Body, build_bodies, ground_notes, link_places
 from mjcfbuild.mjcf.compile_errors import body_error, compile_error, spec_meshes, too_thin_mesh
 from mjcfbuild.mjcf.depth import refuse_deep_bodies
+from mjcfbuild.mjcf.geometry_mass import GeometryMass, with_geometry_masses
 from mjcfbuild.mjcf.inertia import InertiaPolicy, Repair, validate_masses
 from mjcfbuild.mjcf.precise import precise_xml
 from mjcfbuild.mjcf.prepared import Decomposition, GeomRecord, Prepared, prepare
@@ -94,6 +95,18 @@ class Assembly:
     readiness: Readiness | None = None
     # published name -> (file, MD5) the build's compiles read for it (mjcfbuild.meshes.mshfile)
     reads: dict[str, tuple[str, str]] = field(default_factory=dict)
+    # the links given the mass of their geometry (robot.yaml's inertia.missing: geometry)
+    geometry_masses: list[GeometryMass] = field(default_factory=list)
+
+
+def _from_geometry(options: AssemblyOptions) -> str:
+    """How to give links without a mass that of their geometry, where it is not asked for."""
+    if options.inertia.missing == "geometry":
+        return ""
+    as_mujoco = "to give each link the mass of its geometry, as MuJoCo's own URDF import does"
+    if options.manifest_label == COMMAND_LINE:
+        return f"build it from a robot.yaml with inertia: {{missing: geometry}} {as_mujoco}"
+    return f"set inertia: {{missing: geometry}} in {options.manifest_label} {as_mujoco}"
 
 
 def _free_joint(options: AssemblyOptions) -> tuple[str, str]:
@@ -116,13 +129,31 @@ def assemble(
     capture_mujoco_warnings()
     take_mujoco_warnings()
 
+    given: list[GeometryMass] = []
+    mass_warnings: list[str] = []
+    if options.inertia.missing == "geometry":
+        robot, given, mass_warnings = with_geometry_masses(
+            robot,
+            products,
+            product_dirs,
+            options.inertia.density,
+            options.fuse_static,
+            options.free_joint,
+        )
     # A floating root moves too: a massless one gets the smallest repair, reported.
     bodies = build_bodies(robot, options.fuse_static, free_joint=options.free_joint)
     refuse_deep_bodies(robot, bodies)
     lines = {
         link.name: (link.inertial.line if link.inertial else link.line) for link in robot.links
     }
-    repairs = validate_masses(bodies, options.inertia, robot.source, lines, _free_joint(options))
+    repairs = validate_masses(
+        bodies,
+        options.inertia,
+        robot.source,
+        lines,
+        _free_joint(options),
+        _from_geometry(options),
+    )
     choices = options.choices
     if choices is None:
         choices = choose_collisions(robot, "authored", [], {})
@@ -158,6 +189,8 @@ def assemble(
         repairs=repairs,
         warnings=[
             *robot.warnings,
+            *(record.describe(robot.source) for record in given),
+            *mass_warnings,
             *_nothing_floats(robot, bodies, options),
             *ground_notes(robot),
             *prepared.warnings,
@@ -168,6 +201,7 @@ def assemble(
         geoms=len(prepared.geoms),
         readiness=readiness,
         reads=dict(prepared.reads),
+        geometry_masses=given,
     )
 
 

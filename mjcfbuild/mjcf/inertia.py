@@ -33,6 +33,10 @@ class InertiaPolicy:
     mode: str = "repair"
     min_mass: float = 1e-4
     min_inertia: float = 1e-8
+    # A link with geometry but no mass: "placeholder" (min_mass) or "geometry" (its geometry's
+    # mass at ``density``, mjcf.geometry_mass), robot.yaml's inertia.missing.
+    missing: str = "placeholder"
+    density: float = 1000.0
 
 
 @dataclass
@@ -57,11 +61,15 @@ def validate_masses(
     source: str,
     lines: dict[str, int | None],
     free_joint: tuple[str, str] = ("robot.yaml options.free_joint", "set free_joint: false"),
+    from_geometry: str = "",
 ) -> list[Repair]:
     """Check (and under ``repair``, fix in place) every body's mass properties.
     ``free_joint`` names where the free joint was asked for (robot.yaml's, as ``LABEL
     KEY.PATH``, which the engine points at its line) and how not to ask: the cause when the
-    floating base is the only body that moves."""
+    floating base is the only body that moves. ``from_geometry`` says how to give links the
+    masses of their geometry instead (robot.yaml's ``inertia.missing``), where that is not
+    already asked for: a robot without a mass is refused with it."""
+    other = f", or {from_geometry}" if from_geometry else ""
     repairs: list[Repair] = []
     total = sum(b.mass.mass for b in bodies if b.mass is not None and math.isfinite(b.mass.mass))
     moving = [body for body in bodies if body.moves]
@@ -75,7 +83,7 @@ def validate_masses(
             f"so its floating base '{moving[0].name}' cannot be simulated",
             file=where,
             hint=f"{turn_off} for a robot that stays where it is, or add each link's "
-            f"<inertial> (mass, centre of mass, inertia) to {source}",
+            f"<inertial> (mass, centre of mass, inertia) to {source}{other}",
         )
     if moving and massless:
         # Every body would get the smallest placeholder mass: servos sized for 0.1 g links go
@@ -85,7 +93,7 @@ def validate_masses(
             f"{'body cannot' if len(moving) == 1 else 'bodies cannot'} be simulated",
             file=source,
             hint="add each link's <inertial> (mass, centre of mass, inertia) to the "
-            "description: MuJoCo needs them to simulate it",
+            f"description: MuJoCo needs them to simulate it{other}",
         )
     for body in bodies:
         if body.name == "world" and body.parent is None:

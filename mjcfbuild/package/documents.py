@@ -169,7 +169,11 @@ def _checks(check: CheckResults | None) -> list[str]:
             f"{kinematics.configurations} configurations"
         )
     if check.masses:
-        lines.append(f"- masses and inertias as in the URDF ({check.masses.model_total:.6g} kg)")
+        note = check.masses.geometry_note()
+        lines.append(
+            f"- masses and inertias as in the URDF ({check.masses.model_total:.6g} kg"
+            f"{'; ' + md(note) if note else ''})"
+        )
     if check.menagerie_test and check.menagerie_test.finite:
         lines.append("- MuJoCo Menagerie's model test: no warnings")
     if check.hold:

@@ -134,6 +134,8 @@ def run(payload: dict) -> dict:
         "readiness": assembly.readiness.to_dict() if assembly.readiness else None,
         "self_collision": matrix,
     }
+    if assembly.geometry_masses:  # robot.yaml's inertia.missing: geometry
+        report["geometry_masses"] = [record.to_dict() for record in assembly.geometry_masses]
     write_output(
         report_path, (json.dumps(report, indent=1, sort_keys=True) + "\n").encode(), outputs
     )

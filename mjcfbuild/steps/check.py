@@ -12,6 +12,7 @@ from mjcfbuild.check.results import CheckResults, GazeboSensor, Runtime
 from mjcfbuild.errors import CheckError
 from mjcfbuild.inputs.pid_gains import PidGains
 from mjcfbuild.inputs.ros2_control import Ros2Control
+from mjcfbuild.mjcf.geometry_mass import GeometryMass
 from mjcfbuild.steps.outputs import write_output
 from mjcfbuild.steps.payloads import CheckPayload, MjcfPartFiles
 from mjcfbuild.steps.plan_record import read_plan
@@ -59,6 +60,9 @@ def check_built(request: CheckPayload) -> CheckResults:
         reference=_read_reference(Path(request.reference)),
         sources=sources,
         part_bodies=part_bodies(request.mjcf_parts),
+        geometry_masses=[
+            GeometryMass.from_dict(record) for record in assembly.get("geometry_masses", [])
+        ],
     )
     if request.mjcf_parts and results.loads:
         results = _check_parts(

@@ -215,3 +215,35 @@ def test_the_reports_table_has_every_check_the_console_shows():
     table = "\n".join(results.table_rows())
     assert "| joint speeds | fastest knee 3.14 (limit 2), within the bound |" in table
     assert "| plausibility | 0 failures, 1 warning |" in table
+
+
+def test_masses_from_geometry_are_said_and_absent_from_check_json_without_them():
+    """The masses line says what of the model's mass the build gave from geometry (the URDF's
+    total stays the URDF's); without such masses check.json has the bytes it always had."""
+    from mjcfbuild.check.results import CheckResults, Masses
+
+    plain = Masses(urdf_total=2.0, model_total=2.0)
+    assert set(plain.to_dict()) == {
+        "urdf_total",
+        "model_total",
+        "problems",
+        "repaired_bodies",
+        "placeholder_bodies",
+    }
+    weighed = Masses(
+        urdf_total=1.0,
+        model_total=6.0,
+        from_geometry=["arm"],
+        geometry_total=5.0,
+        geometry_density=1000.0,
+    )
+    results = CheckResults(loads=True, masses=weighed)
+    assert dict(results.console_lines())["masses"] == (
+        "6 kg (URDF 1 kg; 5 kg of it from the geometry of 1 link without a mass in the URDF, "
+        "at 1000 kg/m^3: inertia.missing: geometry), 0 problems"
+    )
+    assert CheckResults.from_json(results.to_json()).masses == weighed
+    assert any(
+        "total 1 kg in the URDF, 6 kg in the model (5 kg of it" in row
+        for row in results.table_rows()
+    )

@@ -210,3 +210,19 @@ def test_load_manifest_reports_non_utf8(tmp_path):
         load_manifest(path)
     assert info.value.message == "not UTF-8 text (byte 25: 0xe9)"
     assert (info.value.location.line, info.value.location.column) == (3, 10)
+
+
+def test_masses_from_geometry_are_opt_in_and_density_needs_them():
+    """``inertia.missing`` keeps the placeholder unless asked; a density alone would be
+    silently unused, so it is refused at its section's line."""
+    plain = parse_manifest("name: arm\nsource: {urdf: a.urdf}\n")
+    assert (plain.inertia.missing, plain.inertia.density) == ("placeholder", 1000.0)
+    asked = parse_manifest(
+        "name: arm\nsource: {urdf: a.urdf}\ninertia: {missing: geometry, density: 2700}\n"
+    )
+    assert (asked.inertia.missing, asked.inertia.density) == ("geometry", 2700.0)
+    error = error_of("name: arm\nsource: {urdf: a.urdf}\ninertia:\n  density: 2700\n")
+    assert error.location.line == 3
+    assert "density" in error.message and "it needs missing: geometry" in error.message
+    error = error_of("name: arm\nsource: {urdf: a.urdf}\ninertia: {missing: mesh}\n")
+    assert "use one of 'placeholder' or 'geometry'" in error.message

@@ -130,8 +130,20 @@ def test_a_free_joint_on_a_robot_without_mass_names_robot_yaml_free_joint(tmp_pa
         "mjcfbuild: error: robot.yaml:5:3: options.free_joint: a free joint floats the robot, "
         "but no link of prop.urdf has a mass (<inertial>), so its floating base 'table' cannot "
         "be simulated (set free_joint: false for a robot that stays where it is, or add each "
-        "link's <inertial> (mass, centre of mass, inertia) to prop.urdf)"
+        "link's <inertial> (mass, centre of mass, inertia) to prop.urdf, or set inertia: "
+        "{missing: geometry} in robot.yaml to give each link the mass of its geometry, as "
+        "MuJoCo's own URDF import does)"
     ) in done.stderr
+    # As that hint says: weighed from its geometry, the prop floats (1 x 0.6 x 0.05 m: 30 kg).
+    original = manifest.read_text()
+    manifest.write_text(original + "inertia:\n  missing: geometry\n")
+    done = run_cli("build", cwd=tmp_path)
+    assert done.code == 0, done.stderr
+    assert (
+        "prop.urdf:3: link 'table' has no <inertial>: given 30 kg from its collision geometry "
+        "at 1000 kg/m^3 (inertia.missing: geometry)"
+    ) in done.stderr
+    manifest.write_text(original)
     # As the hint says: fixed to the world, the prop builds (MuJoCo's import takes it so).
     manifest.write_text(manifest.read_text().replace("free_joint: true", "free_joint: false"))
     assert run_cli("build", cwd=tmp_path).code == 0
@@ -140,3 +152,4 @@ def test_a_free_joint_on_a_robot_without_mass_names_robot_yaml_free_joint(tmp_pa
     assert done.code == EXIT_INPUT, done.stderr
     assert "error: the command line's -f: a free joint floats the robot" in done.stderr
     assert "(leave out -f for a robot that stays where it is" in done.stderr
+    assert "or build it from a robot.yaml with inertia: {missing: geometry}" in done.stderr
