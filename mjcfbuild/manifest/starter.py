@@ -384,15 +384,18 @@ def _free_joint_lines(
         # A free joint makes the root a moving body, and MuJoCo cannot simulate a moving body
         # of no mass: the build would refuse what the description leaves a static prop.
         if notes is not None:
+            weighed = f", or {FROM_GEOMETRY}," if _has_geometry(robot) else ""
             notes.append(
                 f"{label}: no link has a mass (<inertial>), so the manifest fixes the robot to "
                 "the world (free_joint: false): MuJoCo cannot simulate a floating base without "
-                "one (add the links' <inertial> elements, then set free_joint: true to float it)"
+                f"one (add the links' <inertial> elements{weighed} then set free_joint: true "
+                "to float it)"
             )
         return (
             [
                 "  # No link has a mass (<inertial>), and MuJoCo cannot simulate a floating",
-                "  # base without one: fixed to the world. true once the links have <inertial>.",
+                "  # base without one: fixed to the world. true once the links have <inertial>",
+                "  # (or masses from their geometry: inertia: {missing: geometry}).",
                 "  free_joint: false",
             ],
             stop,
@@ -443,16 +446,29 @@ def _first_stop(
         outside.append((where, read.uri))
     moving = [joint for joint in robot.joints if joint.moves]
     if moving and not _has_mass(robot):
+        weighed = f"; or {FROM_GEOMETRY}" if _has_geometry(robot) else ""
         return (
             f"{robot.source}: no link of the robot has a mass (<inertial>), so it cannot be "
-            "simulated (add each link's <inertial>: mass, centre of mass, inertia)"
+            f"simulated (add each link's <inertial>: mass, centre of mass, inertia{weighed})"
         )
     return None
+
+
+# robot.yaml's option for a description without masses whose links have geometry.
+FROM_GEOMETRY = (
+    "set inertia: {missing: geometry} in robot.yaml to give each link the mass of its "
+    "geometry, as MuJoCo's own URDF import does"
+)
 
 
 def _has_mass(robot: Robot) -> bool:
     """Whether some link of ``robot`` has a mass (an ``<inertial>`` with a positive one)."""
     return any(link.inertial and link.inertial.mass > 0 for link in robot.links)
+
+
+def _has_geometry(robot: Robot) -> bool:
+    """Whether some link of ``robot`` has geometry that could give it a mass."""
+    return any(link.shapes for link in robot.links)
 
 
 _LEG_WORDS = ("hip", "thigh", "knee", "calf", "shank", "ankle", "foot", "HFE", "KFE", "HAA")

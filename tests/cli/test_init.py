@@ -435,6 +435,10 @@ def test_init_says_a_missing_mesh_or_a_robot_without_mass_stops_the_first_build(
     write(tmp_path / "massless.urdf", massless)
     result = cli("init", "-o", "massless.yaml", "massless.urdf", cwd=tmp_path)
     assert "massless.urdf: no link of the robot has a mass (<inertial>)" in result.stderr
+    assert (
+        "or set inertia: {missing: geometry} in robot.yaml to give each link the mass of its "
+        "geometry, as MuJoCo's own URDF import does)"
+    ) in result.stderr
 
 
 def test_init_names_an_included_file_that_fails_from_the_current_folder(cli, tmp_path):

@@ -73,8 +73,11 @@ def test_a_robot_without_mass_is_not_floated_and_init_says_why(tmp_path):
     assert notes == [
         "prop.urdf: no link has a mass (<inertial>), so the manifest fixes the robot to the "
         "world (free_joint: false): MuJoCo cannot simulate a floating base without one (add "
-        "the links' <inertial> elements, then set free_joint: true to float it)"
+        "the links' <inertial> elements, or set inertia: {missing: geometry} in robot.yaml to "
+        "give each link the mass of its geometry, as MuJoCo's own URDF import does, then set "
+        "free_joint: true to float it)"
     ]
+    assert "(or masses from their geometry: inertia: {missing: geometry})" in text
     write(tmp_path / "robot.yaml", text)
     assert mjcfbuild.build(tmp_path / "robot.yaml", jobs=1).ok
     # With a mass, the same prop floats as before.
