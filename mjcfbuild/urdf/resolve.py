@@ -91,7 +91,7 @@ def resolve_files(
                     textures.append(str(read[1]))
     if roots is not None:
         far = reads_outside(reads, packages, roots)
-        _warn_outside(robot, far)
+        _warn_outside(robot, far, base_dir)
         if outside is not None:
             outside.extend(far)
     ids = assign_mesh_ids(mesh_paths)
@@ -123,7 +123,7 @@ def _resolve_texture(
     # At the shape's line where the <texture>'s own is unknown (a URDF parsed before it was
     # recorded): a texture is named in its <material>, not its geometry.
     line = material.texture_line or shape.line
-    path, problem = _look_up(uri, base_dir, packages)
+    path, problem = _look_up(uri, base_dir, packages, relative=True)
     if problem is None:
         assert path is not None, "a path or a problem"
         material.texture = str(path)
@@ -179,12 +179,15 @@ def reads_outside(
     return list(found.values())
 
 
-def _warn_outside(robot: Robot, outside: Sequence[OutsideRead]) -> None:
-    """Warn once per URI about a file read from outside (``reads_outside``)."""
+def _warn_outside(robot: Robot, outside: Sequence[OutsideRead], base_dir: Path) -> None:
+    """Warn once per URI about a file read from outside (``reads_outside``), its path named
+    from ``base_dir`` (the URDF's folder): the report keeps the warning, the same bytes in
+    any folder."""
     for uri, path, line in outside:
         where = f"{robot.source}:{line}" if line is not None else robot.source
+        shown = Path(os.path.relpath(path, base_dir)).as_posix()
         # The path quoted: warnings that differ only in quoted parts print as one line.
-        read = "" if uri.strip() == str(path) else f" ('{path}')"
+        read = "" if os.path.normpath(uri.strip()) in (str(path), shown) else f" ('{shown}')"
         robot.warnings.append(
             f"{where}: '{uri}'{read} is outside every package folder and robot.yaml's folder, "
             "and the model publishes it; move the file into the description, or set "
@@ -206,10 +209,12 @@ def _resolve_existing(
 
 
 def _look_up(
-    uri: str, base_dir: Path, packages: PackageResolver
+    uri: str, base_dir: Path, packages: PackageResolver, relative: bool = False
 ) -> tuple[Path | None, tuple[str, str | None] | None]:
     """The path ``uri`` names and, where it names no readable file, why (a message and a
-    hint); the path is None where the URI names none (an unknown package)."""
+    hint); the path is None where the URI names none (an unknown package). With
+    ``relative``, the message names the path from ``base_dir`` (for a warning, which the
+    report keeps: the same bytes in any folder), else as it is."""
     try:
         path = resolve_uri(uri, base_dir, packages)
     except InputError as exc:
@@ -218,7 +223,7 @@ def _look_up(
     if not problem:
         return path, None
     match = case_match(path) if problem.startswith("not found") else None
-    looked = _looked_at(uri, path)
+    looked = _looked_at(uri, path, base_dir if relative else None)
     if match is not None:
         return path, (
             f"file '{uri}' not found; did you mean '{_respelt(uri, path, match)}'?{looked}",
@@ -247,12 +252,16 @@ def _from_elsewhere(uri: str) -> bool:
     return os.path.isabs(written) and not os.path.isdir(os.path.dirname(written))
 
 
-def _looked_at(uri: str, path: Path) -> str:
+def _looked_at(uri: str, path: Path, base_dir: Path | None = None) -> str:
     """`` (looked at PATH)``: where a URI that names a package (``package://``, ``file://``,
-    ``$(find)``) was looked for; nothing for a plain path, which the message already shows
-    as written (relative to the URDF, or absolute)."""
+    ``$(find)``) was looked for, named from ``base_dir`` (the URDF's folder) where given;
+    nothing for a plain path, which the message already shows as written (relative to the
+    URDF, or absolute)."""
     if "://" not in uri or os.path.normpath(uri.strip()) == str(path):
         return ""
+    if base_dir is not None:
+        shown = Path(os.path.relpath(path, base_dir)).as_posix()
+        return f" (looked at {shown}, from the URDF's folder)"
     return f" (looked at {path})"
 
 

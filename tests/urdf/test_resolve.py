@@ -95,6 +95,20 @@ def test_a_missing_texture_without_a_colour_says_the_default_is_drawn(tmp_path):
     assert resolved.missing == []  # no path to look at: robot.yaml's packages count instead
 
 
+def test_a_missing_package_texture_names_where_it_looked_from_the_urdf_s_folder(tmp_path):
+    # The warning goes into the report: an absolute path there made two checkouts' reports
+    # differ (found on rtb-data's px100 with its texture deleted).
+    (tmp_path / "pkg").mkdir()
+    robot = parse_urdf(
+        TEXTURED.replace(b'filename="textures/paint.png"', b'filename="package://pkg/t.png"'),
+        "r.urdf",
+    )
+    resolve_files(robot, tmp_path / "urdf", PackageResolver({"pkg": tmp_path / "pkg"}, {}))
+    [warning] = robot.warnings
+    assert "(looked at ../pkg/t.png, from the URDF's folder)" in warning
+    assert str(tmp_path) not in warning
+
+
 def test_a_texture_that_is_there_is_resolved_and_listed(tmp_path):
     texture = write(tmp_path / "textures" / "paint.png", "png")
     robot = parse_urdf(TEXTURED, "r.urdf")
@@ -160,13 +174,14 @@ def test_files_outside_the_description_are_warned_about_once_per_uri(tmp_path):
     robot = _robot_reading("package://pkg/../elsewhere/m.stl", str(far), f"file://{far}")
     resolve_files(robot, tmp_path / "pkg", packages, roots=[project])
     assert robot.warnings == [
-        f"r.urdf:2: 'package://pkg/../elsewhere/m.stl' ('{far}') is outside every package "
+        "r.urdf:2: 'package://pkg/../elsewhere/m.stl' ('../elsewhere/m.stl') is outside every "
+        "package "
         "folder and robot.yaml's folder, and the model publishes it; move the file into the "
         "description, or set source.read_outside: true if it is meant",
         f"r.urdf:3: '{far}' is outside every package folder and robot.yaml's folder, and the "
         "model publishes it; move the file into the description, or set "
         "source.read_outside: true if it is meant",
-        f"r.urdf:4: 'file://{far}' ('{far}') is outside every package folder and "
+        f"r.urdf:4: 'file://{far}' ('../elsewhere/m.stl') is outside every package folder and "
         "robot.yaml's folder, and the model publishes it; move the file into the "
         "description, or set source.read_outside: true if it is meant",
     ]
@@ -246,10 +261,12 @@ def test_meshes_beside_the_urdfs_folder_are_warned_about_in_one_line(tmp_path):
     warnings = [line for line in result.stderr.splitlines() if "outside every package" in line]
     assert len(warnings) == 1, result.stderr
     assert warnings[0].startswith("mjcfbuild: warning: ")
-    assert "robot.urdf:4: '../meshes/base.obj' (" in warnings[0]
-    assert warnings[0].endswith("if it is meant (and 1 more like it: ../meshes/arm.obj)")
+    # The path as written is the path from the URDF's folder: said once, not twice.
+    assert "robot.urdf:4: 2 × '…' is outside every package folder" in warnings[0]
+    assert warnings[0].endswith("if it is meant: ../meshes/base.obj, ../meshes/arm.obj")
     report = (project / "mjcf" / "report" / "report.md").read_text()
-    assert str(tmp_path / "description" / "meshes" / "arm.obj") in report  # each in full there
+    assert "'../meshes/arm.obj' is outside every package folder" in report  # each there
+    assert str(tmp_path / "description" / "meshes") not in report  # not the absolute path
 
 
 @pytest.mark.parametrize(
