@@ -189,6 +189,7 @@ class Recorded(NamedTuple):
     written: list[str]  # those of them it wrote
     absent: list[str]  # files it looked for and did not find
     python_folders: dict[str, int | None]  # where packages are imported from -> mtime
+    globs: dict[str, list[str]]  # file-name patterns it listed -> the files each matched
 
 
 def recorded(manifest: str | os.PathLike, run_check: bool) -> Recorded | None:
@@ -203,6 +204,7 @@ def recorded(manifest: str | os.PathLike, run_check: bool) -> Recorded | None:
             list(stamp["written"]),
             list(stamp["absent"]),
             dict(stamp["python_folders"]),
+            dict(stamp.get("globs", {})),
         )
     except (KeyError, TypeError, ValueError):
         return None
@@ -395,6 +397,10 @@ def record_build(
         absent += depfile.missing
         variables += list(depfile.environment)
         globs.update(depfile.globs)
+    from mjcfbuild.families.srdf import srdf_searches
+
+    # Where the plan looked for an SRDF beside the description: one added later is an edit.
+    globs.update(srdf_searches(ctx))
     outputs += files_under(ctx.state_dir, skip=STATE_NOT_CHECKED)
     for folder in (ctx.assets_dir, ctx.out_dir / "report", ctx.urdf_mesh_dir):
         if folder is not None:

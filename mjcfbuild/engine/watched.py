@@ -100,8 +100,8 @@ class Watched:
         named = []
         for path in changed:
             record = self.records.get(path)
-            if record is not None and record.listing is not None:  # a folder: what came
-                came = sorted(set(_listing(path) or ()) - set(record.listing))
+            if record is not None and path.endswith(os.sep):  # a folder: what came
+                came = sorted(set(_listing(path) or ()) - set(record.listing or ()))
                 named += [os.path.join(path, name) for name in came]
             elif record is None or record.md5 is None or _md5(path) != record.md5:
                 named.append(path)
@@ -126,11 +126,28 @@ def from_stamp(manifest: Path, run_check: bool) -> Watched | None:
     }
     records.update({name: Record(None) for name in found.absent})
     now = time.time_ns()
+    # A pattern's folder by its names: a file that comes to match it (an SRDF beside the
+    # description, a part a xacro glob includes) starts a build, as the fast path reruns.
+    records.update({folder: record_now(folder, now) for folder in _pattern_folders(found.globs)})
     records.update({folder: record_now(folder, now) for folder in found.python_folders})
     package = str(Path(stamp.__file__).resolve().parents[1]) + os.sep
     code = {name for name in found.files if name.startswith(package)}
     code |= set(found.python_folders)
     return Watched(records, frozenset(code), frozenset(found.written))
+
+
+def _pattern_folders(globs: dict[str, list[str]]) -> list[str]:
+    """The folder of each file-name pattern (``a/srdf/*.srdf`` -> ``a/srdf/``), where its
+    matches come and go; a pattern with a wildcard in a folder's name is watched from the
+    folder above it."""
+    import glob
+
+    folders = set()
+    for pattern in globs:
+        parts = Path(pattern).parts
+        fixed = next((i for i, part in enumerate(parts) if glob.has_magic(part)), len(parts))
+        folders.add(os.path.join(*parts[:fixed], ""))
+    return sorted(folders)
 
 
 def without_stamp(manifest: Path, last_good: Watched | None, before: Watched) -> Watched:

@@ -63,6 +63,18 @@ def srdf_source(graph: Graph) -> Path | None:
     return find_srdf(ctx.source_path)
 
 
+def srdf_searches(ctx: GraphContext) -> dict[str, list[str]]:
+    """Where the build looks for an SRDF shipped beside the description (file-name patterns
+    and what each matches now), where it may look: robot.yaml names none and the source is a
+    file. An SRDF that appears there later gives a floating robot its standing pose, so the
+    no-op stamp records these (a fixed robot's rerun then finds nothing to do)."""
+    if _named_srdf(ctx) is not None or ctx.source_kind == "description":
+        return {}
+    from mjcfbuild.selfcollision.discover import srdf_searches as searches
+
+    return searches(ctx.source_path)
+
+
 def srdf_summary(graph: Graph) -> Path | None:
     """What the ``srdf`` task writes, when the build reads an SRDF."""
     return graph.ctx.state(SRDF_SUMMARY) if srdf_source(graph) else None

@@ -28,17 +28,27 @@ _LEVELS = 3  # the description's folder and two above it
 
 def find_srdf(source: Path) -> Path | None:
     """The SRDF that belongs to the description at ``source``, if one is found."""
-    candidates: list[Path] = []
-    folders = [source.parent, *list(source.parent.parents)[: _LEVELS - 1]]
-    for folder in folders:
-        for pattern in _PATTERNS:
-            candidates += sorted(folder.glob(pattern))
-    if len(folders) == _LEVELS:
-        candidates += sorted(folders[-1].glob("*_moveit_config/config/*.srdf"))
+    candidates = sorted(
+        Path(found) for matched in srdf_searches(source).values() for found in matched
+    )
     if not candidates:
         return None
     stem = _stem(source.name)
     return min(candidates, key=lambda path: (-_shared(stem, _stem(path.name)), str(path)))
+
+
+def srdf_searches(source: Path) -> dict[str, list[str]]:
+    """Where :func:`find_srdf` looks for the SRDF of the description at ``source``: each
+    file-name pattern and the files it matches now. An SRDF that appears later changes a
+    match, so a build that recorded these reruns (the no-op stamp checks them)."""
+    import glob
+
+    folders = [glob.escape(str(f)) for f in [source.parent, *source.parent.parents][:_LEVELS]]
+    patterns = [f"{folder}/{pattern}" for folder in folders for pattern in _PATTERNS]
+    if len(folders) == _LEVELS:
+        patterns.append(f"{folders[-1]}/*_moveit_config/config/*.srdf")
+    # glob's rules, as the stamp checks them again (a hidden .x.srdf is not looked at)
+    return {pattern: sorted(glob.glob(pattern)) for pattern in patterns}
 
 
 def standing_state(

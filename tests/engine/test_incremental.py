@@ -361,3 +361,27 @@ def test_a_depfile_of_a_task_no_longer_planned_is_not_an_input(tmp_path):
         "build", "--no-check", "-j", "1", cwd=tmp_path, env={"MJCFBUILD_FULL_BUILD": "1"}
     )
     assert full.code == 0 and " 0 run, " in full.stdout + full.stderr
+
+
+STANDING_SRDF = (
+    '<?xml version="1.0"?>\n<robot name="two_link"><group name="all"><joint name="hinge"/>'
+    '</group><group_state name="standing" group="all"><joint name="hinge" value="0.5"/>'
+    "</group_state></robot>\n"
+)
+
+
+def test_an_srdf_added_beside_a_floating_robot_s_description_is_an_edit(tmp_path):
+    # The build looks for an SRDF beside a floating robot's description for its standing
+    # pose; one added after a build was seen by the full graph but not by the no-op stamp
+    # (found on g1: 'built g1.xml: 0 run' and the old keyframe).
+    write(tmp_path / "robot.urdf", two_link_urdf())
+    write(
+        tmp_path / "robot.yaml",
+        "name: r\nsource:\n  urdf: robot.urdf\noptions:\n  free_joint: true\n",
+    )
+    assert run_cli("build", "--no-check", "-j", "1", cwd=tmp_path).code == 0
+    write(tmp_path / "config" / "two_link.srdf", STANDING_SRDF)
+    again = run_cli("build", "--no-check", "-j", "1", cwd=tmp_path)
+    assert again.code == 0 and " 0 run, " not in again.stdout + again.stderr, again.stderr
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "mjcf" / "r.xml"))
+    assert model.key_qpos[0][7] == pytest.approx(0.5)

@@ -160,3 +160,21 @@ def test_after_a_build_stopped_at_an_edited_output_settling_it_is_seen(arm):
     assert watched.changed() == []  # what the failed build wrote starts nothing
     model.rename(arm / "tuned.xml")
     assert str(model) in watched.changed()
+
+
+def test_after_a_build_a_file_that_comes_to_match_a_pattern_it_searched_is_a_change(tmp_path):
+    # The SRDF the build looks for beside a floating robot's description: watch waited on.
+    from tests.conftest import two_link_urdf, write
+
+    write(tmp_path / "robot.urdf", two_link_urdf())
+    write(
+        tmp_path / "robot.yaml",
+        "name: r\nsource:\n  urdf: robot.urdf\noptions:\n  free_joint: true\n",
+    )
+    assert run(["build", str(tmp_path / "robot.yaml"), "-q", "--no-check"]) == 0
+    watched = from_stamp(tmp_path / "robot.yaml", run_check=False)
+    assert watched is not None and watched.changed() == []
+    srdf = write(tmp_path / "config" / "two_link.srdf", "<robot name='two_link'/>\n")
+    changed = watched.changed()
+    assert str(tmp_path / "config") + os.sep in changed
+    assert str(srdf) in watched.edited(changed)
