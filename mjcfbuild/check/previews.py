@@ -54,7 +54,7 @@ SUPERSAMPLING = 2
 MARGIN = 1.15  # the robot fills the frame, less this
 # Everything above that decides how a picture looks; a change to the drawing code that
 # changes the pictures changes this too (a new first element), so they are drawn again.
-DRAWING = (3, SKY_TOP, SKY_BOTTOM, COLLISION_RGBA, SHADOW_MAP_SIZE, SUPERSAMPLING, MARGIN)
+DRAWING = (4, SKY_TOP, SKY_BOTTOM, COLLISION_RGBA, SHADOW_MAP_SIZE, SUPERSAMPLING, MARGIN)
 
 
 class PictureCache(Protocol):
@@ -270,6 +270,12 @@ class _Offscreen:
         import mujoco
         import numpy as np
 
+        # The scene keeps the last picture's camera, and mjv_updateScene places an infinite
+        # plane (the floor) around that camera before it moves the scene's to this one: a
+        # picture's floor would depend on the picture drawn before it (edge pixels differ,
+        # so an incremental build's pictures differ from a clean build's). The scene's camera
+        # is set to this picture's first.
+        mujoco.mjv_updateCamera(self.model, data, camera, self.scene)
         mujoco.mjv_updateScene(
             self.model, data, option, None, camera, mujoco.mjtCatBit.mjCAT_ALL, self.scene
         )

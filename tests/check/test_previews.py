@@ -211,6 +211,34 @@ def test_a_process_that_draws_twice_draws_what_a_new_process_draws(tmp_path):
         assert picture.read_bytes() == (tmp_path / "two" / "again" / picture.name).read_bytes()
 
 
+def test_a_picture_drawn_alone_is_the_picture_drawn_with_the_others(tmp_path):
+    """An incremental build draws only the pictures whose content changed: each must come out
+    as the clean build drew it after the others (MuJoCo placed the floor, an infinite plane,
+    around the camera of the picture drawn before)."""
+    scene = _scene(tmp_path, "")
+    shown = _render(scene)
+    assert len(shown) == 5
+    code = (
+        "import json, sys; from pathlib import Path; "
+        "from mjcfbuild.check.previews import render_previews; "
+        "scene = Path(sys.argv[1]); shown = json.loads(sys.argv[2]); "
+        "[render_previews(scene, scene.parent / name, 160, 120, None, "
+        "{n: d for n, d in shown.items() if n != name}) for name in shown]"
+    )
+    environment = {**os.environ, "MUJOCO_GL": "egl"}
+    done = subprocess.run(
+        [sys.executable, "-c", code, str(scene), json.dumps(shown)],
+        env=environment,
+        capture_output=True,
+        text=True,
+    )
+    assert done.returncode == 0, done.stderr
+    for name in shown:
+        assert [path.name for path in (tmp_path / name).iterdir()] == [name]  # drawn alone
+        alone = (tmp_path / name / name).read_bytes()
+        assert alone == (tmp_path / "previews" / name).read_bytes(), name
+
+
 def _compiled(body_xml: str):
     """A model of ``body_xml`` in the world, at its zero pose, with its data."""
     model = mujoco.MjModel.from_xml_string(f"<mujoco><worldbody>{body_xml}</worldbody></mujoco>")
