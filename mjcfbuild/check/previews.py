@@ -198,8 +198,9 @@ def _kind_digests(
 
     Both kinds show the model's XML as drawn (check.drawn), the textures and height fields,
     at the picture ``size``; each picture adds its view's camera (:func:`_picture_digest`). The
-    mesh files are the difference: a visual picture shows the meshes of the geoms that do
-    not collide, a collision picture those of the geoms that do.
+    kind itself differs (which geoms show, and the collision colour), and so do the mesh files:
+    a visual picture shows the meshes of the geoms that do not collide, a collision picture
+    those of the geoms that do.
     """
     import mujoco
 
@@ -216,6 +217,10 @@ def _kind_digests(
         if model.geom_type[geom] == mujoco.mjtGeom.mjGEOM_MESH:
             kinds[model.geom_dataid[geom]].add("collision" if collides[geom] else "visual")
     digests = {kind: common.copy() for kind in KINDS}
+    for kind, digest in digests.items():
+        # The kind itself: which geoms show and in what colour. Where every mesh is both seen
+        # and colliding (the Trossen arms' STL files) nothing else tells the two apart.
+        digest.update(f"\0{kind}".encode())
     base = Path(spec.modelfiledir)
     for index, mesh in enumerate(spec.meshes):
         if not mesh.file or not kinds[index]:

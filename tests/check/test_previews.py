@@ -45,18 +45,30 @@ def _scene(folder: Path, sky: str, material_texture: str = "ground") -> Path:
     return path
 
 
-def _render(scene: Path, drawn: dict | None = None) -> dict[str, str | None]:
+def _render(
+    scene: Path, drawn: dict | None = None, cache: Path | None = None
+) -> dict[str, str | None]:
     """render_previews in a process of its own: MuJoCo picks its OpenGL platform when it is
-    imported, and this one may have imported it without MUJOCO_GL, as a worker never does."""
+    imported, and this one may have imported it without MUJOCO_GL, as a worker never does.
+    ``cache``: a folder that keeps the pictures by what they show, as the shared cache does."""
     code = (
         "import json, sys; from pathlib import Path; "
         "from mjcfbuild.check.previews import render_previews; "
         "scene = Path(sys.argv[1]); drawn = json.loads(sys.argv[2]); "
-        "print(json.dumps(render_previews(scene, scene.parent / 'previews', 160, 120, None, drawn)))"
+        "kept = Path(sys.argv[3]) if sys.argv[3] else None\n"
+        "class Kept:\n"
+        "    def get(self, shows):\n"
+        "        path = kept / shows\n"
+        "        return path.read_bytes() if path.exists() else None\n"
+        "    def put(self, shows, png):\n"
+        "        kept.mkdir(exist_ok=True); (kept / shows).write_bytes(png)\n"
+        "cache = Kept() if kept else None\n"
+        "print(json.dumps(render_previews(scene, scene.parent / 'previews', 160, 120, None, "
+        "drawn, cache)))"
     )
     environment = {**os.environ, "MUJOCO_GL": "egl"}
     done = subprocess.run(
-        [sys.executable, "-c", code, str(scene), json.dumps(drawn or {})],
+        [sys.executable, "-c", code, str(scene), json.dumps(drawn or {}), str(cache or "")],
         env=environment,
         capture_output=True,
         text=True,
@@ -185,6 +197,30 @@ def test_what_both_kinds_show_draws_both_again(tmp_path):
     robot.write_text(robot.read_text().replace('damping="1"', 'damping="2"'))
     assert _render(scene, first) == first
     assert _pictures(tmp_path) == set()
+
+
+def test_a_mesh_both_seen_and_colliding_gives_each_kind_its_own_picture(tmp_path):
+    """Where every mesh is both a visual and a collision geom (the Trossen arms' STL files),
+    the collision pictures show the same meshes as the visual ones, in their own colour: a
+    picture taken from the cache must be of its own kind."""
+    first = tmp_path / "first"
+    scene = _two_meshes(first)
+    robot = first / "robot.xml"
+    robot.write_text(robot.read_text().replace('mesh="hull"', 'mesh="shell"'))
+    cache = tmp_path / "cache"
+    shown = _render(scene, cache=cache)
+    assert len(set(shown.values())) == len(shown)  # each picture shows its own view and kind
+    visual = (first / "previews" / "side_visual.png").read_bytes()
+    collision = (first / "previews" / "side_collision.png").read_bytes()
+    assert visual != collision
+
+    second = tmp_path / "second"  # the same robot in another folder: its pictures are copied
+    second.mkdir()
+    for name in ("scene.xml", "robot.xml", "shell.obj", "hull.obj"):
+        (second / name).write_bytes((first / name).read_bytes())
+    assert _render(second / "scene.xml", cache=cache) == shown
+    assert (second / "previews" / "side_visual.png").read_bytes() == visual
+    assert (second / "previews" / "side_collision.png").read_bytes() == collision
 
 
 def test_a_process_that_draws_twice_draws_what_a_new_process_draws(tmp_path):
