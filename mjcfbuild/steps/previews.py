@@ -5,11 +5,14 @@ it left in the folder with the digest of what it shows and the hash of its bytes
 counts as drawn only while its file still has those bytes, so one edited by hand, or left
 half-written by an interrupted build, is drawn again. A picture drawn before, in any folder, is
 taken from the shared product cache by that digest (drawing costs about a second a model on a
-CPU); the digest holds no path.
+CPU); the digest holds no path. Where no picture is drawn (the model does not load, no OpenGL
+context, drawing fails) the earlier build's pictures and record go: a clean build has none,
+and the report lists the pictures it finds.
 """
 
 from __future__ import annotations
 
+import contextlib
 import json
 from pathlib import Path
 
@@ -41,10 +44,13 @@ def run(payload: dict) -> dict:
             cache=stored,
         )
     except ModelError:  # a model that does not load: the check task says why
+        no_pictures(folder, record)
         return {"outputs": {}}
     except MjcfbuildError:
+        no_pictures(folder, record)
         raise
     except OffscreenUnavailable as exc:  # no EGL, no GPU driver...: the build itself is fine
+        no_pictures(folder, record)
         return {
             "outputs": {},
             "warnings": [
@@ -53,6 +59,7 @@ def run(payload: dict) -> dict:
             ],
         }
     except Exception as exc:
+        no_pictures(folder, record)
         unwritable = write_failure(exc)  # a picture that cannot be written: a full disk...
         if unwritable is not None:
             raise unwritable from None
@@ -109,6 +116,17 @@ class StoredPictures:
     def put(self, shows: str, png: bytes) -> None:
         """Keep ``png`` for ``shows`` (a full or read-only cache keeps nothing)."""
         self.kept += self.store.store_file(self._key(shows), PICTURE, png, "preview")
+
+
+def no_pictures(folder: Path, record: Path) -> None:
+    """Remove the pictures an earlier build left in ``folder``, and the step's ``record`` of
+    them: where this build draws none, a clean build would have none, and the report lists the
+    pictures it finds there. Best effort: a picture that cannot be removed stays."""
+    for path in [*folder.glob("*.png"), record]:
+        with contextlib.suppress(OSError):
+            path.unlink(missing_ok=True)
+    with contextlib.suppress(OSError):
+        folder.rmdir()  # only when empty, as a clean build leaves no folder
 
 
 def pictures_in_place(folder: Path, record: Path) -> dict[str, str]:

@@ -109,3 +109,28 @@ def test_pictures_drawn_in_one_folder_are_taken_from_the_cache_in_another(tmp_pa
     assert redrawn.code == EXIT_OK, redrawn.stdout + redrawn.stderr
     report = (third / "mjcf/report/report.md").read_text()
     assert "drawing them failed with RuntimeError: failpoint previews-draw" in report
+
+
+def test_pictures_that_cannot_be_drawn_again_are_not_left_behind(arm, tmp_path):
+    """A scene that no longer loads draws no pictures: the earlier build's must not stay in
+    the report folder, nor in report.md, as a clean build of the same folder has none."""
+    env = {"MJCFBUILD_CACHE_DIR": str(tmp_path / "cache")}
+    built = run_cli("build", "-q", cwd=arm, env=env)
+    assert built.code == EXIT_OK, built.stdout + built.stderr
+    previews = arm / "mjcf/report/previews"
+    assert len(list(previews.glob("*.png"))) >= 4
+
+    (arm / "myscene.xml").write_text(
+        '<mujoco><include file="example_arm.xml"/>'
+        '<asset><texture name="grid" type="2d" file="missing.png"/>'
+        '<material name="grid" texture="grid"/></asset>'
+        '<worldbody><light pos="0 0 3"/>'
+        '<geom type="plane" size="2 2 0.1" material="grid"/></worldbody></mujoco>'
+    )
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "scene:\n  file: myscene.xml\n")
+    failed = run_cli("build", "-q", cwd=arm, env=env)
+    assert failed.code != EXIT_OK and "does not load" in failed.stderr, failed.stderr
+    assert not previews.exists()
+    assert not (arm / "mjcf/.mjcfbuild/previews.json").exists()
+    assert "## Previews" not in (arm / "mjcf/report/report.md").read_text()
