@@ -30,7 +30,7 @@ from mjcfbuild.errors import CheckError, InputError, MjcfbuildError, OutputError
 from mjcfbuild.failpoints import failpoint
 from mjcfbuild.fsutil import TEMP_SUFFIX, remove_stale_temp_files, write_if_changed
 from mjcfbuild.manifest.pinpoint import pinpoint
-from mjcfbuild.outputs import SOURCE_URDF
+from mjcfbuild.outputs import PREVIEWS_RECORD, SOURCE_URDF, report_dir
 from mjcfbuild.sources.origins import point_at_source
 
 if TYPE_CHECKING:
@@ -231,6 +231,10 @@ def _build_locked(
             stamp.discard(ctx.stamp_key, run_check)
     prepare_state(ctx)
     remove_stale_variant(ctx)
+    if not ctx.manifest.check.previews:  # the pictures an earlier build drew are not current
+        from mjcfbuild.steps.previews import no_pictures  # only where needed
+
+        no_pictures(report_dir(ctx) / "previews", ctx.state(PREVIEWS_RECORD))
     # Workers start while this process plans, importing until their first step comes.
     ctx.session.warm_workers(first_build=not ctx.state(DATABASE).exists())
     planning = planning_tasks(ctx)

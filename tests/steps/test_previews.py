@@ -134,3 +134,20 @@ def test_pictures_that_cannot_be_drawn_again_are_not_left_behind(arm, tmp_path):
     assert not previews.exists()
     assert not (arm / "mjcf/.mjcfbuild/previews.json").exists()
     assert "## Previews" not in (arm / "mjcf/report/report.md").read_text()
+
+
+def test_pictures_no_longer_asked_for_are_not_left_behind(arm, tmp_path):
+    """check.previews: false after a build that drew them: the pictures go, as the training
+    variant's files do when it is no longer asked for."""
+    env = {"MJCFBUILD_CACHE_DIR": str(tmp_path / "cache")}
+    assert run_cli("build", "-q", cwd=arm, env=env).code == EXIT_OK
+    previews = arm / "mjcf/report/previews"
+    assert len(list(previews.glob("*.png"))) >= 4
+
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "check:\n  previews: false\n")
+    rebuilt = run_cli("build", "-q", cwd=arm, env=env)
+    assert rebuilt.code == EXIT_OK, rebuilt.stdout + rebuilt.stderr
+    assert not previews.exists()
+    assert not (arm / "mjcf/.mjcfbuild/previews.json").exists()
+    assert "## Previews" not in (arm / "mjcf/report/report.md").read_text()
