@@ -96,4 +96,5 @@ DECOMPOSE = StepFormat("decompose", 5, ("coacd", "trimesh", "numpy", "scipy"))
 # holding the robot by a floating joint is the world body
 SELFCOLLISION = StepFormat("selfcollision", 5, ("mujoco", "numpy"))
 REFERENCE = StepFormat("reference", 1, ("yourdfpy", "numpy", "lxml"))
-PREVIEWS = StepFormat("previews", 5, ("mujoco", "numpy", "pillow"))
+# previews 6: each picture's floor placed around its own camera, its kind in its digest
+PREVIEWS = StepFormat("previews", 6, ("mujoco", "numpy", "pillow"))

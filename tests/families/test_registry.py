@@ -41,7 +41,7 @@ BEFORE_FORMATS = {
     "scene": 3,
     "check": 26,
     "reference": 1,
-    "previews": 5,
+    "previews": 6,
     "tuning": 1,
     "srdf": 3,
     "selfcollision": 5,
