@@ -39,6 +39,7 @@ CHECK_RESULTS = "check.json"
 PREVIEWS_RECORD = "previews.json"
 TUNING_RECORD = "tuning.json"
 PACKAGE_RECORD = "package.json"
+PACKAGE_COPIES = "package_copies.json"  # what the package step wrote in the package folder
 PACKAGE_FOLDER = "package"  # the Menagerie-grade folder, inside the output folder
 PACKAGE_CHANGELOG = "CHANGELOG.md"  # in it: kept across builds, and by clean
 # The report page's files, inside the report folder (mjcfbuild.steps.page writes them).

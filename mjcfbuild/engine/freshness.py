@@ -57,6 +57,7 @@ def _from_database(ctx: BuildContext) -> list[str]:
     the check's included: a task that reads the check's results (the package's README, its
     picture) is planned with them, as the build that wrote it planned it. The tasks only the
     check needs write no output of the model, and are not counted."""
+    from mjcfbuild.engine.outputs_off import stale_lines
     from mjcfbuild.engine.status import build_statuses
 
     statuses, _ = build_statuses(replace(ctx, run_check=True))
@@ -64,7 +65,7 @@ def _from_database(ctx: BuildContext) -> list[str]:
         f"{status.title}: {'; '.join(status.reasons)}"
         for status in statuses
         if not status.up_to_date and status.name.split(":")[0] not in CHECK_ONLY_TASKS
-    ]
+    ] + stale_lines(ctx)
 
 
 def _by_rebuilding(ctx: BuildContext) -> list[str]:

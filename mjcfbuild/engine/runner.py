@@ -22,6 +22,7 @@ from mjcfbuild.engine.guard import (
     claim_output_folder,
 )
 from mjcfbuild.engine.loader import DATABASE, run_doit
+from mjcfbuild.engine.outputs_off import Leftover, remove_leftovers
 from mjcfbuild.engine.placing import expanded_urdfs, placed_warnings
 from mjcfbuild.engine.progress import BLOCKED, FAILED, RAN, UP_TO_DATE, Progress
 from mjcfbuild.engine.tasks import build_tasks, planning_tasks
@@ -235,6 +236,7 @@ def _build_locked(
         from mjcfbuild.steps.previews import no_pictures  # only where needed
 
         no_pictures(report_dir(ctx) / "previews", ctx.state(PREVIEWS_RECORD))
+    _say_off(ctx, progress, remove_leftovers(ctx))
     # Workers start while this process plans, importing until their first step comes.
     ctx.session.warm_workers(first_build=not ctx.state(DATABASE).exists())
     planning = planning_tasks(ctx)
@@ -313,6 +315,20 @@ def _say_removed(
             f"{now}); no build keeps it current\n"
         )
     progress.stream.flush()
+
+
+def _say_off(ctx: BuildContext, progress: Progress, leftovers: list[Leftover]) -> None:
+    """Say which files of outputs robot.yaml no longer asks for the build removed, and which
+    it kept; the removed ones join what ``--fail-on-change`` asks git about."""
+    from mjcfbuild.engine.outputs_off import say
+
+    for item in leftovers:
+        ctx.session.removed_elsewhere += map(str, item.removable)
+        if progress.quiet or not (item.removable or item.kept or item.history):
+            continue
+        progress.clear()
+        progress.stream.write(f"{progress.prefix}mjcfbuild: {say(ctx, item)}\n")
+        progress.stream.flush()
 
 
 def _say_abandoned(ctx: BuildContext, progress: Progress, abandoned: list[Abandoned]) -> None:

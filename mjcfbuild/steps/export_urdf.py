@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 from mjcfbuild.export import ExportOptions, export_urdf
@@ -33,7 +34,15 @@ def run(payload: dict) -> dict:
             (mesh_dir / name).unlink(missing_ok=True)
     if mesh_dir.is_dir() and not any(mesh_dir.iterdir()):
         mesh_dir.rmdir()
-    write_output(record, (json.dumps({"meshes": sorted(result.meshes)}) + "\n").encode(), {})
+    # What it wrote, by name in the output folder (the state folder's parent): what a build
+    # removes once output.urdf is off or names another file (engine.outputs_off).
+    out = record.parent.parent
+    written = {
+        "meshes": sorted(result.meshes),
+        "mesh_folder": os.path.relpath(mesh_dir, out),
+        "urdf": os.path.relpath(urdf, out),
+    }
+    write_output(record, (json.dumps(written) + "\n").encode(), {})
     write_output(urdf, result.urdf, outputs)
     return {"outputs": outputs, "warnings": [f"URDF export: {w}" for w in result.warnings]}
 

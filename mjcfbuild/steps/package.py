@@ -17,7 +17,7 @@ from mjcfbuild.diff.render import change_line
 from mjcfbuild.diff.snapshot import model_snapshot
 from mjcfbuild.fsutil import write_if_changed
 from mjcfbuild.markup import markdown_code, markdown_text
-from mjcfbuild.outputs import PACKAGE_CHANGELOG
+from mjcfbuild.outputs import PACKAGE_CHANGELOG, PACKAGE_COPIES
 from mjcfbuild.ownership import remove_output
 from mjcfbuild.package.documents import Provenance, changelog, readme
 from mjcfbuild.package.format import format_model
@@ -37,7 +37,7 @@ def run(payload: dict) -> dict:
     model = folder / f"{request.name}.xml"
     write_output(model, format_model(Path(request.model).read_bytes()), outputs)
     write_output(folder / "scene.xml", Path(request.scene).read_bytes(), outputs)
-    copies = Path(request.record).with_name("package_copies.json")
+    copies = Path(request.record).with_name(PACKAGE_COPIES)
     copied = _read(copies).get("files", [])  # what this step copied last time
     _copy_assets(Path(request.assets), folder / "assets", outputs, copied)
     picture = folder / f"{request.name}.png"
