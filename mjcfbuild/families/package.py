@@ -39,11 +39,10 @@ def _tasks(graph: Graph) -> list[dict]:
         provenance={
             "source": ctx.portable_label(ctx.source_path),
             "manifest_text": ctx.manifest_file.read_text() if ctx.manifest_file else "",
-            "revision": revision,
-            "remote": remote,
             "mujoco_version": tool_version("mujoco"),
             "license_from": _license_label(ctx, license_file),
         },
+        git={"revision": revision, "remote": remote},
         model=str(ctx.robot_path),
         scene=str(ctx.scene_path),
         assembly_report=str(ctx.state(ASSEMBLY_REPORT)),

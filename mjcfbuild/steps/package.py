@@ -59,6 +59,8 @@ def run(payload: dict) -> dict:
         name=request.name,
         mjcfbuild_version=__version__,
         **{key: request.provenance[key] for key in _PROVENANCE},
+        revision=request.git["revision"],
+        remote=request.git["remote"],
     )
     check = CheckResults.read(Path(request.check)) if request.check else None
     assembly = _read(Path(request.assembly_report))
@@ -74,7 +76,7 @@ def run(payload: dict) -> dict:
     return {"outputs": outputs, "warnings": warnings, "written": written}
 
 
-_PROVENANCE = ("source", "manifest_text", "revision", "remote", "mujoco_version", "license_from")
+_PROVENANCE = ("source", "manifest_text", "mujoco_version", "license_from")
 
 
 def _copy_assets(source: Path, target: Path, outputs: dict[str, str], copied: list[str]) -> None:

@@ -439,7 +439,10 @@ class PackagePayload(Payload):
     """``package``: a Menagerie-grade folder of the model (``output.package: true``)."""
 
     name: str
-    provenance: dict[str, str]  # source, revision, remote, robot.yaml's text, versions
+    provenance: dict[str, str]  # source, robot.yaml's text, versions, the license's name
+    # The git revision and remote the README names: as of the package's last change, since a
+    # commit alone (of the package itself, say) changes nothing the model is built from.
+    git: Annotated[dict[str, str], NotCounted("no input of the model: a commit changes it")]
     model: FileDependency
     scene: FileDependency
     assembly_report: FileDependency  # lists each asset with its MD5: the assets count through it

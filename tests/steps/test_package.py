@@ -196,3 +196,39 @@ def test_a_build_without_the_check_leaves_no_picture_of_an_earlier_model(tmp_pat
     assert "example_arm.png" not in (folder / "README.md").read_text()
     assert run_cli("build", "-q", cwd=arm).code == 0
     assert picture.is_file()
+
+
+def test_a_commit_alone_leaves_the_package_up_to_date(tmp_path):
+    """The package's README names the revision as of its last change: committing the built
+    package moved HEAD on, and check --up-to-date called the package stale forever after
+    ('parameters changed: provenance.revision') while build called it up to date; a fresh
+    clone's check found the README's revision line differing."""
+    import shutil
+
+    top = tmp_path / "repo"
+    arm = top / "arm"
+    shutil.copytree(EXAMPLES / "arm", arm, ignore=shutil.ignore_patterns("mjcf"))
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "  package: true\ncheck:\n  enabled: false\n")
+    git(top, "init", "-q", "-b", "main")
+    git(top, "add", ".")
+    git(top, "commit", "-qm", "arm")
+    assert run_cli("build", "-q", cwd=arm).code == 0
+    readme = (arm / "mjcf" / "package" / "README.md").read_text()
+    built_from = git(top, "rev-parse", "HEAD").strip()
+    assert f"- revision: `{built_from}`" in readme
+    git(top, "add", ".")
+    git(top, "commit", "-qm", "model")  # HEAD moves on
+    result = run_cli("check", "--up-to-date", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert "0 run" in run_cli("build", cwd=arm).stdout
+    assert (arm / "mjcf" / "package" / "README.md").read_text() == readme
+    clone = tmp_path / "clone"
+    subprocess.run(["git", "clone", "-q", str(top), str(clone)], check=True)
+    result = run_cli("check", "--up-to-date", cwd=clone / "arm")
+    assert result.code == 0, result.stderr
+    # A change to the model rewrites the package, with the revision it is built from then.
+    manifest.write_text(manifest.read_text().replace("elbow: 1.2", "elbow: 1.1"))
+    assert run_cli("build", "-q", cwd=arm).code == 0
+    readme = (arm / "mjcf" / "package" / "README.md").read_text()
+    assert f"- revision: `{git(top, 'rev-parse', 'HEAD').strip()} + local changes`" in readme
