@@ -388,6 +388,7 @@ def record_build(
     for task in tasks:
         inputs += task["file_dep"]
         outputs += task["targets"]
+        absent += (task.get("meta") or {}).get("absent", [])  # looked for when planned
     # Every depfile a task of this plan keeps: the source's, the SRDF's, the check's, the
     # attach: parts' and the meshes'. A task's file_dep above is what it declared before it
     # ran, without what it discovered then. One a task no longer in the plan left (robot.yaml

@@ -22,7 +22,7 @@ if TYPE_CHECKING:
 
 
 def _tasks(graph: Graph) -> list[dict]:
-    from mjcfbuild.package.documents import find_license, git_revision
+    from mjcfbuild.package.documents import git_revision, search_license
 
     ctx, prefix, checked = graph.ctx, graph.prefix, graph.checks
     if not ctx.manifest.output.package:
@@ -31,7 +31,9 @@ def _tasks(graph: Graph) -> list[dict]:
     revision, remote = git_revision(ctx.base_dir)
     top = _git_top(ctx.base_dir) if revision else None
     package_folders = [ctx.resolve(path) for path in ctx.manifest.packages.values()]
-    license_file = find_license([ctx.source_base_dir, *package_folders, ctx.base_dir], top)
+    license_file, looked = search_license(
+        [ctx.source_base_dir, *package_folders, ctx.base_dir], top
+    )
     picture = report_dir(ctx) / "previews" / "three_quarter_visual.png"
     with_picture = checked and ctx.manifest.check.previews
     payload = PackagePayload(
@@ -77,6 +79,7 @@ def _tasks(graph: Graph) -> list[dict]:
             folder / "scene.xml",
         ],
         after=after,
+        absent=looked,  # a LICENSE added there later is the package's
     )
     return [task]
 

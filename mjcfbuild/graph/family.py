@@ -86,9 +86,13 @@ def file_task(
     targets: list[Path],
     extra_uptodate: list | None = None,
     after: list[str] | None = None,
+    absent: list[Path] | None = None,
 ) -> dict:
     """A doit task running ``family``'s step on ``payload``; up to date while its file
-    dependencies, the payload's counted fields and the step's tool versions are unchanged."""
+    dependencies, the payload's counted fields and the step's tool versions are unchanged.
+    ``absent``: the files the task's planning looked for and did not find (a license file),
+    whose appearing changes the task: the graph sees it when it plans the task again, the
+    no-op stamp and ``watch`` through the task's ``meta``."""
     assert isinstance(payload, family.payload), f"{family.name} is given {family.payload}"
     params = {
         **payload.uptodate_params(),
@@ -112,6 +116,7 @@ def file_task(
         ],
         "verbosity": 0,
         "clean": True,
+        "meta": {"absent": sorted({str(p) for p in absent or ()})},
     }
 
 

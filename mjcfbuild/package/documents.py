@@ -57,17 +57,27 @@ def find_license(folders: list[Path], top: Path | None, levels: int = 3) -> Path
     """The first license file in ``folders`` or the folders above them: up to the description
     package's root (the folder with its ``package.xml``), the repo's ``top``, or, outside a
     repo, ``levels`` folders up."""
+    return search_license(folders, top, levels)[0]
+
+
+def search_license(
+    folders: list[Path], top: Path | None, levels: int = 3
+) -> tuple[Path | None, list[Path]]:
+    """:func:`find_license`'s file, and every place it looked before it and found none: a
+    license added at one of them is found by the next build."""
+    looked: list[Path] = []
     for folder in folders:
         current = folder.resolve()
         for _ in range(64 if top is not None else levels + 1):
             for name in LICENSE_NAMES:
                 if (current / name).is_file():
-                    return current / name
+                    return current / name, looked
+                looked.append(current / name)
             at_top = top is not None and (current == top or top not in current.parents)
             if at_top or (current / "package.xml").is_file() or current.parent == current:
                 break
             current = current.parent
-    return None
+    return None, looked
 
 
 def readme(

@@ -232,3 +232,25 @@ def test_a_commit_alone_leaves_the_package_up_to_date(tmp_path):
     assert run_cli("build", "-q", cwd=arm).code == 0
     readme = (arm / "mjcf" / "package" / "README.md").read_text()
     assert f"- revision: `{git(top, 'rev-parse', 'HEAD').strip()} + local changes`" in readme
+
+
+def test_a_license_added_later_reaches_the_package_on_the_next_build(tmp_path):
+    """The build warns that the description has no LICENSE; one added where it looks was
+    missed by the next build's no-op stamp (and watch), which knew only the files it read."""
+    import shutil
+
+    from tests.conftest import file_clock_past_changes
+
+    arm = tmp_path / "arm"
+    shutil.copytree(EXAMPLES / "arm", arm, ignore=shutil.ignore_patterns("mjcf", "LICENSE"))
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "  package: true\ncheck:\n  enabled: false\n")
+    file_clock_past_changes(arm)
+    first = run_cli("build", cwd=arm)
+    assert first.code == 0 and "no LICENSE found" in first.stderr, first.stderr
+    assert "0 run" in run_cli("build", cwd=arm).stdout  # the stamp answers
+    (arm / "LICENSE").write_text("the arm's license\n")
+    result = run_cli("build", cwd=arm)
+    assert result.code == 0, result.stderr
+    assert (arm / "mjcf" / "package" / "LICENSE").read_text() == "the arm's license\n"
+    assert "No license file was found" not in (arm / "mjcf" / "package" / "README.md").read_text()
