@@ -53,8 +53,9 @@ FAMILY = Family(
     step="mjcfbuild.steps.export_urdf:run",
     payload=ExportUrdfPayload,
     # 2: mimic offsets with ref; speed limits from drives and the URDF; 3: export-urdf's stamp
-    # atop each OBJ and MTL file
-    format=3,
+    # atop each OBJ and MTL file; 4: its record names the URDF and mesh folder it wrote (what
+    # turning output.urdf off removes)
+    format=4,
     tools=("mujoco", "numpy"),
     tasks=_tasks,
 )

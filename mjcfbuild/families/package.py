@@ -111,7 +111,9 @@ FAMILY = Family(
     name="package",
     step="mjcfbuild.steps.package:run",
     payload=PackagePayload,
-    format=3,  # 2: <dcmotor> gains rounded and shared in classes; 3: no stale picture
+    # 2: <dcmotor> gains rounded and shared in classes; 3: no stale picture; 4: the README's git
+    # revision as of the package's last change, no parameter of the task
+    format=4,
     tools=("mujoco", "numpy", "lxml"),
     tasks=_tasks,
 )

@@ -45,10 +45,10 @@ BEFORE_FORMATS = {
     "tuning": 1,
     "srdf": 3,
     "selfcollision": 5,
-    "export_urdf": 3,
+    "export_urdf": 4,
     "compose": 2,
     "mjcfpart": 2,
-    "package": 3,
+    "package": 4,
     "training": 7,
     "page": 3,
 }
