@@ -13,6 +13,7 @@ import itertools
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -168,19 +169,31 @@ class Browser:
 
     def _stop(self) -> None:
         _end(self.process)
-        self.profile.cleanup()
+        # The browser's helper processes may still be writing into the profile as they go
+        # (seen on a loaded CI machine: "Directory not empty: 'Default'"): retry a moment.
+        for attempt in range(50):
+            try:
+                self.profile.cleanup()
+                return
+            except OSError:
+                if attempt == 49:
+                    raise
+                time.sleep(0.1)
 
 
 def _end(process: subprocess.Popen) -> None:
     """Terminate the browser (and wait for it), killing it if it does not go."""
-    if process.poll() is not None:
-        return
-    process.terminate()
-    try:
-        process.wait(timeout=10)
-    except subprocess.TimeoutExpired:
-        process.kill()
-        process.wait()
+    if process.poll() is None:
+        process.terminate()
+        try:
+            process.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait()
+    # Its renderer, GPU and crash-handler processes share its session (start_new_session):
+    # end those left too, so none writes into the profile being removed.
+    with contextlib.suppress(ProcessLookupError, PermissionError):
+        os.killpg(process.pid, signal.SIGKILL)
 
 
 def main(argv: list[str]) -> int:
