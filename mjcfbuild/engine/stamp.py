@@ -78,6 +78,14 @@ def _same_environment(recorded: dict[str, str | None]) -> bool:
     return all(os.environ.get(name) == value for name, value in recorded.items())
 
 
+def _package_index() -> str:
+    """What ROS_PACKAGE_PATH and AMENT_PREFIX_PATH provide now (``environment_index``; empty,
+    and no folder read, where neither is set)."""
+    from mjcfbuild.sources.packages import environment_index
+
+    return environment_index(os.environ)
+
+
 def _python_folders() -> dict[str, int | None]:
     """The mtimes of the folders packages are installed in: the standard library's, every
     site-packages and the PYTHONPATH entries. Not the folder of the script that runs (the
@@ -152,6 +160,8 @@ def nothing_to_do_for(key: Path | str, run_check: bool, allow_outside: bool = Fa
             return None
         if stamp["python_folders"] != _python_folders():
             return None
+        if stamp.get("package_index", "") != _package_index():
+            return None  # a ROS package came to shadow another (or went)
         if any(os.path.lexists(name) for name in stamp["absent"]):
             return None
         if stamp["globs"]:
@@ -320,6 +330,7 @@ def write(
         "summary": summary,
         "environment": environment,
         "python_folders": _python_folders(),
+        "package_index": _package_index(),
         "absent": sorted(set(absent)),
         "globs": dict(sorted((globs or {}).items())),
         "files": files,

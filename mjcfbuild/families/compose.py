@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 
 from mjcfbuild.families.expand import expand_file_task
 from mjcfbuild.families.parts import part_packages, part_source
-from mjcfbuild.graph.family import Family, file_task, ros_environment
+from mjcfbuild.graph.family import Family, file_task, ros_environment, ros_package_index
 from mjcfbuild.outputs import COMPOSED_URDF, SOURCE_URDF, part_urdf
 from mjcfbuild.steps.payloads import ComposePayload, PartEntry
 
@@ -68,6 +68,7 @@ def _composition_tasks(graph: Graph) -> list[dict]:
         base_dir=str(ctx.source_base_dir),
         parts=entries,
         environment=ros_environment(ctx),
+        package_index=ros_package_index(ctx),
         output=str(ctx.state(COMPOSED_URDF)),
         origins=str(origins_file(ctx.state(COMPOSED_URDF))),
     )

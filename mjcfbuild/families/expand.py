@@ -12,6 +12,7 @@ from mjcfbuild.graph.family import (
     package_folders,
     require_file,
     ros_environment,
+    ros_package_index,
 )
 from mjcfbuild.outputs import SOURCE_DEPS, SOURCE_URDF
 from mjcfbuild.steps.payloads import ExpandPayload
@@ -93,6 +94,7 @@ def expand_file_task(
         args=args,
         packages=package_folders(packages),
         environment=ros_environment(ctx),
+        package_index=ros_package_index(ctx),
         output=str(output),
         depfile=str(deps),
         origins=str(origins_file(output)),

@@ -13,6 +13,7 @@ from mjcfbuild.graph.family import (
     package_folders,
     require_file,
     ros_environment,
+    ros_package_index,
 )
 from mjcfbuild.graph.uptodate import planned_meshes_exist
 from mjcfbuild.outputs import PLAN, PLAN_DEPS, SOURCE_URDF, planned_urdf
@@ -39,6 +40,7 @@ def _tasks(graph: Graph) -> list[dict]:
         base_dir=str(ctx.source_base_dir),
         packages=package_folders(ctx.resolver.explicit),
         environment=ros_environment(ctx),
+        package_index=ros_package_index(ctx),
         inputs_file=str(inputs_file) if inputs_file else None,
         inputs_file_label=ctx.label(inputs_file) if inputs_file else None,
         output=str(ctx.state(PLAN)),

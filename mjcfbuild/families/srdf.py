@@ -13,6 +13,7 @@ from mjcfbuild.graph.family import (
     package_folders,
     require_file,
     ros_environment,
+    ros_package_index,
 )
 from mjcfbuild.outputs import SRDF_DEPS, SRDF_SUMMARY
 from mjcfbuild.steps.payloads import SrdfPayload
@@ -97,6 +98,7 @@ def _tasks(graph: Graph) -> list[dict]:
         args=ctx.manifest.source.xacro_args if named else {},
         packages=package_folders(ctx.resolver.explicit),
         environment=ros_environment(ctx),
+        package_index=ros_package_index(ctx),
         output=str(ctx.state(SRDF_SUMMARY)),
         depfile=str(ctx.state(SRDF_DEPS)),
         discovered=not named,

@@ -230,3 +230,11 @@ def package_folders(packages: dict[str, Path]) -> dict[str, str]:
 def ros_environment(ctx: GraphContext) -> dict[str, str]:
     """The ROS variables package lookup reads, as the build sees them."""
     return {key: ctx.environ.get(key, "") for key in ENV_VARIABLES}
+
+
+def ros_package_index(ctx: GraphContext) -> str:
+    """A digest of the packages those variables provide now (``environment_index``): a task
+    that looks packages up there reruns when one comes to shadow another."""
+    from mjcfbuild.sources.packages import environment_index
+
+    return environment_index(ctx.environ)

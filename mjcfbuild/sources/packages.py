@@ -11,6 +11,7 @@ rule's pattern) and the listing of the names there are come from here too.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
 from collections.abc import Mapping
@@ -89,6 +90,27 @@ class PackageResolver:
             for root in _split(self.environ["ROS_PACKAGE_PATH"]):
                 _crawl_folder(Path(root), 0, self._crawled, seen)
         return self._crawled
+
+
+def environment_index(environ: Mapping[str, str]) -> str:
+    """A digest of the packages ``environ``'s ROS_PACKAGE_PATH and AMENT_PREFIX_PATH provide,
+    each by the folder :meth:`PackageResolver.find` would take: a package that comes to shadow
+    another (built into an overlay already on the path, copied into an earlier folder) changes
+    it, though neither variable does. Empty where neither is set."""
+    import hashlib
+
+    resolver = PackageResolver({}, environ)
+    if not any(resolver.environ.values()):
+        return ""
+    names: set[str] = set(resolver._crawl())
+    for prefix in _split(resolver.environ["AMENT_PREFIX_PATH"]):
+        share = Path(prefix) / "share"
+        for folder in (share / "ament_index" / "resource_index" / "packages", share):
+            with contextlib.suppress(OSError):
+                names.update(entry.name for entry in folder.iterdir())
+    found = {name: resolver._find_in_ament(name) or resolver._crawl().get(name) for name in names}
+    listing = "\n".join(f"{name}\0{folder}" for name, folder in sorted(found.items()) if folder)
+    return hashlib.sha256(listing.encode()).hexdigest()[:32]
 
 
 def _split(value: str) -> list[str]:

@@ -129,6 +129,9 @@ class ExpandPayload(Payload):
     # robot.yaml's folder: xacro's warnings name files relative to it, as the report does.
     base_dir: str = ""
     written: MessageLabel = ""  # the source's path as robot.yaml writes it ("": not known)
+    # A digest of the packages ROS_PACKAGE_PATH and AMENT_PREFIX_PATH provide (name -> folder):
+    # one that appears earlier on a path shadows the one read (sources.packages).
+    package_index: str = ""
 
 
 @dataclass(frozen=True)
@@ -157,6 +160,9 @@ class ComposePayload(Payload):
     environment: dict[str, str]
     output: Output
     origins: Output  # where each line's element was written (through the inputs' own)
+    # A digest of the packages ROS_PACKAGE_PATH and AMENT_PREFIX_PATH provide (name -> folder):
+    # one that appears earlier on a path shadows the one read (sources.packages).
+    package_index: str = ""
 
 
 @dataclass(frozen=True)
@@ -176,6 +182,9 @@ class PlanPayload(Payload):
     # The folders files may be read from without a warning; None: no warning (read_outside)
     roots: list[str] | None = None
     depfile: Output = ""  # the material textures it found and looked for in vain
+    # A digest of the packages ROS_PACKAGE_PATH and AMENT_PREFIX_PATH provide (name -> folder):
+    # one that appears earlier on a path shadows the one read (sources.packages).
+    package_index: str = ""
 
 
 @dataclass(frozen=True)
@@ -284,6 +293,9 @@ class SrdfPayload(Payload):
     # self_collision.home_state where robot.yaml gives it, which the SRDF must then have.
     home_state: str | None = None
     manifest_label: str = "robot.yaml"
+    # A digest of the packages ROS_PACKAGE_PATH and AMENT_PREFIX_PATH provide (name -> folder):
+    # one that appears earlier on a path shadows the one read (sources.packages).
+    package_index: str = ""
 
 
 @dataclass(frozen=True)

@@ -7,10 +7,12 @@ import shutil
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import mujoco
 import numpy as np
 import pytest
+import trimesh
 
 import mjcfbuild
 from mjcfbuild import filesig
@@ -385,3 +387,35 @@ def test_an_srdf_added_beside_a_floating_robot_s_description_is_an_edit(tmp_path
     assert again.code == 0 and " 0 run, " not in again.stdout + again.stderr, again.stderr
     model = mujoco.MjModel.from_xml_path(str(tmp_path / "mjcf" / "r.xml"))
     assert model.key_qpos[0][7] == pytest.approx(0.5)
+
+
+@pytest.mark.parametrize("variable", ["ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH"])
+def test_a_package_that_comes_to_shadow_the_one_read_is_an_edit(tmp_path, variable):
+    # A package built into an overlay already on the path (or copied into an earlier folder)
+    # shadows the one the build read, though the variable's value stays: the fast path, the
+    # full graph and check --up-to-date all called the old model current.
+    def package(root: Path, size: str) -> None:
+        folder = root / "share" / "arm_pkg" if variable == "AMENT_PREFIX_PATH" else root / "arm_pkg"
+        write(folder / "package.xml", "<package><name>arm_pkg</name></package>\n")
+        cube = trimesh.creation.box(extents=[2 * float(size)] * 3)
+        write(folder / "meshes" / "box.obj", cube.export(file_type="obj"))
+
+    package(tmp_path / "under", "0.1")
+    urdf = two_link_urdf().replace(
+        '<box size="0.2 0.2 0.1"/>', '<mesh filename="package://arm_pkg/meshes/box.obj"/>'
+    )
+    write(tmp_path / "robot" / "robot.urdf", urdf)
+    write(tmp_path / "robot" / "robot.yaml", "name: r\nsource:\n  urdf: robot.urdf\n")
+    paths = os.pathsep.join(str(tmp_path / name) for name in ("over", "under"))
+    (tmp_path / "over").mkdir()
+    env = {variable: paths}
+    assert run_cli("build", "-j", "1", cwd=tmp_path / "robot", env=env).code == 0
+    current = run_cli("check", "--up-to-date", cwd=tmp_path / "robot", env=env)
+    assert current.code == 0, current.stdout + current.stderr
+    package(tmp_path / "over", "0.3")
+    stale = run_cli("check", "--up-to-date", cwd=tmp_path / "robot", env=env)
+    assert stale.code != 0, stale.stdout + stale.stderr
+    again = run_cli("build", "-j", "1", cwd=tmp_path / "robot", env=env)
+    assert again.code == 0 and " 0 run, " not in again.stdout + again.stderr, again.stderr
+    model = mujoco.MjModel.from_xml_path(str(tmp_path / "robot" / "mjcf" / "r.xml"))
+    assert model.mesh_vert[:, 0].max() == pytest.approx(0.3, abs=1e-6)
