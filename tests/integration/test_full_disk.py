@@ -88,7 +88,9 @@ def test_a_full_output_folder_is_exit_7_naming_the_file(arm, small_disk, size):
     named = assert_write_errors(result.stderr)
     assert all("no space left" in line for line in result.stderr.splitlines())
     for name in named:
-        assert (arm / name).parent.is_dir(), name  # a real place in the output folder
+        # A file of the output folder; its folder may be gone (a previews step that drew
+        # nothing removes its pictures' folder).
+        assert (arm / name).resolve().is_relative_to((arm / "mjcf").resolve()), name
 
     remount(out, "size=8m")  # room again: the next build builds, whatever the last one left
     again = run_cli("build", "-q", cwd=arm)
