@@ -106,7 +106,9 @@ def run(args: argparse.Namespace) -> int:
             with contextlib.suppress(OSError):  # a waiting build made its state folder again
                 out.rmdir()
         failpoint("clean-removed")  # the tests stop here, the lock still held
-    _say(args, "removed " + ", ".join([*_grouped(ctx, files), _state_removed(ctx, yours)]))
+    from mjcfbuild.engine.outputs_off import grouped_files
+
+    _say(args, "removed " + ", ".join([*grouped_files(ctx, files), _state_removed(ctx, yours)]))
     if out.is_dir() and not args.quiet:
         _say_edited(ctx, edited)
         _say_history(ctx, history)
@@ -148,27 +150,6 @@ def _state_removed(ctx, yours: list[Path]) -> str:
         f"the build state in {state} (but for {FOREIGN}, which records the edited "
         f"file{'s' if len(yours) > 1 else ''} kept as yours, so that no build writes over {them})"
     )
-
-
-def _grouped(ctx, files: list[Path]) -> list[str]:
-    """The removed files as a message lists them: files at the top of the output folder by
-    name, the others counted by the top folder they were in: ``mjcf/report/ (12 files)`` for
-    a folder that went with them, ``5 files in mjcf/assets/`` for one that stays, holding
-    what was kept (named on the lines after)."""
-    top: list[str] = []
-    counts: dict[Path, int] = {}
-    for path in files:
-        relative = path.relative_to(ctx.out_dir)
-        if len(relative.parts) == 1:
-            top.append(ctx.label(path))
-        else:
-            folder = ctx.out_dir / relative.parts[0]
-            counts[folder] = counts.get(folder, 0) + 1
-    grouped = []
-    for folder, n in counts.items():
-        label, many = ctx.label(folder) + "/", f"{n} file{'s' if n > 1 else ''}"
-        grouped.append(f"{many} in {label}" if folder.is_dir() else f"{label} ({many})")
-    return [*top, *grouped]
 
 
 def _say_edited(ctx, edited: list[Path]) -> None:

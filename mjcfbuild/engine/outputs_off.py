@@ -29,6 +29,7 @@ from mjcfbuild.outputs import (
 
 if TYPE_CHECKING:
     from mjcfbuild.engine.context import BuildContext
+    from mjcfbuild.graph.context import GraphContext
 
 
 @dataclass
@@ -166,7 +167,7 @@ def say(ctx: BuildContext, item: Leftover) -> str:
     """The line saying what the build removed of ``item`` and what it kept there."""
     line = f"{item.key} {item.why}"
     if item.removable:
-        line = f"removed {', '.join(_grouped(ctx, item.removable))}: {line}"
+        line = f"removed {', '.join(grouped_files(ctx, item.removable))}: {line}"
     kept = [f"{ctx.label(path)} (edited since a build wrote it)" for path in item.kept]
     kept += [
         f"{ctx.label(path)} (the history of earlier builds: no build can write it again; "
@@ -180,10 +181,11 @@ def say(ctx: BuildContext, item: Leftover) -> str:
     return line + (f"; kept {', '.join(kept)}" if kept else "")
 
 
-def _grouped(ctx: BuildContext, files: list[Path]) -> list[str]:
-    """The files by name at the top of the output folder, the others counted by their top
-    folder: ``mjcf/package/ (9 files)`` for a folder that went, ``2 files in mjcf/package/``
-    for one that stays."""
+def grouped_files(ctx: GraphContext, files: list[Path]) -> list[str]:
+    """Removed files as a message lists them: files at the top of the output folder by name,
+    the others counted by the top folder they were in: ``mjcf/package/ (9 files)`` for a
+    folder that went with them, ``2 files in mjcf/package/`` for one that stays (``clean``
+    and a build removing an output turned off say it alike)."""
     top: list[str] = []
     counts: dict[Path, int] = {}
     for path in files:
