@@ -90,6 +90,21 @@ def _export(ctx: BuildContext) -> Leftover | None:
     return item
 
 
+def _sources(ctx: BuildContext) -> set[Path]:
+    """The files this build reads as robot.yaml names them: its source and its parts' (an
+    exported URDF robot.yaml now builds from is no leftover, though no output writes it)."""
+    found = {Path(os.path.normpath(ctx.source_path))} if ctx.source_kind != "description" else set()
+    for part in ctx.manifest.attach:
+        found.add(Path(os.path.normpath(ctx.resolve(part.source.file))))
+    return found
+
+
+def _through_link(ctx: BuildContext, path: Path) -> bool:
+    """Whether ``path`` lies in a linked folder below the output folder (a package folder
+    linked to a checkout of the user's): nothing is removed through a link."""
+    return any(folder.is_symlink() for folder in path.parents if ctx.out_dir in folder.parents)
+
+
 def _package(ctx: BuildContext) -> Leftover | None:
     """The package folder's files an earlier build wrote, where ``output.package`` is off."""
     copies = ctx.state(PACKAGE_COPIES)
@@ -116,7 +131,10 @@ def _sort(ctx: BuildContext, item: Leftover, paths: list[Path]) -> None:
     from mjcfbuild.engine.written import edited, recorded, written_file
 
     record = recorded(ctx) or {}
+    sources = _sources(ctx)
     for path in dict.fromkeys(paths):
+        if Path(os.path.normpath(path)) in sources or _through_link(ctx, path):
+            continue
         name = _name(ctx, path)
         if name is None or name not in record or not written_file(ctx.out_dir, name):
             continue

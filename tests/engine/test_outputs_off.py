@@ -77,3 +77,20 @@ def test_turning_the_package_off_removes_it_but_the_changelog_and_your_files(tmp
     )
     assert run_cli("build", "-q", cwd=folder).code == 0
     assert (package / "example_arm.xml").is_file() and (package / "NOTES.md").is_file()
+
+
+def test_an_exported_urdf_robot_yaml_now_builds_from_is_not_removed(tmp_path):
+    # Build from the URDF an earlier build exported, with output.urdf off: the export is the
+    # source now, and removing it as a leftover stopped the build ("source file not found").
+    from tests.conftest import two_link_urdf, write
+
+    write(tmp_path / "robot.urdf", two_link_urdf())
+    manifest = tmp_path / "robot.yaml"
+    write(manifest, "name: r\nsource:\n  urdf: robot.urdf\noutput:\n  urdf: exported.urdf\n")
+    assert run_cli("build", "--no-check", "-j", "1", cwd=tmp_path).code == 0
+    exported = tmp_path / "mjcf" / "exported.urdf"
+    assert exported.is_file()
+    write(manifest, "name: r\nsource:\n  urdf: mjcf/exported.urdf\n")
+    again = run_cli("build", "--no-check", "-j", "1", cwd=tmp_path)
+    assert again.code == 0, again.stderr
+    assert exported.is_file()
