@@ -233,8 +233,16 @@ def ros_environment(ctx: GraphContext) -> dict[str, str]:
 
 
 def ros_package_index(ctx: GraphContext) -> str:
-    """A digest of the packages those variables provide now (``environment_index``): a task
-    that looks packages up there reruns when one comes to shadow another."""
+    """A digest of what those variables offer package lookup now (``environment_index``): a
+    task that looks packages up there reruns when one comes to shadow another. Taken once a
+    build (its tasks are planned in one moment)."""
     from mjcfbuild.sources.packages import environment_index
 
-    return environment_index(ctx.environ)
+    key = (ctx.started_ns, *ros_environment(ctx).values())
+    if key not in _PACKAGE_INDEX:
+        _PACKAGE_INDEX.clear()  # one build's at a time: watch's next build looks again
+        _PACKAGE_INDEX[key] = environment_index(ctx.environ)
+    return _PACKAGE_INDEX[key]
+
+
+_PACKAGE_INDEX: dict[tuple, str] = {}

@@ -11,7 +11,6 @@ rule's pattern) and the listing of the names there are come from here too.
 
 from __future__ import annotations
 
-import contextlib
 import os
 import re
 from collections.abc import Mapping
@@ -93,24 +92,54 @@ class PackageResolver:
 
 
 def environment_index(environ: Mapping[str, str]) -> str:
-    """A digest of the packages ``environ``'s ROS_PACKAGE_PATH and AMENT_PREFIX_PATH provide,
-    each by the folder :meth:`PackageResolver.find` would take: a package that comes to shadow
+    """A digest of what ``environ``'s AMENT_PREFIX_PATH and ROS_PACKAGE_PATH offer package
+    lookup, in their order: each prefix's ament index and ``share/`` names, and the
+    ``package.xml`` files the crawl of ROS_PACKAGE_PATH meets. A package that comes to shadow
     another (built into an overlay already on the path, copied into an earlier folder) changes
-    it, though neither variable does. Empty where neither is set."""
+    it, though neither variable does. Folder listings only, no file read: the no-op build
+    computes it. Empty where neither variable is set."""
     import hashlib
 
-    resolver = PackageResolver({}, environ)
-    if not any(resolver.environ.values()):
+    ament, ros = environ.get("AMENT_PREFIX_PATH", ""), environ.get("ROS_PACKAGE_PATH", "")
+    if not ament and not ros:
         return ""
-    names: set[str] = set(resolver._crawl())
-    for prefix in _split(resolver.environ["AMENT_PREFIX_PATH"]):
+    lines: list[str] = []
+    for prefix in _split(ament):
         share = Path(prefix) / "share"
         for folder in (share / "ament_index" / "resource_index" / "packages", share):
-            with contextlib.suppress(OSError):
-                names.update(entry.name for entry in folder.iterdir())
-    found = {name: resolver._find_in_ament(name) or resolver._crawl().get(name) for name in names}
-    listing = "\n".join(f"{name}\0{folder}" for name, folder in sorted(found.items()) if folder)
-    return hashlib.sha256(listing.encode()).hexdigest()[:32]
+            lines.append(f"{folder}\0" + "\0".join(sorted(_names_in(folder))))
+    seen: set[str] = set()
+    for root in _split(ros):
+        _package_files(Path(root), 0, lines, seen)
+    return hashlib.sha256("\n".join(lines).encode()).hexdigest()[:32]
+
+
+def _names_in(folder: Path) -> set[str]:
+    try:
+        with os.scandir(folder) as entries:
+            return {entry.name for entry in entries}
+    except OSError:
+        return set()
+
+
+def _package_files(folder: Path, depth: int, found: list[str], seen: set[str]) -> None:
+    """The ``package.xml`` files the crawl of ROS_PACKAGE_PATH meets in and below ``folder``
+    (:func:`_crawl_folder`'s walk, without reading them)."""
+    real = os.path.realpath(folder)
+    if real in seen:
+        return
+    seen.add(real)
+    manifest = folder / "package.xml"
+    if manifest.is_file():
+        found.append(str(manifest))
+        return
+    if depth >= _MAX_CRAWL_DEPTH or any((folder / m).exists() for m in _IGNORE_MARKERS):
+        return
+    names = sorted(name for name in _names_in(folder) if not name.startswith("."))
+    for name in names:
+        child = folder / name
+        if child.is_dir():
+            _package_files(child, depth + 1, found, seen)
 
 
 def _split(value: str) -> list[str]:

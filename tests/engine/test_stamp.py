@@ -156,7 +156,24 @@ def test_a_failed_build_leaves_no_stamp(built_arm):
     assert not stamp.stamp_path(built_arm.resolve() / "robot.yaml", False).exists()
 
 
-def test_a_no_op_imports_no_engine_doit_pydantic_or_heavy_module(built_arm):
+@pytest.mark.parametrize("ros", [False, True])
+def test_a_no_op_imports_no_engine_doit_pydantic_or_heavy_module(built_arm, ros, tmp_path):
+    # With ROS_PACKAGE_PATH set, the no-op also takes what it offers package lookup
+    # (sources.packages.environment_index) by folder listings alone: no package.xml is parsed.
+    env = dict(os.environ)
+    if ros:
+        for name in ("a_pkg", "b_pkg"):
+            (tmp_path / "ws" / name).mkdir(parents=True)
+            (tmp_path / "ws" / name / "package.xml").write_text(
+                f"<package><name>{name}</name></package>"
+            )
+        env["ROS_PACKAGE_PATH"] = str(tmp_path / "ws")
+        subprocess.run(
+            [sys.executable, "-m", "mjcfbuild", "build", "--no-check", "-q"],
+            cwd=built_arm,
+            env=env,
+            check=True,
+        )
     probe = (
         "import sys\n"
         "from mjcfbuild.cli import run\n"
@@ -168,7 +185,7 @@ def test_a_no_op_imports_no_engine_doit_pydantic_or_heavy_module(built_arm):
         "sys.exit(code)\n"
     )
     done = subprocess.run(
-        [sys.executable, "-c", probe], cwd=built_arm, capture_output=True, text=True
+        [sys.executable, "-c", probe], cwd=built_arm, capture_output=True, text=True, env=env
     )
     assert done.returncode == 0, done.stderr
     assert "0 run, 9 up to date" in done.stdout
