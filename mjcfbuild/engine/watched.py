@@ -147,6 +147,9 @@ def _pattern_folders(globs: dict[str, list[str]]) -> list[str]:
         parts = Path(pattern).parts
         fixed = next((i for i, part in enumerate(parts) if glob.has_magic(part)), len(parts))
         folders.add(os.path.join(*parts[:fixed], ""))
+        # And every folder the pattern's folder part matches now (x_moveit_config/config/):
+        # a file added in one changes no listing above it.
+        folders.update(os.path.join(found, "") for found in glob.glob(os.path.dirname(pattern)))
     return sorted(folders)
 
 

@@ -178,3 +178,19 @@ def test_after_a_build_a_file_that_comes_to_match_a_pattern_it_searched_is_a_cha
     changed = watched.changed()
     assert str(tmp_path / "config") + os.sep in changed
     assert str(srdf) in watched.edited(changed)
+
+
+def test_after_a_build_a_file_added_where_a_pattern_s_folder_part_matched_is_a_change(tmp_path):
+    # A sibling MoveIt package's config/ (the pattern */..._moveit_config/config/*.srdf): the
+    # folder above it lists no change when a file comes in it.
+    from tests.conftest import two_link_urdf, write
+
+    write(tmp_path / "top" / "desc" / "urdf" / "robot.urdf", two_link_urdf())
+    (tmp_path / "top" / "r_moveit_config" / "config").mkdir(parents=True)
+    manifest = tmp_path / "top" / "desc" / "urdf" / "robot.yaml"
+    write(manifest, "name: r\nsource:\n  urdf: robot.urdf\noptions:\n  free_joint: true\n")
+    assert run(["build", str(manifest), "-q", "--no-check"]) == 0
+    watched = from_stamp(manifest, run_check=False)
+    assert watched is not None and watched.changed() == []
+    srdf = write(tmp_path / "top" / "r_moveit_config" / "config" / "r.srdf", "<robot name='r'/>\n")
+    assert str(srdf) in watched.edited(watched.changed())
