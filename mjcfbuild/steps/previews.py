@@ -121,8 +121,10 @@ class StoredPictures:
 def no_pictures(folder: Path, record: Path) -> None:
     """Remove the pictures an earlier build left in ``folder``, and the step's ``record`` of
     them: where this build draws none, a clean build would have none, and the report lists the
-    pictures it finds there. Best effort: a picture that cannot be removed stays."""
-    for path in [*folder.glob("*.png"), record]:
+    pictures it finds there. Only those the record names with the bytes it wrote: a picture
+    put there or edited since is the user's. Best effort: one that cannot be removed stays."""
+    ours = [folder / name for name in pictures_in_place(folder, record)]
+    for path in [*ours, record]:
         with contextlib.suppress(OSError):
             path.unlink(missing_ok=True)
     with contextlib.suppress(OSError):

@@ -151,3 +151,17 @@ def test_pictures_no_longer_asked_for_are_not_left_behind(arm, tmp_path):
     assert not previews.exists()
     assert not (arm / "mjcf/.mjcfbuild/previews.json").exists()
     assert "## Previews" not in (arm / "mjcf/report/report.md").read_text()
+
+
+def test_a_picture_of_the_user_s_in_the_previews_folder_stays(arm, tmp_path):
+    """Pictures no longer asked for go only where the step's record says it wrote those bytes:
+    a picture the user put in the folder is theirs."""
+    env = {"MJCFBUILD_CACHE_DIR": str(tmp_path / "cache")}
+    assert run_cli("build", "-q", cwd=arm, env=env).code == EXIT_OK
+    mine = arm / "mjcf/report/previews/annotated.png"
+    mine.write_bytes(b"\x89PNG mine")
+    manifest = arm / "robot.yaml"
+    manifest.write_text(manifest.read_text() + "check:\n  previews: false\n")
+    assert run_cli("build", "-q", cwd=arm, env=env).code == EXIT_OK
+    assert mine.read_bytes() == b"\x89PNG mine"
+    assert sorted(p.name for p in mine.parent.iterdir()) == ["annotated.png"]
