@@ -47,9 +47,8 @@ def block_refusals(block: etree._Element, label: str) -> list[ParserRefusal]:
             found += _hardware(child, at)
         elif child.tag in ("joint", "sensor", "gpio"):
             found += _component(child, at, own_limits=child.tag != "gpio")
-        elif child.tag == "transmission" and child.get("name") is None:
-            # parse_transmission_from_xml
-            found.append(_nameless(child, at))
+        elif child.tag == "transmission":
+            found += _transmission(child, at)
     if block.get("type") == "actuator":
         # auto_fill_transmission_interfaces: an actuator component's transmission
         for transmission in block.findall("transmission"):
@@ -99,6 +98,14 @@ def _component(component: etree._Element, at, own_limits: bool) -> list[ParserRe
             found.append(_nameless(interface, at))
         found += _params(interface, at) + _limits(interface, at)
     return found + _params(component, at) + (_limits(component, at) if own_limits else [])
+
+
+def _transmission(transmission: etree._Element, at) -> list[ParserRefusal]:
+    """parse_transmission_from_xml: its name, each <joint>'s and <actuator>'s name (read before
+    their role), each <param>'s name."""
+    parts = [transmission, *transmission.findall("joint"), *transmission.findall("actuator")]
+    nameless = [_nameless(part, at) for part in parts if part.get("name") is None]
+    return nameless + _params(transmission, at)
 
 
 def _nameless(element: etree._Element, at) -> ParserRefusal:
