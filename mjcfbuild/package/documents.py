@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 from dataclasses import dataclass
 from pathlib import Path
@@ -72,7 +73,8 @@ def search_license(
             for name in LICENSE_NAMES:
                 if (current / name).is_file():
                     return current / name, looked
-                looked.append(current / name)
+                if not os.path.lexists(current / name):  # a folder of the name is no license,
+                    looked.append(current / name)  # nor would the stamp take it for absent
             at_top = top is not None and (current == top or top not in current.parents)
             if at_top or (current / "package.xml").is_file() or current.parent == current:
                 break

@@ -79,3 +79,17 @@ def test_the_readme_says_a_robot_stands_only_when_it_stood():
     motors = CheckResults(loads=True, stand=fell, needs_controller="torque motors")
     lines = readme(info, motors, {}).splitlines()
     assert "- the robot cannot stand without a controller (torque motors)" in lines
+
+
+def test_a_folder_named_license_is_no_place_a_license_is_awaited(tmp_path):
+    # The places looked at in vain are the stamp's absent files; a LICENSE folder there is
+    # present to the stamp, which then sent every no-op to the full build (found in review).
+    from mjcfbuild.package.documents import search_license
+
+    (tmp_path / "pkg" / "urdf").mkdir(parents=True)
+    (tmp_path / "pkg" / "package.xml").write_text("<package/>")
+    (tmp_path / "pkg" / "LICENSE").mkdir()
+    found, looked = search_license([tmp_path / "pkg" / "urdf"], None)
+    assert found is None
+    assert (tmp_path / "pkg" / "urdf" / "LICENSE").resolve() in looked
+    assert (tmp_path / "pkg" / "LICENSE").resolve() not in looked
