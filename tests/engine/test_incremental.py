@@ -17,7 +17,13 @@ import trimesh
 import mjcfbuild
 from mjcfbuild import filesig
 from mjcfbuild.errors import BuildFailed
-from tests.conftest import file_clock_past, run_cli, two_link_urdf, write
+from tests.conftest import (
+    file_clock_past,
+    file_clock_past_changes,
+    run_cli,
+    two_link_urdf,
+    write,
+)
 
 ALL_ARM_TASKS = {
     "expand",
@@ -349,6 +355,7 @@ def test_a_depfile_of_a_task_no_longer_planned_is_not_an_input(tmp_path):
     )
     assert run_cli("build", "--no-check", "-j", "1", cwd=tmp_path).code == 0
     write(tmp_path / "robot.yaml", "name: r\nsource:\n  urdf: robot.urdf\n")
+    file_clock_past_changes(tmp_path)  # else the build leaves no stamp
     assert run_cli("build", "--no-check", "-j", "1", cwd=tmp_path).code == 0
     shutil.rmtree(tmp_path / "pkg")
     probe = (
@@ -381,6 +388,7 @@ def test_an_srdf_added_beside_a_floating_robot_s_description_is_an_edit(tmp_path
         tmp_path / "robot.yaml",
         "name: r\nsource:\n  urdf: robot.urdf\noptions:\n  free_joint: true\n",
     )
+    file_clock_past_changes(tmp_path)  # else the build leaves no stamp
     assert run_cli("build", "--no-check", "-j", "1", cwd=tmp_path).code == 0
     write(tmp_path / "config" / "two_link.srdf", STANDING_SRDF)
     again = run_cli("build", "--no-check", "-j", "1", cwd=tmp_path)
@@ -409,6 +417,7 @@ def test_a_package_that_comes_to_shadow_the_one_read_is_an_edit(tmp_path, variab
     paths = os.pathsep.join(str(tmp_path / name) for name in ("over", "under"))
     (tmp_path / "over").mkdir()
     env = {variable: paths}
+    file_clock_past_changes(tmp_path)  # else the build leaves no stamp
     assert run_cli("build", "-j", "1", cwd=tmp_path / "robot", env=env).code == 0
     current = run_cli("check", "--up-to-date", cwd=tmp_path / "robot", env=env)
     assert current.code == 0, current.stdout + current.stderr

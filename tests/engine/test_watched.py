@@ -164,13 +164,14 @@ def test_after_a_build_stopped_at_an_edited_output_settling_it_is_seen(arm):
 
 def test_after_a_build_a_file_that_comes_to_match_a_pattern_it_searched_is_a_change(tmp_path):
     # The SRDF the build looks for beside a floating robot's description: watch waited on.
-    from tests.conftest import two_link_urdf, write
+    from tests.conftest import file_clock_past_changes, two_link_urdf, write
 
     write(tmp_path / "robot.urdf", two_link_urdf())
     write(
         tmp_path / "robot.yaml",
         "name: r\nsource:\n  urdf: robot.urdf\noptions:\n  free_joint: true\n",
     )
+    file_clock_past_changes(tmp_path)  # else the build leaves no stamp to watch by
     assert run(["build", str(tmp_path / "robot.yaml"), "-q", "--no-check"]) == 0
     watched = from_stamp(tmp_path / "robot.yaml", run_check=False)
     assert watched is not None and watched.changed() == []
@@ -183,12 +184,13 @@ def test_after_a_build_a_file_that_comes_to_match_a_pattern_it_searched_is_a_cha
 def test_after_a_build_a_file_added_where_a_pattern_s_folder_part_matched_is_a_change(tmp_path):
     # A sibling MoveIt package's config/ (the pattern */..._moveit_config/config/*.srdf): the
     # folder above it lists no change when a file comes in it.
-    from tests.conftest import two_link_urdf, write
+    from tests.conftest import file_clock_past_changes, two_link_urdf, write
 
     write(tmp_path / "top" / "desc" / "urdf" / "robot.urdf", two_link_urdf())
     (tmp_path / "top" / "r_moveit_config" / "config").mkdir(parents=True)
     manifest = tmp_path / "top" / "desc" / "urdf" / "robot.yaml"
     write(manifest, "name: r\nsource:\n  urdf: robot.urdf\noptions:\n  free_joint: true\n")
+    file_clock_past_changes(tmp_path)  # else the build leaves no stamp to watch by
     assert run(["build", str(manifest), "-q", "--no-check"]) == 0
     watched = from_stamp(manifest, run_check=False)
     assert watched is not None and watched.changed() == []
